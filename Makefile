@@ -1,0 +1,156 @@
+# vdt - one non-recursive GNU Makefile.
+#
+#   make            build build/libvdt.a and bin/vdt-*
+#   make check      install what is missing, build, run every test
+#   make demo       install what is missing, build, run the main pipeline
+#   make bench      benchmarks against peers on real models
+#   make fuzz       run each libFuzzer target briefly (FUZZ_SECONDS)
+#   make install    PREFIX=/usr/local DESTDIR= MANDIR=$(PREFIX)/share/man
+#   make SANITIZE=1 check   the same with ASan and UBSan
+
+CC ?= cc
+CXX ?= c++
+CFLAGS ?= -O2 -g
+CXXFLAGS ?= -O2 -g
+PREFIX ?= /usr/local
+BINDIR ?= $(PREFIX)/bin
+MANDIR ?= $(PREFIX)/share/man
+FUZZ_SECONDS ?= 15
+
+override CPPFLAGS += -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
+override CFLAGS += -std=c11 -Wall -Wextra -Werror -MMD -MP
+override CXXFLAGS += -std=c++17 -Wall -Wextra -Werror -MMD -MP \
+	-Wno-deprecated-declarations -Wno-deprecated-copy
+LDLIBS_VDT = -lOpenMeshCore -ldraco -lOpenImageIO -lOpenImageIO_Util -lz -lm -lpthread
+
+ifeq ($(SANITIZE),1)
+VARIANT := san
+SAN := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+override CFLAGS += $(SAN)
+override CXXFLAGS += $(SAN)
+override LDFLAGS += $(SAN)
+else
+VARIANT := rel
+endif
+
+B := build/$(VARIANT)
+
+LIB_C := $(sort $(wildcard lib/*.c lib/io/*.c))
+LIB_CC := $(sort $(wildcard lib/io/*.cc))
+LIB_O := $(LIB_C:%.c=$(B)/%.o) $(LIB_CC:%.cc=$(B)/%.o)
+LIB := $(B)/libvdt.a
+COMMON_O := $(B)/cmd/common.o
+TOOLS := $(patsubst cmd/%.c,bin/%,$(sort $(wildcard cmd/vdt-*.c)))
+UNIT := $(patsubst tests/unit/%.c,$(B)/tests/%,$(sort $(wildcard tests/unit/test_*.c)))
+HELPERS := $(patsubst scripts/%.c,$(B)/scripts/%,$(sort $(wildcard scripts/*.c)))
+BENCH := $(patsubst scripts/bench/%.c,$(B)/bench/%,$(sort $(wildcard scripts/bench/*.c))) \
+	$(patsubst scripts/bench/%.cc,$(B)/bench/%,$(sort $(wildcard scripts/bench/*.cc)))
+MAN1 := $(sort $(wildcard man/*.1))
+MAN57 := $(sort $(wildcard man/*.5 man/*.7))
+
+.PHONY: all deps check unit cli demo bench fuzz samples install uninstall \
+	clean lint helpers
+.SUFFIXES:
+.DELETE_ON_ERROR:
+
+all: $(TOOLS) helpers
+
+helpers: $(HELPERS)
+
+# The binaries in bin/ are of one variant at a time: relink when it changes.
+build/variant: FORCE
+	@mkdir -p build
+	@echo $(VARIANT) | cmp -s - $@ || echo $(VARIANT) > $@
+FORCE:
+
+$(B)/%.o: %.c
+	@mkdir -p $(@D)
+	$(CC) $(CPPFLAGS) $(CFLAGS) -c -o $@ $<
+
+$(B)/%.o: %.cc
+	@mkdir -p $(@D)
+	$(CXX) $(CPPFLAGS) $(CXXFLAGS) -c -o $@ $<
+
+$(LIB): $(LIB_O)
+	@mkdir -p $(@D)
+	rm -f $@
+	$(AR) rcs $@ $^
+
+bin/%: $(B)/cmd/%.o $(COMMON_O) $(LIB) build/variant
+	@mkdir -p $(@D)
+	$(CXX) $(LDFLAGS) -o $@ $< $(COMMON_O) $(LIB) $(LDLIBS_VDT)
+
+$(B)/tests/%: $(B)/tests/unit/%.o $(LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(LDFLAGS) -o $@ $< $(LIB) -lcmocka $(LDLIBS_VDT)
+
+$(B)/scripts/%: $(B)/scripts/%.o $(LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(LDFLAGS) -o $@ $< $(LIB) $(LDLIBS_VDT)
+
+# Comparison drivers for the bench: each links one peer library.
+BENCH_LIBS_meshopt = -lmeshoptimizer
+BENCH_LIBS_cgal = -lgmp -lmpfr
+BENCH_LIBS_openmesh = -lOpenMeshTools
+$(B)/bench/%: $(B)/scripts/bench/%.o $(LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(LDFLAGS) -o $@ $< $(LIB) $(BENCH_LIBS_$(firstword $(subst _, ,$*))) $(LDLIBS_VDT)
+
+deps:
+	@scripts/install-deps
+
+unit: $(UNIT)
+
+check: deps
+	@$(MAKE) --no-print-directory all unit samples
+	@scripts/run-tests $(B)/tests
+
+samples: deps helpers
+	@scripts/fetch-samples
+
+demo: deps
+	@$(MAKE) --no-print-directory all samples
+	@scripts/demo
+
+bench: deps
+	@$(MAKE) --no-print-directory all samples $(BENCH)
+	@scripts/bench/run $(B)/bench
+
+# libFuzzer targets: clang, with the library built again for coverage.
+F := build/fuzz
+FUZZ_FLAGS := -g -O1 -fsanitize=fuzzer-no-link,address,undefined
+FUZZ_LIB_O := $(LIB_C:%.c=$(F)/%.o) $(LIB_CC:%.cc=$(F)/%.o)
+FUZZERS := $(patsubst tests/fuzz/%.c,$(F)/%,$(sort $(wildcard tests/fuzz/fuzz_*.c)))
+$(F)/%.o: %.c
+	@mkdir -p $(@D)
+	clang $(CPPFLAGS) -std=c11 -Wall -Wextra $(FUZZ_FLAGS) -c -o $@ $<
+$(F)/%.o: %.cc
+	@mkdir -p $(@D)
+	clang++ $(CPPFLAGS) -std=c++17 -Wall -Wno-deprecated-declarations $(FUZZ_FLAGS) -c -o $@ $<
+$(F)/fuzz_%: $(F)/tests/fuzz/fuzz_%.o $(FUZZ_LIB_O)
+	clang++ -fsanitize=fuzzer,address,undefined -o $@ $^ $(LDLIBS_VDT)
+fuzz: deps $(FUZZERS)
+	@scripts/run-fuzz $(F) $(FUZZ_SECONDS)
+
+lint:
+	mandoc -Tlint -W warning $(MAN1) $(MAN57)
+
+install: all
+	install -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(MANDIR)/man1 \
+		$(DESTDIR)$(MANDIR)/man5 $(DESTDIR)$(MANDIR)/man7
+	install -m 755 $(TOOLS) $(DESTDIR)$(BINDIR)
+	$(if $(wildcard scripts/vdt-batch),install -m 755 scripts/vdt-batch $(DESTDIR)$(BINDIR))
+	install -m 644 $(MAN1) $(DESTDIR)$(MANDIR)/man1
+	$(if $(wildcard man/*.5),install -m 644 $(wildcard man/*.5) $(DESTDIR)$(MANDIR)/man5)
+	$(if $(wildcard man/*.7),install -m 644 $(wildcard man/*.7) $(DESTDIR)$(MANDIR)/man7)
+
+uninstall:
+	rm -f $(addprefix $(DESTDIR)$(BINDIR)/,$(notdir $(TOOLS)) vdt-batch)
+	rm -f $(addprefix $(DESTDIR)$(MANDIR)/man1/,$(notdir $(MAN1)))
+	rm -f $(addprefix $(DESTDIR)$(MANDIR)/man5/,$(notdir $(wildcard man/*.5)))
+	rm -f $(addprefix $(DESTDIR)$(MANDIR)/man7/,$(notdir $(wildcard man/*.7)))
+
+clean:
+	rm -rf build bin
+
+-include $(shell find build -name '*.d' 2>/dev/null)

@@ -1,0 +1,181 @@
+#include "common.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "../lib/stream.h"
+
+const char *progname = "vdt";
+
+void
+cmd_init(const char *argv0)
+{
+	const char *slash = argv0 ? strrchr(argv0, '/') : NULL;
+
+	if (argv0 != NULL)
+		progname = slash ? slash + 1 : argv0;
+}
+
+void
+usage_error(const char *fmt, ...)
+{
+	va_list ap;
+
+	fprintf(stderr, "%s: ", progname);
+	va_start(ap, fmt);
+	vfprintf(stderr, fmt, ap);
+	va_end(ap);
+	fprintf(stderr, "\n");
+	exit(EXIT_USAGE);
+}
+
+void
+print_version(void)
+{
+	printf("%s %s (vdt stream format %d.%d)\n", progname, VDT_VERSION,
+	       VDT_STREAM_MAJOR, VDT_STREAM_MINOR);
+}
+
+int
+exit_status(int code)
+{
+	switch (code) {
+	case VDT_EFORMAT:
+	case VDT_EVERSION:
+	case VDT_ECHECKSUM:
+	case VDT_EINVAL:
+		return EXIT_USAGE;
+	case VDT_EIO:
+		return EXIT_USAGE; /* callers map output-side I/O with fail_output */
+	default:
+		return EXIT_WORK;
+	}
+}
+
+int
+fail(const char *what, const char *file, const struct vdt_err *err)
+{
+	const char *name = (file == NULL || strcmp(file, "-") == 0) ? "<stdin>" : file;
+
+	progress_done();
+	if (strncmp(what, "cannot write", 12) == 0 && strcmp(file ? file : "-", "-") == 0)
+		name = "<stdout>";
+	fprintf(stderr, "%s: %s '%s': %s\n", progname, what, name,
+	        err && err->msg[0] ? err->msg : vdt_strstatus(err ? err->code : 0));
+	if (strncmp(what, "cannot write", 12) == 0)
+		return err && err->code == VDT_EINVAL ? EXIT_USAGE : EXIT_WORK;
+	return exit_status(err ? err->code : VDT_EIO);
+}
+
+unsigned long
+parse_count(const char *opt, const char *s, unsigned long min, unsigned long max)
+{
+	char *end;
+	unsigned long v;
+
+	errno = 0;
+	if (s == NULL || *s == '\0' || *s == '-' || *s == '+' || *s == ' ')
+		usage_error("invalid value '%s' for %s", s ? s : "", opt);
+	v = strtoul(s, &end, 10);
+	if (errno != 0 || *end != '\0')
+		usage_error("invalid value '%s' for %s", s, opt);
+	if (v < min || v > max)
+		usage_error("%s must be between %lu and %lu, not %s", opt, min, max, s);
+	return v;
+}
+
+double
+parse_real(const char *opt, const char *s, double min, double max)
+{
+	char *end;
+	double v;
+
+	errno = 0;
+	if (s == NULL || *s == '\0' || *s == ' ')
+		usage_error("invalid value '%s' for %s", s ? s : "", opt);
+	v = strtod(s, &end);
+	if (errno != 0 || *end != '\0' || !isfinite(v))
+		usage_error("invalid value '%s' for %s", s, opt);
+	if (v < min || v > max)
+		usage_error("%s must be between %g and %g, not %s", opt, min, max, s);
+	return v;
+}
+
+double
+parse_bound(const char *opt, const char *s, int *percent)
+{
+	size_t n = s ? strlen(s) : 0;
+	char buf[64];
+
+	*percent = 0;
+	if (n > 0 && n < sizeof(buf) && s[n - 1] == '%') {
+		memcpy(buf, s, n - 1);
+		buf[n - 1] = '\0';
+		*percent = 1;
+		return parse_real(opt, buf, 0, 100);
+	}
+	return parse_real(opt, s, 0, HUGE_VAL);
+}
+
+static struct {
+	int active;
+	double last;
+	struct vdt_progress p;
+} progress;
+
+static void
+progress_draw(void *ctx, const char *phase, double fraction)
+{
+	double t = now_seconds();
+
+	(void)ctx;
+	if (fraction < 1 && t - progress.last < 0.1)
+		return;
+	progress.last = t;
+	fprintf(stderr, "\r%s: %s %3.0f%%\033[K", progname, phase, 100 * fraction);
+	progress.active = 1;
+}
+
+struct vdt_progress *
+progress_start(int quiet)
+{
+	if (quiet || !isatty(STDERR_FILENO))
+		return NULL;
+	progress.p.fn = progress_draw;
+	progress.p.ctx = NULL;
+	progress.last = 0;
+	return &progress.p;
+}
+
+void
+progress_done(void)
+{
+	if (progress.active)
+		fprintf(stderr, "\r\033[K");
+	progress.active = 0;
+}
+
+double
+now_seconds(void)
+{
+	struct timespec ts;
+
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+size_t
+peak_rss_bytes(void)
+{
+	struct rusage ru;
+
+	if (getrusage(RUSAGE_SELF, &ru) != 0)
+		return 0;
+	return (size_t)ru.ru_maxrss * 1024;
+}

@@ -1,0 +1,67 @@
+/*
+ * common.h - what every vdt executable shares: the fail() reporter, checked
+ * number parsers, exit codes, progress on a terminal.
+ */
+#ifndef VDT_CMD_COMMON_H
+#define VDT_CMD_COMMON_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "../lib/err.h"
+#include "../lib/progress.h"
+
+#define VDT_VERSION "0.1.0"
+
+enum { EXIT_OK = 0, EXIT_WORK = 1, EXIT_USAGE = 2 };
+
+/* Set once from argv[0]'s basename by cmd_init(). */
+extern const char *progname;
+
+void cmd_init(const char *argv0);
+
+/* Print "progname: message" on stderr and exit 2 (bad usage). */
+void usage_error(const char *fmt, ...) __attribute__((format(printf, 1, 2), noreturn));
+
+/* Print the --version text (tool version and stream format version). */
+void print_version(void);
+
+/*
+ * Report a library error about a file: "progname: cannot read 'f': msg".
+ * `what` is the verb phrase ("cannot read", "cannot write"). Returns the exit
+ * status for err->code: 2 for bad input, 1 for failures of the work.
+ */
+int fail(const char *what, const char *file, const struct vdt_err *err);
+
+/* Exit status that matches a library status: 2 for input problems, else 1. */
+int exit_status(int code);
+
+/*
+ * Checked parsers for option arguments; each calls usage_error naming the
+ * option on junk ("12x", "-1", "", out of range).
+ */
+unsigned long parse_count(const char *opt, const char *s, unsigned long min,
+                          unsigned long max);
+double parse_real(const char *opt, const char *s, double min, double max);
+
+/*
+ * Parse an error bound "0.01" (absolute) or "0.5%" (of the bounding-box
+ * diagonal): *percent is set to 1 for the latter.
+ */
+double parse_bound(const char *opt, const char *s, int *percent);
+
+/*
+ * Progress on stderr, only when stderr is a terminal and not quiet: a
+ * struct vdt_progress whose callback redraws one line, at most ten times a
+ * second. progress_done() clears the line.
+ */
+struct vdt_progress *progress_start(int quiet);
+void progress_done(void);
+
+/* Seconds since an arbitrary start, monotonic. */
+double now_seconds(void);
+
+/* Peak resident set size of this process in bytes (0 if unknown). */
+size_t peak_rss_bytes(void);
+
+#endif

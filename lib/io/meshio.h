@@ -1,0 +1,108 @@
+/*
+ * meshio.h - reading and writing meshes in every format vdt speaks.
+ *
+ * OBJ, PLY (ASCII and binary), OFF and STL go through OpenMesh, with native
+ * C fast paths for binary PLY and binary STL; .drc through Draco; the vdt
+ * stream natively. "-" means stdin or stdout. The format of an input is
+ * detected from its first bytes (never from its name alone); the format of an
+ * output comes from its extension unless given.
+ */
+#ifndef VDT_MESHIO_H
+#define VDT_MESHIO_H
+
+#include "../err.h"
+#include "../mesh.h"
+#include "../stream.h"
+
+enum vdt_format {
+	VDT_FMT_AUTO = 0, /* detect (input) or from the extension (output) */
+	VDT_FMT_VDT,      /* vdt stream */
+	VDT_FMT_OBJ,
+	VDT_FMT_PLY,       /* binary little-endian PLY */
+	VDT_FMT_PLY_ASCII,
+	VDT_FMT_OFF,
+	VDT_FMT_STL,       /* binary STL */
+	VDT_FMT_STL_ASCII,
+	VDT_FMT_DRC,       /* Draco */
+};
+
+/*
+ * Parse a format name as given to -F: "vdt", "obj", "ply", "ply-ascii",
+ * "off", "stl", "stl-ascii", "drc". Returns VDT_FMT_AUTO for unknown names.
+ */
+enum vdt_format vdt_format_parse(const char *name);
+
+/* The canonical name of a format ("ply-ascii"). */
+const char *vdt_format_name(enum vdt_format f);
+
+/*
+ * The output format implied by a file name's extension (.vdt .vdq .vdl are
+ * the stream), or VDT_FMT_AUTO if none is known. "-" gives VDT_FMT_AUTO.
+ */
+enum vdt_format vdt_format_from_path(const char *path);
+
+/*
+ * Detect the format of content from its first n bytes (n >= 0; 512 is
+ * plenty). Returns VDT_FMT_AUTO if unrecognised. ASCII PLY and binary PLY,
+ * ASCII and binary STL are told apart.
+ */
+enum vdt_format vdt_format_detect(const unsigned char *buf, size_t n);
+
+/*
+ * Read a mesh from path ("-" for stdin). The format is detected from the
+ * content. If the input is a vdt stream, its MESH chunk becomes *m and every
+ * other chunk is appended, in order, to *extra (if extra is NULL they are
+ * dropped). The mesh is validated (vdt_mesh_validate) before returning.
+ * Messages name the file: "cannot read 'x.ply': face 12 uses vertex 9001 of
+ * 8000" is composed by the caller from err->msg, which here reads
+ * "face 12 uses vertex 9001 of 8000". Returns 0, VDT_EIO, VDT_EFORMAT,
+ * VDT_EVERSION, VDT_ECHECKSUM, VDT_EINVAL or VDT_ENOMEM; on failure *m and
+ * *extra are left empty.
+ */
+int vdt_read(const char *path, struct vdt_mesh *m, struct vdt_chunks *extra,
+             struct vdt_err *err);
+
+struct vdt_write_opts {
+	enum vdt_format format; /* VDT_FMT_AUTO: from the path's extension */
+	int draco_position_bits; /* Draco quantisation, 0 = default (16) */
+	int draco_speed;         /* Draco encoder speed 0..10, default 5 */
+};
+
+/*
+ * Write m to path ("-" for stdout) in the given format. For the vdt stream the
+ * MESH chunk is followed by the chunks of extra (may be NULL). Formats that
+ * cannot hold an attribute drop it. A named file is written to a temporary
+ * file in the same directory and renamed over path only on success, so a
+ * failure leaves nothing behind. The stream is never written to a terminal
+ * (VDT_EINVAL). Returns 0, VDT_EIO, VDT_EINVAL or VDT_ENOMEM.
+ */
+int vdt_write(const char *path, const struct vdt_mesh *m,
+              const struct vdt_chunks *extra, const struct vdt_write_opts *opts,
+              struct vdt_err *err);
+
+/*
+ * Atomic output for writers that produce bytes themselves: open a temporary
+ * file beside path (or stdout for "-"), write to o->f, then commit (flush,
+ * fsync not required, rename) or abort (close and unlink). Commit reports
+ * write errors such as a full disk as VDT_EIO.
+ */
+struct vdt_output {
+	FILE *f;
+	char *path;
+	char *tmp; /* NULL for stdout */
+};
+int vdt_output_open(struct vdt_output *o, const char *path, struct vdt_err *err);
+int vdt_output_commit(struct vdt_output *o, struct vdt_err *err);
+void vdt_output_abort(struct vdt_output *o);
+
+/*
+ * Images through OpenImageIO (PNG, TIFF, EXR, ... by extension).
+ * Pixels are 8-bit, row-major from the top row, `channels` per pixel.
+ */
+int vdt_image_write(const char *path, int width, int height, int channels,
+                    const unsigned char *pixels, struct vdt_err *err);
+/* Reads an image, converting to 8-bit; *pixels is malloc'ed. */
+int vdt_image_read(const char *path, int *width, int *height, int *channels,
+                   unsigned char **pixels, struct vdt_err *err);
+
+#endif

@@ -1,0 +1,150 @@
+#include "mesh.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static void *
+alloc_array(size_t count, size_t size, int *failed)
+{
+	void *p;
+
+	if (count == 0)
+		count = 1;
+	if (count > SIZE_MAX / size) {
+		*failed = 1;
+		return NULL;
+	}
+	p = malloc(count * size);
+	if (p == NULL)
+		*failed = 1;
+	return p;
+}
+
+int
+vdt_mesh_alloc(struct vdt_mesh *m, size_t vertex_count, size_t triangle_count,
+               unsigned attrs, struct vdt_err *err)
+{
+	int failed = 0;
+
+	memset(m, 0, sizeof(*m));
+	m->vertex_count = vertex_count;
+	m->triangle_count = triangle_count;
+	m->positions = alloc_array(vertex_count, 3 * sizeof(float), &failed);
+	m->triangles = alloc_array(triangle_count, 3 * sizeof(uint32_t), &failed);
+	if (attrs & VDT_ATTR_NORMALS)
+		m->normals = alloc_array(vertex_count, 3 * sizeof(float), &failed);
+	if (attrs & VDT_ATTR_UVS)
+		m->uvs = alloc_array(vertex_count, 2 * sizeof(float), &failed);
+	if (attrs & VDT_ATTR_COLORS)
+		m->colors = alloc_array(vertex_count, 4 * sizeof(float), &failed);
+	if (failed) {
+		vdt_mesh_free(m);
+		return vdt_err_set(err, VDT_ENOMEM,
+		                   "cannot allocate a mesh of %zu vertices and %zu triangles",
+		                   vertex_count, triangle_count);
+	}
+	return 0;
+}
+
+void
+vdt_mesh_free(struct vdt_mesh *m)
+{
+	free(m->positions);
+	free(m->normals);
+	free(m->uvs);
+	free(m->colors);
+	free(m->triangles);
+	memset(m, 0, sizeof(*m));
+}
+
+unsigned
+vdt_mesh_attrs(const struct vdt_mesh *m)
+{
+	return (m->normals ? VDT_ATTR_NORMALS : 0) | (m->uvs ? VDT_ATTR_UVS : 0) |
+	       (m->colors ? VDT_ATTR_COLORS : 0);
+}
+
+static int
+finite_run(const float *a, size_t n, size_t *bad)
+{
+	for (size_t i = 0; i < n; i++)
+		if (!isfinite(a[i])) {
+			*bad = i;
+			return 0;
+		}
+	return 1;
+}
+
+int
+vdt_mesh_validate(const struct vdt_mesh *m, struct vdt_err *err)
+{
+	size_t bad;
+
+	if (m->vertex_count == 0 || m->triangle_count == 0)
+		return vdt_err_set(err, VDT_EINVAL, "empty mesh (%zu vertices, %zu triangles)",
+		                   m->vertex_count, m->triangle_count);
+	if (m->vertex_count > UINT32_MAX)
+		return vdt_err_set(err, VDT_EINVAL, "too many vertices (%zu)", m->vertex_count);
+	if (!finite_run(m->positions, 3 * m->vertex_count, &bad))
+		return vdt_err_set(err, VDT_EINVAL, "vertex %zu has a non-finite coordinate", bad / 3);
+	if (m->normals && !finite_run(m->normals, 3 * m->vertex_count, &bad))
+		return vdt_err_set(err, VDT_EINVAL, "vertex %zu has a non-finite normal", bad / 3);
+	if (m->uvs && !finite_run(m->uvs, 2 * m->vertex_count, &bad))
+		return vdt_err_set(err, VDT_EINVAL, "vertex %zu has a non-finite texture coordinate", bad / 2);
+	if (m->colors && !finite_run(m->colors, 4 * m->vertex_count, &bad))
+		return vdt_err_set(err, VDT_EINVAL, "vertex %zu has a non-finite colour", bad / 4);
+	for (size_t i = 0; i < 3 * m->triangle_count; i++)
+		if (m->triangles[i] >= m->vertex_count)
+			return vdt_err_set(err, VDT_EINVAL, "triangle %zu uses vertex %u of %zu",
+			                   i / 3, m->triangles[i], m->vertex_count);
+	return 0;
+}
+
+void
+vdt_mesh_bbox(const struct vdt_mesh *m, struct vdt_bbox *box)
+{
+	for (int k = 0; k < 3; k++) {
+		box->min[k] = m->vertex_count ? INFINITY : 0;
+		box->max[k] = m->vertex_count ? -INFINITY : 0;
+	}
+	for (size_t i = 0; i < m->vertex_count; i++)
+		for (int k = 0; k < 3; k++) {
+			double x = m->positions[3 * i + k];
+			if (x < box->min[k])
+				box->min[k] = x;
+			if (x > box->max[k])
+				box->max[k] = x;
+		}
+}
+
+double
+vdt_bbox_diagonal(const struct vdt_bbox *box)
+{
+	double s = 0;
+
+	for (int k = 0; k < 3; k++) {
+		double d = box->max[k] - box->min[k];
+		s += d * d;
+	}
+	return sqrt(s);
+}
+
+int
+vdt_mesh_copy(struct vdt_mesh *dst, const struct vdt_mesh *src, struct vdt_err *err)
+{
+	int rc = vdt_mesh_alloc(dst, src->vertex_count, src->triangle_count,
+	                        vdt_mesh_attrs(src), err);
+
+	if (rc != 0)
+		return rc;
+	memcpy(dst->positions, src->positions, 3 * src->vertex_count * sizeof(float));
+	memcpy(dst->triangles, src->triangles, 3 * src->triangle_count * sizeof(uint32_t));
+	if (src->normals)
+		memcpy(dst->normals, src->normals, 3 * src->vertex_count * sizeof(float));
+	if (src->uvs)
+		memcpy(dst->uvs, src->uvs, 2 * src->vertex_count * sizeof(float));
+	if (src->colors)
+		memcpy(dst->colors, src->colors, 4 * src->vertex_count * sizeof(float));
+	return 0;
+}

@@ -1,0 +1,74 @@
+/*
+ * mesh.h - the indexed triangle mesh every module shares.
+ *
+ * Flat arrays with their counts. Attributes are per vertex; a file whose
+ * attributes are per corner (OBJ texture seams, hard normal edges) is read
+ * with its vertices split wherever the corner attributes differ, and
+ * `wedge_of` remembers which split vertices share one position so that tools
+ * can keep seams closed.
+ */
+#ifndef VDT_MESH_H
+#define VDT_MESH_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "err.h"
+
+enum vdt_mesh_attr {
+	VDT_ATTR_NORMALS = 1u << 0, /* 3 floats per vertex, unit length */
+	VDT_ATTR_UVS = 1u << 1,     /* 2 floats per vertex */
+	VDT_ATTR_COLORS = 1u << 2,  /* 4 floats per vertex, RGBA in [0,1] */
+};
+
+struct vdt_mesh {
+	size_t vertex_count;
+	float *positions; /* 3 * vertex_count */
+	float *normals;   /* 3 * vertex_count, or NULL */
+	float *uvs;       /* 2 * vertex_count, or NULL */
+	float *colors;    /* 4 * vertex_count, or NULL */
+
+	size_t triangle_count;
+	uint32_t *triangles; /* 3 * triangle_count, counter-clockwise */
+};
+
+struct vdt_bbox {
+	double min[3], max[3];
+};
+
+/*
+ * Allocate the arrays of a mesh with the given counts and attributes (a mask
+ * of enum vdt_mesh_attr). The contents are uninitialised. On failure the mesh
+ * is left empty and VDT_ENOMEM returned.
+ */
+int vdt_mesh_alloc(struct vdt_mesh *m, size_t vertex_count,
+                   size_t triangle_count, unsigned attrs, struct vdt_err *err);
+
+/* Free every array of m and zero it. Safe on a zeroed mesh. */
+void vdt_mesh_free(struct vdt_mesh *m);
+
+/* Mask of enum vdt_mesh_attr present in m. */
+unsigned vdt_mesh_attrs(const struct vdt_mesh *m);
+
+/*
+ * Check what every reader must guarantee: at least one triangle, every
+ * coordinate and attribute finite, every index below vertex_count. The
+ * message names the first offending vertex or triangle.
+ * Returns 0, or VDT_EINVAL.
+ */
+int vdt_mesh_validate(const struct vdt_mesh *m, struct vdt_err *err);
+
+/* Axis-aligned bounding box of the positions (of every vertex). */
+void vdt_mesh_bbox(const struct vdt_mesh *m, struct vdt_bbox *box);
+
+/* Length of the bounding-box diagonal. */
+double vdt_bbox_diagonal(const struct vdt_bbox *box);
+
+/*
+ * Deep copy src into dst (dst is overwritten, not freed first).
+ * Returns 0 or VDT_ENOMEM.
+ */
+int vdt_mesh_copy(struct vdt_mesh *dst, const struct vdt_mesh *src,
+                  struct vdt_err *err);
+
+#endif

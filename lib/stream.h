@@ -1,0 +1,159 @@
+/*
+ * stream.h - the vdt stream: one chunked, checksummed binary container that
+ * every tool reads and writes (specified byte by byte in vdt(5)).
+ *
+ *   signature  8 bytes  0x89 'V' 'D' 'T' 0x0D 0x0A 0x1A 0x0A
+ *   version    u16 major, u16 minor (VDT_STREAM_MAJOR / _MINOR)
+ *   chunks     u8[4] type, u64 payload length, payload, u32 CRC-32 of
+ *              type and payload (zlib's crc32)
+ *   end        a chunk of type "END " with an empty payload closes the
+ *              stream; nothing may follow it.
+ *
+ * All numbers little-endian. Unknown chunk types are kept opaque so that a
+ * tool can pass through what it does not consume.
+ */
+#ifndef VDT_STREAM_H
+#define VDT_STREAM_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "err.h"
+#include "mesh.h"
+#include "quadric.h"
+
+#define VDT_STREAM_MAJOR 1
+#define VDT_STREAM_MINOR 0
+#define VDT_STREAM_SIGNATURE "\x89VDT\r\n\x1a\n"
+#define VDT_STREAM_SIGNATURE_LEN 8
+#define VDT_STREAM_HEADER_LEN 12 /* signature + version */
+
+/* Chunk types as host integers built from their four ASCII bytes. */
+#define VDT_FOURCC(a, b, c, d)                                                 \
+	((uint32_t)(a) | (uint32_t)(b) << 8 | (uint32_t)(c) << 16 |             \
+	 (uint32_t)(d) << 24)
+#define VDT_CHUNK_MESH VDT_FOURCC('M', 'E', 'S', 'H')
+#define VDT_CHUNK_QUAD VDT_FOURCC('Q', 'U', 'A', 'D')
+#define VDT_CHUNK_LABL VDT_FOURCC('L', 'A', 'B', 'L')
+#define VDT_CHUNK_VTRE VDT_FOURCC('V', 'T', 'R', 'E')
+#define VDT_CHUNK_FRMS VDT_FOURCC('F', 'R', 'M', 'S')
+#define VDT_CHUNK_SEQN VDT_FOURCC('S', 'E', 'Q', 'N')
+#define VDT_CHUNK_END VDT_FOURCC('E', 'N', 'D', ' ')
+
+/* One chunk held in memory; the payload is owned by whoever holds it. */
+struct vdt_chunk {
+	uint32_t type;
+	uint64_t length;
+	unsigned char *data;
+	uint64_t offset; /* byte offset of the chunk header in its source */
+};
+
+/* The chunks of a whole stream, in order, without the end chunk. */
+struct vdt_chunks {
+	size_t count;
+	struct vdt_chunk *items;
+};
+
+/* Write the four type bytes of `type` into buf[5] as a C string. */
+void vdt_chunk_name(uint32_t type, char buf[5]);
+
+/* True if the first n bytes of buf start with the stream signature. */
+int vdt_stream_sniff(const unsigned char *buf, size_t n);
+
+/*
+ * Decode a whole stream held in memory (buf, len). On success *out holds
+ * copies of every chunk's payload except the end chunk. Errors: bad
+ * signature (VDT_EFORMAT), newer major version (VDT_EVERSION), CRC mismatch
+ * (VDT_ECHECKSUM), truncation, missing end chunk, or trailing bytes
+ * (VDT_EFORMAT); each message gives the byte offset. On failure *out is
+ * empty.
+ */
+int vdt_stream_decode(const unsigned char *buf, size_t len,
+                      struct vdt_chunks *out, struct vdt_err *err);
+
+/*
+ * Read a whole stream from f (a file or pipe, read to its end) as
+ * vdt_stream_decode does. `prefix`/`prefix_len` are bytes already consumed
+ * from f by format detection (may be 0).
+ */
+int vdt_stream_read(FILE *f, const unsigned char *prefix, size_t prefix_len,
+                    struct vdt_chunks *out, struct vdt_err *err);
+
+/* Free every payload and the array; leaves *c empty. */
+void vdt_chunks_free(struct vdt_chunks *c);
+
+/*
+ * Append a chunk to c, taking ownership of data (which must come from
+ * malloc). Returns 0 or VDT_ENOMEM (data is freed on failure).
+ */
+int vdt_chunks_add(struct vdt_chunks *c, uint32_t type, unsigned char *data,
+                   uint64_t length, struct vdt_err *err);
+
+/* First chunk of the given type, or NULL. */
+const struct vdt_chunk *vdt_chunks_find(const struct vdt_chunks *c,
+                                        uint32_t type);
+
+/* Remove (and free) every chunk of the given type. */
+void vdt_chunks_remove(struct vdt_chunks *c, uint32_t type);
+
+/*
+ * Chunk-at-a-time writing: vdt_stream_write_header once, then
+ * vdt_stream_write_chunk per chunk, then vdt_stream_write_end.
+ * They return 0 or VDT_EIO.
+ */
+int vdt_stream_write_header(FILE *f, struct vdt_err *err);
+int vdt_stream_write_chunk(FILE *f, uint32_t type, const unsigned char *data,
+                           uint64_t length, struct vdt_err *err);
+int vdt_stream_write_end(FILE *f, struct vdt_err *err);
+
+/* Header, every chunk of c in order, and the end chunk. */
+int vdt_stream_write(FILE *f, const struct vdt_chunks *c, struct vdt_err *err);
+
+/*
+ * Chunk-at-a-time reading, for streams larger than memory (vdt-cluster):
+ * vdt_stream_reader_open checks the header (after `prefix` bytes already
+ * consumed, as in vdt_stream_read); vdt_stream_reader_next returns 1 with
+ * the next chunk (payload malloc'ed, caller frees), 0 after the end chunk
+ * when nothing follows it, or a negative status.
+ */
+struct vdt_stream_reader {
+	FILE *f;
+	uint64_t offset;
+	int done;
+	unsigned char pending[16];
+	size_t pending_len;
+};
+int vdt_stream_reader_open(struct vdt_stream_reader *r, FILE *f,
+                           const unsigned char *prefix, size_t prefix_len,
+                           struct vdt_err *err);
+int vdt_stream_reader_next(struct vdt_stream_reader *r, struct vdt_chunk *chunk,
+                           struct vdt_err *err);
+
+/*
+ * MESH chunk payload:
+ *   u32 attribute mask (enum vdt_mesh_attr), u32 reserved (0),
+ *   u64 vertex count V, u64 triangle count T,
+ *   f32 positions[3V], then f32 normals[3V], f32 uvs[2V], f32 colors[4V]
+ *   for each attribute present, then u32 triangles[3T].
+ * Encoding allocates *data; decoding validates counts against the length
+ * and the mesh with vdt_mesh_validate.
+ */
+int vdt_mesh_encode(const struct vdt_mesh *m, unsigned char **data,
+                    uint64_t *length, struct vdt_err *err);
+int vdt_mesh_decode(const unsigned char *data, uint64_t length,
+                    struct vdt_mesh *m, struct vdt_err *err);
+
+/*
+ * QUAD chunk payload: u64 count N, then N records of 11 f64
+ * (a00 a01 a02 a11 a12 a22 b0 b1 b2 c w), one per vertex of the MESH chunk
+ * that precedes it.
+ */
+int vdt_quad_encode(const struct vdt_quadric *q, size_t count,
+                    unsigned char **data, uint64_t *length,
+                    struct vdt_err *err);
+int vdt_quad_decode(const unsigned char *data, uint64_t length,
+                    struct vdt_quadric **q, size_t *count,
+                    struct vdt_err *err);
+
+#endif
