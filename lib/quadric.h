@@ -1,22 +1,75 @@
 /*
- * quadric.h - quadric error metrics (Garland & Heckbert, SIGGRAPH 97;
- * Garland & Shaffer, "A Multiphase Approach to Efficient Surface
- * Simplification", section 2.1).
+ * quadric.h - quadric error metrics (Garland & Heckbert, "Surface
+ * Simplification Using Quadric Error Metrics", SIGGRAPH 97; Garland &
+ * Shaffer, "A Multiphase Approach to Efficient Surface Simplification",
+ * section 2.1).
  *
- * A quadric Q = (A, b, c) measures the weighted sum of squared distances of a
- * point to a set of planes: Q(v) = v'Av + 2b'v + c. A is symmetric, so ten
- * doubles hold it; `w` is the total weight (area) accumulated, kept so that
- * costs can be normalised and quadrics passed between tools exactly.
+ * A quadric Q = (A, b, c) measures a weighted sum of squared distances of a
+ * point to a set of planes: Q(v) = v'Av + 2b'v + c, with the weights already
+ * multiplied in (equation 1 of the multiphase paper). A is symmetric, so ten
+ * doubles hold it; `w` is the total weight accumulated (for area-weighted
+ * fundamental quadrics, a third of the area of the faces summed), which turns
+ * Q(v) into a mean squared distance and lets tools pass quadrics on exactly.
  */
 #ifndef VDT_QUADRIC_H
 #define VDT_QUADRIC_H
 
 struct vdt_quadric {
-	/* a00 a01 a02 a11 a12 a22 b0 b1 b2 c */
+	/* A = [a00 a01 a02; a01 a11 a12; a02 a12 a22], b = (b0 b1 b2) */
 	double a00, a01, a02, a11, a12, a22;
 	double b0, b1, b2;
 	double c;
 	double w;
 };
+
+/* Q = 0. */
+void vdt_quadric_zero(struct vdt_quadric *q);
+
+/*
+ * The quadric of the plane n.v + d = 0 (n of unit length) with weight w:
+ * (w nn', w d n, w d^2), total weight w.
+ */
+void vdt_quadric_plane(struct vdt_quadric *q, const double n[3], double d,
+                       double w);
+
+/*
+ * The fundamental quadric of triangle (p0, p1, p2): its plane weighted by a
+ * third of its area. Returns 0, or -1 (and Q = 0) for a degenerate triangle.
+ */
+int vdt_quadric_triangle(struct vdt_quadric *q, const double p0[3],
+                         const double p1[3], const double p2[3]);
+
+/*
+ * The boundary constraint quadric of the open edge (p0, p1) of a face with
+ * unit normal n: the plane through the edge perpendicular to the face,
+ * weighted by weight * |p1 - p0|^2 (so that it scales like the face
+ * quadrics). Returns -1 (Q = 0) for a degenerate edge.
+ */
+int vdt_quadric_boundary(struct vdt_quadric *q, const double p0[3],
+                         const double p1[3], const double n[3], double weight);
+
+/* q += r. */
+void vdt_quadric_add(struct vdt_quadric *q, const struct vdt_quadric *r);
+
+/* q *= s (weight included). */
+void vdt_quadric_scale(struct vdt_quadric *q, double s);
+
+/* Q(v) = v'Av + 2b'v + c, clamped at 0 against rounding. */
+double vdt_quadric_eval(const struct vdt_quadric *q, const double v[3]);
+
+/*
+ * The quadric in coordinates x' where x = s x' + t (s > 0): used to work in a
+ * normalised frame for conditioning and to map quadrics back.
+ */
+void vdt_quadric_transform(struct vdt_quadric *q, double s, const double t[3]);
+
+/*
+ * The minimiser of Q: solve Av = -b when A is well conditioned (relative
+ * determinant above a threshold); otherwise the best point on the segment
+ * [p0, p1]; if Q is flat along the segment too, the better of p0, p1 and
+ * their midpoint. Writes v and returns Q(v).
+ */
+double vdt_quadric_optimize(const struct vdt_quadric *q, const double p0[3],
+                            const double p1[3], double v[3]);
 
 #endif

@@ -1,0 +1,120 @@
+/*
+ * contract.h - the pair-contraction engine shared by vdt-qslim, vdt-build and
+ * vdt-deform.
+ *
+ * Garland & Heckbert's iterative pair contraction (SIGGRAPH 97, section 3):
+ * candidate pairs (every edge, plus optional "virtual" pairs of vertices that
+ * share no edge) sit in an indexed priority queue keyed by a cost; the
+ * cheapest valid pair is contracted, the pairs around it re-costed, and so
+ * on. What the cost is (quadric error, the view-dependence distance of
+ * El-Sana & Varshney, a deforming-mesh cost summed over frames) and what
+ * bookkeeping a contraction needs are callbacks; the engine owns topology,
+ * validity and the queue.
+ *
+ * Validity tests, applied when a pair reaches the top of the queue:
+ *  - the link condition (Dey et al.; Hoppe et al. 93): an edge contraction
+ *    must not create a non-manifold edge or vertex from a manifold
+ *    neighbourhood, nor collapse a tetrahedron into two coincident faces;
+ *  - no fold-over: no surviving face may turn its normal by more than
+ *    max_normal_angle, against its current normal and against its
+ *    normal in the input (so that flips cannot accumulate);
+ *  - no degenerate face; optionally no sliver below min_quality;
+ *  - the caller's own test, if any.
+ * A pair that fails is set aside and re-examined when its neighbourhood
+ * changes.
+ */
+#ifndef VDT_CONTRACT_H
+#define VDT_CONTRACT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "err.h"
+#include "mesh.h"
+#include "progress.h"
+
+/* One contraction: `gone` merged into `keep`, which moved to pos. */
+struct vdt_contraction {
+	uint32_t keep, gone;
+	float pos[3];
+	float cost;
+};
+
+struct vdt_contract_ops {
+	/*
+	 * Cost of contracting vertices a and b (current positions pa, pb) and
+	 * the position of the merged vertex, written to pos. `fixed` is -1 when
+	 * the position is free, 0 when it must be pa, 1 when it must be pb (a
+	 * locked vertex survives where it is). Return a finite cost >= 0, or
+	 * INFINITY to refuse the pair for now. Must be deterministic.
+	 */
+	double (*cost)(void *ctx, uint32_t a, uint32_t b, int fixed,
+	               const float pa[3], const float pb[3], double pos[3]);
+	/* Called after `gone` has been merged into `keep` at pos. */
+	void (*merged)(void *ctx, uint32_t keep, uint32_t gone,
+	               const double pos[3], double cost);
+	/* Optional extra validity test; return 0 to refuse. May be NULL. */
+	int (*valid)(void *ctx, uint32_t keep, uint32_t gone, const double pos[3]);
+	void *ctx;
+};
+
+struct vdt_contract_opts {
+	size_t target_triangles; /* stop once at most this many remain */
+	size_t target_vertices;  /* and/or this many vertices (0: no target) */
+	double max_cost;         /* never contract above this cost */
+	double max_normal_angle; /* degrees; fold-over threshold (default 90) */
+	double min_quality;      /* sliver test, in (0,1]; 0: off */
+	const uint8_t *locked;   /* per vertex: nonzero = never moves; or NULL */
+	const uint8_t *rank;     /* per vertex, or NULL: of two vertices, the one
+	                            of higher rank survives (a locked one always) */
+	const uint32_t *virtual_pairs; /* 2 per pair, not edges; or NULL */
+	size_t virtual_pair_count;
+	int record;              /* keep every contraction in the result */
+	const struct vdt_progress *progress;
+};
+
+/* Fill opts with the defaults (target 0 triangles, no bound, 90 degrees). */
+void vdt_contract_defaults(struct vdt_contract_opts *opts);
+
+struct vdt_contract_result {
+	/* Positions of every input vertex slot (3 each); slots of removed
+	 * vertices keep their last position. */
+	float *positions;
+	size_t vertex_count;   /* input vertex count (slots) */
+	uint32_t *triangles;   /* surviving triangles, input order, slot ids */
+	uint32_t *sources;     /* input index of each surviving triangle */
+	size_t triangle_count;
+	uint32_t *final;       /* per input vertex: the slot it ended in */
+	size_t live_vertices;  /* vertices still used by some triangle or alive */
+	struct vdt_contraction *records; /* if opts.record, in order */
+	size_t record_count;
+	size_t contractions;
+	double max_cost;       /* largest cost contracted */
+	int reached_target;    /* 1 if the triangle/vertex target was met */
+	size_t rejected;       /* pops refused by a validity test */
+};
+
+/*
+ * Contract pairs of m (positions and triangles only) until the targets are
+ * met, the next valid pair costs more than max_cost, or no valid pair is
+ * left (reached_target = 0; not an error). Vertices on non-manifold edges are
+ * never moved. Returns 0, VDT_ENOMEM or VDT_EINVAL (bad options); on failure
+ * *res is empty.
+ */
+int vdt_contract_run(const struct vdt_mesh *m, const struct vdt_contract_ops *ops,
+                     const struct vdt_contract_opts *opts,
+                     struct vdt_contract_result *res, struct vdt_err *err);
+
+void vdt_contract_result_free(struct vdt_contract_result *res);
+
+/*
+ * The SEQN chunk payload of a contraction record: u64 count N, then N
+ * records of u32 keep, u32 gone, f32 x, f32 y, f32 z, f32 cost (24 bytes).
+ */
+int vdt_seqn_encode(const struct vdt_contraction *r, size_t count,
+                    unsigned char **data, uint64_t *length, struct vdt_err *err);
+int vdt_seqn_decode(const unsigned char *data, uint64_t length,
+                    struct vdt_contraction **r, size_t *count,
+                    struct vdt_err *err);
+
+#endif

@@ -1,0 +1,59 @@
+/*
+ * qslim.h - quadric-based simplification (Garland & Heckbert 97) on the
+ * pair-contraction engine, with the multiphase coupling of Garland & Shaffer
+ * (Vis 2002, section 3.3): when quadrics come with the mesh (a QUAD chunk
+ * from vdt-cluster), they replace the fundamental quadrics of the faces.
+ */
+#ifndef VDT_QSLIM_H
+#define VDT_QSLIM_H
+
+#include <stddef.h>
+
+#include "contract.h"
+#include "err.h"
+#include "mesh.h"
+#include "progress.h"
+#include "quadric.h"
+
+struct vdt_qslim_opts {
+	size_t target_triangles;  /* stop at this many (0: no count target) */
+	double target_ratio;      /* or this fraction of the input (0: none) */
+	double max_error;         /* distance bound, model units (INFINITY: none) */
+	double boundary_weight;   /* of the perpendicular boundary planes */
+	int lock_border;          /* vertices on open boundaries never move */
+	double aggregate;         /* virtual pairs closer than this (0: none) */
+	double max_normal_angle;  /* fold-over threshold, degrees */
+	double min_quality;       /* sliver threshold, 0: off */
+	const struct vdt_quadric *quadrics; /* one per input vertex, or NULL */
+	int record;               /* return the contraction record */
+	const struct vdt_progress *progress;
+};
+
+/* Defaults: no target, no bound, boundary weight 100, 90 degrees. */
+void vdt_qslim_defaults(struct vdt_qslim_opts *o);
+
+struct vdt_qslim_stats {
+	size_t contractions;
+	double max_error;   /* largest contraction error (RMS distance to the
+	                       planes of its quadric), model units */
+	int reached_target; /* 0: stopped early (bound, or nothing valid left) */
+	size_t welded;      /* input vertices merged with an identical position */
+};
+
+/*
+ * Simplify `in` into `out` (allocated here; attributes kept when present).
+ * Vertices at identical positions are welded first, so texture and normal
+ * seams cannot open; per-corner attributes are kept by choosing, for each
+ * corner, the closest attribute set among the survivor's own. Unchanged
+ * vertices keep their exact input coordinates. If the target is not below
+ * the input's triangle count, out is a copy of in. Records (if asked) are
+ * in welded vertex ids and written to *records.
+ * Returns 0, VDT_EINVAL (bad options, quadric count mismatch) or
+ * VDT_ENOMEM.
+ */
+int vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
+              struct vdt_mesh *out, struct vdt_contraction **records,
+              size_t *record_count, struct vdt_qslim_stats *stats,
+              struct vdt_err *err);
+
+#endif

@@ -1,0 +1,221 @@
+/*
+ * quadric.c - quadric error metrics: Garland & Heckbert (SIGGRAPH 97),
+ * area weighting and boundary constraints after Garland's thesis (CMU-CS-99-105,
+ * ch. 5 and 6) and Garland & Shaffer (Vis 2002) section 2.1.
+ */
+#include "quadric.h"
+
+#include <math.h>
+#include <string.h>
+
+void
+vdt_quadric_zero(struct vdt_quadric *q)
+{
+	memset(q, 0, sizeof(*q));
+}
+
+void
+vdt_quadric_plane(struct vdt_quadric *q, const double n[3], double d, double w)
+{
+	q->a00 = w * n[0] * n[0];
+	q->a01 = w * n[0] * n[1];
+	q->a02 = w * n[0] * n[2];
+	q->a11 = w * n[1] * n[1];
+	q->a12 = w * n[1] * n[2];
+	q->a22 = w * n[2] * n[2];
+	q->b0 = w * d * n[0];
+	q->b1 = w * d * n[1];
+	q->b2 = w * d * n[2];
+	q->c = w * d * d;
+	q->w = w;
+}
+
+static void
+cross(const double a[3], const double b[3], double r[3])
+{
+	r[0] = a[1] * b[2] - a[2] * b[1];
+	r[1] = a[2] * b[0] - a[0] * b[2];
+	r[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+int
+vdt_quadric_triangle(struct vdt_quadric *q, const double p0[3],
+                     const double p1[3], const double p2[3])
+{
+	double e1[3], e2[3], n[3], len;
+
+	for (int k = 0; k < 3; k++) {
+		e1[k] = p1[k] - p0[k];
+		e2[k] = p2[k] - p0[k];
+	}
+	cross(e1, e2, n);
+	len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+	if (!(len > 0)) {
+		vdt_quadric_zero(q);
+		return -1;
+	}
+	for (int k = 0; k < 3; k++)
+		n[k] /= len;
+	/* len is twice the area; the weight is a third of the area. */
+	vdt_quadric_plane(q, n, -(n[0] * p0[0] + n[1] * p0[1] + n[2] * p0[2]),
+	                  len / 6);
+	return 0;
+}
+
+int
+vdt_quadric_boundary(struct vdt_quadric *q, const double p0[3],
+                     const double p1[3], const double n[3], double weight)
+{
+	double e[3], m[3], len2, len;
+
+	for (int k = 0; k < 3; k++)
+		e[k] = p1[k] - p0[k];
+	len2 = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
+	cross(e, n, m);
+	len = sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+	if (!(len > 0) || !(len2 > 0)) {
+		vdt_quadric_zero(q);
+		return -1;
+	}
+	for (int k = 0; k < 3; k++)
+		m[k] /= len;
+	vdt_quadric_plane(q, m, -(m[0] * p0[0] + m[1] * p0[1] + m[2] * p0[2]),
+	                  weight * len2);
+	return 0;
+}
+
+void
+vdt_quadric_add(struct vdt_quadric *q, const struct vdt_quadric *r)
+{
+	q->a00 += r->a00;
+	q->a01 += r->a01;
+	q->a02 += r->a02;
+	q->a11 += r->a11;
+	q->a12 += r->a12;
+	q->a22 += r->a22;
+	q->b0 += r->b0;
+	q->b1 += r->b1;
+	q->b2 += r->b2;
+	q->c += r->c;
+	q->w += r->w;
+}
+
+void
+vdt_quadric_scale(struct vdt_quadric *q, double s)
+{
+	q->a00 *= s;
+	q->a01 *= s;
+	q->a02 *= s;
+	q->a11 *= s;
+	q->a12 *= s;
+	q->a22 *= s;
+	q->b0 *= s;
+	q->b1 *= s;
+	q->b2 *= s;
+	q->c *= s;
+	q->w *= s;
+}
+
+double
+vdt_quadric_eval(const struct vdt_quadric *q, const double v[3])
+{
+	double x = v[0], y = v[1], z = v[2];
+	double r = q->a00 * x * x + 2 * q->a01 * x * y + 2 * q->a02 * x * z +
+	           q->a11 * y * y + 2 * q->a12 * y * z + q->a22 * z * z +
+	           2 * (q->b0 * x + q->b1 * y + q->b2 * z) + q->c;
+
+	return r > 0 ? r : 0;
+}
+
+void
+vdt_quadric_transform(struct vdt_quadric *q, double s, const double t[3])
+{
+	/* Q(s x' + t): A' = s^2 A, b' = s (A t + b), c' = t'At + 2 b't + c. */
+	double at0 = q->a00 * t[0] + q->a01 * t[1] + q->a02 * t[2];
+	double at1 = q->a01 * t[0] + q->a11 * t[1] + q->a12 * t[2];
+	double at2 = q->a02 * t[0] + q->a12 * t[1] + q->a22 * t[2];
+	double c = t[0] * at0 + t[1] * at1 + t[2] * at2 +
+	           2 * (q->b0 * t[0] + q->b1 * t[1] + q->b2 * t[2]) + q->c;
+
+	q->b0 = s * (at0 + q->b0);
+	q->b1 = s * (at1 + q->b1);
+	q->b2 = s * (at2 + q->b2);
+	q->c = c;
+	q->a00 *= s * s;
+	q->a01 *= s * s;
+	q->a02 *= s * s;
+	q->a11 *= s * s;
+	q->a12 *= s * s;
+	q->a22 *= s * s;
+}
+
+/*
+ * Solve Av = -b by cofactors. The system counts as ill-conditioned when the
+ * determinant is small against the cube of A's largest diagonal entry (A is
+ * positive semi-definite, so that bounds its eigenvalues): a nearly flat or
+ * cylindrical neighbourhood, where the minimiser runs off along the flat
+ * directions.
+ */
+static int
+solve(const struct vdt_quadric *q, double v[3])
+{
+	double c00 = q->a11 * q->a22 - q->a12 * q->a12;
+	double c01 = q->a02 * q->a12 - q->a01 * q->a22;
+	double c02 = q->a01 * q->a12 - q->a02 * q->a11;
+	double c11 = q->a00 * q->a22 - q->a02 * q->a02;
+	double c12 = q->a01 * q->a02 - q->a00 * q->a12;
+	double c22 = q->a00 * q->a11 - q->a01 * q->a01;
+	double det = q->a00 * c00 + q->a01 * c01 + q->a02 * c02;
+	double trace = q->a00 + q->a11 + q->a22;
+
+	if (!(trace > 0) || !(fabs(det) > 1e-9 * trace * trace * trace))
+		return -1;
+	v[0] = -(c00 * q->b0 + c01 * q->b1 + c02 * q->b2) / det;
+	v[1] = -(c01 * q->b0 + c11 * q->b1 + c12 * q->b2) / det;
+	v[2] = -(c02 * q->b0 + c12 * q->b1 + c22 * q->b2) / det;
+	return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]) ? 0 : -1;
+}
+
+double
+vdt_quadric_optimize(const struct vdt_quadric *q, const double p0[3],
+                     const double p1[3], double v[3])
+{
+	double d[3], ad[3], ap[3], a, b, best, e;
+	const double *cand[2] = {p0, p1};
+	double mid[3];
+
+	if (solve(q, v) == 0)
+		return vdt_quadric_eval(q, v);
+
+	/* Q(p0 + t d) = a t^2 + 2 b t + Q(p0), with a = d'Ad, b = d'(A p0 + b). */
+	for (int k = 0; k < 3; k++)
+		d[k] = p1[k] - p0[k];
+	ad[0] = q->a00 * d[0] + q->a01 * d[1] + q->a02 * d[2];
+	ad[1] = q->a01 * d[0] + q->a11 * d[1] + q->a12 * d[2];
+	ad[2] = q->a02 * d[0] + q->a12 * d[1] + q->a22 * d[2];
+	ap[0] = q->a00 * p0[0] + q->a01 * p0[1] + q->a02 * p0[2] + q->b0;
+	ap[1] = q->a01 * p0[0] + q->a11 * p0[1] + q->a12 * p0[2] + q->b1;
+	ap[2] = q->a02 * p0[0] + q->a12 * p0[1] + q->a22 * p0[2] + q->b2;
+	a = d[0] * ad[0] + d[1] * ad[1] + d[2] * ad[2];
+	b = d[0] * ap[0] + d[1] * ap[1] + d[2] * ap[2];
+	if (a > 1e-12 * (q->a00 + q->a11 + q->a22) * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2])) {
+		double t = -b / a;
+		t = t < 0 ? 0 : t > 1 ? 1 : t;
+		for (int k = 0; k < 3; k++)
+			v[k] = p0[k] + t * d[k];
+		return vdt_quadric_eval(q, v);
+	}
+	/* Flat along the segment: the midpoint unless an endpoint is better. */
+	for (int k = 0; k < 3; k++)
+		mid[k] = 0.5 * (p0[k] + p1[k]);
+	memcpy(v, mid, sizeof(mid));
+	best = vdt_quadric_eval(q, mid);
+	for (int i = 0; i < 2; i++) {
+		e = vdt_quadric_eval(q, cand[i]);
+		if (e < best * (1 - 1e-12)) {
+			best = e;
+			memcpy(v, cand[i], sizeof(mid));
+		}
+	}
+	return best;
+}
