@@ -1,14 +1,17 @@
 /*
  * meshio.h - reading and writing meshes in every format vdt speaks.
  *
- * OBJ, PLY (ASCII and binary), OFF and STL go through OpenMesh, with native
- * C fast paths for binary PLY and binary STL; .drc through Draco; the vdt
- * stream natively. "-" means stdin or stdout. The format of an input is
+ * OBJ, ASCII PLY, OFF and ASCII STL are parsed by OpenMesh; binary PLY
+ * (either byte order) and binary STL by native C fast paths; .drc through
+ * Draco; the vdt stream natively. Text formats are written natively. "-" means stdin or stdout. The format of an input is
  * detected from its first bytes (never from its name alone); the format of an
  * output comes from its extension unless given.
  */
 #ifndef VDT_MESHIO_H
 #define VDT_MESHIO_H
+
+#include <stddef.h>
+#include <stdio.h>
 
 #include "../err.h"
 #include "../mesh.h"
@@ -65,8 +68,17 @@ int vdt_read(const char *path, struct vdt_mesh *m, struct vdt_chunks *extra,
 struct vdt_write_opts {
 	enum vdt_format format; /* VDT_FMT_AUTO: from the path's extension */
 	int draco_position_bits; /* Draco quantisation, 0 = default (16) */
-	int draco_speed;         /* Draco encoder speed 0..10, default 5 */
+	int draco_speed;         /* Draco encoder speed 1..10, 0 = default (5) */
 };
+
+/*
+ * Draco defaults: 16 bits per position coordinate keeps the error under
+ * 1/131072 of the largest bounding-box side (well below what a simplifier
+ * changes); normals 10 bits, texture coordinates 12, colours 8. Speed 5 is
+ * the encoder's balanced setting (0 smallest, 10 fastest).
+ */
+#define VDT_DRACO_POSITION_BITS 16
+#define VDT_DRACO_SPEED 5
 
 /*
  * Write m to path ("-" for stdout) in the given format. For the vdt stream the
@@ -94,6 +106,51 @@ struct vdt_output {
 int vdt_output_open(struct vdt_output *o, const char *path, struct vdt_err *err);
 int vdt_output_commit(struct vdt_output *o, struct vdt_err *err);
 void vdt_output_abort(struct vdt_output *o);
+
+/*
+ * Read a mesh from content held in memory (buf, len), as vdt_read does for a
+ * file: the format is detected from the bytes; `name` (may be NULL) is only a
+ * hint used when the content is not recognised (its extension). The buffer is
+ * not modified and not kept. This is the entry point of the fuzz target.
+ */
+int vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
+                    struct vdt_mesh *m, struct vdt_chunks *extra,
+                    struct vdt_err *err);
+
+/*
+ * The per-format codecs vdt_read_memory and vdt_write dispatch to; callers
+ * normally use those two. Readers fill *m (left empty on failure) but do not
+ * run vdt_mesh_validate; writers write m to f and return 0, VDT_EIO or
+ * VDT_ENOMEM (f is not closed).
+ *
+ * vdt_ply_read: binary PLY, little- or big-endian (ply.c, native).
+ * vdt_stl_read: binary STL; identical positions are welded (stl.c, native).
+ * vdt_openmesh_read: OBJ, ASCII PLY, OFF, ASCII STL through OpenMesh's
+ *   parsers; corners with differing texture coordinates split vertices;
+ *   polygons are fan-triangulated. `format` names the parser.
+ * vdt_draco_read: a Draco mesh (.drc).
+ */
+int vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
+                 struct vdt_err *err);
+int vdt_ply_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err);
+int vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
+                 struct vdt_err *err);
+int vdt_stl_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err);
+int vdt_openmesh_read(const unsigned char *buf, size_t len,
+                      enum vdt_format format, struct vdt_mesh *m,
+                      struct vdt_err *err);
+/*
+ * OBJ, OFF, ASCII PLY and ASCII STL are written natively (meshio.c), with 9
+ * significant digits so that every float reads back exactly: OpenMesh's
+ * writers need a half-edge kernel, which cannot hold non-manifold meshes.
+ */
+int vdt_text_write(FILE *f, const struct vdt_mesh *m, enum vdt_format format,
+                   struct vdt_err *err);
+int vdt_draco_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
+                   struct vdt_err *err);
+/* position_bits 0 and speed 0 select the defaults above. */
+int vdt_draco_write(FILE *f, const struct vdt_mesh *m, int position_bits,
+                    int speed, struct vdt_err *err);
 
 /*
  * Images through OpenImageIO (PNG, TIFF, EXR, ... by extension).

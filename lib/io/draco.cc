@@ -1,0 +1,222 @@
+/*
+ * draco.cc - the extern "C" face of Draco for .drc meshes: positions,
+ * normals, texture coordinates and colours (8-bit RGBA) as attributes.
+ * Draco may reorder vertices and faces (edgebreaker); the mesh it returns
+ * is the same surface up to that order and the position quantisation.
+ */
+#include <draco/attributes/geometry_attribute.h>
+#include <draco/compression/decode.h>
+#include <draco/compression/encode.h>
+#include <draco/core/decoder_buffer.h>
+#include <draco/core/encoder_buffer.h>
+#include <draco/mesh/mesh.h>
+
+#include <cmath>
+#include <cstring>
+#include <memory>
+
+extern "C" {
+#include "meshio.h"
+}
+
+namespace {
+
+int
+add_float_attribute(draco::Mesh &dm, draco::GeometryAttribute::Type type, int comps,
+                    const float *data, size_t n)
+{
+	draco::GeometryAttribute ga;
+
+	ga.Init(type, nullptr, int8_t(comps), draco::DT_FLOAT32, false,
+	        int64_t(sizeof(float) * comps), 0);
+	int id = dm.AddAttribute(ga, true, uint32_t(n));
+	if (id < 0)
+		return id;
+	draco::PointAttribute *pa = dm.attribute(id);
+	for (size_t i = 0; i < n; i++)
+		pa->SetAttributeValue(draco::AttributeValueIndex(uint32_t(i)), data + comps * i);
+	return id;
+}
+
+/* Read component values of point p as floats (integers normalised). */
+bool
+get_floats(const draco::PointAttribute *pa, draco::PointIndex p, int comps, float *out)
+{
+	draco::AttributeValueIndex v = pa->mapped_index(p);
+	int have = pa->num_components();
+
+	for (int k = 0; k < comps; k++)
+		out[k] = k == 3 ? 1.0f : 0.0f;
+	if (pa->data_type() == draco::DT_UINT8) {
+		uint8_t tmp[16] = {0};
+		if (!pa->ConvertValue<uint8_t>(v, int8_t(have < 16 ? have : 16), tmp))
+			return false;
+		for (int k = 0; k < comps && k < have; k++)
+			out[k] = tmp[k] / 255.0f;
+		return true;
+	}
+	if (pa->data_type() == draco::DT_UINT16) {
+		uint16_t tmp[16] = {0};
+		if (!pa->ConvertValue<uint16_t>(v, int8_t(have < 16 ? have : 16), tmp))
+			return false;
+		for (int k = 0; k < comps && k < have; k++)
+			out[k] = tmp[k] / 65535.0f;
+		return true;
+	}
+	float tmp[16] = {0};
+	if (!pa->ConvertValue<float>(v, int8_t(have < 16 ? have : 16), tmp))
+		return false;
+	for (int k = 0; k < comps && k < have; k++)
+		out[k] = tmp[k];
+	return true;
+}
+
+int
+read_mesh(const unsigned char *buf, size_t len, struct vdt_mesh *m, struct vdt_err *err)
+{
+	draco::DecoderBuffer db;
+	db.Init(reinterpret_cast<const char *>(buf), len);
+
+	auto type = draco::Decoder::GetEncodedGeometryType(&db);
+	if (!type.ok())
+		return vdt_err_set(err, VDT_EFORMAT, "bad Draco data: %s",
+		                   type.status().error_msg());
+	if (type.value() != draco::TRIANGULAR_MESH)
+		return vdt_err_set(err, VDT_EFORMAT, "Draco data holds a point cloud, not a mesh");
+	draco::Decoder dec;
+	auto res = dec.DecodeMeshFromBuffer(&db);
+	if (!res.ok())
+		return vdt_err_set(err, VDT_EFORMAT, "bad Draco data: %s", res.status().error_msg());
+	std::unique_ptr<draco::Mesh> dm = std::move(res).value();
+
+	const draco::PointAttribute *pos = dm->GetNamedAttribute(draco::GeometryAttribute::POSITION);
+	if (pos == nullptr || pos->num_components() < 3)
+		return vdt_err_set(err, VDT_EFORMAT, "Draco mesh has no 3D positions");
+	const draco::PointAttribute *nrm = dm->GetNamedAttribute(draco::GeometryAttribute::NORMAL);
+	const draco::PointAttribute *tex = dm->GetNamedAttribute(draco::GeometryAttribute::TEX_COORD);
+	const draco::PointAttribute *col = dm->GetNamedAttribute(draco::GeometryAttribute::COLOR);
+	if (nrm && nrm->num_components() < 3)
+		nrm = nullptr;
+	if (tex && tex->num_components() < 2)
+		tex = nullptr;
+	if (col && col->num_components() < 3)
+		col = nullptr;
+
+	size_t nv = dm->num_points(), nf = dm->num_faces();
+	unsigned attrs = (nrm ? VDT_ATTR_NORMALS : 0) | (tex ? VDT_ATTR_UVS : 0) |
+	                 (col ? VDT_ATTR_COLORS : 0);
+	int rc = vdt_mesh_alloc(m, nv, nf, attrs, err);
+	if (rc != 0)
+		return rc;
+	for (size_t i = 0; i < nv; i++) {
+		draco::PointIndex p(static_cast<uint32_t>(i));
+		bool ok = get_floats(pos, p, 3, m->positions + 3 * i);
+		if (ok && nrm)
+			ok = get_floats(nrm, p, 3, m->normals + 3 * i);
+		if (ok && tex)
+			ok = get_floats(tex, p, 2, m->uvs + 2 * i);
+		if (ok && col) {
+			ok = get_floats(col, p, 4, m->colors + 4 * i);
+			if (col->num_components() < 4)
+				m->colors[4 * i + 3] = 1.0f;
+		}
+		if (!ok) {
+			vdt_mesh_free(m);
+			return vdt_err_set(err, VDT_EFORMAT, "Draco vertex %zu has unreadable attributes", i);
+		}
+	}
+	for (size_t f = 0; f < nf; f++) {
+		const draco::Mesh::Face &face = dm->face(draco::FaceIndex(static_cast<uint32_t>(f)));
+		for (int k = 0; k < 3; k++)
+			m->triangles[3 * f + k] = face[k].value();
+	}
+	return 0;
+}
+
+int
+write_mesh(FILE *f, const struct vdt_mesh *m, int bits, int speed, struct vdt_err *err)
+{
+	draco::Mesh dm;
+	size_t nv = m->vertex_count;
+
+	if (bits <= 0)
+		bits = VDT_DRACO_POSITION_BITS;
+	if (bits > 30)
+		return vdt_err_set(err, VDT_EINVAL, "Draco position quantisation of %d bits is over 30", bits);
+	if (speed <= 0)
+		speed = VDT_DRACO_SPEED;
+	if (speed > 10)
+		speed = 10;
+	dm.set_num_points(uint32_t(nv));
+	if (add_float_attribute(dm, draco::GeometryAttribute::POSITION, 3, m->positions, nv) < 0)
+		return vdt_err_set(err, VDT_ENOMEM, "cannot add Draco positions");
+	if (m->normals)
+		add_float_attribute(dm, draco::GeometryAttribute::NORMAL, 3, m->normals, nv);
+	if (m->uvs)
+		add_float_attribute(dm, draco::GeometryAttribute::TEX_COORD, 2, m->uvs, nv);
+	if (m->colors) {
+		draco::GeometryAttribute ga;
+		ga.Init(draco::GeometryAttribute::COLOR, nullptr, 4, draco::DT_UINT8, true, 4, 0);
+		int id = dm.AddAttribute(ga, true, uint32_t(nv));
+		draco::PointAttribute *pa = dm.attribute(id);
+		for (size_t i = 0; i < nv; i++) {
+			uint8_t c[4];
+			for (int k = 0; k < 4; k++) {
+				float v = m->colors[4 * i + k];
+				v = v < 0 ? 0 : v > 1 ? 1 : v;
+				c[k] = uint8_t(std::lrint(v * 255.0f));
+			}
+			pa->SetAttributeValue(draco::AttributeValueIndex(uint32_t(i)), c);
+		}
+	}
+	dm.SetNumFaces(m->triangle_count);
+	for (size_t t = 0; t < m->triangle_count; t++) {
+		draco::Mesh::Face face;
+		for (int k = 0; k < 3; k++)
+			face[k] = draco::PointIndex(m->triangles[3 * t + k]);
+		dm.SetFace(draco::FaceIndex(uint32_t(t)), face);
+	}
+
+	draco::Encoder enc;
+	enc.SetAttributeQuantization(draco::GeometryAttribute::POSITION, bits);
+	enc.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, 10);
+	enc.SetAttributeQuantization(draco::GeometryAttribute::TEX_COORD, 12);
+	enc.SetSpeedOptions(speed, speed);
+	draco::EncoderBuffer eb;
+	draco::Status st = enc.EncodeMeshToBuffer(dm, &eb);
+	if (!st.ok())
+		return vdt_err_set(err, VDT_EINVAL, "Draco cannot encode the mesh: %s", st.error_msg());
+	if (fwrite(eb.data(), 1, eb.size(), f) != eb.size())
+		return vdt_err_set(err, VDT_EIO, "write error");
+	return 0;
+}
+
+} // namespace
+
+extern "C" int
+vdt_draco_read(const unsigned char *buf, size_t len, struct vdt_mesh *m, struct vdt_err *err)
+{
+	std::memset(m, 0, sizeof(*m));
+	try {
+		return read_mesh(buf, len, m, err);
+	} catch (const std::bad_alloc &) {
+		vdt_mesh_free(m);
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	} catch (...) {
+		vdt_mesh_free(m);
+		return vdt_err_set(err, VDT_EFORMAT, "bad Draco data");
+	}
+}
+
+extern "C" int
+vdt_draco_write(FILE *f, const struct vdt_mesh *m, int position_bits, int speed,
+                struct vdt_err *err)
+{
+	try {
+		return write_mesh(f, m, position_bits, speed, err);
+	} catch (const std::bad_alloc &) {
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	} catch (...) {
+		return vdt_err_set(err, VDT_EINVAL, "Draco cannot encode the mesh");
+	}
+}

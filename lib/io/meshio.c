@@ -1,0 +1,692 @@
+/*
+ * meshio.c - format names, detection from content, dispatch to the codecs,
+ * and atomic output (temporary file beside the target, renamed on commit).
+ */
+#include "meshio.h"
+
+#include <errno.h>
+#include <math.h>
+#include <fcntl.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static const struct {
+	const char *name;
+	enum vdt_format format;
+} format_names[] = {
+	{"vdt", VDT_FMT_VDT},           {"obj", VDT_FMT_OBJ},
+	{"ply", VDT_FMT_PLY},           {"ply-ascii", VDT_FMT_PLY_ASCII},
+	{"off", VDT_FMT_OFF},           {"stl", VDT_FMT_STL},
+	{"stl-ascii", VDT_FMT_STL_ASCII}, {"drc", VDT_FMT_DRC},
+};
+
+enum vdt_format
+vdt_format_parse(const char *name)
+{
+	for (size_t i = 0; i < sizeof(format_names) / sizeof(format_names[0]); i++)
+		if (strcmp(name, format_names[i].name) == 0)
+			return format_names[i].format;
+	return VDT_FMT_AUTO;
+}
+
+const char *
+vdt_format_name(enum vdt_format f)
+{
+	for (size_t i = 0; i < sizeof(format_names) / sizeof(format_names[0]); i++)
+		if (format_names[i].format == f)
+			return format_names[i].name;
+	return "auto";
+}
+
+enum vdt_format
+vdt_format_from_path(const char *path)
+{
+	static const struct {
+		const char *ext;
+		enum vdt_format format;
+	} exts[] = {
+		{"vdt", VDT_FMT_VDT}, {"vdq", VDT_FMT_VDT}, {"vdl", VDT_FMT_VDT},
+		{"obj", VDT_FMT_OBJ}, {"ply", VDT_FMT_PLY}, {"off", VDT_FMT_OFF},
+		{"stl", VDT_FMT_STL}, {"drc", VDT_FMT_DRC},
+	};
+	const char *slash, *dot;
+
+	if (path == NULL || strcmp(path, "-") == 0)
+		return VDT_FMT_AUTO;
+	slash = strrchr(path, '/');
+	dot = strrchr(slash ? slash + 1 : path, '.');
+	if (dot == NULL)
+		return VDT_FMT_AUTO;
+	for (size_t i = 0; i < sizeof(exts) / sizeof(exts[0]); i++)
+		if (strcasecmp(dot + 1, exts[i].ext) == 0)
+			return exts[i].format;
+	return VDT_FMT_AUTO;
+}
+
+static int
+has_prefix(const unsigned char *buf, size_t n, const char *s)
+{
+	size_t l = strlen(s);
+
+	return n >= l && memcmp(buf, s, l) == 0;
+}
+
+static int
+is_text(const unsigned char *buf, size_t n)
+{
+	for (size_t i = 0; i < n; i++)
+		if (buf[i] == 0 || (buf[i] < 32 && buf[i] != '\n' && buf[i] != '\r' &&
+		                    buf[i] != '\t' && buf[i] != '\f' && buf[i] != '\v'))
+			return 0;
+	return 1;
+}
+
+static int
+find(const unsigned char *buf, size_t n, const char *s)
+{
+	size_t l = strlen(s);
+
+	for (size_t i = 0; i + l <= n; i++)
+		if (memcmp(buf + i, s, l) == 0)
+			return 1;
+	return 0;
+}
+
+/* The first word of OFF files: [ST][C][N][4][n]OFF, optionally " BINARY". */
+static int
+is_off(const unsigned char *buf, size_t n)
+{
+	size_t i = 0;
+	const char *order = "STCN4n";
+
+	while (i < n && (buf[i] == ' ' || buf[i] == '\t'))
+		i++;
+	for (const char *o = order; *o && i < n; o++) {
+		if (*o == 'S' && buf[i] == 'S' && i + 1 < n && buf[i + 1] == 'T')
+			i += 2;
+		else if (*o != 'S' && *o != 'T' && buf[i] == *o)
+			i++;
+	}
+	if (i + 3 > n || memcmp(buf + i, "OFF", 3) != 0)
+		return 0;
+	i += 3;
+	return i == n || buf[i] == '\n' || buf[i] == '\r' || buf[i] == ' ' ||
+	       buf[i] == '\t' || buf[i] == '#';
+}
+
+static int
+is_obj(const unsigned char *buf, size_t n)
+{
+	static const char *const keys[] = {"v", "vt", "vn", "vp", "f", "o", "g", "s",
+	                                   "l", "p", "usemtl", "mtllib"};
+	size_t i = 0;
+
+	if (!is_text(buf, n))
+		return 0;
+	while (i < n) {
+		size_t j, wl;
+
+		while (i < n && (buf[i] == ' ' || buf[i] == '\t' || buf[i] == '\r' || buf[i] == '\n'))
+			i++;
+		if (i >= n)
+			return 0;
+		if (buf[i] == '#') {
+			while (i < n && buf[i] != '\n')
+				i++;
+			continue;
+		}
+		j = i;
+		while (j < n && buf[j] != ' ' && buf[j] != '\t' && buf[j] != '\n' && buf[j] != '\r')
+			j++;
+		if (j == n)
+			return 0; /* the word may go on beyond what we see */
+		wl = j - i;
+		for (size_t k = 0; k < sizeof(keys) / sizeof(keys[0]); k++)
+			if (strlen(keys[k]) == wl && memcmp(buf + i, keys[k], wl) == 0 &&
+			    buf[j] != '\n' && buf[j] != '\r')
+				return 1;
+		return 0;
+	}
+	return 0;
+}
+
+enum vdt_format
+vdt_format_detect(const unsigned char *buf, size_t n)
+{
+	if (buf == NULL || n == 0)
+		return VDT_FMT_AUTO;
+	if (has_prefix(buf, n, VDT_STREAM_SIGNATURE))
+		return VDT_FMT_VDT;
+	if (has_prefix(buf, n, "DRACO"))
+		return VDT_FMT_DRC;
+	if (has_prefix(buf, n, "ply\n") || has_prefix(buf, n, "ply\r\n")) {
+		size_t l = n < 512 ? n : 512;
+		if (find(buf, l, "\nformat ascii"))
+			return VDT_FMT_PLY_ASCII;
+		if (find(buf, l, "\nformat binary_"))
+			return VDT_FMT_PLY;
+		return VDT_FMT_AUTO;
+	}
+	/* A binary STL is recognised for sure by its size: 84 + 50 count. */
+	if (n >= 84) {
+		uint32_t c = (uint32_t)buf[80] | (uint32_t)buf[81] << 8 |
+		             (uint32_t)buf[82] << 16 | (uint32_t)buf[83] << 24;
+		if (c > 0 && (uint64_t)c * 50 + 84 == n)
+			return VDT_FMT_STL;
+	}
+	if (has_prefix(buf, n, "solid")) {
+		size_t l = n < 512 ? n : 512;
+		if (!is_text(buf, l))
+			return VDT_FMT_STL; /* binary with a "solid" header */
+		return VDT_FMT_STL_ASCII;
+	}
+	if (is_off(buf, n < 64 ? n : 64))
+		return VDT_FMT_OFF;
+	if (is_obj(buf, n < 4096 ? n : 4096))
+		return VDT_FMT_OBJ;
+	/* Unknown binary content of STL size or more: the STL reader says why not. */
+	if (n >= 84 && !is_text(buf, n < 512 ? n : 512))
+		return VDT_FMT_STL;
+	return VDT_FMT_AUTO;
+}
+
+static int
+read_stream(const unsigned char *buf, size_t len, struct vdt_mesh *m,
+            struct vdt_chunks *extra, struct vdt_err *err)
+{
+	struct vdt_chunks c = {0};
+	size_t mesh_at = SIZE_MAX;
+	int rc;
+
+	rc = vdt_stream_decode(buf, len, &c, err);
+	if (rc != 0)
+		return rc;
+	for (size_t i = 0; i < c.count; i++)
+		if (c.items[i].type == VDT_CHUNK_MESH) {
+			if (mesh_at != SIZE_MAX) {
+				rc = vdt_err_set(err, VDT_EFORMAT, "second MESH chunk at offset %llu",
+				                 (unsigned long long)c.items[i].offset);
+				goto fail;
+			}
+			mesh_at = i;
+		}
+	if (mesh_at == SIZE_MAX) {
+		rc = vdt_err_set(err, VDT_EFORMAT, "stream has no MESH chunk");
+		goto fail;
+	}
+	rc = vdt_mesh_decode(c.items[mesh_at].data, c.items[mesh_at].length, m, err);
+	if (rc != 0) {
+		vdt_err_prefix(err, "MESH chunk at offset %llu",
+		               (unsigned long long)c.items[mesh_at].offset);
+		goto fail;
+	}
+	if (extra != NULL) {
+		for (size_t i = 0; i < c.count; i++) {
+			if (i == mesh_at)
+				continue;
+			rc = vdt_chunks_add(extra, c.items[i].type, c.items[i].data,
+			                    c.items[i].length, err);
+			c.items[i].data = NULL; /* owned by extra now, or freed */
+			if (rc != 0) {
+				vdt_chunks_free(extra);
+				vdt_mesh_free(m);
+				goto fail;
+			}
+			extra->items[extra->count - 1].offset = c.items[i].offset;
+		}
+	}
+	vdt_chunks_free(&c);
+	return 0;
+fail:
+	vdt_chunks_free(&c);
+	return rc;
+}
+
+int
+vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
+                struct vdt_mesh *m, struct vdt_chunks *extra,
+                struct vdt_err *err)
+{
+	enum vdt_format f;
+	int rc;
+
+	memset(m, 0, sizeof(*m));
+	if (extra != NULL)
+		memset(extra, 0, sizeof(*extra));
+	if (len == 0)
+		return vdt_err_set(err, VDT_EFORMAT, "empty input");
+	f = vdt_format_detect(buf, len);
+	if (f == VDT_FMT_AUTO && name != NULL) {
+		enum vdt_format hint = vdt_format_from_path(name);
+		/* Only text formats can hide from detection (long comments). */
+		if (hint == VDT_FMT_OBJ || hint == VDT_FMT_OFF)
+			f = hint;
+	}
+	switch (f) {
+	case VDT_FMT_VDT: rc = read_stream(buf, len, m, extra, err); break;
+	case VDT_FMT_PLY: rc = vdt_ply_read(buf, len, m, err); break;
+	case VDT_FMT_STL: rc = vdt_stl_read(buf, len, m, err); break;
+	case VDT_FMT_DRC: rc = vdt_draco_read(buf, len, m, err); break;
+	case VDT_FMT_OBJ:
+	case VDT_FMT_PLY_ASCII:
+	case VDT_FMT_OFF:
+	case VDT_FMT_STL_ASCII: rc = vdt_openmesh_read(buf, len, f, m, err); break;
+	default: return vdt_err_set(err, VDT_EFORMAT, "unknown format");
+	}
+	if (rc == 0)
+		rc = vdt_mesh_validate(m, err);
+	if (rc != 0) {
+		vdt_mesh_free(m);
+		if (extra != NULL)
+			vdt_chunks_free(extra);
+	}
+	return rc;
+}
+
+/* Read all of fd into a malloc'ed buffer (pipes and terminals). */
+static int
+slurp(int fd, unsigned char **out, size_t *len, struct vdt_err *err)
+{
+	size_t cap = 1 << 16, n = 0;
+	unsigned char *b = malloc(cap);
+
+	if (b == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	for (;;) {
+		ssize_t r;
+
+		if (n == cap) {
+			unsigned char *nb = cap > SIZE_MAX / 2 ? NULL : realloc(b, cap * 2);
+			if (nb == NULL) {
+				free(b);
+				return vdt_err_set(err, VDT_ENOMEM, "input too large for memory");
+			}
+			b = nb;
+			cap *= 2;
+		}
+		r = read(fd, b + n, cap - n);
+		if (r < 0) {
+			if (errno == EINTR)
+				continue;
+			int e = errno;
+			free(b);
+			return vdt_err_set(err, VDT_EIO, "%s", strerror(e));
+		}
+		if (r == 0)
+			break;
+		n += (size_t)r;
+	}
+	*out = b;
+	*len = n;
+	return 0;
+}
+
+int
+vdt_read(const char *path, struct vdt_mesh *m, struct vdt_chunks *extra,
+         struct vdt_err *err)
+{
+	int stdin_ = strcmp(path, "-") == 0;
+	int fd = stdin_ ? 0 : open(path, O_RDONLY | O_CLOEXEC);
+	struct stat st;
+	int rc;
+
+	memset(m, 0, sizeof(*m));
+	if (extra != NULL)
+		memset(extra, 0, sizeof(*extra));
+	if (fd < 0)
+		return vdt_err_set(err, VDT_EIO, "%s", strerror(errno));
+	if (fstat(fd, &st) != 0) {
+		rc = vdt_err_set(err, VDT_EIO, "%s", strerror(errno));
+		if (!stdin_)
+			close(fd);
+		return rc;
+	}
+	if (S_ISDIR(st.st_mode)) {
+		if (!stdin_)
+			close(fd);
+		return vdt_err_set(err, VDT_EIO, "is a directory");
+	}
+	if (S_ISREG(st.st_mode) && st.st_size > 0 && !stdin_) {
+		size_t len = (size_t)st.st_size;
+		void *p = mmap(NULL, len, PROT_READ, MAP_PRIVATE, fd, 0);
+
+		if (p != MAP_FAILED) {
+			close(fd);
+			madvise(p, len, MADV_SEQUENTIAL);
+			rc = vdt_read_memory(p, len, path, m, extra, err);
+			munmap(p, len);
+			return rc;
+		}
+	}
+	unsigned char *buf = NULL;
+	size_t len = 0;
+
+	rc = slurp(fd, &buf, &len, err);
+	if (!stdin_)
+		close(fd);
+	if (rc != 0)
+		return rc;
+	rc = vdt_read_memory(buf, len, stdin_ ? NULL : path, m, extra, err);
+	free(buf);
+	return rc;
+}
+
+int
+vdt_output_open(struct vdt_output *o, const char *path, struct vdt_err *err)
+{
+	const char *slash, *base;
+	size_t dl;
+	mode_t mask;
+	int fd;
+
+	memset(o, 0, sizeof(*o));
+	if (strcmp(path, "-") == 0) {
+		o->f = stdout;
+		return 0;
+	}
+	o->path = strdup(path);
+	slash = strrchr(path, '/');
+	base = slash ? slash + 1 : path;
+	dl = (size_t)(base - path);
+	o->tmp = malloc(dl + strlen(base) + 16);
+	if (o->path == NULL || o->tmp == NULL) {
+		free(o->path);
+		free(o->tmp);
+		memset(o, 0, sizeof(*o));
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	}
+	/* A hidden name in the same directory, so that rename is atomic. */
+	memcpy(o->tmp, path, dl);
+	sprintf(o->tmp + dl, ".%s.XXXXXX", base);
+	fd = mkstemp(o->tmp);
+	if (fd < 0) {
+		int e = errno;
+		free(o->path);
+		free(o->tmp);
+		memset(o, 0, sizeof(*o));
+		return vdt_err_set(err, VDT_EIO, "cannot create a temporary file: %s", strerror(e));
+	}
+	/* mkstemp makes 0600; give the result the usual 0666 & ~umask. */
+	mask = umask(0);
+	umask(mask);
+	fchmod(fd, 0666 & ~mask);
+	o->f = fdopen(fd, "wb");
+	if (o->f == NULL) {
+		int e = errno;
+		close(fd);
+		unlink(o->tmp);
+		free(o->path);
+		free(o->tmp);
+		memset(o, 0, sizeof(*o));
+		return vdt_err_set(err, VDT_EIO, "%s", strerror(e));
+	}
+	return 0;
+}
+
+int
+vdt_output_commit(struct vdt_output *o, struct vdt_err *err)
+{
+	int rc = 0;
+
+	if (o->f == NULL)
+		return vdt_err_set(err, VDT_EINVAL, "output is not open");
+	if (o->tmp == NULL) {
+		if (fflush(o->f) != 0 || ferror(o->f))
+			rc = vdt_err_set(err, VDT_EIO, "write error: %s", strerror(errno));
+		memset(o, 0, sizeof(*o));
+		return rc;
+	}
+	if (fflush(o->f) != 0 || ferror(o->f)) {
+		rc = vdt_err_set(err, VDT_EIO, "write error: %s", strerror(errno));
+		fclose(o->f);
+	} else if (fclose(o->f) != 0) {
+		rc = vdt_err_set(err, VDT_EIO, "write error: %s", strerror(errno));
+	} else if (rename(o->tmp, o->path) != 0) {
+		rc = vdt_err_set(err, VDT_EIO, "cannot rename the temporary file: %s", strerror(errno));
+	}
+	if (rc != 0)
+		unlink(o->tmp);
+	free(o->tmp);
+	free(o->path);
+	memset(o, 0, sizeof(*o));
+	return rc;
+}
+
+void
+vdt_output_abort(struct vdt_output *o)
+{
+	if (o->f != NULL && o->tmp != NULL) {
+		fclose(o->f);
+		unlink(o->tmp);
+	} else if (o->f != NULL) {
+		fflush(o->f);
+	}
+	free(o->tmp);
+	free(o->path);
+	memset(o, 0, sizeof(*o));
+}
+
+#define P9 "%.9g"
+
+static void
+face_normal(const struct vdt_mesh *m, size_t t, double n[3])
+{
+	const uint32_t *v = m->triangles + 3 * t;
+	const float *a = m->positions + 3 * (size_t)v[0];
+	const float *b = m->positions + 3 * (size_t)v[1];
+	const float *c = m->positions + 3 * (size_t)v[2];
+	double e1[3], e2[3], l;
+
+	for (int k = 0; k < 3; k++) {
+		e1[k] = (double)b[k] - a[k];
+		e2[k] = (double)c[k] - a[k];
+	}
+	n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+	n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+	n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+	l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+	for (int k = 0; k < 3; k++)
+		n[k] = l > 0 ? n[k] / l : 0;
+}
+
+static void
+write_obj(FILE *f, const struct vdt_mesh *m)
+{
+	const float *p = m->positions;
+
+	fputs("# written by vdt\n", f);
+	for (size_t i = 0; i < m->vertex_count; i++, p += 3) {
+		if (m->colors) {
+			const float *c = m->colors + 4 * i;
+			fprintf(f, "v " P9 " " P9 " " P9 " " P9 " " P9 " " P9 "\n",
+			        p[0], p[1], p[2], c[0], c[1], c[2]);
+		} else {
+			fprintf(f, "v " P9 " " P9 " " P9 "\n", p[0], p[1], p[2]);
+		}
+	}
+	if (m->uvs)
+		for (size_t i = 0; i < m->vertex_count; i++)
+			fprintf(f, "vt " P9 " " P9 "\n", m->uvs[2 * i], m->uvs[2 * i + 1]);
+	if (m->normals)
+		for (size_t i = 0; i < m->vertex_count; i++)
+			fprintf(f, "vn " P9 " " P9 " " P9 "\n", m->normals[3 * i],
+			        m->normals[3 * i + 1], m->normals[3 * i + 2]);
+	for (size_t t = 0; t < m->triangle_count; t++) {
+		fputc('f', f);
+		for (int k = 0; k < 3; k++) {
+			unsigned long v = (unsigned long)m->triangles[3 * t + k] + 1;
+			if (m->uvs && m->normals)
+				fprintf(f, " %lu/%lu/%lu", v, v, v);
+			else if (m->uvs)
+				fprintf(f, " %lu/%lu", v, v);
+			else if (m->normals)
+				fprintf(f, " %lu//%lu", v, v);
+			else
+				fprintf(f, " %lu", v);
+		}
+		fputc('\n', f);
+	}
+}
+
+static void
+write_off(FILE *f, const struct vdt_mesh *m)
+{
+	fprintf(f, "%sOFF\n%zu %zu 0\n", m->colors ? "C" : "", m->vertex_count,
+	        m->triangle_count);
+	for (size_t i = 0; i < m->vertex_count; i++) {
+		const float *p = m->positions + 3 * i;
+		fprintf(f, P9 " " P9 " " P9, p[0], p[1], p[2]);
+		if (m->colors) {
+			const float *c = m->colors + 4 * i;
+			fprintf(f, " " P9 " " P9 " " P9 " " P9, c[0], c[1], c[2], c[3]);
+		}
+		fputc('\n', f);
+	}
+	for (size_t t = 0; t < m->triangle_count; t++)
+		fprintf(f, "3 %lu %lu %lu\n", (unsigned long)m->triangles[3 * t],
+		        (unsigned long)m->triangles[3 * t + 1], (unsigned long)m->triangles[3 * t + 2]);
+}
+
+static void
+write_ply_ascii(FILE *f, const struct vdt_mesh *m)
+{
+	fprintf(f, "ply\nformat ascii 1.0\ncomment vdt\nelement vertex %zu\n"
+	           "property float x\nproperty float y\nproperty float z\n",
+	        m->vertex_count);
+	if (m->normals)
+		fputs("property float nx\nproperty float ny\nproperty float nz\n", f);
+	if (m->uvs)
+		fputs("property float s\nproperty float t\n", f);
+	if (m->colors)
+		fputs("property uchar red\nproperty uchar green\nproperty uchar blue\n"
+		      "property uchar alpha\n", f);
+	fprintf(f, "element face %zu\nproperty list uchar int vertex_indices\nend_header\n",
+	        m->triangle_count);
+	for (size_t i = 0; i < m->vertex_count; i++) {
+		const float *p = m->positions + 3 * i;
+		fprintf(f, P9 " " P9 " " P9, p[0], p[1], p[2]);
+		if (m->normals)
+			fprintf(f, " " P9 " " P9 " " P9, m->normals[3 * i], m->normals[3 * i + 1],
+			        m->normals[3 * i + 2]);
+		if (m->uvs)
+			fprintf(f, " " P9 " " P9, m->uvs[2 * i], m->uvs[2 * i + 1]);
+		if (m->colors)
+			for (int k = 0; k < 4; k++) {
+				float c = m->colors[4 * i + k];
+				c = c < 0 ? 0 : c > 1 ? 1 : c;
+				fprintf(f, " %ld", lrintf(c * 255.0f));
+			}
+		fputc('\n', f);
+	}
+	for (size_t t = 0; t < m->triangle_count; t++)
+		fprintf(f, "3 %lu %lu %lu\n", (unsigned long)m->triangles[3 * t],
+		        (unsigned long)m->triangles[3 * t + 1], (unsigned long)m->triangles[3 * t + 2]);
+}
+
+static void
+write_stl_ascii(FILE *f, const struct vdt_mesh *m)
+{
+	fputs("solid vdt\n", f);
+	for (size_t t = 0; t < m->triangle_count; t++) {
+		double n[3];
+
+		face_normal(m, t, n);
+		fprintf(f, "facet normal " P9 " " P9 " " P9 "\nouter loop\n", n[0], n[1], n[2]);
+		for (int k = 0; k < 3; k++) {
+			const float *p = m->positions + 3 * (size_t)m->triangles[3 * t + k];
+			fprintf(f, "vertex " P9 " " P9 " " P9 "\n", p[0], p[1], p[2]);
+		}
+		fputs("endloop\nendfacet\n", f);
+	}
+	fputs("endsolid vdt\n", f);
+}
+
+int
+vdt_text_write(FILE *f, const struct vdt_mesh *m, enum vdt_format format,
+               struct vdt_err *err)
+{
+	switch (format) {
+	case VDT_FMT_OBJ: write_obj(f, m); break;
+	case VDT_FMT_OFF: write_off(f, m); break;
+	case VDT_FMT_PLY_ASCII: write_ply_ascii(f, m); break;
+	case VDT_FMT_STL_ASCII: write_stl_ascii(f, m); break;
+	default: return vdt_err_set(err, VDT_EINVAL, "%s is not a text format", vdt_format_name(format));
+	}
+	if (ferror(f))
+		return vdt_err_set(err, VDT_EIO, "write error: %s", strerror(errno));
+	return 0;
+}
+
+static int
+is_binary_format(enum vdt_format f)
+{
+	return f == VDT_FMT_VDT || f == VDT_FMT_PLY || f == VDT_FMT_STL || f == VDT_FMT_DRC;
+}
+
+static int
+write_stream(FILE *f, const struct vdt_mesh *m, const struct vdt_chunks *extra,
+             struct vdt_err *err)
+{
+	unsigned char *data;
+	uint64_t length;
+	int rc;
+
+	rc = vdt_mesh_encode(m, &data, &length, err);
+	if (rc != 0)
+		return rc;
+	rc = vdt_stream_write_header(f, err);
+	if (rc == 0)
+		rc = vdt_stream_write_chunk(f, VDT_CHUNK_MESH, data, length, err);
+	free(data);
+	for (size_t i = 0; rc == 0 && extra != NULL && i < extra->count; i++)
+		if (extra->items[i].type != VDT_CHUNK_MESH)
+			rc = vdt_stream_write_chunk(f, extra->items[i].type, extra->items[i].data,
+			                            extra->items[i].length, err);
+	if (rc == 0)
+		rc = vdt_stream_write_end(f, err);
+	return rc;
+}
+
+int
+vdt_write(const char *path, const struct vdt_mesh *m,
+          const struct vdt_chunks *extra, const struct vdt_write_opts *opts,
+          struct vdt_err *err)
+{
+	enum vdt_format f = opts ? opts->format : VDT_FMT_AUTO;
+	int to_stdout = strcmp(path, "-") == 0;
+	struct vdt_output o;
+	int rc;
+
+	if (f == VDT_FMT_AUTO)
+		f = to_stdout ? VDT_FMT_VDT : vdt_format_from_path(path);
+	if (f == VDT_FMT_AUTO)
+		return vdt_err_set(err, VDT_EINVAL, "unknown output format (give a known extension)");
+	if (to_stdout && is_binary_format(f) && isatty(STDOUT_FILENO))
+		return vdt_err_set(err, VDT_EINVAL, "refusing to write binary %s to a terminal",
+		                   f == VDT_FMT_VDT ? "vdt stream" : vdt_format_name(f));
+	rc = vdt_mesh_validate(m, err);
+	if (rc != 0)
+		return rc;
+	rc = vdt_output_open(&o, path, err);
+	if (rc != 0)
+		return rc;
+	switch (f) {
+	case VDT_FMT_VDT: rc = write_stream(o.f, m, extra, err); break;
+	case VDT_FMT_PLY: rc = vdt_ply_write(o.f, m, err); break;
+	case VDT_FMT_STL: rc = vdt_stl_write(o.f, m, err); break;
+	case VDT_FMT_DRC:
+		rc = vdt_draco_write(o.f, m, opts ? opts->draco_position_bits : 0,
+		                     opts ? opts->draco_speed : 0, err);
+		break;
+	default: rc = vdt_text_write(o.f, m, f, err); break;
+	}
+	if (rc != 0) {
+		vdt_output_abort(&o);
+		return rc;
+	}
+	return vdt_output_commit(&o, err);
+}

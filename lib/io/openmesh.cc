@@ -1,0 +1,407 @@
+/*
+ * openmesh.cc - the extern "C" face of OpenMesh's parsers for OBJ, ASCII
+ * PLY, OFF and ASCII STL.
+ *
+ * OpenMesh's own ImporterT builds a half-edge mesh as it reads: it drops
+ * faces with repeated or invalid vertices and duplicates the vertices of
+ * non-manifold faces, and it is slow. We give the parsers our own importer
+ * instead, which only collects positions, attributes and polygons into flat
+ * arrays, so that the file's connectivity arrives untouched and every bad
+ * index can be reported by number. Per-corner texture coordinates (OBJ)
+ * split vertices where they differ.
+ */
+#include <OpenMesh/Core/IO/IOManager.hh>
+#include <OpenMesh/Core/IO/importer/BaseImporter.hh>
+#include <OpenMesh/Core/System/omstream.hh>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <sstream>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+extern "C" {
+#include "meshio.h"
+}
+
+using namespace OpenMesh;
+
+namespace {
+
+struct Collect : public IO::BaseImporter {
+	std::vector<Vec3f> points;
+	std::vector<Vec3f> normals;
+	std::vector<Vec2f> uvs;
+	std::vector<Vec4f> colors;
+	bool have_normals = false, have_uvs = false, have_colors = false;
+
+	std::vector<uint32_t> corners;     /* vertex of each corner */
+	std::vector<size_t> face_start;    /* corners of face f: [start[f], start[f+1]) */
+	std::vector<Vec2f> corner_uv;      /* sized like corners once any is set */
+	std::vector<unsigned char> has_cuv;
+	bool bad_index = false;
+	size_t bad_face = 0;
+	long long bad_vertex = 0;
+
+	Collect() { face_start.push_back(0); }
+
+	VertexHandle add_vertex(const Vec3f &p) override
+	{
+		points.push_back(p);
+		if (have_normals)
+			normals.emplace_back(0.f, 0.f, 0.f);
+		if (have_uvs)
+			uvs.emplace_back(0.f, 0.f);
+		if (have_colors)
+			colors.emplace_back(1.f, 1.f, 1.f, 1.f);
+		return VertexHandle(int(points.size() - 1));
+	}
+	VertexHandle add_vertex() override { return add_vertex(Vec3f(0.f, 0.f, 0.f)); }
+	HalfedgeHandle add_edge(VertexHandle, VertexHandle) override { return HalfedgeHandle(); }
+
+	FaceHandle add_face(const VHandles &idx) override
+	{
+		size_t f = face_start.size() - 1;
+
+		for (auto vh : idx) {
+			if (vh.idx() < 0 || size_t(vh.idx()) >= points.size()) {
+				if (!bad_index) {
+					bad_index = true;
+					bad_face = f;
+					bad_vertex = vh.idx();
+				}
+			}
+			corners.push_back(uint32_t(vh.idx()));
+		}
+		if (!corner_uv.empty()) {
+			corner_uv.resize(corners.size());
+			has_cuv.resize(corners.size());
+		}
+		face_start.push_back(corners.size());
+		return FaceHandle(int(f));
+	}
+	FaceHandle add_face(HalfedgeHandle) override { return FaceHandle(); }
+
+	void add_face_texcoords(FaceHandle fh, VertexHandle vh, const std::vector<Vec2f> &tc) override
+	{
+		if (tc.empty() || !fh.is_valid() || size_t(fh.idx()) + 1 >= face_start.size())
+			return;
+		size_t s = face_start[fh.idx()], e = face_start[fh.idx() + 1], n = e - s, k = 0;
+		if (n == 0)
+			return;
+		if (corner_uv.empty()) {
+			corner_uv.resize(corners.size());
+			has_cuv.resize(corners.size());
+		}
+		while (k < n && corners[s + k] != uint32_t(vh.idx()))
+			k++;
+		if (k == n)
+			k = 0;
+		for (size_t i = 0; i < tc.size() && i < n; i++) {
+			corner_uv[s + (k + i) % n] = tc[i];
+			has_cuv[s + (k + i) % n] = 1;
+		}
+	}
+	void add_face_texcoords(FaceHandle, VertexHandle, const std::vector<Vec3f> &) override {}
+	void set_face_texindex(FaceHandle, int) override {}
+
+	bool vok(VertexHandle vh) const { return vh.idx() >= 0 && size_t(vh.idx()) < points.size(); }
+	void set_point(VertexHandle vh, const Vec3f &p) override
+	{
+		if (vok(vh))
+			points[vh.idx()] = p;
+	}
+	void set_halfedge(VertexHandle, HalfedgeHandle) override {}
+	void set_normal(VertexHandle vh, const Vec3f &n) override
+	{
+		if (!vok(vh))
+			return;
+		if (!have_normals) {
+			have_normals = true;
+			normals.assign(points.size(), Vec3f(0.f, 0.f, 0.f));
+		}
+		normals[vh.idx()] = n;
+	}
+	void set_normal(VertexHandle vh, const Vec3d &n) override { set_normal(vh, Vec3f(n)); }
+	void set_color(VertexHandle vh, const Vec4f &c) override
+	{
+		if (!vok(vh))
+			return;
+		if (!have_colors) {
+			have_colors = true;
+			colors.assign(points.size(), Vec4f(1.f, 1.f, 1.f, 1.f));
+		}
+		colors[vh.idx()] = c;
+	}
+	void set_color(VertexHandle vh, const Vec3f &c) override { set_color(vh, Vec4f(c[0], c[1], c[2], 1.f)); }
+	void set_color(VertexHandle vh, const Vec3uc &c) override
+	{
+		set_color(vh, Vec4f(c[0] / 255.f, c[1] / 255.f, c[2] / 255.f, 1.f));
+	}
+	void set_color(VertexHandle vh, const Vec4uc &c) override
+	{
+		set_color(vh, Vec4f(c[0] / 255.f, c[1] / 255.f, c[2] / 255.f, c[3] / 255.f));
+	}
+	void set_texcoord(VertexHandle vh, const Vec2f &t) override
+	{
+		if (!vok(vh))
+			return;
+		if (!have_uvs) {
+			have_uvs = true;
+			uvs.assign(points.size(), Vec2f(0.f, 0.f));
+		}
+		uvs[vh.idx()] = t;
+	}
+	void set_texcoord(VertexHandle vh, const Vec3f &t) override { set_texcoord(vh, Vec2f(t[0], t[1])); }
+	void set_status(VertexHandle, const Attributes::StatusInfo &) override {}
+	void set_next(HalfedgeHandle, HalfedgeHandle) override {}
+	void set_face(HalfedgeHandle, FaceHandle) override {}
+	void request_face_texcoords2D() override {}
+	void set_texcoord(HalfedgeHandle, const Vec2f &) override {}
+	void set_texcoord(HalfedgeHandle, const Vec3f &) override {}
+	void set_status(HalfedgeHandle, const Attributes::StatusInfo &) override {}
+	void set_color(EdgeHandle, const Vec3uc &) override {}
+	void set_color(EdgeHandle, const Vec4uc &) override {}
+	void set_color(EdgeHandle, const Vec3f &) override {}
+	void set_color(EdgeHandle, const Vec4f &) override {}
+	void set_status(EdgeHandle, const Attributes::StatusInfo &) override {}
+	void set_normal(FaceHandle, const Vec3f &) override {}
+	void set_normal(FaceHandle, const Vec3d &) override {}
+	void set_color(FaceHandle, const Vec3uc &) override {}
+	void set_color(FaceHandle, const Vec4uc &) override {}
+	void set_color(FaceHandle, const Vec3f &) override {}
+	void set_color(FaceHandle, const Vec4f &) override {}
+	void set_status(FaceHandle, const Attributes::StatusInfo &) override {}
+	void add_texture_information(int, std::string) override {}
+	void reserve(unsigned int nv, unsigned int, unsigned int nf) override
+	{
+		/* Counts come from the file: bound what we trust. */
+		points.reserve(nv < (1u << 20) ? nv : (1u << 20));
+		face_start.reserve(nf < (1u << 20) ? nf + 1 : (1u << 20));
+	}
+	size_t n_vertices() const override { return points.size(); }
+	size_t n_faces() const override { return face_start.size() - 1; }
+	size_t n_edges() const override { return 0; }
+};
+
+void
+silence()
+{
+	omerr().disable();
+	omlog().disable();
+	omout().disable();
+}
+
+/* The number of faces the file declares, where the format says it. */
+long long
+declared_faces(const unsigned char *buf, size_t len, enum vdt_format f)
+{
+	const char *p = reinterpret_cast<const char *>(buf);
+	if (f == VDT_FMT_OBJ) {
+		long long n = 0;
+		for (size_t i = 0; i < len; i++)
+			if ((i == 0 || p[i - 1] == '\n') && i + 1 < len && p[i] == 'f' &&
+			    (p[i + 1] == ' ' || p[i + 1] == '\t'))
+				n++;
+		return n;
+	}
+	if (f == VDT_FMT_STL_ASCII) {
+		long long n = 0;
+		size_t lim = len;
+		for (size_t i = 0; i + 8 <= lim; i++)
+			if (std::memcmp(p + i, "endfacet", 8) == 0)
+				n++;
+		return n;
+	}
+	return -1;
+}
+
+/*
+ * OpenMesh skips an OBJ vertex line it cannot parse ("nan", "1e999"), which
+ * shifts every later index: find the first such line and name it.
+ */
+int
+check_obj_vertices(const unsigned char *buf, size_t len, size_t have, struct vdt_err *err)
+{
+	const char *p = reinterpret_cast<const char *>(buf);
+	size_t v = 0;
+
+	for (size_t i = 0; i < len; i++) {
+		if (!((i == 0 || p[i - 1] == '\n') && i + 1 < len && p[i] == 'v' &&
+		      (p[i + 1] == ' ' || p[i + 1] == '\t')))
+			continue;
+		size_t e = i;
+		while (e < len && p[e] != '\n')
+			e++;
+		std::string line(p + i + 2, e - i - 2);
+		const char *q = line.c_str();
+		for (int k = 0; k < 3; k++) {
+			char *end;
+			double d = std::strtod(q, &end);
+			if (end == q || !std::isfinite(d) || std::fabs(d) > 3.4e38)
+				return vdt_err_set(err, VDT_EINVAL,
+				                   "vertex %zu has a non-finite or unreadable coordinate", v);
+			q = end;
+		}
+		v++;
+	}
+	if (v != have)
+		return vdt_err_set(err, VDT_EFORMAT, "only %zu of the %zu vertices could be read", have, v);
+	return 0;
+}
+
+int
+convert(Collect &c, struct vdt_mesh *m, long long declared, struct vdt_err *err)
+{
+	size_t nf = c.face_start.size() - 1, nv = c.points.size(), tris = 0;
+
+	if (c.bad_index)
+		return vdt_err_set(err, VDT_EINVAL, "face %zu uses vertex %lld of %zu", c.bad_face,
+		                   c.bad_vertex, nv);
+	for (size_t f = 0; f < nf; f++) {
+		size_t n = c.face_start[f + 1] - c.face_start[f];
+		if (n < 3)
+			return vdt_err_set(err, VDT_EFORMAT, "face %zu has %zu vertices", f, n);
+		tris += n - 2;
+	}
+	if (declared >= 0 && (long long)nf < declared)
+		return vdt_err_set(err, VDT_EFORMAT,
+		                   "only %zu of the %lld faces could be read (bad vertex references?)",
+		                   nf, declared);
+
+	/*
+	 * Split vertices by corner texture coordinate: a vertex keeps its index
+	 * for the first texture coordinate it is used with; each further one
+	 * makes a copy appended at the end.
+	 */
+	std::vector<uint32_t> tri_corner; /* corner index of each triangle corner */
+	tri_corner.reserve(3 * tris);
+	for (size_t f = 0; f < nf; f++) {
+		size_t s = c.face_start[f], e = c.face_start[f + 1];
+		for (size_t k = s + 2; k < e; k++) {
+			tri_corner.push_back(uint32_t(s));
+			tri_corner.push_back(uint32_t(k - 1));
+			tri_corner.push_back(uint32_t(k));
+		}
+	}
+	bool split = !c.corner_uv.empty();
+	std::vector<uint32_t> corner_vertex(c.corners.begin(), c.corners.end());
+	std::vector<uint32_t> origin; /* for appended copies: the source vertex */
+	std::vector<Vec2f> new_uv;
+	if (split) {
+		std::vector<int64_t> next; /* chain of copies of one vertex */
+		std::vector<Vec2f> uv_of;  /* uv of vertex i (i < nv) or of copy */
+		uv_of.resize(nv);
+		next.assign(nv, -1);
+		std::vector<unsigned char> used(nv, 0);
+		for (size_t k = 0; k < c.corners.size(); k++) {
+			uint32_t v = c.corners[k];
+			Vec2f uv = c.has_cuv[k] ? c.corner_uv[k] : (c.have_uvs ? c.uvs[v] : Vec2f(0.f, 0.f));
+			if (!used[v]) {
+				used[v] = 1;
+				uv_of[v] = uv;
+				corner_vertex[k] = v;
+				continue;
+			}
+			int64_t i = v, found = -1, last = v;
+			while (i >= 0) {
+				if (std::memcmp(&uv_of[i], &uv, sizeof(uv)) == 0) {
+					found = i;
+					break;
+				}
+				last = i;
+				i = next[i];
+			}
+			if (found < 0) {
+				found = int64_t(uv_of.size());
+				uv_of.push_back(uv);
+				next.push_back(-1);
+				next[last] = found;
+				origin.push_back(v);
+			}
+			corner_vertex[k] = uint32_t(found);
+		}
+		for (size_t v = 0; v < nv; v++)
+			if (!used[v])
+				uv_of[v] = c.have_uvs ? c.uvs[v] : Vec2f(0.f, 0.f);
+		new_uv.swap(uv_of);
+	}
+	size_t total = nv + origin.size();
+	unsigned attrs = (c.have_normals ? VDT_ATTR_NORMALS : 0) |
+	                 ((split || c.have_uvs) ? VDT_ATTR_UVS : 0) |
+	                 (c.have_colors ? VDT_ATTR_COLORS : 0);
+	int rc = vdt_mesh_alloc(m, total, tris, attrs, err);
+	if (rc != 0)
+		return rc;
+	for (size_t i = 0; i < total; i++) {
+		size_t src = i < nv ? i : origin[i - nv];
+		for (int k = 0; k < 3; k++)
+			m->positions[3 * i + k] = c.points[src][k];
+		if (m->normals)
+			for (int k = 0; k < 3; k++)
+				m->normals[3 * i + k] = c.normals[src][k];
+		if (m->colors)
+			for (int k = 0; k < 4; k++)
+				m->colors[4 * i + k] = c.colors[src][k];
+		if (m->uvs) {
+			Vec2f uv = split ? new_uv[i] : c.uvs[src];
+			m->uvs[2 * i] = uv[0];
+			m->uvs[2 * i + 1] = uv[1];
+		}
+	}
+	for (size_t i = 0; i < 3 * tris; i++)
+		m->triangles[i] = corner_vertex[tri_corner[i]];
+	return 0;
+}
+
+} // namespace
+
+extern "C" int
+vdt_openmesh_read(const unsigned char *buf, size_t len, enum vdt_format format,
+                  struct vdt_mesh *m, struct vdt_err *err)
+{
+	const char *ext;
+
+	std::memset(m, 0, sizeof(*m));
+	switch (format) {
+	case VDT_FMT_OBJ: ext = ".obj"; break;
+	case VDT_FMT_PLY:
+	case VDT_FMT_PLY_ASCII: ext = ".ply"; break;
+	case VDT_FMT_OFF: ext = ".off"; break;
+	case VDT_FMT_STL:
+	case VDT_FMT_STL_ASCII: ext = ".stl"; break;
+	default: return vdt_err_set(err, VDT_EINVAL, "OpenMesh cannot read %s", vdt_format_name(format));
+	}
+	try {
+		silence();
+		std::string s(reinterpret_cast<const char *>(buf), len);
+		std::istringstream is(s, std::ios::in | std::ios::binary);
+		IO::Options opt = IO::Options::VertexNormal | IO::Options::VertexTexCoord |
+		                  IO::Options::VertexColor | IO::Options::FaceTexCoord;
+		Collect c;
+		if (!IO::IOManager().read(is, ext, c, opt))
+			return vdt_err_set(err, VDT_EFORMAT, "cannot parse the %s content",
+			                   vdt_format_name(format));
+		int rc = 0;
+		if (format == VDT_FMT_OBJ)
+			rc = check_obj_vertices(buf, len, c.points.size(), err);
+		if (rc == 0)
+			rc = convert(c, m, declared_faces(buf, len, format), err);
+		if (rc != 0)
+			vdt_mesh_free(m);
+		return rc;
+	} catch (const std::bad_alloc &) {
+		vdt_mesh_free(m);
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	} catch (const std::exception &e) {
+		vdt_mesh_free(m);
+		return vdt_err_set(err, VDT_EFORMAT, "cannot parse the %s content: %s",
+		                   vdt_format_name(format), e.what());
+	} catch (...) {
+		vdt_mesh_free(m);
+		return vdt_err_set(err, VDT_EFORMAT, "cannot parse the %s content",
+		                   vdt_format_name(format));
+	}
+}

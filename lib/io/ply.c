@@ -1,0 +1,726 @@
+/*
+ * ply.c - native binary PLY: the fast path for reading (fixed-size vertex
+ * records straight into flat arrays) and a binary little-endian writer.
+ *
+ * The header is untrusted: every count is checked against the bytes that
+ * remain before anything is allocated, names and lines are bounded, and the
+ * number of elements and properties is capped.
+ */
+#include "meshio.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../bytes.h"
+
+#define MAX_ELEMENTS 64
+#define MAX_PROPS 128
+#define MAX_NAME 64
+
+enum ptype { T_NONE, T_I8, T_U8, T_I16, T_U16, T_I32, T_U32, T_F32, T_F64 };
+
+static const struct {
+	const char *name;
+	enum ptype type;
+	unsigned size;
+} type_names[] = {
+	{"char", T_I8, 1},    {"int8", T_I8, 1},     {"uchar", T_U8, 1},
+	{"uint8", T_U8, 1},   {"short", T_I16, 2},   {"int16", T_I16, 2},
+	{"ushort", T_U16, 2}, {"uint16", T_U16, 2},  {"int", T_I32, 4},
+	{"int32", T_I32, 4},  {"uint", T_U32, 4},    {"uint32", T_U32, 4},
+	{"float", T_F32, 4},  {"float32", T_F32, 4}, {"double", T_F64, 8},
+	{"float64", T_F64, 8},
+};
+
+static const unsigned type_size[] = {0, 1, 1, 2, 2, 4, 4, 4, 8};
+
+struct prop {
+	char name[MAX_NAME];
+	enum ptype type;       /* scalar type, or the item type of a list */
+	enum ptype count_type; /* T_NONE for a scalar */
+};
+
+struct element {
+	char name[MAX_NAME];
+	uint64_t count;
+	size_t prop_count;
+	struct prop props[MAX_PROPS];
+};
+
+struct header {
+	int big_endian;
+	size_t element_count;
+	struct element elements[MAX_ELEMENTS];
+	size_t data_offset;
+};
+
+static enum ptype
+parse_type(const char *s, size_t n)
+{
+	for (size_t i = 0; i < sizeof(type_names) / sizeof(type_names[0]); i++)
+		if (strlen(type_names[i].name) == n && memcmp(type_names[i].name, s, n) == 0)
+			return type_names[i].type;
+	return T_NONE;
+}
+
+/* Split one header line into at most 6 words. */
+static size_t
+split_words(const char *line, size_t len, const char **w, size_t *wl, size_t max)
+{
+	size_t n = 0, i = 0;
+
+	while (i < len) {
+		while (i < len && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r'))
+			i++;
+		if (i >= len)
+			break;
+		if (n == max)
+			return max + 1;
+		w[n] = line + i;
+		while (i < len && line[i] != ' ' && line[i] != '\t' && line[i] != '\r')
+			i++;
+		wl[n] = (size_t)(line + i - w[n]);
+		n++;
+	}
+	return n;
+}
+
+static int
+word_is(const char *w, size_t wl, const char *s)
+{
+	return strlen(s) == wl && memcmp(w, s, wl) == 0;
+}
+
+static int
+parse_header(const unsigned char *buf, size_t len, struct header *h,
+             struct vdt_err *err)
+{
+	const char *p = (const char *)buf;
+	size_t pos = 0, lineno = 0;
+	int have_format = 0;
+
+	memset(h, 0, sizeof(*h));
+	for (;;) {
+		const char *line = p + pos, *nl, *w[6];
+		size_t ll, wl[6], n;
+
+		if (pos >= len)
+			return vdt_err_set(err, VDT_EFORMAT, "PLY header has no end_header line");
+		nl = memchr(line, '\n', len - pos);
+		if (nl == NULL)
+			return vdt_err_set(err, VDT_EFORMAT, "PLY header has no end_header line");
+		ll = (size_t)(nl - line);
+		pos += ll + 1;
+		lineno++;
+		if (lineno == 1) {
+			if (!(ll >= 3 && memcmp(line, "ply", 3) == 0 &&
+			      (ll == 3 || (ll == 4 && line[3] == '\r'))))
+				return vdt_err_set(err, VDT_EFORMAT, "not a PLY file");
+			continue;
+		}
+		if ((ll >= 7 && memcmp(line, "comment", 7) == 0) ||
+		    (ll >= 8 && memcmp(line, "obj_info", 8) == 0))
+			continue;
+		n = split_words(line, ll, w, wl, 6);
+		if (n == 0)
+			continue;
+		if (n > 6)
+			return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu has too many words", lineno);
+		if (word_is(w[0], wl[0], "end_header")) {
+			if (!have_format)
+				return vdt_err_set(err, VDT_EFORMAT, "PLY header has no format line");
+			h->data_offset = pos;
+			return 0;
+		}
+		if (word_is(w[0], wl[0], "format")) {
+			if (n != 3)
+				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: bad format line", lineno);
+			if (word_is(w[1], wl[1], "binary_little_endian"))
+				h->big_endian = 0;
+			else if (word_is(w[1], wl[1], "binary_big_endian"))
+				h->big_endian = 1;
+			else if (word_is(w[1], wl[1], "ascii"))
+				return vdt_err_set(err, VDT_EFORMAT, "ASCII PLY is not read natively");
+			else
+				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: unknown format '%.*s'",
+				                   lineno, (int)(wl[1] > 32 ? 32 : wl[1]), w[1]);
+			have_format = 1;
+		} else if (word_is(w[0], wl[0], "element")) {
+			struct element *e;
+			char num[32], *end;
+			unsigned long long c;
+
+			if (n != 3 || wl[1] >= MAX_NAME || wl[2] >= sizeof(num))
+				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: bad element line", lineno);
+			if (h->element_count == MAX_ELEMENTS)
+				return vdt_err_set(err, VDT_EFORMAT, "PLY header has more than %d elements", MAX_ELEMENTS);
+			memcpy(num, w[2], wl[2]);
+			num[wl[2]] = '\0';
+			if (num[0] < '0' || num[0] > '9')
+				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: bad element count", lineno);
+			c = strtoull(num, &end, 10);
+			if (*end != '\0')
+				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: bad element count", lineno);
+			e = &h->elements[h->element_count++];
+			memcpy(e->name, w[1], wl[1]);
+			e->name[wl[1]] = '\0';
+			e->count = c;
+		} else if (word_is(w[0], wl[0], "property")) {
+			struct element *e;
+			struct prop *pr;
+			size_t namei;
+
+			if (h->element_count == 0)
+				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: property before any element", lineno);
+			e = &h->elements[h->element_count - 1];
+			if (e->prop_count == MAX_PROPS)
+				return vdt_err_set(err, VDT_EFORMAT, "PLY element '%s' has more than %d properties",
+				                   e->name, MAX_PROPS);
+			pr = &e->props[e->prop_count];
+			if (n == 3) {
+				pr->count_type = T_NONE;
+				pr->type = parse_type(w[1], wl[1]);
+				namei = 2;
+			} else if (n == 5 && word_is(w[1], wl[1], "list")) {
+				pr->count_type = parse_type(w[2], wl[2]);
+				pr->type = parse_type(w[3], wl[3]);
+				namei = 4;
+				if (pr->count_type == T_F32 || pr->count_type == T_F64)
+					return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: list count must be an integer", lineno);
+			} else {
+				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: bad property line", lineno);
+			}
+			if (pr->type == T_NONE || (namei == 4 && pr->count_type == T_NONE))
+				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: unknown property type", lineno);
+			if (wl[namei] >= MAX_NAME)
+				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: property name too long", lineno);
+			memcpy(pr->name, w[namei], wl[namei]);
+			pr->name[wl[namei]] = '\0';
+			e->prop_count++;
+		} else {
+			return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: unknown keyword '%.*s'",
+			                   lineno, (int)(wl[0] > 32 ? 32 : wl[0]), w[0]);
+		}
+	}
+}
+
+static uint32_t
+get_u32(const unsigned char *p, int be)
+{
+	return be ? (uint32_t)p[3] | (uint32_t)p[2] << 8 | (uint32_t)p[1] << 16 |
+	                    (uint32_t)p[0] << 24
+	          : vdt_get_u32le(p);
+}
+
+static uint16_t
+get_u16(const unsigned char *p, int be)
+{
+	return be ? (uint16_t)(p[1] | p[0] << 8) : vdt_get_u16le(p);
+}
+
+static uint64_t
+get_u64(const unsigned char *p, int be)
+{
+	return be ? (uint64_t)get_u32(p, 1) << 32 | get_u32(p + 4, 1)
+	          : vdt_get_u64le(p);
+}
+
+static double
+get_scalar(const unsigned char *p, enum ptype t, int be)
+{
+	switch (t) {
+	case T_I8: return (int8_t)p[0];
+	case T_U8: return p[0];
+	case T_I16: return (int16_t)get_u16(p, be);
+	case T_U16: return get_u16(p, be);
+	case T_I32: return (int32_t)get_u32(p, be);
+	case T_U32: return get_u32(p, be);
+	case T_F32: {
+		uint32_t v = get_u32(p, be);
+		float f;
+		memcpy(&f, &v, 4);
+		return f;
+	}
+	case T_F64: {
+		uint64_t v = get_u64(p, be);
+		double d;
+		memcpy(&d, &v, 8);
+		return d;
+	}
+	default: return 0;
+	}
+}
+
+/*
+ * An integer list count or index. Signed values are returned sign-extended
+ * in an int64_t so that a negative index is reported as such.
+ */
+static int64_t
+get_int(const unsigned char *p, enum ptype t, int be)
+{
+	switch (t) {
+	case T_I8: return (int8_t)p[0];
+	case T_U8: return p[0];
+	case T_I16: return (int16_t)get_u16(p, be);
+	case T_U16: return get_u16(p, be);
+	case T_I32: return (int32_t)get_u32(p, be);
+	case T_U32: return get_u32(p, be);
+	case T_F32:
+	case T_F64: {
+		double d = get_scalar(p, t, be);
+		return isfinite(d) && d >= -1e18 && d <= 1e18 ? (int64_t)d : -1;
+	}
+	default: return -1;
+	}
+}
+
+/*
+ * Size of one record of e starting at p (at most `avail` bytes), or 0 if the
+ * record does not fit.
+ */
+static size_t
+record_size(const struct element *e, const unsigned char *p, size_t avail, int be)
+{
+	size_t off = 0;
+
+	for (size_t i = 0; i < e->prop_count; i++) {
+		const struct prop *pr = &e->props[i];
+
+		if (pr->count_type == T_NONE) {
+			off += type_size[pr->type];
+			if (off > avail)
+				return 0;
+		} else {
+			size_t cs = type_size[pr->count_type];
+			int64_t c;
+
+			if (off + cs > avail)
+				return 0;
+			c = get_int(p + off, pr->count_type, be);
+			off += cs;
+			if (c < 0 || (uint64_t)c > (avail - off) / type_size[pr->type])
+				return 0;
+			off += (size_t)c * type_size[pr->type];
+		}
+	}
+	return off;
+}
+
+static int
+fixed_size(const struct element *e, size_t *size)
+{
+	size_t s = 0;
+
+	for (size_t i = 0; i < e->prop_count; i++) {
+		if (e->props[i].count_type != T_NONE)
+			return 0;
+		s += type_size[e->props[i].type];
+	}
+	*size = s;
+	return 1;
+}
+
+enum { A_X, A_Y, A_Z, A_NX, A_NY, A_NZ, A_U, A_V, A_R, A_G, A_B, A_A, A_COUNT };
+
+static int
+attr_of(const char *name)
+{
+	static const struct {
+		const char *name;
+		int attr;
+	} names[] = {
+		{"x", A_X},          {"y", A_Y},          {"z", A_Z},
+		{"nx", A_NX},        {"ny", A_NY},        {"nz", A_NZ},
+		{"s", A_U},          {"t", A_V},          {"u", A_U},
+		{"v", A_V},          {"texture_u", A_U},  {"texture_v", A_V},
+		{"texture_s", A_U},  {"texture_t", A_V},  {"red", A_R},
+		{"green", A_G},      {"blue", A_B},       {"alpha", A_A},
+		{"diffuse_red", A_R}, {"diffuse_green", A_G}, {"diffuse_blue", A_B},
+	};
+
+	for (size_t i = 0; i < sizeof(names) / sizeof(names[0]); i++)
+		if (strcmp(names[i].name, name) == 0)
+			return names[i].attr;
+	return -1;
+}
+
+static double
+color_value(double v, enum ptype t)
+{
+	switch (t) {
+	case T_U8: return v / 255.0;
+	case T_U16: return v / 65535.0;
+	case T_F32:
+	case T_F64: return v;
+	default: return v / 255.0;
+	}
+}
+
+static int
+read_vertices(const struct header *h, const struct element *e,
+              const unsigned char *p, size_t recsize, struct vdt_mesh *m,
+              struct vdt_err *err)
+{
+	size_t off[A_COUNT];
+	enum ptype type[A_COUNT];
+	int have[A_COUNT] = {0};
+	unsigned attrs = 0;
+	size_t o = 0;
+	int be = h->big_endian;
+	int rc;
+
+	for (size_t i = 0; i < e->prop_count; i++) {
+		int a = attr_of(e->props[i].name);
+
+		if (a >= 0 && !have[a]) {
+			have[a] = 1;
+			off[a] = o;
+			type[a] = e->props[i].type;
+		}
+		o += type_size[e->props[i].type];
+	}
+	if (!have[A_X] || !have[A_Y] || !have[A_Z])
+		return vdt_err_set(err, VDT_EFORMAT, "PLY vertex element has no x, y and z");
+	if (have[A_NX] && have[A_NY] && have[A_NZ])
+		attrs |= VDT_ATTR_NORMALS;
+	if (have[A_U] && have[A_V])
+		attrs |= VDT_ATTR_UVS;
+	if (have[A_R] && have[A_G] && have[A_B])
+		attrs |= VDT_ATTR_COLORS;
+	rc = vdt_mesh_alloc(m, (size_t)e->count, 0, attrs, err);
+	if (rc != 0)
+		return rc;
+
+	size_t n = m->vertex_count;
+	float *pos = m->positions;
+	if (!be && type[A_X] == T_F32 && type[A_Y] == T_F32 && type[A_Z] == T_F32 &&
+	    off[A_Y] == off[A_X] + 4 && off[A_Z] == off[A_X] + 8) {
+		/* The common case: three consecutive little-endian floats. */
+		const unsigned char *q = p + off[A_X];
+		for (size_t i = 0; i < n; i++, q += recsize) {
+			pos[3 * i] = vdt_get_f32le(q);
+			pos[3 * i + 1] = vdt_get_f32le(q + 4);
+			pos[3 * i + 2] = vdt_get_f32le(q + 8);
+		}
+	} else {
+		for (size_t i = 0; i < n; i++)
+			for (int k = 0; k < 3; k++)
+				pos[3 * i + k] = (float)get_scalar(p + i * recsize + off[A_X + k],
+				                                   type[A_X + k], be);
+	}
+	if (m->normals)
+		for (size_t i = 0; i < n; i++)
+			for (int k = 0; k < 3; k++)
+				m->normals[3 * i + k] = (float)get_scalar(
+					p + i * recsize + off[A_NX + k], type[A_NX + k], be);
+	if (m->uvs)
+		for (size_t i = 0; i < n; i++)
+			for (int k = 0; k < 2; k++)
+				m->uvs[2 * i + k] = (float)get_scalar(
+					p + i * recsize + off[A_U + k], type[A_U + k], be);
+	if (m->colors)
+		for (size_t i = 0; i < n; i++)
+			for (int k = 0; k < 4; k++) {
+				double c = 1.0;
+				if (k < 3 || have[A_A])
+					c = color_value(get_scalar(p + i * recsize + off[A_R + k],
+					                           type[A_R + k], be),
+					                type[A_R + k]);
+				m->colors[4 * i + k] = (float)c;
+			}
+	return 0;
+}
+
+/*
+ * Walk the face records twice: once to count triangles and check every
+ * record fits, once to fan-triangulate into m->triangles.
+ */
+static int
+read_faces(const struct header *h, const struct element *e,
+           const unsigned char *p, size_t avail, size_t *used,
+           struct vdt_mesh *m, struct vdt_err *err)
+{
+	int be = h->big_endian;
+	size_t li = SIZE_MAX, tris = 0, o = 0;
+	uint32_t *t;
+
+	for (size_t i = 0; i < e->prop_count; i++)
+		if (e->props[i].count_type != T_NONE &&
+		    (strcmp(e->props[i].name, "vertex_indices") == 0 ||
+		     strcmp(e->props[i].name, "vertex_index") == 0)) {
+			li = i;
+			break;
+		}
+	if (li == SIZE_MAX)
+		return vdt_err_set(err, VDT_EFORMAT, "PLY face element has no vertex_indices list");
+	if (e->count > avail)
+		return vdt_err_set(err, VDT_EFORMAT, "PLY file is truncated: %llu faces cannot fit in %zu bytes",
+		                   (unsigned long long)e->count, avail);
+
+	const struct prop *lp = &e->props[li];
+	size_t cs = type_size[lp->count_type], is = type_size[lp->type];
+
+	for (uint64_t f = 0; f < e->count; f++) {
+		size_t rs = record_size(e, p + o, avail - o, be);
+		size_t lo = 0;
+		int64_t c;
+
+		if (rs == 0)
+			return vdt_err_set(err, VDT_EFORMAT, "PLY file is truncated in face %llu of %llu",
+			                   (unsigned long long)f, (unsigned long long)e->count);
+		for (size_t i = 0; i < li; i++)
+			lo += e->props[i].count_type == T_NONE
+			          ? type_size[e->props[i].type]
+			          : type_size[e->props[i].count_type] +
+			                (size_t)get_int(p + o + lo, e->props[i].count_type, be) *
+			                    type_size[e->props[i].type];
+		c = get_int(p + o + lo, lp->count_type, be);
+		if (c < 3)
+			return vdt_err_set(err, VDT_EFORMAT, "face %llu has %lld vertices",
+			                   (unsigned long long)f, (long long)c);
+		tris += (size_t)c - 2;
+		o += rs;
+	}
+	*used = o;
+
+	if (tris > SIZE_MAX / (3 * sizeof(uint32_t)))
+		return vdt_err_set(err, VDT_ENOMEM, "too many triangles");
+	t = malloc((tris ? tris : 1) * 3 * sizeof(uint32_t));
+	if (t == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu triangles", tris);
+
+	size_t nt = 0, nv = m->vertex_count;
+	int simple = li == 0 && e->prop_count == 1 && lp->count_type == T_U8 &&
+	             (lp->type == T_I32 || lp->type == T_U32) && !be;
+	o = 0;
+	for (uint64_t f = 0; f < e->count; f++) {
+		size_t lo = 0;
+		int64_t c, first, prev;
+		const unsigned char *q;
+
+		if (simple) {
+			c = p[o];
+			q = p + o + 1;
+			if (c == 3) {
+				/* Fast path: a triangle as uchar 3 + three 32-bit indices. */
+				for (int k = 0; k < 3; k++) {
+					int64_t v = lp->type == T_I32 ? (int32_t)vdt_get_u32le(q + 4 * k)
+					                              : (int64_t)vdt_get_u32le(q + 4 * k);
+					if (v < 0 || (uint64_t)v >= nv) {
+						free(t);
+						return vdt_err_set(err, VDT_EINVAL, "face %llu uses vertex %lld of %zu",
+						                   (unsigned long long)f, (long long)v, nv);
+					}
+					t[3 * nt + k] = (uint32_t)v;
+				}
+				nt++;
+				o += 13;
+				continue;
+			}
+		} else {
+			for (size_t i = 0; i < li; i++)
+				lo += e->props[i].count_type == T_NONE
+				          ? type_size[e->props[i].type]
+				          : type_size[e->props[i].count_type] +
+				                (size_t)get_int(p + o + lo, e->props[i].count_type, be) *
+				                    type_size[e->props[i].type];
+			c = get_int(p + o + lo, lp->count_type, be);
+			q = p + o + lo + cs;
+		}
+		first = prev = -1;
+		for (int64_t k = 0; k < c; k++) {
+			int64_t v = get_int(q + (size_t)k * is, lp->type, be);
+
+			if (v < 0 || (uint64_t)v >= nv) {
+				free(t);
+				return vdt_err_set(err, VDT_EINVAL, "face %llu uses vertex %lld of %zu",
+				                   (unsigned long long)f, (long long)v, nv);
+			}
+			if (k == 0)
+				first = v;
+			else if (k >= 2) {
+				t[3 * nt] = (uint32_t)first;
+				t[3 * nt + 1] = (uint32_t)prev;
+				t[3 * nt + 2] = (uint32_t)v;
+				nt++;
+			}
+			prev = v;
+		}
+		o += record_size(e, p + o, *used - o, be);
+	}
+	m->triangles = t;
+	m->triangle_count = nt;
+	return 0;
+}
+
+int
+vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
+             struct vdt_err *err)
+{
+	struct header *h;
+	const struct element *ve = NULL, *fe = NULL;
+	size_t pos;
+	int rc = 0;
+
+	memset(m, 0, sizeof(*m));
+	h = malloc(sizeof(*h));
+	if (h == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	rc = parse_header(buf, len, h, err);
+	if (rc != 0)
+		goto out;
+	for (size_t i = 0; i < h->element_count; i++) {
+		if (strcmp(h->elements[i].name, "vertex") == 0 && ve == NULL)
+			ve = &h->elements[i];
+		else if (strcmp(h->elements[i].name, "face") == 0 && fe == NULL)
+			fe = &h->elements[i];
+	}
+	if (ve == NULL) {
+		rc = vdt_err_set(err, VDT_EFORMAT, "PLY file has no vertex element");
+		goto out;
+	}
+	if (fe == NULL) {
+		rc = vdt_err_set(err, VDT_EFORMAT, "PLY file has no face element");
+		goto out;
+	}
+
+	pos = h->data_offset;
+	for (size_t i = 0; i < h->element_count; i++) {
+		const struct element *e = &h->elements[i];
+		size_t avail = len - pos, rs;
+
+		if (e == ve) {
+			if (!fixed_size(e, &rs)) {
+				rc = vdt_err_set(err, VDT_EFORMAT, "PLY vertex element has a list property");
+				goto out;
+			}
+			if (rs == 0 || e->count > avail / rs) {
+				rc = vdt_err_set(err, VDT_EFORMAT,
+				                 "PLY file is truncated: %llu vertices of %zu bytes need more than the %zu left",
+				                 (unsigned long long)e->count, rs, avail);
+				goto out;
+			}
+			rc = read_vertices(h, e, buf + pos, rs, m, err);
+			if (rc != 0)
+				goto out;
+			pos += (size_t)e->count * rs;
+		} else if (e == fe) {
+			struct vdt_mesh tm = *m;
+			size_t used;
+
+			if (m->positions == NULL) {
+				/* Faces before vertices: rare; read them against a bound. */
+				rc = vdt_err_set(err, VDT_EFORMAT, "PLY face element comes before the vertex element");
+				goto out;
+			}
+			rc = read_faces(h, e, buf + pos, avail, &used, &tm, err);
+			if (rc != 0)
+				goto out;
+			free(m->triangles);
+			*m = tm;
+			pos += used;
+		} else if (fixed_size(e, &rs)) {
+			if (rs != 0 && e->count > avail / rs) {
+				rc = vdt_err_set(err, VDT_EFORMAT, "PLY file is truncated in element '%s'", e->name);
+				goto out;
+			}
+			pos += (size_t)e->count * rs;
+		} else {
+			if (e->count > avail) {
+				rc = vdt_err_set(err, VDT_EFORMAT, "PLY file is truncated in element '%s'", e->name);
+				goto out;
+			}
+			for (uint64_t r = 0; r < e->count; r++) {
+				rs = record_size(e, buf + pos, len - pos, h->big_endian);
+				if (rs == 0) {
+					rc = vdt_err_set(err, VDT_EFORMAT, "PLY file is truncated in element '%s'", e->name);
+					goto out;
+				}
+				pos += rs;
+			}
+		}
+		if (e == fe)
+			break; /* nothing after the faces is needed */
+	}
+out:
+	free(h);
+	if (rc != 0)
+		vdt_mesh_free(m);
+	return rc;
+}
+
+static int
+flush_buf(FILE *f, unsigned char *b, size_t *n, struct vdt_err *err)
+{
+	if (*n && fwrite(b, 1, *n, f) != *n)
+		return vdt_err_set(err, VDT_EIO, "write error");
+	*n = 0;
+	return 0;
+}
+
+int
+vdt_ply_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err)
+{
+	enum { BUF = 1 << 16 };
+	unsigned char *b;
+	size_t n = 0, rec = 12;
+	int rc = 0;
+
+	if (fprintf(f, "ply\nformat binary_little_endian 1.0\ncomment vdt\n"
+	               "element vertex %zu\nproperty float x\nproperty float y\nproperty float z\n",
+	            m->vertex_count) < 0)
+		return vdt_err_set(err, VDT_EIO, "write error");
+	if (m->normals) {
+		fputs("property float nx\nproperty float ny\nproperty float nz\n", f);
+		rec += 12;
+	}
+	if (m->uvs) {
+		fputs("property float s\nproperty float t\n", f);
+		rec += 8;
+	}
+	if (m->colors) {
+		fputs("property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar alpha\n", f);
+		rec += 4;
+	}
+	if (fprintf(f, "element face %zu\nproperty list uchar int vertex_indices\nend_header\n",
+	            m->triangle_count) < 0)
+		return vdt_err_set(err, VDT_EIO, "write error");
+	b = malloc(BUF);
+	if (b == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	for (size_t i = 0; i < m->vertex_count && rc == 0; i++) {
+		unsigned char *q;
+
+		if (n + rec > BUF)
+			rc = flush_buf(f, b, &n, err);
+		q = b + n;
+		for (int k = 0; k < 3; k++, q += 4)
+			vdt_put_f32le(q, m->positions[3 * i + k]);
+		if (m->normals)
+			for (int k = 0; k < 3; k++, q += 4)
+				vdt_put_f32le(q, m->normals[3 * i + k]);
+		if (m->uvs)
+			for (int k = 0; k < 2; k++, q += 4)
+				vdt_put_f32le(q, m->uvs[2 * i + k]);
+		if (m->colors)
+			for (int k = 0; k < 4; k++) {
+				float c = m->colors[4 * i + k];
+				c = c < 0 ? 0 : c > 1 ? 1 : c;
+				*q++ = (unsigned char)lrintf(c * 255.0f);
+			}
+		n += rec;
+	}
+	for (size_t i = 0; i < m->triangle_count && rc == 0; i++) {
+		if (n + 13 > BUF)
+			rc = flush_buf(f, b, &n, err);
+		b[n] = 3;
+		for (int k = 0; k < 3; k++)
+			vdt_put_u32le(b + n + 1 + 4 * k, m->triangles[3 * i + k]);
+		n += 13;
+	}
+	if (rc == 0)
+		rc = flush_buf(f, b, &n, err);
+	free(b);
+	return rc;
+}

@@ -1,0 +1,155 @@
+/*
+ * stl.c - native binary STL: a reader that welds identical positions with a
+ * hash table so that the triangle soup becomes an indexed mesh, and a
+ * writer.
+ *
+ *   80-byte header, u32 triangle count, then per triangle 50 bytes:
+ *   f32 normal[3], f32 v0[3], v1[3], v2[3], u16 attribute byte count.
+ */
+#include "meshio.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../bytes.h"
+
+static uint32_t
+hash_pos(const uint32_t b[3])
+{
+	uint32_t h = b[0] * 0x9e3779b1u;
+
+	h ^= b[1] * 0x85ebca77u + (h << 6) + (h >> 2);
+	h ^= b[2] * 0xc2b2ae3du + (h << 6) + (h >> 2);
+	h ^= h >> 15;
+	h *= 0x2c1b3c6du;
+	h ^= h >> 12;
+	return h;
+}
+
+int
+vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
+             struct vdt_err *err)
+{
+	uint32_t count, *table = NULL;
+	size_t cap, mask, nv = 0;
+	float *pos = NULL;
+	uint32_t *tri = NULL;
+
+	memset(m, 0, sizeof(*m));
+	if (len < 84)
+		return vdt_err_set(err, VDT_EFORMAT, "binary STL is truncated in its header (%zu bytes)", len);
+	count = vdt_get_u32le(buf + 80);
+	if (count == 0)
+		return vdt_err_set(err, VDT_EINVAL, "empty mesh (STL holds no triangle)");
+	if ((uint64_t)count > (len - 84) / 50)
+		return vdt_err_set(err, VDT_EFORMAT, "binary STL is truncated: it holds %zu of %lu triangles",
+		                   (len - 84) / 50, (unsigned long)count);
+	if ((uint64_t)count * 3 > UINT32_MAX)
+		return vdt_err_set(err, VDT_EFORMAT, "binary STL has too many triangles (%lu)",
+		                   (unsigned long)count);
+
+	/* Table of at least twice the corner count, a power of two. */
+	cap = 1;
+	while (cap < (size_t)count * 6)
+		cap <<= 1;
+	mask = cap - 1;
+	table = malloc(cap * sizeof(*table));
+	pos = malloc((size_t)count * 9 * sizeof(float));
+	tri = malloc((size_t)count * 3 * sizeof(uint32_t));
+	if (table == NULL || pos == NULL || tri == NULL) {
+		free(table);
+		free(pos);
+		free(tri);
+		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %lu triangles", (unsigned long)count);
+	}
+	memset(table, 0xff, cap * sizeof(*table));
+
+	const unsigned char *p = buf + 84;
+	for (size_t t = 0; t < count; t++, p += 50)
+		for (int c = 0; c < 3; c++) {
+			uint32_t b[3];
+			float v[3];
+
+			for (int k = 0; k < 3; k++) {
+				v[k] = vdt_get_f32le(p + 12 + 12 * c + 4 * k);
+				if (v[k] == 0.0f)
+					v[k] = 0.0f; /* weld -0 with +0 */
+				memcpy(&b[k], &v[k], 4);
+			}
+			size_t s = hash_pos(b) & mask;
+			for (;;) {
+				uint32_t i = table[s];
+				if (i == UINT32_MAX) {
+					table[s] = (uint32_t)nv;
+					memcpy(pos + 3 * nv, v, sizeof(v));
+					tri[3 * t + c] = (uint32_t)nv++;
+					break;
+				}
+				if (memcmp(pos + 3 * (size_t)i, v, sizeof(v)) == 0) {
+					tri[3 * t + c] = i;
+					break;
+				}
+				s = (s + 1) & mask;
+			}
+		}
+	free(table);
+	float *shrunk = realloc(pos, nv * 3 * sizeof(float));
+	m->positions = shrunk ? shrunk : pos;
+	m->vertex_count = nv;
+	m->triangles = tri;
+	m->triangle_count = count;
+	return 0;
+}
+
+int
+vdt_stl_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err)
+{
+	enum { PER = 1024 };
+	unsigned char head[84], *b;
+
+	if (m->triangle_count > UINT32_MAX)
+		return vdt_err_set(err, VDT_EINVAL, "too many triangles for STL (%zu)", m->triangle_count);
+	memset(head, 0, sizeof(head));
+	memcpy(head, "binary STL written by vdt", 25);
+	vdt_put_u32le(head + 80, (uint32_t)m->triangle_count);
+	if (fwrite(head, 1, 84, f) != 84)
+		return vdt_err_set(err, VDT_EIO, "write error");
+	b = malloc(PER * 50);
+	if (b == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	for (size_t t0 = 0; t0 < m->triangle_count; t0 += PER) {
+		size_t n = m->triangle_count - t0 < PER ? m->triangle_count - t0 : PER;
+
+		for (size_t j = 0; j < n; j++) {
+			const uint32_t *t = m->triangles + 3 * (t0 + j);
+			const float *a = m->positions + 3 * (size_t)t[0];
+			const float *bb = m->positions + 3 * (size_t)t[1];
+			const float *c = m->positions + 3 * (size_t)t[2];
+			double e1[3], e2[3], nrm[3], l;
+			unsigned char *q = b + 50 * j;
+
+			for (int k = 0; k < 3; k++) {
+				e1[k] = (double)bb[k] - a[k];
+				e2[k] = (double)c[k] - a[k];
+			}
+			nrm[0] = e1[1] * e2[2] - e1[2] * e2[1];
+			nrm[1] = e1[2] * e2[0] - e1[0] * e2[2];
+			nrm[2] = e1[0] * e2[1] - e1[1] * e2[0];
+			l = sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+			for (int k = 0; k < 3; k++) {
+				vdt_put_f32le(q + 4 * k, l > 0 ? (float)(nrm[k] / l) : 0.0f);
+				vdt_put_f32le(q + 12 + 4 * k, a[k]);
+				vdt_put_f32le(q + 24 + 4 * k, bb[k]);
+				vdt_put_f32le(q + 36 + 4 * k, c[k]);
+			}
+			vdt_put_u16le(q + 48, 0);
+		}
+		if (fwrite(b, 50, n, f) != n) {
+			free(b);
+			return vdt_err_set(err, VDT_EIO, "write error");
+		}
+	}
+	free(b);
+	return 0;
+}

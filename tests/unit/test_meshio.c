@@ -1,0 +1,590 @@
+/*
+ * test_meshio.c - format detection, round trips through every format,
+ * attribute transport, seams, pipes, rejection of bad input and atomic
+ * output.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "../../lib/bytes.h"
+#include "../../lib/io/meshio.h"
+
+static char dir[] = "/tmp/vdt-test-meshio.XXXXXX";
+
+static const char *
+tmp_path(const char *name)
+{
+	static char buf[8][256];
+	static int i;
+
+	i = (i + 1) % 8;
+	snprintf(buf[i], sizeof(buf[i]), "%s/%s", dir, name);
+	return buf[i];
+}
+
+static void
+write_file(const char *path, const void *data, size_t n)
+{
+	FILE *f = fopen(path, "wb");
+
+	assert_non_null(f);
+	assert_int_equal(fwrite(data, 1, n, f), n);
+	assert_int_equal(fclose(f), 0);
+}
+
+/*
+ * The square, two triangles, every attribute:
+ *
+ *   3 ----- 2      uv (0,1) (1,1)
+ *   |     / |      colours k/255 so that 8-bit formats are exact
+ *   |   /   |
+ *   | /     |
+ *   0 ----- 1      uv (0,0) (1,0)
+ */
+static void
+make_square(struct vdt_mesh *m, unsigned attrs)
+{
+	static const float p[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0.25f};
+	static const float uv[] = {0, 0, 1, 0, 1, 1, 0, 1};
+	static const uint32_t t[] = {0, 1, 2, 0, 2, 3};
+
+	assert_int_equal(vdt_mesh_alloc(m, 4, 2, attrs, NULL), 0);
+	memcpy(m->positions, p, sizeof(p));
+	memcpy(m->triangles, t, sizeof(t));
+	/* a coordinate that needs all 9 digits */
+	m->positions[0] = 0.1f;
+	m->positions[4] = 1.0f / 3.0f;
+	if (m->normals)
+		for (int i = 0; i < 4; i++) {
+			m->normals[3 * i] = 0;
+			m->normals[3 * i + 1] = 0;
+			m->normals[3 * i + 2] = 1;
+		}
+	if (m->uvs)
+		memcpy(m->uvs, uv, sizeof(uv));
+	if (m->colors)
+		for (int i = 0; i < 16; i++)
+			m->colors[i] = (float)(i * 16 + 3) / 255.0f;
+}
+
+static void
+assert_same_positions(const struct vdt_mesh *a, const struct vdt_mesh *b)
+{
+	assert_int_equal(a->vertex_count, b->vertex_count);
+	assert_int_equal(a->triangle_count, b->triangle_count);
+	assert_memory_equal(a->positions, b->positions, 3 * a->vertex_count * sizeof(float));
+	assert_memory_equal(a->triangles, b->triangles, 3 * a->triangle_count * sizeof(uint32_t));
+}
+
+static void
+assert_close(const float *a, const float *b, size_t n, double tol)
+{
+	for (size_t i = 0; i < n; i++)
+		if (fabs((double)a[i] - b[i]) > tol)
+			fail_msg("value %zu: %.9g vs %.9g", i, a[i], b[i]);
+}
+
+/* Triangles equal as sets of position triples (Draco may reorder). */
+static void
+assert_same_surface(const struct vdt_mesh *a, const struct vdt_mesh *b, double tol)
+{
+	assert_int_equal(a->triangle_count, b->triangle_count);
+	for (size_t s = 0; s < a->triangle_count; s++) {
+		int found = 0;
+		for (size_t t = 0; t < b->triangle_count && !found; t++)
+			for (int r = 0; r < 3 && !found; r++) {
+				int ok = 1;
+				for (int k = 0; k < 3 && ok; k++) {
+					const float *p = a->positions + 3 * (size_t)a->triangles[3 * s + k];
+					const float *q = b->positions + 3 * (size_t)b->triangles[3 * t + (k + r) % 3];
+					for (int c = 0; c < 3; c++)
+						if (fabs((double)p[c] - q[c]) > tol)
+							ok = 0;
+				}
+				found = ok;
+			}
+		if (!found)
+			fail_msg("triangle %zu has no match", s);
+	}
+}
+
+static int
+read_bytes(const char *text, size_t n, struct vdt_mesh *m, struct vdt_err *err)
+{
+	return vdt_read_memory((const unsigned char *)text, n, NULL, m, NULL, err);
+}
+
+static void
+test_format_names(void **state)
+{
+	(void)state;
+	for (int f = VDT_FMT_VDT; f <= VDT_FMT_DRC; f++)
+		assert_int_equal(vdt_format_parse(vdt_format_name(f)), f);
+	assert_int_equal(vdt_format_parse("gltf"), VDT_FMT_AUTO);
+	assert_int_equal(vdt_format_from_path("a/b.PLY"), VDT_FMT_PLY);
+	assert_int_equal(vdt_format_from_path("x.vdq"), VDT_FMT_VDT);
+	assert_int_equal(vdt_format_from_path("x.d/file"), VDT_FMT_AUTO);
+	assert_int_equal(vdt_format_from_path("-"), VDT_FMT_AUTO);
+}
+
+static void
+test_detect(void **state)
+{
+	unsigned char stl[84 + 50] = "binary header";
+	(void)state;
+
+#define D(s) vdt_format_detect((const unsigned char *)(s), sizeof(s) - 1)
+	assert_int_equal(D("\x89VDT\r\n\x1a\n\1\0\0\0"), VDT_FMT_VDT);
+	assert_int_equal(D("DRACO\2\2"), VDT_FMT_DRC);
+	assert_int_equal(D("ply\nformat ascii 1.0\n"), VDT_FMT_PLY_ASCII);
+	assert_int_equal(D("ply\r\nformat binary_little_endian 1.0\n"), VDT_FMT_PLY);
+	assert_int_equal(D("ply\nformat binary_big_endian 1.0\n"), VDT_FMT_PLY);
+	assert_int_equal(D("OFF\n3 1 0\n"), VDT_FMT_OFF);
+	assert_int_equal(D("COFF\n"), VDT_FMT_OFF);
+	assert_int_equal(D("# made by hand\n\nv 0 0 0\n"), VDT_FMT_OBJ);
+	assert_int_equal(D("mtllib a.mtl\n"), VDT_FMT_OBJ);
+	assert_int_equal(D("solid x\n facet normal 0 0 1\n"), VDT_FMT_STL_ASCII);
+	assert_int_equal(D("hello world\n"), VDT_FMT_AUTO);
+	assert_int_equal(D(""), VDT_FMT_AUTO);
+#undef D
+	vdt_put_u32le(stl + 80, 1);
+	assert_int_equal(vdt_format_detect(stl, sizeof(stl)), VDT_FMT_STL);
+	/* binary STL whose header starts with "solid" */
+	memcpy(stl, "solid", 5);
+	stl[90] = 0x80;
+	assert_int_equal(vdt_format_detect(stl, sizeof(stl)), VDT_FMT_STL);
+}
+
+static void
+roundtrip(enum vdt_format f, const char *name, unsigned attrs, unsigned expect_attrs,
+          int exact)
+{
+	struct vdt_mesh m, r;
+	struct vdt_write_opts o = {.format = f};
+	struct vdt_err err = {0};
+	const char *path = tmp_path(name);
+
+	make_square(&m, attrs);
+	if (vdt_write(path, &m, NULL, &o, &err) != 0)
+		fail_msg("write %s: %s", name, err.msg);
+	if (vdt_read(path, &r, NULL, &err) != 0)
+		fail_msg("read %s: %s", name, err.msg);
+	if (exact) {
+		assert_same_positions(&m, &r);
+	} else {
+		struct vdt_bbox box;
+		vdt_mesh_bbox(&m, &box);
+		assert_same_surface(&m, &r, vdt_bbox_diagonal(&box) / 30000.0);
+	}
+	if (vdt_mesh_attrs(&r) != expect_attrs)
+		fail_msg("%s: attributes %#x, expected %#x", name, vdt_mesh_attrs(&r), expect_attrs);
+	if (exact) {
+		if (r.normals)
+			assert_close(m.normals, r.normals, 12, 0);
+		if (r.uvs)
+			assert_close(m.uvs, r.uvs, 8, 0);
+		if (r.colors)
+			assert_close(m.colors, r.colors, 16, 1e-7);
+	}
+	vdt_mesh_free(&m);
+	vdt_mesh_free(&r);
+}
+
+static void
+test_roundtrip_plain(void **state)
+{
+	(void)state;
+	roundtrip(VDT_FMT_VDT, "a.vdt", 0, 0, 1);
+	roundtrip(VDT_FMT_PLY, "a.ply", 0, 0, 1);
+	roundtrip(VDT_FMT_PLY_ASCII, "b.ply", 0, 0, 1);
+	roundtrip(VDT_FMT_OBJ, "a.obj", 0, 0, 1);
+	roundtrip(VDT_FMT_OFF, "a.off", 0, 0, 1);
+	roundtrip(VDT_FMT_STL, "a.stl", 0, 0, 1);
+	roundtrip(VDT_FMT_STL_ASCII, "b.stl", 0, 0, 1);
+	roundtrip(VDT_FMT_DRC, "a.drc", 0, 0, 0);
+}
+
+static void
+test_roundtrip_attributes(void **state)
+{
+	unsigned all = VDT_ATTR_NORMALS | VDT_ATTR_UVS | VDT_ATTR_COLORS;
+	(void)state;
+	roundtrip(VDT_FMT_VDT, "c.vdt", all, all, 1);
+	roundtrip(VDT_FMT_PLY, "c.ply", all, all, 1);
+	roundtrip(VDT_FMT_PLY_ASCII, "d.ply", all, all, 1);
+	roundtrip(VDT_FMT_OBJ, "c.obj", VDT_ATTR_NORMALS | VDT_ATTR_UVS,
+	          VDT_ATTR_NORMALS | VDT_ATTR_UVS, 1);
+	roundtrip(VDT_FMT_STL, "c.stl", all, 0, 1);
+	roundtrip(VDT_FMT_DRC, "c.drc", all, all, 0);
+}
+
+/* OBJ -> vdt -> PLY -> drc -> OBJ keeps the surface within quantisation. */
+static void
+test_chain(void **state)
+{
+	struct vdt_mesh m, a, b;
+	struct vdt_err err = {0};
+	struct vdt_write_opts o = {0};
+	const char *chain[] = {"chain.obj", "chain.vdt", "chain.ply", "chain.drc", "chain2.obj"};
+	(void)state;
+
+	make_square(&m, VDT_ATTR_NORMALS | VDT_ATTR_UVS);
+	assert_int_equal(vdt_mesh_copy(&a, &m, NULL), 0);
+	for (size_t i = 0; i < sizeof(chain) / sizeof(chain[0]); i++) {
+		if (vdt_write(tmp_path(chain[i]), &a, NULL, &o, &err) != 0)
+			fail_msg("write %s: %s", chain[i], err.msg);
+		vdt_mesh_free(&a);
+		if (vdt_read(tmp_path(chain[i]), &a, NULL, &err) != 0)
+			fail_msg("read %s: %s", chain[i], err.msg);
+		if (i < 3)
+			assert_same_positions(&m, &a);
+	}
+	assert_same_surface(&m, &a, 1.5 / 65536.0);
+	assert_non_null(a.uvs);
+	assert_non_null(a.normals);
+	(void)b;
+	vdt_mesh_free(&a);
+	vdt_mesh_free(&m);
+}
+
+/*
+ * A UV seam: the quad 0-1-2-3 drawn twice in texture space, so that the
+ * shared edge 0-2 has different texture coordinates on each side.
+ *
+ *   3 ----- 2        vt: triangle A uses 1 2 3, triangle B uses 4 5 6
+ *   | B   / |        vertices 0 and 2 get a second copy (4 and 5)
+ *   |   /   |
+ *   | /   A |
+ *   0 ----- 1
+ */
+static void
+test_obj_seam(void **state)
+{
+	static const char obj[] = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+	                          "vt 0 0\nvt 0.5 0\nvt 0.5 0.5\n"
+	                          "vt 0.6 0\nvt 1 1\nvt 0.5 1\n"
+	                          "f 1/1 2/2 3/3\nf 1/4 3/5 4/6\n";
+	struct vdt_mesh m;
+	struct vdt_err err = {0};
+	(void)state;
+
+	if (read_bytes(obj, sizeof(obj) - 1, &m, &err) != 0)
+		fail_msg("%s", err.msg);
+	assert_int_equal(m.vertex_count, 6);
+	assert_int_equal(m.triangle_count, 2);
+	assert_non_null(m.uvs);
+	static const uint32_t t[] = {0, 1, 2, 4, 5, 3};
+	assert_memory_equal(m.triangles, t, sizeof(t));
+	assert_true(m.uvs[2 * 4] == 0.6f && m.uvs[2 * 5] == 1.0f && m.uvs[2 * 2 + 1] == 0.5f);
+	assert_true(m.positions[3 * 4] == 0.0f && m.positions[3 * 5] == 1.0f);
+	vdt_mesh_free(&m);
+}
+
+/* A quad polygon is fan-triangulated. */
+static void
+test_polygon(void **state)
+{
+	static const char off[] = "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n";
+	struct vdt_mesh m;
+	struct vdt_err err = {0};
+	(void)state;
+
+	if (read_bytes(off, sizeof(off) - 1, &m, &err) != 0)
+		fail_msg("%s", err.msg);
+	assert_int_equal(m.triangle_count, 2);
+	static const uint32_t t[] = {0, 1, 2, 0, 2, 3};
+	assert_memory_equal(m.triangles, t, sizeof(t));
+	vdt_mesh_free(&m);
+}
+
+/* stdin is a pipe: the content is read whole and detected. */
+static void
+test_pipe(void **state)
+{
+	static const char obj[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+	struct vdt_mesh m;
+	struct vdt_err err = {0};
+	int fds[2], saved, rc;
+	pid_t pid;
+	(void)state;
+
+	assert_int_equal(pipe(fds), 0);
+	pid = fork();
+	assert_true(pid >= 0);
+	if (pid == 0) {
+		close(fds[0]);
+		for (int i = 0; i < 1; i++)
+			if (write(fds[1], obj, sizeof(obj) - 1) < 0)
+				_exit(1);
+		_exit(0);
+	}
+	close(fds[1]);
+	saved = dup(0);
+	dup2(fds[0], 0);
+	close(fds[0]);
+	rc = vdt_read("-", &m, NULL, &err);
+	dup2(saved, 0);
+	close(saved);
+	waitpid(pid, NULL, 0);
+	if (rc != 0)
+		fail_msg("%s", err.msg);
+	assert_int_equal(m.vertex_count, 3);
+	assert_int_equal(m.triangle_count, 1);
+	vdt_mesh_free(&m);
+}
+
+/* Binary PLY header for 3 float vertices and faces as uchar/int lists. */
+static size_t
+ply_bytes(unsigned char *b, unsigned nfaces_declared, int bad_index, float z)
+{
+	size_t n = (size_t)sprintf((char *)b,
+	                           "ply\nformat binary_little_endian 1.0\nelement vertex 3\n"
+	                           "property float x\nproperty float y\nproperty float z\n"
+	                           "element face %u\nproperty list uchar int vertex_indices\n"
+	                           "end_header\n",
+	                           nfaces_declared);
+	float p[9] = {0, 0, 0, 1, 0, 0, 0, 1, z};
+	for (int i = 0; i < 9; i++, n += 4)
+		vdt_put_f32le(b + n, p[i]);
+	b[n++] = 3;
+	for (int k = 0; k < 3; k++, n += 4)
+		vdt_put_u32le(b + n, k == 2 && bad_index ? 9001 : (uint32_t)k);
+	return n;
+}
+
+static void
+expect_reject(const unsigned char *b, size_t n, int code, const char *needle)
+{
+	struct vdt_mesh m;
+	struct vdt_chunks extra;
+	struct vdt_err err = {0};
+	int rc = vdt_read_memory(b, n, NULL, &m, &extra, &err);
+
+	if (rc != code)
+		fail_msg("expected %d, got %d (%s)", code, rc, err.msg);
+	if (needle && strstr(err.msg, needle) == NULL)
+		fail_msg("message '%s' lacks '%s'", err.msg, needle);
+	assert_null(m.positions);
+	assert_null(m.triangles);
+	assert_int_equal(extra.count, 0);
+}
+
+static void
+test_reject(void **state)
+{
+	unsigned char b[1024];
+	size_t n;
+	struct vdt_mesh m;
+	struct vdt_err err = {0};
+	(void)state;
+
+	assert_int_equal(vdt_read(tmp_path("missing.ply"), &m, NULL, &err), VDT_EIO);
+	expect_reject((const unsigned char *)"hello world\n", 12, VDT_EFORMAT, "unknown format");
+
+	n = ply_bytes(b, 1, 0, 0);
+	expect_reject(b, n - 5, VDT_EFORMAT, "truncated");
+	n = ply_bytes(b, 1000000, 0, 0);
+	expect_reject(b, n, VDT_EFORMAT, "faces");
+	n = ply_bytes(b, 1, 1, 0);
+	expect_reject(b, n, VDT_EINVAL, "face 0 uses vertex 9001 of 3");
+	n = ply_bytes(b, 1, 0, NAN);
+	expect_reject(b, n, VDT_EINVAL, "vertex 2 has a non-finite coordinate");
+	n = ply_bytes(b, 0, 0, 0);
+	expect_reject(b, n - 13, VDT_EINVAL, "empty mesh");
+
+	static const char badobj[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n";
+	expect_reject((const unsigned char *)badobj, sizeof(badobj) - 1, VDT_EINVAL, "vertex");
+	static const char nanobj[] = "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n";
+	expect_reject((const unsigned char *)nanobj, sizeof(nanobj) - 1, VDT_EINVAL, "vertex 1");
+
+	/* STL declaring 2 triangles but holding 1 */
+	memset(b, 0, 84 + 50);
+	memcpy(b, "binary", 6);
+	vdt_put_u32le(b + 80, 2);
+	b[100] = 0x80; /* not text */
+	expect_reject(b, 84 + 50, VDT_EFORMAT, "holds 1 of 2 triangles");
+
+	static const char drc[] = "DRACO\x02\x02\x01\x01\x00\x00\xff\xff\xff\xff garbage";
+	expect_reject((const unsigned char *)drc, sizeof(drc) - 1, VDT_EFORMAT, "Draco");
+
+	/* a vdt stream cut short */
+	struct vdt_mesh sq;
+	make_square(&sq, 0);
+	struct vdt_write_opts o = {.format = VDT_FMT_VDT};
+	assert_int_equal(vdt_write(tmp_path("cut.vdt"), &sq, NULL, &o, &err), 0);
+	vdt_mesh_free(&sq);
+	FILE *f = fopen(tmp_path("cut.vdt"), "rb");
+	n = fread(b, 1, sizeof(b), f);
+	fclose(f);
+	expect_reject(b, n - 3, VDT_EFORMAT, NULL);
+}
+
+/* Chunks other than MESH come back in order through extra. */
+static void
+test_stream_extra(void **state)
+{
+	struct vdt_mesh m, r;
+	struct vdt_chunks extra = {0}, back;
+	struct vdt_err err = {0};
+	struct vdt_write_opts o = {0};
+	unsigned char *d = malloc(3);
+	(void)state;
+
+	memcpy(d, "abc", 3);
+	assert_int_equal(vdt_chunks_add(&extra, VDT_FOURCC('T', 'E', 'S', 'T'), d, 3, NULL), 0);
+	make_square(&m, 0);
+	if (vdt_write(tmp_path("x.vdq"), &m, &extra, &o, &err) != 0)
+		fail_msg("%s", err.msg);
+	if (vdt_read(tmp_path("x.vdq"), &r, &back, &err) != 0)
+		fail_msg("%s", err.msg);
+	assert_same_positions(&m, &r);
+	assert_int_equal(back.count, 1);
+	assert_int_equal(back.items[0].type, VDT_FOURCC('T', 'E', 'S', 'T'));
+	assert_memory_equal(back.items[0].data, "abc", 3);
+	vdt_chunks_free(&extra);
+	vdt_chunks_free(&back);
+	vdt_mesh_free(&m);
+	vdt_mesh_free(&r);
+}
+
+static int
+dir_entries(const char *d)
+{
+	char cmd[512];
+	FILE *p;
+	int n = 0, c;
+
+	snprintf(cmd, sizeof(cmd), "ls -A '%s' | wc -l", d);
+	p = popen(cmd, "r");
+	if (p == NULL || fscanf(p, "%d", &n) != 1)
+		n = -1;
+	while (p && (c = fgetc(p)) != EOF)
+		;
+	if (p)
+		pclose(p);
+	return n;
+}
+
+static void
+test_atomic(void **state)
+{
+	struct vdt_mesh m, bad;
+	struct vdt_err err = {0};
+	struct vdt_write_opts o = {0};
+	char sub[300];
+	(void)state;
+
+	make_square(&m, 0);
+	/* nonexistent directory: nothing is created */
+	assert_int_equal(vdt_write(tmp_path("no/such/dir.ply"), &m, NULL, &o, &err), VDT_EIO);
+
+	/* read-only directory: nothing appears */
+	snprintf(sub, sizeof(sub), "%s/ro", dir);
+	assert_int_equal(mkdir(sub, 0555), 0);
+	if (geteuid() != 0) {
+		assert_int_equal(vdt_write(tmp_path("ro/x.ply"), &m, NULL, &o, &err), VDT_EIO);
+		assert_int_equal(dir_entries(sub), 0);
+	}
+	rmdir(sub);
+
+	/* a failed write leaves the existing target untouched, no temporary */
+	snprintf(sub, sizeof(sub), "%s/keep", dir);
+	assert_int_equal(mkdir(sub, 0755), 0);
+	write_file(tmp_path("keep/t.ply"), "old", 3);
+	make_square(&bad, 0);
+	bad.triangles[5] = 77;
+	assert_int_equal(vdt_write(tmp_path("keep/t.ply"), &bad, NULL, &o, &err), VDT_EINVAL);
+	o.format = VDT_FMT_DRC;
+	o.draco_position_bits = 40;
+	assert_int_equal(vdt_write(tmp_path("keep/t.ply"), &m, NULL, &o, &err), VDT_EINVAL);
+	assert_int_equal(dir_entries(sub), 1);
+	FILE *f = fopen(tmp_path("keep/t.ply"), "rb");
+	char buf[8] = {0};
+	assert_int_equal(fread(buf, 1, sizeof(buf), f), 3);
+	fclose(f);
+	assert_memory_equal(buf, "old", 3);
+
+	/* a good write replaces it, with ordinary permissions */
+	o.format = VDT_FMT_AUTO;
+	assert_int_equal(vdt_write(tmp_path("keep/t.ply"), &m, NULL, &o, &err), 0);
+	assert_int_equal(dir_entries(sub), 1);
+	struct stat st;
+	assert_int_equal(stat(tmp_path("keep/t.ply"), &st), 0);
+	assert_true((st.st_mode & 0044) != 0 || (umask(022), 1));
+
+	/* unknown extension */
+	assert_int_equal(vdt_write(tmp_path("keep/t.xyz"), &m, NULL, &o, &err), VDT_EINVAL);
+	vdt_mesh_free(&m);
+	vdt_mesh_free(&bad);
+}
+
+static void
+test_image(void **state)
+{
+	unsigned char px[4 * 3 * 2], *back = NULL;
+	int w, h, c;
+	struct vdt_err err = {0};
+	(void)state;
+
+	for (size_t i = 0; i < sizeof(px); i++)
+		px[i] = (unsigned char)(i * 10);
+	if (vdt_image_write(tmp_path("img.png"), 4, 2, 3, px, &err) != 0)
+		fail_msg("%s", err.msg);
+	if (vdt_image_read(tmp_path("img.png"), &w, &h, &c, &back, &err) != 0)
+		fail_msg("%s", err.msg);
+	assert_int_equal(w, 4);
+	assert_int_equal(h, 2);
+	assert_int_equal(c, 3);
+	assert_memory_equal(px, back, sizeof(px));
+	free(back);
+	assert_int_not_equal(vdt_image_read(tmp_path("missing.png"), &w, &h, &c, &back, &err), 0);
+	assert_int_not_equal(vdt_image_write(tmp_path("no/dir.png"), 4, 2, 3, px, &err), 0);
+}
+
+static int
+setup(void **state)
+{
+	(void)state;
+	return mkdtemp(dir) == NULL ? -1 : 0;
+}
+
+static int
+teardown(void **state)
+{
+	char cmd[300];
+	(void)state;
+	snprintf(cmd, sizeof(cmd), "rm -rf '%s'", dir);
+	return system(cmd) == 0 ? 0 : -1;
+}
+
+int
+main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_format_names),
+		cmocka_unit_test(test_detect),
+		cmocka_unit_test(test_roundtrip_plain),
+		cmocka_unit_test(test_roundtrip_attributes),
+		cmocka_unit_test(test_chain),
+		cmocka_unit_test(test_obj_seam),
+		cmocka_unit_test(test_polygon),
+		cmocka_unit_test(test_pipe),
+		cmocka_unit_test(test_reject),
+		cmocka_unit_test(test_stream_extra),
+		cmocka_unit_test(test_atomic),
+		cmocka_unit_test(test_image),
+	};
+
+	return cmocka_run_group_tests(tests, setup, teardown);
+}
