@@ -1,0 +1,183 @@
+/*
+ * vdt-qslim - simplify a mesh by quadric-error pair contraction; with a QUAD
+ * chunk from vdt-cluster, phase II of the multiphase method.
+ */
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../lib/io/meshio.h"
+#include "../lib/qslim.h"
+#include "common.h"
+
+struct cmdline {
+	const char *in, *out;
+	struct vdt_qslim_opts q;
+	struct vdt_write_opts w;
+	double bound, aggregate;
+	int bound_pct, aggregate_pct, ignore_quadrics, record, quiet, verbose;
+};
+
+static void
+usage(FILE *f)
+{
+	fprintf(f,
+	        "usage: vdt-qslim [-t TRIANGLES] [-r RATIO] [-e ERROR[%%]] [-o OUTPUT] [-F FORMAT]\n"
+	        "                 [-a DISTANCE[%%]] [--lock-border] [--boundary-weight W]\n"
+	        "                 [--max-angle DEGREES] [--min-quality Q] [--ignore-quadrics]\n"
+	        "                 [--record] [--draco-bits N] [-q] [-v] [INPUT]\n"
+	        "Simplify a triangle mesh with quadric error metrics. INPUT and OUTPUT\n"
+	        "default to - (stdin, stdout); stops at the first target reached\n"
+	        "(default -r 0.5).\n");
+}
+
+static void
+parse_cmdline(int argc, char **argv, struct cmdline *cl)
+{
+	enum { O_LOCK = 256, O_BW, O_ANGLE, O_QUALITY, O_IGNORE, O_RECORD, O_DRACO };
+	static const struct option longopts[] = {
+		{"triangles", required_argument, NULL, 't'},
+		{"ratio", required_argument, NULL, 'r'},
+		{"error", required_argument, NULL, 'e'},
+		{"output", required_argument, NULL, 'o'},
+		{"format", required_argument, NULL, 'F'},
+		{"aggregate", required_argument, NULL, 'a'},
+		{"lock-border", no_argument, NULL, O_LOCK},
+		{"boundary-weight", required_argument, NULL, O_BW},
+		{"max-angle", required_argument, NULL, O_ANGLE},
+		{"min-quality", required_argument, NULL, O_QUALITY},
+		{"ignore-quadrics", no_argument, NULL, O_IGNORE},
+		{"record", no_argument, NULL, O_RECORD},
+		{"draco-bits", required_argument, NULL, O_DRACO},
+		{"quiet", no_argument, NULL, 'q'},
+		{"verbose", no_argument, NULL, 'v'},
+		{"help", no_argument, NULL, 'h'},
+		{"version", no_argument, NULL, 'V'},
+		{NULL, 0, NULL, 0},
+	};
+	int c;
+
+	memset(cl, 0, sizeof(*cl));
+	vdt_qslim_defaults(&cl->q);
+	cl->in = cl->out = "-";
+	cl->bound = INFINITY;
+	while ((c = getopt_long(argc, argv, "t:r:e:o:F:a:qvhV", longopts, NULL)) != -1) {
+		switch (c) {
+		case 't': cl->q.target_triangles = parse_count("-t", optarg, 1, 4294967295UL); break;
+		case 'r': cl->q.target_ratio = parse_real("-r", optarg, 1e-9, 1); break;
+		case 'e': cl->bound = parse_bound("-e", optarg, &cl->bound_pct); break;
+		case 'o': cl->out = optarg; break;
+		case 'F':
+			if ((cl->w.format = vdt_format_parse(optarg)) == VDT_FMT_AUTO)
+				usage_error("unknown format '%s' for -F", optarg);
+			break;
+		case 'a': cl->aggregate = parse_bound("-a", optarg, &cl->aggregate_pct); break;
+		case O_LOCK: cl->q.lock_border = 1; break;
+		case O_BW: cl->q.boundary_weight = parse_real("--boundary-weight", optarg, 0, 1e12); break;
+		case O_ANGLE: cl->q.max_normal_angle = parse_real("--max-angle", optarg, 1, 180); break;
+		case O_QUALITY: cl->q.min_quality = parse_real("--min-quality", optarg, 0, 1); break;
+		case O_IGNORE: cl->ignore_quadrics = 1; break;
+		case O_RECORD: cl->record = 1; break;
+		case O_DRACO: cl->w.draco_position_bits = (int)parse_count("--draco-bits", optarg, 1, 30); break;
+		case 'q': cl->quiet = 1; break;
+		case 'v': cl->verbose = 1; break;
+		case 'h': usage(stdout); exit(EXIT_OK);
+		case 'V': print_version(); exit(EXIT_OK);
+		default: usage(stderr); exit(EXIT_USAGE);
+		}
+	}
+	if (optind < argc)
+		cl->in = argv[optind++];
+	if (optind < argc)
+		usage_error("unexpected argument '%s'", argv[optind]);
+	if (cl->q.target_triangles == 0 && cl->q.target_ratio == 0 && !(cl->bound < INFINITY))
+		cl->q.target_ratio = 0.5;
+}
+
+static int
+run(struct cmdline *cl)
+{
+	struct vdt_mesh in = {0}, out = {0};
+	struct vdt_chunks extra = {0};
+	struct vdt_quadric *quads = NULL;
+	struct vdt_contraction *rec = NULL;
+	struct vdt_qslim_stats st;
+	struct vdt_err err = {0};
+	struct vdt_bbox box;
+	size_t nrec = 0, nq = 0;
+	double t0 = now_seconds(), t1, t2, diag;
+	int rc;
+
+	if ((rc = vdt_read(cl->in, &in, &extra, &err)) != 0)
+		return fail("cannot read", cl->in, &err);
+	const struct vdt_chunk *qc = vdt_chunks_find(&extra, VDT_CHUNK_QUAD);
+	if (qc && !cl->ignore_quadrics) {
+		if ((rc = vdt_quad_decode(qc->data, qc->length, &quads, &nq, &err)) != 0 ||
+		    (nq != in.vertex_count &&
+		     (rc = vdt_err_set(&err, VDT_EFORMAT, "QUAD chunk has %zu quadrics for %zu vertices",
+		                       nq, in.vertex_count)) != 0)) {
+			rc = fail("cannot read", cl->in, &err);
+			goto out;
+		}
+		cl->q.quadrics = quads;
+	}
+	/* The quadrics describe the input's vertices, not the output's. */
+	vdt_chunks_remove(&extra, VDT_CHUNK_QUAD);
+	vdt_mesh_bbox(&in, &box);
+	diag = vdt_bbox_diagonal(&box);
+	cl->q.max_error = cl->bound_pct ? cl->bound * diag / 100 : cl->bound;
+	cl->q.aggregate = cl->aggregate_pct ? cl->aggregate * diag / 100 : cl->aggregate;
+	cl->q.progress = progress_start(cl->quiet);
+	t1 = now_seconds();
+	rc = vdt_qslim(&in, &cl->q, &out, cl->record ? &rec : NULL, &nrec, &st, &err);
+	progress_done();
+	if (rc != 0) {
+		rc = fail("cannot simplify", cl->in, &err);
+		goto out;
+	}
+	t2 = now_seconds();
+	if (cl->record) {
+		unsigned char *data;
+		uint64_t len;
+		if (vdt_seqn_encode(rec, nrec, &data, &len, &err) != 0 ||
+		    vdt_chunks_add(&extra, VDT_CHUNK_SEQN, data, len, &err) != 0) {
+			rc = fail("cannot write", cl->out, &err);
+			goto out;
+		}
+	}
+	if ((rc = vdt_write(cl->out, &out, &extra, &cl->w, &err)) != 0) {
+		rc = fail("cannot write", cl->out, &err);
+		goto out;
+	}
+	if (!st.reached_target && !cl->quiet)
+		fprintf(stderr, "%s: stopped at %zu triangles: no further contraction within the "
+		        "bound and validity tests\n", progname, out.triangle_count);
+	if (cl->verbose)
+		fprintf(stderr, "%s: in_vertices=%zu in_triangles=%zu out_vertices=%zu "
+		        "out_triangles=%zu contractions=%zu welded=%zu error=%.6g error_pct=%.6g "
+		        "read_s=%.3f simplify_s=%.3f write_s=%.3f peak_mb=%.1f\n",
+		        progname, in.vertex_count, in.triangle_count, out.vertex_count,
+		        out.triangle_count, st.contractions, st.welded, st.max_error,
+		        diag > 0 ? 100 * st.max_error / diag : 0, t1 - t0, t2 - t1,
+		        now_seconds() - t2, peak_rss_bytes() / 1048576.0);
+	rc = EXIT_OK;
+out:
+	vdt_mesh_free(&in);
+	vdt_mesh_free(&out);
+	vdt_chunks_free(&extra);
+	free(quads);
+	free(rec);
+	return rc;
+}
+
+int
+main(int argc, char **argv)
+{
+	struct cmdline cl;
+
+	cmd_init(argv[0]);
+	parse_cmdline(argc, argv, &cl);
+	return run(&cl);
+}

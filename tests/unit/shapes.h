@@ -1,0 +1,141 @@
+/*
+ * shapes.h - tiny meshes built in code for the unit tests.
+ */
+#ifndef VDT_TEST_SHAPES_H
+#define VDT_TEST_SHAPES_H
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../../lib/mesh.h"
+
+/*
+ * A flat n x n grid of quads on z = 0 over [0,1]^2, two triangles each,
+ * counter-clockwise seen from +z:
+ *
+ *   (0,1) 6---7---8
+ *         | / | / |
+ *         3---4---5
+ *         | / | / |
+ *   (0,0) 0---1---2 (1,0)      n = 2 shown
+ */
+static inline void
+shape_grid(struct vdt_mesh *m, int n)
+{
+	int nv = (n + 1) * (n + 1);
+	vdt_mesh_alloc(m, nv, 2 * n * n, 0, NULL);
+	for (int j = 0; j <= n; j++)
+		for (int i = 0; i <= n; i++) {
+			float *p = m->positions + 3 * (j * (n + 1) + i);
+			p[0] = (float)i / n;
+			p[1] = (float)j / n;
+			p[2] = 0;
+		}
+	uint32_t *t = m->triangles;
+	for (int j = 0; j < n; j++)
+		for (int i = 0; i < n; i++) {
+			uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+			*t++ = a; *t++ = b; *t++ = d;
+			*t++ = a; *t++ = d; *t++ = c;
+		}
+}
+
+/* Midpoint of edge (a,b) on the unit sphere, cached in a small edge table. */
+static inline uint32_t
+shape_mid(struct vdt_mesh *m, uint64_t *keys, uint32_t *vals, size_t cap,
+          size_t *nv, uint32_t a, uint32_t b)
+{
+	uint64_t key = a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
+	size_t i = (size_t)(key * 0x9e3779b97f4a7c15ULL) % cap;
+	while (keys[i] != UINT64_MAX && keys[i] != key)
+		i = (i + 1) % cap;
+	if (keys[i] == key)
+		return vals[i];
+	float *p = m->positions + 3 * *nv;
+	double s = 0;
+	for (int k = 0; k < 3; k++) {
+		p[k] = 0.5f * (m->positions[3 * a + k] + m->positions[3 * b + k]);
+		s += (double)p[k] * p[k];
+	}
+	for (int k = 0; k < 3; k++)
+		p[k] = (float)(p[k] / sqrt(s));
+	keys[i] = key;
+	vals[i] = (uint32_t)*nv;
+	return (uint32_t)(*nv)++;
+}
+
+/*
+ * The unit icosphere after `level` subdivisions: 20 * 4^level outward-facing
+ * triangles, every vertex on the sphere.
+ */
+static inline void
+shape_icosphere(struct vdt_mesh *m, int level)
+{
+	static const float X = 0.525731112119133606f, Z = 0.850650808352039932f;
+	static const float v0[12][3] = {
+		{-X, 0, Z}, {X, 0, Z}, {-X, 0, -Z}, {X, 0, -Z}, {0, Z, X}, {0, Z, -X},
+		{0, -Z, X}, {0, -Z, -X}, {Z, X, 0}, {-Z, X, 0}, {Z, -X, 0}, {-Z, -X, 0}};
+	static const uint32_t t0[20][3] = {
+		{0, 4, 1}, {0, 9, 4}, {9, 5, 4}, {4, 5, 8}, {4, 8, 1}, {8, 10, 1}, {8, 3, 10},
+		{5, 3, 8}, {5, 2, 3}, {2, 7, 3}, {7, 10, 3}, {7, 6, 10}, {7, 11, 6},
+		{11, 0, 6}, {0, 1, 6}, {6, 1, 10}, {9, 0, 11}, {9, 11, 2}, {9, 2, 5}, {7, 2, 11}};
+	size_t nt = 20, maxv = 12, maxt = 20;
+	for (int l = 0; l < level; l++) {
+		maxv += maxt * 3 / 2;
+		maxt *= 4;
+	}
+	vdt_mesh_alloc(m, maxv, maxt, 0, NULL);
+	memcpy(m->positions, v0, sizeof(v0));
+	memcpy(m->triangles, t0, sizeof(t0));
+	size_t nv = 12, cap = 2 * maxv + 16;
+	uint64_t *keys = malloc(cap * sizeof(*keys));
+	uint32_t *vals = malloc(cap * sizeof(*vals));
+	uint32_t *next = malloc(3 * maxt * sizeof(*next));
+	for (int l = 0; l < level; l++) {
+		memset(keys, 0xff, cap * sizeof(*keys));
+		for (size_t t = 0; t < nt; t++) {
+			uint32_t a = m->triangles[3 * t], b = m->triangles[3 * t + 1], c = m->triangles[3 * t + 2];
+			uint32_t ab = shape_mid(m, keys, vals, cap, &nv, a, b);
+			uint32_t bc = shape_mid(m, keys, vals, cap, &nv, b, c);
+			uint32_t ca = shape_mid(m, keys, vals, cap, &nv, c, a);
+			uint32_t q[12] = {a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca};
+			memcpy(next + 12 * t, q, sizeof(q));
+		}
+		nt *= 4;
+		memcpy(m->triangles, next, 3 * nt * sizeof(*next));
+	}
+	m->vertex_count = nv;
+	m->triangle_count = nt;
+	free(keys);
+	free(vals);
+	free(next);
+}
+
+/* Edge-use counts: returns 1 if every edge is used by exactly two faces in
+ * opposite directions (a closed, consistently oriented 2-manifold). */
+static inline int
+shape_closed_manifold(const struct vdt_mesh *m)
+{
+	size_t n = 3 * m->triangle_count;
+	uint64_t *e = malloc(n * sizeof(*e));
+	for (size_t t = 0; t < m->triangle_count; t++)
+		for (int k = 0; k < 3; k++)
+			e[3 * t + k] = (uint64_t)m->triangles[3 * t + k] << 32 |
+			               m->triangles[3 * t + (k + 1) % 3];
+	int ok = 1;
+	/* every directed edge once, and its reverse present */
+	for (size_t i = 0; i < n && ok; i++) {
+		uint64_t r = e[i] >> 32 | e[i] << 32;
+		int fwd = 0, rev = 0;
+		for (size_t j = 0; j < n; j++) {
+			fwd += e[j] == e[i];
+			rev += e[j] == r;
+		}
+		ok = fwd == 1 && rev == 1;
+	}
+	free(e);
+	return ok;
+}
+
+#endif

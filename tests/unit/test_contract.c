@@ -1,0 +1,428 @@
+/* Unit tests of the pair-contraction engine and quadric simplification. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../../lib/contract.h"
+#include "../../lib/qslim.h"
+#include "shapes.h"
+
+/* Cost = squared edge length, placement at the midpoint (or fixed end). */
+static double
+length_cost(void *ctx, uint32_t a, uint32_t b, int fixed, const float pa[3],
+            const float pb[3], double pos[3])
+{
+	double d = 0;
+	(void)ctx; (void)a; (void)b;
+	for (int k = 0; k < 3; k++) {
+		pos[k] = fixed == 0 ? pa[k] : fixed == 1 ? pb[k] : 0.5 * (pa[k] + pb[k]);
+		d += ((double)pa[k] - pb[k]) * ((double)pa[k] - pb[k]);
+	}
+	return d;
+}
+
+static const struct vdt_contract_ops length_ops = {length_cost, NULL, NULL, NULL};
+
+/*
+ * A closed tetrahedron cannot lose a vertex: every edge contraction would
+ * leave two coincident faces. The engine must refuse them all.
+ */
+static void
+tetrahedron_is_irreducible(void **state)
+{
+	static const float p[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+	static const uint32_t t[] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+	struct vdt_mesh m = {4, (float *)p, NULL, NULL, NULL, 4, (uint32_t *)t};
+	struct vdt_contract_opts o;
+	struct vdt_contract_result r;
+
+	(void)state;
+	vdt_contract_defaults(&o);
+	assert_int_equal(vdt_contract_run(&m, &length_ops, &o, &r, NULL), 0);
+	assert_int_equal(r.triangle_count, 4);
+	assert_int_equal(r.contractions, 0);
+	assert_false(r.reached_target);
+	vdt_contract_result_free(&r);
+}
+
+/* An icosphere contracted as far as it goes stays a closed oriented manifold
+ * and ends at a tetrahedron. */
+static void
+sphere_stays_manifold(void **state)
+{
+	struct vdt_mesh m, out;
+	struct vdt_contract_opts o;
+	struct vdt_contract_result r;
+
+	(void)state;
+	shape_icosphere(&m, 2);
+	vdt_contract_defaults(&o);
+	o.record = 1;
+	assert_int_equal(vdt_contract_run(&m, &length_ops, &o, &r, NULL), 0);
+	assert_int_equal(r.triangle_count, 4);
+	assert_int_equal(r.record_count, r.contractions);
+	assert_int_equal(r.contractions, m.vertex_count - 4);
+	out = (struct vdt_mesh){r.vertex_count, r.positions, NULL, NULL, NULL,
+	                        r.triangle_count, r.triangles};
+	assert_true(shape_closed_manifold(&out));
+	/* every removed vertex maps to a survivor */
+	for (size_t i = 0; i < m.vertex_count; i++) {
+		uint32_t f = r.final[i];
+		int used = 0;
+		for (size_t k = 0; k < 3 * r.triangle_count; k++)
+			used |= r.triangles[k] == f;
+		assert_true(used);
+	}
+	vdt_contract_result_free(&r);
+	vdt_mesh_free(&m);
+}
+
+/*
+ * Fold-over: contracting 1 into 0 at 0's position would turn triangle
+ * (1,2,3) upside down, so the only cheap pair is refused.
+ *
+ *        3 (0.1, 1)
+ *       /|\
+ *      / | \
+ *     0--1--2      0 = (-0.05,0) 1 = (0.2,0) 2 = (1,0): the edge 0-1 is short
+ *      \ | /
+ *       \|/
+ *        4 (0.1,-1)
+ */
+static double
+to_zero_cost(void *ctx, uint32_t a, uint32_t b, int fixed, const float pa[3],
+             const float pb[3], double pos[3])
+{
+	(void)ctx; (void)fixed; (void)pb;
+	/* always place at vertex 0 when the pair involves it */
+	const float *q = a == 0 ? pa : pb;
+	for (int k = 0; k < 3; k++)
+		pos[k] = (a == 0 || b == 0) ? q[k] : pa[k];
+	return (a == 0 && b == 1) ? 0 : 100;
+}
+
+static void
+fold_over_is_refused(void **state)
+{
+	static const float p[] = {-0.05f, 0, 0, 0.2f, 0, 0, 1, 0, 0, 0.1f, 1, 0, 0.1f, -1, 0};
+	static const uint32_t t[] = {0, 1, 3, 1, 2, 3, 1, 0, 4, 2, 1, 4};
+	struct vdt_mesh m = {5, (float *)p, NULL, NULL, NULL, 4, (uint32_t *)t};
+	struct vdt_contract_ops ops = {to_zero_cost, NULL, NULL, NULL};
+	struct vdt_contract_opts o;
+	struct vdt_contract_result r;
+
+	(void)state;
+	vdt_contract_defaults(&o);
+	o.target_triangles = 3;
+	o.max_cost = 1;
+	o.record = 1;
+	assert_int_equal(vdt_contract_run(&m, &ops, &o, &r, NULL), 0);
+	/* moving 1 onto 0 keeps 1-2-3 and 2-1-4 upright (0 is left of 1): allowed */
+	assert_int_equal(r.contractions, 1);
+	vdt_contract_result_free(&r);
+
+	/* Now put 0 right of 2: the same contraction would flip both faces. */
+	float q[15];
+	memcpy(q, p, sizeof(q));
+	q[0] = 1.5f;
+	m.positions = q;
+	assert_int_equal(vdt_contract_run(&m, &ops, &o, &r, NULL), 0);
+	assert_int_equal(r.contractions, 0);
+	assert_true(r.rejected >= 1);
+	vdt_contract_result_free(&r);
+}
+
+/* An edge shared by three faces is never contracted, nor are its ends moved. */
+static void
+non_manifold_edge_is_kept(void **state)
+{
+	static const float p[] = {0, 0, 0, 1, 0, 0, 0.5f, 1, 0, 0.5f, -1, 0, 0.5f, 0, 1};
+	static const uint32_t t[] = {0, 1, 2, 1, 0, 3, 0, 1, 4};
+	struct vdt_mesh m = {5, (float *)p, NULL, NULL, NULL, 3, (uint32_t *)t};
+	struct vdt_contract_opts o;
+	struct vdt_contract_result r;
+
+	(void)state;
+	vdt_contract_defaults(&o);
+	assert_int_equal(vdt_contract_run(&m, &length_ops, &o, &r, NULL), 0);
+	for (size_t i = 0; i < 6; i++)
+		assert_true(r.positions[i] == p[i]);
+	vdt_contract_result_free(&r);
+}
+
+static void
+seqn_round_trip_and_rejects(void **state)
+{
+	struct vdt_contraction in[2] = {{1, 2, {0.5f, -1, 3}, 0.25f}, {7, 1, {1, 2, 3}, 9}};
+	struct vdt_contraction *out;
+	unsigned char *data;
+	uint64_t len;
+	size_t n;
+
+	(void)state;
+	assert_int_equal(vdt_seqn_encode(in, 2, &data, &len, NULL), 0);
+	assert_int_equal(len, 8 + 48);
+	assert_int_equal(vdt_seqn_decode(data, len, &out, &n, NULL), 0);
+	assert_int_equal(n, 2);
+	assert_memory_equal(out, in, sizeof(in));
+	free(out);
+	assert_int_equal(vdt_seqn_decode(data, len - 1, &out, &n, NULL), VDT_EFORMAT);
+	data[0] = 3;
+	assert_int_equal(vdt_seqn_decode(data, len, &out, &n, NULL), VDT_EFORMAT);
+	free(data);
+}
+
+/*
+ * A flat 8 x 8 grid (128 triangles) reduces to 2 triangles spanning the
+ * square: boundary planes keep the outline, flatness keeps z = 0.
+ */
+static void
+flat_grid_reduces_to_its_corners(void **state)
+{
+	struct vdt_mesh m, out;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+
+	(void)state;
+	shape_grid(&m, 8);
+	vdt_qslim_defaults(&o);
+	o.target_triangles = 2;
+	assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
+	assert_int_equal(out.triangle_count, 2);
+	assert_int_equal(out.vertex_count, 4);
+	for (size_t i = 0; i < 4; i++) {
+		const float *p = out.positions + 3 * i;
+		assert_true(fabsf(p[0] * (1 - p[0])) < 1e-5f);
+		assert_true(fabsf(p[1] * (1 - p[1])) < 1e-5f);
+		assert_true(fabsf(p[2]) < 1e-6f);
+	}
+	assert_true(st.max_error < 1e-5);
+	vdt_mesh_free(&out);
+
+	/* With the border locked, all 32 border vertices remain. */
+	o.lock_border = 1;
+	assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
+	assert_int_equal(out.vertex_count, 32);
+	assert_false(st.reached_target);
+	vdt_mesh_free(&out);
+	vdt_mesh_free(&m);
+}
+
+static void
+sphere_simplifies_cleanly(void **state)
+{
+	struct vdt_mesh m, out, again;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+
+	(void)state;
+	shape_icosphere(&m, 3); /* 1280 triangles */
+	vdt_qslim_defaults(&o);
+	o.target_ratio = 0.1;
+	assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
+	assert_int_equal(out.triangle_count, 128);
+	assert_true(shape_closed_manifold(&out));
+	/* every vertex stays close to the unit sphere (placement is optimal) */
+	for (size_t i = 0; i < out.vertex_count; i++) {
+		const float *p = out.positions + 3 * i;
+		double r = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+		assert_true(fabs(r - 1) < 0.05);
+	}
+	/* deterministic */
+	assert_int_equal(vdt_qslim(&m, &o, &again, NULL, NULL, &st, NULL), 0);
+	assert_int_equal(again.vertex_count, out.vertex_count);
+	assert_memory_equal(again.positions, out.positions, 12 * out.vertex_count);
+	assert_memory_equal(again.triangles, out.triangles, 12 * out.triangle_count);
+	vdt_mesh_free(&again);
+	vdt_mesh_free(&out);
+
+	/* An error bound stops early, and the error reached stays under it. */
+	o.target_ratio = 0.01;
+	o.max_error = 0.002;
+	assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
+	assert_true(out.triangle_count > 13);
+	assert_false(st.reached_target);
+	assert_true(st.max_error <= 0.002);
+	vdt_mesh_free(&out);
+
+	/* A target above the input gives the input back unchanged. */
+	o.target_triangles = 5000;
+	o.max_error = INFINITY;
+	assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
+	assert_int_equal(out.triangle_count, m.triangle_count);
+	assert_memory_equal(out.positions, m.positions, 12 * m.vertex_count);
+	vdt_mesh_free(&out);
+	vdt_mesh_free(&m);
+}
+
+/*
+ * Seams: the grid cut along x = 0.5 into two halves with their own copies of
+ * the middle column (different UVs), as a texture atlas would. The result
+ * must have no open edge inside the square: the copies stay together.
+ */
+static void
+uv_seam_does_not_open(void **state)
+{
+	struct vdt_mesh g, m, out;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+	int n = 8;
+
+	(void)state;
+	shape_grid(&g, n);
+	/* duplicate the middle column (i = n/2) for the right half */
+	vdt_mesh_alloc(&m, g.vertex_count + n + 1, g.triangle_count, VDT_ATTR_UVS, NULL);
+	memcpy(m.positions, g.positions, 12 * g.vertex_count);
+	memcpy(m.triangles, g.triangles, 12 * g.triangle_count);
+	for (size_t i = 0; i < g.vertex_count; i++) {
+		m.uvs[2 * i] = g.positions[3 * i] * 0.5f;
+		m.uvs[2 * i + 1] = g.positions[3 * i + 1];
+	}
+	for (int j = 0; j <= n; j++) {
+		size_t src = j * (n + 1) + n / 2, dst = g.vertex_count + j;
+		memcpy(m.positions + 3 * dst, m.positions + 3 * src, 12);
+		m.uvs[2 * dst] = 0.75f;
+		m.uvs[2 * dst + 1] = m.positions[3 * dst + 1];
+	}
+	for (size_t t = 0; t < m.triangle_count; t++) {
+		const uint32_t *c = g.triangles + 3 * t;
+		float cx = (g.positions[3 * c[0]] + g.positions[3 * c[1]] + g.positions[3 * c[2]]) / 3;
+		if (cx > 0.5f)
+			for (int k = 0; k < 3; k++)
+				if (c[k] % (n + 1) == (uint32_t)n / 2)
+					m.triangles[3 * t + k] = g.vertex_count + c[k] / (n + 1);
+	}
+	vdt_qslim_defaults(&o);
+	o.target_triangles = 8;
+	assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
+	assert_int_equal(st.welded, n + 1);
+	/* every edge used once lies on the square's outline */
+	for (size_t t = 0; t < out.triangle_count; t++)
+		for (int k = 0; k < 3; k++) {
+			uint32_t a = out.triangles[3 * t + k], b = out.triangles[3 * t + (k + 1) % 3];
+			const float *pa = out.positions + 3 * a, *pb = out.positions + 3 * b;
+			int uses = 0;
+			for (size_t s = 0; s < out.triangle_count; s++)
+				for (int j = 0; j < 3; j++) {
+					const float *qa = out.positions + 3 * out.triangles[3 * s + j];
+					const float *qb = out.positions + 3 * out.triangles[3 * s + (j + 1) % 3];
+					uses += !memcmp(qa, pb, 12) && !memcmp(qb, pa, 12);
+				}
+			if (uses == 0) {
+				int on_x = (pa[0] == 0 && pb[0] == 0) || (pa[0] == 1 && pb[0] == 1);
+				int on_y = (pa[1] == 0 && pb[1] == 0) || (pa[1] == 1 && pb[1] == 1);
+				assert_true(on_x || on_y);
+			}
+		}
+	/* both sides keep their own texture coordinates on the seam */
+	int left = 0, right = 0;
+	for (size_t i = 0; i < out.vertex_count; i++)
+		if (out.positions[3 * i] == 0.5f) {
+			left += out.uvs[2 * i] == 0.25f;
+			right += out.uvs[2 * i] == 0.75f;
+		}
+	assert_true(left > 0 && right > 0);
+	vdt_mesh_free(&out);
+	vdt_mesh_free(&m);
+	vdt_mesh_free(&g);
+}
+
+/*
+ * Coupling: quadrics handed in replace those of the faces. Give every vertex
+ * of a flat grid the planes x = x_i and y = y_i through itself and the plane
+ * z = 0.1: contracted vertices must move onto z = 0.1, which the faces alone
+ * would never do.
+ */
+static void
+given_quadrics_drive_placement(void **state)
+{
+	struct vdt_mesh m, out;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+	struct vdt_quadric *q;
+	double n[3] = {0, 0, 1}, nx[3] = {1, 0, 0}, ny[3] = {0, 1, 0};
+	struct vdt_quadric r;
+
+	(void)state;
+	shape_grid(&m, 4);
+	q = malloc(m.vertex_count * sizeof(*q));
+	for (size_t i = 0; i < m.vertex_count; i++) {
+		vdt_quadric_plane(&q[i], n, -0.1, 0.01);
+		vdt_quadric_plane(&r, nx, -m.positions[3 * i], 0.01);
+		vdt_quadric_add(&q[i], &r);
+		vdt_quadric_plane(&r, ny, -m.positions[3 * i + 1], 0.01);
+		vdt_quadric_add(&q[i], &r);
+	}
+	vdt_qslim_defaults(&o);
+	o.quadrics = q;
+	o.boundary_weight = 0;
+	o.target_triangles = 8;
+	assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
+	int lifted = 0;
+	for (size_t i = 0; i < out.vertex_count; i++)
+		lifted += fabsf(out.positions[3 * i + 2] - 0.1f) < 1e-5f;
+	assert_true(lifted > 0);
+	vdt_mesh_free(&out);
+	free(q);
+	vdt_mesh_free(&m);
+}
+
+/* Two spheres 0.01 apart join through virtual pairs when asked to. */
+static void
+aggregation_joins_parts(void **state)
+{
+	struct vdt_mesh s, m, out;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+	struct vdt_contraction *rec;
+	size_t nrec;
+
+	(void)state;
+	shape_icosphere(&s, 1);
+	vdt_mesh_alloc(&m, 2 * s.vertex_count, 2 * s.triangle_count, 0, NULL);
+	memcpy(m.positions, s.positions, 12 * s.vertex_count);
+	for (size_t i = 0; i < s.vertex_count; i++) {
+		memcpy(m.positions + 3 * (s.vertex_count + i), s.positions + 3 * i, 12);
+		m.positions[3 * (s.vertex_count + i)] += 2.01f;
+	}
+	memcpy(m.triangles, s.triangles, 12 * s.triangle_count);
+	for (size_t i = 0; i < 3 * s.triangle_count; i++)
+		m.triangles[3 * s.triangle_count + i] = s.triangles[i] + (uint32_t)s.vertex_count;
+	vdt_qslim_defaults(&o);
+	o.target_triangles = 8;
+	o.aggregate = 0.05;
+	assert_int_equal(vdt_qslim(&m, &o, &out, &rec, &nrec, &st, NULL), 0);
+	int joined = 0;
+	for (size_t i = 0; i < nrec; i++) {
+		int a = rec[i].keep < s.vertex_count, b = rec[i].gone < s.vertex_count;
+		joined |= a != b;
+	}
+	assert_true(joined);
+	free(rec);
+	vdt_mesh_free(&out);
+	vdt_mesh_free(&m);
+	vdt_mesh_free(&s);
+}
+
+int
+main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(tetrahedron_is_irreducible),
+		cmocka_unit_test(sphere_stays_manifold),
+		cmocka_unit_test(fold_over_is_refused),
+		cmocka_unit_test(non_manifold_edge_is_kept),
+		cmocka_unit_test(seqn_round_trip_and_rejects),
+		cmocka_unit_test(flat_grid_reduces_to_its_corners),
+		cmocka_unit_test(sphere_simplifies_cleanly),
+		cmocka_unit_test(uv_seam_does_not_open),
+		cmocka_unit_test(given_quadrics_drive_placement),
+		cmocka_unit_test(aggregation_joins_parts),
+	};
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
