@@ -1596,8 +1596,12 @@ main(int argc, char **argv)
 			which = (int)i;
 	if (which < 0)
 		usage_error("unknown shape '%s'", o.shape);
-	if (o.given & ~shapes[which].allowed)
-		usage_error("an option given does not apply to shape '%s'", o.shape);
+	for (int bit = 0; bit < 6; bit++) {
+		static const char *const name[] = {"-s", "-u", "-v", "-n", "-r", "--seed"};
+
+		if (o.given & ~shapes[which].allowed & 1u << bit)
+			usage_error("option %s does not apply to shape '%s'", name[bit], o.shape);
+	}
 	if (o.output == NULL)
 		usage_error("no output file (-o FILE)");
 	if (strcmp(o.output, "-") == 0 && o.format == VDT_FMT_AUTO)
