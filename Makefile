@@ -52,6 +52,7 @@ MAN57 := $(sort $(wildcard man/*.5 man/*.7))
 	clean lint helpers
 .SUFFIXES:
 .DELETE_ON_ERROR:
+.SECONDARY:
 
 all: $(TOOLS) helpers
 
