@@ -1,0 +1,131 @@
+#!/usr/bin/env bats
+# Command-line tests of vdt-qslim.
+
+load helpers
+
+@test "vdt-qslim --help prints usage and exits 0" {
+	run "$BIN/vdt-qslim" --help
+	[ "$status" -eq 0 ]
+	[[ "$output" == usage:* ]]
+}
+
+@test "vdt-qslim --version names the stream format" {
+	run "$BIN/vdt-qslim" --version
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"stream format 1."* ]]
+}
+
+@test "vdt-qslim rejects bad options with status 2" {
+	run "$BIN/vdt-qslim" --bogus "$SAMPLES/sphere.off"
+	[ "$status" -eq 2 ]
+	for bad in "-t 12x" "-t -1" "-t 0" "-r 2" "-r -0.5" "-r x" "-e -1" "-e 200%" "-F nope" "--max-angle 0" "--min-quality 2"; do
+		run "$BIN/vdt-qslim" $bad "$SAMPLES/sphere.off" -o "$TMP/x.off"
+		[ "$status" -eq 2 ]
+		[ ! -e "$TMP/x.off" ]
+	done
+}
+
+@test "vdt-qslim reduces a sphere to the ratio asked" {
+	run "$BIN/vdt-qslim" -r 0.1 "$SAMPLES/sphere.off" -o "$TMP/out.off"
+	[ "$status" -eq 0 ]
+	[ "$(off_faces "$TMP/out.off")" -eq 512 ]
+}
+
+@test "vdt-qslim stops at a triangle count" {
+	"$BIN/vdt-qslim" -t 100 "$SAMPLES/torus.off" -o "$TMP/out.off"
+	[ "$(off_faces "$TMP/out.off")" -eq 100 ]
+}
+
+@test "vdt-qslim works in a pipeline through the stream" {
+	"$BIN/vdt-qslim" -r 0.5 < "$SAMPLES/sphere.off" | "$BIN/vdt-qslim" -r 0.5 -F off > "$TMP/out.off"
+	[ "$(off_faces "$TMP/out.off")" -eq 1280 ]
+}
+
+@test "vdt-qslim output is identical on every run" {
+	"$BIN/vdt-qslim" -r 0.2 "$SAMPLES/plate.off" -o "$TMP/a.ply"
+	"$BIN/vdt-qslim" -r 0.2 "$SAMPLES/plate.off" -o "$TMP/b.ply"
+	cmp "$TMP/a.ply" "$TMP/b.ply"
+}
+
+@test "vdt-qslim returns the input unchanged when the target is above it" {
+	"$BIN/vdt-qslim" -t 100000 "$SAMPLES/sphere.off" -o "$TMP/out.off"
+	[ "$(off_faces "$TMP/out.off")" -eq 5120 ]
+	[ "$(off_vertices "$TMP/out.off")" -eq 2562 ]
+}
+
+@test "vdt-qslim -e stops within the bound and reports it with -v" {
+	run "$BIN/vdt-qslim" -v -e 0.05% -r 0.01 "$SAMPLES/sphere.off" -o "$TMP/out.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"stopped at"* ]]
+	[[ "$output" == *"error_pct="* ]]
+	pct=$(printf '%s\n' "$output" | sed -n 's/.*error_pct=\([^ ]*\).*/\1/p')
+	awk -v p="$pct" 'BEGIN { exit !(p <= 0.05) }'
+	[ "$(off_faces "$TMP/out.off")" -gt 52 ]
+}
+
+@test "vdt-qslim keeps a mesh with boundaries open where it was" {
+	"$BIN/vdt-qslim" -r 0.2 --lock-border "$SAMPLES/open.off" -o "$TMP/out.off"
+	[ "$(off_faces "$TMP/out.off")" -lt "$(off_faces "$SAMPLES/open.off")" ]
+}
+
+@test "vdt-qslim --record adds a SEQN chunk to the stream" {
+	"$BIN/vdt-qslim" -r 0.5 --record "$SAMPLES/sphere.off" -o "$TMP/out.vdt"
+	grep -aq SEQN "$TMP/out.vdt"
+	"$BIN/vdt-qslim" -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/plain.vdt"
+	! grep -aq SEQN "$TMP/plain.vdt"
+}
+
+@test "vdt-qslim joins parts with -a" {
+	run "$BIN/vdt-qslim" -v -t 40 -a 5% "$SAMPLES/twosphere.off" -o "$TMP/out.off"
+	[ "$status" -eq 0 ]
+	[ "$(off_faces "$TMP/out.off")" -le 40 ]
+}
+
+@test "vdt-qslim names a missing file, exits 2 and leaves nothing" {
+	run "$BIN/vdt-qslim" -r 0.5 "$TMP/none.off" -o "$TMP/out.off"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == "vdt-qslim: cannot read '$TMP/none.off': "* ]]
+	[ ! -e "$TMP/out.off" ]
+}
+
+@test "vdt-qslim rejects a corrupted or truncated stream with status 2" {
+	"$BIN/vdt-qslim" -t 100000 "$SAMPLES/sphere.off" -o "$TMP/s.vdt"
+	size=$(stat -c %s "$TMP/s.vdt")
+	head -c $((size / 2)) "$TMP/s.vdt" > "$TMP/trunc.vdt"
+	run "$BIN/vdt-qslim" -r 0.5 "$TMP/trunc.vdt" -o "$TMP/out.off"
+	[ "$status" -eq 2 ]
+	one_line
+	[ ! -e "$TMP/out.off" ]
+	cp "$TMP/s.vdt" "$TMP/bad.vdt"
+	printf '\001' | dd of="$TMP/bad.vdt" bs=1 seek=1000 conv=notrunc status=none
+	run "$BIN/vdt-qslim" -r 0.5 "$TMP/bad.vdt" -o "$TMP/out.off"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"bad.vdt"* ]]
+}
+
+@test "vdt-qslim rejects NaN coordinates and bad indices with status 2" {
+	printf 'OFF\n3 1 0\n0 0 0\n1 0 0\nnan 1 0\n3 0 1 2\n' > "$TMP/nan.off"
+	run "$BIN/vdt-qslim" -r 0.5 "$TMP/nan.off" -o "$TMP/out.off"
+	[ "$status" -eq 2 ]
+	one_line
+	[ ! -e "$TMP/out.off" ]
+	printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n' > "$TMP/idx.off"
+	run "$BIN/vdt-qslim" -r 0.5 "$TMP/idx.off" -o "$TMP/out.off"
+	[ "$status" -eq 2 ]
+	one_line
+}
+
+@test "vdt-qslim does not modify its input" {
+	cp "$SAMPLES/torus.off" "$TMP/in.off"
+	sum=$(md5sum < "$TMP/in.off")
+	"$BIN/vdt-qslim" -r 0.5 "$TMP/in.off" -o "$TMP/in.off.out.off"
+	[ "$(md5sum < "$TMP/in.off")" = "$sum" ]
+}
+
+@test "vdt-qslim fails with status 1 when the output cannot be written" {
+	run "$BIN/vdt-qslim" -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/no/such/dir/out.off"
+	[ "$status" -eq 1 ]
+	one_line
+}
