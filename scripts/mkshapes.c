@@ -278,8 +278,8 @@ hmap_get_or_put(struct hmap *h, uint64_t key, uint32_t val)
 
 /*
  * Merge vertices with bit-identical positions (the generators compute a
- * shared point by one formula) and drop the vertices left unused. remap
- * receives, for each old vertex, its new index; it may be NULL.
+ * shared point by one formula): renumber tri in place, write the distinct
+ * positions to out_pos (room for nv) and return their count.
  */
 static size_t
 weld(const float *pos, size_t nv, uint32_t *tri, size_t nt, float *out_pos)
@@ -1042,14 +1042,13 @@ struct field {
 };
 
 static uint32_t
-mt_vertex(struct builder *b, struct hmap *edges, const struct field *fl,
-          const double *vals, const uint64_t *gid, const double (*gp)[3], int a, int c)
+mt_vertex(struct builder *b, struct hmap *edges, const double *vals,
+          const uint64_t *gid, const double (*gp)[3], int a, int c)
 {
 	uint64_t lo = gid[a] < gid[c] ? gid[a] : gid[c], hi = gid[a] ^ gid[c] ^ lo;
 	uint32_t id = hmap_get_or_put(edges, lo << 32 | hi, (uint32_t)b->nv);
 	double t;
 
-	(void)fl;
 	if (id != b->nv)
 		return id;
 	/* interpolate from the lower grid point so both sides agree */
@@ -1160,14 +1159,14 @@ marching_tets(struct builder *b, const struct field *fl)
 						int *rest = nin == 1 ? out : in;
 
 						for (int k = 0; k < 3; k++)
-							v[k] = mt_vertex(b, &edges, fl, vals, gid, gp, lone, rest[k]);
+							v[k] = mt_vertex(b, &edges, vals, gid, gp, lone, rest[k]);
 						mt_emit(b, v, 3, dir);
 					} else {
 						/* a quad: edges in0-out0, in0-out1, in1-out1, in1-out0 */
-						v[0] = mt_vertex(b, &edges, fl, vals, gid, gp, in[0], out[0]);
-						v[1] = mt_vertex(b, &edges, fl, vals, gid, gp, in[0], out[1]);
-						v[2] = mt_vertex(b, &edges, fl, vals, gid, gp, in[1], out[1]);
-						v[3] = mt_vertex(b, &edges, fl, vals, gid, gp, in[1], out[0]);
+						v[0] = mt_vertex(b, &edges, vals, gid, gp, in[0], out[0]);
+						v[1] = mt_vertex(b, &edges, vals, gid, gp, in[0], out[1]);
+						v[2] = mt_vertex(b, &edges, vals, gid, gp, in[1], out[1]);
+						v[3] = mt_vertex(b, &edges, vals, gid, gp, in[1], out[0]);
 						mt_emit(b, v, 4, dir);
 					}
 				}
