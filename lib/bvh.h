@@ -1,0 +1,76 @@
+/*
+ * bvh.h - bounding volume hierarchy over the triangles of a mesh, for exact
+ * closest-point queries (the inner loop of vdt-measure and of anything else
+ * that asks "how far is this point from that surface").
+ *
+ * The tree is a flat array of nodes in depth-first order with float boxes
+ * (the corners are floats, so float boxes hold them exactly); distances are
+ * computed in double. A query returns the closest point of the whole mesh,
+ * never an approximation: pruning only skips boxes farther than the best
+ * triangle found so far.
+ */
+#ifndef VDT_BVH_H
+#define VDT_BVH_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "err.h"
+#include "mesh.h"
+
+struct vdt_bvh_node {
+	float lo[3], hi[3];
+	uint32_t index; /* leaf: first slot; inner node: its right child */
+	uint32_t count; /* leaf: number of slots (> 0); inner node: 0 */
+};                      /* an inner node's left child is the next node */
+
+struct vdt_bvh {
+	size_t node_count;
+	struct vdt_bvh_node *nodes;
+	size_t triangle_count;
+	uint32_t *order;   /* slot -> triangle of the mesh, leaf by leaf */
+	uint32_t *slot_of; /* triangle of the mesh -> slot */
+	float *corners;    /* 9 floats per slot: the triangle's three corners */
+};
+
+struct vdt_bvh_hit {
+	double dist2;    /* squared distance from the query to point */
+	double point[3]; /* closest point of the mesh */
+	size_t triangle; /* triangle of the mesh that holds point */
+};
+
+/*
+ * Build a BVH over the triangles of m (binned surface-area heuristic, median
+ * split past a depth limit so that the depth stays bounded). The BVH copies
+ * what it needs: m may be freed afterwards. Degenerate triangles are kept;
+ * their closest points are found on their edges. Returns 0, VDT_EINVAL (no
+ * triangles), VDT_ELIMIT (2^32 triangles or more) or VDT_ENOMEM; on failure
+ * bvh is left empty.
+ */
+int vdt_bvh_build(struct vdt_bvh *bvh, const struct vdt_mesh *m,
+                  struct vdt_err *err);
+
+/* Free what vdt_bvh_build allocated and zero bvh. Safe on a zeroed bvh. */
+void vdt_bvh_free(struct vdt_bvh *bvh);
+
+/*
+ * Closest point to p on the mesh of bvh, into *hit. hint is a triangle index
+ * of the mesh likely to be close (the answer for a nearby previous query),
+ * or SIZE_MAX for none: its distance becomes the initial bound, so that
+ * traversal prunes hard from the start. The answer does not depend on the
+ * hint: among triangles at exactly the same distance the lowest index wins.
+ * Thread-safe: queries only read bvh.
+ */
+void vdt_bvh_closest(const struct vdt_bvh *bvh, const double p[3], size_t hint,
+                     struct vdt_bvh_hit *hit);
+
+/*
+ * Closest point q on triangle abc to p, and its squared distance as the
+ * return value (Ericson's Voronoi-region test). Degenerate triangles (a
+ * point, a segment) are handled by falling back to their edges.
+ */
+double vdt_closest_on_triangle(const double p[3], const double a[3],
+                               const double b[3], const double c[3],
+                               double q[3]);
+
+#endif
