@@ -28,6 +28,7 @@
 #define VDT_STREAM_SIGNATURE "\x89VDT\r\n\x1a\n"
 #define VDT_STREAM_SIGNATURE_LEN 8
 #define VDT_STREAM_HEADER_LEN 12 /* signature + version */
+#define VDT_STREAM_PREFIX_MAX 4096 /* most prefix bytes a reader takes */
 
 /* Chunk types as host integers built from their four ASCII bytes. */
 #define VDT_FOURCC(a, b, c, d)                                                 \
@@ -55,19 +56,31 @@ struct vdt_chunks {
 	struct vdt_chunk *items;
 };
 
-/* Write the four type bytes of `type` into buf[5] as a C string. */
+/*
+ * Write the four type bytes of `type` into buf[5] as a C string, each byte
+ * that is not printable ASCII replaced by '?' (for messages).
+ */
 void vdt_chunk_name(uint32_t type, char buf[5]);
 
-/* True if the first n bytes of buf start with the stream signature. */
+/*
+ * True if the first n bytes of buf look like a vdt stream: they start with
+ * 0x89 'V' 'D' 'T' (or 0x09 'V' 'D' 'T', the high bit stripped). Only the
+ * first four bytes are looked at, so that a signature damaged by a
+ * text-mode transfer is still sent to vdt_stream_decode, which says what
+ * happened, rather than reported as an unknown format.
+ */
 int vdt_stream_sniff(const unsigned char *buf, size_t n);
 
 /*
  * Decode a whole stream held in memory (buf, len). On success *out holds
  * copies of every chunk's payload except the end chunk. Errors: bad
  * signature (VDT_EFORMAT), newer major version (VDT_EVERSION), CRC mismatch
- * (VDT_ECHECKSUM), truncation, missing end chunk, or trailing bytes
- * (VDT_EFORMAT); each message gives the byte offset. On failure *out is
- * empty.
+ * (VDT_ECHECKSUM), truncation, a length larger than what remains, a
+ * non-empty end chunk, a type that is not printable ASCII, missing end
+ * chunk, or trailing bytes (VDT_EFORMAT); each message gives the byte
+ * offset ("chunk MESH at byte 12: checksum mismatch ..."), never a file
+ * name. On failure *out is empty. Payloads are not decoded: see
+ * vdt_mesh_decode and vdt_quad_decode.
  */
 int vdt_stream_decode(const unsigned char *buf, size_t len,
                       struct vdt_chunks *out, struct vdt_err *err);
@@ -75,12 +88,18 @@ int vdt_stream_decode(const unsigned char *buf, size_t len,
 /*
  * Read a whole stream from f (a file or pipe, read to its end) as
  * vdt_stream_decode does. `prefix`/`prefix_len` are bytes already consumed
- * from f by format detection (may be 0).
+ * from f by format detection (may be 0, any length). Each payload is read
+ * into its own buffer, so memory is the size of the payloads, not twice it;
+ * on a pipe the buffer grows as bytes arrive, so a corrupt length fails at
+ * end of input rather than in malloc. Read errors give VDT_EIO.
  */
 int vdt_stream_read(FILE *f, const unsigned char *prefix, size_t prefix_len,
                     struct vdt_chunks *out, struct vdt_err *err);
 
-/* Free every payload and the array; leaves *c empty. */
+/*
+ * Free every payload and the array; leaves *c empty. A zeroed struct is an
+ * empty list; items grow only through vdt_chunks_add.
+ */
 void vdt_chunks_free(struct vdt_chunks *c);
 
 /*
@@ -99,8 +118,9 @@ void vdt_chunks_remove(struct vdt_chunks *c, uint32_t type);
 
 /*
  * Chunk-at-a-time writing: vdt_stream_write_header once, then
- * vdt_stream_write_chunk per chunk, then vdt_stream_write_end.
- * They return 0 or VDT_EIO.
+ * vdt_stream_write_chunk per chunk, then vdt_stream_write_end (which also
+ * flushes f). They return 0 or VDT_EIO; vdt_stream_write_chunk returns
+ * VDT_EINVAL for a type that is not printable ASCII or is "END ".
  */
 int vdt_stream_write_header(FILE *f, struct vdt_err *err);
 int vdt_stream_write_chunk(FILE *f, uint32_t type, const unsigned char *data,
@@ -113,15 +133,19 @@ int vdt_stream_write(FILE *f, const struct vdt_chunks *c, struct vdt_err *err);
 /*
  * Chunk-at-a-time reading, for streams larger than memory (vdt-cluster):
  * vdt_stream_reader_open checks the header (after `prefix` bytes already
- * consumed, as in vdt_stream_read); vdt_stream_reader_next returns 1 with
- * the next chunk (payload malloc'ed, caller frees), 0 after the end chunk
- * when nothing follows it, or a negative status.
+ * consumed, as in vdt_stream_read, but at most VDT_STREAM_PREFIX_MAX of
+ * them: VDT_EINVAL beyond; they are copied); vdt_stream_reader_next returns
+ * 1 with the next chunk (payload malloc'ed or NULL when empty, caller
+ * frees), 0 after the end chunk when nothing follows it, or a negative
+ * status with the same checks and messages as vdt_stream_decode. After an
+ * error the reader only returns VDT_EINVAL. Nothing to close: the reader
+ * owns no memory and never closes f.
  */
 struct vdt_stream_reader {
 	FILE *f;
-	uint64_t offset;
-	int done;
-	unsigned char pending[16];
+	uint64_t offset; /* stream offset of the next byte */
+	int done;        /* 1 after the end chunk, -1 after an error */
+	unsigned char pending[VDT_STREAM_PREFIX_MAX]; /* prefix not yet used */
 	size_t pending_len;
 };
 int vdt_stream_reader_open(struct vdt_stream_reader *r, FILE *f,
@@ -136,8 +160,13 @@ int vdt_stream_reader_next(struct vdt_stream_reader *r, struct vdt_chunk *chunk,
  *   u64 vertex count V, u64 triangle count T,
  *   f32 positions[3V], then f32 normals[3V], f32 uvs[2V], f32 colors[4V]
  *   for each attribute present, then u32 triangles[3T].
- * Encoding allocates *data; decoding validates counts against the length
- * and the mesh with vdt_mesh_validate.
+ * Encoding validates m (vdt_mesh_validate: a writer never produces what
+ * a reader rejects) and allocates *data. Decoding checks the mask (unknown
+ * bits are VDT_EFORMAT), the reserved word and counts against the length
+ * (VDT_EFORMAT unless they match exactly) before allocating, then the mesh
+ * with vdt_mesh_validate (VDT_EINVAL). Messages do not name the chunk: the
+ * caller adds "chunk MESH at byte N" with vdt_err_prefix. On failure *data
+ * or *m is left empty.
  */
 int vdt_mesh_encode(const struct vdt_mesh *m, unsigned char **data,
                     uint64_t *length, struct vdt_err *err);
@@ -147,7 +176,8 @@ int vdt_mesh_decode(const unsigned char *data, uint64_t length,
 /*
  * QUAD chunk payload: u64 count N, then N records of 11 f64
  * (a00 a01 a02 a11 a12 a22 b0 b1 b2 c w), one per vertex of the MESH chunk
- * that precedes it.
+ * that precedes it. Decoding requires N * 88 == length - 8 (VDT_EFORMAT)
+ * and every value finite (VDT_EINVAL); *q is malloc'ed (NULL when N is 0).
  */
 int vdt_quad_encode(const struct vdt_quadric *q, size_t count,
                     unsigned char **data, uint64_t *length,
