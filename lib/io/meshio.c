@@ -271,8 +271,12 @@ vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
 	case VDT_FMT_PLY: rc = vdt_ply_read(buf, len, m, err); break;
 	case VDT_FMT_STL: rc = vdt_stl_read(buf, len, m, err); break;
 	case VDT_FMT_DRC: rc = vdt_draco_read(buf, len, m, err); break;
-	case VDT_FMT_OBJ:
 	case VDT_FMT_PLY_ASCII:
+		rc = vdt_ply_check_header(buf, len, err);
+		if (rc == 0)
+			rc = vdt_openmesh_read(buf, len, f, m, err);
+		break;
+	case VDT_FMT_OBJ:
 	case VDT_FMT_OFF:
 	case VDT_FMT_STL_ASCII: rc = vdt_openmesh_read(buf, len, f, m, err); break;
 	default: return vdt_err_set(err, VDT_EFORMAT, "unknown format");

@@ -132,6 +132,12 @@ int vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
  */
 int vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
                  struct vdt_err *err);
+/*
+ * Check a PLY header (ASCII or binary) strictly, and that every element
+ * count fits in the bytes that follow, before a less careful parser sees it.
+ */
+int vdt_ply_check_header(const unsigned char *buf, size_t len,
+                         struct vdt_err *err);
 int vdt_ply_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err);
 int vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
                  struct vdt_err *err);

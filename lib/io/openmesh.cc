@@ -252,6 +252,29 @@ check_obj_vertices(const unsigned char *buf, size_t len, size_t have, struct vdt
 	return 0;
 }
 
+/*
+ * OpenMesh's OBJ parser asserts (abort) on a face corner without a vertex
+ * index ("f /3 ..."): refuse such faces before it sees them.
+ */
+int
+check_obj_faces(const unsigned char *buf, size_t len, struct vdt_err *err)
+{
+	const char *p = reinterpret_cast<const char *>(buf);
+	size_t face = 0;
+
+	for (size_t i = 0; i < len; i++) {
+		if (!((i == 0 || p[i - 1] == '\n') && i + 1 < len && p[i] == 'f' &&
+		      (p[i + 1] == ' ' || p[i + 1] == '\t')))
+			continue;
+		for (size_t j = i + 1; j < len && p[j] != '\n' && p[j] != '\r' && p[j] != '#'; j++)
+			if ((p[j - 1] == ' ' || p[j - 1] == '\t') && p[j] != ' ' && p[j] != '\t' &&
+			    !(p[j] == '-' || (p[j] >= '0' && p[j] <= '9')))
+				return vdt_err_set(err, VDT_EFORMAT, "face %zu has a corner without a vertex index", face);
+		face++;
+	}
+	return 0;
+}
+
 int
 convert(Collect &c, struct vdt_mesh *m, long long declared, struct vdt_err *err)
 {
@@ -376,6 +399,11 @@ vdt_openmesh_read(const unsigned char *buf, size_t len, enum vdt_format format,
 	}
 	try {
 		silence();
+		if (format == VDT_FMT_OBJ) {
+			int rc = check_obj_faces(buf, len, err);
+			if (rc != 0)
+				return rc;
+		}
 		std::string s(reinterpret_cast<const char *>(buf), len);
 		std::istringstream is(s, std::ios::in | std::ios::binary);
 		IO::Options opt = IO::Options::VertexNormal | IO::Options::VertexTexCoord |

@@ -50,6 +50,7 @@ struct element {
 
 struct header {
 	int big_endian;
+	int ascii;
 	size_t element_count;
 	struct element elements[MAX_ELEMENTS];
 	size_t data_offset;
@@ -136,12 +137,14 @@ parse_header(const unsigned char *buf, size_t len, struct header *h,
 		if (word_is(w[0], wl[0], "format")) {
 			if (n != 3)
 				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: bad format line", lineno);
+			if (have_format)
+				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: second format line", lineno);
 			if (word_is(w[1], wl[1], "binary_little_endian"))
 				h->big_endian = 0;
 			else if (word_is(w[1], wl[1], "binary_big_endian"))
 				h->big_endian = 1;
 			else if (word_is(w[1], wl[1], "ascii"))
-				return vdt_err_set(err, VDT_EFORMAT, "ASCII PLY is not read natively");
+				h->ascii = 1;
 			else
 				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: unknown format '%.*s'",
 				                   lineno, (int)(wl[1] > 32 ? 32 : wl[1]), w[1]);
@@ -568,6 +571,8 @@ vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 	if (h == NULL)
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
 	rc = parse_header(buf, len, h, err);
+	if (rc == 0 && h->ascii)
+		rc = vdt_err_set(err, VDT_EFORMAT, "ASCII PLY is not read natively");
 	if (rc != 0)
 		goto out;
 	for (size_t i = 0; i < h->element_count; i++) {
@@ -647,6 +652,35 @@ out:
 	free(h);
 	if (rc != 0)
 		vdt_mesh_free(m);
+	return rc;
+}
+
+int
+vdt_ply_check_header(const unsigned char *buf, size_t len, struct vdt_err *err)
+{
+	struct header *h = malloc(sizeof(*h));
+	int rc;
+
+	if (h == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	rc = parse_header(buf, len, h, err);
+	for (size_t i = 0; rc == 0 && i < h->element_count; i++) {
+		const struct element *e = &h->elements[i];
+		size_t left = len - h->data_offset;
+		/* Every value takes at least one byte and a separator. */
+		uint64_t min = h->ascii ? 2 * (uint64_t)e->prop_count : 0;
+
+		if (!h->ascii) {
+			for (size_t k = 0; k < e->prop_count; k++)
+				min += e->props[k].count_type == T_NONE ? type_size[e->props[k].type]
+				                                        : type_size[e->props[k].count_type];
+		}
+		if (min != 0 && e->count > left / min)
+			rc = vdt_err_set(err, VDT_EFORMAT,
+			                 "PLY file is truncated: %llu %s records cannot fit in %zu bytes",
+			                 (unsigned long long)e->count, e->name, left);
+	}
+	free(h);
 	return rc;
 }
 

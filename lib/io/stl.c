@@ -14,25 +14,51 @@
 
 #include "../bytes.h"
 
-static uint32_t
+static uint64_t
 hash_pos(const uint32_t b[3])
 {
-	uint32_t h = b[0] * 0x9e3779b1u;
+	uint64_t h = ((uint64_t)b[0] << 32 | b[1]) ^ (uint64_t)b[2] * 0x9e3779b97f4a7c15u;
 
-	h ^= b[1] * 0x85ebca77u + (h << 6) + (h >> 2);
-	h ^= b[2] * 0xc2b2ae3du + (h << 6) + (h >> 2);
-	h ^= h >> 15;
-	h *= 0x2c1b3c6du;
-	h ^= h >> 12;
+	/* murmur3's finaliser */
+	h ^= h >> 33;
+	h *= 0xff51afd7ed558ccdu;
+	h ^= h >> 33;
+	h *= 0xc4ceb9fe1a85ec53u;
+	h ^= h >> 33;
 	return h;
+}
+
+static int
+grow(uint64_t **table, size_t *cap, const float *pos, size_t nv)
+{
+	size_t nc = *cap * 2, mask = nc - 1;
+	uint64_t *t = malloc(nc * sizeof(*t));
+
+	if (t == NULL)
+		return -1;
+	memset(t, 0xff, nc * sizeof(*t));
+	for (size_t i = 0; i < nv; i++) {
+		uint32_t b[3];
+		memcpy(b, pos + 3 * i, sizeof(b));
+		uint64_t h = hash_pos(b);
+		size_t s = (size_t)h & mask;
+		while (t[s] != UINT64_MAX)
+			s = (s + 1) & mask;
+		t[s] = (h & 0xffffffff00000000u) | (uint32_t)i;
+	}
+	free(*table);
+	*table = t;
+	*cap = nc;
+	return 0;
 }
 
 int
 vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
              struct vdt_err *err)
 {
-	uint32_t count, *table = NULL;
-	size_t cap, mask, nv = 0;
+	uint32_t count;
+	uint64_t *table = NULL; /* hash high bits << 32 | vertex, or all ones */
+	size_t cap, nv = 0;
 	float *pos = NULL;
 	uint32_t *tri = NULL;
 
@@ -49,11 +75,14 @@ vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 		return vdt_err_set(err, VDT_EFORMAT, "binary STL has too many triangles (%lu)",
 		                   (unsigned long)count);
 
-	/* Table of at least twice the corner count, a power of two. */
-	cap = 1;
-	while (cap < (size_t)count * 6)
+	/*
+	 * A closed mesh has about half as many vertices as triangles: start the
+	 * table at twice that and double it as it fills, which keeps the pages
+	 * touched (and faulted in) to what the mesh needs.
+	 */
+	cap = 1024;
+	while (cap < (size_t)count)
 		cap <<= 1;
-	mask = cap - 1;
 	table = malloc(cap * sizeof(*table));
 	pos = malloc((size_t)count * 9 * sizeof(float));
 	tri = malloc((size_t)count * 3 * sizeof(uint32_t));
@@ -68,6 +97,12 @@ vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 	const unsigned char *p = buf + 84;
 	for (size_t t = 0; t < count; t++, p += 50)
 		for (int c = 0; c < 3; c++) {
+			if (2 * nv >= cap && grow(&table, &cap, pos, nv) != 0) {
+				free(table);
+				free(pos);
+				free(tri);
+				return vdt_err_set(err, VDT_ENOMEM, "out of memory welding STL vertices");
+			}
 			uint32_t b[3];
 			float v[3];
 
@@ -77,16 +112,20 @@ vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 					v[k] = 0.0f; /* weld -0 with +0 */
 				memcpy(&b[k], &v[k], 4);
 			}
-			size_t s = hash_pos(b) & mask;
+			uint64_t h = hash_pos(b);
+			uint64_t tag = h & 0xffffffff00000000u;
+			size_t mask = cap - 1, s = (size_t)h & mask;
 			for (;;) {
-				uint32_t i = table[s];
-				if (i == UINT32_MAX) {
-					table[s] = (uint32_t)nv;
+				uint64_t e = table[s];
+				uint32_t i = (uint32_t)e;
+				if (e == UINT64_MAX) {
+					table[s] = tag | (uint32_t)nv;
 					memcpy(pos + 3 * nv, v, sizeof(v));
 					tri[3 * t + c] = (uint32_t)nv++;
 					break;
 				}
-				if (memcmp(pos + 3 * (size_t)i, v, sizeof(v)) == 0) {
+				if ((e & 0xffffffff00000000u) == tag &&
+				    memcmp(pos + 3 * (size_t)i, v, sizeof(v)) == 0) {
 					tri[3 * t + c] = i;
 					break;
 				}
