@@ -7,7 +7,7 @@
  * around each vertex and the candidate pairs at each vertex. A contraction
  * moves the lists of the vanishing vertex into those of the survivor, so
  * every list stays about as long as the vertex degree whatever has been
- * merged. The queue is a binary heap indexed by pair, keyed by float cost,
+ * merged. The queue is a 4-ary heap indexed by pair, keyed by float cost,
  * ties broken by pair number so the order, and the output, are
  * deterministic.
  */
@@ -33,6 +33,11 @@ struct pool {
 	size_t len, cap;
 };
 
+struct hent {
+	float cost;
+	uint32_t pair;
+};
+
 struct engine {
 	size_t nv, nt;
 	float *pos;
@@ -44,11 +49,11 @@ struct engine {
 	struct pool tpool, ppool;
 
 	uint32_t *pv;     /* 2 per pair */
-	float *pcost;
 	uint8_t *pflag;
 	size_t np;
 
-	uint32_t *heap, *hpos;
+	struct hent *heap;
+	uint32_t *hpos;
 	size_t hlen;
 
 	size_t live_tris, live_verts;
@@ -60,6 +65,8 @@ struct engine {
 	/* scratch for neighbourhood tests */
 	uint32_t *nbr;
 	size_t nbr_cap;
+	uint32_t *stamp, *slot, stamp_now;
+	uint16_t *vrej;   /* set-aside pairs at each vertex */
 };
 
 /* ---- pools of per-vertex lists ---- */
@@ -142,48 +149,56 @@ list_remove(struct pool *p, struct list *l, uint32_t x)
 		}
 }
 
-/* ---- the indexed heap ---- */
+/* ---- the indexed heap ----
+ *
+ * A 4-ary min-heap whose entries carry their key, so that sifting compares
+ * neighbouring memory instead of chasing pair numbers; hpos[pair] is the
+ * entry's index (NONE when out of the queue) for updates and removals. */
 
 static inline int
-before(const struct engine *e, uint32_t p, uint32_t q)
+before(struct hent x, struct hent y)
 {
-	return e->pcost[p] < e->pcost[q] || (e->pcost[p] == e->pcost[q] && p < q);
+	return x.cost < y.cost || (x.cost == y.cost && x.pair < y.pair);
 }
 
 static void
 heap_up(struct engine *e, size_t i)
 {
-	uint32_t p = e->heap[i];
+	struct hent x = e->heap[i];
 	while (i > 0) {
-		size_t parent = (i - 1) / 2;
-		if (!before(e, p, e->heap[parent]))
+		size_t parent = (i - 1) / 4;
+		if (!before(x, e->heap[parent]))
 			break;
 		e->heap[i] = e->heap[parent];
-		e->hpos[e->heap[i]] = (uint32_t)i;
+		e->hpos[e->heap[i].pair] = (uint32_t)i;
 		i = parent;
 	}
-	e->heap[i] = p;
-	e->hpos[p] = (uint32_t)i;
+	e->heap[i] = x;
+	e->hpos[x.pair] = (uint32_t)i;
 }
 
 static void
 heap_down(struct engine *e, size_t i)
 {
-	uint32_t p = e->heap[i];
+	struct hent x = e->heap[i];
 	for (;;) {
-		size_t c = 2 * i + 1;
+		size_t c = 4 * i + 1, end = c + 4, best;
 		if (c >= e->hlen)
 			break;
-		if (c + 1 < e->hlen && before(e, e->heap[c + 1], e->heap[c]))
-			c++;
-		if (!before(e, e->heap[c], p))
+		if (end > e->hlen)
+			end = e->hlen;
+		best = c;
+		for (size_t j = c + 1; j < end; j++)
+			if (before(e->heap[j], e->heap[best]))
+				best = j;
+		if (!before(e->heap[best], x))
 			break;
-		e->heap[i] = e->heap[c];
-		e->hpos[e->heap[i]] = (uint32_t)i;
-		i = c;
+		e->heap[i] = e->heap[best];
+		e->hpos[e->heap[i].pair] = (uint32_t)i;
+		i = best;
 	}
-	e->heap[i] = p;
-	e->hpos[p] = (uint32_t)i;
+	e->heap[i] = x;
+	e->hpos[x.pair] = (uint32_t)i;
 }
 
 static void
@@ -197,26 +212,30 @@ heap_remove(struct engine *e, uint32_t p)
 	if (i == e->hlen)
 		return;
 	e->heap[i] = e->heap[e->hlen];
-	e->hpos[e->heap[i]] = i;
+	e->hpos[e->heap[i].pair] = i;
 	heap_up(e, i);
-	heap_down(e, e->hpos[e->heap[i]]);
+	heap_down(e, e->hpos[e->heap[i].pair]);
 }
 
 static void
 heap_set(struct engine *e, uint32_t p, double cost)
 {
+	struct hent x = {(float)cost, p};
+	uint32_t i = e->hpos[p];
+
 	if (!(cost < INFINITY)) {
 		heap_remove(e, p);
 		return;
 	}
-	e->pcost[p] = (float)cost;
-	if (e->hpos[p] == NONE) {
-		e->heap[e->hlen] = p;
-		e->hpos[p] = (uint32_t)e->hlen++;
-		heap_up(e, e->hlen - 1);
+	if (i == NONE) {
+		e->heap[e->hlen] = x;
+		heap_up(e, e->hlen++);
+	} else if (before(x, e->heap[i])) {
+		e->heap[i] = x;
+		heap_up(e, i);
 	} else {
-		heap_up(e, e->hpos[p]);
-		heap_down(e, e->hpos[p]);
+		e->heap[i] = x;
+		heap_down(e, i);
 	}
 }
 
@@ -261,6 +280,27 @@ quality(const float *a, const float *b, const float *c, const double n[3])
 	return s > 0 ? 2 * sqrt(3.0) * len3(n) / s : 0;
 }
 
+/* Set a pair aside after a failed test, or bring it back. */
+static void
+reject(struct engine *e, uint32_t p)
+{
+	if (!(e->pflag[p] & P_REJECTED)) {
+		e->pflag[p] |= P_REJECTED;
+		e->vrej[e->pv[2 * p]]++;
+		e->vrej[e->pv[2 * p + 1]]++;
+	}
+}
+
+static void
+unreject(struct engine *e, uint32_t p)
+{
+	if (e->pflag[p] & P_REJECTED) {
+		e->pflag[p] &= (uint8_t)~P_REJECTED;
+		e->vrej[e->pv[2 * p]]--;
+		e->vrej[e->pv[2 * p + 1]]--;
+	}
+}
+
 static int
 pair_cost(struct engine *e, uint32_t p, double pos[3])
 {
@@ -284,14 +324,23 @@ pair_cost(struct engine *e, uint32_t p, double pos[3])
 
 /*
  * Neighbour multiplicities of v: for each vertex x sharing a triangle with
- * v, how many triangles contain edge (v,x). Fills e->nbr with pairs
- * (x, count) and returns their number, or -1 on allocation failure.
+ * v, how many triangles contain edge (v,x). Fills e->nbr from `base` with
+ * pairs (x, count) and returns their number, or -1 on allocation failure.
+ * Vertices already stamped `prev` (the neighbours of the previous call) are
+ * counted in *common. Per-vertex stamps make this linear in the degree.
  */
 static long
-neighbours(struct engine *e, uint32_t v, size_t base)
+neighbours(struct engine *e, uint32_t v, size_t base, uint32_t prev, long *common)
 {
 	const struct list *l = &e->vt[v];
 	size_t n = 0;
+	uint32_t stamp;
+
+	if (e->stamp_now >= UINT32_MAX - 4 && prev == 0) {
+		memset(e->stamp, 0, e->nv * sizeof(*e->stamp));
+		e->stamp_now = 0;
+	}
+	stamp = ++e->stamp_now;
 
 	if (base + 2 * (2 * (size_t)l->len) > e->nbr_cap) {
 		size_t cap = 2 * (base + 4 * (size_t)l->len) + 64;
@@ -308,16 +357,16 @@ neighbours(struct engine *e, uint32_t v, size_t base)
 			uint32_t x = t[k];
 			if (x == v)
 				continue;
-			size_t j;
-			for (j = 0; j < n; j++)
-				if (out[2 * j] == x)
-					break;
-			if (j == n) {
+			if (e->stamp[x] != stamp) {
+				if (e->stamp[x] == prev && prev != 0)
+					(*common)++;
+				e->stamp[x] = stamp;
+				e->slot[x] = (uint32_t)n;
 				out[2 * n] = x;
 				out[2 * n + 1] = 0;
 				n++;
 			}
-			out[2 * j + 1]++;
+			out[2 * e->slot[x] + 1]++;
 		}
 	}
 	return (long)n;
@@ -341,29 +390,21 @@ has_boundary(const uint32_t *nb, long n)
 static int
 link_ok(struct engine *e, uint32_t a, uint32_t b)
 {
-	long na = neighbours(e, a, 0);
+	long common = 0, shared = 0;
+	long na = neighbours(e, a, 0, 0, &common);
 	if (na < 0)
 		return 0;
-	long nb = neighbours(e, b, 2 * (size_t)na);
+	uint32_t sa = e->stamp_now;
+	long nb = neighbours(e, b, 2 * (size_t)na, sa, &common);
 	if (nb < 0)
 		return 0;
 	const uint32_t *A = e->nbr, *B = e->nbr + 2 * na;
-	long common = 0, shared = 0;
 
 	for (long i = 0; i < na; i++)
 		if (A[2 * i] == b)
 			shared = A[2 * i + 1];
 	if (shared > 2)
 		return 0;
-	for (long i = 0; i < na; i++) {
-		if (A[2 * i] == b)
-			continue;
-		for (long j = 0; j < nb; j++)
-			if (B[2 * j] == A[2 * i]) {
-				common++;
-				break;
-			}
-	}
 	if (shared == 0)
 		return common == 0;
 	long lhs = common + (has_boundary(A, na) && has_boundary(B, nb));
@@ -478,6 +519,7 @@ contract(struct engine *e, uint32_t keep, uint32_t gone, const double dpos[3],
 	struct list *pg = &e->vp[gone];
 	for (uint32_t i = 0; i < pg->len; i++) {
 		uint32_t p = e->ppool.data[pg->off + i];
+		unreject(e, p);
 		uint32_t *v = e->pv + 2 * (size_t)p;
 		uint32_t other = v[0] == gone ? v[1] : v[0];
 		int dup = other == keep;
@@ -519,20 +561,20 @@ contract(struct engine *e, uint32_t keep, uint32_t gone, const double dpos[3],
 	const struct list *pk = &e->vp[keep];
 	for (uint32_t j = 0; j < pk->len; j++) {
 		uint32_t p = e->ppool.data[pk->off + j];
-		e->pflag[p] &= (uint8_t)~P_REJECTED;
+		unreject(e, p);
 		pair_cost(e, p, scratch);
 	}
 	const struct list *tk = &e->vt[keep];
 	for (uint32_t i = 0; i < tk->len; i++) {
 		const uint32_t *c = e->tri + 3 * (size_t)e->tpool.data[tk->off + i];
 		for (int k = 0; k < 3; k++) {
-			if (c[k] == keep)
+			if (c[k] == keep || e->vrej[c[k]] == 0)
 				continue;
 			const struct list *pw = &e->vp[c[k]];
 			for (uint32_t j = 0; j < pw->len; j++) {
 				uint32_t p = e->ppool.data[pw->off + j];
 				if (e->pflag[p] & P_REJECTED) {
-					e->pflag[p] &= (uint8_t)~P_REJECTED;
+					unreject(e, p);
 					pair_cost(e, p, scratch);
 				}
 			}
@@ -598,12 +640,14 @@ engine_free(struct engine *e)
 	free(e->tpool.data);
 	free(e->ppool.data);
 	free(e->pv);
-	free(e->pcost);
 	free(e->pflag);
 	free(e->heap);
 	free(e->hpos);
 	free(e->nbr);
 	free(e->parent);
+	free(e->stamp);
+	free(e->slot);
+	free(e->vrej);
 }
 
 static int
@@ -623,8 +667,11 @@ engine_init(struct engine *e, const struct vdt_mesh *m,
 	e->vt = calloc(nv, sizeof(struct list));
 	e->vp = calloc(nv, sizeof(struct list));
 	e->parent = malloc((nv + 1) * sizeof(uint32_t));
+	e->stamp = calloc(nv + 1, sizeof(uint32_t));
+	e->slot = malloc((nv + 1) * sizeof(uint32_t));
+	e->vrej = calloc(nv + 1, sizeof(uint16_t));
 	keys = malloc((3 * nt + o->virtual_pair_count + 1) * sizeof(uint64_t));
-	if (!e->pos || !e->tri || !e->tnormal || !e->vflag || !e->vt || !e->vp || !e->parent || !keys)
+	if (!e->pos || !e->tri || !e->tnormal || !e->vflag || !e->vt || !e->vp || !e->parent || !e->stamp || !e->slot || !e->vrej || !keys)
 		goto nomem;
 	memcpy(e->pos, m->positions, 3 * nv * sizeof(float));
 	for (size_t v = 0; v < nv; v++)
@@ -709,11 +756,10 @@ engine_init(struct engine *e, const struct vdt_mesh *m,
 	}
 	e->np = np;
 	e->pv = malloc(2 * (np + 1) * sizeof(uint32_t));
-	e->pcost = malloc((np + 1) * sizeof(float));
 	e->pflag = calloc(np + 1, 1);
-	e->heap = malloc((np + 1) * sizeof(uint32_t));
+	e->heap = malloc((np + 1) * sizeof(struct hent));
 	e->hpos = malloc((np + 1) * sizeof(uint32_t));
-	if (!e->pv || !e->pcost || !e->pflag || !e->heap || !e->hpos)
+	if (!e->pv || !e->pflag || !e->heap || !e->hpos)
 		goto nomem;
 	for (size_t p = 0; p < np; p++) {
 		e->pv[2 * p] = (uint32_t)(keys[p] >> 32);
@@ -805,18 +851,18 @@ vdt_contract_run(const struct vdt_mesh *m, const struct vdt_contract_ops *ops,
 		           : ops->cost(ops->ctx, a, b, la ? 0 : lb ? 1 : -1,
 		                       e.pos + 3 * (size_t)a, e.pos + 3 * (size_t)b, pos);
 		if (c >= 0 && c < INFINITY) {
-			e.pcost[p] = (float)c;
 			e.hpos[p] = (uint32_t)e.hlen;
-			e.heap[e.hlen++] = (uint32_t)p;
+			e.heap[e.hlen++] = (struct hent){(float)c, (uint32_t)p};
 		}
 	}
-	for (size_t i = e.hlen / 2; i-- > 0;)
-		heap_down(&e, i);
+	for (size_t i = e.hlen / 4 + 1; i-- > 0;)
+		if (i < e.hlen)
+			heap_down(&e, i);
 
 	size_t start_tris = e.live_tris, step = 0;
 	while (e.hlen > 0 && !done(&e, o)) {
-		uint32_t p = e.heap[0];
-		if (!(e.pcost[p] <= o->max_cost))
+		uint32_t p = e.heap[0].pair;
+		if (!(e.heap[0].cost <= o->max_cost))
 			break;
 		uint32_t a = e.pv[2 * p], b = e.pv[2 * p + 1];
 		int la = e.vflag[a] & V_LOCKED, lb = e.vflag[b] & V_LOCKED;
@@ -835,7 +881,7 @@ vdt_contract_run(const struct vdt_mesh *m, const struct vdt_contract_ops *ops,
 		    !fan_ok(&e, gone, keep, fpos) ||
 		    (ops->valid && !ops->valid(ops->ctx, keep, gone, pos))) {
 			heap_remove(&e, p);
-			e.pflag[p] |= P_REJECTED;
+			reject(&e, p);
 			res->rejected++;
 			continue;
 		}

@@ -184,19 +184,60 @@ weld(const struct vdt_mesh *m, uint32_t *canon, uint32_t *first)
 	return n;
 }
 
+static void
+add_boundary(struct ctx *c, const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
+             uint32_t t, uint32_t a, uint32_t b, uint8_t *border)
+{
+	const uint32_t *v = w->triangles + 3 * (size_t)t;
+	double p[3][3], n[3], e1[3], e2[3], pa[3], pb[3];
+	struct vdt_quadric q;
+
+	for (int i = 0; i < 3; i++)
+		for (int k = 0; k < 3; k++)
+			p[i][k] = w->positions[3 * (size_t)v[i] + k] - c->centre[k];
+	for (int k = 0; k < 3; k++) {
+		e1[k] = p[1][k] - p[0][k];
+		e2[k] = p[2][k] - p[0][k];
+		pa[k] = w->positions[3 * (size_t)a + k] - c->centre[k];
+		pb[k] = w->positions[3 * (size_t)b + k] - c->centre[k];
+	}
+	n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+	n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+	n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+	double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+	border[a] = border[b] = 1;
+	if (!(l > 0))
+		return;
+	for (int k = 0; k < 3; k++)
+		n[k] /= l;
+	if (vdt_quadric_boundary(&q, pa, pb, n, o->boundary_weight) == 0) {
+		q.w = 0; /* a constraint, not surface area */
+		vdt_quadric_add(&c->q[a], &q);
+		vdt_quadric_add(&c->q[b], &q);
+	}
+}
+
 /*
  * Quadrics of the welded vertices: fundamental quadrics of the faces (or the
- * ones given), plus perpendicular planes along open edges. Marks boundary
- * vertices in `border`.
+ * ones given), plus perpendicular planes along open edges. Open edges are
+ * found from each vertex's fan (an edge (v,x) is open when one face of v's
+ * fan holds x), which is linear in the mesh and needs no edge table. Marks
+ * boundary vertices in `border`.
  */
 static int
 build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
                const uint32_t *canon, size_t nin, struct ctx *c, uint8_t *border)
 {
-	struct hash h;
-	size_t nt = w->triangle_count;
-	uint32_t *count = NULL;
+	size_t nt = w->triangle_count, nv = w->vertex_count;
+	uint32_t *start = calloc(nv + 2, sizeof(*start));
+	uint32_t *fan = malloc((3 * nt + 1) * sizeof(*fan));
+	uint32_t seen[64 * 2];
 
+	if (start == NULL || fan == NULL) {
+		free(start);
+		free(fan);
+		return -1;
+	}
 	if (o->quadrics) {
 		for (size_t i = 0; i < nin; i++) {
 			struct vdt_quadric q = o->quadrics[i];
@@ -204,67 +245,64 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 			vdt_quadric_add(&c->q[canon[i]], &q);
 		}
 	}
-	if (hash_init(&h, 3 * nt) != 0 || (count = calloc(2 * h.mask + 2, sizeof(*count))) == NULL) {
-		hash_free(&h);
-		return -1;
-	}
 	for (size_t t = 0; t < nt; t++) {
 		const uint32_t *v = w->triangles + 3 * t;
-		double p[3][3];
 		for (int i = 0; i < 3; i++)
-			for (int k = 0; k < 3; k++)
-				p[i][k] = w->positions[3 * (size_t)v[i] + k] - c->centre[k];
+			start[v[i] + 2]++;
 		if (!o->quadrics) {
+			double p[3][3];
 			struct vdt_quadric q;
+			for (int i = 0; i < 3; i++)
+				for (int k = 0; k < 3; k++)
+					p[i][k] = w->positions[3 * (size_t)v[i] + k] - c->centre[k];
 			if (vdt_quadric_triangle(&q, p[0], p[1], p[2]) == 0)
 				for (int i = 0; i < 3; i++)
 					vdt_quadric_add(&c->q[v[i]], &q);
 		}
-		for (int i = 0; i < 3; i++) {
-			uint64_t a = v[i], b = v[(i + 1) % 3];
-			uint64_t key = a < b ? a << 32 | b : b << 32 | a;
-			size_t s = hash_slot(&h, key, (uint32_t)t);
-			count[s]++;
-		}
 	}
-	/* Open edges: used by exactly one face. */
-	for (size_t s = 0; s <= h.mask; s++) {
-		if (h.key[s] == UINT64_MAX || count[s] != 1)
-			continue;
-		uint32_t t = h.val[s];
-		const uint32_t *v = w->triangles + 3 * (size_t)t;
-		double p[3][3], n[3], e1[3], e2[3];
+	for (size_t v = 0; v < nv; v++)
+		start[v + 2] += start[v + 1];
+	for (size_t t = 0; t < nt; t++)
 		for (int i = 0; i < 3; i++)
-			for (int k = 0; k < 3; k++)
-				p[i][k] = w->positions[3 * (size_t)v[i] + k] - c->centre[k];
-		for (int k = 0; k < 3; k++) {
-			e1[k] = p[1][k] - p[0][k];
-			e2[k] = p[2][k] - p[0][k];
+			fan[start[w->triangles[3 * t + i] + 1]++] = (uint32_t)t;
+
+	/* Edge (v,x), x > v, is open when x appears in one face of v's fan
+	 * only; fans larger than the scratch table fall back to a scan. */
+	for (size_t v = 0; v < nv; v++) {
+		uint32_t n = 0, b = start[v], e = start[v + 1];
+		for (uint32_t i = b; i < e; i++) {
+			const uint32_t *tv = w->triangles + 3 * (size_t)fan[i];
+			for (int k = 0; k < 3; k++) {
+				uint32_t x = tv[k], j;
+				if (x <= v)
+					continue;
+				if (e - b <= 32) {
+					for (j = 0; j < n && seen[2 * j] != x; j++)
+						;
+					if (j == n) {
+						seen[2 * n] = x;
+						seen[2 * n + 1] = fan[i] << 1; /* face, once */
+						n++;
+					} else {
+						seen[2 * j + 1] |= 1; /* twice or more */
+					}
+				} else {
+					int uses = 0;
+					for (uint32_t m = b; m < e; m++) {
+						const uint32_t *s = w->triangles + 3 * (size_t)fan[m];
+						uses += s[0] == x || s[1] == x || s[2] == x;
+					}
+					if (uses == 1)
+						add_boundary(c, w, o, fan[i], (uint32_t)v, x, border);
+				}
+			}
 		}
-		n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-		n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-		n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-		double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-		if (!(l > 0))
-			continue;
-		for (int k = 0; k < 3; k++)
-			n[k] /= l;
-		uint32_t a = (uint32_t)(h.key[s] >> 32), b = (uint32_t)h.key[s];
-		border[a] = border[b] = 1;
-		double pa[3], pb[3];
-		for (int k = 0; k < 3; k++) {
-			pa[k] = w->positions[3 * (size_t)a + k] - c->centre[k];
-			pb[k] = w->positions[3 * (size_t)b + k] - c->centre[k];
-		}
-		struct vdt_quadric q;
-		if (vdt_quadric_boundary(&q, pa, pb, n, o->boundary_weight) == 0) {
-			q.w = 0; /* a constraint, not surface area */
-			vdt_quadric_add(&c->q[a], &q);
-			vdt_quadric_add(&c->q[b], &q);
-		}
+		for (uint32_t j = 0; j < n; j++)
+			if (!(seen[2 * j + 1] & 1))
+				add_boundary(c, w, o, seen[2 * j + 1] >> 1, (uint32_t)v, seen[2 * j], border);
 	}
-	free(count);
-	hash_free(&h);
+	free(start);
+	free(fan);
 	return 0;
 }
 
