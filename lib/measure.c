@@ -568,11 +568,13 @@ vdt_measure(const struct vdt_mesh *a, const struct vdt_mesh *b,
 	rc = vdt_bvh_build(&bvh_b, b, err);
 	res->seconds[0] = seconds() - t0;
 	t0 = seconds();
-	if (rc == 0) {
-		struct vdt_measure_opts o1 = o;
-		o1.threads = threaded ? o.threads - 1 : o.threads;
-		rc = one_way(a, &bvh_b, &o1, &res->ab, vertex_error, progress, err);
-	}
+	/*
+	 * All threads work on a -> b, even while the tree of a is being built:
+	 * that tree is small as often as large, and a core left idle costs more
+	 * than a short oversubscription.
+	 */
+	if (rc == 0)
+		rc = one_way(a, &bvh_b, &o, &res->ab, vertex_error, progress, err);
 	res->seconds[1] = seconds() - t0;
 	t0 = seconds();
 	if (threaded)

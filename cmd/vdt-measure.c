@@ -1,0 +1,202 @@
+/*
+ * vdt-measure - geometric error of an approximation B against an original A:
+ * sampled Hausdorff, mean and RMS distance both ways, and flipped faces.
+ */
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../lib/io/meshio.h"
+#include "../lib/measure.h"
+#include "common.h"
+
+enum { FMT_TEXT, FMT_KV, FMT_JSON };
+static const char *formats[3] = {"text", "kv", "json"};
+
+struct cmdline {
+	const char *a, *b, *color;
+	struct vdt_measure_opts m;
+	int format, quiet, verbose;
+};
+
+static void
+usage(FILE *f)
+{
+	fprintf(f,
+	        "usage: vdt-measure [-n SAMPLES | -d DENSITY] [-1] [-j THREADS]\n"
+	        "                   [--format text|kv|json] [-c COLOR.ply] [-q] [-v] A B\n"
+	        "Measure the distance between the surfaces of A (the original) and B (the\n"
+	        "approximation): Hausdorff, mean and RMS, absolute and in %% of the\n"
+	        "bounding-box diagonal of A. Either file may be - (stdin), not both.\n");
+}
+
+static void
+parse_cmdline(int argc, char **argv, struct cmdline *cl)
+{
+	enum { O_FORMAT = 256 };
+	static const struct option longopts[] = {
+		{"samples", required_argument, NULL, 'n'},
+		{"density", required_argument, NULL, 'd'},
+		{"one-sided", no_argument, NULL, '1'},
+		{"threads", required_argument, NULL, 'j'},
+		{"format", required_argument, NULL, O_FORMAT},
+		{"color-out", required_argument, NULL, 'c'},
+		{"quiet", no_argument, NULL, 'q'},
+		{"verbose", no_argument, NULL, 'v'},
+		{"help", no_argument, NULL, 'h'},
+		{"version", no_argument, NULL, 'V'},
+		{NULL, 0, NULL, 0},
+	};
+	int c;
+
+	memset(cl, 0, sizeof(*cl));
+	cl->m.threads = 2;
+	while ((c = getopt_long(argc, argv, "n:d:1j:c:qvhV", longopts, NULL)) != -1) {
+		switch (c) {
+		case 'n': cl->m.samples = parse_count("-n", optarg, 1, 1UL << 40); break;
+		case 'd': cl->m.density = parse_real("-d", optarg, 1e-300, 1e300); break;
+		case '1': cl->m.one_sided = 1; break;
+		case 'j': cl->m.threads = (int)parse_count("-j", optarg, 1, 64); break;
+		case 'c': cl->color = optarg; break;
+		case O_FORMAT:
+			for (cl->format = 0; cl->format < 3 && strcmp(optarg, formats[cl->format]);)
+				cl->format++;
+			if (cl->format == 3)
+				usage_error("unknown format '%s' for --format", optarg);
+			break;
+		case 'q': cl->quiet = 1; break;
+		case 'v': cl->verbose = 1; break;
+		case 'h': usage(stdout); exit(EXIT_OK);
+		case 'V': print_version(); exit(EXIT_OK);
+		default: usage(stderr); exit(EXIT_USAGE);
+		}
+	}
+	if (argc - optind != 2)
+		usage_error("expected two meshes, A and B; try --help");
+	cl->a = argv[optind];
+	cl->b = argv[optind + 1];
+	if (strcmp(cl->a, "-") == 0 && strcmp(cl->b, "-") == 0)
+		usage_error("A and B cannot both be standard input");
+}
+
+static void
+report(const struct cmdline *cl, const struct vdt_measure_result *r)
+{
+	static const char *keys[14] = {
+		"hausdorff", "hausdorff_pct", "mean", "mean_pct", "rms", "rms_pct",
+		"ab_hausdorff", "ab_rms", "ba_hausdorff", "ba_rms", "samples", "flipped",
+		"faces", "diag"};
+	static const char *names[3] = {"A->B", "B->A", "symmetric"};
+	const struct vdt_dist_stats sym = {.max = r->max, .mean = r->mean, .rms = r->rms};
+	const struct vdt_dist_stats *rows[3] = {&r->ab, &r->ba, &sym};
+	double pct = r->diag > 0 ? 100 / r->diag : 0;
+	double v[14] = {r->max, r->max * pct, r->mean, r->mean * pct, r->rms, r->rms * pct,
+	                r->ab.max, r->ab.rms, r->ba.max, r->ba.rms,
+	                (double)(r->ab.vertex_samples + r->ab.face_samples +
+	                         r->ba.vertex_samples + r->ba.face_samples),
+	                (double)r->normals.flipped, (double)r->normals.faces, r->diag};
+
+	if (cl->format != FMT_TEXT) { /* counts are exact below 2^53 */
+		int json = cl->format == FMT_JSON;
+		for (int i = 0; i < 14; i++) {
+			printf(json ? "%s\"%s\": " : "%s%s=", i ? (json ? ", " : " ") : (json ? "{" : ""),
+			       keys[i]);
+			printf(i >= 10 && i <= 12 ? "%.0f" : "%.6g", v[i]);
+		}
+		printf(json ? "}\n" : "\n");
+		return;
+	}
+	printf("%-10s %22s %22s %22s\n", "", "hausdorff", "mean", "rms");
+	for (int i = 0; i < (cl->m.one_sided ? 1 : 3); i++)
+		printf("%-10s %12.6g (%6.4f%%) %12.6g (%6.4f%%) %12.6g (%6.4f%%)\n", names[i],
+		       rows[i]->max, rows[i]->max * pct, rows[i]->mean, rows[i]->mean * pct,
+		       rows[i]->rms, rows[i]->rms * pct);
+	printf("diagonal of A %.6g, %.0f samples", r->diag, v[10]);
+	if (!cl->m.one_sided)
+		printf(", %zu of %zu faces of B flipped", r->normals.flipped, r->normals.faces);
+	printf("\n");
+}
+
+static int
+write_colors(const struct cmdline *cl, const struct vdt_mesh *a, const float *e,
+             struct vdt_err *err)
+{
+	struct vdt_write_opts w = {.format = VDT_FMT_PLY};
+	struct vdt_mesh c = *a; /* shares a's arrays: never freed */
+	float max = 0;
+	int rc = vdt_err_set(err, VDT_ENOMEM, "out of memory");
+
+	for (size_t v = 0; v < a->vertex_count; v++)
+		max = e[v] > max ? e[v] : max;
+	if ((c.colors = malloc(a->vertex_count * 4 * sizeof(float) + 1)) != NULL) {
+		vdt_measure_colorize(e, a->vertex_count, max, c.colors);
+		rc = vdt_write(cl->color, &c, NULL, &w, err);
+	}
+	free(c.colors);
+	if (rc == 0 && cl->verbose)
+		fprintf(stderr, "%s: colours: blue 0, cyan %.4g, green %.4g, yellow %.4g, red %.4g\n",
+		        progname, max / 4, max / 2, 3 * max / 4, max);
+	return rc;
+}
+
+static int
+run(const struct cmdline *cl)
+{
+	struct vdt_mesh a = {0}, b = {0};
+	struct vdt_measure_result r;
+	struct vdt_err err = {0};
+	float *verr = NULL;
+	double t0 = now_seconds(), t1;
+	int rc = EXIT_OK;
+
+	if (vdt_read(cl->a, &a, NULL, &err) != 0)
+		return fail("cannot read", cl->a, &err);
+	if (vdt_read(cl->b, &b, NULL, &err) != 0) {
+		rc = fail("cannot read", cl->b, &err);
+		goto out;
+	}
+	if (cl->color && (verr = malloc(a.vertex_count * sizeof(float) + 1)) == NULL)
+		rc = vdt_err_set(&err, VDT_ENOMEM, "out of memory");
+	t1 = now_seconds();
+	if (rc != 0 || vdt_measure(&a, &b, &cl->m, &r, verr, progress_start(cl->quiet), &err) != 0) {
+		rc = fail("cannot measure", cl->b, &err);
+		goto out;
+	}
+	progress_done();
+	report(cl, &r);
+	if (fflush(stdout) != 0 || ferror(stdout)) {
+		vdt_err_set(&err, VDT_EIO, "write error");
+		rc = fail("cannot write", "-", &err);
+	} else if (cl->color && write_colors(cl, &a, verr, &err) != 0) {
+		rc = fail("cannot write", cl->color, &err);
+	}
+	if (rc != 0)
+		goto out;
+	if (cl->verbose)
+		fprintf(stderr,
+		        "%s: A %zu triangles, B %zu triangles, %d threads\n"
+		        "%s: read %.3f s, tree of B %.3f s, A->B %.3f s, B->A %.3f s, "
+		        "orientation %.3f s, total %.3f s, peak memory %.1f MiB\n"
+		        "%s: normals of B off by %.3g degrees on average, %.3g at most; "
+		        "%zu faces degenerate\n",
+		        progname, a.triangle_count, b.triangle_count, cl->m.threads, progname,
+		        t1 - t0, r.seconds[0], r.seconds[1], r.seconds[2], r.seconds[3],
+		        now_seconds() - t0, peak_rss_bytes() / 1048576.0, progname,
+		        r.normals.mean_angle, r.normals.max_angle, r.normals.degenerate);
+out:
+	free(verr);
+	vdt_mesh_free(&a);
+	vdt_mesh_free(&b);
+	return rc;
+}
+
+int
+main(int argc, char **argv)
+{
+	struct cmdline cl;
+
+	cmd_init(argv[0]);
+	parse_cmdline(argc, argv, &cl);
+	return run(&cl);
+}

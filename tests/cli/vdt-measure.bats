@@ -1,0 +1,165 @@
+#!/usr/bin/env bats
+# Command-line tests of vdt-measure.
+#
+# The fixtures are unit squares as OFF files, drawn from above:
+#
+#   (0,1) +-----+ (1,1)    measure-square.off       z = 0
+#         |   / |          measure-square-up.off    z = 0.25
+#         | /   |          measure-square-flip.off  z = 0, the lower
+#   (0,0) +-----+ (1,0)                             triangle wound backwards
+
+load helpers
+
+SQ="$DATA/measure-square.off"
+UP="$DATA/measure-square-up.off"
+FLIP="$DATA/measure-square-flip.off"
+
+# The value of key $1 in the kv line in $output.
+kv() {
+	printf '%s\n' "$output" | tr ' ' '\n' | sed -n "s/^$1=//p"
+}
+
+# True when |$1 - $2| <= $3.
+near() {
+	awk -v a="$1" -v b="$2" -v e="$3" 'BEGIN { d = a - b; exit !(d <= e && -d <= e) }'
+}
+
+@test "vdt-measure --help prints usage and exits 0" {
+	run "$BIN/vdt-measure" --help
+	[ "$status" -eq 0 ]
+	[[ "$output" == usage:* ]]
+	[[ "$output" == *"--format text|kv|json"* ]]
+}
+
+@test "vdt-measure --version names the stream format" {
+	run "$BIN/vdt-measure" --version
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"stream format 1."* ]]
+}
+
+@test "vdt-measure rejects bad usage with status 2 and one line" {
+	for bad in "--bogus" "-n 12x" "-n -1" "-n 0" "-d 0" "-d x" "-j 0" "-j 65" "--format=yaml"; do
+		run "$BIN/vdt-measure" $bad "$SQ" "$UP"
+		[ "$status" -eq 2 ]
+	done
+	run "$BIN/vdt-measure" "$SQ"
+	[ "$status" -eq 2 ]
+	one_line
+	run "$BIN/vdt-measure" - -
+	[ "$status" -eq 2 ]
+	one_line
+}
+
+@test "vdt-measure names a missing file on one line, status 2" {
+	run "$BIN/vdt-measure" "$SQ" "$TMP/nothere.off"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == "vdt-measure: cannot read '$TMP/nothere.off': "* ]]
+}
+
+@test "vdt-measure rejects a corrupt file with status 2" {
+	printf 'OFF\n4 2 0\n0 0 0\n' > "$TMP/bad.off"
+	run "$BIN/vdt-measure" "$TMP/bad.off" "$SQ"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"'$TMP/bad.off'"* ]]
+}
+
+@test "vdt-measure kv prints one line with every key" {
+	run "$BIN/vdt-measure" --format=kv -n 2000 "$SQ" "$UP"
+	[ "$status" -eq 0 ]
+	[ "$(printf '%s\n' "$output" | wc -l)" -eq 1 ]
+	for k in hausdorff hausdorff_pct mean mean_pct rms rms_pct ab_hausdorff ab_rms \
+		ba_hausdorff ba_rms samples flipped faces diag; do
+		[ -n "$(kv $k)" ]
+	done
+	[ "$(printf '%s\n' "$output" | tr ' ' '\n' | wc -l)" -eq 14 ]
+}
+
+@test "vdt-measure json has the same keys" {
+	run "$BIN/vdt-measure" --format=json -n 2000 "$SQ" "$UP"
+	[ "$status" -eq 0 ]
+	printf '%s\n' "$output" | python3 -c '
+import json, sys
+d = json.load(sys.stdin)
+assert list(d) == ["hausdorff", "hausdorff_pct", "mean", "mean_pct", "rms", "rms_pct",
+    "ab_hausdorff", "ab_rms", "ba_hausdorff", "ba_rms", "samples", "flipped", "faces", "diag"]
+assert abs(d["hausdorff"] - 0.25) < 1e-6 and d["samples"] == 4000'
+}
+
+@test "vdt-measure gives 0 for identical meshes" {
+	run "$BIN/vdt-measure" --format=kv -n 10000 "$SAMPLES/sphere.off" "$SAMPLES/sphere.off"
+	[ "$status" -eq 0 ]
+	near "$(kv hausdorff)" 0 1e-9
+	near "$(kv rms)" 0 1e-9
+	[ "$(kv flipped)" -eq 0 ]
+	[ "$(kv faces)" -eq 5120 ]
+}
+
+@test "vdt-measure reports a translation of 0.25 as 0.25" {
+	run "$BIN/vdt-measure" --format=kv -n 5000 "$SQ" "$UP"
+	[ "$status" -eq 0 ]
+	near "$(kv hausdorff)" 0.25 1e-6
+	near "$(kv mean)" 0.25 1e-6
+	near "$(kv rms)" 0.25 1e-6
+	near "$(kv ab_hausdorff)" 0.25 1e-6
+	near "$(kv ba_rms)" 0.25 1e-6
+	near "$(kv diag)" 1.41421 1e-5
+	near "$(kv hausdorff_pct)" 17.6777 1e-3
+	[ "$(kv samples)" -eq 10000 ]
+}
+
+@test "vdt-measure counts a flipped triangle" {
+	run "$BIN/vdt-measure" --format=kv -n 1000 "$SQ" "$FLIP"
+	[ "$status" -eq 0 ]
+	[ "$(kv flipped)" -eq 1 ]
+	[ "$(kv faces)" -eq 2 ]
+}
+
+@test "vdt-measure reads one mesh from stdin" {
+	run sh -c "'$BIN/vdt-measure' --format=kv -n 1000 '$SQ' - < '$UP'"
+	[ "$status" -eq 0 ]
+	near "$(kv hausdorff)" 0.25 1e-6
+}
+
+@test "vdt-measure is the same on every run and thread count" {
+	a=$("$BIN/vdt-measure" --format=kv -n 50000 -j 1 "$SAMPLES/sphere.off" "$SAMPLES/torus.off")
+	b=$("$BIN/vdt-measure" --format=kv -n 50000 -j 3 "$SAMPLES/sphere.off" "$SAMPLES/torus.off")
+	[ "$a" = "$b" ]
+}
+
+@test "vdt-measure -1 measures one way only" {
+	run "$BIN/vdt-measure" -1 --format=kv -n 1000 "$SQ" "$UP"
+	[ "$status" -eq 0 ]
+	near "$(kv hausdorff)" 0.25 1e-6
+	[ "$(kv ba_hausdorff)" = 0 ]
+	[ "$(kv faces)" -eq 0 ]
+}
+
+@test "vdt-measure -d samples by area" {
+	run "$BIN/vdt-measure" -d 1000 --format=kv "$SQ" "$UP"
+	[ "$status" -eq 0 ]
+	[ "$(kv samples)" -eq 2008 ]
+}
+
+@test "vdt-measure text output has the table" {
+	run "$BIN/vdt-measure" -n 1000 "$SQ" "$UP"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *hausdorff*mean*rms* ]]
+	[[ "$output" == *symmetric* ]]
+}
+
+@test "vdt-measure -c writes coloured PLY and -v a legend" {
+	run "$BIN/vdt-measure" -v -n 1000 -c "$TMP/err.ply" "$SQ" "$UP"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"colours: blue 0"* ]]
+	[[ "$output" == *"peak memory"* ]]
+	head -c 400 "$TMP/err.ply" | grep -aq "property uchar red"
+}
+
+@test "vdt-measure -c into a missing directory fails with 1 and no file" {
+	run "$BIN/vdt-measure" -n 1000 -c "$TMP/no/err.ply" "$SQ" "$UP"
+	[ "$status" -eq 1 ]
+	[[ "$output" == *"cannot write '$TMP/no/err.ply'"* ]]
+	[ ! -e "$TMP/no/err.ply" ]
+}
