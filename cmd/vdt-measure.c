@@ -23,12 +23,10 @@ struct cmdline {
 static void
 usage(FILE *f)
 {
-	fprintf(f,
-	        "usage: vdt-measure [-n SAMPLES | -d DENSITY] [-1] [-j THREADS]\n"
-	        "                   [--format text|kv|json] [-c COLOR.ply] [-q] [-v] A B\n"
-	        "Measure the distance between the surfaces of A (the original) and B (the\n"
-	        "approximation): Hausdorff, mean and RMS, absolute and in %% of the\n"
-	        "bounding-box diagonal of A. Either file may be - (stdin), not both.\n");
+	fprintf(f, "usage: vdt-measure [-n SAMPLES | -d DENSITY] [-1] [-j THREADS]\n"
+	           "                   [--format text|kv|json] [-c COLOR.ply] [-q] [-v] A B\n"
+	           "Distance from the surface of A (the original) to B (the approximation)\n"
+	           "and back: Hausdorff, mean, RMS. A or B may be - (stdin), not both.\n");
 }
 
 static void
@@ -112,10 +110,8 @@ report(const struct cmdline *cl, const struct vdt_measure_result *r)
 		printf("%-10s %12.6g (%6.4f%%) %12.6g (%6.4f%%) %12.6g (%6.4f%%)\n", names[i],
 		       rows[i]->max, rows[i]->max * pct, rows[i]->mean, rows[i]->mean * pct,
 		       rows[i]->rms, rows[i]->rms * pct);
-	printf("diagonal of A %.6g, %.0f samples", r->diag, v[10]);
-	if (!cl->m.one_sided)
-		printf(", %zu of %zu faces of B flipped", r->normals.flipped, r->normals.faces);
-	printf("\n");
+	printf("diagonal of A %.6g, %.0f samples, %zu of %zu faces of B flipped\n", r->diag,
+	       v[10], r->normals.flipped, r->normals.faces);
 }
 
 static int
