@@ -872,8 +872,9 @@ vdt_contract_run(const struct vdt_mesh *m, const struct vdt_contract_ops *ops,
 		else if (!la && o->rank && o->rank[b] > o->rank[a])
 			keep = b;
 		uint32_t gone = keep == a ? b : a;
-		double c = ops->cost(ops->ctx, a, b, la ? 0 : lb ? 1 : -1,
-		                     e.pos + 3 * (size_t)a, e.pos + 3 * (size_t)b, pos);
+		double c = la && lb ? INFINITY
+		           : ops->cost(ops->ctx, a, b, la ? 0 : lb ? 1 : -1,
+		                       e.pos + 3 * (size_t)a, e.pos + 3 * (size_t)b, pos);
 		float fpos[3] = {(float)pos[0], (float)pos[1], (float)pos[2]};
 
 		if (!(c < INFINITY) || !link_ok(&e, keep, gone) ||

@@ -609,6 +609,7 @@ vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	if (rc != 0)
 		goto fail;
 	stats->contractions = r.contractions;
+	stats->rejected = r.rejected;
 	stats->reached_target = r.reached_target;
 	stats->max_error = sqrt(c.worst);
 	rc = build_output(in, canon, wstart, wlist, &r, out, err);

@@ -34,6 +34,7 @@ void vdt_qslim_defaults(struct vdt_qslim_opts *o);
 
 struct vdt_qslim_stats {
 	size_t contractions;
+	size_t rejected;    /* candidate pairs refused by a validity test */
 	double max_error;   /* largest contraction error (RMS distance to the
 	                       planes of its quadric), model units */
 	int reached_target; /* 0: stopped early (bound, or nothing valid left) */

@@ -314,8 +314,9 @@ uv_seam_does_not_open(void **state)
 					uses += !memcmp(qa, pb, 12) && !memcmp(qb, pa, 12);
 				}
 			if (uses == 0) {
-				int on_x = (pa[0] == 0 && pb[0] == 0) || (pa[0] == 1 && pb[0] == 1);
-				int on_y = (pa[1] == 0 && pb[1] == 0) || (pa[1] == 1 && pb[1] == 1);
+#define AT(v, x) (fabsf((v) - (x)) < 1e-6f)
+				int on_x = (AT(pa[0], 0) && AT(pb[0], 0)) || (AT(pa[0], 1) && AT(pb[0], 1));
+				int on_y = (AT(pa[1], 0) && AT(pb[1], 0)) || (AT(pa[1], 1) && AT(pb[1], 1));
 				assert_true(on_x || on_y);
 			}
 		}
