@@ -600,3 +600,33 @@ done:
 	hit->dist2 = best;
 	hit->triangle = best_tri;
 }
+
+int
+vdt_bvh_any_within(const struct vdt_bvh *bvh, const double p[3], double r2,
+                   int (*pred)(void *ctx, size_t triangle), void *ctx)
+{
+	uint32_t stack[STACK_MAX];
+	int sp = 0;
+	double q[3];
+
+	if (bvh->node_count == 0)
+		return 0;
+	stack[sp++] = 0;
+	while (sp > 0) {
+		const struct vdt_bvh_node *n = &bvh->nodes[stack[--sp]];
+
+		if (box_dist2(n, p) > r2)
+			continue;
+		if (n->count > 0) {
+			for (uint32_t s = n->index; s < n->index + n->count; s++)
+				if (tri_box_dist2(bvh->corners + 9 * s, p) <= r2 &&
+				    slot_closest(bvh, s, p, q) <= r2 && pred(ctx, bvh->order[s]))
+					return 1;
+		} else {
+			assert(sp + 2 <= STACK_MAX);
+			stack[sp++] = n->index;
+			stack[sp++] = (uint32_t)(n - bvh->nodes) + 1;
+		}
+	}
+	return 0;
+}

@@ -54,6 +54,15 @@ int vdt_bvh_build(struct vdt_bvh *bvh, const struct vdt_mesh *m,
 void vdt_bvh_free(struct vdt_bvh *bvh);
 
 /*
+ * Whether some triangle within squared distance r2 of p satisfies pred
+ * (called with the triangle's index in the mesh). Returns 1 or 0. Stops at
+ * the first triangle that does; visits in no particular order, so pred must
+ * not care which.
+ */
+int vdt_bvh_any_within(const struct vdt_bvh *bvh, const double p[3], double r2,
+                       int (*pred)(void *ctx, size_t triangle), void *ctx);
+
+/*
  * Closest point to p on the mesh of bvh, into *hit. hint is a triangle index
  * of the mesh likely to be close (the answer for a nearby previous query),
  * or SIZE_MAX for none: its distance becomes the initial bound, so that

@@ -414,7 +414,23 @@ struct normal_job {
 	const struct vdt_mesh *a, *b;
 	const struct vdt_bvh *bvh;
 	struct normal_block *out;
+	double diag;
 };
+
+struct facing {
+	const struct vdt_mesh *a;
+	const double *n; /* unit normal to agree with */
+};
+
+static int
+faces_same_way(void *ctx, size_t t)
+{
+	struct facing *f = ctx;
+	double na[3];
+	double la = tri_normal(f->a, t, na);
+
+	return la > 0 && na[0] * f->n[0] + na[1] * f->n[1] + na[2] * f->n[2] > 0;
+}
 
 static void
 normal_block(void *ctx, size_t blk)
@@ -450,7 +466,17 @@ normal_block(void *ctx, size_t blk)
 		cosang = cosang > 1 ? 1 : cosang < -1 ? -1 : cosang;
 		ang = acos(cosang) * (180 / M_PI);
 		r.judged++;
-		r.flipped += cosang < 0;
+		if (cosang < 0) {
+			/*
+			 * The nearest face may be the far side of a thin part or
+			 * the wall at a sharp rim: flipped only if no face within
+			 * twice the distance faces the same way.
+			 */
+			double u[3] = {nb[0] / lb, nb[1] / lb, nb[2] / lb};
+			double rad = 2 * sqrt(hit.dist2) + 1e-9 * job->diag;
+			struct facing f = {job->a, u};
+			r.flipped += !vdt_bvh_any_within(job->bvh, c, rad * rad, faces_same_way, &f);
+		}
 		r.sum_angle += ang;
 		if (ang > r.max_angle)
 			r.max_angle = ang;
@@ -465,10 +491,13 @@ vdt_measure_normals(const struct vdt_mesh *a, const struct vdt_bvh *bvh_a,
                     const struct vdt_progress *progress, struct vdt_err *err)
 {
 	size_t nb = (b->triangle_count + FACE_BLOCK - 1) / FACE_BLOCK, judged = 0;
-	struct normal_job job = {a, b, bvh_a, NULL};
+	struct normal_job job = {a, b, bvh_a, NULL, 0};
 	double sum = 0;
+	struct vdt_bbox box;
 
 	memset(ns, 0, sizeof(*ns));
+	vdt_mesh_bbox(a, &box);
+	job.diag = vdt_bbox_diagonal(&box);
 	job.out = malloc((nb ? nb : 1) * sizeof(*job.out));
 	if (job.out == NULL)
 		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu result blocks", nb);

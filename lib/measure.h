@@ -87,8 +87,11 @@ int vdt_measure_distance(const struct vdt_sampler *s, const struct vdt_bvh *bvh,
 /*
  * Orientation check. For every triangle of b, the closest triangle of a
  * (bvh built over a) to its centroid, and the angle between their normals.
- * A triangle of b whose normal is more than 90 degrees off is "flipped";
- * zero-area triangles of b are counted as degenerate and not judged.
+ * A triangle of b is "flipped" when no triangle of a within twice that
+ * closest distance of its centroid faces the same way (normals less than 90
+ * degrees apart): the nearest face alone can be the far side of a thin part
+ * or the wall at a sharp rim. Zero-area triangles of b are counted as
+ * degenerate and not judged.
  */
 struct vdt_normal_stats {
 	size_t faces, flipped, degenerate;

@@ -449,6 +449,57 @@ test_sphere_octahedron(void **state)
  *   | / | / | / |
  *   +---+---+---+
  */
+/*
+ * A thin slab seen edge-on: the top face (z = 0.1, up) and the bottom face
+ * (z = 0, down) of a 1 x 1 plate. An approximation that squashed the plate
+ * to one downward face at z = 0.06 is nearest the top, which faces the other
+ * way, but the bottom is within twice that distance and agrees: not a flip.
+ * The same face over a single upward sheet is one.
+ *
+ *   z=0.1  ------------   top, normal +z
+ *   z=0.06 ============   approximation, normal -z
+ *   z=0    ------------   bottom, normal -z
+ */
+static void
+test_thin_part_not_flipped(void **state)
+{
+	struct vdt_mesh a, top, b;
+	struct vdt_normal_stats ns;
+	struct vdt_bvh bvh;
+
+	(void)state;
+	grid(&top, 1, 0.1f);
+	grid(&b, 1, 0.06f);
+	vdt_mesh_alloc(&a, 8, 4, 0, NULL);
+	memcpy(a.positions, top.positions, 12 * 4);
+	memcpy(a.triangles, top.triangles, 4 * 6);
+	for (int i = 0; i < 4; i++) {
+		memcpy(a.positions + 12 + 3 * i, top.positions + 3 * i, 12);
+		a.positions[12 + 3 * i + 2] = 0;
+	}
+	for (int t = 0; t < 2; t++) {
+		a.triangles[6 + 3 * t] = top.triangles[3 * t] + 4;
+		a.triangles[6 + 3 * t + 1] = top.triangles[3 * t + 2] + 4;
+		a.triangles[6 + 3 * t + 2] = top.triangles[3 * t + 1] + 4;
+	}
+	for (int t = 0; t < 2; t++) { /* b faces down */
+		uint32_t x = b.triangles[3 * t + 1];
+		b.triangles[3 * t + 1] = b.triangles[3 * t + 2];
+		b.triangles[3 * t + 2] = x;
+	}
+	assert_int_equal(vdt_bvh_build(&bvh, &a, NULL), 0);
+	assert_int_equal(vdt_measure_normals(&a, &bvh, &b, 1, &ns, NULL, NULL), 0);
+	assert_int_equal(ns.flipped, 0);
+	vdt_bvh_free(&bvh);
+	assert_int_equal(vdt_bvh_build(&bvh, &top, NULL), 0);
+	assert_int_equal(vdt_measure_normals(&top, &bvh, &b, 1, &ns, NULL, NULL), 0);
+	assert_int_equal(ns.flipped, 2);
+	vdt_bvh_free(&bvh);
+	vdt_mesh_free(&a);
+	vdt_mesh_free(&top);
+	vdt_mesh_free(&b);
+}
+
 static void
 test_flipped_face(void **state)
 {
@@ -540,6 +591,7 @@ main(void)
 		cmocka_unit_test(test_parallel_squares),
 		cmocka_unit_test(test_sphere_octahedron),
 		cmocka_unit_test(test_flipped_face),
+		cmocka_unit_test(test_thin_part_not_flipped),
 		cmocka_unit_test(test_threads_deterministic),
 		cmocka_unit_test(test_one_sided_and_errors),
 		cmocka_unit_test(test_colorize),
