@@ -802,7 +802,7 @@ vdt_contract_defaults(struct vdt_contract_opts *o)
 {
 	memset(o, 0, sizeof(*o));
 	o->max_cost = INFINITY;
-	o->max_normal_angle = 90;
+	o->max_normal_angle = 75;
 }
 
 static int

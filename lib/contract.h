@@ -62,7 +62,7 @@ struct vdt_contract_opts {
 	size_t target_triangles; /* stop once at most this many remain */
 	size_t target_vertices;  /* and/or this many vertices (0: no target) */
 	double max_cost;         /* never contract above this cost */
-	double max_normal_angle; /* degrees; fold-over threshold (default 90) */
+	double max_normal_angle; /* degrees; fold-over threshold (default 75) */
 	double min_quality;      /* sliver test, in (0,1]; 0: off */
 	const uint8_t *locked;   /* per vertex: nonzero = never moves; or NULL */
 	const uint8_t *rank;     /* per vertex, or NULL: of two vertices, the one
@@ -73,7 +73,7 @@ struct vdt_contract_opts {
 	const struct vdt_progress *progress;
 };
 
-/* Fill opts with the defaults (target 0 triangles, no bound, 90 degrees). */
+/* Fill opts with the defaults (target 0 triangles, no bound, 75 degrees). */
 void vdt_contract_defaults(struct vdt_contract_opts *opts);
 
 struct vdt_contract_result {

@@ -432,6 +432,24 @@ faces_same_way(void *ctx, size_t t)
 	return la > 0 && na[0] * f->n[0] + na[1] * f->n[1] + na[2] * f->n[2] > 0;
 }
 
+/* Sum the area-weighted normals of the faces within reach (never stops). */
+struct footprint {
+	const struct vdt_mesh *a;
+	double sum[3];
+};
+
+static int
+add_normal(void *ctx, size_t t)
+{
+	struct footprint *f = ctx;
+	double na[3];
+
+	tri_normal(f->a, t, na); /* length: twice the area */
+	for (int k = 0; k < 3; k++)
+		f->sum[k] += na[k];
+	return 0;
+}
+
 static void
 normal_block(void *ctx, size_t blk)
 {
@@ -474,8 +492,26 @@ normal_block(void *ctx, size_t blk)
 			 */
 			double u[3] = {nb[0] / lb, nb[1] / lb, nb[2] / lb};
 			double rad = 2 * sqrt(hit.dist2) + 1e-9 * job->diag;
-			struct facing f = {job->a, u};
-			r.flipped += !vdt_bvh_any_within(job->bvh, c, rad * rad, faces_same_way, &f);
+			struct facing same = {job->a, u};
+			if (!vdt_bvh_any_within(job->bvh, c, rad * rad, faces_same_way, &same)) {
+				/*
+				 * On a rough surface the nearest facets can stand
+				 * at any angle: judge against the mean normal of
+				 * the surface under the face (within its reach
+				 * from the centroid), which is what it replaced.
+				 */
+				struct footprint fp = {job->a, {0, 0, 0}};
+				double reach = 0;
+				for (int k = 0; k < 3; k++) {
+					corner(job->b, f, k, v);
+					double d2 = 0;
+					for (int i = 0; i < 3; i++)
+						d2 += (v[i] - c[i]) * (v[i] - c[i]);
+					reach = d2 > reach ? d2 : reach;
+				}
+				vdt_bvh_any_within(job->bvh, c, reach, add_normal, &fp);
+				r.flipped += fp.sum[0] * u[0] + fp.sum[1] * u[1] + fp.sum[2] * u[2] <= 0;
+			}
 		}
 		r.sum_angle += ang;
 		if (ang > r.max_angle)

@@ -31,7 +31,7 @@ vdt_qslim_defaults(struct vdt_qslim_opts *o)
 	memset(o, 0, sizeof(*o));
 	o->max_error = INFINITY;
 	o->boundary_weight = 100;
-	o->max_normal_angle = 90;
+	o->max_normal_angle = 75;
 }
 
 static double

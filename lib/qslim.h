@@ -29,7 +29,7 @@ struct vdt_qslim_opts {
 	const struct vdt_progress *progress;
 };
 
-/* Defaults: no target, no bound, boundary weight 100, 90 degrees. */
+/* Defaults: no target, no bound, boundary weight 100, 75 degrees. */
 void vdt_qslim_defaults(struct vdt_qslim_opts *o);
 
 struct vdt_qslim_stats {
