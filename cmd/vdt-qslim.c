@@ -156,10 +156,10 @@ run(struct cmdline *cl)
 		        "bound and validity tests\n", progname, out.triangle_count);
 	if (cl->verbose)
 		fprintf(stderr, "%s: in_vertices=%zu in_triangles=%zu out_vertices=%zu "
-		        "out_triangles=%zu contractions=%zu rejected=%zu welded=%zu error=%.6g error_pct=%.6g "
+		        "out_triangles=%zu contractions=%zu rejected=%zu welded=%zu dropped=%zu error=%.6g error_pct=%.6g "
 		        "read_s=%.3f simplify_s=%.3f write_s=%.3f peak_mb=%.1f\n",
 		        progname, in.vertex_count, in.triangle_count, out.vertex_count,
-		        out.triangle_count, st.contractions, st.rejected, st.welded, st.max_error,
+		        out.triangle_count, st.contractions, st.rejected, st.welded, st.dropped, st.max_error,
 		        diag > 0 ? 100 * st.max_error / diag : 0, t1 - t0, t2 - t1,
 		        now_seconds() - t2, peak_rss_bytes() / 1048576.0);
 	rc = EXIT_OK;

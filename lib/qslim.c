@@ -217,16 +217,34 @@ add_boundary(struct ctx *c, const struct vdt_mesh *w, const struct vdt_qslim_opt
 	}
 }
 
+/* Same three vertices; returns 1 for the same orientation, -1 opposite. */
+static int
+same_face(const uint32_t *a, const uint32_t *b)
+{
+	for (int r = 0; r < 3; r++) {
+		if (a[0] == b[r] && a[1] == b[(r + 1) % 3] && a[2] == b[(r + 2) % 3])
+			return 1;
+		if (a[0] == b[r] && a[1] == b[(r + 2) % 3] && a[2] == b[(r + 1) % 3])
+			return -1;
+	}
+	return 0;
+}
+
 /*
  * Quadrics of the welded vertices: fundamental quadrics of the faces (or the
- * ones given), plus perpendicular planes along open edges. Open edges are
- * found from each vertex's fan (an edge (v,x) is open when one face of v's
- * fan holds x), which is linear in the mesh and needs no edge table. Marks
- * boundary vertices in `border`.
+ * ones given), plus perpendicular planes along open edges. Built on a table
+ * of the faces around each vertex, which also serves to
+ *  - drop repeated faces: a face on the same three vertices as an earlier
+ *    one goes, and both go when they face opposite ways (a fin of zero
+ *    volume, as clustering leaves them), marked in `dead`;
+ *  - find open edges: (v,x) is open when one live face of v's fan holds x.
+ * Linear in the mesh, with no edge table. Marks boundary vertices in
+ * `border`.
  */
 static int
 build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
-               const uint32_t *canon, size_t nin, struct ctx *c, uint8_t *border)
+               const uint32_t *canon, size_t nin, struct ctx *c, uint8_t *border,
+               uint8_t *dead)
 {
 	size_t nt = w->triangle_count, nv = w->vertex_count;
 	uint32_t *start = calloc(nv + 2, sizeof(*start));
@@ -238,20 +256,42 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 		free(fan);
 		return -1;
 	}
+	for (size_t t = 0; t < nt; t++)
+		for (int i = 0; i < 3; i++)
+			start[w->triangles[3 * t + i] + 2]++;
+	for (size_t v = 0; v < nv; v++)
+		start[v + 2] += start[v + 1];
+	for (size_t t = 0; t < nt; t++)
+		for (int i = 0; i < 3; i++)
+			fan[start[w->triangles[3 * t + i] + 1]++] = (uint32_t)t;
+
+	for (size_t t = 0; t < nt; t++) {
+		const uint32_t *v = w->triangles + 3 * t;
+		uint32_t m = v[0] < v[1] ? (v[0] < v[2] ? v[0] : v[2]) : (v[1] < v[2] ? v[1] : v[2]);
+		for (uint32_t i = start[m]; i < start[m + 1] && fan[i] < t; i++) {
+			int same = dead[fan[i]] ? 0 : same_face(v, w->triangles + 3 * (size_t)fan[i]);
+			if (same != 0) {
+				dead[t] = 1;
+				if (same < 0)
+					dead[fan[i]] = 1;
+				break;
+			}
+		}
+	}
+
 	if (o->quadrics) {
 		for (size_t i = 0; i < nin; i++) {
 			struct vdt_quadric q = o->quadrics[i];
 			vdt_quadric_transform(&q, 1, c->centre);
 			vdt_quadric_add(&c->q[canon[i]], &q);
 		}
-	}
-	for (size_t t = 0; t < nt; t++) {
-		const uint32_t *v = w->triangles + 3 * t;
-		for (int i = 0; i < 3; i++)
-			start[v[i] + 2]++;
-		if (!o->quadrics) {
+	} else {
+		for (size_t t = 0; t < nt; t++) {
+			const uint32_t *v = w->triangles + 3 * t;
 			double p[3][3];
 			struct vdt_quadric q;
+			if (dead[t])
+				continue;
 			for (int i = 0; i < 3; i++)
 				for (int k = 0; k < 3; k++)
 					p[i][k] = w->positions[3 * (size_t)v[i] + k] - c->centre[k];
@@ -260,18 +300,15 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 					vdt_quadric_add(&c->q[v[i]], &q);
 		}
 	}
-	for (size_t v = 0; v < nv; v++)
-		start[v + 2] += start[v + 1];
-	for (size_t t = 0; t < nt; t++)
-		for (int i = 0; i < 3; i++)
-			fan[start[w->triangles[3 * t + i] + 1]++] = (uint32_t)t;
 
-	/* Edge (v,x), x > v, is open when x appears in one face of v's fan
-	 * only; fans larger than the scratch table fall back to a scan. */
+	/* Edge (v,x), x > v, is open when x appears in one live face of v's
+	 * fan only; fans larger than the scratch table fall back to a scan. */
 	for (size_t v = 0; v < nv; v++) {
 		uint32_t n = 0, b = start[v], e = start[v + 1];
 		for (uint32_t i = b; i < e; i++) {
 			const uint32_t *tv = w->triangles + 3 * (size_t)fan[i];
+			if (dead[fan[i]])
+				continue;
 			for (int k = 0; k < 3; k++) {
 				uint32_t x = tv[k], j;
 				if (x <= v)
@@ -289,8 +326,8 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 				} else {
 					int uses = 0;
 					for (uint32_t m = b; m < e; m++) {
-						const uint32_t *s = w->triangles + 3 * (size_t)fan[m];
-						uses += s[0] == x || s[1] == x || s[2] == x;
+						const uint32_t *q = w->triangles + 3 * (size_t)fan[m];
+						uses += !dead[fan[m]] && (q[0] == x || q[1] == x || q[2] == x);
 					}
 					if (uses == 1)
 						add_boundary(c, w, o, fan[i], (uint32_t)v, x, border);
@@ -517,7 +554,8 @@ vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	struct vdt_bbox box;
 	uint32_t *canon = NULL, *first = NULL, *wstart = NULL, *wlist = NULL;
 	uint32_t *vpairs = NULL;
-	uint8_t *border = NULL, *locked = NULL;
+	uint8_t *border = NULL, *locked = NULL, *dead = NULL;
+	uint32_t *fsrc = NULL;
 	size_t nw, nvp = 0;
 	int rc = VDT_ENOMEM;
 
@@ -575,8 +613,19 @@ vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	for (int k = 0; k < 3; k++)
 		c.centre[k] = 0.5 * (box.min[k] + box.max[k]);
 	c.max_error = o->max_error < INFINITY ? o->max_error * o->max_error : INFINITY;
-	if (build_quadrics(&w, o, canon, n, &c, border) != 0)
+	dead = calloc(T + 1, 1);
+	fsrc = malloc((T + 1) * sizeof(*fsrc));
+	if (dead == NULL || fsrc == NULL || build_quadrics(&w, o, canon, n, &c, border, dead) != 0)
 		goto nomem;
+	/* The engine sees the live faces only; fsrc maps back to the input. */
+	size_t live = 0;
+	for (size_t t = 0; t < T; t++)
+		if (!dead[t]) {
+			memmove(w.triangles + 3 * live, w.triangles + 3 * t, 3 * sizeof(uint32_t));
+			fsrc[live++] = (uint32_t)t;
+		}
+	w.triangle_count = live;
+	stats->dropped = T - live;
 	/* Seam vertices: more than one input vertex at the position. */
 	for (size_t v = 0; v < nw; v++) {
 		border[v] = border[v] ? 1 : 0;
@@ -612,6 +661,8 @@ vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	stats->rejected = r.rejected;
 	stats->reached_target = r.reached_target;
 	stats->max_error = sqrt(c.worst);
+	for (size_t t = 0; t < r.triangle_count; t++)
+		r.sources[t] = fsrc[r.sources[t]];
 	rc = build_output(in, canon, wstart, wlist, &r, out, err);
 	if (rc != 0)
 		goto fail;
@@ -636,5 +687,7 @@ done:
 	free(border);
 	free(locked);
 	free(vpairs);
+	free(dead);
+	free(fsrc);
 	return rc;
 }

@@ -39,12 +39,15 @@ struct vdt_qslim_stats {
 	                       planes of its quadric), model units */
 	int reached_target; /* 0: stopped early (bound, or nothing valid left) */
 	size_t welded;      /* input vertices merged with an identical position */
+	size_t dropped;     /* repeated faces removed (see vdt_qslim) */
 };
 
 /*
  * Simplify `in` into `out` (allocated here; attributes kept when present).
  * Vertices at identical positions are welded first, so texture and normal
- * seams cannot open; per-corner attributes are kept by choosing, for each
+ * seams cannot open; then a face on the same three vertices as an earlier
+ * one is dropped, and both are when they face opposite ways (a zero-volume
+ * fin); per-corner attributes are kept by choosing, for each
  * corner, the closest attribute set among the survivor's own. Unchanged
  * vertices keep their exact input coordinates. If the target is not below
  * the input's triangle count, out is a copy of in. Records (if asked) are

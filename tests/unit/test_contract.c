@@ -410,6 +410,47 @@ aggregation_joins_parts(void **state)
 	vdt_mesh_free(&s);
 }
 
+/*
+ * Repeated faces: the 4 x 4 grid plus a copy of face 0 (same orientation)
+ * and a reversed copy of face 5 (a zero-volume fin). The copy and the fin
+ * pair go (3 faces: the grid now has a hole where face 5 was) and the rest
+ * simplifies with no face repeated.
+ */
+static void
+repeated_faces_are_dropped(void **state)
+{
+	struct vdt_mesh g, m, out;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+
+	(void)state;
+	shape_grid(&g, 4);
+	vdt_mesh_alloc(&m, g.vertex_count, g.triangle_count + 2, 0, NULL);
+	memcpy(m.positions, g.positions, 12 * g.vertex_count);
+	memcpy(m.triangles, g.triangles, 12 * g.triangle_count);
+	uint32_t *t = m.triangles + 3 * g.triangle_count;
+	memcpy(t, g.triangles, 12);
+	t[3] = g.triangles[15];
+	t[4] = g.triangles[17];
+	t[5] = g.triangles[16];
+	vdt_qslim_defaults(&o);
+	o.target_triangles = 2;
+	assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
+	assert_int_equal(st.dropped, 3);
+	assert_true(out.triangle_count < 12);
+	for (size_t a = 0; a < out.triangle_count; a++)
+		for (size_t b = a + 1; b < out.triangle_count; b++) {
+			int shared = 0;
+			for (int i = 0; i < 3; i++)
+				for (int j = 0; j < 3; j++)
+					shared += out.triangles[3 * a + i] == out.triangles[3 * b + j];
+			assert_true(shared < 3);
+		}
+	vdt_mesh_free(&out);
+	vdt_mesh_free(&m);
+	vdt_mesh_free(&g);
+}
+
 int
 main(void)
 {
@@ -424,6 +465,7 @@ main(void)
 		cmocka_unit_test(uv_seam_does_not_open),
 		cmocka_unit_test(given_quadrics_drive_placement),
 		cmocka_unit_test(aggregation_joins_parts),
+		cmocka_unit_test(repeated_faces_are_dropped),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
