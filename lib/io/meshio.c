@@ -276,8 +276,11 @@ vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
 		if (rc == 0)
 			rc = vdt_openmesh_read(buf, len, f, m, err);
 		break;
-	case VDT_FMT_OBJ:
 	case VDT_FMT_OFF:
+		/* Not OpenMesh: its OFF reader hangs on hostile counts, text or binary. */
+		rc = vdt_off_read(buf, len, m, err);
+		break;
+	case VDT_FMT_OBJ:
 	case VDT_FMT_STL_ASCII: rc = vdt_openmesh_read(buf, len, f, m, err); break;
 	default: return vdt_err_set(err, VDT_EFORMAT, "unknown format");
 	}

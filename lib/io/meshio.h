@@ -1,9 +1,10 @@
 /*
  * meshio.h - reading and writing meshes in every format vdt speaks.
  *
- * OBJ, ASCII PLY, OFF and ASCII STL are parsed by OpenMesh; binary PLY
- * (either byte order) and binary STL by native C fast paths; .drc through
- * Draco; the vdt stream natively. Text formats are written natively. "-" means stdin or stdout. The format of an input is
+ * OBJ, ASCII PLY and ASCII STL are parsed by OpenMesh; binary PLY (either
+ * byte order), binary STL and ASCII OFF by native C readers (binary OFF is
+ * refused); .drc through Draco; the vdt stream natively. Text formats are
+ * written natively. "-" means stdin or stdout. The format of an input is
  * detected from its first bytes (never from its name alone); the format of an
  * output comes from its extension unless given.
  */
@@ -125,6 +126,9 @@ int vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
  *
  * vdt_ply_read: binary PLY, little- or big-endian (ply.c, native).
  * vdt_stl_read: binary STL; identical positions are welded (stl.c, native).
+ * vdt_off_read: ASCII OFF and its NOFF, COFF, STOFF, 4OFF variants (off.c,
+ *   native); polygons are fan-triangulated, face colours skipped. Binary OFF
+ *   is refused (VDT_EFORMAT).
  * vdt_openmesh_read: OBJ, ASCII PLY, OFF, ASCII STL through OpenMesh's
  *   parsers; corners with differing texture coordinates split vertices;
  *   polygons are fan-triangulated. `format` names the parser.
@@ -142,6 +146,8 @@ int vdt_ply_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err);
 int vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
                  struct vdt_err *err);
 int vdt_stl_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err);
+int vdt_off_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
+                 struct vdt_err *err);
 int vdt_openmesh_read(const unsigned char *buf, size_t len,
                       enum vdt_format format, struct vdt_mesh *m,
                       struct vdt_err *err);

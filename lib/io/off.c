@@ -1,0 +1,591 @@
+/*
+ * off.c - native reader for ASCII OFF and its variants, as described in the
+ * "OFF Files" section of the Geomview manual
+ * (http://www.geomview.org/docs/html/OFF.html):
+ *
+ *   [ST][C][N][4][n]OFF          header keyword (prefixes in any order)
+ *   [Ndim]                       nOFF only; only 3 is accepted
+ *   NVertices NFaces NEdges      NEdges is ignored and may be missing
+ *   x y z [w] [nx ny nz] [r g b [a]] [s t]       one vertex per line
+ *   Nv v[0] ... v[Nv-1] [colorspec]              one face per line
+ *
+ * '#' starts a comment that runs to the end of the line. 4OFF vertices are
+ * homogeneous and divided by w. Vertex colours are 3 or 4 values, either
+ * floats in [0,1] or integers in [0,255]; a file is taken to hold integers
+ * when every colour value in it is integral and one exceeds 1 (so that "1 0
+ * 0" is red, as Geomview reads it). Face colours are skipped. Polygons are
+ * fan-triangulated. Binary OFF is refused: OpenMesh, the other reader at
+ * hand, hangs on hostile binary counts as it did on text.
+ *
+ * Line breaks are significant: a vertex or a face ends with its line, which
+ * is what lets a colour have 3 or 4 components and a face carry a colour
+ * after its indices. Everything is untrusted: counts are checked against the
+ * bytes that remain before allocating, a face has at most
+ * VDT_OFF_MAX_FACE_VERTICES vertices, every token is consumed in one pass
+ * (no rescanning, no quadratic case), and numbers that are not numbers are
+ * rejected by name and line.
+ */
+#include "meshio.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAX_FACE_VERTICES 65536
+#define MAX_VALUES 16 /* per vertex line: 4 + 3 + 4 + 2 needed at most */
+#define SATURATE 1000000000000000000LL /* 1e18: counts and indices stop here */
+
+struct reader {
+	const char *p, *end;
+	size_t line; /* of p, from 1 */
+};
+
+static int
+is_blank(char c)
+{
+	return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
+}
+
+static int
+is_digit(char c)
+{
+	return c >= '0' && c <= '9';
+}
+
+/* A token ends at white space, a line break, a comment or the end. */
+static int
+at_token_end(const char *p, const char *end)
+{
+	return p == end || is_blank(*p) || *p == '\n' || *p == '#';
+}
+
+static void
+skip_blank(struct reader *r)
+{
+	while (r->p < r->end && is_blank(*r->p))
+		r->p++;
+}
+
+static int
+at_eol(const struct reader *r)
+{
+	return r->p == r->end || *r->p == '\n' || *r->p == '#';
+}
+
+/* Skip the rest of the line, comment and unread values included. */
+static void
+end_line(struct reader *r)
+{
+	const char *nl = memchr(r->p, '\n', (size_t)(r->end - r->p));
+
+	if (nl == NULL) {
+		r->p = r->end;
+	} else {
+		r->p = nl + 1;
+		r->line++;
+	}
+}
+
+/* Move to the next token, across blank and comment lines. 0 at the end. */
+static int
+next_token(struct reader *r)
+{
+	for (;;) {
+		skip_blank(r);
+		if (r->p == r->end)
+			return 0;
+		if (*r->p == '\n') {
+			r->p++;
+			r->line++;
+		} else if (*r->p == '#') {
+			end_line(r);
+		} else {
+			return 1;
+		}
+	}
+}
+
+/*
+ * The token at p, quoted for a message: at most 16 bytes, anything that is
+ * not printable ASCII shown as '?' so that binary junk cannot reach a
+ * terminal.
+ */
+static const char *
+quote(const char *p, const char *end, char out[24])
+{
+	size_t n = 0;
+
+	while (!at_token_end(p, end) && n < 16) {
+		out[n++] = *p >= 0x20 && *p < 0x7f ? *p : '?';
+		p++;
+	}
+	if (!at_token_end(p, end)) {
+		memcpy(out + n, "...", 3);
+		n += 3;
+	}
+	out[n] = '\0';
+	return out;
+}
+
+/* An integer, saturated at +-SATURATE so that huge values stay huge. */
+static int
+parse_int(const char **pp, const char *end, long long *out)
+{
+	const char *p = *pp;
+	long long v = 0;
+	int neg = 0;
+
+	if (p < end && (*p == '-' || *p == '+'))
+		neg = *p++ == '-';
+	if (p == end || !is_digit(*p))
+		return -1;
+	for (; p < end && is_digit(*p); p++)
+		v = v < SATURATE / 10 ? v * 10 + (*p - '0') : SATURATE;
+	if (!at_token_end(p, end))
+		return -1;
+	*out = neg ? -v : v;
+	*pp = p;
+	return 0;
+}
+
+/* "nan", "inf" or "infinity", any case, already past the sign. */
+static int
+parse_special(const char **pp, const char *end, int neg, float *out)
+{
+	static const char *const words[] = {"infinity", "inf", "nan"};
+	const char *p = *pp;
+
+	for (size_t w = 0; w < sizeof(words) / sizeof(words[0]); w++) {
+		size_t l = strlen(words[w]), i = 0;
+
+		while (i < l && p + i < end && (p[i] | 0x20) == words[w][i])
+			i++;
+		if (i == l && at_token_end(p + l, end)) {
+			*out = w == 2 ? NAN : neg ? -INFINITY : INFINITY;
+			*pp = p + l;
+			return 0;
+		}
+	}
+	return -1;
+}
+
+/*
+ * The exact path for what the fast path cannot decide: the significant
+ * digits and the exponent are rewritten as "DDDDe-NN", without a decimal
+ * point so that the locale cannot matter, and given to strtof, which rounds
+ * correctly. Beyond 200 digits a nonzero tail only needs to be known to
+ * exist (a float's halfway points have fewer than 120 significant digits),
+ * so it becomes one sticky digit.
+ */
+static float
+slow_float(const char *p, const char *end)
+{
+	char s[256];
+	size_t n = 0, sig = 0;
+	long long exp10 = 0, e = 0;
+	int sticky = 0, frac = 0, eneg = 0;
+
+	if (*p == '-')
+		s[n++] = '-';
+	if (*p == '-' || *p == '+')
+		p++;
+	for (; p < end && (is_digit(*p) || *p == '.'); p++) {
+		if (*p == '.')
+			frac = 1;
+		else if (sig == 0 && *p == '0')
+			exp10 -= frac; /* a leading zero */
+		else if (sig < 200) {
+			s[n++] = *p;
+			sig++;
+			exp10 -= frac;
+		} else {
+			sticky |= *p != '0';
+			exp10 += !frac;
+		}
+	}
+	if (sticky) {
+		s[n++] = '1';
+		exp10--;
+	}
+	if (p < end && (*p == 'e' || *p == 'E')) {
+		p++;
+		if (p < end && (*p == '-' || *p == '+'))
+			eneg = *p++ == '-';
+		for (; p < end && is_digit(*p); p++)
+			if (e < 1000000000)
+				e = e * 10 + (*p - '0');
+	}
+	exp10 += eneg ? -e : e;
+	if (exp10 > 100000)
+		exp10 = 100000;
+	if (exp10 < -100000)
+		exp10 = -100000;
+	snprintf(s + n, sizeof(s) - n, "e%lld", exp10);
+	return strtof(s, NULL);
+}
+
+static const double pow10_exact[] = {
+	1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+	1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+};
+
+/*
+ * A decimal number as the nearest float. The common case (at most 19
+ * significant digits, a mantissa below 2^53, a power of ten below 10^23) is
+ * Clinger's fast path: the double is exact or correctly rounded, and
+ * rounding it again to float can only go wrong when it landed exactly on a
+ * halfway point between two floats, which is tested for. Everything else
+ * goes to slow_float, as does every number where double arithmetic is
+ * carried out in wider registers (FLT_EVAL_METHOD != 0, the x87).
+ */
+static int
+parse_float(const char **pp, const char *end, float *out)
+{
+	const char *start = *pp, *p = start;
+	uint64_t mant = 0;
+	long long exp10 = 0;
+	int neg = 0, digits = 0, any = 0, exact = 1;
+
+	if (p < end && (*p == '-' || *p == '+'))
+		neg = *p++ == '-';
+	for (; p < end && is_digit(*p); p++) {
+		any = 1;
+		if (digits < 19) {
+			mant = mant * 10 + (uint64_t)(*p - '0');
+			digits += mant != 0;
+		} else {
+			exact &= *p == '0';
+			exp10++;
+		}
+	}
+	if (p < end && *p == '.')
+		for (p++; p < end && is_digit(*p); p++) {
+			any = 1;
+			if (digits < 19) {
+				mant = mant * 10 + (uint64_t)(*p - '0');
+				digits += mant != 0;
+				exp10--;
+			} else {
+				exact &= *p == '0';
+			}
+		}
+	if (!any) {
+		/* No digit: a word after the sign at most ("-." is junk). */
+		if (p != start && (p[-1] == '.' || p - start > 1))
+			return -1;
+		if (parse_special(&p, end, neg, out) != 0)
+			return -1;
+		*pp = p;
+		return 0;
+	}
+	if (p < end && (*p == 'e' || *p == 'E')) {
+		const char *q = p + 1;
+		long long e = 0;
+		int eneg = 0;
+
+		if (q < end && (*q == '-' || *q == '+'))
+			eneg = *q++ == '-';
+		if (q == end || !is_digit(*q))
+			return -1;
+		for (; q < end && is_digit(*q); q++)
+			if (e < 1000000000)
+				e = e * 10 + (*q - '0');
+		exp10 += eneg ? -e : e;
+		p = q;
+	}
+	if (!at_token_end(p, end))
+		return -1;
+	*pp = p;
+	if (mant == 0) {
+		*out = neg ? -0.0f : 0.0f;
+		return 0;
+	}
+	if (FLT_EVAL_METHOD == 0 && exact && mant <= (1ull << 53) && exp10 >= -22 &&
+	    exp10 <= 22) {
+		double d = (double)mant;
+		uint64_t bits;
+
+		d = exp10 < 0 ? d / pow10_exact[-exp10] : d * pow10_exact[exp10];
+		memcpy(&bits, &d, sizeof(bits));
+		/* In the normal float range a halfway point has 29 low bits 1000...0. */
+		if (d >= 0x1p-126 && d < 0x1p127 && (bits & 0x1fffffff) != 0x10000000) {
+			*out = neg ? -(float)d : (float)d;
+			return 0;
+		}
+	}
+	*out = slow_float(start, p);
+	return 0;
+}
+
+static int
+bad_header(struct reader *r, const char *what, struct vdt_err *err)
+{
+	char q[24];
+
+	if (r->p == r->end)
+		return vdt_err_set(err, VDT_EFORMAT, "OFF header has no %s", what);
+	return vdt_err_set(err, VDT_EFORMAT, "bad %s '%s' on line %zu of the OFF header", what,
+	                   quote(r->p, r->end, q), r->line);
+}
+
+static int
+read_count(struct reader *r, const char *what, long long *out, struct vdt_err *err)
+{
+	const char *tok;
+
+	if (!next_token(r))
+		return bad_header(r, what, err);
+	tok = r->p;
+	if (parse_int(&r->p, r->end, out) != 0 || *out < 0) {
+		r->p = tok;
+		return bad_header(r, what, err);
+	}
+	return 0;
+}
+
+struct layout {
+	int st, color, normal, four, ndim;
+};
+
+/* The header keyword and counts; leaves r at the line after the counts. */
+static int
+read_header(struct reader *r, struct layout *l, long long *nv, long long *nf,
+            struct vdt_err *err)
+{
+	const char *w;
+	long long dim;
+	int rc;
+
+	memset(l, 0, sizeof(*l));
+	if (!next_token(r))
+		return vdt_err_set(err, VDT_EFORMAT, "not an OFF file");
+	w = r->p;
+	for (;;) {
+		if (r->end - w >= 2 && w[0] == 'S' && w[1] == 'T' && !l->st) {
+			l->st = 1;
+			w += 2;
+			continue;
+		}
+		if (w == r->end)
+			break;
+		if (*w == 'C' && !l->color)
+			l->color = 1;
+		else if (*w == 'N' && !l->normal)
+			l->normal = 1;
+		else if (*w == '4' && !l->four)
+			l->four = 1;
+		else if (*w == 'n' && !l->ndim)
+			l->ndim = 1;
+		else
+			break;
+		w++;
+	}
+	if (r->end - w < 3 || memcmp(w, "OFF", 3) != 0 || !at_token_end(w + 3, r->end))
+		return vdt_err_set(err, VDT_EFORMAT, "not an OFF file");
+	r->p = w + 3;
+	skip_blank(r);
+	if (r->end - r->p >= 6 && memcmp(r->p, "BINARY", 6) == 0 &&
+	    at_token_end(r->p + 6, r->end))
+		return vdt_err_set(err, VDT_EFORMAT, "binary OFF is not supported");
+	if (l->ndim) {
+		if (!next_token(r) || parse_int(&r->p, r->end, &dim) != 0)
+			return bad_header(r, "dimension", err);
+		if (dim != 3)
+			return vdt_err_set(err, VDT_EFORMAT, "nOFF of dimension %lld is not supported", dim);
+	}
+	rc = read_count(r, "vertex count", nv, err);
+	if (rc == 0)
+		rc = read_count(r, "face count", nf, err);
+	if (rc != 0)
+		return rc;
+	end_line(r); /* the edge count is never used */
+	return 0;
+}
+
+static int
+read_vertices(struct reader *r, const struct layout *l, struct vdt_mesh *m,
+              unsigned char *no_alpha, int *int_colors, struct vdt_err *err)
+{
+	size_t need = 3 + (size_t)l->four + 3 * (size_t)l->normal +
+	              3 * (size_t)l->color + 2 * (size_t)l->st;
+	int fractional = 0, above_one = 0;
+	char q[24];
+
+	for (size_t i = 0; i < m->vertex_count; i++) {
+		float v[MAX_VALUES];
+		size_t n = 0, k;
+
+		if (!next_token(r))
+			return vdt_err_set(err, VDT_EFORMAT, "truncated: expected %zu vertices, found %zu",
+			                   m->vertex_count, i);
+		while (!at_eol(r)) {
+			if (n == MAX_VALUES)
+				return vdt_err_set(err, VDT_EFORMAT,
+				                   "vertex %zu has more than %d values on line %zu", i,
+				                   MAX_VALUES, r->line);
+			if (parse_float(&r->p, r->end, &v[n]) != 0)
+				return vdt_err_set(err, VDT_EFORMAT, "vertex %zu has a bad value '%s' on line %zu",
+				                   i, quote(r->p, r->end, q), r->line);
+			n++;
+			skip_blank(r);
+		}
+		if (n < need)
+			return vdt_err_set(err, VDT_EFORMAT,
+			                   "vertex %zu has too few values on line %zu (%zu of %zu)", i,
+			                   r->line, n, need);
+		end_line(r);
+
+		/* Geomview's order: position, normal, colour, texture coordinate. */
+		if (l->four) {
+			for (k = 0; k < 3; k++)
+				m->positions[3 * i + k] = v[k] / v[3];
+			k = 4;
+		} else {
+			memcpy(m->positions + 3 * i, v, 3 * sizeof(float));
+			k = 3;
+		}
+		if (l->normal) {
+			memcpy(m->normals + 3 * i, v + k, 3 * sizeof(float));
+			k += 3;
+		}
+		if (l->color) {
+			/* A fourth colour value is alpha when the line has room for it. */
+			size_t nc = n >= need + 1 ? 4 : 3;
+
+			for (size_t c = 0; c < nc; c++) {
+				float x = v[k + c];
+				fractional |= x != floorf(x);
+				above_one |= x > 1;
+				m->colors[4 * i + c] = x;
+			}
+			if (nc == 3) {
+				m->colors[4 * i + 3] = 1;
+				no_alpha[i] = 1;
+			}
+			k += nc;
+		}
+		if (l->st)
+			memcpy(m->uvs + 2 * i, v + k, 2 * sizeof(float));
+	}
+	*int_colors = !fractional && above_one;
+	return 0;
+}
+
+static int
+read_faces(struct reader *r, size_t nf, struct vdt_mesh *m, struct vdt_err *err)
+{
+	size_t nv = m->vertex_count, nt = 0, cap = nf > 0 ? nf : 1;
+	char q[24];
+
+	for (size_t f = 0; f < nf; f++) {
+		long long k, first = 0, prev = 0;
+
+		if (!next_token(r))
+			return vdt_err_set(err, VDT_EFORMAT, "truncated: expected %zu faces, found %zu", nf, f);
+		if (parse_int(&r->p, r->end, &k) != 0)
+			return vdt_err_set(err, VDT_EFORMAT,
+			                   "face %zu has a bad vertex count '%s' on line %zu", f,
+			                   quote(r->p, r->end, q), r->line);
+		if (k < 3)
+			return vdt_err_set(err, VDT_EFORMAT, "face %zu has %lld vertices", f, k);
+		if (k > MAX_FACE_VERTICES)
+			return vdt_err_set(err, VDT_EFORMAT, "face %zu has %lld vertices, more than %d", f, k,
+			                   MAX_FACE_VERTICES);
+		for (long long j = 0; j < k; j++) {
+			long long v;
+
+			skip_blank(r);
+			if (at_eol(r))
+				return vdt_err_set(err, VDT_EFORMAT,
+				                   "face %zu has too few vertex indices on line %zu (%lld of %lld)",
+				                   f, r->line, j, k);
+			if (parse_int(&r->p, r->end, &v) != 0)
+				return vdt_err_set(err, VDT_EFORMAT,
+				                   "face %zu has a bad vertex index '%s' on line %zu", f,
+				                   quote(r->p, r->end, q), r->line);
+			if (v < 0 || (unsigned long long)v >= nv)
+				return vdt_err_set(err, VDT_EINVAL, "face %zu uses vertex %lld of %zu", f, v, nv);
+			if (j == 0) {
+				first = v;
+			} else if (j >= 2) {
+				uint32_t *t;
+
+				if (nt == cap) {
+					/* Only polygons get here; each triangle took 2+ bytes of text. */
+					t = realloc(m->triangles, 2 * cap * 3 * sizeof(uint32_t));
+					if (t == NULL)
+						return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu triangles",
+						                   2 * cap);
+					m->triangles = t;
+					cap *= 2;
+				}
+				t = m->triangles + 3 * nt++;
+				t[0] = (uint32_t)first;
+				t[1] = (uint32_t)prev;
+				t[2] = (uint32_t)v;
+			}
+			prev = v;
+		}
+		end_line(r); /* a face colour, if any */
+	}
+	m->triangle_count = nt;
+	return 0;
+}
+
+int
+vdt_off_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
+             struct vdt_err *err)
+{
+	struct reader r = {(const char *)buf, (const char *)buf + len, 1};
+	struct layout l;
+	long long nv, nf;
+	unsigned char *no_alpha = NULL;
+	int int_colors = 0, rc;
+	size_t left;
+	unsigned long long per_vertex;
+
+	memset(m, 0, sizeof(*m));
+	rc = read_header(&r, &l, &nv, &nf, err);
+	if (rc != 0)
+		return rc;
+	/*
+	 * Every value takes a character and a separator ("0 0 0\n" is the
+	 * shortest vertex, "3 0 0 0\n" the shortest face), except that the last
+	 * line may lack its newline.
+	 */
+	left = (size_t)(r.end - r.p);
+	per_vertex = 2 * (3 + (unsigned long long)l.four + 3 * (unsigned long long)l.normal +
+	                  3 * (unsigned long long)l.color + 2 * (unsigned long long)l.st);
+	if (nv > UINT32_MAX)
+		return vdt_err_set(err, VDT_EFORMAT, "too many vertices (%lld)", nv);
+	if ((unsigned long long)nv * per_vertex + (unsigned long long)nf * 8 >
+	    (unsigned long long)left + 1)
+		return vdt_err_set(err, VDT_EFORMAT,
+		                   "truncated: %lld vertices and %lld faces cannot fit in %zu bytes",
+		                   nv, nf, left);
+	rc = vdt_mesh_alloc(m, (size_t)nv, (size_t)nf,
+	                    (l.normal ? VDT_ATTR_NORMALS : 0) | (l.color ? VDT_ATTR_COLORS : 0) |
+	                        (l.st ? VDT_ATTR_UVS : 0),
+	                    err);
+	if (rc != 0)
+		return rc;
+	if (l.color && (no_alpha = calloc(nv > 0 ? (size_t)nv : 1, 1)) == NULL) {
+		rc = vdt_err_set(err, VDT_ENOMEM, "out of memory");
+		goto out;
+	}
+	rc = read_vertices(&r, &l, m, no_alpha, &int_colors, err);
+	if (rc == 0)
+		rc = read_faces(&r, (size_t)nf, m, err);
+	if (rc == 0 && int_colors)
+		for (size_t i = 0; i < m->vertex_count; i++)
+			for (int c = 0; c < 4; c++)
+				if (c < 3 || !no_alpha[i])
+					m->colors[4 * i + c] = (float)(m->colors[4 * i + c] / 255.0);
+out:
+	free(no_alpha);
+	if (rc != 0)
+		vdt_mesh_free(m);
+	return rc;
+}
