@@ -93,6 +93,8 @@ $(B)/scripts/%: $(B)/scripts/%.o $(LIB)
 BENCH_LIBS_meshopt = -lmeshoptimizer
 BENCH_LIBS_cgal = -lgmp -lmpfr
 BENCH_LIBS_openmesh = -lOpenMeshTools
+# CGAL's Garland-Heckbert policies include <Eigen/Dense> (libeigen3-dev).
+$(B)/scripts/bench/cgal_%.o: override CXXFLAGS += -isystem /usr/include/eigen3
 $(B)/bench/%: $(B)/scripts/bench/%.o $(LIB)
 	@mkdir -p $(@D)
 	$(CXX) $(LDFLAGS) -o $@ $< $(LIB) $(BENCH_LIBS_$(firstword $(subst _, ,$*))) $(LDLIBS_VDT)
