@@ -27,15 +27,15 @@
  */
 #include "meshio.h"
 
-#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "text.h"
+
 #define MAX_FACE_VERTICES 65536
 #define MAX_VALUES 16 /* per vertex line: 4 + 3 + 4 + 2 needed at most */
-#define SATURATE 1000000000000000000LL /* 1e18: counts and indices stop here */
 
 struct reader {
 	const char *p, *end;
@@ -46,12 +46,6 @@ static int
 is_blank(char c)
 {
 	return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
-}
-
-static int
-is_digit(char c)
-{
-	return c >= '0' && c <= '9';
 }
 
 /* A token ends at white space, a line break, a comment or the end. */
@@ -129,193 +123,27 @@ quote(const char *p, const char *end, char out[24])
 	return out;
 }
 
-/* An integer, saturated at +-SATURATE so that huge values stay huge. */
+/* An integer that fills its token (saturated, see text.h). */
 static int
 parse_int(const char **pp, const char *end, long long *out)
 {
-	const char *p = *pp;
-	long long v = 0;
-	int neg = 0;
+	const char *p = vdt_text_parse_int(*pp, end, out);
 
-	if (p < end && (*p == '-' || *p == '+'))
-		neg = *p++ == '-';
-	if (p == end || !is_digit(*p))
+	if (p == NULL || !at_token_end(p, end))
 		return -1;
-	for (; p < end && is_digit(*p); p++)
-		v = v < SATURATE / 10 ? v * 10 + (*p - '0') : SATURATE;
-	if (!at_token_end(p, end))
-		return -1;
-	*out = neg ? -v : v;
 	*pp = p;
 	return 0;
 }
 
-/* "nan", "inf" or "infinity", any case, already past the sign. */
-static int
-parse_special(const char **pp, const char *end, int neg, float *out)
-{
-	static const char *const words[] = {"infinity", "inf", "nan"};
-	const char *p = *pp;
-
-	for (size_t w = 0; w < sizeof(words) / sizeof(words[0]); w++) {
-		size_t l = strlen(words[w]), i = 0;
-
-		while (i < l && p + i < end && (p[i] | 0x20) == words[w][i])
-			i++;
-		if (i == l && at_token_end(p + l, end)) {
-			*out = w == 2 ? NAN : neg ? -INFINITY : INFINITY;
-			*pp = p + l;
-			return 0;
-		}
-	}
-	return -1;
-}
-
-/*
- * The exact path for what the fast path cannot decide: the significant
- * digits and the exponent are rewritten as "DDDDe-NN", without a decimal
- * point so that the locale cannot matter, and given to strtof, which rounds
- * correctly. Beyond 200 digits a nonzero tail only needs to be known to
- * exist (a float's halfway points have fewer than 120 significant digits),
- * so it becomes one sticky digit.
- */
-static float
-slow_float(const char *p, const char *end)
-{
-	char s[256];
-	size_t n = 0, sig = 0;
-	long long exp10 = 0, e = 0;
-	int sticky = 0, frac = 0, eneg = 0;
-
-	if (*p == '-')
-		s[n++] = '-';
-	if (*p == '-' || *p == '+')
-		p++;
-	for (; p < end && (is_digit(*p) || *p == '.'); p++) {
-		if (*p == '.')
-			frac = 1;
-		else if (sig == 0 && *p == '0')
-			exp10 -= frac; /* a leading zero */
-		else if (sig < 200) {
-			s[n++] = *p;
-			sig++;
-			exp10 -= frac;
-		} else {
-			sticky |= *p != '0';
-			exp10 += !frac;
-		}
-	}
-	if (sticky) {
-		s[n++] = '1';
-		exp10--;
-	}
-	if (p < end && (*p == 'e' || *p == 'E')) {
-		p++;
-		if (p < end && (*p == '-' || *p == '+'))
-			eneg = *p++ == '-';
-		for (; p < end && is_digit(*p); p++)
-			if (e < 1000000000)
-				e = e * 10 + (*p - '0');
-	}
-	exp10 += eneg ? -e : e;
-	if (exp10 > 100000)
-		exp10 = 100000;
-	if (exp10 < -100000)
-		exp10 = -100000;
-	snprintf(s + n, sizeof(s) - n, "e%lld", exp10);
-	return strtof(s, NULL);
-}
-
-static const double pow10_exact[] = {
-	1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
-	1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
-};
-
-/*
- * A decimal number as the nearest float. The common case (at most 19
- * significant digits, a mantissa below 2^53, a power of ten below 10^23) is
- * Clinger's fast path: the double is exact or correctly rounded, and
- * rounding it again to float can only go wrong when it landed exactly on a
- * halfway point between two floats, which is tested for. Everything else
- * goes to slow_float, as does every number where double arithmetic is
- * carried out in wider registers (FLT_EVAL_METHOD != 0, the x87).
- */
+/* A number that fills its token, as the nearest float (see text.h). */
 static int
 parse_float(const char **pp, const char *end, float *out)
 {
-	const char *start = *pp, *p = start;
-	uint64_t mant = 0;
-	long long exp10 = 0;
-	int neg = 0, digits = 0, any = 0, exact = 1;
+	const char *p = vdt_text_parse_float(*pp, end, out);
 
-	if (p < end && (*p == '-' || *p == '+'))
-		neg = *p++ == '-';
-	for (; p < end && is_digit(*p); p++) {
-		any = 1;
-		if (digits < 19) {
-			mant = mant * 10 + (uint64_t)(*p - '0');
-			digits += mant != 0;
-		} else {
-			exact &= *p == '0';
-			exp10++;
-		}
-	}
-	if (p < end && *p == '.')
-		for (p++; p < end && is_digit(*p); p++) {
-			any = 1;
-			if (digits < 19) {
-				mant = mant * 10 + (uint64_t)(*p - '0');
-				digits += mant != 0;
-				exp10--;
-			} else {
-				exact &= *p == '0';
-			}
-		}
-	if (!any) {
-		/* No digit: a word after the sign at most ("-." is junk). */
-		if (p != start && (p[-1] == '.' || p - start > 1))
-			return -1;
-		if (parse_special(&p, end, neg, out) != 0)
-			return -1;
-		*pp = p;
-		return 0;
-	}
-	if (p < end && (*p == 'e' || *p == 'E')) {
-		const char *q = p + 1;
-		long long e = 0;
-		int eneg = 0;
-
-		if (q < end && (*q == '-' || *q == '+'))
-			eneg = *q++ == '-';
-		if (q == end || !is_digit(*q))
-			return -1;
-		for (; q < end && is_digit(*q); q++)
-			if (e < 1000000000)
-				e = e * 10 + (*q - '0');
-		exp10 += eneg ? -e : e;
-		p = q;
-	}
-	if (!at_token_end(p, end))
+	if (p == NULL || !at_token_end(p, end))
 		return -1;
 	*pp = p;
-	if (mant == 0) {
-		*out = neg ? -0.0f : 0.0f;
-		return 0;
-	}
-	if (FLT_EVAL_METHOD == 0 && exact && mant <= (1ull << 53) && exp10 >= -22 &&
-	    exp10 <= 22) {
-		double d = (double)mant;
-		uint64_t bits;
-
-		d = exp10 < 0 ? d / pow10_exact[-exp10] : d * pow10_exact[exp10];
-		memcpy(&bits, &d, sizeof(bits));
-		/* In the normal float range a halfway point has 29 low bits 1000...0. */
-		if (d >= 0x1p-126 && d < 0x1p127 && (bits & 0x1fffffff) != 0x10000000) {
-			*out = neg ? -(float)d : (float)d;
-			return 0;
-		}
-	}
-	*out = slow_float(start, p);
 	return 0;
 }
 

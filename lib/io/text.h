@@ -1,0 +1,32 @@
+/*
+ * text.h - number parsing shared by the native text readers (OFF, OBJ,
+ * ASCII PLY). Internal to lib/io.
+ *
+ * Both parsers read one number starting at p and stop at the first byte that
+ * cannot continue it, without looking further: what may follow a number (a
+ * blank, a line break, a '/' between OBJ indices, a comment) is the caller's
+ * format to decide. Neither depends on the locale, and neither reads at or
+ * beyond end, so a buffer need not be NUL-terminated.
+ */
+#ifndef VDT_IO_TEXT_H
+#define VDT_IO_TEXT_H
+
+/* Integers saturate here, so that a huge count or index stays huge. */
+#define VDT_TEXT_SATURATE 1000000000000000000LL /* 1e18 */
+
+/*
+ * An optionally signed decimal integer at p (digits only). Stores it in *out,
+ * saturated at +-VDT_TEXT_SATURATE, and returns the byte after its last
+ * digit, or NULL if there is no digit after the sign.
+ */
+const char *vdt_text_parse_int(const char *p, const char *end, long long *out);
+
+/*
+ * A decimal floating-point number at p ("-1.5e3", ".5", "7.", "nan", "inf",
+ * "infinity", any case) as the nearest float, correctly rounded. Returns the
+ * byte after it, or NULL if there is no number there ("-", ".", "1e" and
+ * "1e+" are not numbers).
+ */
+const char *vdt_text_parse_float(const char *p, const char *end, float *out);
+
+#endif
