@@ -96,26 +96,47 @@ find(const unsigned char *buf, size_t n, const char *s)
 	return 0;
 }
 
-/* The first word of OFF files: [ST][C][N][4][n]OFF, optionally " BINARY". */
+/*
+ * The first word of OFF files, after blank and comment lines: the prefixes
+ * ST, C, N, 4 and n, each at most once and in any order, then OFF (then
+ * optionally " BINARY"), exactly what off.c accepts.
+ */
 static int
 is_off(const unsigned char *buf, size_t n)
 {
 	size_t i = 0;
-	const char *order = "STCN4n";
+	int st = 0, c = 0, nn = 0, four = 0, dim = 0;
 
-	while (i < n && (buf[i] == ' ' || buf[i] == '\t'))
-		i++;
-	for (const char *o = order; *o && i < n; o++) {
-		if (*o == 'S' && buf[i] == 'S' && i + 1 < n && buf[i + 1] == 'T')
-			i += 2;
-		else if (*o != 'S' && *o != 'T' && buf[i] == *o)
+	for (;;) {
+		while (i < n && (buf[i] == ' ' || buf[i] == '\t' || buf[i] == '\r' || buf[i] == '\n' ||
+		                 buf[i] == '\f' || buf[i] == '\v'))
 			i++;
+		if (i < n && buf[i] == '#') {
+			while (i < n && buf[i] != '\n')
+				i++;
+			continue;
+		}
+		break;
+	}
+	for (;;) {
+		if (i + 1 < n && buf[i] == 'S' && buf[i + 1] == 'T' && !st)
+			st = 1, i += 2;
+		else if (i < n && buf[i] == 'C' && !c)
+			c = 1, i++;
+		else if (i < n && buf[i] == 'N' && !nn)
+			nn = 1, i++;
+		else if (i < n && buf[i] == '4' && !four)
+			four = 1, i++;
+		else if (i < n && buf[i] == 'n' && !dim)
+			dim = 1, i++;
+		else
+			break;
 	}
 	if (i + 3 > n || memcmp(buf + i, "OFF", 3) != 0)
 		return 0;
 	i += 3;
 	return i == n || buf[i] == '\n' || buf[i] == '\r' || buf[i] == ' ' ||
-	       buf[i] == '\t' || buf[i] == '#';
+	       buf[i] == '\t' || buf[i] == '\f' || buf[i] == '\v' || buf[i] == '#';
 }
 
 static int
@@ -184,7 +205,7 @@ vdt_format_detect(const unsigned char *buf, size_t n)
 			return VDT_FMT_STL; /* binary with a "solid" header */
 		return VDT_FMT_STL_ASCII;
 	}
-	if (is_off(buf, n < 64 ? n : 64))
+	if (is_off(buf, n < 4096 ? n : 4096))
 		return VDT_FMT_OFF;
 	if (is_obj(buf, n < 4096 ? n : 4096))
 		return VDT_FMT_OBJ;
@@ -268,19 +289,21 @@ vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
 	}
 	switch (f) {
 	case VDT_FMT_VDT: rc = read_stream(buf, len, m, extra, err); break;
-	case VDT_FMT_PLY: rc = vdt_ply_read(buf, len, m, err); break;
+	case VDT_FMT_PLY:
+	case VDT_FMT_PLY_ASCII:
+		/* Not OpenMesh: it hangs on some malformed ASCII headers. */
+		rc = vdt_ply_read(buf, len, m, err);
+		break;
 	case VDT_FMT_STL: rc = vdt_stl_read(buf, len, m, err); break;
 	case VDT_FMT_DRC: rc = vdt_draco_read(buf, len, m, err); break;
-	case VDT_FMT_PLY_ASCII:
-		rc = vdt_ply_check_header(buf, len, err);
-		if (rc == 0)
-			rc = vdt_openmesh_read(buf, len, f, m, err);
-		break;
 	case VDT_FMT_OFF:
 		/* Not OpenMesh: its OFF reader hangs on hostile counts, text or binary. */
 		rc = vdt_off_read(buf, len, m, err);
 		break;
 	case VDT_FMT_OBJ:
+		/* Not OpenMesh: it aborts on an assertion with some faces, and is slow. */
+		rc = vdt_obj_read(buf, len, m, err);
+		break;
 	case VDT_FMT_STL_ASCII: rc = vdt_openmesh_read(buf, len, f, m, err); break;
 	default: return vdt_err_set(err, VDT_EFORMAT, "unknown format");
 	}

@@ -1,8 +1,8 @@
 /*
  * meshio.h - reading and writing meshes in every format vdt speaks.
  *
- * OBJ, ASCII PLY and ASCII STL are parsed by OpenMesh; binary PLY (either
- * byte order), binary STL and ASCII OFF by native C readers (binary OFF is
+ * ASCII STL is parsed by OpenMesh; OBJ, PLY (ASCII and binary, either byte
+ * order), binary STL and ASCII OFF by native C readers (binary OFF is
  * refused); .drc through Draco; the vdt stream natively. Text formats are
  * written natively. "-" means stdin or stdout. The format of an input is
  * detected from its first bytes (never from its name alone); the format of an
@@ -124,24 +124,27 @@ int vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
  * run vdt_mesh_validate; writers write m to f and return 0, VDT_EIO or
  * VDT_ENOMEM (f is not closed).
  *
- * vdt_ply_read: binary PLY, little- or big-endian (ply.c, native).
+ * vdt_ply_read: PLY, ASCII or binary of either byte order (ply.c, native);
+ *   polygons are fan-triangulated, elements other than vertex and face and
+ *   unknown properties are skipped.
+ * vdt_obj_read: Wavefront OBJ (obj.c, native): v (with optional vertex
+ *   colours), vt, vn and f; polygons are fan-triangulated. Vertices are
+ *   split where the (v, vt, vn) triples of corners differ: one vertex per
+ *   distinct triple used by a face, in order of first use, positions used by
+ *   no face dropped. A file whose faces use no vt or vn, or use vt and vn
+ *   numbered as v with one of each per v, keeps the file's vertex numbers.
  * vdt_stl_read: binary STL; identical positions are welded (stl.c, native).
  * vdt_off_read: ASCII OFF and its NOFF, COFF, STOFF, 4OFF variants (off.c,
  *   native); polygons are fan-triangulated, face colours skipped. Binary OFF
  *   is refused (VDT_EFORMAT).
- * vdt_openmesh_read: OBJ, ASCII PLY, OFF, ASCII STL through OpenMesh's
- *   parsers; corners with differing texture coordinates split vertices;
- *   polygons are fan-triangulated. `format` names the parser.
+ * vdt_openmesh_read: ASCII STL through OpenMesh's parser (`format` must be
+ *   VDT_FMT_STL_ASCII).
  * vdt_draco_read: a Draco mesh (.drc).
  */
 int vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
                  struct vdt_err *err);
-/*
- * Check a PLY header (ASCII or binary) strictly, and that every element
- * count fits in the bytes that follow, before a less careful parser sees it.
- */
-int vdt_ply_check_header(const unsigned char *buf, size_t len,
-                         struct vdt_err *err);
+int vdt_obj_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
+                 struct vdt_err *err);
 int vdt_ply_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err);
 int vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
                  struct vdt_err *err);

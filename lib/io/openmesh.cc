@@ -1,14 +1,14 @@
 /*
- * openmesh.cc - the extern "C" face of OpenMesh's parsers for OBJ, ASCII
- * PLY, OFF and ASCII STL.
+ * openmesh.cc - the extern "C" face of OpenMesh's ASCII STL parser (OBJ,
+ * PLY and OFF have native readers: OpenMesh's abort, hang or are slow on
+ * them).
  *
  * OpenMesh's own ImporterT builds a half-edge mesh as it reads: it drops
  * faces with repeated or invalid vertices and duplicates the vertices of
- * non-manifold faces, and it is slow. We give the parsers our own importer
+ * non-manifold faces, and it is slow. We give the parser our own importer
  * instead, which only collects positions, attributes and polygons into flat
  * arrays, so that the file's connectivity arrives untouched and every bad
- * index can be reported by number. Per-corner texture coordinates (OBJ)
- * split vertices where they differ.
+ * index can be reported by number.
  */
 #include <OpenMesh/Core/IO/IOManager.hh>
 #include <OpenMesh/Core/IO/importer/BaseImporter.hh>
@@ -39,8 +39,6 @@ struct Collect : public IO::BaseImporter {
 
 	std::vector<uint32_t> corners;     /* vertex of each corner */
 	std::vector<size_t> face_start;    /* corners of face f: [start[f], start[f+1]) */
-	std::vector<Vec2f> corner_uv;      /* sized like corners once any is set */
-	std::vector<unsigned char> has_cuv;
 	bool bad_index = false;
 	size_t bad_face = 0;
 	long long bad_vertex = 0;
@@ -75,35 +73,12 @@ struct Collect : public IO::BaseImporter {
 			}
 			corners.push_back(uint32_t(vh.idx()));
 		}
-		if (!corner_uv.empty()) {
-			corner_uv.resize(corners.size());
-			has_cuv.resize(corners.size());
-		}
 		face_start.push_back(corners.size());
 		return FaceHandle(int(f));
 	}
 	FaceHandle add_face(HalfedgeHandle) override { return FaceHandle(); }
 
-	void add_face_texcoords(FaceHandle fh, VertexHandle vh, const std::vector<Vec2f> &tc) override
-	{
-		if (tc.empty() || !fh.is_valid() || size_t(fh.idx()) + 1 >= face_start.size())
-			return;
-		size_t s = face_start[fh.idx()], e = face_start[fh.idx() + 1], n = e - s, k = 0;
-		if (n == 0)
-			return;
-		if (corner_uv.empty()) {
-			corner_uv.resize(corners.size());
-			has_cuv.resize(corners.size());
-		}
-		while (k < n && corners[s + k] != uint32_t(vh.idx()))
-			k++;
-		if (k == n)
-			k = 0;
-		for (size_t i = 0; i < tc.size() && i < n; i++) {
-			corner_uv[s + (k + i) % n] = tc[i];
-			has_cuv[s + (k + i) % n] = 1;
-		}
-	}
+	void add_face_texcoords(FaceHandle, VertexHandle, const std::vector<Vec2f> &) override {}
 	void add_face_texcoords(FaceHandle, VertexHandle, const std::vector<Vec3f> &) override {}
 	void set_face_texindex(FaceHandle, int) override {}
 
@@ -194,85 +169,17 @@ silence()
 	omout().disable();
 }
 
-/* The number of faces the file declares, where the format says it. */
+/* The number of facets an ASCII STL file declares. */
 long long
-declared_faces(const unsigned char *buf, size_t len, enum vdt_format f)
+declared_faces(const unsigned char *buf, size_t len)
 {
 	const char *p = reinterpret_cast<const char *>(buf);
-	if (f == VDT_FMT_OBJ) {
-		long long n = 0;
-		for (size_t i = 0; i < len; i++)
-			if ((i == 0 || p[i - 1] == '\n') && i + 1 < len && p[i] == 'f' &&
-			    (p[i + 1] == ' ' || p[i + 1] == '\t'))
-				n++;
-		return n;
-	}
-	if (f == VDT_FMT_STL_ASCII) {
-		long long n = 0;
-		size_t lim = len;
-		for (size_t i = 0; i + 8 <= lim; i++)
-			if (std::memcmp(p + i, "endfacet", 8) == 0)
-				n++;
-		return n;
-	}
-	return -1;
-}
+	long long n = 0;
 
-/*
- * OpenMesh skips an OBJ vertex line it cannot parse ("nan", "1e999"), which
- * shifts every later index: find the first such line and name it.
- */
-int
-check_obj_vertices(const unsigned char *buf, size_t len, size_t have, struct vdt_err *err)
-{
-	const char *p = reinterpret_cast<const char *>(buf);
-	size_t v = 0;
-
-	for (size_t i = 0; i < len; i++) {
-		if (!((i == 0 || p[i - 1] == '\n') && i + 1 < len && p[i] == 'v' &&
-		      (p[i + 1] == ' ' || p[i + 1] == '\t')))
-			continue;
-		size_t e = i;
-		while (e < len && p[e] != '\n')
-			e++;
-		std::string line(p + i + 2, e - i - 2);
-		const char *q = line.c_str();
-		for (int k = 0; k < 3; k++) {
-			char *end;
-			double d = std::strtod(q, &end);
-			if (end == q || !std::isfinite(d) || std::fabs(d) > 3.4e38)
-				return vdt_err_set(err, VDT_EINVAL,
-				                   "vertex %zu has a non-finite or unreadable coordinate", v);
-			q = end;
-		}
-		v++;
-	}
-	if (v != have)
-		return vdt_err_set(err, VDT_EFORMAT, "only %zu of the %zu vertices could be read", have, v);
-	return 0;
-}
-
-/*
- * OpenMesh's OBJ parser asserts (abort) on a face corner without a vertex
- * index ("f /3 ..."): refuse such faces before it sees them.
- */
-int
-check_obj_faces(const unsigned char *buf, size_t len, struct vdt_err *err)
-{
-	const char *p = reinterpret_cast<const char *>(buf);
-	size_t face = 0;
-
-	for (size_t i = 0; i < len; i++) {
-		if (!((i == 0 || p[i - 1] == '\n') && i + 1 < len && p[i] == 'f' &&
-		      (p[i + 1] == ' ' || p[i + 1] == '\t')))
-			continue;
-		for (size_t j = i + 1; j < len && p[j] != '\n' && p[j] != '\r' && p[j] != '#'; j++)
-			if ((p[j - 1] == ' ' || p[j - 1] == '\t') && p[j] != ' ' && p[j] != '\t' &&
-			    !(p[j] == '-' || (p[j] >= '0' && p[j] <= '9')))
-				return vdt_err_set(err, VDT_EFORMAT, "face %zu has a corner without a vertex index", face);
-		face++;
-	}
-	return 0;
+	for (size_t i = 0; i + 8 <= len; i++)
+		if (std::memcmp(p + i, "endfacet", 8) == 0)
+			n++;
+	return n;
 }
 
 int
@@ -294,11 +201,6 @@ convert(Collect &c, struct vdt_mesh *m, long long declared, struct vdt_err *err)
 		                   "only %zu of the %lld faces could be read (bad vertex references?)",
 		                   nf, declared);
 
-	/*
-	 * Split vertices by corner texture coordinate: a vertex keeps its index
-	 * for the first texture coordinate it is used with; each further one
-	 * makes a copy appended at the end.
-	 */
 	std::vector<uint32_t> tri_corner; /* corner index of each triangle corner */
 	tri_corner.reserve(3 * tris);
 	for (size_t f = 0; f < nf; f++) {
@@ -309,114 +211,51 @@ convert(Collect &c, struct vdt_mesh *m, long long declared, struct vdt_err *err)
 			tri_corner.push_back(uint32_t(k));
 		}
 	}
-	bool split = !c.corner_uv.empty();
-	std::vector<uint32_t> corner_vertex(c.corners.begin(), c.corners.end());
-	std::vector<uint32_t> origin; /* for appended copies: the source vertex */
-	std::vector<Vec2f> new_uv;
-	if (split) {
-		std::vector<int64_t> next; /* chain of copies of one vertex */
-		std::vector<Vec2f> uv_of;  /* uv of vertex i (i < nv) or of copy */
-		uv_of.resize(nv);
-		next.assign(nv, -1);
-		std::vector<unsigned char> used(nv, 0);
-		for (size_t k = 0; k < c.corners.size(); k++) {
-			uint32_t v = c.corners[k];
-			Vec2f uv = c.has_cuv[k] ? c.corner_uv[k] : (c.have_uvs ? c.uvs[v] : Vec2f(0.f, 0.f));
-			if (!used[v]) {
-				used[v] = 1;
-				uv_of[v] = uv;
-				corner_vertex[k] = v;
-				continue;
-			}
-			int64_t i = v, found = -1, last = v;
-			while (i >= 0) {
-				if (std::memcmp(&uv_of[i], &uv, sizeof(uv)) == 0) {
-					found = i;
-					break;
-				}
-				last = i;
-				i = next[i];
-			}
-			if (found < 0) {
-				found = int64_t(uv_of.size());
-				uv_of.push_back(uv);
-				next.push_back(-1);
-				next[last] = found;
-				origin.push_back(v);
-			}
-			corner_vertex[k] = uint32_t(found);
-		}
-		for (size_t v = 0; v < nv; v++)
-			if (!used[v])
-				uv_of[v] = c.have_uvs ? c.uvs[v] : Vec2f(0.f, 0.f);
-		new_uv.swap(uv_of);
-	}
-	size_t total = nv + origin.size();
 	unsigned attrs = (c.have_normals ? VDT_ATTR_NORMALS : 0) |
-	                 ((split || c.have_uvs) ? VDT_ATTR_UVS : 0) |
+	                 (c.have_uvs ? VDT_ATTR_UVS : 0) |
 	                 (c.have_colors ? VDT_ATTR_COLORS : 0);
-	int rc = vdt_mesh_alloc(m, total, tris, attrs, err);
+	int rc = vdt_mesh_alloc(m, nv, tris, attrs, err);
 	if (rc != 0)
 		return rc;
-	for (size_t i = 0; i < total; i++) {
-		size_t src = i < nv ? i : origin[i - nv];
+	for (size_t i = 0; i < nv; i++) {
 		for (int k = 0; k < 3; k++)
-			m->positions[3 * i + k] = c.points[src][k];
+			m->positions[3 * i + k] = c.points[i][k];
 		if (m->normals)
 			for (int k = 0; k < 3; k++)
-				m->normals[3 * i + k] = c.normals[src][k];
+				m->normals[3 * i + k] = c.normals[i][k];
 		if (m->colors)
 			for (int k = 0; k < 4; k++)
-				m->colors[4 * i + k] = c.colors[src][k];
-		if (m->uvs) {
-			Vec2f uv = split ? new_uv[i] : c.uvs[src];
-			m->uvs[2 * i] = uv[0];
-			m->uvs[2 * i + 1] = uv[1];
-		}
+				m->colors[4 * i + k] = c.colors[i][k];
+		if (m->uvs)
+			for (int k = 0; k < 2; k++)
+				m->uvs[2 * i + k] = c.uvs[i][k];
 	}
 	for (size_t i = 0; i < 3 * tris; i++)
-		m->triangles[i] = corner_vertex[tri_corner[i]];
+		m->triangles[i] = c.corners[tri_corner[i]];
 	return 0;
 }
-
 } // namespace
 
 extern "C" int
 vdt_openmesh_read(const unsigned char *buf, size_t len, enum vdt_format format,
                   struct vdt_mesh *m, struct vdt_err *err)
 {
-	const char *ext;
+	const char *ext = ".stl";
 
 	std::memset(m, 0, sizeof(*m));
-	switch (format) {
-	case VDT_FMT_OBJ: ext = ".obj"; break;
-	case VDT_FMT_PLY:
-	case VDT_FMT_PLY_ASCII: ext = ".ply"; break;
-	case VDT_FMT_OFF: ext = ".off"; break;
-	case VDT_FMT_STL:
-	case VDT_FMT_STL_ASCII: ext = ".stl"; break;
-	default: return vdt_err_set(err, VDT_EINVAL, "OpenMesh cannot read %s", vdt_format_name(format));
-	}
+	if (format != VDT_FMT_STL_ASCII)
+		return vdt_err_set(err, VDT_EINVAL, "OpenMesh is not used for %s", vdt_format_name(format));
 	try {
 		silence();
-		if (format == VDT_FMT_OBJ) {
-			int rc = check_obj_faces(buf, len, err);
-			if (rc != 0)
-				return rc;
-		}
 		std::string s(reinterpret_cast<const char *>(buf), len);
 		std::istringstream is(s, std::ios::in | std::ios::binary);
 		IO::Options opt = IO::Options::VertexNormal | IO::Options::VertexTexCoord |
-		                  IO::Options::VertexColor | IO::Options::FaceTexCoord;
+		                  IO::Options::VertexColor;
 		Collect c;
 		if (!IO::IOManager().read(is, ext, c, opt))
 			return vdt_err_set(err, VDT_EFORMAT, "cannot parse the %s content",
 			                   vdt_format_name(format));
-		int rc = 0;
-		if (format == VDT_FMT_OBJ)
-			rc = check_obj_vertices(buf, len, c.points.size(), err);
-		if (rc == 0)
-			rc = convert(c, m, declared_faces(buf, len, format), err);
+		int rc = convert(c, m, declared_faces(buf, len), err);
 		if (rc != 0)
 			vdt_mesh_free(m);
 		return rc;

@@ -1,10 +1,23 @@
 /*
- * ply.c - native binary PLY: the fast path for reading (fixed-size vertex
- * records straight into flat arrays) and a binary little-endian writer.
+ * ply.c - native PLY, after Greg Turk's description of the format ("The PLY
+ * Polygon File Format", 1994; http://paulbourke.net/dataformats/ply/): a
+ * text header of elements and their typed properties, then the elements'
+ * records in ASCII or binary of either byte order. Binary records are read
+ * with a fast path (fixed-size vertex records straight into flat arrays);
+ * ASCII records one value at a time, through the exact float parsing of
+ * text.c. The writer is binary little-endian.
+ *
+ * Vertices take x y z, nx ny nz, s t (or u v, texture_u texture_v, ...) and
+ * red green blue [alpha] (8- or 16-bit integers scaled to [0,1], or floats
+ * taken as they are); faces their vertex_indices (or vertex_index) list,
+ * fan-triangulated. Other properties and elements are skipped.
  *
  * The header is untrusted: every count is checked against the bytes that
- * remain before anything is allocated, names and lines are bounded, and the
- * number of elements and properties is capped.
+ * remain before anything is allocated (an ASCII value takes at least two
+ * bytes, a digit and a separator), names and lines are bounded, and the
+ * number of elements and properties is capped. ASCII values must fit their
+ * declared type, and a record may not leave values on its last line, so that
+ * a header that misdescribes its data is caught rather than misread.
  */
 #include "meshio.h"
 
@@ -13,6 +26,7 @@
 #include <string.h>
 
 #include "../bytes.h"
+#include "text.h"
 
 #define MAX_ELEMENTS 64
 #define MAX_PROPS 128
@@ -557,6 +571,313 @@ read_faces(const struct header *h, const struct element *e,
 	return 0;
 }
 
+/* ASCII records: the values of one element after another, one per line. */
+struct text {
+	const char *p, *end;
+	size_t line; /* of p, from 1 */
+};
+
+static int
+is_space(char c)
+{
+	return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v';
+}
+
+static const char *
+type_name(enum ptype t)
+{
+	for (size_t i = 0; i < sizeof(type_names) / sizeof(type_names[0]); i++)
+		if (type_names[i].type == t)
+			return type_names[i].name;
+	return "?";
+}
+
+/* Where element e's record r is read, for messages: "vertex 12". */
+struct where {
+	const struct element *e;
+	uint64_t r;
+};
+
+/*
+ * The next value, of type `type`, across line breaks. Integer types must be
+ * written as integers within their range; float types may be any number.
+ */
+static int
+text_value(struct text *t, enum ptype type, const struct where *w, double *out,
+           struct vdt_err *err)
+{
+	const char *q;
+	char s[24];
+	size_t n = 0;
+
+	while (t->p < t->end && is_space(*t->p))
+		t->line += *t->p++ == '\n';
+	if (t->p == t->end)
+		return vdt_err_set(err, VDT_EFORMAT, "PLY file is truncated in %s %llu of %llu",
+		                   w->e->name, (unsigned long long)w->r,
+		                   (unsigned long long)w->e->count);
+	if (type == T_F32 || type == T_F64) {
+		float f;
+
+		q = vdt_text_parse_float(t->p, t->end, &f);
+		*out = f;
+	} else {
+		static const long long lo[] = {0, -128, 0, -32768, 0, -2147483648LL, 0};
+		static const long long hi[] = {0, 127, 255, 32767, 65535, 2147483647LL, 4294967295LL};
+		long long i;
+
+		q = vdt_text_parse_int(t->p, t->end, &i);
+		if (q != NULL && (q == t->end || is_space(*q)) && (i < lo[type] || i > hi[type]))
+			return vdt_err_set(err, VDT_EFORMAT, "PLY line %zu: %s %llu has %lld, out of range for %s",
+			                   t->line, w->e->name, (unsigned long long)w->r, i,
+			                   type_name(type));
+		*out = (double)i;
+	}
+	if (q == NULL || (q < t->end && !is_space(*q))) {
+		/* Quoted for a message: printable ASCII only, at most 16 bytes. */
+		for (q = t->p; q < t->end && !is_space(*q) && n < 16; q++)
+			s[n++] = *q >= 0x20 && *q < 0x7f ? *q : '?';
+		if (q < t->end && !is_space(*q)) {
+			memcpy(s + n, "...", 3);
+			n += 3;
+		}
+		s[n] = '\0';
+		return vdt_err_set(err, VDT_EFORMAT, "PLY line %zu: bad number '%s' in %s %llu", t->line,
+		                   s, w->e->name, (unsigned long long)w->r);
+	}
+	t->p = q;
+	return 0;
+}
+
+/* A record ends its line: values left there mean the header is wrong. */
+static int
+text_end_record(struct text *t, const struct where *w, struct vdt_err *err)
+{
+	while (t->p < t->end && *t->p != '\n' && is_space(*t->p))
+		t->p++;
+	if (t->p < t->end && *t->p != '\n')
+		return vdt_err_set(err, VDT_EFORMAT,
+		                   "PLY line %zu: %s %llu has more values than its header declares",
+		                   t->line, w->e->name, (unsigned long long)w->r);
+	return 0;
+}
+
+/* A list count or index from a value of an integer or float type. */
+static int64_t
+as_int(double d)
+{
+	return isfinite(d) && d >= -1e18 && d <= 1e18 ? (int64_t)d : -1;
+}
+
+/* Every record of e read and dropped, lists included. */
+static int
+text_skip(struct text *t, const struct element *e, struct vdt_err *err)
+{
+	struct where w = {e, 0};
+	double d;
+	int rc;
+
+	for (; w.r < e->count; w.r++) {
+		for (size_t i = 0; i < e->prop_count; i++) {
+			const struct prop *pr = &e->props[i];
+			int64_t c = 1;
+
+			if (pr->count_type != T_NONE) {
+				if ((rc = text_value(t, pr->count_type, &w, &d, err)) != 0)
+					return rc;
+				c = as_int(d);
+			}
+			/* Each value takes a byte: a huge count ends at the end of the data. */
+			for (int64_t k = 0; k < c; k++)
+				if ((rc = text_value(t, pr->type, &w, &d, err)) != 0)
+					return rc;
+		}
+		if ((rc = text_end_record(t, &w, err)) != 0)
+			return rc;
+	}
+	return 0;
+}
+
+static int
+text_vertices(struct text *t, const struct element *e, struct vdt_mesh *m,
+              struct vdt_err *err)
+{
+	int slot[MAX_PROPS];
+	int have[A_COUNT] = {0};
+	enum ptype type[A_COUNT];
+	unsigned attrs = 0;
+	struct where w = {e, 0};
+	int rc;
+
+	for (size_t i = 0; i < e->prop_count; i++) {
+		int a = attr_of(e->props[i].name);
+
+		if (e->props[i].count_type != T_NONE)
+			return vdt_err_set(err, VDT_EFORMAT, "PLY vertex element has a list property");
+		slot[i] = a >= 0 && !have[a] ? a : -1;
+		if (slot[i] >= 0) {
+			have[a] = 1;
+			type[a] = e->props[i].type;
+		}
+	}
+	if (!have[A_X] || !have[A_Y] || !have[A_Z])
+		return vdt_err_set(err, VDT_EFORMAT, "PLY vertex element has no x, y and z");
+	if (have[A_NX] && have[A_NY] && have[A_NZ])
+		attrs |= VDT_ATTR_NORMALS;
+	if (have[A_U] && have[A_V])
+		attrs |= VDT_ATTR_UVS;
+	if (have[A_R] && have[A_G] && have[A_B])
+		attrs |= VDT_ATTR_COLORS;
+	rc = vdt_mesh_alloc(m, (size_t)e->count, 0, attrs, err);
+	if (rc != 0)
+		return rc;
+	for (size_t v = 0; v < m->vertex_count; v++, w.r++) {
+		double val[A_COUNT];
+
+		for (size_t i = 0; i < e->prop_count; i++) {
+			double d;
+
+			if ((rc = text_value(t, e->props[i].type, &w, &d, err)) != 0)
+				return rc;
+			if (slot[i] >= 0)
+				val[slot[i]] = d;
+		}
+		if ((rc = text_end_record(t, &w, err)) != 0)
+			return rc;
+		for (int k = 0; k < 3; k++)
+			m->positions[3 * v + k] = (float)val[A_X + k];
+		if (m->normals)
+			for (int k = 0; k < 3; k++)
+				m->normals[3 * v + k] = (float)val[A_NX + k];
+		if (m->uvs)
+			for (int k = 0; k < 2; k++)
+				m->uvs[2 * v + k] = (float)val[A_U + k];
+		if (m->colors)
+			for (int k = 0; k < 4; k++)
+				m->colors[4 * v + k] =
+					k < 3 || have[A_A] ? (float)color_value(val[A_R + k], type[A_R + k]) : 1.0f;
+	}
+	return 0;
+}
+
+static int
+text_faces(struct text *t, const struct element *e, struct vdt_mesh *m, struct vdt_err *err)
+{
+	size_t li = SIZE_MAX, nt = 0, cap = e->count > 0 ? (size_t)e->count : 1, nv = m->vertex_count;
+	struct where w = {e, 0};
+	uint32_t *tri;
+	double d;
+	int rc;
+
+	for (size_t i = 0; i < e->prop_count && li == SIZE_MAX; i++)
+		if (e->props[i].count_type != T_NONE &&
+		    (strcmp(e->props[i].name, "vertex_indices") == 0 ||
+		     strcmp(e->props[i].name, "vertex_index") == 0))
+			li = i;
+	if (li == SIZE_MAX)
+		return vdt_err_set(err, VDT_EFORMAT, "PLY face element has no vertex_indices list");
+	if (cap > SIZE_MAX / (3 * sizeof(uint32_t)) ||
+	    (tri = malloc(cap * 3 * sizeof(uint32_t))) == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu triangles", cap);
+	for (; w.r < e->count; w.r++) {
+		for (size_t i = 0; i < e->prop_count; i++) {
+			const struct prop *pr = &e->props[i];
+			int64_t c = 1, first = 0, prev = 0;
+
+			if (pr->count_type != T_NONE) {
+				if ((rc = text_value(t, pr->count_type, &w, &d, err)) != 0)
+					goto fail;
+				c = as_int(d);
+			}
+			if (i == li && c < 3) {
+				rc = vdt_err_set(err, VDT_EFORMAT, "face %llu has %lld vertices",
+				                 (unsigned long long)w.r, (long long)c);
+				goto fail;
+			}
+			for (int64_t k = 0; k < c; k++) {
+				int64_t v;
+
+				if ((rc = text_value(t, pr->type, &w, &d, err)) != 0)
+					goto fail;
+				if (i != li)
+					continue;
+				v = as_int(d);
+				if (v < 0 || (uint64_t)v >= nv) {
+					rc = vdt_err_set(err, VDT_EINVAL, "face %llu uses vertex %lld of %zu",
+					                 (unsigned long long)w.r, (long long)v, nv);
+					goto fail;
+				}
+				if (k == 0) {
+					first = v;
+				} else if (k >= 2) {
+					if (nt == cap) {
+						/* Only polygons get here; each triangle took 2+ bytes of text. */
+						uint32_t *n = realloc(tri, 2 * cap * 3 * sizeof(uint32_t));
+
+						if (n == NULL) {
+							rc = vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu triangles",
+							                 2 * cap);
+							goto fail;
+						}
+						tri = n;
+						cap *= 2;
+					}
+					tri[3 * nt] = (uint32_t)first;
+					tri[3 * nt + 1] = (uint32_t)prev;
+					tri[3 * nt + 2] = (uint32_t)v;
+					nt++;
+				}
+				prev = v;
+			}
+		}
+		if ((rc = text_end_record(t, &w, err)) != 0)
+			goto fail;
+	}
+	free(m->triangles);
+	m->triangles = tri;
+	m->triangle_count = nt;
+	return 0;
+fail:
+	free(tri);
+	return rc;
+}
+
+static int
+read_ascii(const struct header *h, const struct element *ve, const struct element *fe,
+           const unsigned char *buf, size_t len, struct vdt_mesh *m, struct vdt_err *err)
+{
+	struct text t = {(const char *)buf + h->data_offset, (const char *)buf + len, 0};
+	int rc = 0;
+
+	/* Lines of the data, for messages, count on from the header's. */
+	for (const char *p = (const char *)buf; p < t.p; p++)
+		t.line += *p == '\n';
+	t.line++;
+	for (size_t i = 0; i < h->element_count && rc == 0; i++) {
+		const struct element *e = &h->elements[i];
+		size_t left = (size_t)(t.end - t.p);
+
+		if (e->prop_count == 0)
+			continue; /* records of nothing take no text */
+		/* Every value takes a character and a separator, but the very last. */
+		if (e->count > ((uint64_t)left + 1) / (2 * (uint64_t)e->prop_count))
+			return vdt_err_set(err, VDT_EFORMAT,
+			                   "PLY file is truncated: %llu %s records cannot fit in %zu bytes",
+			                   (unsigned long long)e->count, e->name, left);
+		if (e == ve) {
+			rc = text_vertices(&t, e, m, err);
+		} else if (e == fe) {
+			if (m->positions == NULL)
+				return vdt_err_set(err, VDT_EFORMAT,
+				                   "PLY face element comes before the vertex element");
+			return text_faces(&t, e, m, err); /* nothing after the faces is needed */
+		} else {
+			rc = text_skip(&t, e, err);
+		}
+	}
+	return rc;
+}
+
 int
 vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
              struct vdt_err *err)
@@ -571,8 +892,6 @@ vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 	if (h == NULL)
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
 	rc = parse_header(buf, len, h, err);
-	if (rc == 0 && h->ascii)
-		rc = vdt_err_set(err, VDT_EFORMAT, "ASCII PLY is not read natively");
 	if (rc != 0)
 		goto out;
 	for (size_t i = 0; i < h->element_count; i++) {
@@ -590,6 +909,10 @@ vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 		goto out;
 	}
 
+	if (h->ascii) {
+		rc = read_ascii(h, ve, fe, buf, len, m, err);
+		goto out;
+	}
 	pos = h->data_offset;
 	for (size_t i = 0; i < h->element_count; i++) {
 		const struct element *e = &h->elements[i];
@@ -652,35 +975,6 @@ out:
 	free(h);
 	if (rc != 0)
 		vdt_mesh_free(m);
-	return rc;
-}
-
-int
-vdt_ply_check_header(const unsigned char *buf, size_t len, struct vdt_err *err)
-{
-	struct header *h = malloc(sizeof(*h));
-	int rc;
-
-	if (h == NULL)
-		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
-	rc = parse_header(buf, len, h, err);
-	for (size_t i = 0; rc == 0 && i < h->element_count; i++) {
-		const struct element *e = &h->elements[i];
-		size_t left = len - h->data_offset;
-		/* Every value takes at least one byte and a separator. */
-		uint64_t min = h->ascii ? 2 * (uint64_t)e->prop_count : 0;
-
-		if (!h->ascii) {
-			for (size_t k = 0; k < e->prop_count; k++)
-				min += e->props[k].count_type == T_NONE ? type_size[e->props[k].type]
-				                                        : type_size[e->props[k].count_type];
-		}
-		if (min != 0 && e->count > left / min)
-			rc = vdt_err_set(err, VDT_EFORMAT,
-			                 "PLY file is truncated: %llu %s records cannot fit in %zu bytes",
-			                 (unsigned long long)e->count, e->name, left);
-	}
-	free(h);
 	return rc;
 }
 

@@ -263,8 +263,8 @@ test_chain(void **state)
  * shared edge 0-2 has different texture coordinates on each side.
  *
  *   3 ----- 2        vt: triangle A uses 1 2 3, triangle B uses 4 5 6
- *   | B   / |        vertices 0 and 2 get a second copy (4 and 5)
- *   |   /   |
+ *   | B   / |        vertices are numbered by first use of each (v, vt):
+ *   |   /   |        B's corners 0, 2 and 3 become 3, 4 and 5
  *   | /   A |
  *   0 ----- 1
  */
@@ -284,10 +284,10 @@ test_obj_seam(void **state)
 	assert_int_equal(m.vertex_count, 6);
 	assert_int_equal(m.triangle_count, 2);
 	assert_non_null(m.uvs);
-	static const uint32_t t[] = {0, 1, 2, 4, 5, 3};
+	static const uint32_t t[] = {0, 1, 2, 3, 4, 5};
 	assert_memory_equal(m.triangles, t, sizeof(t));
-	assert_true(m.uvs[2 * 4] == 0.6f && m.uvs[2 * 5] == 1.0f && m.uvs[2 * 2 + 1] == 0.5f);
-	assert_true(m.positions[3 * 4] == 0.0f && m.positions[3 * 5] == 1.0f);
+	assert_true(m.uvs[2 * 3] == 0.6f && m.uvs[2 * 4] == 1.0f && m.uvs[2 * 2 + 1] == 0.5f);
+	assert_true(m.positions[3 * 3] == 0.0f && m.positions[3 * 4] == 1.0f);
 	vdt_mesh_free(&m);
 }
 

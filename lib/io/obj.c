@@ -1,0 +1,673 @@
+/*
+ * obj.c - native reader for Wavefront OBJ polygon meshes, as specified in
+ * appendix B1, "Object Files (.obj)", of the Advanced Visualizer manual
+ * (Wavefront Technologies, version 4.2 and later):
+ *
+ *   v x y z [w] [r g b]        vertex; r g b is a common extension (MeshLab,
+ *                              ZBrush) for vertex colours in [0,1]
+ *   vt u [v [w]]               texture coordinate
+ *   vn i j k                   normal
+ *   f v[/[vt][/vn]] ...        polygon of 3 or more corners; indices count
+ *                              from 1, negative ones back from the last
+ *                              element read so far
+ *   # ...                      comment to the end of the line
+ *   \ at the end of a line     continues the statement on the next line
+ *
+ * Everything else (o, g, s, usemtl, mtllib, l, p, curves, surfaces, unknown
+ * statements) is ignored: a mesh filter has no use for it, and refusing it
+ * would refuse real files. Polygons are fan-triangulated. w is a weight for
+ * rational curves and means nothing for polygons, so it is dropped.
+ *
+ * OBJ attributes belong to corners, ours to vertices. A corner is the triple
+ * (v, vt, vn); each distinct triple used by a face becomes one vertex,
+ * numbered in order of first use, so that a texture seam or a hard edge
+ * splits its vertices and positions no face uses are dropped. Two cases keep
+ * the file's vertex numbers instead, so that a mesh survives a round trip
+ * unchanged, unused vertices included: a file whose faces use no vt and no
+ * vn, and a file whose every corner uses the same number for vt and vn as
+ * for v with one vt and one vn per v (as vdt and many exporters write them).
+ * Corners without a vt or a vn in a file where other corners have one read
+ * as 0 there: there is nothing better to invent, and it is what other
+ * readers do.
+ *
+ * Everything is untrusted. The text is scanned once to count v, vt and vn
+ * statements, which bounds every index before any face is read (OBJ allows
+ * a face to use a vertex defined after it) and sizes the arrays (each
+ * statement takes at least two bytes, so no count can outgrow the input).
+ * A face has at most MAX_CORNERS corners, every token is consumed in one
+ * pass, and the corner triples are deduplicated through a hash table, never
+ * a list that a hostile file could make quadratic.
+ */
+#include "meshio.h"
+
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "text.h"
+
+#define MAX_CORNERS 65536
+#define MAX_VERTEX_VALUES 7 /* x y z w r g b */
+#define NONE UINT32_MAX     /* a corner without vt or vn */
+
+struct reader {
+	const char *p, *end;
+	size_t line; /* of p, from 1 */
+};
+
+static int
+is_blank(char c)
+{
+	return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
+}
+
+/* A backslash that ends its line (CRLF or not, or the file) joins the next. */
+static int
+is_continuation(const char *p, const char *end)
+{
+	if (p == end || *p != '\\')
+		return 0;
+	p++;
+	if (p < end && *p == '\r')
+		p++;
+	return p == end || *p == '\n';
+}
+
+/* Skip blanks and line continuations; p stops at a token or a line end. */
+static void
+skip_blank(struct reader *r)
+{
+	while (r->p < r->end) {
+		if (is_blank(*r->p)) {
+			r->p++;
+		} else if (is_continuation(r->p, r->end)) {
+			r->p++;
+			if (r->p < r->end && *r->p == '\r')
+				r->p++;
+			if (r->p < r->end) {
+				r->p++;
+				r->line++;
+			}
+		} else {
+			break;
+		}
+	}
+}
+
+static int
+at_eol(const struct reader *r)
+{
+	return r->p == r->end || *r->p == '\n' || *r->p == '#';
+}
+
+static int
+at_token_end(const char *p, const char *end)
+{
+	return p == end || is_blank(*p) || *p == '\n' || *p == '#' || is_continuation(p, end);
+}
+
+/*
+ * Skip the rest of a statement: to the end of its line and, while a line
+ * ends in a backslash outside a comment, the next one too.
+ */
+static void
+end_statement(struct reader *r)
+{
+	for (;;) {
+		const char *nl = memchr(r->p, '\n', (size_t)(r->end - r->p)), *q;
+		int continued;
+
+		if (nl == NULL) {
+			r->p = r->end;
+			return;
+		}
+		q = nl > r->p && nl[-1] == '\r' ? nl - 1 : nl;
+		continued = q > r->p && q[-1] == '\\' && memchr(r->p, '#', (size_t)(q - r->p)) == NULL;
+		r->p = nl + 1;
+		r->line++;
+		if (!continued)
+			return;
+	}
+}
+
+/*
+ * The statement keyword at r->p (after skip_blank), moving past it; its
+ * length in *n. Returns NULL at the end of the text. Blank lines and
+ * comments are skipped.
+ */
+static const char *
+next_keyword(struct reader *r, size_t *n)
+{
+	for (;;) {
+		const char *k;
+
+		skip_blank(r);
+		if (r->p == r->end)
+			return NULL;
+		if (*r->p == '\n') {
+			r->p++;
+			r->line++;
+			continue;
+		}
+		if (*r->p == '#') {
+			end_statement(r);
+			continue;
+		}
+		k = r->p;
+		while (!at_token_end(r->p, r->end))
+			r->p++;
+		*n = (size_t)(r->p - k);
+		return k;
+	}
+}
+
+enum keyword { K_OTHER, K_V, K_VT, K_VN, K_F };
+
+static enum keyword
+keyword_of(const char *k, size_t n)
+{
+	if (n == 1 && k[0] == 'v')
+		return K_V;
+	if (n == 1 && k[0] == 'f')
+		return K_F;
+	if (n == 2 && k[0] == 'v' && k[1] == 't')
+		return K_VT;
+	if (n == 2 && k[0] == 'v' && k[1] == 'n')
+		return K_VN;
+	return K_OTHER;
+}
+
+/*
+ * The token at p, quoted for a message: at most 16 bytes, anything that is
+ * not printable ASCII shown as '?' so that binary junk cannot reach a
+ * terminal.
+ */
+static const char *
+quote(const char *p, const char *end, char out[24])
+{
+	size_t n = 0;
+
+	while (!at_token_end(p, end) && n < 16) {
+		out[n++] = *p >= 0x20 && *p < 0x7f ? *p : '?';
+		p++;
+	}
+	if (!at_token_end(p, end)) {
+		memcpy(out + n, "...", 3);
+		n += 3;
+	}
+	out[n] = '\0';
+	return out;
+}
+
+struct obj {
+	size_t nv, nt, nn, nf;     /* statements counted before parsing */
+	size_t have_v, have_t, have_n; /* read so far */
+	float *pos;                /* 3 per v */
+	float *col;                /* 4 per v, or NULL: no v has a colour */
+	float *uv;                 /* 2 per vt */
+	float *nrm;                /* 3 per vn */
+
+	size_t tri_count, tri_cap;
+	uint32_t *tri_v;           /* 3 per triangle: v of each corner */
+	uint32_t *tri_t, *tri_n;   /* the same for vt and vn, when the file has any */
+	int any_t, any_n;          /* some corner uses a vt, a vn */
+	int miss_t, miss_n;        /* some corner lacks one */
+	int lockstep;              /* every vt and vn used so far equals its v */
+};
+
+static void
+obj_free(struct obj *o)
+{
+	free(o->pos);
+	free(o->col);
+	free(o->uv);
+	free(o->nrm);
+	free(o->tri_v);
+	free(o->tri_t);
+	free(o->tri_n);
+}
+
+/* First pass: count the statements that define indexable elements. */
+static int
+count(const char *buf, size_t len, struct obj *o, struct vdt_err *err)
+{
+	struct reader r = {buf, buf + len, 1};
+	const char *k;
+	size_t n;
+
+	while ((k = next_keyword(&r, &n)) != NULL) {
+		switch (keyword_of(k, n)) {
+		case K_V: o->nv++; break;
+		case K_VT: o->nt++; break;
+		case K_VN: o->nn++; break;
+		case K_F: o->nf++; break;
+		default: break;
+		}
+		end_statement(&r);
+	}
+	/* Vertex numbers must fit a uint32_t, with NONE to spare. */
+	if (o->nv >= NONE || o->nt >= NONE || o->nn >= NONE)
+		return vdt_err_set(err, VDT_EFORMAT, "too many vertices");
+	return 0;
+}
+
+/* Up to max numbers to the end of the statement; their count in *n. */
+static int
+read_values(struct reader *r, float *v, size_t max, size_t *n, const char *what,
+            struct vdt_err *err)
+{
+	char q[24];
+
+	*n = 0;
+	skip_blank(r);
+	while (!at_eol(r)) {
+		const char *e;
+
+		if (*n == max)
+			return vdt_err_set(err, VDT_EFORMAT, "line %zu: %s has more than %zu values",
+			                   r->line, what, max);
+		e = vdt_text_parse_float(r->p, r->end, &v[*n]);
+		if (e == NULL || !at_token_end(e, r->end))
+			return vdt_err_set(err, VDT_EFORMAT, "line %zu: bad number '%s'", r->line,
+			                   quote(r->p, r->end, q));
+		r->p = e;
+		(*n)++;
+		skip_blank(r);
+	}
+	return 0;
+}
+
+static int
+read_v(struct reader *r, struct obj *o, struct vdt_err *err)
+{
+	float v[MAX_VERTEX_VALUES];
+	size_t n, i = o->have_v;
+	int rc;
+
+	rc = read_values(r, v, MAX_VERTEX_VALUES, &n, "vertex", err);
+	if (rc != 0)
+		return rc;
+	if (n < 3)
+		return vdt_err_set(err, VDT_EFORMAT, "line %zu: vertex has too few values (%zu of 3)",
+		                   r->line, n);
+	if (n == 5)
+		return vdt_err_set(err, VDT_EFORMAT,
+		                   "line %zu: vertex has 5 values (x y z [w] [r g b] expected)", r->line);
+	memcpy(o->pos + 3 * i, v, 3 * sizeof(float));
+	if (n >= 6 && o->col == NULL) {
+		/* The first colour: every vertex before it is white. */
+		o->col = malloc(4 * (o->nv ? o->nv : 1) * sizeof(float));
+		if (o->col == NULL)
+			return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu vertex colours", o->nv);
+		for (size_t k = 0; k < 4 * i; k++)
+			o->col[k] = 1;
+	}
+	if (o->col != NULL) {
+		float *c = o->col + 4 * i;
+
+		if (n >= 6)
+			memcpy(c, v + n - 3, 3 * sizeof(float));
+		else
+			c[0] = c[1] = c[2] = 1;
+		c[3] = 1;
+	}
+	o->have_v++;
+	return 0;
+}
+
+static int
+read_vt(struct reader *r, struct obj *o, struct vdt_err *err)
+{
+	float v[3];
+	size_t n;
+	int rc;
+
+	rc = read_values(r, v, 3, &n, "texture coordinate", err);
+	if (rc != 0)
+		return rc;
+	if (n < 1)
+		return vdt_err_set(err, VDT_EFORMAT, "line %zu: texture coordinate has no value", r->line);
+	o->uv[2 * o->have_t] = v[0];
+	o->uv[2 * o->have_t + 1] = n >= 2 ? v[1] : 0;
+	o->have_t++;
+	return 0;
+}
+
+static int
+read_vn(struct reader *r, struct obj *o, struct vdt_err *err)
+{
+	float v[3];
+	size_t n;
+	int rc;
+
+	rc = read_values(r, v, 3, &n, "normal", err);
+	if (rc != 0)
+		return rc;
+	if (n < 3)
+		return vdt_err_set(err, VDT_EFORMAT, "line %zu: normal has too few values (%zu of 3)",
+		                   r->line, n);
+	memcpy(o->nrm + 3 * o->have_n, v, 3 * sizeof(float));
+	o->have_n++;
+	return 0;
+}
+
+/*
+ * Turn the index i of a corner into a 0-based one: positive ones count from
+ * the first element of the file (later ones included), negative ones back
+ * from the last one read so far.
+ */
+static int
+resolve(const struct reader *r, size_t face, const char *what, long long i, size_t have,
+        size_t total, uint32_t *out, struct vdt_err *err)
+{
+	if (i > 0 && (unsigned long long)i <= total) {
+		*out = (uint32_t)(i - 1);
+		return 0;
+	}
+	if (i < 0 && (unsigned long long)-i <= have) {
+		*out = (uint32_t)(have - (size_t)-i);
+		return 0;
+	}
+	if (i == 0)
+		return vdt_err_set(err, VDT_EINVAL, "line %zu: face %zu uses %s 0 (indices start at 1)",
+		                   r->line, face, what);
+	return vdt_err_set(err, VDT_EINVAL, "line %zu: face %zu uses %s %lld of %zu", r->line, face,
+	                   what, i, i > 0 ? total : have);
+}
+
+/* Room for at least want triangles, or twice the present room if more. */
+static int
+grow_triangles(struct obj *o, size_t want, struct vdt_err *err)
+{
+	size_t cap = o->tri_cap ? 2 * o->tri_cap : 1024;
+	uint32_t *p;
+
+	if (cap < want)
+		cap = want;
+
+	if (cap > SIZE_MAX / (3 * sizeof(uint32_t)))
+		return vdt_err_set(err, VDT_ENOMEM, "too many triangles");
+	p = realloc(o->tri_v, cap * 3 * sizeof(uint32_t));
+	if (p == NULL)
+		goto nomem;
+	o->tri_v = p;
+	if (o->nt || o->nn) {
+		if ((p = realloc(o->tri_t, cap * 3 * sizeof(uint32_t))) == NULL)
+			goto nomem;
+		o->tri_t = p;
+		if ((p = realloc(o->tri_n, cap * 3 * sizeof(uint32_t))) == NULL)
+			goto nomem;
+		o->tri_n = p;
+	}
+	o->tri_cap = cap;
+	return 0;
+nomem:
+	return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu triangles", cap);
+}
+
+/* One corner v[/[vt][/vn]] into c; an empty vt or vn field means none. */
+static int
+read_corner(struct reader *r, struct obj *o, size_t face, uint32_t c[3], struct vdt_err *err)
+{
+	const char *e;
+	long long i;
+	char q[24];
+	int rc;
+
+	c[1] = c[2] = NONE;
+	if ((e = vdt_text_parse_int(r->p, r->end, &i)) == NULL)
+		goto bad;
+	if ((rc = resolve(r, face, "vertex", i, o->have_v, o->nv, &c[0], err)) != 0)
+		return rc;
+	for (int a = 1; a < 3 && e < r->end && *e == '/'; a++) {
+		e++;
+		if (e == r->end || *e == '/' || at_token_end(e, r->end))
+			continue;
+		if ((e = vdt_text_parse_int(e, r->end, &i)) == NULL)
+			goto bad;
+		rc = a == 1 ? resolve(r, face, "texture coordinate", i, o->have_t, o->nt, &c[1], err)
+		            : resolve(r, face, "normal", i, o->have_n, o->nn, &c[2], err);
+		if (rc != 0)
+			return rc;
+	}
+	if (!at_token_end(e, r->end))
+		goto bad;
+	r->p = e;
+	return 0;
+bad:
+	return vdt_err_set(err, VDT_EFORMAT, "line %zu: face %zu has a bad corner '%s'", r->line,
+	                   face, quote(r->p, r->end, q));
+}
+
+static int
+read_f(struct reader *r, struct obj *o, size_t face, struct vdt_err *err)
+{
+	uint32_t first[3] = {0}, prev[3] = {0}, c[3];
+	size_t k = 0;
+	int rc;
+
+	skip_blank(r);
+	for (; !at_eol(r); k++, skip_blank(r)) {
+		if (k == MAX_CORNERS)
+			return vdt_err_set(err, VDT_EFORMAT, "line %zu: face %zu has more than %d corners",
+			                   r->line, face, MAX_CORNERS);
+		if ((rc = read_corner(r, o, face, c, err)) != 0)
+			return rc;
+		o->any_t |= c[1] != NONE;
+		o->miss_t |= c[1] == NONE;
+		o->any_n |= c[2] != NONE;
+		o->miss_n |= c[2] == NONE;
+		o->lockstep &= (c[1] == NONE || c[1] == c[0]) && (c[2] == NONE || c[2] == c[0]);
+		if (k == 0) {
+			memcpy(first, c, sizeof(c));
+		} else if (k >= 2) {
+			size_t t = 3 * o->tri_count;
+
+			if (o->tri_count == o->tri_cap && (rc = grow_triangles(o, 0, err)) != 0)
+				return rc;
+			o->tri_v[t] = first[0];
+			o->tri_v[t + 1] = prev[0];
+			o->tri_v[t + 2] = c[0];
+			if (o->tri_t != NULL) {
+				o->tri_t[t] = first[1];
+				o->tri_t[t + 1] = prev[1];
+				o->tri_t[t + 2] = c[1];
+				o->tri_n[t] = first[2];
+				o->tri_n[t + 1] = prev[2];
+				o->tri_n[t + 2] = c[2];
+			}
+			o->tri_count++;
+		}
+		memcpy(prev, c, sizeof(c));
+	}
+	if (k < 3)
+		return vdt_err_set(err, VDT_EFORMAT, "line %zu: face %zu has %zu corners", r->line, face,
+		                   k);
+	return 0;
+}
+
+static int
+parse(const char *buf, size_t len, struct obj *o, struct vdt_err *err)
+{
+	struct reader r = {buf, buf + len, 1};
+	const char *k;
+	size_t n, face = 0;
+	int rc = 0;
+
+	while (rc == 0 && (k = next_keyword(&r, &n)) != NULL) {
+		switch (keyword_of(k, n)) {
+		case K_V: rc = read_v(&r, o, err); break;
+		case K_VT: rc = read_vt(&r, o, err); break;
+		case K_VN: rc = read_vn(&r, o, err); break;
+		case K_F: rc = read_f(&r, o, face++, err); break;
+		default: break;
+		}
+		if (rc == 0)
+			end_statement(&r);
+	}
+	return rc;
+}
+
+static uint32_t
+hash3(uint32_t v, uint32_t t, uint32_t n)
+{
+	uint32_t h = v * 0x9e3779b1u ^ (t + 0x7f4a7c15u) * 0x85ebca77u ^ (n + 0x165667b1u) * 0xc2b2ae3du;
+
+	h ^= h >> 15;
+	h *= 0x2c1b3c6du;
+	h ^= h >> 12;
+	return h;
+}
+
+/*
+ * One vertex per distinct (v, vt, vn) triple, in order of first use: the
+ * corners of o->tri_v are rewritten to the new numbers, and the triple of
+ * each new vertex is left in (*ov, *ot, *on).
+ */
+static int
+split(struct obj *o, uint32_t **ov, uint32_t **ot, uint32_t **on, size_t *count,
+      struct vdt_err *err)
+{
+	size_t corners = 3 * o->tri_count, used = 0, cap = 1024, mask;
+	uint32_t *slot = NULL, *v = NULL, *t = NULL, *n = NULL;
+
+	/* A table at most half full; it can never need more than corners. */
+	while (cap < 2 * corners && cap < SIZE_MAX / 8)
+		cap *= 2;
+	mask = cap - 1;
+	slot = malloc(cap * sizeof(uint32_t));
+	v = malloc((corners ? corners : 1) * sizeof(uint32_t));
+	t = malloc((corners ? corners : 1) * sizeof(uint32_t));
+	n = malloc((corners ? corners : 1) * sizeof(uint32_t));
+	if (slot == NULL || v == NULL || t == NULL || n == NULL) {
+		free(slot);
+		free(v);
+		free(t);
+		free(n);
+		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu corners", corners);
+	}
+	memset(slot, 0xff, cap * sizeof(uint32_t));
+	for (size_t c = 0; c < corners; c++) {
+		uint32_t cv = o->tri_v[c], ct = o->tri_t[c], cn = o->tri_n[c];
+		size_t h = hash3(cv, ct, cn) & mask;
+
+		while (slot[h] != NONE &&
+		       !(v[slot[h]] == cv && t[slot[h]] == ct && n[slot[h]] == cn))
+			h = (h + 1) & mask;
+		if (slot[h] == NONE) {
+			slot[h] = (uint32_t)used;
+			v[used] = cv;
+			t[used] = ct;
+			n[used] = cn;
+			used++;
+		}
+		o->tri_v[c] = slot[h];
+	}
+	free(slot);
+	*ov = v;
+	*ot = t;
+	*on = n;
+	*count = used;
+	return 0;
+}
+
+/* Move the parsed arrays into m, one vertex per file vertex. */
+static void
+keep_numbers(struct obj *o, struct vdt_mesh *m)
+{
+	m->vertex_count = o->nv;
+	m->positions = o->pos;
+	m->colors = o->col;
+	m->triangle_count = o->tri_count;
+	m->triangles = o->tri_v;
+	o->pos = o->col = NULL;
+	o->tri_v = NULL;
+	if (o->any_t) {
+		m->uvs = o->uv;
+		o->uv = NULL;
+	}
+	if (o->any_n) {
+		m->normals = o->nrm;
+		o->nrm = NULL;
+	}
+}
+
+static int
+build_split(struct obj *o, struct vdt_mesh *m, struct vdt_err *err)
+{
+	uint32_t *v = NULL, *t = NULL, *n = NULL;
+	size_t count = 0;
+	unsigned attrs = (o->any_t ? VDT_ATTR_UVS : 0) | (o->any_n ? VDT_ATTR_NORMALS : 0) |
+	                 (o->col ? VDT_ATTR_COLORS : 0);
+	int rc;
+
+	rc = split(o, &v, &t, &n, &count, err);
+	if (rc != 0)
+		return rc;
+	rc = vdt_mesh_alloc(m, count, 0, attrs, err);
+	if (rc == 0) {
+		for (size_t i = 0; i < count; i++) {
+			memcpy(m->positions + 3 * i, o->pos + 3 * (size_t)v[i], 3 * sizeof(float));
+			if (m->colors)
+				memcpy(m->colors + 4 * i, o->col + 4 * (size_t)v[i], 4 * sizeof(float));
+			if (m->uvs) {
+				if (t[i] == NONE)
+					m->uvs[2 * i] = m->uvs[2 * i + 1] = 0;
+				else
+					memcpy(m->uvs + 2 * i, o->uv + 2 * (size_t)t[i], 2 * sizeof(float));
+			}
+			if (m->normals) {
+				if (n[i] == NONE)
+					m->normals[3 * i] = m->normals[3 * i + 1] = m->normals[3 * i + 2] = 0;
+				else
+					memcpy(m->normals + 3 * i, o->nrm + 3 * (size_t)n[i], 3 * sizeof(float));
+			}
+		}
+		free(m->triangles);
+		m->triangles = o->tri_v;
+		m->triangle_count = o->tri_count;
+		o->tri_v = NULL;
+	}
+	free(v);
+	free(t);
+	free(n);
+	return rc;
+}
+
+int
+vdt_obj_read(const unsigned char *buf, size_t len, struct vdt_mesh *m, struct vdt_err *err)
+{
+	struct obj o = {0};
+	int rc;
+
+	memset(m, 0, sizeof(*m));
+	o.lockstep = 1;
+	rc = count((const char *)buf, len, &o, err);
+	if (rc != 0)
+		return rc;
+	o.pos = malloc(3 * (o.nv ? o.nv : 1) * sizeof(float));
+	o.uv = malloc(2 * (o.nt ? o.nt : 1) * sizeof(float));
+	o.nrm = malloc(3 * (o.nn ? o.nn : 1) * sizeof(float));
+	if (o.pos == NULL || o.uv == NULL || o.nrm == NULL) {
+		rc = vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu vertices", o.nv);
+		goto out;
+	}
+	/* Every face makes a triangle or more; polygons grow the arrays. */
+	rc = grow_triangles(&o, o.nf, err);
+	if (rc == 0)
+		rc = parse((const char *)buf, len, &o, err);
+	if (rc != 0)
+		goto out;
+	if (!o.any_t && !o.any_n)
+		keep_numbers(&o, m);
+	else if (o.lockstep && (!o.any_t || (!o.miss_t && o.nt == o.nv)) &&
+	         (!o.any_n || (!o.miss_n && o.nn == o.nv)))
+		keep_numbers(&o, m);
+	else
+		rc = build_split(&o, m, err);
+out:
+	obj_free(&o);
+	if (rc != 0)
+		vdt_mesh_free(m);
+	return rc;
+}
