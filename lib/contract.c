@@ -413,8 +413,22 @@ link_ok(struct engine *e, uint32_t a, uint32_t b)
 }
 
 /*
- * No face around `v` (other than those with `other`) may degenerate, flip,
- * or (optionally) become a sliver when v moves to pos.
+ * Whether a.b >= c |a| |b| for c in [-1, 1], without square roots: la2, lb2
+ * are the squared lengths.
+ */
+static inline int
+within_angle(double dot, double la2, double lb2, double c)
+{
+	if (c >= 0)
+		return dot >= 0 && dot * dot >= c * c * la2 * lb2;
+	return dot >= 0 || dot * dot <= c * c * la2 * lb2;
+}
+
+/*
+ * No face around `v` (other than those with `other`) may degenerate, turn
+ * by more than the fold-over angle against its current and its input
+ * normal, or (optionally) become a sliver when v moves to pos. With the
+ * face's other corners x, y fixed, both normals share the edge y - x.
  */
 static int
 fan_ok(struct engine *e, uint32_t v, uint32_t other, const float pos[3])
@@ -426,26 +440,43 @@ fan_ok(struct engine *e, uint32_t v, uint32_t other, const float pos[3])
 		const uint32_t *c = e->tri + 3 * (size_t)t;
 		if (c[0] == other || c[1] == other || c[2] == other)
 			continue;
-		const float *p[3], *q[3];
-		for (int k = 0; k < 3; k++) {
-			p[k] = e->pos + 3 * (size_t)c[k];
-			q[k] = c[k] == v ? pos : p[k];
+		/* rotate so that c[k] == v comes first: (v, x, y) */
+		int k = c[0] == v ? 0 : c[1] == v ? 1 : 2;
+		const float *pv = e->pos + 3 * (size_t)v;
+		const float *px = e->pos + 3 * (size_t)c[(k + 1) % 3];
+		const float *py = e->pos + 3 * (size_t)c[(k + 2) % 3];
+		double ed[3], a0[3], a1[3], n0[3], n1[3];
+		for (int j = 0; j < 3; j++) {
+			ed[j] = (double)py[j] - px[j];
+			a0[j] = (double)px[j] - pv[j];
+			a1[j] = (double)px[j] - pos[j];
 		}
-		double n0[3], n1[3];
-		tri_normal(p[0], p[1], p[2], n0);
-		tri_normal(q[0], q[1], q[2], n1);
-		double l1 = len3(n1), l0 = len3(n0);
-		double qual = quality(q[0], q[1], q[2], n1);
-		if (!(qual > 1e-6))
+		/* n = (x - v) x (y - v) = (x - v) x (y - x) */
+		n0[0] = a0[1] * ed[2] - a0[2] * ed[1];
+		n0[1] = a0[2] * ed[0] - a0[0] * ed[2];
+		n0[2] = a0[0] * ed[1] - a0[1] * ed[0];
+		n1[0] = a1[1] * ed[2] - a1[2] * ed[1];
+		n1[1] = a1[2] * ed[0] - a1[0] * ed[2];
+		n1[2] = a1[0] * ed[1] - a1[1] * ed[0];
+		double l0 = dot3(n0, n0), l1 = dot3(n1, n1);
+		/* squared edge lengths of the new face, for its quality */
+		double s = dot3(ed, ed) + dot3(a1, a1);
+		double b[3] = {(double)py[0] - pos[0], (double)py[1] - pos[1], (double)py[2] - pos[2]};
+		s += dot3(b, b);
+		/* quality 2 sqrt(3) |n| / s > 1e-6, squared */
+		if (!(12 * l1 > 1e-12 * s * s))
 			return 0;
-		if (dot3(n0, n1) < e->cos_max * l0 * l1)
+		if (!within_angle(dot3(n0, n1), l0, l1, e->cos_max))
 			return 0;
 		double tn[3] = {e->tnormal[3 * t], e->tnormal[3 * t + 1], e->tnormal[3 * t + 2]};
-		if (dot3(tn, n1) < e->cos_max * l1)
+		if (!within_angle(dot3(tn, n1), 1, l1, e->cos_max))
 			return 0;
-		if (e->min_quality > 0 && qual < e->min_quality &&
-		    qual < quality(p[0], p[1], p[2], n0))
-			return 0;
+		if (e->min_quality > 0) {
+			const float *q[3] = {pos, px, py};
+			double qual = quality(q[0], q[1], q[2], n1);
+			if (qual < e->min_quality && qual < quality(pv, px, py, n0))
+				return 0;
+		}
 	}
 	return 1;
 }
