@@ -152,6 +152,14 @@ test_detect(void **state)
 	assert_int_equal(D("ply\nformat binary_big_endian 1.0\n"), VDT_FMT_PLY);
 	assert_int_equal(D("OFF\n3 1 0\n"), VDT_FMT_OFF);
 	assert_int_equal(D("COFF\n"), VDT_FMT_OFF);
+	/* Prefixes in any order, after comments, as off.c reads them. */
+	assert_int_equal(D("NCOFF\n"), VDT_FMT_OFF);
+	assert_int_equal(D("CNOFF 3 1\n"), VDT_FMT_OFF);
+	assert_int_equal(D("STNCOFF\n"), VDT_FMT_OFF);
+	assert_int_equal(D("4OFF\n"), VDT_FMT_OFF);
+	assert_int_equal(D("nOFF\n3\n"), VDT_FMT_OFF);
+	assert_int_equal(D("# made by hand\n\n  NOFF\n"), VDT_FMT_OFF);
+	assert_int_equal(D("CCOFF\n"), VDT_FMT_AUTO);
 	assert_int_equal(D("# made by hand\n\nv 0 0 0\n"), VDT_FMT_OBJ);
 	assert_int_equal(D("mtllib a.mtl\n"), VDT_FMT_OBJ);
 	assert_int_equal(D("solid x\n facet normal 0 0 1\n"), VDT_FMT_STL_ASCII);
