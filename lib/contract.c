@@ -687,7 +687,6 @@ engine_init(struct engine *e, const struct vdt_mesh *m,
 {
 	size_t nv = m->vertex_count, nt = m->triangle_count;
 	uint64_t *keys = NULL;
-	size_t ne = 0;
 
 	e->nv = nv;
 	e->nt = nt;
@@ -701,7 +700,7 @@ engine_init(struct engine *e, const struct vdt_mesh *m,
 	e->stamp = calloc(nv + 1, sizeof(uint32_t));
 	e->slot = malloc((nv + 1) * sizeof(uint32_t));
 	e->vrej = calloc(nv + 1, sizeof(uint16_t));
-	keys = malloc((3 * nt + o->virtual_pair_count + 1) * sizeof(uint64_t));
+	keys = malloc((o->virtual_pair_count + 1) * sizeof(uint64_t));
 	if (!e->pos || !e->tri || !e->tnormal || !e->vflag || !e->vt || !e->vp || !e->parent || !e->stamp || !e->slot || !e->vrej || !keys)
 		goto nomem;
 	memcpy(e->pos, m->positions, 3 * nv * sizeof(float));
@@ -743,64 +742,84 @@ engine_init(struct engine *e, const struct vdt_mesh *m,
 			struct list *l = &e->vt[c[k]];
 			e->tpool.data[l->off + l->len++] = (uint32_t)t;
 		}
-		/* Edge keys: min << 32 | max. */
-		for (int k = 0; k < 3; k++) {
-			uint64_t a = c[k], b = c[(k + 1) % 3];
-			keys[ne++] = a < b ? a << 32 | b : b << 32 | a;
-		}
 	}
-	if (sort_u64(keys, ne) != 0)
-		goto nomem;
 
-	/* Unique edges; an edge in three or more faces locks its ends. */
-	size_t np = 0;
-	for (size_t i = 0; i < ne;) {
-		size_t j = i + 1;
-		while (j < ne && keys[j] == keys[i])
-			j++;
-		if (j - i > 2) {
-			e->vflag[keys[i] >> 32] |= V_LOCKED;
-			e->vflag[keys[i] & 0xffffffff] |= V_LOCKED;
+	/*
+	 * Pairs: the edges, found from each vertex's fan (one pair per
+	 * neighbour above it, in fan order), then the virtual pairs that are
+	 * not edges. An edge in three or more faces locks its ends. Two
+	 * passes, counting then filling, so nothing is held but the pairs.
+	 */
+	size_t np = 0, nvirt = 0;
+	long dummy = 0;
+	for (int pass = 0; pass < 2; pass++) {
+		np = 0;
+		for (size_t v = 0; v < nv; v++) {
+			long n = neighbours(e, (uint32_t)v, 0, 0, &dummy);
+			if (n < 0)
+				goto nomem;
+			for (long i = 0; i < n; i++) {
+				uint32_t x = e->nbr[2 * i];
+				if (x < v)
+					continue;
+				if (pass == 1) {
+					e->pv[2 * np] = (uint32_t)v;
+					e->pv[2 * np + 1] = x;
+					if (e->nbr[2 * i + 1] > 2) {
+						e->vflag[v] |= V_LOCKED;
+						e->vflag[x] |= V_LOCKED;
+					}
+				}
+				np++;
+			}
 		}
-		keys[np++] = keys[i];
-		i = j;
+		if (pass == 1)
+			break;
+		/* Virtual pairs, sorted, without repeats or edges. */
+		for (size_t i = 0; i < o->virtual_pair_count; i++) {
+			uint64_t a = o->virtual_pairs[2 * i], b = o->virtual_pairs[2 * i + 1];
+			if (a == b || a >= nv || b >= nv)
+				continue;
+			keys[nvirt++] = a < b ? a << 32 | b : b << 32 | a;
+		}
+		if (sort_u64(keys, nvirt) != 0)
+			goto nomem;
+		size_t kept = 0;
+		for (size_t i = 0; i < nvirt; i++) {
+			uint32_t a = (uint32_t)(keys[i] >> 32), b = (uint32_t)keys[i];
+			int edge = 0;
+			if (i > 0 && keys[i] == keys[i - 1])
+				continue;
+			for (uint32_t j = 0; j < e->vt[a].len && !edge; j++) {
+				const uint32_t *c = e->tri + 3 * (size_t)e->tpool.data[e->vt[a].off + j];
+				edge = c[0] == b || c[1] == b || c[2] == b;
+			}
+			if (!edge)
+				keys[kept++] = keys[i];
+		}
+		nvirt = kept;
+		e->pv = malloc(2 * (np + nvirt + 1) * sizeof(uint32_t));
+		if (!e->pv)
+			goto nomem;
 	}
-	/* Virtual pairs after the edges, without repeats or edges. */
-	size_t nedges = np, nvirt = 0;
-	uint64_t *virt = keys + nedges;
-	for (size_t i = 0; i < o->virtual_pair_count; i++) {
-		uint64_t a = o->virtual_pairs[2 * i], b = o->virtual_pairs[2 * i + 1];
-		if (a == b || a >= nv || b >= nv)
-			continue;
-		virt[nvirt++] = a < b ? a << 32 | b : b << 32 | a;
+	for (size_t i = 0; i < nvirt; i++) {
+		e->pv[2 * np] = (uint32_t)(keys[i] >> 32);
+		e->pv[2 * np + 1] = (uint32_t)keys[i];
+		np++;
 	}
-	if (sort_u64(virt, nvirt) != 0)
-		goto nomem;
-	for (size_t i = 0, j = 0; i < nvirt; i++) {
-		if (i > 0 && virt[i] == virt[i - 1])
-			continue;
-		while (j < nedges && keys[j] < virt[i])
-			j++;
-		if (j < nedges && keys[j] == virt[i])
-			continue;
-		keys[np++] = virt[i];
-	}
+	free(keys);
+	keys = NULL;
 	e->np = np;
-	e->pv = malloc(2 * (np + 1) * sizeof(uint32_t));
 	e->pflag = calloc(np + 1, 1);
 	e->heap = malloc((np + 1) * sizeof(struct hent));
 	e->hpos = malloc((np + 1) * sizeof(uint32_t));
-	if (!e->pv || !e->pflag || !e->heap || !e->hpos)
+	if (!e->pflag || !e->heap || !e->hpos)
 		goto nomem;
 	for (size_t p = 0; p < np; p++) {
-		e->pv[2 * p] = (uint32_t)(keys[p] >> 32);
-		e->pv[2 * p + 1] = (uint32_t)keys[p];
 		e->vp[e->pv[2 * p]].cap++;
 		e->vp[e->pv[2 * p + 1]].cap++;
 		e->hpos[p] = NONE;
 	}
-	free(keys);
-	keys = NULL;
 	if (pool_reserve(&e->ppool, 2 * np + 64) != 0)
 		goto nomem;
 	for (size_t v = 0; v < nv; v++) {
