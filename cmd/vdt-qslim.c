@@ -27,7 +27,8 @@ usage(FILE *f)
 	        "usage: vdt-qslim [-t TRIANGLES] [-r RATIO] [-e ERROR[%%]] [-o OUTPUT] [-F FORMAT]\n"
 	        "                 [-a DISTANCE[%%]] [--lock-border] [--boundary-weight W]\n"
 	        "                 [--max-angle DEGREES] [--min-quality Q] [--ignore-quadrics]\n"
-	        "                 [--record] [--draco-bits N] [-q] [-v] [INPUT]\n"
+	        "                 [--attribute-weight W] [--record] [--draco-bits N] [-q] [-v]\n"
+	        "                 [INPUT]\n"
 	        "Simplify a triangle mesh with quadric error metrics. INPUT and OUTPUT\n"
 	        "default to - (stdin, stdout); stops at the first target reached\n"
 	        "(default -r 0.5).\n");
@@ -36,7 +37,7 @@ usage(FILE *f)
 static void
 parse_cmdline(int argc, char **argv, struct cmdline *cl)
 {
-	enum { O_LOCK = 256, O_BW, O_ANGLE, O_QUALITY, O_IGNORE, O_RECORD, O_DRACO };
+	enum { O_LOCK = 256, O_BW, O_ANGLE, O_QUALITY, O_IGNORE, O_RECORD, O_DRACO, O_AW };
 	static const struct option longopts[] = {
 		{"triangles", required_argument, NULL, 't'},
 		{"ratio", required_argument, NULL, 'r'},
@@ -49,6 +50,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		{"max-angle", required_argument, NULL, O_ANGLE},
 		{"min-quality", required_argument, NULL, O_QUALITY},
 		{"ignore-quadrics", no_argument, NULL, O_IGNORE},
+		{"attribute-weight", required_argument, NULL, O_AW},
 		{"record", no_argument, NULL, O_RECORD},
 		{"draco-bits", required_argument, NULL, O_DRACO},
 		{"quiet", no_argument, NULL, 'q'},
@@ -61,6 +63,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 
 	memset(cl, 0, sizeof(*cl));
 	vdt_qslim_defaults(&cl->q);
+	cl->q.attribute_weight = VDT_QSLIM_ATTRIBUTE_WEIGHT;
 	cl->in = cl->out = "-";
 	cl->bound = INFINITY;
 	while ((c = getopt_long(argc, argv, "t:r:e:o:F:a:qvhV", longopts, NULL)) != -1) {
@@ -79,6 +82,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		case O_ANGLE: cl->q.max_normal_angle = parse_real("--max-angle", optarg, 1, 180); break;
 		case O_QUALITY: cl->q.min_quality = parse_real("--min-quality", optarg, 0, 1); break;
 		case O_IGNORE: cl->ignore_quadrics = 1; break;
+		case O_AW: cl->q.attribute_weight = parse_real("--attribute-weight", optarg, 0, 1e9); break;
 		case O_RECORD: cl->record = 1; break;
 		case O_DRACO: cl->w.draco_position_bits = (int)parse_count("--draco-bits", optarg, 1, 30); break;
 		case 'q': cl->quiet = 1; break;

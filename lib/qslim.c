@@ -6,6 +6,14 @@
  * Surface Simplification" (Vis 2002, section 3.3): quadrics handed over by
  * the clustering phase seed the vertices instead of the faces'.
  *
+ * Appearance attributes follow Hoppe, "New Quadric Metric for Simplifying
+ * Meshes with Appearance Attributes" (IEEE Visualization 99), sections 3-5:
+ * the attributes of a face are linear functions of position over it, and a
+ * wedge (one attribute set at a position) carries the sum over its faces of
+ * the squared attribute deviation; the attribute values minimising it are
+ * solved from the position, and what is left is itself a quadric in the
+ * position (the memory-efficient form of section 5).
+ *
  * Quadrics live in a frame centred on the bounding box, so that v'Av + 2b'v
  * + c does not cancel away on models far from the origin.
  */
@@ -17,12 +25,15 @@
 
 #define NONE UINT32_MAX
 
+struct attr;
+
 struct ctx {
 	struct vdt_quadric *q; /* per welded vertex */
 	double centre[3];
 	double max_error;      /* squared-distance bound, or INFINITY */
 	const uint8_t *seam;
 	double worst;          /* largest contraction error so far (squared) */
+	struct attr *at;       /* attribute quadrics, or NULL */
 };
 
 void
@@ -460,6 +471,639 @@ out:
 	return rc;
 }
 
+/* ---- appearance attributes (Hoppe 99) ---- */
+
+#define ATTR_MAX 9 /* 2 UV + 3 normal + 4 colour */
+
+/*
+ * Wedges are sets of input vertices (a union-find over input ids, rooted at
+ * the member that speaks for the set). Each root holds, with face weights
+ * w_f (a third of the area, times lambda) and the face's attribute
+ * functions s_j(p) = g_fj.p + d_fj:
+ *   W = sum w_f,  G_j = sum w_f g_fj,  D_j = sum w_f d_fj.
+ * The part of sum w_f (s_j - g_fj.p - d_fj)^2 that depends on p only is
+ * added to the vertex's quadric `qc`, so that a wedge needs 1 + 4m doubles;
+ * minimising over s_j gives s_j = (G_j.p + D_j) / W, and subtracting
+ * (G_j.p + D_j)^2 / W from qc leaves the attribute error at p.
+ */
+struct attr {
+	int m;                    /* attribute dimensions */
+	size_t stride;            /* doubles per wedge: W, G[3m], D[m] */
+	double umin[2], urange[2];
+	float uclamp[2][2], cmin[4], cmax[4];
+	struct vdt_quadric *qc;   /* per welded vertex: geometry + attributes */
+	double *wd;               /* per wedge root */
+	uint32_t *wpar;           /* per input vertex: union-find parent */
+	uint32_t *wcount;         /* per root: input vertices in the wedge */
+	uint32_t *whead, *wnext;  /* wedge roots of each welded vertex */
+	uint32_t *cvert;          /* per corner of the engine's faces */
+	uint32_t *cw;             /* per corner: its wedge (a root, or on the
+	                             way to one) */
+	uint32_t *chead, *cnext;  /* corners of live faces at each vertex;
+	                             stale ones are skipped, then pruned */
+	uint8_t *moved;           /* per welded vertex: took part in a merge */
+	uint32_t *sw, *sg;        /* scratch: a pair's wedges and groups */
+	int virtual_pairs;        /* pairs may share no face */
+};
+
+static uint32_t
+wfind(const uint32_t *par, uint32_t i)
+{
+	while (par[i] != i)
+		i = par[i];
+	return i;
+}
+
+static uint32_t
+wroot(uint32_t *par, uint32_t i)
+{
+	uint32_t r = wfind(par, i);
+	while (par[i] != r) {
+		uint32_t n = par[i];
+		par[i] = r;
+		i = n;
+	}
+	return r;
+}
+
+static int
+dead_face(const uint32_t *cvert, uint32_t k)
+{
+	const uint32_t *v = cvert + k / 3 * 3;
+	return v[0] == v[1] || v[1] == v[2] || v[0] == v[2];
+}
+
+/* The normalised attributes of input vertex i. */
+static void
+attr_values(const struct vdt_mesh *in, const struct attr *at, size_t i, double *s)
+{
+	int j = 0;
+	if (in->uvs)
+		for (int k = 0; k < 2; k++)
+			s[j++] = (in->uvs[2 * i + k] - at->umin[k]) / at->urange[k];
+	if (in->normals)
+		for (int k = 0; k < 3; k++)
+			s[j++] = in->normals[3 * i + k];
+	if (in->colors)
+		for (int k = 0; k < 4; k++)
+			s[j++] = in->colors[4 * i + k];
+}
+
+static int
+same_attrs(const struct vdt_mesh *in, size_t a, size_t b)
+{
+	return (!in->uvs || !memcmp(in->uvs + 2 * a, in->uvs + 2 * b, 2 * sizeof(float))) &&
+	       (!in->normals || !memcmp(in->normals + 3 * a, in->normals + 3 * b, 3 * sizeof(float))) &&
+	       (!in->colors || !memcmp(in->colors + 4 * a, in->colors + 4 * b, 4 * sizeof(float)));
+}
+
+/* q -= sum_j (G_j.p + D_j)^2 / W, for the wedge sums x. */
+static void
+attr_subtract(struct vdt_quadric *q, const double *x, int m)
+{
+	if (!(x[0] > 0))
+		return;
+	double iw = 1 / x[0];
+	const double *G = x + 1, *D = x + 1 + 3 * m;
+	for (int j = 0; j < m; j++) {
+		const double *g = G + 3 * j;
+		double d = D[j];
+		q->a00 -= g[0] * g[0] * iw;
+		q->a01 -= g[0] * g[1] * iw;
+		q->a02 -= g[0] * g[2] * iw;
+		q->a11 -= g[1] * g[1] * iw;
+		q->a12 -= g[1] * g[2] * iw;
+		q->a22 -= g[2] * g[2] * iw;
+		q->b0 -= d * g[0] * iw;
+		q->b1 -= d * g[1] * iw;
+		q->b2 -= d * g[2] * iw;
+		q->c -= d * d * iw;
+	}
+}
+
+/*
+ * The attribute functions of live face t (engine numbering; input face
+ * src), added to its wedges and to its vertices' quadrics. The gradient of
+ * s over the face lies in its plane: g = alpha e1 + beta e2 with g.e1 =
+ * s1 - s0 and g.e2 = s2 - s0 (Hoppe 99, section 4).
+ */
+static void
+attr_face(struct ctx *c, const struct vdt_mesh *in, const struct vdt_mesh *w,
+          size_t t, uint32_t src, double lambda)
+{
+	struct attr *at = c->at;
+	const uint32_t *v = w->triangles + 3 * t, *iv = in->triangles + 3 * (size_t)src;
+	double p[3][3], e1[3], e2[3], s[3][ATTR_MAX], g[ATTR_MAX][3], d[ATTR_MAX];
+	struct vdt_quadric q;
+	int m = at->m;
+
+	for (int i = 0; i < 3; i++) {
+		for (int k = 0; k < 3; k++)
+			p[i][k] = w->positions[3 * (size_t)v[i] + k] - c->centre[k];
+		attr_values(in, at, iv[i], s[i]);
+	}
+	for (int k = 0; k < 3; k++) {
+		e1[k] = p[1][k] - p[0][k];
+		e2[k] = p[2][k] - p[0][k];
+	}
+	double a = e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2];
+	double b = e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2];
+	double cc = e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2];
+	double det = a * cc - b * b;
+	/* A sliver has no meaningful gradient, and almost no area. */
+	if (!(det > 1e-12 * a * cc))
+		return;
+	double wf = lambda * sqrt(det) / 6;
+	vdt_quadric_zero(&q);
+	for (int j = 0; j < m; j++) {
+		double d1 = s[1][j] - s[0][j], d2 = s[2][j] - s[0][j];
+		double al = (cc * d1 - b * d2) / det, be = (a * d2 - b * d1) / det;
+		for (int k = 0; k < 3; k++)
+			g[j][k] = al * e1[k] + be * e2[k];
+		d[j] = s[0][j] - (g[j][0] * p[0][0] + g[j][1] * p[0][1] + g[j][2] * p[0][2]);
+		q.a00 += wf * g[j][0] * g[j][0];
+		q.a01 += wf * g[j][0] * g[j][1];
+		q.a02 += wf * g[j][0] * g[j][2];
+		q.a11 += wf * g[j][1] * g[j][1];
+		q.a12 += wf * g[j][1] * g[j][2];
+		q.a22 += wf * g[j][2] * g[j][2];
+		q.b0 += wf * d[j] * g[j][0];
+		q.b1 += wf * d[j] * g[j][1];
+		q.b2 += wf * d[j] * g[j][2];
+		q.c += wf * d[j] * d[j];
+	}
+	for (int i = 0; i < 3; i++) {
+		double *x = at->wd + at->stride * at->cw[3 * t + i];
+		x[0] += wf;
+		for (int j = 0; j < m; j++) {
+			for (int k = 0; k < 3; k++)
+				x[1 + 3 * j + k] += wf * g[j][k];
+			x[1 + 3 * m + j] += wf * d[j];
+		}
+		vdt_quadric_add(&at->qc[v[i]], &q);
+	}
+}
+
+/*
+ * The wedges of a and b (a's first, in list order) into at->sw, and in
+ * at->sg the index of the first wedge of each one's group: wedges whose
+ * corners meet in a face that a and b share become one, so that at a seam
+ * each side pairs with the same side. A wedge in no shared face stays
+ * apart. Returns the number of wedges.
+ */
+static size_t
+pair_wedges(const struct attr *at, uint32_t a, uint32_t b)
+{
+	size_t n = 0, na;
+
+	for (uint32_t r = at->whead[a]; r != NONE; r = at->wnext[r])
+		at->sw[n++] = r;
+	na = n;
+	for (uint32_t r = at->whead[b]; r != NONE; r = at->wnext[r])
+		at->sw[n++] = r;
+	for (size_t i = 0; i < n; i++)
+		at->sg[i] = (uint32_t)i;
+	for (uint32_t k = at->chead[a]; k != NONE; k = at->cnext[k]) {
+		if (dead_face(at->cvert, k))
+			continue;
+		for (uint32_t o = k / 3 * 3; o < k / 3 * 3 + 3; o++) {
+			if (at->cvert[o] != b)
+				continue;
+			uint32_t ra = wfind(at->wpar, at->cw[k]), rb = wfind(at->wpar, at->cw[o]);
+			size_t x = 0, y = na;
+			while (x < na && at->sw[x] != ra)
+				x++;
+			while (y < n && at->sw[y] != rb)
+				y++;
+			if (x == na || y == n)
+				continue; /* cannot happen: corners follow their vertex */
+			while (at->sg[x] != x)
+				x = at->sg[x];
+			while (at->sg[y] != y)
+				y = at->sg[y];
+			/* The smaller index leads, so one pass resolves groups. */
+			if (x < y)
+				at->sg[y] = (uint32_t)x;
+			else if (y < x)
+				at->sg[x] = (uint32_t)y;
+		}
+	}
+	for (size_t i = 0; i < n; i++)
+		at->sg[i] = at->sg[at->sg[i]];
+	return n;
+}
+
+static void
+wedge_add(double *x, const double *y, size_t stride)
+{
+	for (size_t i = 0; i < stride; i++)
+		x[i] += y[i];
+}
+
+/* The quadric of the pair (a, b) merged: geometry plus attribute error. */
+static void
+attr_pair_quadric(const struct attr *at, uint32_t a, uint32_t b, struct vdt_quadric *q)
+{
+	double x[1 + 4 * ATTR_MAX];
+	size_t S = at->stride;
+	uint32_t ra = at->whead[a], rb = at->whead[b];
+
+	*q = at->qc[a];
+	vdt_quadric_add(q, &at->qc[b]);
+	if (!at->virtual_pairs && at->wnext[ra] == NONE && at->wnext[rb] == NONE) {
+		/* The common case, away from seams: one wedge each, merging. */
+		memcpy(x, at->wd + S * ra, S * sizeof(double));
+		wedge_add(x, at->wd + S * rb, S);
+		attr_subtract(q, x, at->m);
+		return;
+	}
+	size_t n = pair_wedges(at, a, b);
+	for (size_t i = 0; i < n; i++) {
+		if (at->sg[i] != i)
+			continue;
+		memcpy(x, at->wd + S * at->sw[i], S * sizeof(double));
+		for (size_t j = i + 1; j < n; j++)
+			if (at->sg[j] == i)
+				wedge_add(x, at->wd + S * at->sw[j], S);
+		attr_subtract(q, x, at->m);
+	}
+}
+
+static double
+cost_attr(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
+          const float pb[3], double pos[3])
+{
+	struct ctx *c = vc;
+	struct vdt_quadric q;
+	double p0[3], p1[3], e;
+
+	attr_pair_quadric(c->at, a, b, &q);
+	for (int k = 0; k < 3; k++) {
+		p0[k] = pa[k] - c->centre[k];
+		p1[k] = pb[k] - c->centre[k];
+	}
+	if (fixed == 0) {
+		memcpy(pos, p0, sizeof(p0));
+		e = vdt_quadric_eval(&q, pos);
+	} else if (fixed == 1) {
+		memcpy(pos, p1, sizeof(p1));
+		e = vdt_quadric_eval(&q, pos);
+	} else {
+		e = vdt_quadric_optimize(&q, p0, p1, pos);
+		/* Attributes make the system well conditioned where geometry
+		 * alone was flat, and the solve can then land a rounding error
+		 * away from an endpoint: snap to it, so that vertices which need
+		 * not move keep their exact coordinates (and attributes). */
+		double d2 = 0;
+		for (int k = 0; k < 3; k++)
+			d2 += (p1[k] - p0[k]) * (p1[k] - p0[k]);
+		for (int i = 0; i < 2; i++) {
+			const double *pe = i ? p1 : p0;
+			double r2 = 0;
+			for (int k = 0; k < 3; k++)
+				r2 += (pos[k] - pe[k]) * (pos[k] - pe[k]);
+			if (r2 <= 1e-12 * d2) {
+				memcpy(pos, pe, sizeof(p0));
+				e = vdt_quadric_eval(&q, pos);
+				break;
+			}
+		}
+	}
+	/* The bound is on distance: judge it on the geometric quadric. */
+	if (c->max_error < INFINITY) {
+		struct vdt_quadric g = c->q[a];
+		vdt_quadric_add(&g, &c->q[b]);
+		if (g.w > 0 && vdt_quadric_eval(&g, pos) > c->max_error * g.w)
+			return INFINITY;
+	}
+	for (int k = 0; k < 3; k++)
+		pos[k] += c->centre[k];
+	return e;
+}
+
+static void
+merged_attr(void *vc, uint32_t keep, uint32_t gone, const double pos[3], double cost)
+{
+	struct ctx *c = vc;
+	struct attr *at = c->at;
+	size_t S = at->stride, n = pair_wedges(at, keep, gone);
+	uint32_t last = NONE;
+	double p[3];
+
+	(void)cost;
+	for (size_t i = 0; i < n; i++) {
+		uint32_t r = at->sw[i];
+		if (at->sg[i] == i) {
+			if (last == NONE)
+				at->whead[keep] = r;
+			else
+				at->wnext[last] = r;
+			last = r;
+		} else {
+			uint32_t l = at->sw[at->sg[i]];
+			wedge_add(at->wd + S * l, at->wd + S * r, S);
+			at->wpar[r] = l;
+			at->wcount[l] += at->wcount[r];
+		}
+	}
+	at->wnext[last] = NONE;
+	at->whead[gone] = NONE;
+
+	/* gone's corners move to keep; those of the faces they shared die. */
+	for (uint32_t k = at->chead[gone], next; k != NONE; k = next) {
+		next = at->cnext[k];
+		at->cvert[k] = keep;
+		if (!dead_face(at->cvert, k)) {
+			at->cnext[k] = at->chead[keep];
+			at->chead[keep] = k;
+		}
+	}
+	at->chead[gone] = NONE;
+	for (uint32_t *link = &at->chead[keep]; *link != NONE;) {
+		uint32_t k = *link;
+		if (dead_face(at->cvert, k)) {
+			*link = at->cnext[k];
+		} else {
+			at->cw[k] = wroot(at->wpar, at->cw[k]);
+			link = &at->cnext[k];
+		}
+	}
+	at->moved[keep] = 1;
+
+	vdt_quadric_add(&c->q[keep], &c->q[gone]);
+	vdt_quadric_add(&at->qc[keep], &at->qc[gone]);
+	for (int k = 0; k < 3; k++)
+		p[k] = pos[k] - c->centre[k];
+	double e = vdt_quadric_eval(&c->q[keep], p);
+	if (c->q[keep].w > 0 && e / c->q[keep].w > c->worst)
+		c->worst = e / c->q[keep].w;
+}
+
+static void
+attr_free(struct attr *at)
+{
+	if (at == NULL)
+		return;
+	free(at->qc);
+	free(at->wd);
+	free(at->wpar);
+	free(at->wcount);
+	free(at->whead);
+	free(at->wnext);
+	free(at->cvert);
+	free(at->cw);
+	free(at->chead);
+	free(at->cnext);
+	free(at->moved);
+	free(at->sw);
+	free(at->sg);
+	free(at);
+}
+
+/*
+ * Discontinuity curves stay in place the way open boundaries do (Garland &
+ * Heckbert 98, section 5; Hoppe 99, section 6): along each seam edge, the
+ * edge whose two faces meet with different wedges at an end, the plane
+ * through it perpendicular to each face joins both ends' quadrics. Without
+ * it a seam vertex could slide off the seam at no attribute cost, since each
+ * side's attributes extrapolate linearly, and drag one side's texture over
+ * the other's.
+ */
+static void
+seam_planes(struct ctx *c, const struct vdt_mesh *w, double weight)
+{
+	struct attr *at = c->at;
+
+	for (size_t v = 0; v < w->vertex_count; v++)
+		for (uint32_t k = at->chead[v]; k != NONE; k = at->cnext[k]) {
+			uint32_t t = k / 3, k1 = 3 * t + (k + 1) % 3, b = at->cvert[k1], k2, kb = NONE;
+			for (k2 = at->chead[v]; k2 != NONE; k2 = at->cnext[k2]) {
+				uint32_t t2 = k2 / 3;
+				if (t2 == t)
+					continue;
+				for (kb = 3 * t2; kb < 3 * t2 + 3 && at->cvert[kb] != b; kb++)
+					;
+				if (kb < 3 * t2 + 3)
+					break;
+			}
+			if (k2 == NONE || (at->cw[k] == at->cw[k2] && at->cw[k1] == at->cw[kb]))
+				continue;
+			double p[3][3], e1[3], e2[3], n[3], l;
+			struct vdt_quadric q;
+			for (int i = 0; i < 3; i++)
+				for (int j = 0; j < 3; j++)
+					p[i][j] = w->positions[3 * (size_t)at->cvert[3 * t + i] + j] - c->centre[j];
+			for (int j = 0; j < 3; j++) {
+				e1[j] = p[1][j] - p[0][j];
+				e2[j] = p[2][j] - p[0][j];
+			}
+			n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+			n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+			n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+			l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+			if (!(l > 0))
+				continue;
+			for (int j = 0; j < 3; j++)
+				n[j] /= l;
+			if (vdt_quadric_boundary(&q, p[k % 3], p[(k + 1) % 3], n, weight) == 0) {
+				q.w = 0;
+				vdt_quadric_add(&at->qc[v], &q);
+				vdt_quadric_add(&at->qc[b], &q);
+			}
+		}
+}
+
+/*
+ * Wedges and attribute quadrics for the live faces of w (fsrc: their input
+ * faces). Input vertices at one position with bit-identical attributes are
+ * one wedge; seam[v] is set where a position has more than one. lambda
+ * turns attribute units into squared distances. Returns NULL when out of
+ * memory.
+ */
+static struct attr *
+attr_setup(struct ctx *c, const struct vdt_mesh *in, const struct vdt_mesh *w,
+           const uint32_t *fsrc, const uint32_t *wstart, const uint32_t *wlist,
+           double lambda, double seam_weight, int virtual_pairs, uint8_t *seam)
+{
+	size_t n = in->vertex_count, nw = w->vertex_count, nc = 3 * w->triangle_count;
+	struct attr *at = calloc(1, sizeof(*at));
+
+	if (at == NULL)
+		return NULL;
+	c->at = at;
+	at->m = (in->uvs ? 2 : 0) + (in->normals ? 3 : 0) + (in->colors ? 4 : 0);
+	at->stride = 1 + 4 * (size_t)at->m;
+	at->virtual_pairs = virtual_pairs;
+	at->qc = malloc((nw + 1) * sizeof(*at->qc));
+	at->wd = calloc(n + 1, at->stride * sizeof(double));
+	at->wpar = malloc((n + 1) * sizeof(uint32_t));
+	at->wcount = malloc((n + 1) * sizeof(uint32_t));
+	at->whead = malloc((nw + 1) * sizeof(uint32_t));
+	at->wnext = malloc((n + 1) * sizeof(uint32_t));
+	at->cvert = malloc((nc + 1) * sizeof(uint32_t));
+	at->cw = malloc((nc + 1) * sizeof(uint32_t));
+	at->chead = malloc((nw + 1) * sizeof(uint32_t));
+	at->cnext = malloc((nc + 1) * sizeof(uint32_t));
+	at->moved = calloc(nw + 1, 1);
+	at->sw = malloc((n + 1) * sizeof(uint32_t));
+	at->sg = malloc((n + 1) * sizeof(uint32_t));
+	if (!at->qc || !at->wd || !at->wpar || !at->wcount || !at->whead ||
+	    !at->wnext || !at->cvert || !at->cw || !at->chead || !at->cnext ||
+	    !at->moved || !at->sw || !at->sg) {
+		attr_free(at);
+		c->at = NULL;
+		return NULL;
+	}
+
+	for (int k = 0; k < 2; k++) {
+		float lo = INFINITY, hi = -INFINITY;
+		for (size_t i = 0; in->uvs && i < n; i++) {
+			lo = fminf(lo, in->uvs[2 * i + k]);
+			hi = fmaxf(hi, in->uvs[2 * i + k]);
+		}
+		at->umin[k] = lo;
+		at->urange[k] = hi > lo ? (double)hi - lo : 1;
+		at->uclamp[k][0] = lo;
+		at->uclamp[k][1] = hi;
+	}
+	for (int k = 0; k < 4; k++) {
+		at->cmin[k] = INFINITY;
+		at->cmax[k] = -INFINITY;
+		for (size_t i = 0; in->colors && i < n; i++) {
+			at->cmin[k] = fminf(at->cmin[k], in->colors[4 * i + k]);
+			at->cmax[k] = fmaxf(at->cmax[k], in->colors[4 * i + k]);
+		}
+	}
+
+	/* Wedges: the distinct attribute sets at each position, in input
+	 * order, each listed at its welded vertex. */
+	for (size_t v = 0; v < nw; v++) {
+		uint32_t last = NONE;
+		at->whead[v] = NONE;
+		for (uint32_t j = wstart[v]; j < wstart[v + 1]; j++) {
+			uint32_t i = wlist[j], l;
+			at->wpar[i] = i;
+			at->wcount[i] = 1;
+			for (l = wstart[v]; l < j; l++)
+				if (at->wpar[wlist[l]] == wlist[l] && same_attrs(in, wlist[l], i))
+					break;
+			if (l < j) {
+				at->wpar[i] = wlist[l];
+				at->wcount[wlist[l]]++;
+				continue;
+			}
+			if (last == NONE)
+				at->whead[v] = i;
+			else
+				at->wnext[last] = i;
+			last = i;
+			at->wnext[i] = NONE;
+		}
+		seam[v] = at->whead[v] != NONE && at->wnext[at->whead[v]] != NONE;
+		at->chead[v] = NONE;
+	}
+	memcpy(at->qc, c->q, nw * sizeof(*at->qc));
+	for (size_t k = nc; k-- > 0;) {
+		uint32_t v = w->triangles[k];
+		at->cvert[k] = v;
+		at->cw[k] = wfind(at->wpar, in->triangles[3 * (size_t)fsrc[k / 3] + k % 3]);
+		at->cnext[k] = at->chead[v];
+		at->chead[v] = (uint32_t)k;
+	}
+	for (size_t t = 0; t < w->triangle_count; t++)
+		attr_face(c, in, w, t, fsrc[t], lambda);
+	seam_planes(c, w, seam_weight);
+	return at;
+}
+
+/*
+ * The output with interpolated attributes: one vertex per surviving wedge,
+ * in order of first use, its attributes the minimiser of the wedge's
+ * quadric at the final position. A vertex that never took part in a merge
+ * keeps its input attributes exactly.
+ */
+static int
+build_output_attr(const struct vdt_mesh *in, const struct ctx *c,
+                  const struct vdt_contract_result *r, struct vdt_mesh *out,
+                  struct vdt_err *err)
+{
+	struct attr *at = c->at;
+	uint32_t *index = malloc((in->vertex_count + 1) * sizeof(*index));
+	uint32_t *src = malloc((3 * r->triangle_count + 1) * sizeof(*src));
+	uint32_t *slot = malloc((3 * r->triangle_count + 1) * sizeof(*slot));
+	size_t nout = 0, S = at->stride;
+	int rc, m = at->m;
+
+	if (index == NULL || src == NULL || slot == NULL) {
+		free(index);
+		free(src);
+		free(slot);
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory building the output");
+	}
+	memset(index, 0xff, in->vertex_count * sizeof(*index));
+	for (size_t t = 0; t < r->triangle_count; t++)
+		for (int k = 0; k < 3; k++) {
+			uint32_t v = r->triangles[3 * t + k];
+			uint32_t w = wroot(at->wpar, in->triangles[3 * (size_t)r->sources[t] + k]);
+			if (index[w] == NONE) {
+				index[w] = (uint32_t)nout;
+				src[nout] = w;
+				slot[nout++] = v;
+			}
+			r->triangles[3 * t + k] = index[w];
+		}
+	rc = vdt_mesh_alloc(out, nout, r->triangle_count, vdt_mesh_attrs(in), err);
+	for (size_t i = 0; rc == 0 && i < nout; i++) {
+		uint32_t s = src[i], v = slot[i];
+		const double *x = at->wd + S * s;
+		double p[3], a[ATTR_MAX];
+		int j = 0;
+
+		memcpy(out->positions + 3 * i, r->positions + 3 * (size_t)v, 3 * sizeof(float));
+		if (in->normals)
+			memcpy(out->normals + 3 * i, in->normals + 3 * (size_t)s, 3 * sizeof(float));
+		if (in->uvs)
+			memcpy(out->uvs + 2 * i, in->uvs + 2 * (size_t)s, 2 * sizeof(float));
+		if (in->colors)
+			memcpy(out->colors + 4 * i, in->colors + 4 * (size_t)s, 4 * sizeof(float));
+		if (!at->moved[v] || !(x[0] > 0))
+			continue;
+		for (int k = 0; k < 3; k++)
+			p[k] = r->positions[3 * (size_t)v + k] - c->centre[k];
+		for (int q = 0; q < m; q++) {
+			const double *g = x + 1 + 3 * q;
+			a[q] = (g[0] * p[0] + g[1] * p[1] + g[2] * p[2] + x[1 + 3 * m + q]) / x[0];
+		}
+		if (in->uvs) {
+			for (int k = 0; k < 2; k++, j++) {
+				float u = (float)(at->umin[k] + a[j] * at->urange[k]);
+				u = u < at->uclamp[k][0] ? at->uclamp[k][0] : u;
+				out->uvs[2 * i + k] = u > at->uclamp[k][1] ? at->uclamp[k][1] : u;
+			}
+		}
+		if (in->normals) {
+			double l = sqrt(a[j] * a[j] + a[j + 1] * a[j + 1] + a[j + 2] * a[j + 2]);
+			/* Opposite normals can cancel: keep the wedge's own then. */
+			if (l > 1e-6)
+				for (int k = 0; k < 3; k++)
+					out->normals[3 * i + k] = (float)(a[j + k] / l);
+			j += 3;
+		}
+		if (in->colors) {
+			for (int k = 0; k < 4; k++, j++) {
+				double u = a[j] < at->cmin[k] ? at->cmin[k] : a[j] > at->cmax[k] ? at->cmax[k] : a[j];
+				out->colors[4 * i + k] = (float)u;
+			}
+		}
+	}
+	if (rc == 0)
+		memcpy(out->triangles, r->triangles, 3 * r->triangle_count * sizeof(uint32_t));
+	free(index);
+	free(src);
+	free(slot);
+	return rc;
+}
+
 static double
 attr_distance(const struct vdt_mesh *m, uint32_t a, uint32_t b)
 {
@@ -566,7 +1210,8 @@ vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 		*record_count = 0;
 	}
 	if (o->target_ratio < 0 || o->target_ratio > 1 || !(o->max_error >= 0) ||
-	    !(o->boundary_weight >= 0) || !(o->aggregate >= 0))
+	    !(o->boundary_weight >= 0) || !(o->aggregate >= 0) ||
+	    !(o->attribute_weight >= 0) || !(o->attribute_weight < INFINITY))
 		return vdt_err_set(err, VDT_EINVAL, "invalid simplification options");
 	if (o->target_triangles == 0 && o->target_ratio == 0 && !(o->max_error < INFINITY))
 		return vdt_err_set(err, VDT_EINVAL, "no target: give a triangle count, a ratio or an error bound");
@@ -642,6 +1287,17 @@ vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 		goto nomem;
 	for (size_t v = 0; v < nw; v++)
 		seam[v] = (border[v] & 2) != 0;
+	/* Attribute errors in bounding-box diagonals, like Hoppe's unit box. */
+	if (o->attribute_weight > 0 && vdt_mesh_attrs(in) != 0) {
+		double d = vdt_bbox_diagonal(&box);
+		if (attr_setup(&c, in, &w, fsrc, wstart, wlist, o->attribute_weight * d * d,
+		               o->boundary_weight, nvp > 0, seam) == NULL) {
+			free(seam);
+			goto nomem;
+		}
+		ops.cost = cost_attr;
+		ops.merged = merged_attr;
+	}
 	c.seam = seam;
 	vdt_contract_defaults(&co);
 	co.target_triangles = target;
@@ -663,7 +1319,8 @@ vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	stats->max_error = sqrt(c.worst);
 	for (size_t t = 0; t < r.triangle_count; t++)
 		r.sources[t] = fsrc[r.sources[t]];
-	rc = build_output(in, canon, wstart, wlist, &r, out, err);
+	rc = c.at ? build_output_attr(in, &c, &r, out, err)
+	          : build_output(in, canon, wstart, wlist, &r, out, err);
 	if (rc != 0)
 		goto fail;
 	if (records) {
@@ -684,6 +1341,7 @@ done:
 	free(wstart);
 	free(wlist);
 	free(c.q);
+	attr_free(c.at);
 	free(border);
 	free(locked);
 	free(vpairs);

@@ -2,7 +2,9 @@
  * qslim.h - quadric-based simplification (Garland & Heckbert 97) on the
  * pair-contraction engine, with the multiphase coupling of Garland & Shaffer
  * (Vis 2002, section 3.3): when quadrics come with the mesh (a QUAD chunk
- * from vdt-cluster), they replace the fundamental quadrics of the faces.
+ * from vdt-cluster), they replace the fundamental quadrics of the faces;
+ * and with Hoppe's appearance-attribute quadrics (Vis 99) when the mesh has
+ * normals, texture coordinates or colours.
  */
 #ifndef VDT_QSLIM_H
 #define VDT_QSLIM_H
@@ -25,11 +27,20 @@ struct vdt_qslim_opts {
 	double max_normal_angle;  /* fold-over threshold, degrees */
 	double min_quality;       /* sliver threshold, 0: off */
 	const struct vdt_quadric *quadrics; /* one per input vertex, or NULL */
+	double attribute_weight;  /* of attribute errors against distances
+	                             (see vdt_qslim); 0: attributes are copied,
+	                             never interpolated, and cost nothing */
 	int record;               /* return the contraction record */
 	const struct vdt_progress *progress;
 };
 
-/* Defaults: no target, no bound, boundary weight 100, 75 degrees. */
+/*
+ * Defaults: no target, no bound, boundary weight 100, 75 degrees, attribute
+ * weight 0 (attributes copied, as before the weight existed).
+ * VDT_QSLIM_ATTRIBUTE_WEIGHT is the weight vdt-qslim uses by default.
+ */
+#define VDT_QSLIM_ATTRIBUTE_WEIGHT 1.0
+
 void vdt_qslim_defaults(struct vdt_qslim_opts *o);
 
 struct vdt_qslim_stats {
@@ -47,11 +58,23 @@ struct vdt_qslim_stats {
  * Vertices at identical positions are welded first, so texture and normal
  * seams cannot open; then a face on the same three vertices as an earlier
  * one is dropped, and both are when they face opposite ways (a zero-volume
- * fin); per-corner attributes are kept by choosing, for each
- * corner, the closest attribute set among the survivor's own. Unchanged
- * vertices keep their exact input coordinates. If the target is not below
- * the input's triangle count, out is a copy of in. Records (if asked) are
- * in welded vertex ids and written to *records.
+ * fin). Unchanged vertices keep their exact input coordinates and
+ * attributes. If the target is not below the input's triangle count, out is
+ * a copy of in. Records (if asked) are in welded vertex ids and written to
+ * *records.
+ *
+ * Attributes: the input vertices welded into one position are that
+ * position's wedges (one per distinct attribute set). With
+ * attribute_weight 0, each output corner copies the closest attribute set
+ * among its survivor's wedges and the cost is geometric only. With a
+ * positive weight, each wedge carries the attribute quadric of its faces
+ * (Hoppe 99): the cost of a pair adds weight times the attribute error at
+ * the placement, with distances measured in bounding-box diagonals and
+ * attributes normalised (UVs by their range, unit normals, colours in
+ * [0,1]); wedges merge where the merged vertices share a face; the output
+ * has one vertex per surviving wedge, its attributes the minimiser of its
+ * quadric at the final position (normals renormalised, UVs and colours
+ * clamped to the input's range).
  * Returns 0, VDT_EINVAL (bad options, quadric count mismatch) or
  * VDT_ENOMEM.
  */

@@ -1,0 +1,437 @@
+/*
+ * Unit tests of the attribute-aware cost of lib/qslim (Hoppe, Vis 99):
+ * interpolation is exact for linear attributes, colour steps and texture
+ * seams survive, normals stay unit length, and weight 0 is the old output.
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../../lib/qslim.h"
+#include "shapes.h"
+
+/*
+ * An n x n grid on z = 0 over [0,1]^2 (shape_grid) cut along x = 0.5 into
+ * two texture islands, as an atlas would store it: the middle column exists
+ * twice, once per island, with the same positions and different UVs.
+ *
+ *   (0,1) +---+---L R---+---+       left island  u = 0.8 x        v = y
+ *         | / | / | | / | / |       right island u = 0.6 + 0.8 (x - 0.5)
+ *         +---+---L R---+---+       L and R: the two copies of a middle
+ *         | / | / | | / | / |       vertex, at one position
+ *   (0,0) +---+---L R---+---+ (1,0)
+ *
+ * Normals are (0,0,1); colours (x, y, 0.5, 1).
+ */
+static void
+seam_grid(struct vdt_mesh *m, int n, unsigned attrs)
+{
+	struct vdt_mesh g;
+	size_t nv;
+
+	shape_grid(&g, n);
+	nv = g.vertex_count + n + 1;
+	vdt_mesh_alloc(m, nv, g.triangle_count, attrs, NULL);
+	memcpy(m->positions, g.positions, 12 * g.vertex_count);
+	memcpy(m->triangles, g.triangles, 12 * g.triangle_count);
+	for (int j = 0; j <= n; j++) {
+		size_t src = j * (n + 1) + n / 2, dst = g.vertex_count + j;
+		memcpy(m->positions + 3 * dst, m->positions + 3 * src, 12);
+	}
+	for (size_t t = 0; t < m->triangle_count; t++) {
+		const uint32_t *c = g.triangles + 3 * t;
+		float cx = (g.positions[3 * c[0]] + g.positions[3 * c[1]] + g.positions[3 * c[2]]) / 3;
+		if (cx > 0.5f)
+			for (int k = 0; k < 3; k++)
+				if (c[k] % (n + 1) == (uint32_t)n / 2)
+					m->triangles[3 * t + k] = g.vertex_count + c[k] / (n + 1);
+	}
+	for (size_t i = 0; i < nv; i++) {
+		const float *p = m->positions + 3 * i;
+		int right = i >= g.vertex_count || p[0] > 0.5f;
+		if (m->uvs) {
+			m->uvs[2 * i] = right ? 0.6f + 0.8f * (p[0] - 0.5f) : 0.8f * p[0];
+			m->uvs[2 * i + 1] = p[1];
+		}
+		if (m->normals) {
+			m->normals[3 * i] = m->normals[3 * i + 1] = 0;
+			m->normals[3 * i + 2] = 1;
+		}
+		if (m->colors) {
+			m->colors[4 * i] = p[0];
+			m->colors[4 * i + 1] = p[1];
+			m->colors[4 * i + 2] = 0.5f;
+			m->colors[4 * i + 3] = 1;
+		}
+	}
+	vdt_mesh_free(&g);
+}
+
+/*
+ * Golden output of seam_grid(4, UVs + normals + colours) at 10 triangles
+ * with the attribute weight 0, recorded before the weight existed: 13
+ * vertices, 10 triangles.
+ */
+static const float gold_positions[39] = {
+	0x0p+0, 0x0p+0, 0x0p+0, 0x1.8p-1, 0x1.8p-1, 0x0p+0,
+	0x1p-1, 0x1.8p-1, 0x0p+0, 0x1p+0, 0x0p+0, 0x0p+0,
+	0x1p+0, 0x1.8p-1, 0x0p+0, 0x0p+0, 0x0p+0, 0x0p+0,
+	0x1p-2, 0x1p+0, 0x0p+0, 0x0p+0, 0x1p+0, 0x0p+0,
+	0x1p-1, 0x1.8p-1, 0x0p+0, 0x1p-1, 0x1p+0, 0x0p+0,
+	0x1.8p-1, 0x1p+0, 0x0p+0, 0x1p-1, 0x1p+0, 0x0p+0,
+	0x1p+0, 0x1p+0, 0x0p+0};
+static const float gold_normals[39] = {
+	0x0p+0, 0x0p+0, 0x1p+0, 0x0p+0, 0x0p+0, 0x1p+0,
+	0x0p+0, 0x0p+0, 0x1p+0, 0x0p+0, 0x0p+0, 0x1p+0,
+	0x0p+0, 0x0p+0, 0x1p+0, 0x0p+0, 0x0p+0, 0x1p+0,
+	0x0p+0, 0x0p+0, 0x1p+0, 0x0p+0, 0x0p+0, 0x1p+0,
+	0x0p+0, 0x0p+0, 0x1p+0, 0x0p+0, 0x0p+0, 0x1p+0,
+	0x0p+0, 0x0p+0, 0x1p+0, 0x0p+0, 0x0p+0, 0x1p+0,
+	0x0p+0, 0x0p+0, 0x1p+0};
+static const float gold_uvs[26] = {
+	0x1.333334p-1, 0x0p+0, 0x1.99999ap-1, 0x1.8p-1, 0x1.333334p-1, 0x1.8p-1,
+	0x1p+0, 0x0p+0, 0x1p+0, 0x1.8p-1, 0x1.99999ap-2, 0x0p+0,
+	0x1.99999ap-3, 0x1p+0, 0x0p+0, 0x1p+0, 0x1.99999ap-2, 0x1.8p-1,
+	0x1.99999ap-2, 0x1p+0, 0x1.99999ap-1, 0x1p+0, 0x1.333334p-1, 0x1p+0,
+	0x1p+0, 0x1p+0};
+static const float gold_colors[52] = {
+	0x1p-1, 0x0p+0, 0x1p-1, 0x1p+0, 0x1.8p-1, 0x1.8p-1,
+	0x1p-1, 0x1p+0, 0x1p-1, 0x1.8p-1, 0x1p-1, 0x1p+0,
+	0x1p+0, 0x0p+0, 0x1p-1, 0x1p+0, 0x1p+0, 0x1.8p-1,
+	0x1p-1, 0x1p+0, 0x1p-1, 0x0p+0, 0x1p-1, 0x1p+0,
+	0x1p-2, 0x1p+0, 0x1p-1, 0x1p+0, 0x0p+0, 0x1p+0,
+	0x1p-1, 0x1p+0, 0x1p-1, 0x1.8p-1, 0x1p-1, 0x1p+0,
+	0x1p-1, 0x1p+0, 0x1p-1, 0x1p+0, 0x1.8p-1, 0x1p+0,
+	0x1p-1, 0x1p+0, 0x1p-1, 0x1p+0, 0x1p-1, 0x1p+0,
+	0x1p+0, 0x1p+0, 0x1p-1, 0x1p+0};
+static const uint32_t gold_triangles[30] = {
+	0, 1, 2, 0, 3, 4, 0, 4, 1, 5, 6, 7,
+	5, 8, 9, 5, 9, 6, 2, 1, 10, 2, 10, 11,
+	1, 4, 12, 1, 12, 10};
+
+#define ALL_ATTRS (VDT_ATTR_UVS | VDT_ATTR_NORMALS | VDT_ATTR_COLORS)
+
+/* Weight 0 gives the output recorded before the weight existed. */
+static void
+weight_zero_is_the_old_output(void **state)
+{
+	struct vdt_mesh m, out, again;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+
+	(void)state;
+	seam_grid(&m, 4, ALL_ATTRS);
+	vdt_qslim_defaults(&o);
+	assert_true(o.attribute_weight == 0);
+	o.target_triangles = 10;
+	assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
+	assert_int_equal(out.vertex_count, 13);
+	assert_int_equal(out.triangle_count, 10);
+	assert_memory_equal(out.positions, gold_positions, sizeof(gold_positions));
+	assert_memory_equal(out.normals, gold_normals, sizeof(gold_normals));
+	assert_memory_equal(out.uvs, gold_uvs, sizeof(gold_uvs));
+	assert_memory_equal(out.colors, gold_colors, sizeof(gold_colors));
+	assert_memory_equal(out.triangles, gold_triangles, sizeof(gold_triangles));
+
+	/* The weight changes the result here; back at 0 it is the old one. */
+	o.attribute_weight = 1;
+	assert_int_equal(vdt_qslim(&m, &o, &again, NULL, NULL, &st, NULL), 0);
+	vdt_mesh_free(&again);
+	o.attribute_weight = 0;
+	assert_int_equal(vdt_qslim(&m, &o, &again, NULL, NULL, &st, NULL), 0);
+	assert_int_equal(again.vertex_count, out.vertex_count);
+	assert_memory_equal(again.positions, out.positions, 12 * out.vertex_count);
+	assert_memory_equal(again.uvs, out.uvs, 8 * out.vertex_count);
+	assert_memory_equal(again.triangles, out.triangles, 12 * out.triangle_count);
+	vdt_mesh_free(&again);
+	vdt_mesh_free(&out);
+	vdt_mesh_free(&m);
+
+	/* Without attributes the weight is idle: the geometric result. */
+	shape_icosphere(&m, 3);
+	o.target_ratio = 0.1;
+	o.target_triangles = 0;
+	assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
+	o.attribute_weight = 5;
+	assert_int_equal(vdt_qslim(&m, &o, &again, NULL, NULL, &st, NULL), 0);
+	assert_int_equal(again.vertex_count, out.vertex_count);
+	assert_memory_equal(again.positions, out.positions, 12 * out.vertex_count);
+	assert_memory_equal(again.triangles, out.triangles, 12 * out.triangle_count);
+	vdt_mesh_free(&again);
+	vdt_mesh_free(&out);
+	vdt_mesh_free(&m);
+
+	/* A negative or infinite weight is refused. */
+	seam_grid(&m, 4, VDT_ATTR_UVS);
+	o.attribute_weight = -1;
+	assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), VDT_EINVAL);
+	o.attribute_weight = INFINITY;
+	assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), VDT_EINVAL);
+	vdt_mesh_free(&m);
+}
+
+/*
+ * A flat 8 x 8 grid whose UVs are a linear function of position (a texture
+ * laid on at an angle):
+ *
+ *   (0,1) +---+-- ... --+ (1,1)     u = 0.1 + 0.6 x + 0.2 y
+ *         | / | /       |           v = 0.2 - 0.1 x + 0.7 y
+ *   (0,0) +---+-- ... --+ (1,0)
+ *
+ * Every face carries the same linear function, so the attribute error is
+ * zero everywhere and interpolation must give u, v back exactly wherever the
+ * vertices end up.
+ */
+static void
+linear_uvs_are_interpolated_exactly(void **state)
+{
+	struct vdt_mesh m, out;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+
+	(void)state;
+	shape_grid(&m, 8);
+	m.uvs = malloc(8 * m.vertex_count);
+	for (size_t i = 0; i < m.vertex_count; i++) {
+		const float *p = m.positions + 3 * i;
+		m.uvs[2 * i] = 0.1f + 0.6f * p[0] + 0.2f * p[1];
+		m.uvs[2 * i + 1] = 0.2f - 0.1f * p[0] + 0.7f * p[1];
+	}
+	vdt_qslim_defaults(&o);
+	o.attribute_weight = 1;
+	for (size_t target = 2; target <= 32; target *= 4) {
+		o.target_triangles = target;
+		assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
+		assert_true(out.triangle_count <= target);
+		int moved = 0;
+		for (size_t i = 0; i < out.vertex_count; i++) {
+			const float *p = out.positions + 3 * i;
+			assert_true(fabs(out.uvs[2 * i] - (0.1 + 0.6 * p[0] + 0.2 * p[1])) < 1e-6);
+			assert_true(fabs(out.uvs[2 * i + 1] - (0.2 - 0.1 * p[0] + 0.7 * p[1])) < 1e-6);
+			moved |= fmodf(p[0] * 8, 1) != 0 || fmodf(p[1] * 8, 1) != 0;
+		}
+		/* some vertex left the input's lattice: a real interpolation */
+		assert_true(moved || target == 2);
+		vdt_mesh_free(&out);
+	}
+	vdt_mesh_free(&m);
+}
+
+/*
+ * The colour of the flat grid (interpolated over its faces) at (x, y), by
+ * locating the face that holds the point; -1 outside every face.
+ */
+static double
+colour_at(const struct vdt_mesh *m, double x, double y)
+{
+	for (size_t t = 0; t < m->triangle_count; t++) {
+		const uint32_t *v = m->triangles + 3 * t;
+		const float *a = m->positions + 3 * v[0], *b = m->positions + 3 * v[1],
+		            *c = m->positions + 3 * v[2];
+		double d = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+		double l1 = ((x - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (y - a[1])) / d;
+		double l2 = ((b[0] - a[0]) * (y - a[1]) - (x - a[0]) * (b[1] - a[1])) / d;
+		if (l1 >= -1e-9 && l2 >= -1e-9 && l1 + l2 <= 1 + 1e-9)
+			return (1 - l1 - l2) * m->colors[4 * v[0]] + l1 * m->colors[4 * v[1]] +
+			       l2 * m->colors[4 * v[2]];
+	}
+	return -1;
+}
+
+/* Largest difference of the red channel of a and b over a 41 x 41 grid. */
+static double
+colour_error(const struct vdt_mesh *a, const struct vdt_mesh *b)
+{
+	double worst = 0;
+	for (int j = 0; j <= 40; j++)
+		for (int i = 0; i <= 40; i++) {
+			double ca = colour_at(a, i / 40.0, j / 40.0), cb = colour_at(b, i / 40.0, j / 40.0);
+			assert_true(ca >= 0 && cb >= 0);
+			worst = fmax(worst, fabs(ca - cb));
+		}
+	return worst;
+}
+
+/*
+ * A colour step: on the 8 x 8 grid, red is 0 left of x = 0.5 and 1 from
+ * x = 0.5 on, so the colour ramps up across the column of faces between
+ * x = 0.375 and x = 0.5 and is flat elsewhere:
+ *
+ *   (0,1) 0---0---0---1---1 ... 1 (1,1)
+ *         | / | / | / | / |
+ *         0---0---0---1---1 ... 1
+ *              ramp  ^ step line x = 0.5
+ *
+ * Every flat region collapses for free geometrically. With the weight on,
+ * the step must survive: vertices stay on x = 0.5 and x = 0.375 and the
+ * colour field is unchanged; with weight 0 it smears.
+ */
+static void
+colour_step_survives(void **state)
+{
+	struct vdt_mesh m, out;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+	double err[2];
+
+	(void)state;
+	shape_grid(&m, 8);
+	m.colors = malloc(16 * m.vertex_count);
+	for (size_t i = 0; i < m.vertex_count; i++) {
+		m.colors[4 * i] = m.positions[3 * i] >= 0.5f ? 1 : 0;
+		m.colors[4 * i + 1] = m.colors[4 * i + 2] = 0;
+		m.colors[4 * i + 3] = 1;
+	}
+	vdt_qslim_defaults(&o);
+	o.target_triangles = 12;
+	for (int on = 0; on < 2; on++) {
+		o.attribute_weight = on;
+		assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
+		assert_int_equal(out.triangle_count, 12);
+		err[on] = colour_error(&m, &out);
+		if (on) {
+			int on_line = 0, on_ramp = 0;
+			for (size_t i = 0; i < out.vertex_count; i++) {
+				on_line += out.positions[3 * i] == 0.5f;
+				on_ramp += out.positions[3 * i] == 0.375f;
+			}
+			assert_true(on_line >= 2 && on_ramp >= 2);
+		}
+		vdt_mesh_free(&out);
+	}
+	assert_true(err[1] < 1e-6);
+	assert_true(err[0] > 0.1);
+	vdt_mesh_free(&m);
+}
+
+/* The UV island of a face of seam_grid: 0 left of x = 0.5, 1 right. */
+static int
+island(const struct vdt_mesh *m, const uint32_t *v)
+{
+	float cx = (m->positions[3 * v[0]] + m->positions[3 * v[1]] + m->positions[3 * v[2]]) / 3;
+	return cx > 0.5f;
+}
+
+/*
+ * The seam of seam_grid(8) after heavy simplification: no edge opens inside
+ * the square, and every corner keeps the UVs of its own island, exactly
+ * (each island is linear), so the seam keeps a UV pair on each side.
+ */
+static void
+uv_seam_stays_closed(void **state)
+{
+	struct vdt_mesh m, out;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+
+	(void)state;
+	seam_grid(&m, 8, VDT_ATTR_UVS);
+	vdt_qslim_defaults(&o);
+	o.attribute_weight = 1;
+	o.target_triangles = 4;
+	assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
+	assert_int_equal(st.welded, 9);
+	assert_true(out.triangle_count <= 8);
+	/* an edge used once lies on the outline of the square */
+	for (size_t t = 0; t < out.triangle_count; t++)
+		for (int k = 0; k < 3; k++) {
+			const float *pa = out.positions + 3 * out.triangles[3 * t + k];
+			const float *pb = out.positions + 3 * out.triangles[3 * t + (k + 1) % 3];
+			int uses = 0;
+			for (size_t s = 0; s < out.triangle_count; s++)
+				for (int j = 0; j < 3; j++) {
+					const float *qa = out.positions + 3 * out.triangles[3 * s + j];
+					const float *qb = out.positions + 3 * out.triangles[3 * s + (j + 1) % 3];
+					uses += !memcmp(qa, pb, 12) && !memcmp(qb, pa, 12);
+				}
+			if (uses == 0)
+				assert_true((pa[0] == pb[0] && (pa[0] == 0 || pa[0] == 1)) ||
+				            (pa[1] == pb[1] && (pa[1] == 0 || pa[1] == 1)));
+		}
+	int side[2] = {0, 0};
+	for (size_t t = 0; t < out.triangle_count; t++) {
+		int r = island(&out, out.triangles + 3 * t);
+		for (int k = 0; k < 3; k++) {
+			uint32_t v = out.triangles[3 * t + k];
+			const float *p = out.positions + 3 * v, *uv = out.uvs + 2 * v;
+			double u = r ? 0.6 + 0.8 * (p[0] - 0.5) : 0.8 * p[0];
+			assert_true(fabs(uv[0] - u) < 1e-6);
+			assert_true(fabs(uv[1] - p[1]) < 1e-6);
+			if (p[0] == 0.5f)
+				side[r]++;
+		}
+	}
+	assert_true(side[0] > 0 && side[1] > 0);
+	vdt_mesh_free(&out);
+	vdt_mesh_free(&m);
+}
+
+/*
+ * An icosphere with its outward normals and a colour per octant: after
+ * simplification to a tenth every normal is unit length and still close to
+ * the surface's, and colours stay in the input's range.
+ */
+static void
+normals_stay_unit(void **state)
+{
+	struct vdt_mesh m, out, again;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+
+	(void)state;
+	shape_icosphere(&m, 3);
+	m.normals = malloc(12 * m.vertex_count);
+	m.colors = malloc(16 * m.vertex_count);
+	for (size_t i = 0; i < m.vertex_count; i++) {
+		const float *p = m.positions + 3 * i;
+		memcpy(m.normals + 3 * i, p, 12);
+		for (int k = 0; k < 3; k++)
+			m.colors[4 * i + k] = 0.25f + 0.5f * (p[k] > 0);
+		m.colors[4 * i + 3] = 1;
+	}
+	vdt_qslim_defaults(&o);
+	o.attribute_weight = 1;
+	o.target_ratio = 0.1;
+	assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
+	assert_int_equal(out.triangle_count, 128);
+	assert_true(shape_closed_manifold(&out));
+	for (size_t i = 0; i < out.vertex_count; i++) {
+		const float *n = out.normals + 3 * i, *p = out.positions + 3 * i;
+		double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+		double r = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+		assert_true(fabs(l - 1) < 1e-6);
+		assert_true((n[0] * p[0] + n[1] * p[1] + n[2] * p[2]) / r > 0.95);
+		for (int k = 0; k < 4; k++) {
+			float c = out.colors[4 * i + k];
+			assert_true(c >= (k < 3 ? 0.25f : 1) && c <= (k < 3 ? 0.75f : 1));
+		}
+	}
+	/* deterministic */
+	assert_int_equal(vdt_qslim(&m, &o, &again, NULL, NULL, &st, NULL), 0);
+	assert_int_equal(again.vertex_count, out.vertex_count);
+	assert_memory_equal(again.positions, out.positions, 12 * out.vertex_count);
+	assert_memory_equal(again.normals, out.normals, 12 * out.vertex_count);
+	assert_memory_equal(again.colors, out.colors, 16 * out.vertex_count);
+	assert_memory_equal(again.triangles, out.triangles, 12 * out.triangle_count);
+	vdt_mesh_free(&again);
+	vdt_mesh_free(&out);
+	vdt_mesh_free(&m);
+}
+
+int
+main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(weight_zero_is_the_old_output),
+		cmocka_unit_test(linear_uvs_are_interpolated_exactly),
+		cmocka_unit_test(colour_step_survives),
+		cmocka_unit_test(uv_seam_stays_closed),
+		cmocka_unit_test(normals_stay_unit),
+	};
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
