@@ -519,51 +519,104 @@ hash3(uint32_t v, uint32_t t, uint32_t n)
 	return h;
 }
 
+/* Triples met after the first one of their position, by hash. */
+struct extra {
+	size_t cap, used; /* cap a power of two, used at most half of it */
+	uint32_t *slot;   /* output vertex, or NONE */
+};
+
+static int
+extra_grow(struct extra *x, const uint32_t *v, const uint32_t *t, const uint32_t *n,
+           struct vdt_err *err)
+{
+	size_t cap = x->cap ? 2 * x->cap : 1024;
+	uint32_t *slot;
+
+	if (cap > SIZE_MAX / sizeof(uint32_t) || (slot = malloc(cap * sizeof(uint32_t))) == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu corners", cap);
+	memset(slot, 0xff, cap * sizeof(uint32_t));
+	for (size_t i = 0; i < x->cap; i++) {
+		uint32_t o = x->slot[i];
+		size_t h;
+
+		if (o == NONE)
+			continue;
+		for (h = hash3(v[o], t[o], n[o]) & (cap - 1); slot[h] != NONE; h = (h + 1) & (cap - 1))
+			;
+		slot[h] = o;
+	}
+	free(x->slot);
+	x->slot = slot;
+	x->cap = cap;
+	return 0;
+}
+
 /*
  * One vertex per distinct (v, vt, vn) triple, in order of first use: the
  * corners of o->tri_v are rewritten to the new numbers, and the triple of
- * each new vertex is left in (*ov, *ot, *on).
+ * each new vertex is left in (*ov, *ot, *on). Most corners repeat the first
+ * triple of their position, which an array indexed by position finds; only
+ * the others (seams, hard edges) go through the hash table, so that it
+ * stays small and the common case costs no random access into it.
  */
 static int
 split(struct obj *o, uint32_t **ov, uint32_t **ot, uint32_t **on, size_t *count,
       struct vdt_err *err)
 {
-	size_t corners = 3 * o->tri_count, used = 0, cap = 1024, mask;
-	uint32_t *slot = NULL, *v = NULL, *t = NULL, *n = NULL;
+	size_t corners = 3 * o->tri_count, used = 0, room = corners ? corners : 1;
+	uint32_t *first = malloc((o->nv ? o->nv : 1) * sizeof(uint32_t));
+	uint32_t *v = malloc(room * sizeof(uint32_t));
+	uint32_t *t = malloc(room * sizeof(uint32_t));
+	uint32_t *n = malloc(room * sizeof(uint32_t));
+	struct extra x = {0};
+	int rc = 0;
 
-	/* A table at most half full; it can never need more than corners. */
-	while (cap < 2 * corners && cap < SIZE_MAX / 8)
-		cap *= 2;
-	mask = cap - 1;
-	slot = malloc(cap * sizeof(uint32_t));
-	v = malloc((corners ? corners : 1) * sizeof(uint32_t));
-	t = malloc((corners ? corners : 1) * sizeof(uint32_t));
-	n = malloc((corners ? corners : 1) * sizeof(uint32_t));
-	if (slot == NULL || v == NULL || t == NULL || n == NULL) {
-		free(slot);
+	if (first == NULL || v == NULL || t == NULL || n == NULL) {
+		rc = vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu corners", corners);
+		goto out;
+	}
+	memset(first, 0xff, (o->nv ? o->nv : 1) * sizeof(uint32_t));
+	for (size_t c = 0; c < corners; c++) {
+		uint32_t cv = o->tri_v[c], ct = o->tri_t[c], cn = o->tri_n[c], id = first[cv];
+		size_t h;
+
+		if (id != NONE && t[id] == ct && n[id] == cn) {
+			o->tri_v[c] = id;
+			continue;
+		}
+		if (id != NONE) {
+			if (2 * (x.used + 1) > x.cap && (rc = extra_grow(&x, v, t, n, err)) != 0)
+				goto out;
+			for (h = hash3(cv, ct, cn) & (x.cap - 1); x.slot[h] != NONE;
+			     h = (h + 1) & (x.cap - 1)) {
+				uint32_t e = x.slot[h];
+
+				if (v[e] == cv && t[e] == ct && n[e] == cn)
+					break;
+			}
+			if (x.slot[h] != NONE) {
+				o->tri_v[c] = x.slot[h];
+				continue;
+			}
+			x.slot[h] = (uint32_t)used;
+			x.used++;
+		} else {
+			first[cv] = (uint32_t)used;
+		}
+		v[used] = cv;
+		t[used] = ct;
+		n[used] = cn;
+		o->tri_v[c] = (uint32_t)used++;
+	}
+out:
+	free(first);
+	free(x.slot);
+	if (rc != 0) {
 		free(v);
 		free(t);
 		free(n);
-		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu corners", corners);
+		return rc;
 	}
-	memset(slot, 0xff, cap * sizeof(uint32_t));
-	for (size_t c = 0; c < corners; c++) {
-		uint32_t cv = o->tri_v[c], ct = o->tri_t[c], cn = o->tri_n[c];
-		size_t h = hash3(cv, ct, cn) & mask;
-
-		while (slot[h] != NONE &&
-		       !(v[slot[h]] == cv && t[slot[h]] == ct && n[slot[h]] == cn))
-			h = (h + 1) & mask;
-		if (slot[h] == NONE) {
-			slot[h] = (uint32_t)used;
-			v[used] = cv;
-			t[used] = ct;
-			n[used] = cn;
-			used++;
-		}
-		o->tri_v[c] = slot[h];
-	}
-	free(slot);
 	*ov = v;
 	*ot = t;
 	*on = n;
