@@ -58,6 +58,7 @@ struct engine {
 
 	size_t live_tris, live_verts;
 	double cos_max, min_quality;
+	int allow_nonmanifold;
 	const struct vdt_contract_ops *ops;
 
 	uint32_t *parent; /* the vertex each removed vertex merged into */
@@ -385,7 +386,8 @@ has_boundary(const uint32_t *nb, long n)
  * The link condition: link(a) ∩ link(b) == link(ab), with a dummy vertex
  * joined to every boundary vertex and edge so that open surfaces are covered.
  * For a virtual pair (no shared triangle) only require that the two share no
- * neighbour, which rules out duplicate faces.
+ * neighbour, which rules out duplicate faces, unless the caller accepts
+ * non-manifold results (duplicates() still guards against repeated faces).
  */
 static int
 link_ok(struct engine *e, uint32_t a, uint32_t b)
@@ -406,7 +408,7 @@ link_ok(struct engine *e, uint32_t a, uint32_t b)
 	if (shared > 2)
 		return 0;
 	if (shared == 0)
-		return common == 0;
+		return common == 0 || e->allow_nonmanifold;
 	long lhs = common + (has_boundary(A, na) && has_boundary(B, nb));
 	long rhs = shared + (shared == 1);
 	return lhs == rhs;
@@ -890,6 +892,7 @@ vdt_contract_run(const struct vdt_mesh *m, const struct vdt_contract_ops *ops,
 	if (o->max_normal_angle >= 180)
 		e.cos_max = -2;
 	e.min_quality = o->min_quality;
+	e.allow_nonmanifold = o->allow_nonmanifold;
 	if (engine_init(&e, m, o) != 0)
 		goto nomem;
 

@@ -71,6 +71,16 @@ struct vdt_contract_opts {
 	size_t virtual_pair_count;
 	int record;              /* keep every contraction in the result */
 	const struct vdt_progress *progress;
+	/*
+	 * Nonzero: a pair whose vertices share no triangle (a virtual pair, or
+	 * an edge whose faces are gone) may be contracted even when the two
+	 * share neighbours, so the result may be non-manifold there; only the
+	 * duplicate-face, degeneracy and fold-over tests apply. This is the
+	 * arbitrary vertex-pair collapse of El-Sana & Varshney (section 4.1)
+	 * that closes holes and tunnels. 0 (the default) keeps the manifold
+	 * rule.
+	 */
+	int allow_nonmanifold;
 };
 
 /* Fill opts with the defaults (target 0 triangles, no bound, 75 degrees). */

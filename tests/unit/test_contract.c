@@ -451,6 +451,55 @@ repeated_faces_are_dropped(void **state)
 	vdt_mesh_free(&g);
 }
 
+/* Only the pair {1, 3} may contract, onto vertex 1's position. */
+static double
+pair13_cost(void *ctx, uint32_t a, uint32_t b, int fixed, const float pa[3],
+            const float pb[3], double pos[3])
+{
+	(void)ctx; (void)fixed; (void)pb;
+	for (int k = 0; k < 3; k++)
+		pos[k] = pa[k];
+	return (a == 1 && b == 3) || (a == 3 && b == 1) ? 1 : INFINITY;
+}
+
+/*
+ * Two triangles that meet only at vertex 0, with the virtual pair {1, 3}:
+ *
+ *        2         the pair's ends share neighbour 0, so the manifold rule
+ *       / |        refuses it; with allow_nonmanifold it contracts (3 into
+ *      0--1        1) and both faces survive, now sharing edge 0-1.
+ *       \ |
+ *        4  (3 sits just above 1, at z = 0.2)
+ */
+static void
+nonmanifold_virtual_pair_is_opt_in(void **state)
+{
+	static const float p[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 1, 0, 0.2f, 1, -1, 0.2f};
+	static const uint32_t t[] = {0, 1, 2, 0, 3, 4};
+	static const uint32_t pairs[] = {1, 3};
+	static const struct vdt_contract_ops ops = {pair13_cost, NULL, NULL, NULL};
+	struct vdt_mesh m = {5, (float *)p, NULL, NULL, NULL, 2, (uint32_t *)t};
+	struct vdt_contract_opts o;
+	struct vdt_contract_result r;
+
+	(void)state;
+	vdt_contract_defaults(&o);
+	o.virtual_pairs = pairs;
+	o.virtual_pair_count = 1;
+	assert_int_equal(vdt_contract_run(&m, &ops, &o, &r, NULL), 0);
+	assert_int_equal(r.contractions, 0);
+	assert_int_equal(r.rejected, 1);
+	vdt_contract_result_free(&r);
+
+	o.allow_nonmanifold = 1;
+	assert_int_equal(vdt_contract_run(&m, &ops, &o, &r, NULL), 0);
+	assert_int_equal(r.contractions, 1);
+	assert_int_equal(r.triangle_count, 2);
+	assert_int_equal(r.final[3], 1);
+	assert_int_equal(r.triangles[4], 1);
+	vdt_contract_result_free(&r);
+}
+
 int
 main(void)
 {
@@ -466,6 +515,7 @@ main(void)
 		cmocka_unit_test(given_quadrics_drive_placement),
 		cmocka_unit_test(aggregation_joins_parts),
 		cmocka_unit_test(repeated_faces_are_dropped),
+		cmocka_unit_test(nonmanifold_virtual_pair_is_opt_in),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
