@@ -495,7 +495,17 @@ parse(const char *buf, size_t len, struct obj *o, struct vdt_err *err)
 	int rc = 0;
 
 	while (rc == 0 && (k = next_keyword(&r, &n)) != NULL) {
-		switch (keyword_of(k, n)) {
+		enum keyword kw = keyword_of(k, n);
+
+		/*
+		 * Both passes split statements alike, so the counts hold; the arrays
+		 * are sized by them, so this is checked rather than assumed.
+		 */
+		if ((kw == K_V && o->have_v == o->nv) || (kw == K_VT && o->have_t == o->nt) ||
+		    (kw == K_VN && o->have_n == o->nn))
+			return vdt_err_set(err, VDT_EFORMAT, "line %zu: statement not seen by the count",
+			                   r.line);
+		switch (kw) {
 		case K_V: rc = read_v(&r, o, err); break;
 		case K_VT: rc = read_vt(&r, o, err); break;
 		case K_VN: rc = read_vn(&r, o, err); break;
@@ -505,6 +515,8 @@ parse(const char *buf, size_t len, struct obj *o, struct vdt_err *err)
 		if (rc == 0)
 			end_statement(&r);
 	}
+	if (rc == 0 && (o->have_v != o->nv || o->have_t != o->nt || o->have_n != o->nn))
+		return vdt_err_set(err, VDT_EFORMAT, "counted statements were not all read");
 	return rc;
 }
 
