@@ -386,8 +386,9 @@ has_boundary(const uint32_t *nb, long n)
  * The link condition: link(a) ∩ link(b) == link(ab), with a dummy vertex
  * joined to every boundary vertex and edge so that open surfaces are covered.
  * For a virtual pair (no shared triangle) only require that the two share no
- * neighbour, which rules out duplicate faces, unless the caller accepts
- * non-manifold results (duplicates() still guards against repeated faces).
+ * neighbour, which rules out duplicate faces. A caller that accepts
+ * non-manifold results skips the test (duplicates() still guards against
+ * repeated faces).
  */
 static int
 link_ok(struct engine *e, uint32_t a, uint32_t b)
@@ -408,7 +409,7 @@ link_ok(struct engine *e, uint32_t a, uint32_t b)
 	if (shared > 2)
 		return 0;
 	if (shared == 0)
-		return common == 0 || e->allow_nonmanifold;
+		return common == 0;
 	long lhs = common + (has_boundary(A, na) && has_boundary(B, nb));
 	long rhs = shared + (shared == 1);
 	return lhs == rhs;
@@ -930,7 +931,7 @@ vdt_contract_run(const struct vdt_mesh *m, const struct vdt_contract_ops *ops,
 		                       e.pos + 3 * (size_t)a, e.pos + 3 * (size_t)b, pos);
 		float fpos[3] = {(float)pos[0], (float)pos[1], (float)pos[2]};
 
-		if (!(c < INFINITY) || !link_ok(&e, keep, gone) ||
+		if (!(c < INFINITY) || (!e.allow_nonmanifold && !link_ok(&e, keep, gone)) ||
 		    duplicates(&e, keep, gone) || !fan_ok(&e, keep, gone, fpos) ||
 		    !fan_ok(&e, gone, keep, fpos) ||
 		    (ops->valid && !ops->valid(ops->ctx, keep, gone, pos))) {

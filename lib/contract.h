@@ -72,13 +72,13 @@ struct vdt_contract_opts {
 	int record;              /* keep every contraction in the result */
 	const struct vdt_progress *progress;
 	/*
-	 * Nonzero: a pair whose vertices share no triangle (a virtual pair, or
-	 * an edge whose faces are gone) may be contracted even when the two
-	 * share neighbours, so the result may be non-manifold there; only the
-	 * duplicate-face, degeneracy and fold-over tests apply. This is the
-	 * arbitrary vertex-pair collapse of El-Sana & Varshney (section 4.1)
-	 * that closes holes and tunnels. 0 (the default) keeps the manifold
-	 * rule.
+	 * Nonzero: arbitrary vertex-pair contractions (El-Sana & Varshney,
+	 * section 4.2): the link condition is not applied, to edges or to
+	 * pairs that share no triangle, so a contraction may pinch a tunnel,
+	 * close a hole or join parts and leave non-manifold edges or vertices.
+	 * The duplicate-face, degeneracy, fold-over and sliver tests still
+	 * apply. 0 (the default) keeps every result manifold where the input
+	 * was.
 	 */
 	int allow_nonmanifold;
 };

@@ -1,0 +1,198 @@
+/*
+ * vdt-build - build the view-dependence tree of a mesh (El-Sana & Varshney)
+ * and write it with the mesh as a vdt stream; or check such a stream.
+ */
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../lib/io/meshio.h"
+#include "../lib/vtree.h"
+#include "common.h"
+
+struct cmdline {
+	const char *in, *out, *check;
+	struct vdt_vtree_opts o;
+	int quiet, verbose;
+};
+
+static void
+usage(FILE *f)
+{
+	fprintf(f,
+	        "usage: vdt-build [-e EPS] [--place average|quadric] [--sliver Q] [-o OUTPUT]\n"
+	        "                 [-q] [-v] [INPUT]\n"
+	        "       vdt-build --check [-v] FILE\n"
+	        "Build the view-dependence tree of a mesh and write the mesh and the tree\n"
+	        "as a vdt stream (.vdt); INPUT and OUTPUT default to - (stdin, stdout).\n");
+}
+
+static void
+parse_cmdline(int argc, char **argv, struct cmdline *cl)
+{
+	enum { O_PLACE = 256, O_SLIVER, O_CHECK };
+	static const struct option longopts[] = {
+		{"eps", required_argument, NULL, 'e'},
+		{"place", required_argument, NULL, O_PLACE},
+		{"sliver", required_argument, NULL, O_SLIVER},
+		{"check", required_argument, NULL, O_CHECK},
+		{"output", required_argument, NULL, 'o'},
+		{"quiet", no_argument, NULL, 'q'},
+		{"verbose", no_argument, NULL, 'v'},
+		{"help", no_argument, NULL, 'h'},
+		{"version", no_argument, NULL, 'V'},
+		{NULL, 0, NULL, 0},
+	};
+	int c;
+
+	memset(cl, 0, sizeof(*cl));
+	vdt_vtree_defaults(&cl->o);
+	cl->in = cl->out = "-";
+	while ((c = getopt_long(argc, argv, "e:o:qvhV", longopts, NULL)) != -1) {
+		switch (c) {
+		case 'e': cl->o.eps = parse_real("-e", optarg, 1e-9, 1e9); break;
+		case O_PLACE:
+			if (strcmp(optarg, "average") == 0)
+				cl->o.place = VDT_VTREE_PLACE_AVERAGE;
+			else if (strcmp(optarg, "quadric") == 0)
+				cl->o.place = VDT_VTREE_PLACE_QUADRIC;
+			else
+				usage_error("unknown placement '%s' for --place", optarg);
+			break;
+		case O_SLIVER: cl->o.min_quality = parse_real("--sliver", optarg, 1e-9, 1); break;
+		case O_CHECK: cl->check = optarg; break;
+		case 'o': cl->out = optarg; break;
+		case 'q': cl->quiet = 1; break;
+		case 'v': cl->verbose = 1; break;
+		case 'h': usage(stdout); exit(EXIT_OK);
+		case 'V': print_version(); exit(EXIT_OK);
+		default: usage(stderr); exit(EXIT_USAGE);
+		}
+	}
+	if (optind < argc && cl->check == NULL)
+		cl->in = argv[optind++];
+	if (optind < argc)
+		usage_error("unexpected argument '%s'", argv[optind]);
+}
+
+/* --check: decode (every invariant), then collapse all and split all back. */
+static int
+check(struct cmdline *cl)
+{
+	struct vdt_mesh m = {0};
+	struct vdt_chunks extra = {0};
+	struct vdt_vtree t = {0};
+	struct vdt_err err = {0};
+	struct vdt_vtree_cut cuts[40];
+	size_t at[40], ncuts = 0, nbrs = 0;
+	int rc;
+
+	if (vdt_read(cl->check, &m, &extra, &err) != 0)
+		return fail("cannot read", cl->check, &err);
+	const struct vdt_chunk *c = vdt_chunks_find(&extra, VDT_CHUNK_VTRE);
+	if (c == NULL)
+		vdt_err_set(&err, VDT_EFORMAT, "no VTRE chunk: not a view-dependence tree");
+	else if (vdt_vtree_decode(c->data, c->length, &m, &t, &err) != 0)
+		vdt_err_prefix(&err, "chunk VTRE at byte %llu", (unsigned long long)c->offset);
+	if (c == NULL || err.code != 0) {
+		rc = fail("invalid tree in", cl->check, &err);
+		goto out;
+	}
+	/* Cuts where the active vertices halve, and the roots. */
+	size_t n = t.leaf_count, internal = t.node_count - n;
+	for (size_t a = n; ncuts < 39 && n - a < internal; a = (a + 1) / 2)
+		at[ncuts++] = n - a;
+	at[ncuts++] = internal;
+	if ((rc = vdt_vtree_check(&t, &m, at, ncuts, cuts, &nbrs, &err)) != 0) {
+		rc = fail("invalid tree in", cl->check, &err);
+		goto out;
+	}
+	if (cl->verbose) {
+		uint64_t bytes = vdt_vtree_encoded_size(&t), expl = bytes + internal + 4 * (uint64_t)nbrs;
+		printf("collapsed active vertices edges triangles euler components boundary nonmanifold\n");
+		for (size_t i = 0; i < ncuts; i++)
+			printf("%zu %zu %zu %zu %zu %ld %zu %zu %zu\n", cuts[i].collapsed, cuts[i].active,
+			       cuts[i].vertices, cuts[i].edges, cuts[i].triangles, cuts[i].euler,
+			       cuts[i].components, cuts[i].boundary_edges, cuts[i].nonmanifold_edges);
+		fprintf(stderr, "%s: ok nodes=%zu roots=%zu bytes=%llu bytes_per_vertex=%.2f "
+		        "explicit_bytes_per_vertex=%.2f saving_pct=%.1f peak_mb=%.1f\n", progname,
+		        t.node_count, vdt_vtree_roots(&t), (unsigned long long)bytes, (double)bytes / n,
+		        (double)expl / n, 100.0 * (1 - (double)bytes / expl),
+		        peak_rss_bytes() / 1048576.0);
+	}
+	rc = EXIT_OK;
+out:
+	vdt_vtree_free(&t);
+	vdt_mesh_free(&m);
+	vdt_chunks_free(&extra);
+	return rc;
+}
+
+static int
+run(struct cmdline *cl)
+{
+	struct vdt_mesh m = {0};
+	struct vdt_chunks extra = {0};
+	struct vdt_vtree t = {0};
+	struct vdt_vtree_stats st;
+	struct vdt_write_opts w = {VDT_FMT_VDT, 0, 0};
+	struct vdt_err err = {0};
+	unsigned char *data;
+	uint64_t len;
+	size_t dropped;
+	double t0 = now_seconds(), t1, t2;
+	int rc;
+
+	if (vdt_read(cl->in, &m, &extra, &err) != 0)
+		return fail("cannot read", cl->in, &err);
+	/* A tree already there describes the old build. */
+	vdt_chunks_remove(&extra, VDT_CHUNK_VTRE);
+	if ((rc = vdt_vtree_prepare(&m, &dropped, &err)) != 0) {
+		rc = fail("cannot build a tree of", cl->in, &err);
+		goto out;
+	}
+	cl->o.progress = progress_start(cl->quiet);
+	t1 = now_seconds();
+	rc = vdt_vtree_build(&m, &cl->o, &t, &st, &err);
+	progress_done();
+	if (rc != 0) {
+		rc = fail("cannot build a tree of", cl->in, &err);
+		goto out;
+	}
+	t2 = now_seconds();
+	if (vdt_vtree_encode(&t, &data, &len, &err) != 0 ||
+	    vdt_chunks_add(&extra, VDT_CHUNK_VTRE, data, len, &err) != 0 ||
+	    vdt_write(cl->out, &m, &extra, &w, &err) != 0) {
+		rc = fail("cannot write", cl->out, &err);
+		goto out;
+	}
+	if (dropped > 0 && !cl->quiet)
+		fprintf(stderr, "%s: dropped %zu faces that repeat a vertex or another face\n",
+		        progname, dropped);
+	if (cl->verbose)
+		fprintf(stderr, "%s: vertices=%zu triangles=%zu nodes=%zu roots=%zu depth=%zu "
+		        "octree_pairs=%zu silent=%zu rejected=%zu bytes=%llu bytes_per_vertex=%.2f "
+		        "read_s=%.3f octree_s=%.3f contract_s=%.3f finish_s=%.3f write_s=%.3f "
+		        "build_s=%.3f peak_mb=%.1f\n",
+		        progname, m.vertex_count, m.triangle_count, t.node_count, st.roots, st.depth,
+		        st.octree_pairs, st.silent, st.rejected, (unsigned long long)len,
+		        (double)len / m.vertex_count, t1 - t0, st.octree_s, st.contract_s,
+		        st.finish_s, now_seconds() - t2, t2 - t1, peak_rss_bytes() / 1048576.0);
+	rc = EXIT_OK;
+out:
+	vdt_vtree_free(&t);
+	vdt_mesh_free(&m);
+	vdt_chunks_free(&extra);
+	return rc;
+}
+
+int
+main(int argc, char **argv)
+{
+	struct cmdline cl;
+
+	cmd_init(argv[0]);
+	parse_cmdline(argc, argv, &cl);
+	return cl.check ? check(&cl) : run(&cl);
+}
