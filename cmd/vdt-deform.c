@@ -1,0 +1,262 @@
+/*
+ * vdt-deform - simplify an animated mesh (frames sharing one
+ * connectivity) with one collapse order for the whole animation: Zhang &
+ * Wu, or the baselines first-frame, dsd and independent.
+ */
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../lib/deform.h"
+#include "../lib/io/anim.h"
+#include "../lib/io/meshio.h"
+#include "../lib/measure.h"
+#include "common.h"
+
+static const char *methods[] = {"ours", "dsd", "first-frame", "independent"};
+
+struct cmdline {
+	char **in;
+	size_t nin, start, count, samples;
+	const char *out;
+	struct vdt_deform_opts d;
+	struct vdt_write_opts w;
+	int quiet, verbose;
+};
+
+static void
+usage(FILE *f)
+{
+	fprintf(f,
+	        "usage: vdt-deform [-n VERTICES] [-r RATIO] [-m METHOD] [--k1 K] [--k2 K]\n"
+	        "                  [--sharp-angle DEGREES] [-P SHARE] [--start N] [--frames N]\n"
+	        "                  [--samples N] [-o OUTPUT] [-F FORMAT] [-q] [-v] INPUT...\n"
+	        "Simplify an animation: frame files, a printf pattern (frames/%%03d.obj),\n"
+	        "an MD2 model or a vdt stream with FRMS. METHOD is ours (default), dsd,\n"
+	        "first-frame or independent. OUTPUT is a pattern or a vdt stream.\n");
+}
+
+static void
+parse_cmdline(int argc, char **argv, struct cmdline *cl)
+{
+	enum { O_K1 = 256, O_K2, O_SHARP, O_START, O_FRAMES, O_SAMPLES };
+	static const struct option longopts[] = {
+		{"vertices", required_argument, NULL, 'n'}, {"ratio", required_argument, NULL, 'r'},
+		{"method", required_argument, NULL, 'm'}, {"k1", required_argument, NULL, O_K1},
+		{"k2", required_argument, NULL, O_K2}, {"sharp-angle", required_argument, NULL, O_SHARP},
+		{"share", required_argument, NULL, 'P'}, {"start", required_argument, NULL, O_START},
+		{"frames", required_argument, NULL, O_FRAMES}, {"samples", required_argument, NULL, O_SAMPLES},
+		{"output", required_argument, NULL, 'o'}, {"format", required_argument, NULL, 'F'},
+		{"quiet", no_argument, NULL, 'q'}, {"verbose", no_argument, NULL, 'v'},
+		{"help", no_argument, NULL, 'h'}, {"version", no_argument, NULL, 'V'},
+		{NULL, 0, NULL, 0},
+	};
+	int c, m;
+
+	memset(cl, 0, sizeof(*cl));
+	vdt_deform_defaults(&cl->d);
+	cl->out = "-";
+	cl->start = SIZE_MAX;
+	cl->samples = 100000;
+	while ((c = getopt_long(argc, argv, "n:r:m:P:o:F:qvhV", longopts, NULL)) != -1) {
+		switch (c) {
+		case 'n': cl->d.target_vertices = parse_count("-n", optarg, 1, 4294967295UL); break;
+		case 'r': cl->d.target_ratio = parse_real("-r", optarg, 1e-9, 1); break;
+		case 'm':
+			for (m = 0; m < 4 && strcmp(optarg, methods[m]) != 0; m++)
+				;
+			if (m == 4)
+				usage_error("unknown method '%s' for -m", optarg);
+			cl->d.method = (enum vdt_deform_method)m;
+			break;
+		case O_K1: cl->d.k1 = parse_real("--k1", optarg, 0, 1e12); break;
+		case O_K2: cl->d.k2 = parse_real("--k2", optarg, 0, 1); break;
+		case O_SHARP: cl->d.sharp_angle = parse_real("--sharp-angle", optarg, 0, 180); break;
+		case 'P': cl->d.p = parse_real("-P", optarg, 0, 1); break;
+		case O_START: cl->start = parse_count("--start", optarg, 0, 1000000000); break;
+		case O_FRAMES: cl->count = parse_count("--frames", optarg, 1, 1000000000); break;
+		case O_SAMPLES: cl->samples = parse_count("--samples", optarg, 100, 100000000); break;
+		case 'o': cl->out = optarg; break;
+		case 'F':
+			if ((cl->w.format = vdt_format_parse(optarg)) == VDT_FMT_AUTO)
+				usage_error("unknown format '%s' for -F", optarg);
+			break;
+		case 'q': cl->quiet = 1; break;
+		case 'v': cl->verbose = 1; break;
+		case 'h': usage(stdout); exit(EXIT_OK);
+		case 'V': print_version(); exit(EXIT_OK);
+		default: usage(stderr); exit(EXIT_USAGE);
+		}
+	}
+	cl->in = argv + optind;
+	cl->nin = (size_t)(argc - optind);
+	if (cl->nin == 0)
+		usage_error("no input: give frame files, a pattern, an MD2 model or a stream");
+	if (cl->d.target_vertices == 0 && cl->d.target_ratio == 0)
+		cl->d.target_ratio = 0.1;
+}
+
+/* Frame f of the input as a mesh (borrowing m's triangles). */
+static struct vdt_mesh
+input_frame(const struct vdt_mesh *m, const struct vdt_frames *fr, size_t f)
+{
+	struct vdt_mesh x = *m;
+	x.positions = fr->positions + 3 * fr->vertex_count * f;
+	return x;
+}
+
+static int
+write_frames(struct cmdline *cl, const struct vdt_deform_result *r, struct vdt_chunks *extra,
+             struct vdt_err *err)
+{
+	struct vdt_mesh m = {0};
+	struct vdt_frames fr = {0};
+	unsigned char *data;
+	uint64_t len;
+	int rc = 0;
+
+	if (vdt_anim_is_pattern(cl->out)) {
+		for (size_t f = 0; f < r->frame_count && rc == 0; f++) {
+			char *p = vdt_anim_format(cl->out, f);
+			if (p == NULL || (rc = vdt_deform_frame_mesh(r, f, &m, err)) != 0 ||
+			    (rc = vdt_write(p, &m, NULL, &cl->w, err)) != 0) {
+				rc = fail("cannot write", p ? p : cl->out, err);
+				for (size_t g = 0; g < f; g++) { /* leave nothing behind */
+					char *q = vdt_anim_format(cl->out, g);
+					if (q)
+						remove(q);
+					free(q);
+				}
+			}
+			free(p);
+			vdt_mesh_free(&m);
+		}
+		return rc;
+	}
+	if (r->frame_count == 1) {
+		if ((rc = vdt_deform_frame_mesh(r, 0, &m, err)) == 0)
+			rc = vdt_write(cl->out, &m, extra, &cl->w, err);
+	} else if ((rc = vdt_deform_to_frames(r, &m, &fr, err)) == 0 &&
+	           (rc = vdt_frms_encode(&fr, &data, &len, err)) == 0 &&
+	           (rc = vdt_chunks_add(extra, VDT_CHUNK_FRMS, data, len, err)) == 0) {
+		rc = vdt_write(cl->out, &m, extra, &cl->w, err);
+	}
+	vdt_mesh_free(&m);
+	vdt_frames_free(&fr);
+	return rc ? fail("cannot write", cl->out, err) : 0;
+}
+
+static void
+statistics(struct cmdline *cl, const struct vdt_mesh *in, const struct vdt_frames *fr,
+           const struct vdt_deform_result *r)
+{
+	struct vdt_measure_opts mo = {.samples = cl->samples};
+	double sum = 0, worst = 0, shared = 0, lowest = 1;
+	struct vdt_err err = {0};
+
+	for (size_t f = 0; f < r->frame_count; f++) {
+		struct vdt_mesh a = input_frame(in, fr, f), b = {0};
+		struct vdt_measure_result mr;
+		if (vdt_deform_frame_mesh(r, f, &b, &err) != 0 ||
+		    vdt_measure(&a, &b, &mo, &mr, NULL, NULL, &err) != 0) {
+			fprintf(stderr, "%s: frame %zu: cannot measure: %s\n", progname, f, err.msg);
+			vdt_mesh_free(&b);
+			continue;
+		}
+		double rms = 100 * mr.rms / mr.diag, hd = 100 * mr.max / mr.diag;
+		fprintf(stderr, "%s: frame=%zu vertices=%zu triangles=%zu rms_pct=%.6g "
+		        "hausdorff_pct=%.6g shared=%.4f\n", progname, f, b.vertex_count,
+		        b.triangle_count, rms, hd, r->shared[f]);
+		sum += rms;
+		worst = rms > worst ? rms : worst;
+		if (f > 0) {
+			shared += r->shared[f];
+			lowest = r->shared[f] < lowest ? r->shared[f] : lowest;
+		}
+		vdt_mesh_free(&b);
+	}
+	size_t nf = r->frame_count;
+	fprintf(stderr, "%s: method=%s frames=%zu in_vertices=%zu welded=%zu out_vertices=%zu "
+	        "unified=%zu replayed=%zu mean_rms_pct=%.6g worst_rms_pct=%.6g "
+	        "mean_shared=%.4f min_shared=%.4f quadric_mb=%.1f\n", progname,
+	        methods[cl->d.method], nf, in->vertex_count, r->welded, r->live_vertices[0],
+	        r->unified, r->replayed, sum / nf, worst, nf > 1 ? shared / (nf - 1) : 1,
+	        lowest, r->quadric_bytes / 1048576.0);
+}
+
+static int
+run(struct cmdline *cl)
+{
+	struct vdt_mesh in = {0};
+	struct vdt_frames fr = {0};
+	struct vdt_chunks extra = {0};
+	struct vdt_deform_result r = {0};
+	struct vdt_err err = {0};
+	char **list = NULL;
+	size_t n = 0, bad = 0;
+	double t0 = now_seconds(), t1, t2;
+	int rc;
+
+	if (cl->nin == 1 && vdt_anim_is_pattern(cl->in[0])) {
+		if ((rc = vdt_anim_pattern(cl->in[0], cl->start, cl->count, &list, &n, &err)) != 0)
+			return fail("cannot read", cl->in[0], &err);
+		rc = vdt_anim_read_files((const char *const *)list, n, &in, &fr, &bad, &err);
+	} else if (cl->nin == 1) {
+		rc = vdt_anim_read(cl->in[0], &in, &fr, &extra, &err);
+	} else {
+		rc = vdt_anim_read_files((const char *const *)cl->in, cl->nin, &in, &fr, &bad, &err);
+	}
+	if (rc != 0) {
+		rc = fail("cannot read", list ? list[bad] : cl->in[cl->nin > 1 ? bad : 0], &err);
+		goto out;
+	}
+	if (fr.frame_count > 1 && !vdt_anim_is_pattern(cl->out) &&
+	    (cl->w.format == VDT_FMT_AUTO ? strcmp(cl->out, "-") != 0 &&
+	                                    vdt_format_from_path(cl->out) != VDT_FMT_VDT
+	                                  : cl->w.format != VDT_FMT_VDT))
+		usage_error("%zu frames need a pattern (out/%%03d.obj) or a vdt stream for -o",
+		            fr.frame_count);
+	vdt_chunks_remove(&extra, VDT_CHUNK_SEQN);
+	vdt_chunks_remove(&extra, VDT_CHUNK_QUAD);
+	cl->d.progress = progress_start(cl->quiet);
+	t1 = now_seconds();
+	rc = vdt_deform(&in, &fr, &cl->d, &r, &err);
+	progress_done();
+	if (rc != 0) {
+		rc = fail("cannot simplify", cl->in[0], &err);
+		goto out;
+	}
+	t2 = now_seconds();
+	if ((rc = write_frames(cl, &r, &extra, &err)) != 0)
+		goto out;
+	if (!r.reached_target && !cl->quiet)
+		fprintf(stderr, "%s: some frames stopped above the target: no further valid "
+		        "contraction\n", progname);
+	if (cl->verbose) {
+		fprintf(stderr, "%s: read_s=%.3f simplify_s=%.3f write_s=%.3f peak_mb=%.1f\n",
+		        progname, t1 - t0, t2 - t1, now_seconds() - t2, peak_rss_bytes() / 1048576.0);
+		statistics(cl, &in, &fr, &r);
+	}
+	rc = EXIT_OK;
+out:
+	for (size_t i = 0; i < n; i++)
+		free(list[i]);
+	free(list);
+	vdt_mesh_free(&in);
+	vdt_frames_free(&fr);
+	vdt_chunks_free(&extra);
+	vdt_deform_result_free(&r);
+	return rc;
+}
+
+int
+main(int argc, char **argv)
+{
+	struct cmdline cl;
+
+	cmd_init(argv[0]);
+	parse_cmdline(argc, argv, &cl);
+	return run(&cl);
+}

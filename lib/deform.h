@@ -1,0 +1,157 @@
+/*
+ * deform.h - simplification of deforming meshes: one collapse order for a
+ * whole animation whose frames share one connectivity (Zhang & Wu,
+ * "Deforming Surface Simplification Based on Feature Preservation",
+ * section 3), with the baselines it is measured against: the QSlim order
+ * of the first frame applied to all, deformation sensitive decimation
+ * (Mohr & Gleicher: quadric costs summed over frames), and each frame
+ * simplified on its own.
+ *
+ * Everything runs on the pair-contraction engine (contract.h). The unified
+ * order is one engine run over frame 0's geometry (topology, fold-over)
+ * whose cost callback sums per-frame quadric costs; each frame then replays
+ * the first P of that order on its own geometry and finishes with an
+ * engine run on its own quadrics.
+ */
+#ifndef VDT_DEFORM_H
+#define VDT_DEFORM_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "err.h"
+#include "frames.h"
+#include "mesh.h"
+#include "progress.h"
+
+enum vdt_deform_method {
+	VDT_DEFORM_OURS = 0,    /* Zhang & Wu: DSD + deformation + feature
+	                           weights, then per-frame adjustment */
+	VDT_DEFORM_DSD,         /* Mohr & Gleicher: summed costs, one order */
+	VDT_DEFORM_FIRST,       /* QSlim order of frame 0, applied to all */
+	VDT_DEFORM_INDEPENDENT, /* every frame simplified alone */
+};
+
+struct vdt_deform_opts {
+	enum vdt_deform_method method;
+	size_t target_vertices;  /* stop at this many vertices (0: use ratio) */
+	double target_ratio;     /* or this fraction of the (welded) input */
+	double k1;               /* deformation weight (section 3.1), >= 0 */
+	double k2;               /* feature weight (section 3.2), in [0, 1] */
+	double sharp_angle;      /* degrees: an edge whose faces meet at a
+	                            dihedral angle below this is sharp */
+	double p;                /* share of the unified order every frame
+	                            follows (section 3.3), in [0, 1] */
+	double boundary_weight;  /* perpendicular boundary planes, as vdt-qslim */
+	double max_normal_angle; /* fold-over threshold, degrees */
+	const struct vdt_progress *progress;
+};
+
+/* Defaults: ours, k1 1, k2 VDT_DEFORM_K2, 60 degrees, P 0.96, boundary
+ * weight 100, 75 degrees; no target. */
+#define VDT_DEFORM_K2 0.5
+void vdt_deform_defaults(struct vdt_deform_opts *o);
+
+/*
+ * Result: for every frame, positions of every slot (welded input vertex)
+ * and the surviving triangles in slot ids, input order.
+ */
+struct vdt_deform_result {
+	size_t frame_count;
+	size_t vertex_count;   /* slots: welded input vertices */
+	float *positions;      /* 3 * vertex_count per frame */
+	size_t *tri_start;     /* frame_count + 1 */
+	uint32_t *triangles;   /* 3 * tri_start[frame_count] slot ids */
+	size_t *live_vertices; /* per frame: slots used by a triangle */
+	double *shared;        /* per frame: fraction of its triangles that are
+	                          also triangles of the previous frame (1 for
+	                          frame 0): temporal coherence */
+	uint32_t *canon;       /* per input vertex: its slot */
+	size_t welded;         /* input vertices merged into another slot */
+	size_t dropped;        /* repeated faces removed */
+	size_t unified;        /* contractions in the unified order */
+	size_t replayed;       /* of them, replayed on every frame */
+	int reached_target;    /* 1 if every frame reached the target */
+	size_t quadric_bytes;  /* memory of the per-frame quadrics and
+	                          positions of the unified stage */
+};
+
+/*
+ * Simplify an animation: m gives the connectivity (its positions are not
+ * used), fr the positions of every frame (fr->vertex_count ==
+ * m->vertex_count, no per-frame triangles). Vertices that coincide in every
+ * frame are welded first (texture seams of OBJ and MD3 frames), repeated
+ * faces dropped, as vdt-qslim does. With one frame, method independent
+ * (and ours with k2 = 0 on any mesh, or any k2 on a mesh without feature
+ * edges) gives vdt_qslim's result. Returns 0, VDT_EINVAL (bad options, or
+ * fr does not match m) or VDT_ENOMEM; on failure *res is empty.
+ */
+int vdt_deform(const struct vdt_mesh *m, const struct vdt_frames *fr,
+               const struct vdt_deform_opts *o, struct vdt_deform_result *res,
+               struct vdt_err *err);
+
+void vdt_deform_result_free(struct vdt_deform_result *res);
+
+/*
+ * Frame f of a result as a compact mesh: the slots its triangles use,
+ * numbered in order of first use (as vdt-qslim numbers its output).
+ * Returns 0 or VDT_ENOMEM.
+ */
+int vdt_deform_frame_mesh(const struct vdt_deform_result *res, size_t f,
+                          struct vdt_mesh *out, struct vdt_err *err);
+
+/*
+ * The whole result for the stream: the slots used by any frame, numbered
+ * in order of first use over frames 0, 1, ...; *mesh is frame 0 and *fr
+ * holds every frame's positions, plus per-frame triangles when the frames
+ * do not all share frame 0's. Returns 0 or VDT_ENOMEM.
+ */
+int vdt_deform_to_frames(const struct vdt_deform_result *res,
+                         struct vdt_mesh *mesh, struct vdt_frames *fr,
+                         struct vdt_err *err);
+
+/* Edge classes of section 3.2 (an edge may be boundary-incident and sharp;
+ * none of them: interior). */
+enum {
+	VDT_EDGE_COMPLEX = 1,           /* three or more faces */
+	VDT_EDGE_BOUNDARY = 2,          /* one face */
+	VDT_EDGE_BOUNDARY_INCIDENT = 4, /* two faces, an end on the boundary */
+	VDT_EDGE_SHARP = 8,             /* two faces at a dihedral angle below
+	                                   the threshold */
+};
+
+struct vdt_deform_edge {
+	uint32_t a, b;    /* a < b */
+	unsigned classes; /* VDT_EDGE_* */
+	double weight;    /* Feature_Weight */
+};
+
+/*
+ * The edges of a mesh (positions 3 per vertex, triangles), sorted by
+ * (a, b), classified with the Feature_Weight of section 3.2:
+ *   complex           faces - 3
+ *   boundary          max(cos t1, cos t2), t the angle at each end between
+ *                     the edge and the next boundary edge (-1 when straight)
+ *   boundary-incident (boundary edges at its two ends) / 4
+ *   sharp             sin a, a the dihedral angle (180 when flat) below
+ *                     sharp_angle degrees
+ *   interior          0
+ * summed over the classes that apply. *edges is malloc'ed. Returns 0 or
+ * VDT_ENOMEM.
+ */
+int vdt_deform_features(const float *positions, size_t vertex_count,
+                        const uint32_t *triangles, size_t triangle_count,
+                        double sharp_angle, struct vdt_deform_edge **edges,
+                        size_t *count, struct vdt_err *err);
+
+/*
+ * The contraction cost of section 3.2 from the per-frame costs ec[0..f-1]:
+ * (1 + k2 fw) sum ec + k1 sum |ec - mean ec|.
+ */
+double vdt_deform_cost(const double *ec, size_t frames, double fw, double k1,
+                       double k2);
+
+/* How many of n unified contractions every frame replays: floor(p n). */
+size_t vdt_deform_split(size_t n, double p);
+
+#endif

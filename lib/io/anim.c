@@ -1,0 +1,316 @@
+/*
+ * anim.c - animations in: one file (MD2, a stream with FRMS, a mesh), a
+ * list of frame files, or a printf pattern naming them. Every frame must
+ * share frame 0's connectivity; what differs is said with the frame.
+ */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "anim.h"
+#include "meshio.h"
+
+static int
+slurp(const char *path, unsigned char **buf, size_t *len, struct vdt_err *err)
+{
+	int std = strcmp(path, "-") == 0;
+	FILE *f = std ? stdin : fopen(path, "rb");
+	size_t cap = 1 << 16, n = 0;
+	unsigned char *b;
+
+	*buf = NULL;
+	*len = 0;
+	if (f == NULL)
+		return vdt_err_set(err, VDT_EIO, "%s", strerror(errno));
+	if ((b = malloc(cap)) == NULL) {
+		if (!std)
+			fclose(f);
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory reading");
+	}
+	for (;;) {
+		if (n == cap) {
+			unsigned char *t = realloc(b, cap *= 2);
+			if (t == NULL) {
+				free(b);
+				if (!std)
+					fclose(f);
+				return vdt_err_set(err, VDT_ENOMEM, "out of memory reading");
+			}
+			b = t;
+		}
+		size_t got = fread(b + n, 1, cap - n, f);
+		n += got;
+		if (got == 0)
+			break;
+	}
+	int bad = ferror(f);
+	if (!std)
+		fclose(f);
+	if (bad) {
+		free(b);
+		return vdt_err_set(err, VDT_EIO, "read error");
+	}
+	*buf = b;
+	*len = n;
+	return 0;
+}
+
+/* Frame f's triangles against frame 0's: 0, or a message. */
+static int
+same_connectivity(const struct vdt_mesh *m0, size_t f, size_t nv, size_t nt,
+                  const uint32_t *tri, struct vdt_err *err)
+{
+	if (nv != m0->vertex_count)
+		return vdt_err_set(err, VDT_EINVAL, "frame %zu has %zu vertices, frame 0 has %zu",
+		                   f, nv, m0->vertex_count);
+	if (nt != m0->triangle_count)
+		return vdt_err_set(err, VDT_EINVAL, "frame %zu has %zu triangles, frame 0 has %zu",
+		                   f, nt, m0->triangle_count);
+	for (size_t i = 0; i < 3 * nt; i++)
+		if (tri[i] != m0->triangles[i])
+			return vdt_err_set(err, VDT_EINVAL,
+			                   "frame %zu differs in connectivity from frame 0 at triangle %zu",
+			                   f, i / 3);
+	return 0;
+}
+
+int
+vdt_anim_read(const char *path, struct vdt_mesh *m, struct vdt_frames *fr,
+              struct vdt_chunks *extra, struct vdt_err *err)
+{
+	unsigned char *buf;
+	size_t len;
+	struct vdt_chunks ch = {0};
+	int rc;
+
+	memset(m, 0, sizeof(*m));
+	memset(fr, 0, sizeof(*fr));
+	if (extra)
+		memset(extra, 0, sizeof(*extra));
+	if ((rc = slurp(path, &buf, &len, err)) != 0)
+		return rc;
+	if (vdt_md2_sniff(buf, len)) {
+		rc = vdt_md2_read(buf, len, m, fr, err);
+		free(buf);
+		return rc;
+	}
+	rc = vdt_read_memory(buf, len, path, m, &ch, err);
+	free(buf);
+	if (rc != 0)
+		return rc;
+	const struct vdt_chunk *c = vdt_chunks_find(&ch, VDT_CHUNK_FRMS);
+	if (c != NULL) {
+		if ((rc = vdt_frms_decode(c->data, c->length, fr, err)) != 0) {
+			vdt_err_prefix(err, "chunk FRMS at byte %llu", (unsigned long long)c->offset);
+			goto fail;
+		}
+		if (fr->vertex_count != m->vertex_count) {
+			rc = vdt_err_set(err, VDT_EINVAL, "FRMS chunk has %zu vertices, MESH chunk %zu",
+			                 fr->vertex_count, m->vertex_count);
+			goto fail;
+		}
+		if (fr->tri_start) {
+			for (size_t f = 0; f < fr->frame_count; f++)
+				if ((rc = same_connectivity(m, f, m->vertex_count,
+				                            fr->tri_start[f + 1] - fr->tri_start[f],
+				                            fr->triangles + 3 * fr->tri_start[f], err)) != 0)
+					goto fail;
+			free(fr->tri_start);
+			free(fr->triangles);
+			fr->tri_start = NULL;
+			fr->triangles = NULL;
+		}
+		vdt_chunks_remove(&ch, VDT_CHUNK_FRMS);
+	} else {
+		if ((rc = vdt_frames_alloc(fr, 1, m->vertex_count, err)) != 0)
+			goto fail;
+		memcpy(fr->positions, m->positions, 3 * m->vertex_count * sizeof(float));
+	}
+	if (extra)
+		*extra = ch;
+	else
+		vdt_chunks_free(&ch);
+	return 0;
+fail:
+	vdt_chunks_free(&ch);
+	vdt_mesh_free(m);
+	vdt_frames_free(fr);
+	return rc;
+}
+
+int
+vdt_anim_read_files(const char *const *paths, size_t n, struct vdt_mesh *m,
+                    struct vdt_frames *fr, size_t *bad, struct vdt_err *err)
+{
+	struct vdt_mesh x = {0};
+	int rc;
+
+	memset(m, 0, sizeof(*m));
+	memset(fr, 0, sizeof(*fr));
+	*bad = 0;
+	if (n == 0)
+		return vdt_err_set(err, VDT_EINVAL, "no frames");
+	if ((rc = vdt_read(paths[0], m, NULL, err)) != 0)
+		return rc;
+	if ((rc = vdt_frames_alloc(fr, n, m->vertex_count, err)) != 0)
+		goto fail;
+	memcpy(fr->positions, m->positions, 3 * m->vertex_count * sizeof(float));
+	for (size_t f = 1; f < n; f++) {
+		*bad = f;
+		if ((rc = vdt_read(paths[f], &x, NULL, err)) != 0) {
+			vdt_err_prefix(err, "frame %zu", f);
+			goto fail;
+		}
+		if ((rc = same_connectivity(m, f, x.vertex_count, x.triangle_count, x.triangles, err)) != 0)
+			goto fail;
+		memcpy(fr->positions + 3 * m->vertex_count * f, x.positions,
+		       3 * m->vertex_count * sizeof(float));
+		vdt_mesh_free(&x);
+	}
+	return 0;
+fail:
+	vdt_mesh_free(&x);
+	vdt_mesh_free(m);
+	vdt_frames_free(fr);
+	return rc;
+}
+
+/* The one integer conversion of a pattern: its start, or -1. */
+static int
+conversion(const char *s, size_t *at, size_t *end)
+{
+	int found = 0;
+	for (size_t i = 0; s[i]; i++) {
+		if (s[i] != '%')
+			continue;
+		if (s[i + 1] == '%') {
+			i++;
+			continue;
+		}
+		size_t j = i + 1;
+		while (s[j] >= '0' && s[j] <= '9')
+			j++;
+		if (s[j] != 'd' || found)
+			return -1;
+		found = 1;
+		*at = i;
+		*end = j + 1;
+		i = j;
+	}
+	return found ? 0 : -1;
+}
+
+int
+vdt_anim_is_pattern(const char *s)
+{
+	size_t a, b;
+	return conversion(s, &a, &b) == 0;
+}
+
+char *
+vdt_anim_format(const char *pattern, size_t i)
+{
+	size_t at, end;
+	char spec[32];
+
+	if (conversion(pattern, &at, &end) != 0 || end - at > 20)
+		return NULL;
+	memcpy(spec, pattern + at, end - at - 1);
+	memcpy(spec + (end - at - 1), "zu", 3);
+	char num[64];
+	snprintf(num, sizeof(num), spec, i);
+	size_t n = strlen(pattern) + strlen(num) + 1;
+	char *out = malloc(n), *o = out;
+	if (out == NULL)
+		return NULL;
+	for (size_t k = 0; pattern[k]; k++) {
+		if (k == at) {
+			o += sprintf(o, "%s", num);
+			k = end - 1;
+		} else if (pattern[k] == '%' && pattern[k + 1] == '%') {
+			*o++ = '%';
+			k++;
+		} else {
+			*o++ = pattern[k];
+		}
+	}
+	*o = '\0';
+	return out;
+}
+
+static int
+exists(const char *p)
+{
+	struct stat st;
+	return stat(p, &st) == 0;
+}
+
+int
+vdt_anim_pattern(const char *pattern, size_t start, size_t count, char ***paths,
+                 size_t *n, struct vdt_err *err)
+{
+	char **list = NULL, *p = NULL;
+	size_t cap = 0, len = 0;
+	int rc = VDT_ENOMEM;
+
+	*paths = NULL;
+	*n = 0;
+	if (!vdt_anim_is_pattern(pattern))
+		return vdt_err_set(err, VDT_EINVAL, "not a pattern with one %%d conversion");
+	if (start == SIZE_MAX) {
+		if ((p = vdt_anim_format(pattern, 0)) == NULL)
+			goto nomem;
+		start = exists(p) ? 0 : 1;
+		free(p);
+		p = NULL;
+	}
+	for (size_t i = start;; i++) {
+		if ((p = vdt_anim_format(pattern, i)) == NULL)
+			goto nomem;
+		if (count > 0 ? len == count : !exists(p))
+			break;
+		if (!exists(p)) {
+			rc = vdt_err_set(err, VDT_EIO, "frame %zu: no file '%s'", len, p);
+			goto fail;
+		}
+		if (len == cap) {
+			cap = cap ? 2 * cap : 64;
+			char **t = realloc(list, cap * sizeof(*t));
+			if (t == NULL)
+				goto nomem;
+			list = t;
+		}
+		list[len++] = p;
+		p = NULL;
+	}
+	if (len == 0) {
+		rc = vdt_err_set(err, VDT_EIO, "no file '%s'", p);
+		goto fail;
+	}
+	/* A missing frame followed by more frames is a gap, not the end. */
+	{
+		char *q = vdt_anim_format(pattern, start + len + 1);
+		if (q == NULL)
+			goto nomem;
+		if (count == 0 && exists(q)) {
+			rc = vdt_err_set(err, VDT_EIO, "frame %zu: no file '%s', but '%s' exists", len, p, q);
+			free(q);
+			goto fail;
+		}
+		free(q);
+	}
+	free(p);
+	*paths = list;
+	*n = len;
+	return 0;
+nomem:
+	rc = vdt_err_set(err, VDT_ENOMEM, "out of memory");
+fail:
+	free(p);
+	for (size_t i = 0; i < len; i++)
+		free(list[i]);
+	free(list);
+	return rc;
+}

@@ -1,0 +1,75 @@
+/*
+ * anim.h - reading animations whose frames share one connectivity: Quake
+ * II MD2 keyframe models (native), a vdt stream with MESH and FRMS
+ * chunks, a list of mesh files, or a printf pattern naming them.
+ */
+#ifndef VDT_ANIM_H
+#define VDT_ANIM_H
+
+#include <stddef.h>
+
+#include "../err.h"
+#include "../frames.h"
+#include "../mesh.h"
+#include "../stream.h"
+
+/* True if buf (n bytes) starts like an MD2 model ("IDP2"). */
+int vdt_md2_sniff(const unsigned char *buf, size_t n);
+
+/*
+ * Decode an MD2 model (id Software's Quake II format: a 68-byte header,
+ * triangles of int16 vertex and texture indices, then frames of a float
+ * scale and translation and one byte triple per vertex). Positions are
+ * shared by every triangle corner (texture coordinates live per corner),
+ * so vertices are not split at texture seams. Triangles are turned
+ * counter-clockwise (MD2 stores them clockwise). *m is frame 0, *fr every
+ * frame. Header counts and offsets are checked against len before
+ * anything is allocated. Returns 0, VDT_EFORMAT, VDT_EINVAL or VDT_ENOMEM;
+ * on failure *m and *fr are empty.
+ */
+int vdt_md2_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
+                 struct vdt_frames *fr, struct vdt_err *err);
+
+/*
+ * Read one file ("-": stdin) that holds an animation or a single mesh:
+ * MD2, or any mesh format vdt_read_memory knows. For a vdt stream, an
+ * FRMS chunk gives the frames (its vertex count must match the MESH
+ * chunk; per-frame triangles, if present, must equal the MESH chunk's:
+ * "frame 3 differs in connectivity from frame 0 at triangle 17"), and
+ * every other chunk but FRMS goes to *extra (may be NULL). Any other mesh
+ * is one frame. Returns 0 or a negative status, *m, *fr and *extra empty
+ * on failure.
+ */
+int vdt_anim_read(const char *path, struct vdt_mesh *m, struct vdt_frames *fr,
+                  struct vdt_chunks *extra, struct vdt_err *err);
+
+/*
+ * Read frames from n mesh files (each as vdt_read does). Every frame
+ * must have frame 0's vertex count, triangle count and triangles; *bad is
+ * set to the index of the file an error is about (the message names the
+ * frame and what differs: "frame 3 has 502 vertices, frame 0 has 500").
+ * Returns 0 or a negative status; *m and *fr empty on failure.
+ */
+int vdt_anim_read_files(const char *const *paths, size_t n, struct vdt_mesh *m,
+                        struct vdt_frames *fr, size_t *bad, struct vdt_err *err);
+
+/*
+ * Expand a printf pattern with one integer conversion (%d, %03d, %5d;
+ * %% for a literal percent) into the file names that exist, from index
+ * start (or, when start is SIZE_MAX, from 0 if that file exists, else
+ * from 1) until the first missing one; with count > 0 exactly count
+ * frames are required. A missing file followed by an existing one is a
+ * gap, not the end. *paths (each string and the array malloc'ed) has *n
+ * names. Errors (VDT_EINVAL for a bad pattern, VDT_EIO for missing files)
+ * name the file.
+ */
+int vdt_anim_pattern(const char *pattern, size_t start, size_t count,
+                     char ***paths, size_t *n, struct vdt_err *err);
+
+/* Whether s is a pattern with exactly one integer conversion. */
+int vdt_anim_is_pattern(const char *s);
+
+/* Format a pattern with index i into a malloc'ed string (NULL: no memory). */
+char *vdt_anim_format(const char *pattern, size_t i);
+
+#endif
