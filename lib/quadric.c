@@ -219,3 +219,95 @@ vdt_quadric_optimize(const struct vdt_quadric *q, const double p0[3],
 	}
 	return best;
 }
+
+/* Eigen-decomposition of a symmetric 3x3 matrix by cyclic Jacobi rotations. */
+static void
+eigen3(double a[3][3], double e[3], double vec[3][3])
+{
+	for (int i = 0; i < 3; i++)
+		for (int j = 0; j < 3; j++)
+			vec[i][j] = i == j;
+	for (int sweep = 0; sweep < 32; sweep++) {
+		double off = fabs(a[0][1]) + fabs(a[0][2]) + fabs(a[1][2]);
+
+		if (!(off > 1e-15 * (fabs(a[0][0]) + fabs(a[1][1]) + fabs(a[2][2]))))
+			break;
+		for (int p = 0; p < 2; p++)
+			for (int r = p + 1; r < 3; r++) {
+				double theta, t, c, s;
+
+				if (a[p][r] == 0)
+					continue;
+				theta = (a[r][r] - a[p][p]) / (2 * a[p][r]);
+				t = (theta >= 0 ? 1 : -1) / (fabs(theta) + sqrt(theta * theta + 1));
+				c = 1 / sqrt(t * t + 1);
+				s = t * c;
+				for (int k = 0; k < 3; k++) {
+					double akp = a[k][p], akr = a[k][r];
+					a[k][p] = c * akp - s * akr;
+					a[k][r] = s * akp + c * akr;
+				}
+				for (int k = 0; k < 3; k++) {
+					double apk = a[p][k], ark = a[r][k];
+					a[p][k] = c * apk - s * ark;
+					a[r][k] = s * apk + c * ark;
+				}
+				for (int k = 0; k < 3; k++) {
+					double vkp = vec[k][p], vkr = vec[k][r];
+					vec[k][p] = c * vkp - s * vkr;
+					vec[k][r] = s * vkp + c * vkr;
+				}
+			}
+	}
+	for (int i = 0; i < 3; i++)
+		e[i] = a[i][i];
+}
+
+double
+vdt_quadric_optimize_box(const struct vdt_quadric *q, const double ref[3],
+                         const double lo[3], const double hi[3], double v[3])
+{
+	struct vdt_quadric t = *q;
+	double r[3], a[3][3], e[3], vec[3][3], x[3] = {0, 0, 0}, scale = 0, emax = 0;
+	double f = 1;
+
+	for (int k = 0; k < 3; k++) {
+		r[k] = ref[k] < lo[k] ? lo[k] : ref[k] > hi[k] ? hi[k] : ref[k];
+		if (hi[k] - lo[k] > scale)
+			scale = hi[k] - lo[k];
+	}
+	if (!(scale > 0))
+		scale = 1;
+	/* x = (v - r) / scale: the system is then of order one. */
+	vdt_quadric_transform(&t, scale, r);
+	a[0][0] = t.a00, a[0][1] = a[1][0] = t.a01, a[0][2] = a[2][0] = t.a02;
+	a[1][1] = t.a11, a[1][2] = a[2][1] = t.a12, a[2][2] = t.a22;
+	eigen3(a, e, vec);
+	for (int i = 0; i < 3; i++)
+		emax = e[i] > emax ? e[i] : emax;
+	for (int i = 0; i < 3; i++) {
+		double proj;
+
+		if (!(e[i] > 1e-3 * emax))
+			continue;
+		/* Along eigenvector u: minimise e u'x^2 + 2 (u'b) (u'x). */
+		proj = -(vec[0][i] * t.b0 + vec[1][i] * t.b1 + vec[2][i] * t.b2) / e[i];
+		for (int k = 0; k < 3; k++)
+			x[k] += proj * vec[k][i];
+	}
+	/* Back towards r until inside the box. */
+	for (int k = 0; k < 3; k++) {
+		double p = r[k] + scale * x[k];
+		if (!isfinite(p))
+			f = 0;
+		else if (p > hi[k] && hi[k] - r[k] < f * (p - r[k]))
+			f = (hi[k] - r[k]) / (p - r[k]);
+		else if (p < lo[k] && lo[k] - r[k] > f * (p - r[k]))
+			f = (lo[k] - r[k]) / (p - r[k]);
+	}
+	for (int k = 0; k < 3; k++) {
+		v[k] = r[k] + f * scale * x[k];
+		v[k] = v[k] < lo[k] ? lo[k] : v[k] > hi[k] ? hi[k] : v[k];
+	}
+	return vdt_quadric_eval(q, v);
+}

@@ -72,4 +72,19 @@ void vdt_quadric_transform(struct vdt_quadric *q, double s, const double t[3]);
 double vdt_quadric_optimize(const struct vdt_quadric *q, const double p0[3],
                             const double p1[3], double v[3]);
 
+/*
+ * The minimiser of Q kept inside the box [lo, hi] (the grid cell of
+ * vertex clustering: Garland & Shaffer section 3.2, Lindstrom's OoCS), found
+ * from ref (a point in the box, such as the mean of the cell's vertices).
+ * In a frame centred on ref and scaled to the box, A is diagonalised and
+ * its eigenvalues below 1e-3 of the largest are taken as zero: along those
+ * flat directions the point stays at ref (the pseudo-inverse solution), so
+ * a flat or cylindrical neighbourhood cannot send it far away. If the
+ * result is outside the box, it is moved back towards ref onto the box's
+ * surface; Q is convex, so that point is no worse than ref. Writes v and
+ * returns Q(v).
+ */
+double vdt_quadric_optimize_box(const struct vdt_quadric *q, const double ref[3],
+                                const double lo[3], const double hi[3], double v[3]);
+
 #endif

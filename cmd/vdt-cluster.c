@@ -1,0 +1,185 @@
+/*
+ * vdt-cluster - out-of-core uniform clustering with quadrics: phase I of
+ * the multiphase method, whose MESH + QUAD stream vdt-qslim continues.
+ */
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../lib/cluster.h"
+#include "../lib/io/tsource.h"
+#include "common.h"
+
+struct cmdline {
+	const char *in, *out;
+	struct vdt_write_opts w;
+	struct vdt_cluster_choice ch;
+	double size, memory_mb;
+	int size_pct, decoupled, quiet, verbose, choices;
+};
+
+static void
+usage(FILE *f)
+{
+	fprintf(f,
+	        "usage: vdt-cluster [-s SIZE[%%] | -g NX[xNYxNZ] | --target TRIANGLES] [-m MB]\n"
+	        "                   [--decoupled] [-o OUTPUT] [-F FORMAT] [-q] [-v] [INPUT]\n"
+	        "Cluster a mesh of any size on a uniform grid, keeping one quadric per cell.\n"
+	        "INPUT and OUTPUT default to - (stdin, stdout); the output is a MESH + QUAD\n"
+	        "vdt stream for vdt-qslim unless a mesh format is asked (default -g 256).\n");
+}
+
+static void
+parse_dims(const char *s, uint32_t d[3])
+{
+	char buf[64], *p, *tok[3] = {0};
+	int n = 0;
+
+	if (strlen(s) >= sizeof(buf))
+		usage_error("invalid value '%s' for -g", s);
+	strcpy(buf, s);
+	for (p = buf; n < 3; n++) {
+		tok[n] = p;
+		if ((p = strchr(p, 'x')) == NULL)
+			break;
+		*p++ = '\0';
+	}
+	if (n == 1 || p != NULL)
+		usage_error("-g takes N or NXxNYxNZ, not '%s'", s);
+	for (int i = 0; i < 3 && tok[i]; i++)
+		d[i] = (uint32_t)parse_count("-g", tok[i], 1, VDT_CLUSTER_MAX_DIM - 1);
+}
+
+static void
+parse_cmdline(int argc, char **argv, struct cmdline *cl)
+{
+	enum { O_TARGET = 256, O_DECOUPLED };
+	static const struct option longopts[] = {
+		{"size", 1, NULL, 's'}, {"grid", 1, NULL, 'g'}, {"memory", 1, NULL, 'm'},
+		{"target", 1, NULL, O_TARGET}, {"decoupled", 0, NULL, O_DECOUPLED},
+		{"output", 1, NULL, 'o'}, {"format", 1, NULL, 'F'}, {"quiet", 0, NULL, 'q'},
+		{"verbose", 0, NULL, 'v'}, {"help", 0, NULL, 'h'}, {"version", 0, NULL, 'V'},
+		{NULL, 0, NULL, 0},
+	};
+	int c;
+
+	memset(cl, 0, sizeof(*cl));
+	cl->in = cl->out = "-";
+	while ((c = getopt_long(argc, argv, "s:g:m:o:F:qvhV", longopts, NULL)) != -1) {
+		switch (c) {
+		case 's':
+			cl->size = parse_bound("-s", optarg, &cl->size_pct);
+			if (!(cl->size > 0))
+				usage_error("-s must be positive, not %s", optarg);
+			cl->choices++;
+			break;
+		case 'g': parse_dims(optarg, cl->ch.dims); cl->choices++; break;
+		case 'm': cl->memory_mb = parse_real("-m", optarg, 1, 1e9); break;
+		case O_TARGET: cl->ch.target = parse_count("--target", optarg, 1, 4294967295UL); cl->choices++; break;
+		case O_DECOUPLED: cl->decoupled = 1; break;
+		case 'o': cl->out = optarg; break;
+		case 'F':
+			if ((cl->w.format = vdt_format_parse(optarg)) == VDT_FMT_AUTO)
+				usage_error("unknown format '%s' for -F", optarg);
+			break;
+		case 'q': cl->quiet = 1; break;
+		case 'v': cl->verbose = 1; break;
+		case 'h': usage(stdout); exit(EXIT_OK);
+		case 'V': print_version(); exit(EXIT_OK);
+		default: usage(stderr); exit(EXIT_USAGE);
+		}
+	}
+	if (optind < argc)
+		cl->in = argv[optind++];
+	if (optind < argc)
+		usage_error("unexpected argument '%s'", argv[optind]);
+	if (cl->choices > 1)
+		usage_error("-s, -g and --target each choose the grid: give one");
+	if (cl->choices == 0 && cl->memory_mb == 0)
+		cl->ch.dims[0] = 256;
+}
+
+static int
+run(struct cmdline *cl)
+{
+	struct vdt_tsource *ts = NULL;
+	struct vdt_cluster *c = NULL;
+	struct vdt_cluster_grid g;
+	struct vdt_cluster_choice ch = cl->ch;
+	struct vdt_cluster_stats st;
+	struct vdt_mesh out = {0};
+	struct vdt_quadric *q = NULL;
+	struct vdt_chunks extra = {0};
+	struct vdt_err err = {0};
+	struct vdt_bbox box;
+	const struct vdt_progress *p = progress_start(cl->quiet);
+	size_t max_cells = cl->memory_mb > 0 ? (size_t)(cl->memory_mb * 1048576 / VDT_CLUSTER_CELL_BYTES) : 0;
+	double t0 = now_seconds(), t1, t2, t3;
+	int rc;
+
+	if ((rc = vdt_tsource_open(&ts, cl->in, &err)) != 0 ||
+	    (rc = vdt_cluster_scan_bbox(ts, &box, NULL, p, &err)) != 0) {
+		rc = fail("cannot read", cl->in, &err);
+		goto out;
+	}
+	t1 = now_seconds();
+	ch.max_cells = max_cells;
+	ch.size = cl->size_pct ? cl->size * vdt_bbox_diagonal(&box) / 100 : cl->size;
+	if ((rc = vdt_cluster_choose(&ch, ts, &box, &g, p, &err)) != 0 ||
+	    (rc = vdt_cluster_new(&c, &g, max_cells, &err)) != 0 ||
+	    (rc = vdt_cluster_scan(c, ts, p, &err)) != 0 ||
+	    (rc = vdt_cluster_finish(c, &out, cl->decoupled ? NULL : &q, &st, &err)) != 0) {
+		rc = err.code == VDT_ELIMIT ? (fail("cannot cluster", cl->in, &err), EXIT_USAGE)
+		                            : fail("cannot read", cl->in, &err);
+		goto out;
+	}
+	t2 = now_seconds();
+	vdt_cluster_free(c); /* before the output is encoded: a lower peak */
+	c = NULL;
+	if (q != NULL) {
+		unsigned char *data;
+		uint64_t len;
+		if ((rc = vdt_quad_encode(q, out.vertex_count, &data, &len, &err)) != 0 ||
+		    (rc = vdt_chunks_add(&extra, VDT_CHUNK_QUAD, data, len, &err)) != 0)
+			goto write_failed;
+	}
+	free(q);
+	q = NULL;
+	if ((rc = vdt_write(cl->out, &out, &extra, &cl->w, &err)) != 0)
+		goto write_failed;
+	t3 = now_seconds();
+	progress_done();
+	if (cl->verbose)
+		fprintf(stderr, "%s: in_triangles=%llu streamed=%d cells=%zu boundary_cells=%zu "
+		        "out_vertices=%zu out_triangles=%zu grid=%ux%ux%u cell_size=%.6g "
+		        "bbox_s=%.3f cluster_s=%.3f write_s=%.3f total_s=%.3f mtri_per_s=%.2f peak_mb=%.1f\n",
+		        progname, (unsigned long long)st.triangles_in, vdt_tsource_streamed(ts), st.cells,
+		        st.boundary_cells, st.vertices_out, st.triangles_out, g.dims[0], g.dims[1],
+		        g.dims[2], fmax(g.cell[0], fmax(g.cell[1], g.cell[2])), t1 - t0, t2 - t1,
+		        t3 - t2, t3 - t0, st.triangles_in / fmax(t2 - t0, 1e-9) / 1e6,
+		        peak_rss_bytes() / 1048576.0);
+	rc = EXIT_OK;
+	goto out;
+write_failed:
+	rc = fail("cannot write", cl->out, &err);
+out:
+	progress_done();
+	vdt_cluster_free(c);
+	vdt_tsource_close(ts);
+	vdt_mesh_free(&out);
+	vdt_chunks_free(&extra);
+	free(q);
+	return rc;
+}
+
+int
+main(int argc, char **argv)
+{
+	struct cmdline cl;
+
+	cmd_init(argv[0]);
+	parse_cmdline(argc, argv, &cl);
+	return run(&cl);
+}

@@ -1,0 +1,1021 @@
+/*
+ * cluster.c - phase I of Garland & Shaffer, "A Multiphase Approach to
+ * Efficient Surface Simplification" (Vis 2002), section 3.2: uniform
+ * clustering that accumulates quadrics on a sparse grid, as in Lindstrom's
+ * OoCS (SIGGRAPH 2000); grid selection by sampled occupancy, section 3.4;
+ * open boundaries kept by the edge normals of Lindstrom & Silva (Vis 2001).
+ *
+ * Boundary edges without connectivity: for the corner v of a triangle
+ * (u, v, w) with unit normal n, m = (w - u) x n is the sum of the outward
+ * normals, in the triangle's plane, of its two edges at v (each as long as
+ * its edge), and does not depend on the triangle's orientation. Around an
+ * interior vertex every edge is met twice with opposite directions, so the
+ * m of its corners cancel (exactly on flat ground, up to curvature
+ * otherwise); at a boundary vertex the boundary edges' normals remain. Each
+ * cell sums (m, -m.v) over its corners: what survives is the plane through
+ * the boundary, perpendicular to the surface, with weight the square of
+ * about twice the boundary's length in the cell, which keeps the
+ * representative point on the boundary. Triangle soups work the same way,
+ * since only positions are used.
+ */
+#include "cluster.h"
+
+#include "io/tsource.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define KEY_BITS 21
+#define KEY_MASK ((1ull << KEY_BITS) - 1)
+
+#define RECENT 256
+
+/* A kept output triangle's cells, sorted, with its index + 1 (0: empty). */
+struct tslot {
+	uint32_t s[3], n;
+};
+
+struct cell {
+	struct vdt_quadric q;
+	double sum[3];  /* corner positions */
+	double edge[4]; /* boundary plane (m, d), see above */
+	double nsum[3]; /* area-weighted normals of the corners */
+	uint64_t corners;
+};
+
+struct vdt_cluster {
+	struct vdt_cluster_grid g;
+	double inv[3];
+	size_t max_cells;
+
+	struct cell *cells; /* in order of first appearance */
+	uint64_t *keys;
+	size_t ncells, ccap;
+
+	uint64_t *hkey; /* open addressing: key + 1, 0 empty */
+	uint32_t *hid;
+	size_t hmask;
+
+	uint32_t *tris; /* output triangles as cell ids */
+	size_t ntris, tcap;
+	struct tslot *th; /* dedupe by sorted cells; n == 0: empty */
+	size_t thmask;
+
+	uint64_t added;
+	/* Recently found cells, direct-mapped: neighbouring triangles share cells. */
+	uint64_t recent_key[RECENT]; /* key + 1, 0: none */
+	uint32_t recent_id[RECENT];
+	int finished;
+};
+
+/* ---- grids --------------------------------------------------------------- */
+
+static int
+check_box(const struct vdt_bbox *box, struct vdt_err *err)
+{
+	int flat = 0;
+
+	for (int k = 0; k < 3; k++) {
+		if (!(box->max[k] >= box->min[k]) || !isfinite(box->min[k]) || !isfinite(box->max[k]))
+			return vdt_err_set(err, VDT_EINVAL, "empty bounding box");
+		flat += box->max[k] == box->min[k];
+	}
+	if (flat >= 2)
+		return vdt_err_set(err, VDT_EINVAL, "flat bounding box: every vertex is on one line");
+	return 0;
+}
+
+static int
+check_dims(const struct vdt_cluster_grid *g, struct vdt_err *err)
+{
+	for (int k = 0; k < 3; k++)
+		if (g->dims[k] < 1 || g->dims[k] > VDT_CLUSTER_MAX_DIM - 1 || !(g->cell[k] > 0))
+			return vdt_err_set(err, VDT_EINVAL,
+			                   "grid of %ux%ux%u cells: at most %u along an axis",
+			                   g->dims[0], g->dims[1], g->dims[2], VDT_CLUSTER_MAX_DIM - 1);
+	return 0;
+}
+
+int
+vdt_cluster_grid_size(const struct vdt_bbox *box, double size, struct vdt_cluster_grid *g,
+                      struct vdt_err *err)
+{
+	int rc;
+
+	memset(g, 0, sizeof(*g));
+	if ((rc = check_box(box, err)) != 0)
+		return rc;
+	if (!(size > 0) || !isfinite(size))
+		return vdt_err_set(err, VDT_EINVAL, "cell size must be positive");
+	for (int k = 0; k < 3; k++) {
+		double ext = box->max[k] - box->min[k], n = ceil(ext / size);
+
+		if (n < 1)
+			n = 1;
+		/* A point on the far face belongs to the last cell: one more if exact. */
+		if (n * size <= ext)
+			n += 1;
+		if (n > VDT_CLUSTER_MAX_DIM - 1)
+			return vdt_err_set(err, VDT_EINVAL,
+			                   "cell size %g makes %.0f cells along an axis: at most %u",
+			                   size, n, VDT_CLUSTER_MAX_DIM - 1);
+		g->dims[k] = (uint32_t)n;
+		g->cell[k] = size;
+		g->origin[k] = 0.5 * (box->min[k] + box->max[k]) - 0.5 * n * size;
+	}
+	return 0;
+}
+
+int
+vdt_cluster_grid_dims(const struct vdt_bbox *box, const uint32_t dims[3],
+                      struct vdt_cluster_grid *g, struct vdt_err *err)
+{
+	double longest = 0, ext[3];
+	int rc;
+
+	memset(g, 0, sizeof(*g));
+	if ((rc = check_box(box, err)) != 0)
+		return rc;
+	for (int k = 0; k < 3; k++) {
+		ext[k] = box->max[k] - box->min[k];
+		longest = ext[k] > longest ? ext[k] : longest;
+	}
+	if (dims[1] == 0 && dims[2] == 0) {
+		if (dims[0] < 1 || dims[0] > VDT_CLUSTER_MAX_DIM - 1)
+			return vdt_err_set(err, VDT_EINVAL, "grid of %u cells: at most %u along an axis",
+			                   dims[0], VDT_CLUSTER_MAX_DIM - 1);
+		return vdt_cluster_grid_size(box, longest / dims[0] * (1 + 1e-9), g, err);
+	}
+	for (int k = 0; k < 3; k++) {
+		g->dims[k] = dims[k];
+		if (dims[k] < 1)
+			break;
+		/* A hair wider than the box, so the far face is inside. */
+		g->cell[k] = (ext[k] > 0 ? ext[k] : longest / dims[k]) / dims[k] * (1 + 1e-9);
+		g->origin[k] = 0.5 * (box->min[k] + box->max[k]) - 0.5 * dims[k] * g->cell[k];
+	}
+	return check_dims(g, err);
+}
+
+static inline uint32_t
+axis_cell(const struct vdt_cluster_grid *g, const double *inv, const double *p, int k)
+{
+	double f = (p[k] - g->origin[k]) * inv[k];
+
+	if (!(f > 0))
+		return 0;
+	if (f >= g->dims[k])
+		return g->dims[k] - 1;
+	return (uint32_t)f;
+}
+
+void
+vdt_cluster_cell_of(const struct vdt_cluster_grid *g, const double p[3], uint32_t cell[3])
+{
+	double inv[3] = {1 / g->cell[0], 1 / g->cell[1], 1 / g->cell[2]};
+
+	for (int k = 0; k < 3; k++)
+		cell[k] = axis_cell(g, inv, p, k);
+}
+
+/* ---- hashing ------------------------------------------------------------- */
+
+static inline size_t
+hash64(uint64_t k, size_t mask)
+{
+	k ^= k >> 31;
+	k *= 0x9E3779B97F4A7C15ull;
+	k ^= k >> 29;
+	return (size_t)k & mask;
+}
+
+/* A set of keys, for the sampler. */
+struct keyset {
+	uint64_t *slot; /* key + 1 */
+	size_t mask, count;
+};
+
+static int
+keyset_init(struct keyset *s, size_t cap)
+{
+	size_t n = 1024;
+
+	while (n < 2 * cap)
+		n *= 2;
+	s->slot = calloc(n, sizeof(*s->slot));
+	s->mask = n - 1;
+	s->count = 0;
+	return s->slot ? 0 : -1;
+}
+
+static void
+keyset_put(struct keyset *s, uint64_t key)
+{
+	size_t i = hash64(key, s->mask);
+
+	while (s->slot[i] != 0) {
+		if (s->slot[i] == key + 1)
+			return;
+		i = (i + 1) & s->mask;
+	}
+	s->slot[i] = key + 1;
+	s->count++;
+}
+
+/* ---- occupancy sampling (section 3.4) ------------------------------------ */
+
+struct vdt_cluster_sampler {
+	double origin[3], side; /* finest cubic grid */
+	int shift;              /* current level: side << shift */
+	size_t cap;
+	struct keyset set;
+	uint64_t vertices;
+};
+
+#define SAMPLE_FINEST 4096
+
+int
+vdt_cluster_sampler_new(struct vdt_cluster_sampler **sp, const struct vdt_bbox *box, size_t cap,
+                        struct vdt_err *err)
+{
+	struct vdt_cluster_sampler *s;
+	double longest = 0;
+	int rc;
+
+	*sp = NULL;
+	if ((rc = check_box(box, err)) != 0)
+		return rc;
+	if ((s = calloc(1, sizeof(*s))) == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	for (int k = 0; k < 3; k++) {
+		s->origin[k] = box->min[k];
+		if (box->max[k] - box->min[k] > longest)
+			longest = box->max[k] - box->min[k];
+	}
+	s->side = longest / SAMPLE_FINEST * (1 + 1e-9);
+	s->cap = cap < 1024 ? 1024 : cap;
+	if (keyset_init(&s->set, s->cap) != 0) {
+		free(s);
+		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate the sampling grid");
+	}
+	*sp = s;
+	return 0;
+}
+
+static uint64_t
+coarser(uint64_t key)
+{
+	uint64_t x = key & KEY_MASK, y = key >> KEY_BITS & KEY_MASK, z = key >> 2 * KEY_BITS;
+
+	return x >> 1 | (y >> 1) << KEY_BITS | (z >> 1) << 2 * KEY_BITS;
+}
+
+/* Halve the resolution: every key to its parent cell. */
+static int
+sampler_coarsen(struct vdt_cluster_sampler *s)
+{
+	size_t n = s->set.mask + 1, m = 0;
+	uint64_t *copy = malloc(s->set.count * sizeof(*copy));
+
+	if (copy == NULL)
+		return -1;
+	for (size_t i = 0; i < n; i++)
+		if (s->set.slot[i] != 0)
+			copy[m++] = coarser(s->set.slot[i] - 1);
+	memset(s->set.slot, 0, n * sizeof(*s->set.slot));
+	s->set.count = 0;
+	for (size_t i = 0; i < m; i++)
+		keyset_put(&s->set, copy[i]);
+	free(copy);
+	s->shift++;
+	return 0;
+}
+
+int
+vdt_cluster_sampler_add(struct vdt_cluster_sampler *s, const double *xyz, size_t n,
+                        struct vdt_err *err)
+{
+	double inv = 1 / (s->side * (double)(1u << s->shift));
+
+	for (size_t i = 0; i < n; i++) {
+		const double *p = xyz + 3 * i;
+		uint64_t key = 0;
+
+		for (int k = 0; k < 3; k++) {
+			double f = (p[k] - s->origin[k]) * inv;
+			uint64_t c = f > 0 ? (uint64_t)f : 0;
+			uint64_t lim = (SAMPLE_FINEST >> s->shift) - 1;
+			key |= (c > lim ? lim : c) << (k * KEY_BITS);
+		}
+		keyset_put(&s->set, key);
+		s->vertices++;
+		if (s->set.count > s->cap && s->shift < 12) {
+			if (sampler_coarsen(s) != 0)
+				return vdt_err_set(err, VDT_ENOMEM, "out of memory while sampling");
+			inv = 1 / (s->side * (double)(1u << s->shift));
+		}
+	}
+	return 0;
+}
+
+static int
+cmp_u64(const void *a, const void *b)
+{
+	uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+
+	return x < y ? -1 : x > y;
+}
+
+int
+vdt_cluster_sampler_finish(struct vdt_cluster_sampler *s, struct vdt_cluster_sample *out,
+                           struct vdt_err *err)
+{
+	size_t n = s->set.mask + 1, m = 0;
+	uint64_t *k = s->set.slot;
+	int level;
+
+	memset(out, 0, sizeof(*out));
+	for (size_t i = 0; i < n; i++)
+		if (k[i] != 0)
+			k[m++] = k[i] - 1;
+	/* From the current level down to one cell, counting distinct keys. */
+	level = 12 - s->shift;
+	out->levels = level + 1;
+	out->vertices = s->vertices;
+	for (int l = level; l >= 0; l--) {
+		size_t d = 0;
+
+		qsort(k, m, sizeof(*k), cmp_u64);
+		for (size_t i = 0; i < m; i++)
+			if (i == 0 || k[i] != k[d - 1])
+				k[d++] = k[i];
+		m = d;
+		out->res[l] = 1u << l;
+		out->occupied[l] = m;
+		for (size_t i = 0; i < m; i++)
+			k[i] = coarser(k[i]);
+	}
+	free(s->set.slot);
+	free(s);
+	(void)err;
+	return 0;
+}
+
+double
+vdt_cluster_estimate(const struct vdt_cluster_sample *s, double res)
+{
+	int top = s->levels - 1;
+	double est, lo, hi, t, slope;
+
+	if (s->levels == 0)
+		return 0;
+	if (res <= 1)
+		return (double)s->occupied[0];
+	if (res <= s->res[top]) {
+		int i = 0;
+		while (i + 1 < top && s->res[i + 1] < res)
+			i++;
+		lo = log((double)s->occupied[i]);
+		hi = log((double)s->occupied[i + 1]);
+		t = (log(res) - log((double)s->res[i])) / (log((double)s->res[i + 1]) - log((double)s->res[i]));
+		est = exp(lo + t * (hi - lo));
+	} else {
+		slope = top > 0 ? log((double)s->occupied[top] / s->occupied[top - 1]) / log(2) : 2;
+		slope = slope < 1 ? 1 : slope > 3 ? 3 : slope;
+		est = s->occupied[top] * pow(res / s->res[top], slope);
+	}
+	return est > (double)s->vertices ? (double)s->vertices : est;
+}
+
+uint32_t
+vdt_cluster_resolution(const struct vdt_cluster_sample *s, double cells)
+{
+	double lo = 1, hi = VDT_CLUSTER_MAX_DIM - 1;
+
+	if (cells > (double)s->vertices)
+		cells = (double)s->vertices;
+	if (vdt_cluster_estimate(s, hi) < cells)
+		return (uint32_t)hi;
+	for (int it = 0; it < 64 && hi - lo > 0.5; it++) {
+		double mid = 0.5 * (lo + hi);
+		if (vdt_cluster_estimate(s, mid) < cells)
+			lo = mid;
+		else
+			hi = mid;
+	}
+	return (uint32_t)ceil(hi);
+}
+
+double
+vdt_cluster_target_cells(double triangles)
+{
+	return 6 * triangles;
+}
+
+/* ---- clustering ---------------------------------------------------------- */
+
+int
+vdt_cluster_new(struct vdt_cluster **cp, const struct vdt_cluster_grid *g, size_t max_cells,
+                struct vdt_err *err)
+{
+	struct vdt_cluster *c;
+	int rc;
+
+	*cp = NULL;
+	if ((rc = check_dims(g, err)) != 0)
+		return rc;
+	if ((c = calloc(1, sizeof(*c))) == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	c->g = *g;
+	for (int k = 0; k < 3; k++)
+		c->inv[k] = 1 / g->cell[k];
+	c->max_cells = max_cells;
+	c->hmask = 1023;
+	c->thmask = 1023;
+	c->hkey = calloc(c->hmask + 1, sizeof(*c->hkey));
+	c->hid = calloc(c->hmask + 1, sizeof(*c->hid));
+	c->th = calloc(c->thmask + 1, sizeof(*c->th));
+	if (c->hkey == NULL || c->hid == NULL || c->th == NULL) {
+		vdt_cluster_free(c);
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	}
+	*cp = c;
+	return 0;
+}
+
+void
+vdt_cluster_free(struct vdt_cluster *c)
+{
+	if (c == NULL)
+		return;
+	free(c->cells);
+	free(c->keys);
+	free(c->hkey);
+	free(c->hid);
+	free(c->tris);
+	free(c->th);
+	free(c);
+}
+
+static int
+grow_cells(struct vdt_cluster *c, struct vdt_err *err)
+{
+	size_t n = c->ccap ? c->ccap * 2 : 1024;
+	struct cell *nc;
+	uint64_t *nk;
+
+	if (c->max_cells && n > c->max_cells)
+		n = c->max_cells;
+	if ((nc = realloc(c->cells, n * sizeof(*nc))) == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu cells", n);
+	c->cells = nc;
+	if ((nk = realloc(c->keys, n * sizeof(*nk))) == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu cells", n);
+	c->keys = nk;
+	c->ccap = n;
+	return 0;
+}
+
+static int
+grow_hash(struct vdt_cluster *c, struct vdt_err *err)
+{
+	size_t n = 2 * (c->hmask + 1), mask = n - 1;
+	uint64_t *hk = calloc(n, sizeof(*hk));
+	uint32_t *hi = calloc(n, sizeof(*hi));
+
+	if (hk == NULL || hi == NULL) {
+		free(hk);
+		free(hi);
+		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate a hash table of %zu cells", n);
+	}
+	for (size_t id = 0; id < c->ncells; id++) {
+		size_t i = hash64(c->keys[id], mask);
+		while (hk[i] != 0)
+			i = (i + 1) & mask;
+		hk[i] = c->keys[id] + 1;
+		hi[i] = (uint32_t)id;
+	}
+	free(c->hkey);
+	free(c->hid);
+	c->hkey = hk;
+	c->hid = hi;
+	c->hmask = mask;
+	return 0;
+}
+
+/* The id of the cell with this key, created (zeroed) if new; -1 on error. */
+static long
+cell_id(struct vdt_cluster *c, uint64_t key, struct vdt_err *err)
+{
+	size_t i = hash64(key, c->hmask);
+	uint32_t id;
+
+	while (c->hkey[i] != 0) {
+		if (c->hkey[i] == key + 1)
+			return c->hid[i];
+		i = (i + 1) & c->hmask;
+	}
+	if (c->max_cells && c->ncells >= c->max_cells) {
+		vdt_err_set(err, VDT_ELIMIT, "more than %zu cells are occupied: over the memory limit (%.0f MB)",
+		            c->max_cells, (double)c->max_cells * VDT_CLUSTER_CELL_BYTES / 1048576);
+		return -1;
+	}
+	if (c->ncells >= UINT32_MAX - 1) {
+		vdt_err_set(err, VDT_ELIMIT, "more than %u cells are occupied", UINT32_MAX - 1);
+		return -1;
+	}
+	if (c->ncells == c->ccap && grow_cells(c, err) != 0)
+		return -1;
+	id = (uint32_t)c->ncells++;
+	memset(&c->cells[id], 0, sizeof(c->cells[id]));
+	c->keys[id] = key;
+	c->hkey[i] = key + 1;
+	c->hid[i] = id;
+	/* Load at most a half: probes stay short. */
+	if (2 * c->ncells > c->hmask && grow_hash(c, err) != 0)
+		return -1;
+	return id;
+}
+
+static inline size_t
+tri_hash(uint32_t a, uint32_t b, uint32_t d, size_t mask)
+{
+	return hash64((uint64_t)a * 0x100000001B3ull ^ (uint64_t)b << 21 ^ (uint64_t)d << 42 ^ d, mask);
+}
+
+static void
+sort3(const uint32_t *t, uint32_t s[3])
+{
+	uint32_t a = t[0], b = t[1], d = t[2], x;
+
+	if (a > b)
+		x = a, a = b, b = x;
+	if (b > d)
+		x = b, b = d, d = x;
+	if (a > b)
+		x = a, a = b, b = x;
+	s[0] = a, s[1] = b, s[2] = d;
+}
+
+static int
+grow_tri_hash(struct vdt_cluster *c, struct vdt_err *err)
+{
+	size_t n = 2 * (c->thmask + 1), mask = n - 1;
+	struct tslot *th = calloc(n, sizeof(*th));
+
+	if (th == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory for %zu triangles", c->ntris);
+	for (size_t j = 0; j <= c->thmask; j++) {
+		const struct tslot *o = &c->th[j];
+		size_t i;
+
+		if (o->n == 0)
+			continue;
+		i = tri_hash(o->s[0], o->s[1], o->s[2], mask);
+		while (th[i].n != 0)
+			i = (i + 1) & mask;
+		th[i] = *o;
+	}
+	free(c->th);
+	c->th = th;
+	c->thmask = mask;
+	return 0;
+}
+
+/* Keep the triangle on cells (a, b, d) unless one on the same cells is kept. */
+static int
+add_output(struct vdt_cluster *c, uint32_t a, uint32_t b, uint32_t d, struct vdt_err *err)
+{
+	uint32_t t[3] = {a, b, d}, s[3];
+	size_t i;
+
+	sort3(t, s);
+	i = tri_hash(s[0], s[1], s[2], c->thmask);
+	while (c->th[i].n != 0) {
+		const struct tslot *o = &c->th[i];
+		if (o->s[0] == s[0] && o->s[1] == s[1] && o->s[2] == s[2])
+			return 0;
+		i = (i + 1) & c->thmask;
+	}
+	if (c->ntris == c->tcap) {
+		size_t n = c->tcap ? 2 * c->tcap : 1024;
+		uint32_t *nt = n > UINT32_MAX - 1 ? NULL : realloc(c->tris, 3 * n * sizeof(*nt));
+		if (nt == NULL)
+			return vdt_err_set(err, VDT_ENOMEM, "out of memory for %zu triangles", n);
+		c->tris = nt;
+		c->tcap = n;
+	}
+	memcpy(c->tris + 3 * c->ntris, t, sizeof(t));
+	memcpy(c->th[i].s, s, sizeof(s));
+	c->th[i].n = (uint32_t)++c->ntris;
+	/* Slots are 16 bytes: fill up to 70% before growing. */
+	if (10 * c->ntris > 7 * c->thmask)
+		return grow_tri_hash(c, err);
+	return 0;
+}
+
+static inline void
+add_scaled(struct vdt_quadric *q, const struct vdt_quadric *r, double s)
+{
+	q->a00 += s * r->a00;
+	q->a01 += s * r->a01;
+	q->a02 += s * r->a02;
+	q->a11 += s * r->a11;
+	q->a12 += s * r->a12;
+	q->a22 += s * r->a22;
+	q->b0 += s * r->b0;
+	q->b1 += s * r->b1;
+	q->b2 += s * r->b2;
+	q->c += s * r->c;
+	q->w += s * r->w;
+}
+
+static inline uint64_t
+key_of(const struct vdt_cluster *c, const double *p)
+{
+	return (uint64_t)axis_cell(&c->g, c->inv, p, 0) |
+	       (uint64_t)axis_cell(&c->g, c->inv, p, 1) << KEY_BITS |
+	       (uint64_t)axis_cell(&c->g, c->inv, p, 2) << 2 * KEY_BITS;
+}
+
+/* cell_id through the small cache of recent cells. */
+static inline long
+cell_id_cached(struct vdt_cluster *c, uint64_t key, struct vdt_err *err)
+{
+	size_t r = (key ^ key >> KEY_BITS ^ key >> (2 * KEY_BITS - 4)) & (RECENT - 1);
+	long id;
+
+	if (key + 1 == c->recent_key[r])
+		return c->recent_id[r];
+	if ((id = cell_id(c, key, err)) >= 0) {
+		c->recent_key[r] = key + 1;
+		c->recent_id[r] = (uint32_t)id;
+	}
+	return id;
+}
+
+/* The fundamental quadric, as vdt_quadric_triangle computes it. */
+static inline void
+face_quadric(struct vdt_quadric *q, const double n[3], double d, double w)
+{
+	q->a00 = w * n[0] * n[0];
+	q->a01 = w * n[0] * n[1];
+	q->a02 = w * n[0] * n[2];
+	q->a11 = w * n[1] * n[1];
+	q->a12 = w * n[1] * n[2];
+	q->a22 = w * n[2] * n[2];
+	q->b0 = w * d * n[0];
+	q->b1 = w * d * n[1];
+	q->b2 = w * d * n[2];
+	q->c = w * d * d;
+	q->w = w;
+}
+
+/* The corner v of (u, v, w): its edge normal m = (w - u) x n, see the top. */
+static inline void
+add_edge_normal(struct cell *cl, const double *u, const double *v, const double *w,
+                const double n[3])
+{
+	double d[3] = {w[0] - u[0], w[1] - u[1], w[2] - u[2]}, m[3];
+
+	m[0] = d[1] * n[2] - d[2] * n[1];
+	m[1] = d[2] * n[0] - d[0] * n[2];
+	m[2] = d[0] * n[1] - d[1] * n[0];
+	cl->edge[0] += m[0];
+	cl->edge[1] += m[1];
+	cl->edge[2] += m[2];
+	cl->edge[3] -= m[0] * v[0] + m[1] * v[1] + m[2] * v[2];
+}
+
+int
+vdt_cluster_add(struct vdt_cluster *c, const double *tri, size_t n, struct vdt_err *err)
+{
+	for (size_t t = 0; t < n; t++, c->added++) {
+		const double *p[3] = {tri + 9 * t, tri + 9 * t + 3, tri + 9 * t + 6};
+		double e1[3], e2[3], nn[3], len, chk = 0;
+		struct vdt_quadric fq;
+		uint64_t key[3];
+		long id[3];
+		int flat;
+
+		for (int j = 0; j < 9; j++)
+			chk += tri[9 * t + j] * 0;
+		if (chk != 0 || chk != chk)
+			return vdt_err_set(err, VDT_EINVAL, "triangle %llu: non-finite coordinate",
+			                   (unsigned long long)c->added);
+		for (int j = 0; j < 3; j++)
+			key[j] = key_of(c, p[j]);
+		for (int k = 0; k < 3; k++) {
+			e1[k] = p[1][k] - p[0][k];
+			e2[k] = p[2][k] - p[0][k];
+		}
+		nn[0] = e1[1] * e2[2] - e1[2] * e2[1];
+		nn[1] = e1[2] * e2[0] - e1[0] * e2[2];
+		nn[2] = e1[0] * e2[1] - e1[1] * e2[0];
+		len = sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
+		flat = !(len > 0);
+		if (!flat) {
+			nn[0] /= len;
+			nn[1] /= len;
+			nn[2] /= len;
+			/* As vdt_quadric_triangle: the plane, weighted by a third of the area. */
+			face_quadric(&fq, nn, -(nn[0] * p[0][0] + nn[1] * p[0][1] + nn[2] * p[0][2]),
+			             len / 6);
+		}
+
+		if (key[0] == key[1] && key[1] == key[2]) {
+			/* The common case on a grid coarser than the input. */
+			struct cell *cl;
+			if ((id[0] = cell_id_cached(c, key[0], err)) < 0)
+				return err ? err->code : VDT_ENOMEM;
+			cl = &c->cells[id[0]];
+			for (int k = 0; k < 3; k++) {
+				cl->sum[k] += p[0][k] + p[1][k] + p[2][k];
+				cl->nsum[k] += flat ? 0 : 3 * len * nn[k];
+			}
+			cl->corners += 3;
+			if (flat)
+				continue;
+			/* The three edge normals sum to zero; their offsets to -2|N|. */
+			cl->edge[3] -= 2 * len;
+			add_scaled(&cl->q, &fq, 3);
+			continue;
+		}
+
+		for (int j = 0; j < 3; j++) {
+			id[j] = j > 0 && key[j] == key[0] ? id[0]
+			        : j > 1 && key[j] == key[1] ? id[1] : cell_id_cached(c, key[j], err);
+			if (id[j] < 0)
+				return err ? err->code : VDT_ENOMEM;
+		}
+		for (int j = 0; j < 3; j++) {
+			struct cell *cl = &c->cells[id[j]];
+			int mult = 1;
+
+			cl->sum[0] += p[j][0];
+			cl->sum[1] += p[j][1];
+			cl->sum[2] += p[j][2];
+			cl->corners++;
+			if (flat)
+				continue;
+			add_edge_normal(cl, p[(j + 2) % 3], p[j], p[(j + 1) % 3], nn);
+			for (int k = 0; k < 3; k++)
+				cl->nsum[k] += len * nn[k];
+			/* The quadric once per cell, times its corners there. */
+			if ((j >= 1 && id[j] == id[0]) || (j == 2 && id[2] == id[1]))
+				continue;
+			for (int i = j + 1; i < 3; i++)
+				mult += id[i] == id[j];
+			if (mult == 1)
+				vdt_quadric_add(&cl->q, &fq);
+			else
+				add_scaled(&cl->q, &fq, mult);
+		}
+		if (id[0] != id[1] && id[1] != id[2] && id[0] != id[2]) {
+			int rc = add_output(c, (uint32_t)id[0], (uint32_t)id[1], (uint32_t)id[2], err);
+			if (rc != 0)
+				return rc;
+		}
+	}
+	return 0;
+}
+
+int
+vdt_cluster_finish(struct vdt_cluster *c, struct vdt_mesh *out, struct vdt_quadric **quads,
+                   struct vdt_cluster_stats *st, struct vdt_err *err)
+{
+	uint32_t *remap = NULL;
+	struct vdt_quadric *q = NULL;
+	size_t used = 0, bcells = 0;
+	double h = (c->g.cell[0] + c->g.cell[1] + c->g.cell[2]) / 3;
+	int rc;
+
+	memset(out, 0, sizeof(*out));
+	if (quads)
+		*quads = NULL;
+	if (st) {
+		memset(st, 0, sizeof(*st));
+		st->triangles_in = c->added;
+		st->cells = c->ncells;
+	}
+	if (c->finished)
+		return vdt_err_set(err, VDT_EINVAL, "clustering already finished");
+	c->finished = 1;
+	if (c->ntris == 0)
+		return vdt_err_set(err, VDT_ELIMIT,
+		                   "no triangle spans three cells of the %ux%ux%u grid: use a finer grid",
+		                   c->g.dims[0], c->g.dims[1], c->g.dims[2]);
+	if ((remap = malloc(c->ncells * sizeof(*remap))) == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	for (size_t i = 0; i < c->ncells; i++)
+		remap[i] = UINT32_MAX;
+	for (size_t t = 0; t < 3 * c->ntris; t++)
+		remap[c->tris[t]] = 0;
+	for (size_t i = 0; i < c->ncells; i++)
+		if (remap[i] == 0)
+			remap[i] = (uint32_t)used++;
+	if ((rc = vdt_mesh_alloc(out, used, c->ntris, 0, err)) != 0)
+		goto fail;
+	if (quads && (q = malloc(used * sizeof(*q))) == NULL) {
+		rc = vdt_err_set(err, VDT_ENOMEM, "out of memory");
+		goto fail;
+	}
+	for (size_t i = 0; i < c->ncells; i++) {
+		const struct cell *cl = &c->cells[i];
+		struct vdt_quadric pq = cl->q;
+		double ref[3], lo[3], hi[3], v[3], ml, m[4];
+		uint64_t key = c->keys[i];
+
+		if (remap[i] == UINT32_MAX)
+			continue;
+		for (int k = 0; k < 3; k++) {
+			uint64_t ci = key >> (k * KEY_BITS) & KEY_MASK;
+			lo[k] = c->g.origin[k] + (double)ci * c->g.cell[k];
+			hi[k] = lo[k] + c->g.cell[k];
+			ref[k] = cl->sum[k] / (double)cl->corners;
+		}
+		/*
+		 * Curvature leaves in m about four times the cell's area over the
+		 * radius, along the surface normal: drop that component. Written about
+		 * the mean, sum m_i.(x - v_i) = m.(x - ref) + D with D = d + m.ref,
+		 * and D is kept, so the plane still passes where the boundary is.
+		 * What is left of m is the boundary's, about twice its length in the
+		 * cell: a quarter of a cell side tells a boundary crossing the cell
+		 * from noise.
+		 */
+		memcpy(m, cl->edge, sizeof(m));
+		{
+			double nl = sqrt(cl->nsum[0] * cl->nsum[0] + cl->nsum[1] * cl->nsum[1] +
+			                 cl->nsum[2] * cl->nsum[2]);
+			double big_d = m[3] + m[0] * ref[0] + m[1] * ref[1] + m[2] * ref[2];
+			if (nl > 0) {
+				double nu[3] = {cl->nsum[0] / nl, cl->nsum[1] / nl, cl->nsum[2] / nl};
+				double dot = m[0] * nu[0] + m[1] * nu[1] + m[2] * nu[2];
+				for (int k = 0; k < 3; k++)
+					m[k] -= dot * nu[k];
+			}
+			m[3] = big_d - (m[0] * ref[0] + m[1] * ref[1] + m[2] * ref[2]);
+			ml = sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+		}
+		if (ml > 0.25 * h) {
+			struct vdt_quadric bq;
+			double n[3] = {m[0] / ml, m[1] / ml, m[2] / ml};
+			vdt_quadric_plane(&bq, n, m[3] / ml, ml * ml);
+			vdt_quadric_add(&pq, &bq);
+			bcells++;
+		}
+		vdt_quadric_optimize_box(&pq, ref, lo, hi, v);
+		for (int k = 0; k < 3; k++)
+			out->positions[3 * (size_t)remap[i] + k] = (float)v[k];
+		if (q)
+			q[remap[i]] = cl->q;
+	}
+	for (size_t t = 0; t < 3 * c->ntris; t++)
+		out->triangles[t] = remap[c->tris[t]];
+	free(remap);
+	if (quads)
+		*quads = q;
+	if (st) {
+		st->boundary_cells = bcells;
+		st->vertices_out = used;
+		st->triangles_out = c->ntris;
+	}
+	return 0;
+fail:
+	free(remap);
+	free(q);
+	vdt_mesh_free(out);
+	return rc;
+}
+
+/* ---- passes over a source ------------------------------------------------ */
+
+#define BATCH 4096
+
+int
+vdt_cluster_scan_bbox(struct vdt_tsource *ts, struct vdt_bbox *box, uint64_t *vertices,
+                      const struct vdt_progress *p, struct vdt_err *err)
+{
+	double *buf = malloc(3 * BATCH * sizeof(*buf));
+	uint64_t count = 0;
+	size_t n;
+	int rc;
+
+	for (int k = 0; k < 3; k++) {
+		box->min[k] = INFINITY;
+		box->max[k] = -INFINITY;
+	}
+	if (buf == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	vdt_tsource_rewind(ts);
+	while ((rc = vdt_tsource_vertices(ts, buf, BATCH, &n, err)) == 0 && n > 0) {
+		for (size_t i = 0; i < n; i++)
+			for (int k = 0; k < 3; k++) {
+				double x = buf[3 * i + k];
+				box->min[k] = x < box->min[k] ? x : box->min[k];
+				box->max[k] = x > box->max[k] ? x : box->max[k];
+			}
+		count += n;
+		vdt_progress_report(p, "bounding box", vdt_tsource_fraction(ts));
+	}
+	free(buf);
+	if (rc == 0 && count == 0)
+		rc = vdt_err_set(err, VDT_EINVAL, "empty input: no vertices");
+	if (vertices)
+		*vertices = count;
+	return rc;
+}
+
+int
+vdt_cluster_scan_sample(struct vdt_tsource *ts, const struct vdt_bbox *box, size_t cap,
+                        struct vdt_cluster_sample *out, const struct vdt_progress *p,
+                        struct vdt_err *err)
+{
+	struct vdt_cluster_sampler *s;
+	double *buf = malloc(3 * BATCH * sizeof(*buf));
+	size_t n;
+	int rc;
+
+	if (buf == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	if ((rc = vdt_cluster_sampler_new(&s, box, cap, err)) != 0) {
+		free(buf);
+		return rc;
+	}
+	vdt_tsource_rewind(ts);
+	while ((rc = vdt_tsource_vertices(ts, buf, BATCH, &n, err)) == 0 && n > 0) {
+		if ((rc = vdt_cluster_sampler_add(s, buf, n, err)) != 0)
+			break;
+		vdt_progress_report(p, "sampling", vdt_tsource_fraction(ts));
+	}
+	free(buf);
+	if (rc != 0) {
+		struct vdt_cluster_sample junk;
+		vdt_cluster_sampler_finish(s, &junk, NULL);
+		return rc;
+	}
+	return vdt_cluster_sampler_finish(s, out, err);
+}
+
+int
+vdt_cluster_scan(struct vdt_cluster *c, struct vdt_tsource *ts, const struct vdt_progress *p,
+                 struct vdt_err *err)
+{
+	double *buf = malloc(9 * BATCH * sizeof(*buf));
+	size_t n;
+	int rc;
+
+	if (buf == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	vdt_tsource_rewind(ts);
+	while ((rc = vdt_tsource_triangles(ts, buf, BATCH, &n, err)) == 0 && n > 0) {
+		if ((rc = vdt_cluster_add(c, buf, n, err)) != 0)
+			break;
+		vdt_progress_report(p, "clustering", vdt_tsource_fraction(ts));
+	}
+	free(buf);
+	return rc;
+}
+
+int
+vdt_cluster_choose(const struct vdt_cluster_choice *ch, struct vdt_tsource *ts,
+                   const struct vdt_bbox *box, struct vdt_cluster_grid *g,
+                   const struct vdt_progress *p, struct vdt_err *err)
+{
+	struct vdt_cluster_sample smp;
+	double want = ch->target > 0 ? vdt_cluster_target_cells(ch->target) : 0.8 * ch->max_cells;
+	double longest = 0, est;
+	int rc = 0;
+
+	memset(g, 0, sizeof(*g));
+	if (ch->size > 0)
+		rc = vdt_cluster_grid_size(box, ch->size, g, err);
+	else if (ch->dims[0] > 0)
+		rc = vdt_cluster_grid_dims(box, ch->dims, g, err);
+	if (rc != 0 || (ch->target == 0 && ch->max_cells == 0))
+		return rc;
+	/* Section 3.4: the occupancy of candidate grids, from one more pass. */
+	if ((rc = vdt_cluster_scan_sample(ts, box, (size_t)(4 * want) + 65536, &smp, p, err)) != 0)
+		return rc;
+	if (ch->target > 0 || (ch->size == 0 && ch->dims[0] == 0)) {
+		uint32_t r = vdt_cluster_resolution(&smp, want), d[3] = {0, 0, 0};
+		if (ch->max_cells && ch->target > 0) {
+			uint32_t rm = vdt_cluster_resolution(&smp, 0.8 * ch->max_cells);
+			r = rm < r ? rm : r;
+		}
+		d[0] = r;
+		return vdt_cluster_grid_dims(box, d, g, err);
+	}
+	/* The sample is cubic: compare at the same cell volume. */
+	for (int k = 0; k < 3; k++)
+		longest = fmax(longest, box->max[k] - box->min[k]);
+	est = vdt_cluster_estimate(&smp, longest / cbrt(g->cell[0] * g->cell[1] * g->cell[2]));
+	if (est > ch->max_cells)
+		return vdt_err_set(err, VDT_ELIMIT,
+		                   "grid %ux%ux%u would occupy about %.0f cells (%.0f MB), over the memory limit (%.0f MB)",
+		                   g->dims[0], g->dims[1], g->dims[2], est,
+		                   est * VDT_CLUSTER_CELL_BYTES / 1048576,
+		                   (double)ch->max_cells * VDT_CLUSTER_CELL_BYTES / 1048576);
+	return 0;
+}

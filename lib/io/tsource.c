@@ -1,0 +1,1263 @@
+/*
+ * tsource.c - streaming triangle source for out-of-core clustering (Garland
+ * & Shaffer, Vis 2002, section 3.2; Lindstrom, "Out-of-Core Simplification
+ * of Large Polygonal Models", SIGGRAPH 2000: one linear scan over a
+ * memory-mapped triangle stream).
+ *
+ * Nothing here grows with the input: the file is mapped, not read; the only
+ * allocations are the source itself and, for OBJ, a temporary file of
+ * positions that is mapped in turn. Every offset read from the file is
+ * checked against the mapping before it is dereferenced.
+ */
+#include "tsource.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <inttypes.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <zlib.h>
+
+#include "../bytes.h"
+#include "../stream.h"
+
+enum kind { K_PLY, K_STL, K_OBJ, K_VDT, K_MESH };
+
+enum ptype { T_NONE, T_I8, T_U8, T_I16, T_U16, T_I32, T_U32, T_F32, T_F64 };
+static const unsigned type_size[] = {0, 1, 1, 2, 2, 4, 4, 4, 8};
+
+#define MAX_ELEMENTS 64
+#define MAX_PROPS 128
+
+struct pprop {
+	char name[64];
+	enum ptype type, count_type; /* count_type T_NONE: a scalar */
+};
+
+struct pelem {
+	char name[64];
+	uint64_t count;
+	size_t nprops;
+	struct pprop props[MAX_PROPS];
+};
+
+struct vdt_tsource {
+	enum kind kind;
+	enum vdt_format format;
+	const unsigned char *buf;
+	size_t len;
+	void *map; /* what to munmap, or NULL */
+	size_t map_len;
+	uint64_t tri_hint;
+
+	/* the vertex table: PLY records, OBJ scratch doubles, vdt floats */
+	const unsigned char *vbase;
+	size_t vstride;
+	uint64_t vcount;
+	uint64_t vcur;
+
+	/* PLY */
+	int be, fast_vertex, fast_face;
+	enum ptype xyz_type[3];
+	size_t xyz_off[3];
+	const unsigned char *fbase, *fcur, *fend;
+	uint64_t fcount, fidx;
+	struct pelem face;
+	size_t list_prop; /* index of vertex_indices in face */
+	const unsigned char *poly; /* polygon being fanned */
+	uint64_t poly_n, poly_k;
+	enum ptype poly_type;
+
+	/* STL and vdt: triangle cursor */
+	uint64_t tcur;
+	const unsigned char *tbase; /* vdt: u32 triangles */
+
+	/* OBJ: the text, a cursor, and the fan in progress */
+	void *pos_map;
+	size_t pos_len;
+	size_t ocur, line, vseen;
+	size_t ofan, oend; /* cursor inside a face line, its end */
+	uint64_t oa, ob;
+	int in_face;
+
+	/* formats read whole */
+	struct vdt_mesh mesh;
+
+	const unsigned char *drop_mark; /* mapped pages before it are released */
+};
+
+/*
+ * Pages of a mapped file count in the resident set as they are touched:
+ * every DROP_EVERY bytes of the linear scan, release those behind the
+ * cursor and those of the randomly accessed vertex table, so that memory
+ * stays flat however large the file. Released pages come back from the
+ * page cache (or the disk) if touched again.
+ */
+#define DROP_EVERY ((size_t)8 << 20)
+
+static void
+drop_range(const void *from, const void *to)
+{
+	uintptr_t page = (uintptr_t)sysconf(_SC_PAGESIZE), a, b;
+
+	a = (uintptr_t)from & ~(page - 1);
+	b = (uintptr_t)to & ~(page - 1);
+	if (b > a)
+		madvise((void *)a, b - a, MADV_DONTNEED);
+}
+
+static void
+drop_behind(struct vdt_tsource *s, const unsigned char *cur, const unsigned char *base)
+{
+	if (s->drop_mark == NULL || cur < s->drop_mark)
+		s->drop_mark = base;
+	if ((size_t)(cur - s->drop_mark) < DROP_EVERY)
+		return;
+	drop_range(s->drop_mark, cur);
+	if (s->vbase && s->vcount && !(base == s->vbase))
+		drop_range(s->vbase, s->vbase + s->vcount * s->vstride + 4096);
+	s->drop_mark = cur;
+}
+
+/* ---- mapping and spooling ------------------------------------------------ */
+
+/* An unlinked temporary file in $TMPDIR (or /tmp): nothing is left behind. */
+static int
+scratch_file(struct vdt_err *err)
+{
+	const char *dir = getenv("TMPDIR");
+	char path[4096];
+	int fd;
+
+	if (dir == NULL || *dir == '\0')
+		dir = "/tmp";
+	if ((size_t)snprintf(path, sizeof(path), "%s/vdt-cluster.XXXXXX", dir) >= sizeof(path))
+		return vdt_err_set(err, VDT_EIO, "TMPDIR is too long");
+	if ((fd = mkstemp(path)) < 0)
+		return vdt_err_set(err, VDT_EIO, "cannot create a temporary file in '%s': %s",
+		                   dir, strerror(errno));
+	unlink(path);
+	return fd;
+}
+
+static int
+map_fd(int fd, size_t len, void **p, struct vdt_err *err)
+{
+	*p = mmap(NULL, len, PROT_READ, MAP_PRIVATE, fd, 0);
+	if (*p == MAP_FAILED) {
+		*p = NULL;
+		return vdt_err_set(err, VDT_EIO, "cannot map %zu bytes: %s", len, strerror(errno));
+	}
+	/* One linear scan: let the kernel read ahead and drop behind. */
+	madvise(*p, len, MADV_SEQUENTIAL);
+	return 0;
+}
+
+/* Copy a pipe into a scratch file and return that file's descriptor. */
+static int
+spool(int in, size_t *len, struct vdt_err *err)
+{
+	unsigned char b[1 << 16];
+	size_t total = 0;
+	int fd = scratch_file(err);
+
+	if (fd < 0)
+		return fd;
+	for (;;) {
+		ssize_t r = read(in, b, sizeof(b)), w = 0;
+
+		if (r < 0 && errno == EINTR)
+			continue;
+		if (r < 0) {
+			int e = errno;
+			close(fd);
+			return vdt_err_set(err, VDT_EIO, "%s", strerror(e));
+		}
+		if (r == 0)
+			break;
+		while (w < r) {
+			ssize_t k = write(fd, b + w, (size_t)(r - w));
+			if (k < 0 && errno == EINTR)
+				continue;
+			if (k < 0) {
+				int e = errno;
+				close(fd);
+				return vdt_err_set(err, VDT_EIO, "cannot spool standard input: %s",
+				                   strerror(e));
+			}
+			w += k;
+		}
+		total += (size_t)r;
+	}
+	*len = total;
+	return fd;
+}
+
+/* ---- PLY ----------------------------------------------------------------- */
+
+static enum ptype
+ply_type(const char *s)
+{
+	static const struct {
+		const char *name;
+		enum ptype t;
+	} names[] = {
+		{"char", T_I8},    {"int8", T_I8},     {"uchar", T_U8},   {"uint8", T_U8},
+		{"short", T_I16},  {"int16", T_I16},   {"ushort", T_U16}, {"uint16", T_U16},
+		{"int", T_I32},    {"int32", T_I32},   {"uint", T_U32},   {"uint32", T_U32},
+		{"float", T_F32},  {"float32", T_F32}, {"double", T_F64}, {"float64", T_F64},
+	};
+
+	for (size_t i = 0; i < sizeof(names) / sizeof(names[0]); i++)
+		if (strcmp(names[i].name, s) == 0)
+			return names[i].t;
+	return T_NONE;
+}
+
+static uint32_t
+ld32(const unsigned char *p, int be)
+{
+	return be ? (uint32_t)p[3] | (uint32_t)p[2] << 8 | (uint32_t)p[1] << 16 |
+	                    (uint32_t)p[0] << 24
+	          : vdt_get_u32le(p);
+}
+
+static double
+ld_scalar(const unsigned char *p, enum ptype t, int be)
+{
+	uint16_t h = be ? (uint16_t)(p[1] | p[0] << 8) : vdt_get_u16le(p);
+
+	switch (t) {
+	case T_I8: return (int8_t)p[0];
+	case T_U8: return p[0];
+	case T_I16: return (int16_t)h;
+	case T_U16: return h;
+	case T_I32: return (int32_t)ld32(p, be);
+	case T_U32: return ld32(p, be);
+	case T_F32: {
+		uint32_t v = ld32(p, be);
+		float f;
+		memcpy(&f, &v, 4);
+		return f;
+	}
+	case T_F64: {
+		uint64_t v = be ? (uint64_t)ld32(p, 1) << 32 | ld32(p + 4, 1) : vdt_get_u64le(p);
+		double d;
+		memcpy(&d, &v, 8);
+		return d;
+	}
+	default: return 0;
+	}
+}
+
+/* An integer count or index; negative values stay negative. */
+static int64_t
+ld_int(const unsigned char *p, enum ptype t, int be)
+{
+	double d;
+
+	switch (t) {
+	case T_U32: return ld32(p, be);
+	case T_I32: return (int32_t)ld32(p, be);
+	case T_F32:
+	case T_F64:
+		d = ld_scalar(p, t, be);
+		return isfinite(d) && fabs(d) < 1e18 ? (int64_t)d : -1;
+	default: return (int64_t)ld_scalar(p, t, be);
+	}
+}
+
+/* Bytes of the record of e at p (at most avail), or 0 if it does not fit. */
+static size_t
+ply_record(const struct pelem *e, const unsigned char *p, size_t avail, int be)
+{
+	size_t off = 0;
+
+	for (size_t i = 0; i < e->nprops; i++) {
+		const struct pprop *pr = &e->props[i];
+
+		if (pr->count_type == T_NONE) {
+			off += type_size[pr->type];
+			if (off > avail)
+				return 0;
+			continue;
+		}
+		if (off + type_size[pr->count_type] > avail)
+			return 0;
+		int64_t c = ld_int(p + off, pr->count_type, be);
+		off += type_size[pr->count_type];
+		if (c < 0 || (uint64_t)c > (avail - off) / type_size[pr->type])
+			return 0;
+		off += (size_t)c * type_size[pr->type];
+	}
+	return off;
+}
+
+static int
+ply_fixed(const struct pelem *e, size_t *size)
+{
+	*size = 0;
+	for (size_t i = 0; i < e->nprops; i++) {
+		if (e->props[i].count_type != T_NONE)
+			return 0;
+		*size += type_size[e->props[i].type];
+	}
+	return 1;
+}
+
+static int
+ply_header(struct vdt_tsource *s, struct pelem *el, size_t *nel, size_t *data,
+           int *ascii, struct vdt_err *err)
+{
+	size_t pos = 0, lineno = 0;
+	int have_format = 0;
+
+	*nel = 0;
+	for (;;) {
+		char line[256], w[6][64];
+		const unsigned char *nl;
+		size_t ll;
+		int n;
+
+		if (pos >= s->len || (nl = memchr(s->buf + pos, '\n', s->len - pos)) == NULL)
+			return vdt_err_set(err, VDT_EFORMAT, "PLY header has no end_header line");
+		ll = (size_t)(nl - (s->buf + pos));
+		lineno++;
+		if (ll >= sizeof(line))
+			return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu is too long", lineno);
+		memcpy(line, s->buf + pos, ll);
+		line[ll] = '\0';
+		pos += ll + 1;
+		if (lineno == 1)
+			continue; /* "ply", checked by format detection */
+		if (strncmp(line, "comment", 7) == 0 || strncmp(line, "obj_info", 8) == 0)
+			continue;
+		n = sscanf(line, "%63s %63s %63s %63s %63s %63s", w[0], w[1], w[2], w[3], w[4], w[5]);
+		if (n <= 0)
+			continue;
+		if (strcmp(w[0], "end_header") == 0) {
+			if (!have_format)
+				return vdt_err_set(err, VDT_EFORMAT, "PLY header has no format line");
+			*data = pos;
+			return 0;
+		} else if (strcmp(w[0], "format") == 0 && n == 3) {
+			*ascii = strcmp(w[1], "ascii") == 0;
+			s->be = strcmp(w[1], "binary_big_endian") == 0;
+			if (!*ascii && !s->be && strcmp(w[1], "binary_little_endian") != 0)
+				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: unknown format", lineno);
+			have_format = 1;
+		} else if (strcmp(w[0], "element") == 0 && n == 3) {
+			char *end;
+			struct pelem *e;
+
+			if (*nel == MAX_ELEMENTS)
+				return vdt_err_set(err, VDT_EFORMAT, "PLY header has more than %d elements",
+				                   MAX_ELEMENTS);
+			e = &el[(*nel)++];
+			memset(e, 0, sizeof(*e));
+			snprintf(e->name, sizeof(e->name), "%s", w[1]);
+			errno = 0;
+			e->count = strtoull(w[2], &end, 10);
+			if (w[2][0] < '0' || w[2][0] > '9' || *end != '\0' || errno != 0)
+				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: bad element count",
+				                   lineno);
+		} else if (strcmp(w[0], "property") == 0 && *nel > 0) {
+			struct pelem *e = &el[*nel - 1];
+			struct pprop *pr = &e->props[e->nprops];
+
+			if (e->nprops == MAX_PROPS)
+				return vdt_err_set(err, VDT_EFORMAT, "PLY element '%s' has too many properties",
+				                   e->name);
+			if (n == 3) {
+				pr->count_type = T_NONE;
+				pr->type = ply_type(w[1]);
+				snprintf(pr->name, sizeof(pr->name), "%s", w[2]);
+			} else if (n == 5 && strcmp(w[1], "list") == 0) {
+				pr->count_type = ply_type(w[2]);
+				pr->type = ply_type(w[3]);
+				snprintf(pr->name, sizeof(pr->name), "%s", w[4]);
+				if (pr->count_type == T_NONE || pr->count_type >= T_F32)
+					return vdt_err_set(err, VDT_EFORMAT,
+					                   "PLY header line %zu: bad list count type", lineno);
+			} else {
+				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: bad property line",
+				                   lineno);
+			}
+			if (pr->type == T_NONE)
+				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: unknown property type",
+				                   lineno);
+			e->nprops++;
+		} else {
+			return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: cannot parse '%.40s'",
+			                   lineno, line);
+		}
+	}
+}
+
+static int
+ply_skip(const struct vdt_tsource *s, const struct pelem *e, size_t *at, struct vdt_err *err)
+{
+	size_t fixed;
+
+	if (ply_fixed(e, &fixed)) {
+		if (fixed != 0 && e->count > (s->len - *at) / fixed)
+			return vdt_err_set(err, VDT_EFORMAT,
+			                   "PLY element '%s': %" PRIu64 " records of %zu bytes do not fit in the file",
+			                   e->name, e->count, fixed);
+		*at += (size_t)e->count * fixed;
+		return 0;
+	}
+	for (uint64_t r = 0; r < e->count; r++) {
+		size_t k = ply_record(e, s->buf + *at, s->len - *at, s->be);
+		if (k == 0)
+			return vdt_err_set(err, VDT_EFORMAT, "PLY element '%s': record %" PRIu64 " is truncated",
+			                   e->name, r);
+		*at += k;
+	}
+	return 0;
+}
+
+static int
+ply_open(struct vdt_tsource *s, struct vdt_err *err)
+{
+	struct pelem *el = calloc(MAX_ELEMENTS, sizeof(*el)), *ve = NULL, *fe = NULL;
+	size_t nel, data, at;
+	int ascii = 0, rc;
+	const char *axes[3] = {"x", "y", "z"};
+
+	if (el == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	if ((rc = ply_header(s, el, &nel, &data, &ascii, err)) != 0 || ascii) {
+		free(el);
+		return rc != 0 ? rc : 1; /* ASCII: read whole */
+	}
+	/* Find where our two elements start, walking over those before them. */
+	at = data;
+	for (size_t i = 0; i < nel && !(ve && fe); i++) {
+		struct pelem *e = &el[i];
+
+		if (strcmp(e->name, "vertex") == 0 && ve == NULL) {
+			ve = e;
+			s->vbase = s->buf + at;
+		} else if (strcmp(e->name, "face") == 0 && fe == NULL) {
+			fe = e;
+			s->fbase = s->buf + at;
+		}
+		if (!(ve && fe) && (rc = ply_skip(s, e, &at, err)) != 0)
+			goto out;
+	}
+		rc = VDT_EFORMAT;
+	if (ve == NULL || fe == NULL) {
+		vdt_err_set(err, rc, "PLY file has no %s element", ve ? "face" : "vertex");
+		goto out;
+	}
+	if (!ply_fixed(ve, &s->vstride)) {
+		vdt_err_set(err, rc, "PLY vertex records have lists: cannot be read in place");
+		goto out;
+	}
+	if (s->vstride != 0 && ve->count > (size_t)(s->buf + s->len - s->vbase) / s->vstride) {
+		vdt_err_set(err, rc, "PLY element 'vertex': %" PRIu64 " records of %zu bytes do not fit in the file",
+		            ve->count, s->vstride);
+		goto out;
+	}
+	for (int k = 0; k < 3; k++) {
+		size_t off = 0, i;
+		for (i = 0; i < ve->nprops && strcmp(ve->props[i].name, axes[k]) != 0; i++)
+			off += type_size[ve->props[i].type];
+		if (i == ve->nprops) {
+			vdt_err_set(err, rc, "PLY vertex has no '%s' property", axes[k]);
+			goto out;
+		}
+		s->xyz_off[k] = off;
+		s->xyz_type[k] = ve->props[i].type;
+	}
+	s->vcount = ve->count;
+	s->fast_vertex = !s->be && s->xyz_type[0] == T_F32 && s->xyz_type[1] == T_F32 &&
+	                 s->xyz_type[2] == T_F32;
+	s->face = *fe;
+	s->list_prop = fe->nprops;
+	for (size_t i = 0; i < fe->nprops; i++)
+		if (fe->props[i].count_type != T_NONE &&
+		    (strcmp(fe->props[i].name, "vertex_indices") == 0 ||
+		     strcmp(fe->props[i].name, "vertex_index") == 0))
+			s->list_prop = i;
+	if (s->list_prop == fe->nprops || fe->props[s->list_prop].type >= T_F32) {
+		vdt_err_set(err, rc, "PLY face has no integer vertex_indices list");
+		goto out;
+	}
+	s->fast_face = !s->be && fe->nprops == 1 && fe->props[0].count_type == T_U8 &&
+	               (fe->props[0].type == T_I32 || fe->props[0].type == T_U32);
+	s->fcount = fe->count;
+	/* Faces end at the vertices when they come first. */
+	s->fend = s->fbase < s->vbase ? s->vbase : s->buf + s->len;
+	s->tri_hint = fe->count;
+	rc = 0;
+out:
+	free(el);
+	return rc;
+}
+
+static inline void
+ply_corner(const struct vdt_tsource *s, uint64_t v, double *p)
+{
+	const unsigned char *r = s->vbase + v * s->vstride;
+
+	if (s->fast_vertex) {
+		float f[3];
+		memcpy(&f[0], r + s->xyz_off[0], 4);
+		memcpy(&f[1], r + s->xyz_off[1], 4);
+		memcpy(&f[2], r + s->xyz_off[2], 4);
+		p[0] = f[0];
+		p[1] = f[1];
+		p[2] = f[2];
+	} else {
+		for (int a = 0; a < 3; a++)
+			p[a] = ld_scalar(r + s->xyz_off[a], s->xyz_type[a], s->be);
+	}
+}
+
+static int
+ply_vertices(struct vdt_tsource *s, double *xyz, size_t max, size_t *n, struct vdt_err *err)
+{
+	size_t k = 0;
+
+	for (; k < max && s->vcur < s->vcount; k++, s->vcur++) {
+		double *p = xyz + 3 * k;
+
+		ply_corner(s, s->vcur, p);
+		if (!(isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2])))
+			return vdt_err_set(err, VDT_EINVAL, "vertex %" PRIu64 ": non-finite coordinate",
+			                   s->vcur);
+	}
+	*n = k;
+	if (s->map)
+		drop_behind(s, s->vbase + s->vcur * s->vstride, s->vbase);
+	return 0;
+}
+
+static int
+bad_index(struct vdt_tsource *s, int64_t v, struct vdt_err *err)
+{
+	return vdt_err_set(err, VDT_EFORMAT, "face %" PRIu64 " uses vertex %" PRId64 " of %" PRIu64,
+	                   s->fidx, v, s->vcount);
+}
+
+/* Start the next face record: set s->poly, poly_n, poly_k. */
+static int
+ply_next_face(struct vdt_tsource *s, struct vdt_err *err)
+{
+	const struct pelem *e = &s->face;
+	const unsigned char *p = s->fcur;
+	size_t avail = (size_t)(s->fend - p), off = 0;
+
+	for (size_t i = 0; i < e->nprops; i++) {
+		const struct pprop *pr = &e->props[i];
+		int64_t c;
+
+		if (pr->count_type == T_NONE) {
+			off += type_size[pr->type];
+			if (off > avail)
+				goto truncated;
+			continue;
+		}
+		if (off + type_size[pr->count_type] > avail)
+			goto truncated;
+		c = ld_int(p + off, pr->count_type, s->be);
+		off += type_size[pr->count_type];
+		if (c < 0 || (uint64_t)c > (avail - off) / type_size[pr->type])
+			goto truncated;
+		if (i == s->list_prop) {
+			s->poly = p + off;
+			s->poly_n = (uint64_t)c;
+			s->poly_type = pr->type;
+		}
+		off += (size_t)c * type_size[pr->type];
+	}
+	if (s->poly_n < 3)
+		return vdt_err_set(err, VDT_EFORMAT, "face %" PRIu64 " has %" PRIu64 " vertices",
+		                   s->fidx, s->poly_n);
+	s->poly_k = 2;
+	s->fcur = p + off;
+	return 0;
+truncated:
+	return vdt_err_set(err, VDT_EFORMAT, "face %" PRIu64 " of %" PRIu64 " is truncated",
+	                   s->fidx, s->fcount);
+}
+
+static int
+ply_triangles(struct vdt_tsource *s, double *tri, size_t max, size_t *n, struct vdt_err *err)
+{
+	size_t k = 0;
+	int rc;
+
+	if (s->fcur == NULL)
+		s->fcur = s->fbase;
+	while (k < max) {
+		/* The common case: a triangle in the usual uchar/int layout. */
+		if (s->poly == NULL && s->fast_face && s->fidx < s->fcount &&
+		    s->fend - s->fcur >= 13 && s->fcur[0] == 3) {
+			uint32_t a = vdt_get_u32le(s->fcur + 1), b = vdt_get_u32le(s->fcur + 5),
+			         c = vdt_get_u32le(s->fcur + 9);
+			if (a >= s->vcount || b >= s->vcount || c >= s->vcount) {
+				uint32_t bad = a >= s->vcount ? a : b >= s->vcount ? b : c;
+				return bad_index(s, s->face.props[0].type == T_I32 ? (int64_t)(int32_t)bad : (int64_t)bad, err);
+			}
+			ply_corner(s, a, tri + 9 * k);
+			ply_corner(s, b, tri + 9 * k + 3);
+			ply_corner(s, c, tri + 9 * k + 6);
+			s->fcur += 13;
+			s->fidx++;
+			k++;
+			continue;
+		}
+		if (s->poly == NULL) {
+			if (s->fidx == s->fcount)
+				break;
+			if ((rc = ply_next_face(s, err)) != 0)
+				return rc;
+		}
+		/* Fan: (0, k-1, k). */
+		{
+			unsigned isz = type_size[s->poly_type];
+			int64_t v[3] = {
+				ld_int(s->poly, s->poly_type, s->be),
+				ld_int(s->poly + (s->poly_k - 1) * isz, s->poly_type, s->be),
+				ld_int(s->poly + s->poly_k * isz, s->poly_type, s->be),
+			};
+			for (int j = 0; j < 3; j++) {
+				if (v[j] < 0 || (uint64_t)v[j] >= s->vcount)
+					return bad_index(s, v[j], err);
+				ply_corner(s, (uint64_t)v[j], tri + 9 * k + 3 * j);
+			}
+			k++;
+			if (++s->poly_k == s->poly_n) {
+				s->poly = NULL;
+				s->fidx++;
+			}
+		}
+	}
+	*n = k;
+	if (s->map)
+		drop_behind(s, s->fcur, s->fbase);
+	return 0;
+}
+
+/* ---- binary STL ---------------------------------------------------------- */
+
+static int
+stl_open(struct vdt_tsource *s, struct vdt_err *err)
+{
+	uint32_t c;
+
+	if (s->len < 84)
+		return vdt_err_set(err, VDT_EFORMAT, "STL file of %zu bytes is truncated", s->len);
+	c = vdt_get_u32le(s->buf + 80);
+	if ((uint64_t)c * 50 > s->len - 84)
+		return vdt_err_set(err, VDT_EFORMAT,
+		                   "STL header announces %" PRIu32 " triangles, the file holds %zu",
+		                   c, (s->len - 84) / 50);
+	s->tri_hint = c;
+	s->tbase = s->buf + 84;
+	return 0;
+}
+
+static void
+stl_corner(const unsigned char *r, double *p)
+{
+	for (int a = 0; a < 3; a++)
+		p[a] = vdt_get_f32le(r + 4 * a);
+}
+
+static int
+stl_triangles(struct vdt_tsource *s, double *tri, size_t max, size_t *n, int corners,
+              struct vdt_err *err)
+{
+	size_t k = 0;
+
+	if (corners) {
+		/* Vertices: three per record; a batch holds whole records. */
+		for (; k + 3 <= max && s->vcur < s->tri_hint; k += 3, s->vcur++) {
+			const unsigned char *r = s->tbase + 50 * s->vcur + 12;
+			for (int j = 0; j < 3; j++)
+				stl_corner(r + 12 * j, tri + 3 * (k + j));
+			for (int j = 0; j < 9; j++)
+				if (!isfinite(tri[3 * k + j]))
+					return vdt_err_set(err, VDT_EINVAL,
+					                   "triangle %" PRIu64 ": non-finite coordinate", s->vcur);
+		}
+		*n = k;
+		if (s->map)
+			drop_behind(s, s->tbase + 50 * s->vcur, s->tbase);
+		return 0;
+	}
+	for (; k < max && s->tcur < s->tri_hint; k++, s->tcur++) {
+		const unsigned char *r = s->tbase + 50 * s->tcur + 12;
+		for (int j = 0; j < 3; j++)
+			stl_corner(r + 12 * j, tri + 9 * k + 3 * j);
+	}
+	*n = k;
+	if (s->map)
+		drop_behind(s, s->tbase + 50 * s->tcur, s->tbase);
+	return 0;
+}
+
+/* ---- OBJ ----------------------------------------------------------------- */
+
+static int
+is_blank(unsigned char c)
+{
+	return c == ' ' || c == '\t' || c == '\r';
+}
+
+/* The next word in [*i, end) into w (NUL-terminated, bounded); 0 if none. */
+static size_t
+obj_word(const unsigned char *b, size_t *i, size_t end, char *w, size_t wmax)
+{
+	size_t j, n;
+
+	while (*i < end && is_blank(b[*i]))
+		(*i)++;
+	j = *i;
+	while (*i < end && !is_blank(b[*i]))
+		(*i)++;
+	n = *i - j;
+	if (n == 0)
+		return 0;
+	if (n >= wmax)
+		n = wmax - 1;
+	memcpy(w, b + j, n);
+	w[n] = '\0';
+	return *i - j;
+}
+
+static size_t
+line_end(const unsigned char *b, size_t i, size_t len)
+{
+	const unsigned char *nl = memchr(b + i, '\n', len - i);
+	return nl ? (size_t)(nl - b) : len;
+}
+
+/* Pass at open: positions to a scratch file, faces counted. */
+static int
+obj_open(struct vdt_tsource *s, struct vdt_err *err)
+{
+	size_t i = 0, line = 0;
+	uint64_t nv = 0, nt = 0;
+	FILE *f = NULL;
+	int fd, rc = 0;
+	struct stat st;
+
+	if ((fd = scratch_file(err)) < 0)
+		return fd;
+	if ((f = fdopen(fd, "w+")) == NULL) {
+		close(fd);
+		return vdt_err_set(err, VDT_EIO, "%s", strerror(errno));
+	}
+	while (i < s->len) {
+		size_t e = line_end(s->buf, i, s->len), j = i;
+		char w[80];
+
+		line++;
+		while (j < e && is_blank(s->buf[j]))
+			j++;
+		if (e - j >= 2 && s->buf[j] == 'v' && is_blank(s->buf[j + 1])) {
+			double p[3];
+			j++;
+			for (int a = 0; a < 3; a++) {
+				char *end;
+				if (obj_word(s->buf, &j, e, w, sizeof(w)) == 0) {
+					rc = vdt_err_set(err, VDT_EFORMAT, "line %zu: vertex has fewer than 3 coordinates", line);
+					goto out;
+				}
+				p[a] = strtod(w, &end);
+				if (*end != '\0') {
+					rc = vdt_err_set(err, VDT_EFORMAT, "line %zu: bad coordinate '%.20s'", line, w);
+					goto out;
+				}
+				if (!isfinite(p[a])) {
+					rc = vdt_err_set(err, VDT_EINVAL, "line %zu: non-finite coordinate", line);
+					goto out;
+				}
+			}
+			/* A private scratch file of this process: host byte order. */
+			if (fwrite(p, sizeof(p), 1, f) != 1) {
+				rc = vdt_err_set(err, VDT_EIO, "cannot write a temporary file: %s", strerror(errno));
+				goto out;
+			}
+			nv++;
+		} else if (e - j >= 2 && s->buf[j] == 'f' && is_blank(s->buf[j + 1])) {
+			size_t c = 0;
+			j++;
+			while (obj_word(s->buf, &j, e, w, sizeof(w)) != 0)
+				c++;
+			if (c < 3) {
+				rc = vdt_err_set(err, VDT_EFORMAT, "line %zu: face with %zu vertices", line, c);
+				goto out;
+			}
+			nt += c - 2;
+		}
+		i = e + 1;
+	}
+	if (fflush(f) != 0 || fstat(fd, &st) != 0) {
+		rc = vdt_err_set(err, VDT_EIO, "cannot write a temporary file: %s", strerror(errno));
+		goto out;
+	}
+	s->vcount = nv;
+	s->vstride = 3 * sizeof(double);
+	s->tri_hint = nt;
+	if (nv > 0) {
+		if ((rc = map_fd(fd, (size_t)st.st_size, &s->pos_map, err)) != 0)
+			goto out;
+		s->pos_len = (size_t)st.st_size;
+		s->vbase = s->pos_map;
+	}
+out:
+	fclose(f);
+	return rc;
+}
+
+static void
+obj_corner(const struct vdt_tsource *s, uint64_t v, double *p)
+{
+	memcpy(p, s->vbase + v * s->vstride, 3 * sizeof(double));
+}
+
+/* Parse one face corner "i", "i/j", "i//k" or "i/j/k" into a 0-based index. */
+static int
+obj_index(struct vdt_tsource *s, const char *w, uint64_t *v, struct vdt_err *err)
+{
+	char *end;
+	long long i;
+
+	errno = 0;
+	i = strtoll(w, &end, 10);
+	if (end == w || (*end != '\0' && *end != '/') || errno != 0)
+		return vdt_err_set(err, VDT_EFORMAT, "line %zu: bad face vertex '%.20s'", s->line, w);
+	if (i < 0)
+		i += (long long)s->vseen + 1;
+	if (i <= 0 || (uint64_t)i > s->vcount)
+		return vdt_err_set(err, VDT_EFORMAT, "line %zu: face uses vertex %.20s of %" PRIu64,
+		                   s->line, w, s->vcount);
+	*v = (uint64_t)i - 1;
+	return 0;
+}
+
+static int
+obj_triangles(struct vdt_tsource *s, double *tri, size_t max, size_t *n, struct vdt_err *err)
+{
+	size_t k = 0;
+	char w[80];
+	int rc;
+
+	while (k < max) {
+		if (!s->in_face) {
+			size_t e, j;
+
+			if (s->ocur >= s->len)
+				break;
+			e = line_end(s->buf, s->ocur, s->len);
+			j = s->ocur;
+			s->line++;
+			s->ocur = e + 1;
+			while (j < e && is_blank(s->buf[j]))
+				j++;
+			if (e - j >= 2 && s->buf[j] == 'v' && is_blank(s->buf[j + 1])) {
+				s->vseen++;
+				continue;
+			}
+			if (!(e - j >= 2 && s->buf[j] == 'f' && is_blank(s->buf[j + 1])))
+				continue;
+			j++;
+			obj_word(s->buf, &j, e, w, sizeof(w));
+			if ((rc = obj_index(s, w, &s->oa, err)) != 0)
+				return rc;
+			obj_word(s->buf, &j, e, w, sizeof(w));
+			if ((rc = obj_index(s, w, &s->ob, err)) != 0)
+				return rc;
+			s->ofan = j;
+			s->oend = e;
+			s->in_face = 1;
+		}
+		uint64_t c;
+		if (obj_word(s->buf, &s->ofan, s->oend, w, sizeof(w)) == 0) {
+			s->in_face = 0;
+			continue;
+		}
+		if ((rc = obj_index(s, w, &c, err)) != 0)
+			return rc;
+		obj_corner(s, s->oa, tri + 9 * k);
+		obj_corner(s, s->ob, tri + 9 * k + 3);
+		obj_corner(s, c, tri + 9 * k + 6);
+		s->ob = c;
+		k++;
+	}
+	*n = k;
+	if (s->map)
+		drop_behind(s, s->buf + (s->ocur < s->len ? s->ocur : s->len), s->buf);
+	return 0;
+}
+
+/* ---- vdt stream ---------------------------------------------------------- */
+
+static int
+vdt_open(struct vdt_tsource *s, struct vdt_err *err)
+{
+	const unsigned char *sig = (const unsigned char *)VDT_STREAM_SIGNATURE;
+	const unsigned char *mesh = NULL;
+	uint64_t at = VDT_STREAM_HEADER_LEN, mesh_len = 0, mesh_at = 0;
+	unsigned major;
+
+	if (s->len < VDT_STREAM_HEADER_LEN || memcmp(s->buf, sig, VDT_STREAM_SIGNATURE_LEN) != 0)
+		return vdt_err_set(err, VDT_EFORMAT, "bad signature at byte 0: damaged or truncated vdt stream");
+	major = vdt_get_u16le(s->buf + 8);
+	if (major > VDT_STREAM_MAJOR)
+		return vdt_err_set(err, VDT_EVERSION, "version %u.%u at byte 8 is newer than this reader (%d.%d)",
+		                   major, vdt_get_u16le(s->buf + 10), VDT_STREAM_MAJOR, VDT_STREAM_MINOR);
+	if (major < VDT_STREAM_MAJOR)
+		return vdt_err_set(err, VDT_EFORMAT, "version %u.0 at byte 8 does not exist", major);
+	/* Walk the chunks, checking each CRC where it lies. */
+	for (;;) {
+		uint32_t type, crc;
+		uint64_t length;
+		char name[5];
+		uLong c;
+
+		if (s->len - at < 12)
+			return vdt_err_set(err, VDT_EFORMAT, at == s->len ? "missing end chunk at byte %" PRIu64
+			                   : "chunk at byte %" PRIu64 ": truncated header", at);
+		type = vdt_get_u32le(s->buf + at);
+		length = vdt_get_u64le(s->buf + at + 4);
+		vdt_chunk_name(type, name);
+		if (length > s->len - at - 12 || s->len - at - 12 - length < 4)
+			return vdt_err_set(err, VDT_EFORMAT,
+			                   "chunk %s at byte %" PRIu64 ": truncated: expected a payload of %" PRIu64
+			                   " bytes and a 4-byte CRC, found %" PRIu64 " bytes",
+			                   name, at, length, (uint64_t)(s->len - at - 12));
+		c = crc32(0L, Z_NULL, 0);
+		c = crc32(c, s->buf + at, 4);
+		for (uint64_t o = 0; o < length;) {
+			uInt step = length - o > (1u << 30) ? (1u << 30) : (uInt)(length - o);
+			c = crc32(c, s->buf + at + 12 + o, step);
+			o += step;
+		}
+		crc = vdt_get_u32le(s->buf + at + 12 + length);
+		if (crc != (uint32_t)c)
+			return vdt_err_set(err, VDT_ECHECKSUM,
+			                   "chunk %s at byte %" PRIu64 ": checksum mismatch (stored %08" PRIx32
+			                   ", computed %08" PRIx32 ")", name, at, crc, (uint32_t)c);
+		if (type == VDT_CHUNK_END) {
+			if (length != 0)
+				return vdt_err_set(err, VDT_EFORMAT, "chunk END at byte %" PRIu64 ": payload of %"
+				                   PRIu64 " bytes, expected none", at, length);
+			if (at + 16 != s->len)
+				return vdt_err_set(err, VDT_EFORMAT, "%" PRIu64 " bytes after the end chunk at byte %"
+				                   PRIu64, (uint64_t)(s->len - at - 16), at + 16);
+			break;
+		}
+		if (type == VDT_CHUNK_MESH && mesh == NULL) {
+			mesh = s->buf + at + 12;
+			mesh_len = length;
+			mesh_at = at;
+		}
+		at += 16 + length;
+	}
+	if (mesh == NULL)
+		return vdt_err_set(err, VDT_EFORMAT, "stream has no MESH chunk");
+	{
+		uint32_t mask;
+		uint64_t v, t, per;
+
+		if (mesh_len < 24)
+			return vdt_err_set(err, VDT_EFORMAT, "chunk MESH at byte %" PRIu64 ": too short", mesh_at);
+		mask = vdt_get_u32le(mesh);
+		v = vdt_get_u64le(mesh + 8);
+		t = vdt_get_u64le(mesh + 16);
+		if (mask & ~7u || vdt_get_u32le(mesh + 4) != 0)
+			return vdt_err_set(err, VDT_EFORMAT, "chunk MESH at byte %" PRIu64 ": bad attribute mask or reserved word",
+			                   mesh_at);
+		per = 12 + (mask & VDT_ATTR_NORMALS ? 12 : 0) + (mask & VDT_ATTR_UVS ? 8 : 0) +
+		      (mask & VDT_ATTR_COLORS ? 16 : 0);
+		if (v > (mesh_len - 24) / per || t > (mesh_len - 24 - v * per) / 12 ||
+		    24 + v * per + 12 * t != mesh_len)
+			return vdt_err_set(err, VDT_EFORMAT,
+			                   "chunk MESH at byte %" PRIu64 ": %" PRIu64 " vertices and %" PRIu64
+			                   " triangles do not fit its %" PRIu64 " bytes", mesh_at, v, t, mesh_len);
+		s->vbase = mesh + 24;
+		s->vstride = 12;
+		s->vcount = v;
+		s->tbase = mesh + 24 + v * per;
+		s->tri_hint = t;
+	}
+	return 0;
+}
+
+static int
+vdt_vertices(struct vdt_tsource *s, double *xyz, size_t max, size_t *n, struct vdt_err *err)
+{
+	size_t k = 0;
+
+	for (; k < max && s->vcur < s->vcount; k++, s->vcur++) {
+		const unsigned char *r = s->vbase + 12 * s->vcur;
+		for (int a = 0; a < 3; a++)
+			xyz[3 * k + a] = vdt_get_f32le(r + 4 * a);
+		if (!(isfinite(xyz[3 * k]) && isfinite(xyz[3 * k + 1]) && isfinite(xyz[3 * k + 2])))
+			return vdt_err_set(err, VDT_EINVAL, "vertex %" PRIu64 ": non-finite coordinate", s->vcur);
+	}
+	*n = k;
+	if (s->map)
+		drop_behind(s, s->vbase + 12 * s->vcur, s->vbase);
+	return 0;
+}
+
+static int
+vdt_triangles(struct vdt_tsource *s, double *tri, size_t max, size_t *n, struct vdt_err *err)
+{
+	size_t k = 0;
+
+	for (; k < max && s->tcur < s->tri_hint; k++, s->tcur++) {
+		for (int j = 0; j < 3; j++) {
+			uint32_t v = vdt_get_u32le(s->tbase + 12 * s->tcur + 4 * j);
+			const unsigned char *r = s->vbase + 12 * (uint64_t)v;
+			if (v >= s->vcount)
+				return vdt_err_set(err, VDT_EFORMAT, "triangle %" PRIu64 " uses vertex %" PRIu32
+				                   " of %" PRIu64, s->tcur, v, s->vcount);
+			for (int a = 0; a < 3; a++)
+				tri[9 * k + 3 * j + a] = vdt_get_f32le(r + 4 * a);
+		}
+	}
+	*n = k;
+	if (s->map)
+		drop_behind(s, s->tbase + 12 * s->tcur, s->tbase);
+	return 0;
+}
+
+/* ---- the source ---------------------------------------------------------- */
+
+static int
+setup(struct vdt_tsource *s, struct vdt_err *err)
+{
+	int rc;
+
+	if (s->len == 0)
+		return vdt_err_set(err, VDT_EFORMAT, "empty input");
+	s->format = vdt_format_detect(s->buf, s->len < 512 ? s->len : 512);
+	if (vdt_stream_sniff(s->buf, s->len)) {
+		s->kind = K_VDT;
+		s->format = VDT_FMT_VDT;
+		return vdt_open(s, err);
+	}
+	switch (s->format) {
+	case VDT_FMT_PLY:
+		s->kind = K_PLY;
+		if ((rc = ply_open(s, err)) <= 0)
+			return rc;
+		break; /* ASCII after all: read whole */
+	case VDT_FMT_STL:
+		s->kind = K_STL;
+		return stl_open(s, err);
+	case VDT_FMT_OBJ:
+		s->kind = K_OBJ;
+		return obj_open(s, err);
+	case VDT_FMT_AUTO:
+		return vdt_err_set(err, VDT_EFORMAT, "unknown format");
+	default:
+		break;
+	}
+	s->kind = K_MESH;
+	if ((rc = vdt_read_memory(s->buf, s->len, NULL, &s->mesh, NULL, err)) != 0)
+		return rc;
+	s->vcount = s->mesh.vertex_count;
+	s->tri_hint = s->mesh.triangle_count;
+	return 0;
+}
+
+int
+vdt_tsource_open_memory(struct vdt_tsource **ts, const unsigned char *buf, size_t len,
+                        struct vdt_err *err)
+{
+	struct vdt_tsource *s = calloc(1, sizeof(*s));
+	int rc;
+
+	*ts = NULL;
+	if (s == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	s->buf = buf;
+	s->len = len;
+	if ((rc = setup(s, err)) != 0) {
+		vdt_tsource_close(s);
+		return rc;
+	}
+	*ts = s;
+	return 0;
+}
+
+int
+vdt_tsource_open(struct vdt_tsource **ts, const char *path, struct vdt_err *err)
+{
+	int is_stdin = strcmp(path, "-") == 0;
+	int fd = is_stdin ? 0 : open(path, O_RDONLY | O_CLOEXEC);
+	struct vdt_tsource *s;
+	struct stat st;
+	size_t len;
+	void *map = NULL;
+	int rc;
+
+	*ts = NULL;
+	if (fd < 0)
+		return vdt_err_set(err, VDT_EIO, "%s", strerror(errno));
+	if (fstat(fd, &st) != 0 || S_ISDIR(st.st_mode)) {
+		rc = vdt_err_set(err, VDT_EIO, "%s", S_ISDIR(st.st_mode) ? "is a directory" : strerror(errno));
+		goto done;
+	}
+	if (S_ISREG(st.st_mode) && !is_stdin) {
+		len = (size_t)st.st_size;
+	} else {
+		/* A pipe cannot be mapped or read twice: keep a copy on disk. */
+		int sp = spool(fd, &len, err);
+		if (sp < 0) {
+			rc = sp;
+			goto done;
+		}
+		if (!is_stdin)
+			close(fd);
+		fd = sp;
+		is_stdin = 0;
+	}
+	if (len > 0 && (rc = map_fd(fd, len, &map, err)) != 0)
+		goto done;
+	if ((rc = vdt_tsource_open_memory(&s, map, len, err)) != 0) {
+		if (map)
+			munmap(map, len);
+		goto done;
+	}
+	s->map = map;
+	s->map_len = len;
+	*ts = s;
+done:
+	if (!is_stdin)
+		close(fd);
+	return rc;
+}
+
+void
+vdt_tsource_close(struct vdt_tsource *ts)
+{
+	if (ts == NULL)
+		return;
+	if (ts->map)
+		munmap(ts->map, ts->map_len);
+	if (ts->pos_map)
+		munmap(ts->pos_map, ts->pos_len);
+	vdt_mesh_free(&ts->mesh);
+	free(ts);
+}
+
+enum vdt_format
+vdt_tsource_format(const struct vdt_tsource *ts)
+{
+	return ts->format;
+}
+
+int
+vdt_tsource_streamed(const struct vdt_tsource *ts)
+{
+	return ts->kind != K_MESH;
+}
+
+uint64_t
+vdt_tsource_triangle_hint(const struct vdt_tsource *ts)
+{
+	return ts->tri_hint;
+}
+
+uint64_t
+vdt_tsource_bytes(const struct vdt_tsource *ts)
+{
+	return ts->len;
+}
+
+void
+vdt_tsource_rewind(struct vdt_tsource *ts)
+{
+	ts->vcur = ts->tcur = ts->fidx = 0;
+	ts->fcur = NULL;
+	ts->poly = NULL;
+	ts->ocur = ts->line = ts->vseen = 0;
+	ts->in_face = 0;
+	ts->drop_mark = NULL;
+}
+
+int
+vdt_tsource_vertices(struct vdt_tsource *ts, double *xyz, size_t max, size_t *n,
+                     struct vdt_err *err)
+{
+	size_t k = 0;
+
+	*n = 0;
+	switch (ts->kind) {
+	case K_PLY: return ply_vertices(ts, xyz, max, n, err);
+	case K_STL: return stl_triangles(ts, xyz, max, n, 1, err);
+	case K_VDT: return vdt_vertices(ts, xyz, max, n, err);
+	case K_OBJ:
+		/* Already checked finite while parsing. */
+		for (; k < max && ts->vcur < ts->vcount; k++, ts->vcur++)
+			obj_corner(ts, ts->vcur, xyz + 3 * k);
+		*n = k;
+		if (ts->map)
+			drop_behind(ts, ts->vbase + ts->vcur * ts->vstride, ts->vbase);
+		return 0;
+	case K_MESH:
+		/* Validated by vdt_read_memory. */
+		for (; k < max && ts->vcur < ts->vcount; k++, ts->vcur++)
+			for (int a = 0; a < 3; a++)
+				xyz[3 * k + a] = ts->mesh.positions[3 * ts->vcur + a];
+		*n = k;
+		return 0;
+	}
+	return 0;
+}
+
+int
+vdt_tsource_triangles(struct vdt_tsource *ts, double *tri, size_t max, size_t *n,
+                      struct vdt_err *err)
+{
+	size_t k = 0;
+
+	*n = 0;
+	switch (ts->kind) {
+	case K_PLY: return ply_triangles(ts, tri, max, n, err);
+	case K_STL: return stl_triangles(ts, tri, max, n, 0, err);
+	case K_OBJ: return obj_triangles(ts, tri, max, n, err);
+	case K_VDT: return vdt_triangles(ts, tri, max, n, err);
+	case K_MESH:
+		for (; k < max && ts->tcur < ts->mesh.triangle_count; k++, ts->tcur++)
+			for (int j = 0; j < 3; j++) {
+				const float *p = ts->mesh.positions + 3 * (size_t)ts->mesh.triangles[3 * ts->tcur + j];
+				for (int a = 0; a < 3; a++)
+					tri[9 * k + 3 * j + a] = p[a];
+			}
+		*n = k;
+		return 0;
+	}
+	return 0;
+}
+
+double
+vdt_tsource_fraction(const struct vdt_tsource *ts)
+{
+	double f = 0;
+
+	switch (ts->kind) {
+	case K_PLY: f = ts->fcount ? (double)ts->fidx / ts->fcount : 1; break;
+	case K_OBJ: f = ts->len ? (double)ts->ocur / ts->len : 1; break;
+	default: f = ts->tri_hint ? (double)ts->tcur / ts->tri_hint : 1; break;
+	}
+	if (ts->vcur > 0 && ts->vcount > 0 && f == 0)
+		f = (double)ts->vcur / (ts->kind == K_STL ? ts->tri_hint : ts->vcount);
+	return f > 1 ? 1 : f;
+}
