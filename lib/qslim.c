@@ -867,7 +867,8 @@ attr_free(struct attr *at)
  * through it perpendicular to each face joins both ends' quadrics. Without
  * it a seam vertex could slide off the seam at no attribute cost, since each
  * side's attributes extrapolate linearly, and drag one side's texture over
- * the other's.
+ * the other's. The planes hold against attribute terms as well as
+ * geometric ones, so their weight grows with the attribute weight above 1.
  */
 static void
 seam_planes(struct ctx *c, const struct vdt_mesh *w, double weight)
@@ -1291,7 +1292,8 @@ vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	if (o->attribute_weight > 0 && vdt_mesh_attrs(in) != 0) {
 		double d = vdt_bbox_diagonal(&box);
 		if (attr_setup(&c, in, &w, fsrc, wstart, wlist, o->attribute_weight * d * d,
-		               o->boundary_weight, nvp > 0, seam) == NULL) {
+		               o->boundary_weight * fmax(1, o->attribute_weight), nvp > 0,
+		               seam) == NULL) {
 			free(seam);
 			goto nomem;
 		}

@@ -129,3 +129,44 @@ load helpers
 	[ "$status" -eq 1 ]
 	one_line
 }
+
+@test "vdt-qslim rejects bad --attribute-weight values with status 2" {
+	for bad in -1 x 1x nan inf ""; do
+		run "$BIN/vdt-qslim" --attribute-weight "$bad" -r 0.5 "$SAMPLES/sphere-uv.obj" -o "$TMP/x.obj"
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == *"--attribute-weight"* ]]
+		[ ! -e "$TMP/x.obj" ]
+	done
+}
+
+@test "vdt-qslim keeps texture coordinates of sphere-uv with and without the weight" {
+	for w in 0 1 10; do
+		run "$BIN/vdt-qslim" -r 0.2 --attribute-weight "$w" "$SAMPLES/sphere-uv.obj" -o "$TMP/w$w.obj"
+		[ "$status" -eq 0 ]
+		[ "$(grep -c '^f ' "$TMP/w$w.obj")" -eq 192 ]
+		[ "$(grep -c '^vt ' "$TMP/w$w.obj")" -gt 0 ]
+		[ "$(grep -c '^vn ' "$TMP/w$w.obj")" -gt 0 ]
+		# every face names a texture coordinate at each corner
+		c='[0-9]+/[0-9]+(/[0-9]+)?'
+		! grep '^f ' "$TMP/w$w.obj" | grep -Evq "^f $c $c $c\$"
+	done
+	# the weight changes the result; the default is the weight on
+	! cmp -s "$TMP/w0.obj" "$TMP/w1.obj"
+	"$BIN/vdt-qslim" -r 0.2 "$SAMPLES/sphere-uv.obj" -o "$TMP/default.obj"
+	cmp "$TMP/default.obj" "$TMP/w1.obj"
+	# texture coordinates stay inside the input's range
+	awk '/^vt / { if ($2 < 0 || $2 > 1 || $3 < 0 || $3 > 1) exit 1 }' "$TMP/w1.obj"
+}
+
+@test "vdt-qslim --attribute-weight output is identical on every run" {
+	"$BIN/vdt-qslim" -r 0.1 --attribute-weight 2 "$SAMPLES/sphere-uv.obj" -o "$TMP/a.obj"
+	"$BIN/vdt-qslim" -r 0.1 --attribute-weight 2 "$SAMPLES/sphere-uv.obj" -o "$TMP/b.obj"
+	cmp "$TMP/a.obj" "$TMP/b.obj"
+}
+
+@test "vdt-qslim --attribute-weight leaves a mesh without attributes alone" {
+	"$BIN/vdt-qslim" -r 0.2 --attribute-weight 0 "$SAMPLES/torus.off" -o "$TMP/a.off"
+	"$BIN/vdt-qslim" -r 0.2 --attribute-weight 5 "$SAMPLES/torus.off" -o "$TMP/b.off"
+	cmp "$TMP/a.off" "$TMP/b.off"
+}
