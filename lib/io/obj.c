@@ -587,6 +587,11 @@ split(struct obj *o, uint32_t **ov, uint32_t **ot, uint32_t **on, size_t *count,
 		rc = vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu corners", corners);
 		goto out;
 	}
+	if (corners >= NONE) {
+		/* Every corner might be a vertex of its own, numbered in 32 bits. */
+		rc = vdt_err_set(err, VDT_EFORMAT, "too many corners (%zu)", corners);
+		goto out;
+	}
 	memset(first, 0xff, (o->nv ? o->nv : 1) * sizeof(uint32_t));
 	for (size_t c = 0; c < corners; c++) {
 		uint32_t cv = o->tri_v[c], ct = o->tri_t[c], cn = o->tri_n[c], id = first[cv];
