@@ -507,9 +507,6 @@ vdt_deform_features(const float *pos, size_t nv, const uint32_t *tri, size_t nt,
 				d->classes |= VDT_EDGE_BOUNDARY_INCIDENT;
 				d->weight += (bcount[d->a] + bcount[d->b]) / 4.0;
 			}
-			/* The two faces: found from the fan of a by scanning
-			 * (features are computed twice per run, not per step). */
-			d->classes |= 0;
 		}
 	}
 	/* Dihedral angles: the faces of each two-face edge. */
@@ -818,7 +815,7 @@ find(uint32_t *parent, uint32_t v)
 struct scratch {
 	struct qd *q;
 	float *pos;
-	uint32_t *parent, *tri;
+	uint32_t *parent, *tri, *rep;
 };
 
 /*
@@ -868,12 +865,13 @@ simplify_frame(const struct anim *a, size_t f, const struct vdt_contraction *rec
 	}
 	float *out = res->positions + 3 * nv * f;
 	uint32_t *otri = res->triangles + 3 * res->tri_start[f];
-	int reached;
+	const float *src = s->pos;
+	struct vdt_contract_result r = {0};
+	int reached = 1;
 	if (finish) {
 		struct vdt_mesh m = {0};
 		struct vdt_contract_opts co;
 		struct vdt_contract_ops ops = {frame_cost, frame_merged, NULL, &c};
-		struct vdt_contract_result r;
 		int rc;
 		m.vertex_count = nv;
 		m.positions = s->pos;
@@ -885,16 +883,33 @@ simplify_frame(const struct anim *a, size_t f, const struct vdt_contraction *rec
 		co.max_normal_angle = o->max_normal_angle;
 		if ((rc = vdt_contract_run(&m, &ops, &co, &r, err)) != 0)
 			return rc;
-		memcpy(out, r.positions, 3 * nv * sizeof(float));
-		memcpy(otri, r.triangles, 3 * r.triangle_count * sizeof(uint32_t));
+		src = r.positions;
+		memcpy(s->tri, r.triangles, 3 * r.triangle_count * sizeof(uint32_t));
 		nt = r.triangle_count;
 		reached = r.reached_target;
-		vdt_contract_result_free(&r);
-	} else {
-		memcpy(out, s->pos, 3 * nv * sizeof(float));
-		memcpy(otri, s->tri, 3 * nt * sizeof(uint32_t));
-		reached = 1;
 	}
+	/*
+	 * A vertex of the result stands for the set of input vertices merged
+	 * into it; name it by the smallest, so that frames that merged the
+	 * same sets have the same vertices and triangles, whichever end of
+	 * each pair survived.
+	 */
+	uint32_t *rep = s->rep;
+	memset(rep, 0xff, nv * sizeof(*rep));
+	for (size_t v0 = 0; v0 < nv; v0++) {
+		uint32_t x = find(s->parent, (uint32_t)v0);
+		if (finish)
+			x = r.final[x];
+		if (rep[x] == NONE)
+			rep[x] = (uint32_t)v0;
+	}
+	memcpy(out, src, 3 * nv * sizeof(float));
+	for (size_t v0 = 0; v0 < nv; v0++)
+		if (rep[v0] != NONE && rep[v0] != v0)
+			memcpy(out + 3 * (size_t)rep[v0], src + 3 * v0, 3 * sizeof(float));
+	for (size_t i = 0; i < 3 * nt; i++)
+		otri[i] = rep[s->tri[i]];
+	vdt_contract_result_free(&r);
 	/* live vertices: slots used by a triangle */
 	size_t live = 0;
 	for (size_t v0 = 0; v0 < nv; v0++)
@@ -1085,9 +1100,10 @@ vdt_deform(const struct vdt_mesh *m, const struct vdt_frames *fr,
 	s.pos = malloc((3 * nv + 1) * sizeof(float));
 	s.parent = malloc((nv + 1) * sizeof(uint32_t));
 	s.tri = malloc((3 * a.nt + 1) * sizeof(uint32_t));
+	s.rep = malloc((nv + 1) * sizeof(uint32_t));
 	if (s.q == NULL)
 		s.q = malloc((nv + 1) * sizeof(*s.q));
-	if (!s.pos || !s.parent || !s.tri || !s.q)
+	if (!s.pos || !s.parent || !s.tri || !s.rep || !s.q)
 		goto nomem;
 	int finish = o->method == VDT_DEFORM_INDEPENDENT || nrep < ur.record_count ||
 	             (o->method == VDT_DEFORM_OURS && !ur.reached_target);
@@ -1121,6 +1137,7 @@ done:
 	free(s.pos);
 	free(s.parent);
 	free(s.tri);
+	free(s.rep);
 	return rc;
 }
 
