@@ -23,7 +23,7 @@ usage(FILE *f)
 	fprintf(f,
 	        "usage: vdt-build [-e EPS] [--place average|quadric] [--sliver Q] [-o OUTPUT]\n"
 	        "                 [-q] [-v] [INPUT]\n"
-	        "       vdt-build --check [-v] FILE\n"
+	        "       vdt-build [-v] --check FILE\n"
 	        "Build the view-dependence tree of a mesh and write the mesh and the tree\n"
 	        "as a vdt stream (.vdt); INPUT and OUTPUT default to - (stdin, stdout).\n");
 }

@@ -1,0 +1,164 @@
+#!/usr/bin/env bats
+# Command-line tests of vdt-build.
+
+load helpers
+
+@test "vdt-build --help prints usage and exits 0" {
+	run "$BIN/vdt-build" --help
+	[ "$status" -eq 0 ]
+	[[ "$output" == usage:* ]]
+	[[ "$output" == *"--check"* ]]
+}
+
+@test "vdt-build --version names the stream format" {
+	run "$BIN/vdt-build" --version
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"stream format 1."* ]]
+}
+
+@test "vdt-build rejects bad options with status 2 and writes nothing" {
+	for bad in "--bogus" "-e 0" "-e -1" "-e x" "-e 1x" "--place nope" "--sliver 2" "--sliver 0"; do
+		run "$BIN/vdt-build" $bad "$SAMPLES/sphere.off" -o "$TMP/x.vdt"
+		[ "$status" -eq 2 ]
+		[ ! -e "$TMP/x.vdt" ]
+	done
+	run "$BIN/vdt-build" "$SAMPLES/sphere.off" "$SAMPLES/torus.off"
+	[ "$status" -eq 2 ]
+	one_line
+}
+
+@test "vdt-build writes a stream with MESH and VTRE that --check accepts" {
+	run "$BIN/vdt-build" "$SAMPLES/sphere.off" -o "$TMP/s.vdt"
+	[ "$status" -eq 0 ]
+	[ -z "$output" ]
+	[ "$(head -c 4 "$TMP/s.vdt" | tail -c 3)" = "VDT" ]
+	grep -q MESH "$TMP/s.vdt"
+	grep -q VTRE "$TMP/s.vdt"
+	run "$BIN/vdt-build" --check "$TMP/s.vdt"
+	[ "$status" -eq 0 ]
+	[ -z "$output" ]
+}
+
+@test "vdt-build -v prints one line of statistics" {
+	run "$BIN/vdt-build" -v "$SAMPLES/torus.off" -o "$TMP/t.vdt"
+	[ "$status" -eq 0 ]
+	one_line
+	for f in nodes= roots= bytes_per_vertex= octree_s= contract_s= write_s= peak_mb=; do
+		[[ "$output" == *"$f"* ]]
+	done
+}
+
+@test "vdt-build -v --check prints the cut table and the size comparison" {
+	"$BIN/vdt-build" "$SAMPLES/twosphere.off" -o "$TMP/t.vdt"
+	"$BIN/vdt-build" -v --check "$TMP/t.vdt" > "$TMP/table" 2> "$TMP/err"
+	head -n 1 "$TMP/table" | grep -q "^collapsed active vertices edges triangles euler components"
+	# the full mesh: two spheres, Euler characteristic 4; the roots: one part
+	[ "$(sed -n 2p "$TMP/table" | awk '{print $6, $7}')" = "4 2" ]
+	[ "$(tail -n 1 "$TMP/table" | awk '{print $7}')" = "1" ]
+	grep -q "explicit_bytes_per_vertex=" "$TMP/err"
+}
+
+@test "vdt-build closes the holes of the plate" {
+	"$BIN/vdt-build" "$SAMPLES/plate.off" -o "$TMP/p.vdt"
+	"$BIN/vdt-build" -v --check "$TMP/p.vdt" > "$TMP/table" 2>/dev/null
+	[ "$(sed -n 2p "$TMP/table" | awk '{print $6}')" = "-30" ]
+	[ "$(tail -n 1 "$TMP/table" | awk '{print $6}')" -gt -30 ]
+}
+
+@test "vdt-build output is identical on every run, and options change it" {
+	"$BIN/vdt-build" "$SAMPLES/torus.off" -o "$TMP/a.vdt"
+	"$BIN/vdt-build" "$SAMPLES/torus.off" -o "$TMP/b.vdt"
+	cmp "$TMP/a.vdt" "$TMP/b.vdt"
+	"$BIN/vdt-build" -e 2 "$SAMPLES/torus.off" -o "$TMP/e.vdt"
+	! cmp -s "$TMP/a.vdt" "$TMP/e.vdt"
+	"$BIN/vdt-build" --place quadric "$SAMPLES/torus.off" -o "$TMP/q.vdt"
+	! cmp -s "$TMP/a.vdt" "$TMP/q.vdt"
+	"$BIN/vdt-build" --sliver 0.3 "$SAMPLES/torus.off" -o "$TMP/s.vdt"
+	for f in e q s; do "$BIN/vdt-build" --check "$TMP/$f.vdt"; done
+}
+
+@test "vdt-build works in a pipeline and passes other chunks through" {
+	"$BIN/vdt-qslim" --record -r 0.5 "$SAMPLES/sphere.off" -F vdt | "$BIN/vdt-build" > "$TMP/p.vdt"
+	grep -q SEQN "$TMP/p.vdt"
+	"$BIN/vdt-build" --check "$TMP/p.vdt"
+	# a tree built again replaces the old one
+	"$BIN/vdt-build" < "$TMP/p.vdt" > "$TMP/q.vdt"
+	[ "$(grep -c VTRE "$TMP/q.vdt")" -eq 1 ]
+	"$BIN/vdt-qslim" -r 0.5 "$TMP/p.vdt" -o "$TMP/out.off"
+	[ "$(off_faces "$TMP/out.off")" -eq 1280 ]
+}
+
+@test "vdt-build --check rejects a stale tree with status 2 and one line" {
+	"$BIN/vdt-build" "$SAMPLES/sphere.off" -o "$TMP/s.vdt"
+	# vdt-qslim changes the mesh and passes the old tree through
+	"$BIN/vdt-qslim" -r 0.5 "$TMP/s.vdt" -o "$TMP/stale.vdt"
+	run "$BIN/vdt-build" --check "$TMP/stale.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == "vdt-build: invalid tree in '$TMP/stale.vdt': chunk VTRE at byte "* ]]
+}
+
+@test "vdt-build --check rejects corrupted, truncated and tree-less files" {
+	"$BIN/vdt-build" "$SAMPLES/sphere.off" -o "$TMP/s.vdt"
+	size=$(stat -c %s "$TMP/s.vdt")
+	cp "$TMP/s.vdt" "$TMP/bad.vdt"
+	printf '\001' | dd of="$TMP/bad.vdt" bs=1 seek=$((size - 5000)) conv=notrunc status=none
+	head -c $((size - 100)) "$TMP/s.vdt" > "$TMP/trunc.vdt"
+	"$BIN/vdt-qslim" -t 100000 "$SAMPLES/sphere.off" -o "$TMP/plain.vdt"
+	for f in bad trunc plain; do
+		run "$BIN/vdt-build" --check "$TMP/$f.vdt"
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == *"$f.vdt"* ]]
+	done
+	run "$BIN/vdt-build" --check "$TMP/none.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+}
+
+@test "vdt-build handles boundaries, several parts and non-manifold edges" {
+	# open surface; two spheres; three triangles on edge 0-1
+	printf 'OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n' > "$TMP/nm.off"
+	for f in "$SAMPLES/open.off" "$SAMPLES/twosphere.off" "$TMP/nm.off"; do
+		"$BIN/vdt-build" "$f" -o "$TMP/x.vdt"
+		"$BIN/vdt-build" --check "$TMP/x.vdt"
+	done
+}
+
+@test "vdt-build merges duplicate vertices and drops degenerate faces" {
+	# two triangles that should share an edge but repeat its vertices, and a
+	# face that repeats a vertex
+	printf 'OFF\n6 3 0\n0 0 0\n1 0 0\n0 1 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 3 5 4\n3 0 0 1\n' > "$TMP/dup.off"
+	run "$BIN/vdt-build" -v "$TMP/dup.off" -o "$TMP/d.vdt"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"dropped 1 faces"* ]]
+	[[ "$output" == *"roots=1 "* ]]
+	"$BIN/vdt-build" --check "$TMP/d.vdt"
+}
+
+@test "vdt-build rejects bad meshes with status 2 and leaves nothing" {
+	printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 0 0\n3 0 0 1\n' > "$TMP/degen.off"
+	printf 'OFF\n3 1 0\n0 0 0\n1 0 0\nnan 1 0\n3 0 1 2\n' > "$TMP/nan.off"
+	printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n' > "$TMP/idx.off"
+	for f in degen nan idx none; do
+		run "$BIN/vdt-build" "$TMP/$f.off" -o "$TMP/out.vdt"
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == "vdt-build: "*"$f.off"* ]]
+		[ ! -e "$TMP/out.vdt" ]
+	done
+	[ "$(ls "$TMP" | grep -c out)" -eq 0 ]
+}
+
+@test "vdt-build does not modify its input" {
+	cp "$SAMPLES/torus.off" "$TMP/in.off"
+	sum=$(md5sum < "$TMP/in.off")
+	"$BIN/vdt-build" "$TMP/in.off" -o "$TMP/in.vdt"
+	[ "$(md5sum < "$TMP/in.off")" = "$sum" ]
+}
+
+@test "vdt-build fails with status 1 when the output cannot be written" {
+	run "$BIN/vdt-build" "$SAMPLES/sphere.off" -o "$TMP/no/such/dir/out.vdt"
+	[ "$status" -eq 1 ]
+	one_line
+}
