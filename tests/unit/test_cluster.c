@@ -1,0 +1,401 @@
+/*
+ * Unit tests of lib/cluster and lib/io/tsource: phase I of the multiphase
+ * method on fixtures small enough to check by hand.
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../../lib/bytes.h"
+#include "../../lib/cluster.h"
+#include "../../lib/io/tsource.h"
+
+static const struct vdt_bbox unit2 = {{0, 0, 0}, {2, 2, 0}};
+
+/* The grid 2 x 2 x 1 over unit2: cells split at x = 1 and y = 1. */
+static void
+grid22(struct vdt_cluster_grid *g)
+{
+	uint32_t d[3] = {2, 2, 1};
+
+	assert_int_equal(vdt_cluster_grid_dims(&unit2, d, g, NULL), 0);
+}
+
+static void
+put_tri(double *t, const double *a, const double *b, const double *c)
+{
+	memcpy(t, a, 3 * sizeof(double));
+	memcpy(t + 3, b, 3 * sizeof(double));
+	memcpy(t + 6, c, 3 * sizeof(double));
+}
+
+/* Exactly equal, field by field (a sum that starts at +0 turns -0 into +0). */
+static void
+assert_quadric_equal(const struct vdt_quadric *a, const struct vdt_quadric *b)
+{
+	const double *x = &a->a00, *y = &b->a00;
+
+	for (int i = 0; i < 11; i++)
+		assert_true(x[i] == y[i]);
+}
+
+/*
+ * Two cells along x (grid 2x1x1 over [0,2]x[0,1]x[0,1]): a triangle inside
+ * the left cell adds its quadric three times there, and nothing spans
+ * three cells, so the result is empty (VDT_ELIMIT, "use a finer grid").
+ *
+ *   +--------+--------+
+ *   | p2     |        |
+ *   | |\     |        |
+ *   | p0-p1  |        |
+ *   +--------+--------+
+ */
+static void
+two_cells_one_triangle(void **state)
+{
+	struct vdt_bbox box = {{0, 0, 0}, {2, 1, 1}};
+	uint32_t d[3] = {2, 1, 1}, cell[3];
+	struct vdt_cluster_grid g;
+	struct vdt_cluster *c;
+	struct vdt_mesh m;
+	struct vdt_quadric *q;
+	struct vdt_err err = {0};
+	double p0[3] = {0.25, 0.25, 0.5}, p1[3] = {0.75, 0.25, 0.5}, p2[3] = {0.25, 0.75, 0.5};
+	double p3[3] = {1.5, 0.5, 0.5}, t[9];
+
+	(void)state;
+	assert_int_equal(vdt_cluster_grid_dims(&box, d, &g, NULL), 0);
+	vdt_cluster_cell_of(&g, p0, cell);
+	assert_int_equal(cell[0], 0);
+	vdt_cluster_cell_of(&g, p3, cell);
+	assert_int_equal(cell[0], 1);
+	assert_int_equal(vdt_cluster_new(&c, &g, 0, NULL), 0);
+	put_tri(t, p0, p1, p2);
+	assert_int_equal(vdt_cluster_add(c, t, 1, NULL), 0);
+	assert_int_equal(vdt_cluster_finish(c, &m, &q, NULL, &err), VDT_ELIMIT);
+	assert_non_null(strstr(err.msg, "finer grid"));
+	vdt_cluster_free(c);
+}
+
+/*
+ * Four cells, two triangles, each corner in its own cell:
+ *
+ *   d (0.5,1.5) ---- c (1.5,1.5)
+ *   |  T0        _/  |
+ *   |        _/      |    T0 = (a, b, d), T1 = (b, c, d)
+ *   |     _/     T1  |
+ *   a (0.5,0.5) ---- b (1.5,0.5)
+ *
+ * Output vertices by first appearance: a 0, b 1, d 2, c 3; triangles
+ * (0 1 2) and (1 3 2). Each quadric is exactly the sum of the fundamental
+ * quadrics of the corners in its cell: a Q0, b Q0+Q1, d Q0+Q1, c Q1.
+ */
+static void
+quadrics_are_exact_sums(void **state)
+{
+	double a[3] = {0.5, 0.5, 0}, b[3] = {1.5, 0.5, 0}, cc[3] = {1.5, 1.5, 0},
+	       d[3] = {0.5, 1.5, 0}, t[18];
+	struct vdt_quadric q0, q1, s, *q;
+	struct vdt_cluster_grid g;
+	struct vdt_cluster_stats st;
+	struct vdt_cluster *c;
+	struct vdt_mesh m;
+	const uint32_t want[6] = {0, 1, 2, 1, 3, 2};
+
+	(void)state;
+	grid22(&g);
+	put_tri(t, a, b, d);
+	put_tri(t + 9, b, cc, d);
+	assert_int_equal(vdt_cluster_new(&c, &g, 0, NULL), 0);
+	assert_int_equal(vdt_cluster_add(c, t, 2, NULL), 0);
+	assert_int_equal(vdt_cluster_finish(c, &m, &q, &st, NULL), 0);
+	vdt_cluster_free(c);
+	assert_int_equal(m.vertex_count, 4);
+	assert_int_equal(m.triangle_count, 2);
+	assert_memory_equal(m.triangles, want, sizeof(want));
+	assert_int_equal(st.cells, 4);
+	assert_int_equal(st.triangles_in, 2);
+
+	vdt_quadric_triangle(&q0, a, b, d);
+	vdt_quadric_triangle(&q1, b, cc, d);
+	assert_quadric_equal(&q[0], &q0);
+	s = q0;
+	vdt_quadric_add(&s, &q1);
+	assert_quadric_equal(&q[1], &s);
+	assert_quadric_equal(&q[2], &s);
+	assert_quadric_equal(&q[3], &q1);
+	/* Flat ground: every point stays in its cell, on the plane z = 0. */
+	for (size_t v = 0; v < 4; v++)
+		assert_true(m.positions[3 * v + 2] == 0);
+	free(q);
+	vdt_mesh_free(&m);
+}
+
+/* A binary STL in memory: n triangles of 9 floats. */
+static unsigned char *
+make_stl(const double *t, size_t n, size_t *len)
+{
+	unsigned char *b = calloc(1, 84 + 50 * n);
+
+	vdt_put_u32le(b + 80, (uint32_t)n);
+	for (size_t i = 0; i < n; i++)
+		for (int k = 0; k < 9; k++)
+			vdt_put_f32le(b + 84 + 50 * i + 12 + 4 * k, (float)t[9 * i + k]);
+	*len = 84 + 50 * n;
+	return b;
+}
+
+/*
+ * The same two triangles as a soup (binary STL, each corner its own
+ * vertex): clustering welds them, with the same result.
+ */
+static void
+triangle_soup_welds(void **state)
+{
+	double a[3] = {0.5, 0.5, 0}, b[3] = {1.5, 0.5, 0}, cc[3] = {1.5, 1.5, 0},
+	       d[3] = {0.5, 1.5, 0}, t[18];
+	struct vdt_tsource *ts;
+	struct vdt_cluster_grid g;
+	struct vdt_cluster *c;
+	struct vdt_bbox box;
+	struct vdt_mesh m;
+	uint64_t nv;
+	size_t len;
+	unsigned char *stl;
+	const uint32_t want[6] = {0, 1, 2, 1, 3, 2};
+
+	(void)state;
+	put_tri(t, a, b, d);
+	put_tri(t + 9, b, cc, d);
+	stl = make_stl(t, 2, &len);
+	assert_int_equal(vdt_tsource_open_memory(&ts, stl, len, NULL), 0);
+	assert_int_equal(vdt_tsource_format(ts), VDT_FMT_STL);
+	assert_int_equal(vdt_cluster_scan_bbox(ts, &box, &nv, NULL, NULL), 0);
+	assert_int_equal(nv, 6);
+	assert_true(box.min[0] == 0.5 && box.max[1] == 1.5);
+	grid22(&g);
+	assert_int_equal(vdt_cluster_new(&c, &g, 0, NULL), 0);
+	assert_int_equal(vdt_cluster_scan(c, ts, NULL, NULL), 0);
+	assert_int_equal(vdt_cluster_finish(c, &m, NULL, NULL, NULL), 0);
+	assert_int_equal(m.vertex_count, 4);
+	assert_memory_equal(m.triangles, want, sizeof(want));
+	vdt_mesh_free(&m);
+	vdt_cluster_free(c);
+	vdt_tsource_close(ts);
+	free(stl);
+}
+
+/*
+ * Two input triangles on the same three cells, one turned over: one
+ * output triangle, with the orientation of the first.
+ */
+static void
+output_triangles_are_unique(void **state)
+{
+	double a[3] = {0.5, 0.5, 0}, b[3] = {1.5, 0.5, 0}, d[3] = {0.5, 1.5, 0};
+	double a2[3] = {0.6, 0.4, 0}, b2[3] = {1.4, 0.6, 0}, d2[3] = {0.4, 1.6, 0}, t[27];
+	struct vdt_cluster_grid g;
+	struct vdt_cluster *c;
+	struct vdt_mesh m;
+	const uint32_t want[3] = {0, 1, 2};
+
+	(void)state;
+	grid22(&g);
+	put_tri(t, a, b, d);
+	put_tri(t + 9, a2, d2, b2); /* reversed */
+	put_tri(t + 18, b2, d, a);  /* rotated */
+	assert_int_equal(vdt_cluster_new(&c, &g, 0, NULL), 0);
+	assert_int_equal(vdt_cluster_add(c, t, 3, NULL), 0);
+	assert_int_equal(vdt_cluster_finish(c, &m, NULL, NULL, NULL), 0);
+	assert_int_equal(m.triangle_count, 1);
+	assert_memory_equal(m.triangles, want, sizeof(want));
+	vdt_mesh_free(&m);
+	vdt_cluster_free(c);
+}
+
+/*
+ * An open square [0,4]^2 of 16 x 16 quads (512 triangles) on a 4 x 4 grid.
+ * The face quadrics only know the plane z = 0, so without the boundary
+ * planes each point would sit at its cell's mean, half a cell inside. The
+ * edge normals of the cells along the border keep their points on it:
+ *
+ *   +---+---+---+---+      cells with i = 0 keep x = 0,
+ *   |   |   |   |   |      cells with j = 3 keep y = 4, and so on;
+ *   +---+---+---+---+      the inner cells (1..2, 1..2) stay inside.
+ */
+static void
+boundary_edges_are_kept(void **state)
+{
+	struct vdt_bbox box = {{0, 0, 0}, {4, 4, 0}};
+	uint32_t d[3] = {4, 4, 1};
+	struct vdt_cluster_grid g;
+	struct vdt_cluster_stats st;
+	struct vdt_cluster *c;
+	struct vdt_mesh m;
+	double *t = malloc(512 * 9 * sizeof(double));
+	size_t n = 0, on_border = 0;
+
+	(void)state;
+	for (int j = 0; j < 16; j++)
+		for (int i = 0; i < 16; i++) {
+			double p00[3] = {i / 4.0, j / 4.0, 0}, p10[3] = {(i + 1) / 4.0, j / 4.0, 0},
+			       p01[3] = {i / 4.0, (j + 1) / 4.0, 0},
+			       p11[3] = {(i + 1) / 4.0, (j + 1) / 4.0, 0};
+			put_tri(t + 9 * n++, p00, p10, p11);
+			put_tri(t + 9 * n++, p00, p11, p01);
+		}
+	assert_int_equal(vdt_cluster_grid_dims(&box, d, &g, NULL), 0);
+	assert_int_equal(vdt_cluster_new(&c, &g, 0, NULL), 0);
+	assert_int_equal(vdt_cluster_add(c, t, n, NULL), 0);
+	assert_int_equal(vdt_cluster_finish(c, &m, NULL, &st, NULL), 0);
+	assert_int_equal(m.vertex_count, 16);
+	assert_int_equal(st.boundary_cells, 12);
+	for (size_t v = 0; v < m.vertex_count; v++) {
+		double x = m.positions[3 * v], y = m.positions[3 * v + 1];
+		int bx = x < 1 || x > 3, by = y < 1 || y > 3;
+
+		if (!(bx || by))
+			continue;
+		on_border++;
+		assert_true(fabs(x) < 1e-6 || fabs(x - 4) < 1e-6 || fabs(y) < 1e-6 ||
+		            fabs(y - 4) < 1e-6);
+	}
+	assert_int_equal(on_border, 12);
+	vdt_mesh_free(&m);
+	vdt_cluster_free(c);
+	free(t);
+}
+
+/*
+ * --target N aims for 6 N intermediate vertices, inside the 4-8 N window.
+ * A surface's occupancy grows as the square of the resolution: sampled as
+ * 4^l cells at 2^l (l = 0..6), the grid for N = 1000 is extrapolated
+ * beyond 64 cells and must land in [4000, 8000].
+ */
+static void
+target_rule(void **state)
+{
+	struct vdt_cluster_sample s = {0};
+	uint32_t r;
+
+	(void)state;
+	assert_true(vdt_cluster_target_cells(1000) == 6000);
+	s.levels = 7;
+	s.vertices = 1000000000;
+	for (int l = 0; l < 7; l++) {
+		s.res[l] = 1u << l;
+		s.occupied[l] = 1ull << (2 * l);
+	}
+	assert_true(fabs(vdt_cluster_estimate(&s, 32) - 1024) < 1e-6);
+	assert_true(fabs(vdt_cluster_estimate(&s, 128) - 16384) < 1e-6);
+	r = vdt_cluster_resolution(&s, vdt_cluster_target_cells(1000));
+	assert_true(r >= 64 && r <= 90);
+	assert_true(vdt_cluster_estimate(&s, r) >= 4000 && vdt_cluster_estimate(&s, r) <= 8000);
+	/* Never more cells than vertices: a small input saturates. */
+	s.vertices = 3000;
+	assert_true(vdt_cluster_estimate(&s, 1000) <= 3000);
+}
+
+/*
+ * A binary PLY with double coordinates in an unusual order, an extra
+ * property, a quad and a little-endian uint index list: read in place.
+ *
+ *   v3 (0,1,0) --- v2 (1,1,0)
+ *   |              |         one quad (0 1 2 3): fanned (0 1 2) (0 2 3)
+ *   v0 (0,0,0) --- v1 (1,0,0)
+ */
+static void
+ply_any_layout(void **state)
+{
+	const char *hdr = "ply\nformat binary_little_endian 1.0\n"
+	                  "element vertex 4\nproperty double z\nproperty uchar flag\n"
+	                  "property double x\nproperty double y\n"
+	                  "element face 1\nproperty list uchar uint vertex_indices\nend_header\n";
+	const double xy[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+	unsigned char buf[512], *p;
+	struct vdt_tsource *ts;
+	struct vdt_err err = {0};
+	double tri[18];
+	size_t n, len;
+
+	(void)state;
+	len = strlen(hdr);
+	memcpy(buf, hdr, len);
+	p = buf + len;
+	for (int v = 0; v < 4; v++) {
+		vdt_put_f64le(p, v == 2 ? NAN : 0);
+		p[8] = 7;
+		vdt_put_f64le(p + 9, xy[v][0]);
+		vdt_put_f64le(p + 17, xy[v][1]);
+		p += 25;
+	}
+	*p++ = 4;
+	for (uint32_t v = 0; v < 4; v++, p += 4)
+		vdt_put_u32le(p, v);
+	len = (size_t)(p - buf);
+
+	/* Vertex 2's z is NaN: the vertex pass names it. */
+	assert_int_equal(vdt_tsource_open_memory(&ts, buf, len, NULL), 0);
+	assert_int_equal(vdt_tsource_vertices(ts, tri, 6, &n, &err), VDT_EINVAL);
+	assert_string_equal(err.msg, "vertex 2: non-finite coordinate");
+	vdt_tsource_close(ts);
+
+	vdt_put_f64le(buf + strlen(hdr) + 2 * 25, 0);
+	assert_int_equal(vdt_tsource_open_memory(&ts, buf, len, NULL), 0);
+	assert_int_equal(vdt_tsource_triangle_hint(ts), 1);
+	assert_int_equal(vdt_tsource_triangles(ts, tri, 2, &n, NULL), 0);
+	assert_int_equal(n, 2);
+	assert_true(tri[0] == 0 && tri[3] == 1 && tri[6] == 1 && tri[7] == 1);
+	assert_true(tri[9 + 6] == 0 && tri[9 + 7] == 1);
+	assert_int_equal(vdt_tsource_triangles(ts, tri, 2, &n, NULL), 0);
+	assert_int_equal(n, 0);
+	vdt_tsource_close(ts);
+
+	/* An index past the vertices is named with its face. */
+	vdt_put_u32le(p - 4, 9);
+	assert_int_equal(vdt_tsource_open_memory(&ts, buf, len, NULL), 0);
+	assert_int_equal(vdt_tsource_triangles(ts, tri, 2, &n, &err), VDT_EFORMAT);
+	assert_string_equal(err.msg, "face 0 uses vertex 9 of 4");
+	vdt_tsource_close(ts);
+}
+
+/* A memory limit is a bound on occupied cells, said as such. */
+static void
+memory_limit(void **state)
+{
+	double a[3] = {0.5, 0.5, 0}, b[3] = {1.5, 0.5, 0}, d[3] = {0.5, 1.5, 0}, t[9];
+	struct vdt_cluster_grid g;
+	struct vdt_cluster *c;
+	struct vdt_err err = {0};
+
+	(void)state;
+	grid22(&g);
+	put_tri(t, a, b, d);
+	assert_int_equal(vdt_cluster_new(&c, &g, 2, NULL), 0);
+	assert_int_equal(vdt_cluster_add(c, t, 1, &err), VDT_ELIMIT);
+	assert_non_null(strstr(err.msg, "memory limit"));
+	vdt_cluster_free(c);
+}
+
+int
+main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(two_cells_one_triangle),
+		cmocka_unit_test(quadrics_are_exact_sums),
+		cmocka_unit_test(triangle_soup_welds),
+		cmocka_unit_test(output_triangles_are_unique),
+		cmocka_unit_test(boundary_edges_are_kept),
+		cmocka_unit_test(target_rule),
+		cmocka_unit_test(ply_any_layout),
+		cmocka_unit_test(memory_limit),
+	};
+
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
