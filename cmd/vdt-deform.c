@@ -90,10 +90,9 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		default: usage(stderr); exit(EXIT_USAGE);
 		}
 	}
-	cl->in = argv + optind;
-	cl->nin = (size_t)(argc - optind);
-	if (cl->nin == 0)
-		usage_error("no input: give frame files, a pattern, an MD2 model or a stream");
+	static char *std_in[] = {"-", NULL};
+	cl->in = optind < argc ? argv + optind : std_in;
+	cl->nin = optind < argc ? (size_t)(argc - optind) : 1;
 	if (cl->d.target_vertices == 0 && cl->d.target_ratio == 0)
 		cl->d.target_ratio = 0.1;
 }

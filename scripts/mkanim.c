@@ -15,6 +15,9 @@
  *
  * usage: mkanim -d bend,wave [-n FRAMES] [-a AMPLITUDE] IN -o OUT
  *   OUT is a vdt stream (MESH + FRMS) or a printf pattern (frames/%03d.obj)
+ *
+ * -x F writes a NaN into frame F of the stream's FRMS chunk (after the
+ * codec's own checks, which would refuse it), for rejection tests.
  */
 #include <math.h>
 #include <stdio.h>
@@ -72,15 +75,17 @@ main(int argc, char **argv)
 	const char *list = "bend", *out = NULL;
 	size_t nf = 50;
 	double amp = 1;
+	long poison = -1;
 	int c;
 
 	static const struct option none[] = {{NULL, 0, NULL, 0}};
-	while ((c = getopt_long(argc, argv, "d:n:a:o:", none, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, "d:n:a:o:x:", none, NULL)) != -1) {
 		switch (c) {
 		case 'd': list = optarg; break;
 		case 'n': nf = strtoul(optarg, NULL, 10); break;
 		case 'a': amp = atof(optarg); break;
 		case 'o': out = optarg; break;
+		case 'x': poison = atol(optarg); break;
 		default: goto usage;
 		}
 	}
@@ -143,6 +148,8 @@ main(int argc, char **argv)
 		uint64_t len;
 		memcpy(m.positions, fr.positions, 3 * m.vertex_count * sizeof(float));
 		rc = vdt_frms_encode(&fr, &data, &len, &err);
+		if (rc == 0 && poison >= 0 && (size_t)poison < nf)
+			memcpy(data + 16 + 12 * m.vertex_count * (size_t)poison, "\x00\x00\xc0\x7f", 4);
 		if (rc == 0)
 			rc = vdt_chunks_add(&extra, VDT_CHUNK_FRMS, data, len, &err);
 		if (rc == 0)

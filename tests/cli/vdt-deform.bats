@@ -1,0 +1,177 @@
+#!/usr/bin/env bats
+# Command-line tests of vdt-deform.
+
+load helpers
+
+MKANIM="$BATS_TEST_DIRNAME/../../build/rel/scripts/mkanim"
+MD2=/usr/share/assimp/models/MD2/sydney.md2
+
+# Frames of the torus, bent and waved, as OFF files and as a stream.
+frames() {
+	"$MKANIM" -d bend,wave -n 6 "$SAMPLES/torus.off" -o "$TMP/in/%03d.off"
+}
+
+setup() {
+	TMP=$(mktemp -d)
+	mkdir "$TMP/in" "$TMP/out"
+}
+
+@test "vdt-deform --help prints usage and exits 0" {
+	run "$BIN/vdt-deform" --help
+	[ "$status" -eq 0 ]
+	[[ "$output" == usage:* ]]
+}
+
+@test "vdt-deform rejects bad options with status 2" {
+	frames
+	for bad in "-n 12x" "-n 0" "-r 2" "-m nope" "--k2 1.5" "--k1 -1" "-P 2" "--sharp-angle 200"; do
+		run "$BIN/vdt-deform" $bad "$TMP/in/%03d.off" -o "$TMP/out/%03d.off"
+		[ "$status" -eq 2 ]
+		one_line
+	done
+	[ -z "$(ls "$TMP/out")" ]
+}
+
+@test "vdt-deform simplifies a pattern of frames to a pattern" {
+	frames
+	run "$BIN/vdt-deform" -n 100 "$TMP/in/%03d.off" -o "$TMP/out/%03d.off"
+	[ "$status" -eq 0 ]
+	[ "$(ls "$TMP/out" | wc -l)" -eq 6 ]
+	for f in "$TMP"/out/*.off; do
+		[ "$(off_vertices "$f")" -eq 100 ]
+	done
+}
+
+@test "vdt-deform takes a list of files and every method" {
+	frames
+	for m in ours dsd first-frame independent; do
+		"$BIN/vdt-deform" -m "$m" -n 80 "$TMP"/in/00[0-5].off -o "$TMP/out/$m-%d.off"
+		[ "$(off_vertices "$TMP/out/$m-5.off")" -eq 80 ]
+	done
+	# one order for all frames: the same faces in every frame
+	[ "$(sed 1,82d "$TMP/out/dsd-0.off")" = "$(sed 1,82d "$TMP/out/dsd-5.off")" ]
+}
+
+@test "vdt-deform reads and writes a stream with FRMS" {
+	"$MKANIM" -d twist -n 5 "$SAMPLES/torus.off" -o "$TMP/in.vdt"
+	"$BIN/vdt-deform" -m dsd -n 100 "$TMP/in.vdt" -o "$TMP/out.vdt"
+	"$BIN/vdt-deform" -m dsd -r 1 "$TMP/out.vdt" -o "$TMP/out/%d.off"
+	[ "$(ls "$TMP/out" | wc -l)" -eq 5 ]
+	[ "$(off_vertices "$TMP/out/4.off")" -eq 100 ]
+	"$BIN/vdt-deform" -m dsd -n 100 < "$TMP/in.vdt" > "$TMP/piped.vdt"
+	cmp "$TMP/out.vdt" "$TMP/piped.vdt"
+}
+
+@test "vdt-deform writes per-frame faces in FRMS, and will not take them as input" {
+	"$MKANIM" -d twist -n 5 "$SAMPLES/torus.off" -o "$TMP/in.vdt"
+	"$BIN/vdt-deform" -n 100 "$TMP/in.vdt" -o "$TMP/out.vdt"
+	run "$BIN/vdt-deform" -n 50 "$TMP/out.vdt" -o "$TMP/again.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"frame "*" differs in connectivity from frame 0"* ]]
+	[ ! -e "$TMP/again.vdt" ]
+}
+
+@test "vdt-deform -v prints per-frame error and coherence" {
+	frames
+	run "$BIN/vdt-deform" -v --samples 2000 -n 100 "$TMP/in/%03d.off" -o "$TMP/out/%03d.off"
+	[ "$status" -eq 0 ]
+	[ "$(printf '%s\n' "$output" | grep -c 'frame=.*rms_pct=.*shared=')" -eq 6 ]
+	[[ "$output" == *"mean_rms_pct="*"min_shared="* ]]
+}
+
+@test "vdt-deform on a single frame equals vdt-qslim" {
+	"$BIN/vdt-deform" -n 100 "$SAMPLES/sphere.off" -o "$TMP/d.off"
+	"$BIN/vdt-qslim" -t "$(off_faces "$TMP/d.off")" "$SAMPLES/sphere.off" -o "$TMP/q.off"
+	cmp "$TMP/d.off" "$TMP/q.off"
+	"$BIN/vdt-deform" -m independent -n 100 "$SAMPLES/open.off" -o "$TMP/d.off"
+	"$BIN/vdt-qslim" -t "$(off_faces "$TMP/d.off")" "$SAMPLES/open.off" -o "$TMP/q.off"
+	cmp "$TMP/d.off" "$TMP/q.off"
+}
+
+@test "vdt-deform is deterministic" {
+	frames
+	"$BIN/vdt-deform" -n 100 "$TMP/in/%03d.off" -o "$TMP/a.vdt"
+	"$BIN/vdt-deform" -n 100 "$TMP/in/%03d.off" -o "$TMP/b.vdt"
+	cmp "$TMP/a.vdt" "$TMP/b.vdt"
+}
+
+@test "vdt-deform reads an MD2 keyframe model" {
+	[ -r "$MD2" ] || skip "assimp-testmodels is not installed"
+	run "$BIN/vdt-deform" -v --samples 1000 -n 150 "$MD2" -o "$TMP/out/%03d.obj"
+	[ "$status" -eq 0 ]
+	[ "$(ls "$TMP/out" | wc -l)" -eq 198 ]
+	[[ "$output" == *"in_vertices=342"* ]]
+}
+
+@test "vdt-deform names the frame with a different vertex count" {
+	frames
+	cp "$SAMPLES/sphere.off" "$TMP/in/003.off"
+	run "$BIN/vdt-deform" -n 100 "$TMP/in/%03d.off" -o "$TMP/out/%03d.off"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"'$TMP/in/003.off'"*"frame 3 has"*"vertices, frame 0 has"* ]]
+	[ -z "$(ls "$TMP/out")" ]
+}
+
+@test "vdt-deform names the frame with a different face count or connectivity" {
+	frames
+	# same vertices, one face fewer
+	awk 'NR==2{$2=$2-1} {print}' "$TMP/in/002.off" | head -n -1 > "$TMP/x" && mv "$TMP/x" "$TMP/in/002.off"
+	run "$BIN/vdt-deform" -n 100 "$TMP/in/%03d.off" -o "$TMP/out/%03d.off"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"frame 2 has"*"triangles, frame 0 has"* ]]
+	[ -z "$(ls "$TMP/out")" ]
+}
+
+@test "vdt-deform names a missing frame file" {
+	frames
+	rm "$TMP/in/004.off"
+	run "$BIN/vdt-deform" -n 100 "$TMP/in/%03d.off" -o "$TMP/out/%03d.off"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"frame 4: no file '$TMP/in/004.off'"* ]]
+	run "$BIN/vdt-deform" -n 100 "$TMP"/in/00[0-3].off "$TMP/in/004.off" -o "$TMP/out/%03d.off"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"'$TMP/in/004.off'"* ]]
+	[ -z "$(ls "$TMP/out")" ]
+}
+
+@test "vdt-deform names the frame with a NaN" {
+	frames
+	awk 'NR==5{$1="nan"} {print}' "$TMP/in/003.off" > "$TMP/x" && mv "$TMP/x" "$TMP/in/003.off"
+	run "$BIN/vdt-deform" -n 100 "$TMP/in/%03d.off" -o "$TMP/out/%03d.off"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"'$TMP/in/003.off'"* ]]
+	[ -z "$(ls "$TMP/out")" ]
+}
+
+@test "vdt-deform names the frame with a NaN in a stream" {
+	"$MKANIM" -d bend -n 4 -x 2 "$SAMPLES/torus.off" -o "$TMP/in.vdt"
+	run "$BIN/vdt-deform" -n 100 "$TMP/in.vdt" -o "$TMP/out.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"frame 2: vertex 0 has a non-finite coordinate"* ]]
+	[ ! -e "$TMP/out.vdt" ]
+}
+
+@test "vdt-deform rejects a truncated MD2 model" {
+	[ -r "$MD2" ] || skip "assimp-testmodels is not installed"
+	head -c 5000 "$MD2" > "$TMP/cut.md2"
+	run "$BIN/vdt-deform" -n 100 "$TMP/cut.md2" -o "$TMP/out/%03d.obj"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"'$TMP/cut.md2'"* ]]
+	[ -z "$(ls "$TMP/out")" ]
+}
+
+@test "vdt-deform wants a pattern or a stream for several frames" {
+	frames
+	run "$BIN/vdt-deform" -n 100 "$TMP/in/%03d.off" -o "$TMP/out.off"
+	[ "$status" -eq 2 ]
+	one_line
+	[ ! -e "$TMP/out.off" ]
+}
