@@ -1,0 +1,187 @@
+#!/usr/bin/env bats
+# Command-line tests of vdt-cluster and of the multiphase pipeline.
+
+load helpers
+
+@test "vdt-cluster --help prints usage and exits 0" {
+	run "$BIN/vdt-cluster" --help
+	[ "$status" -eq 0 ]
+	[[ "$output" == usage:* ]]
+}
+
+@test "vdt-cluster --version names the stream format" {
+	run "$BIN/vdt-cluster" --version
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"stream format 1."* ]]
+}
+
+@test "vdt-cluster rejects bad options with status 2 and writes nothing" {
+	run "$BIN/vdt-cluster" --bogus "$SAMPLES/sphere.off"
+	[ "$status" -eq 2 ]
+	for bad in "-s 0" "-s -1" "-s x" "-s 200%" "-g 0" "-g 12x" "-g 3x4" "-g 2x2x2x2" \
+		"-g 9999999" "--target 0" "--target -5" "-m 0" "-m x" "-F nope" "-s 1 -g 8" \
+		"-g 8 --target 100"; do
+		run "$BIN/vdt-cluster" $bad "$SAMPLES/sphere.off" -o "$TMP/x.off"
+		[ "$status" -eq 2 ]
+		one_line
+		[ ! -e "$TMP/x.off" ]
+	done
+	run "$BIN/vdt-cluster" "$SAMPLES/sphere.off" extra
+	[ "$status" -eq 2 ]
+}
+
+@test "vdt-cluster -g N clusters on cubic cells and -v reports them" {
+	run "$BIN/vdt-cluster" -v -g 16 "$SAMPLES/sphere.off" -o "$TMP/out.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"grid=16x16x16"* ]]
+	[[ "$output" == *"in_triangles=5120"* ]]
+	[[ "$output" == *"peak_mb="* ]]
+	n=$(off_faces "$TMP/out.off")
+	[ "$n" -gt 100 ] && [ "$n" -lt 5120 ]
+}
+
+@test "vdt-cluster -g NXxNYxNZ uses exactly those dimensions" {
+	run "$BIN/vdt-cluster" -v -g 10x5x3 "$SAMPLES/torus.off" -o "$TMP/out.ply"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"grid=10x5x3"* ]]
+}
+
+@test "vdt-cluster -s in model units and in percent of the diagonal" {
+	run "$BIN/vdt-cluster" -v -s 0.25 "$SAMPLES/sphere.off" -o "$TMP/a.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"cell_size=0.25 "* ]]
+	run "$BIN/vdt-cluster" -v -s 5% "$SAMPLES/sphere.off" -o "$TMP/b.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"grid=12x12x12"* ]]
+}
+
+@test "vdt-cluster -s bounds the distance of every output vertex to the input" {
+	"$BIN/vdt-cluster" -s 2% "$SAMPLES/fetched/bunny.ply" -o "$TMP/out.ply"
+	# one-sided Hausdorff (output to input) within a cell diagonal: 2% * sqrt 3
+	"$BIN/vdt-measure" --format=kv "$SAMPLES/fetched/bunny.ply" "$TMP/out.ply" > "$TMP/m"
+	h=$(tr ' ' '\n' < "$TMP/m" | sed -n 's/^ba_hausdorff=//p')
+	d=$(tr ' ' '\n' < "$TMP/m" | sed -n 's/^diag=//p')
+	awk -v h="$h" -v d="$d" 'BEGIN { exit !(h <= 0.02 * d * sqrt(3)) }'
+}
+
+@test "vdt-cluster --target aims for 4 to 8 times N vertices" {
+	run "$BIN/vdt-cluster" -v --target 2000 "$SAMPLES/fetched/bunny.ply" -o "$TMP/out.ply"
+	[ "$status" -eq 0 ]
+	v=$(printf '%s\n' "$output" | sed -n 's/.*out_vertices=\([0-9]*\).*/\1/p')
+	[ "$v" -ge 8000 ] && [ "$v" -le 16000 ]
+}
+
+@test "vdt-cluster -m picks a grid within the limit" {
+	run "$BIN/vdt-cluster" -v -m 4 "$SAMPLES/fetched/bunny.ply" -o "$TMP/out.ply"
+	[ "$status" -eq 0 ]
+	c=$(printf '%s\n' "$output" | sed -n 's/.* cells=\([0-9]*\).*/\1/p')
+	[ "$c" -le 8192 ]
+}
+
+@test "vdt-cluster refuses a grid too large for -m, saying so" {
+	run "$BIN/vdt-cluster" -g 2000 -m 2 "$SAMPLES/fetched/bunny.ply" -o "$TMP/out.ply"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"memory limit"* ]]
+	[[ "$output" == *"bunny.ply"* ]]
+	[ ! -e "$TMP/out.ply" ]
+}
+
+@test "the QUAD chunk is there by default and not with --decoupled" {
+	"$BIN/vdt-cluster" -g 16 "$SAMPLES/sphere.off" -o "$TMP/c.vdq"
+	grep -aq QUAD "$TMP/c.vdq"
+	"$BIN/vdt-cluster" -g 16 --decoupled "$SAMPLES/sphere.off" -o "$TMP/d.vdq"
+	grep -aq MESH "$TMP/d.vdq"
+	! grep -aq QUAD "$TMP/d.vdq"
+	"$BIN/vdt-cluster" -g 16 "$SAMPLES/sphere.off" -F vdt > "$TMP/s.vdt"
+	cmp "$TMP/c.vdq" "$TMP/s.vdt"
+}
+
+@test "the coupled pipeline works and is deterministic" {
+	"$BIN/vdt-cluster" --target 1000 "$SAMPLES/fetched/bunny.ply" |
+		"$BIN/vdt-qslim" -t 1000 -o "$TMP/a.ply"
+	"$BIN/vdt-cluster" --target 1000 "$SAMPLES/fetched/bunny.ply" |
+		"$BIN/vdt-qslim" -t 1000 -o "$TMP/b.ply"
+	cmp "$TMP/a.ply" "$TMP/b.ply"
+	run "$BIN/vdt-measure" --format=kv "$SAMPLES/fetched/bunny.ply" "$TMP/a.ply"
+	[ "$status" -eq 0 ]
+	f=$(printf '%s\n' "$output" | sed -n 's/.*faces=\([0-9]*\).*/\1/p')
+	[ "$f" -ge 990 ] && [ "$f" -le 1000 ]
+}
+
+@test "vdt-cluster gives the same bytes every run and from standard input" {
+	"$BIN/vdt-cluster" -g 40 "$SAMPLES/fetched/bunny.ply" -o "$TMP/a.vdq"
+	"$BIN/vdt-cluster" -g 40 "$SAMPLES/fetched/bunny.ply" -o "$TMP/b.vdq"
+	cmp "$TMP/a.vdq" "$TMP/b.vdq"
+	cat "$SAMPLES/fetched/bunny.ply" | "$BIN/vdt-cluster" -g 40 > "$TMP/c.vdq"
+	cmp "$TMP/a.vdq" "$TMP/c.vdq"
+}
+
+@test "every streamed format gives the same clustering" {
+	"$BIN/vdt-cluster" -g 20 "$SAMPLES/torus.off" -o "$TMP/ref.off"
+	# OBJ text is parsed in double precision, the others hold floats
+	for f in ply stl vdt obj; do
+		"$BIN/vdt-qslim" -r 1 "$SAMPLES/torus.off" -o "$TMP/t.$f"
+		run "$BIN/vdt-cluster" -v -g 20 "$TMP/t.$f" -o "$TMP/$f.off"
+		[ "$status" -eq 0 ]
+		[[ "$output" == *"streamed=1"* ]]
+		[ "$f" = obj ] || cmp "$TMP/ref.off" "$TMP/$f.off"
+	done
+	n=$(off_faces "$TMP/obj.off")
+	[ "$n" -gt 1300 ] && [ "$n" -lt 1600 ]
+}
+
+@test "a triangle soup with duplicated vertices clusters like the mesh" {
+	"$BIN/vdt-qslim" -r 1 "$SAMPLES/sphere.off" -o "$TMP/s.stl"
+	"$BIN/vdt-cluster" -g 12 "$TMP/s.stl" -o "$TMP/soup.off"
+	"$BIN/vdt-cluster" -g 12 "$SAMPLES/sphere.off" -o "$TMP/mesh.off"
+	cmp "$TMP/soup.off" "$TMP/mesh.off"
+}
+
+@test "vdt-cluster keeps open boundaries" {
+	run "$BIN/vdt-cluster" -v -g 20 "$SAMPLES/open.off" -o "$TMP/out.off"
+	[ "$status" -eq 0 ]
+	b=$(printf '%s\n' "$output" | sed -n 's/.*boundary_cells=\([0-9]*\).*/\1/p')
+	[ "$b" -gt 20 ]
+	run "$BIN/vdt-cluster" -v -g 20 "$SAMPLES/sphere.off" -o "$TMP/s.off"
+	[[ "$output" == *"boundary_cells=0 "* ]]
+}
+
+@test "bad input: status 2, one line naming the file, nothing left behind" {
+	printf 'v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n' > "$TMP/nan.obj"
+	printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n' > "$TMP/idx.obj"
+	printf 'v 0 0 0\nv 0 0 0\nv 0 0 0\nf 1 2 3\n' > "$TMP/point.obj"
+	: > "$TMP/empty.ply"
+	head -c 2000 "$SAMPLES/fetched/bunny.ply" > "$TMP/trunc.ply"
+	printf 'hello\n' > "$TMP/junk.txt"
+	"$BIN/vdt-cluster" -g 8 "$SAMPLES/sphere.off" -o "$TMP/s.vdt"
+	head -c 300 "$TMP/s.vdt" > "$TMP/trunc.vdt"
+	cp "$TMP/s.vdt" "$TMP/crc.vdt"
+	printf 'X' | dd of="$TMP/crc.vdt" bs=1 seek=40 conv=notrunc 2>/dev/null
+	for f in nan.obj idx.obj point.obj empty.ply trunc.ply junk.txt trunc.vdt crc.vdt missing.ply; do
+		run "$BIN/vdt-cluster" -g 8 "$TMP/$f" -o "$TMP/out.ply"
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == *"vdt-cluster: cannot read '$TMP/$f': "* ]]
+		[ ! -e "$TMP/out.ply" ]
+	done
+	run "$BIN/vdt-cluster" -g 8 "$TMP/nan.obj" -o "$TMP/out.ply"
+	[[ "$output" == *"line 3: non-finite coordinate" ]]
+	run "$BIN/vdt-cluster" -g 8 "$TMP/point.obj" -o "$TMP/out.ply"
+	[[ "$output" == *"flat bounding box"* ]]
+	[ -z "$(ls -A "$TMP" | grep '^\.')" ]
+}
+
+@test "a grid too coarse for any triangle is an error, not an empty file" {
+	run "$BIN/vdt-cluster" -g 1 "$SAMPLES/sphere.off" -o "$TMP/out.off"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"finer grid"* ]]
+	[ ! -e "$TMP/out.off" ]
+}
+
+@test "vdt-cluster refuses to write the stream to a terminal" {
+	if ! command -v script >/dev/null; then skip "no script(1)"; fi
+	run script -qec "$BIN/vdt-cluster -g 8 $SAMPLES/sphere.off" /dev/null
+	[[ "$output" == *"terminal"* ]]
+}
