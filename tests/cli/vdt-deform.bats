@@ -4,6 +4,7 @@
 load helpers
 
 MKANIM="$BATS_TEST_DIRNAME/../../build/rel/scripts/mkanim"
+[ -x "$MKANIM" ] || MKANIM="$BATS_TEST_DIRNAME/../../build/san/scripts/mkanim"
 MD2=/usr/share/assimp/models/MD2/sydney.md2
 
 # Frames of the torus, bent and waved, as OFF files and as a stream.
