@@ -93,6 +93,8 @@ $(B)/scripts/%: $(B)/scripts/%.o $(LIB)
 BENCH_LIBS_meshopt = -lmeshoptimizer
 BENCH_LIBS_cgal = -lgmp -lmpfr
 BENCH_LIBS_openmesh = -lOpenMeshTools
+BENCH_LIBS_vtk = -lvtkFiltersCore-9.1 -lvtkCommonExecutionModel-9.1 -lvtkCommonDataModel-9.1 -lvtkCommonCore-9.1 -lvtksys-9.1
+$(B)/scripts/bench/vtk_%.o: override CXXFLAGS += -isystem /usr/include/vtk-9.1
 # CGAL's Garland-Heckbert policies include <Eigen/Dense> (libeigen3-dev).
 $(B)/scripts/bench/cgal_%.o: override CXXFLAGS += -isystem /usr/include/eigen3
 $(B)/bench/%: $(B)/scripts/bench/%.o $(LIB)
