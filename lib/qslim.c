@@ -492,6 +492,8 @@ struct attr {
 	double umin[2], urange[2];
 	float uclamp[2][2], cmin[4], cmax[4];
 	struct vdt_quadric *qc;   /* per welded vertex: geometry + attributes */
+	struct vdt_quadric *qr;   /* the same less its own wedges' terms: the
+	                             vertex's error as it stands */
 	double *wd;               /* per wedge root */
 	uint32_t *wpar;           /* per input vertex: union-find parent */
 	uint32_t *wcount;         /* per root: input vertices in the wedge */
@@ -503,6 +505,7 @@ struct attr {
 	                             stale ones are skipped, then pruned */
 	uint8_t *moved;           /* per welded vertex: took part in a merge */
 	uint32_t *sw, *sg;        /* scratch: a pair's wedges and groups */
+	uint8_t *sm;              /* scratch: leads a group of two or more */
 	int virtual_pairs;        /* pairs may share no face */
 };
 
@@ -557,13 +560,13 @@ same_attrs(const struct vdt_mesh *in, size_t a, size_t b)
 	       (!in->colors || !memcmp(in->colors + 4 * a, in->colors + 4 * b, 4 * sizeof(float)));
 }
 
-/* q -= sum_j (G_j.p + D_j)^2 / W, for the wedge sums x. */
+/* q -= sign * sum_j (G_j.p + D_j)^2 / W, for the wedge sums x. */
 static void
-attr_subtract(struct vdt_quadric *q, const double *x, int m)
+attr_subtract(struct vdt_quadric *q, const double *x, int m, double sign)
 {
 	if (!(x[0] > 0))
 		return;
-	double iw = 1 / x[0];
+	double iw = sign / x[0];
 	const double *G = x + 1, *D = x + 1 + 3 * m;
 	for (int j = 0; j < m; j++) {
 		const double *g = G + 3 * j;
@@ -688,8 +691,11 @@ pair_wedges(const struct attr *at, uint32_t a, uint32_t b)
 				at->sg[x] = (uint32_t)y;
 		}
 	}
-	for (size_t i = 0; i < n; i++)
+	for (size_t i = 0; i < n; i++) {
 		at->sg[i] = at->sg[at->sg[i]];
+		at->sm[i] = 0;
+		at->sm[at->sg[i]] |= at->sg[i] != i;
+	}
 	return n;
 }
 
@@ -700,33 +706,46 @@ wedge_add(double *x, const double *y, size_t stride)
 		x[i] += y[i];
 }
 
-/* The quadric of the pair (a, b) merged: geometry plus attribute error. */
-static void
-attr_pair_quadric(const struct attr *at, uint32_t a, uint32_t b, struct vdt_quadric *q)
+/*
+ * The quadric of the pair (a, b) merged: geometry plus attribute error.
+ * Away from seams each vertex has one wedge and the two merge. Elsewhere
+ * (a pole of a UV sphere may hold hundreds of wedges) start from the
+ * vertices' errors as they stand and correct only the groups that merge,
+ * so that the work follows the shared faces, not the wedge count. Returns
+ * the number of wedges grouped in at->sw and at->sg, or 0 for the former.
+ */
+static size_t
+attr_pair_quadric(const struct attr *at, uint32_t a, uint32_t b, int general,
+                  struct vdt_quadric *q)
 {
 	double x[1 + 4 * ATTR_MAX];
 	size_t S = at->stride;
 	uint32_t ra = at->whead[a], rb = at->whead[b];
 
-	*q = at->qc[a];
-	vdt_quadric_add(q, &at->qc[b]);
-	if (!at->virtual_pairs && at->wnext[ra] == NONE && at->wnext[rb] == NONE) {
-		/* The common case, away from seams: one wedge each, merging. */
+	if (!general && !at->virtual_pairs && at->wnext[ra] == NONE && at->wnext[rb] == NONE) {
+		*q = at->qc[a];
+		vdt_quadric_add(q, &at->qc[b]);
 		memcpy(x, at->wd + S * ra, S * sizeof(double));
 		wedge_add(x, at->wd + S * rb, S);
-		attr_subtract(q, x, at->m);
-		return;
+		attr_subtract(q, x, at->m, 1);
+		return 0;
 	}
+	*q = at->qr[a];
+	vdt_quadric_add(q, &at->qr[b]);
 	size_t n = pair_wedges(at, a, b);
 	for (size_t i = 0; i < n; i++) {
-		if (at->sg[i] != i)
+		if (!at->sm[i])
 			continue;
 		memcpy(x, at->wd + S * at->sw[i], S * sizeof(double));
+		attr_subtract(q, x, at->m, -1);
 		for (size_t j = i + 1; j < n; j++)
-			if (at->sg[j] == i)
+			if (at->sg[j] == i) {
 				wedge_add(x, at->wd + S * at->sw[j], S);
-		attr_subtract(q, x, at->m);
+				attr_subtract(q, at->wd + S * at->sw[j], at->m, -1);
+			}
+		attr_subtract(q, x, at->m, 1);
 	}
+	return n;
 }
 
 static double
@@ -737,7 +756,7 @@ cost_attr(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	struct vdt_quadric q;
 	double p0[3], p1[3], e;
 
-	attr_pair_quadric(c->at, a, b, &q);
+	attr_pair_quadric(c->at, a, b, 0, &q);
 	for (int k = 0; k < 3; k++) {
 		p0[k] = pa[k] - c->centre[k];
 		p1[k] = pb[k] - c->centre[k];
@@ -786,11 +805,13 @@ merged_attr(void *vc, uint32_t keep, uint32_t gone, const double pos[3], double 
 {
 	struct ctx *c = vc;
 	struct attr *at = c->at;
-	size_t S = at->stride, n = pair_wedges(at, keep, gone);
+	struct vdt_quadric qr;
+	size_t S = at->stride, n;
 	uint32_t last = NONE;
 	double p[3];
 
 	(void)cost;
+	n = attr_pair_quadric(at, keep, gone, 1, &qr);
 	for (size_t i = 0; i < n; i++) {
 		uint32_t r = at->sw[i];
 		if (at->sg[i] == i) {
@@ -832,6 +853,7 @@ merged_attr(void *vc, uint32_t keep, uint32_t gone, const double pos[3], double 
 
 	vdt_quadric_add(&c->q[keep], &c->q[gone]);
 	vdt_quadric_add(&at->qc[keep], &at->qc[gone]);
+	at->qr[keep] = qr;
 	for (int k = 0; k < 3; k++)
 		p[k] = pos[k] - c->centre[k];
 	double e = vdt_quadric_eval(&c->q[keep], p);
@@ -845,6 +867,7 @@ attr_free(struct attr *at)
 	if (at == NULL)
 		return;
 	free(at->qc);
+	free(at->qr);
 	free(at->wd);
 	free(at->wpar);
 	free(at->wcount);
@@ -857,6 +880,7 @@ attr_free(struct attr *at)
 	free(at->moved);
 	free(at->sw);
 	free(at->sg);
+	free(at->sm);
 	free(at);
 }
 
@@ -936,6 +960,7 @@ attr_setup(struct ctx *c, const struct vdt_mesh *in, const struct vdt_mesh *w,
 	at->stride = 1 + 4 * (size_t)at->m;
 	at->virtual_pairs = virtual_pairs;
 	at->qc = malloc((nw + 1) * sizeof(*at->qc));
+	at->qr = malloc((nw + 1) * sizeof(*at->qr));
 	at->wd = calloc(n + 1, at->stride * sizeof(double));
 	at->wpar = malloc((n + 1) * sizeof(uint32_t));
 	at->wcount = malloc((n + 1) * sizeof(uint32_t));
@@ -948,7 +973,8 @@ attr_setup(struct ctx *c, const struct vdt_mesh *in, const struct vdt_mesh *w,
 	at->moved = calloc(nw + 1, 1);
 	at->sw = malloc((n + 1) * sizeof(uint32_t));
 	at->sg = malloc((n + 1) * sizeof(uint32_t));
-	if (!at->qc || !at->wd || !at->wpar || !at->wcount || !at->whead ||
+	at->sm = malloc(n + 1);
+	if (!at->qc || !at->qr || !at->sm || !at->wd || !at->wpar || !at->wcount || !at->whead ||
 	    !at->wnext || !at->cvert || !at->cw || !at->chead || !at->cnext ||
 	    !at->moved || !at->sw || !at->sg) {
 		attr_free(at);
@@ -1014,6 +1040,11 @@ attr_setup(struct ctx *c, const struct vdt_mesh *in, const struct vdt_mesh *w,
 	for (size_t t = 0; t < w->triangle_count; t++)
 		attr_face(c, in, w, t, fsrc[t], lambda);
 	seam_planes(c, w, seam_weight);
+	for (size_t v = 0; v < nw; v++) {
+		at->qr[v] = at->qc[v];
+		for (uint32_t r = at->whead[v]; r != NONE; r = at->wnext[r])
+			attr_subtract(&at->qr[v], at->wd + at->stride * r, at->m, 1);
+	}
 	return at;
 }
 
