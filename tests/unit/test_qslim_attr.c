@@ -423,6 +423,98 @@ normals_stay_unit(void **state)
 	vdt_mesh_free(&m);
 }
 
+/*
+ * A cube with hard edges: each side is an n x n grid of its own vertices
+ * carrying the side's normal, so every edge of the cube is a normal seam
+ * (two wedges) and every corner has three. Unfolded:
+ *
+ *          +-----+
+ *          | +z  |
+ *    +-----+-----+-----+-----+
+ *    | -x  | -y  | +x  | +y  |      each square: n x n quads, normal
+ *    +-----+-----+-----+-----+      out of the cube
+ *          | -z  |
+ *          +-----+
+ *
+ * After simplification the cube stays closed, and every corner of every face
+ * keeps exactly the normal of its side.
+ */
+static void
+hard_edges_keep_their_normals(void **state)
+{
+	struct vdt_mesh m, out;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+	int n = 6, side;
+	size_t per = (size_t)(n + 1) * (n + 1);
+
+	(void)state;
+	vdt_mesh_alloc(&m, 6 * per, 6 * 2 * n * n, VDT_ATTR_NORMALS, NULL);
+	uint32_t *t = m.triangles;
+	for (side = 0; side < 6; side++) {
+		int ax = side / 2, s = side % 2 ? 1 : -1;
+		int u = (ax + 1) % 3, v = (ax + 2) % 3;
+		if (s < 0) { /* keep the winding outward */
+			int x = u;
+			u = v;
+			v = x;
+		}
+		for (int j = 0; j <= n; j++)
+			for (int i = 0; i <= n; i++) {
+				size_t id = side * per + j * (n + 1) + i;
+				float *p = m.positions + 3 * id, *nr = m.normals + 3 * id;
+				p[ax] = (float)s;
+				p[u] = 2.0f * i / n - 1;
+				p[v] = 2.0f * j / n - 1;
+				nr[0] = nr[1] = nr[2] = 0;
+				nr[ax] = (float)s;
+			}
+		for (int j = 0; j < n; j++)
+			for (int i = 0; i < n; i++) {
+				uint32_t a = side * per + j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+				*t++ = a; *t++ = b; *t++ = d;
+				*t++ = a; *t++ = d; *t++ = c;
+			}
+	}
+	vdt_qslim_defaults(&o);
+	o.attribute_weight = 1;
+	o.target_triangles = 12;
+	assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
+	assert_int_equal(st.welded, 6 * per - (size_t)(6 * (n - 1) * (n - 1) + 12 * (n - 1) + 8));
+	assert_true(out.triangle_count <= 24);
+	for (size_t f = 0; f < out.triangle_count; f++) {
+		const uint32_t *c = out.triangles + 3 * f;
+		const float *p0 = out.positions + 3 * c[0], *p1 = out.positions + 3 * c[1],
+		            *p2 = out.positions + 3 * c[2];
+		double e1[3], e2[3], fn[3], l;
+		for (int k = 0; k < 3; k++) {
+			e1[k] = p1[k] - p0[k];
+			e2[k] = p2[k] - p0[k];
+		}
+		fn[0] = e1[1] * e2[2] - e1[2] * e2[1];
+		fn[1] = e1[2] * e2[0] - e1[0] * e2[2];
+		fn[2] = e1[0] * e2[1] - e1[1] * e2[0];
+		l = sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2]);
+		for (int k = 0; k < 3; k++)
+			for (int j = 0; j < 3; j++)
+				assert_true(fabs(out.normals[3 * c[k] + j] - fn[j] / l) < 1e-6);
+	}
+	/* closed: every edge, by position, used in both directions */
+	for (size_t f = 0; f < out.triangle_count; f++)
+		for (int k = 0; k < 3; k++) {
+			const float *pa = out.positions + 3 * out.triangles[3 * f + k];
+			const float *pb = out.positions + 3 * out.triangles[3 * f + (k + 1) % 3];
+			int uses = 0;
+			for (size_t g = 0; g < out.triangle_count; g++)
+				for (int j = 0; j < 3; j++)
+					uses += !memcmp(out.positions + 3 * out.triangles[3 * g + j], pb, 12) &&
+					        !memcmp(out.positions + 3 * out.triangles[3 * g + (j + 1) % 3], pa, 12);
+			assert_int_equal(uses, 1);
+		}
+	vdt_mesh_free(&out);
+	vdt_mesh_free(&m);
+}
+
 int
 main(void)
 {
@@ -432,6 +524,7 @@ main(void)
 		cmocka_unit_test(colour_step_survives),
 		cmocka_unit_test(uv_seam_stays_closed),
 		cmocka_unit_test(normals_stay_unit),
+		cmocka_unit_test(hard_edges_keep_their_normals),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
