@@ -750,7 +750,7 @@ engine_init(struct engine *e, const struct vdt_mesh *m,
 	/*
 	 * Pairs: the edges, found from each vertex's fan (one pair per
 	 * neighbour above it, in fan order), then the virtual pairs that are
-	 * not edges. An edge in three or more faces locks its ends. Two
+	 * not edges (the link test refuses non-manifold edges at pop time). Two
 	 * passes, counting then filling, so nothing is held but the pairs.
 	 */
 	size_t np = 0, nvirt = 0;
@@ -768,10 +768,6 @@ engine_init(struct engine *e, const struct vdt_mesh *m,
 				if (pass == 1) {
 					e->pv[2 * np] = (uint32_t)v;
 					e->pv[2 * np + 1] = x;
-					if (e->nbr[2 * i + 1] > 2) {
-						e->vflag[v] |= V_LOCKED;
-						e->vflag[x] |= V_LOCKED;
-					}
 				}
 				np++;
 			}

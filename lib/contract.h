@@ -107,8 +107,10 @@ struct vdt_contract_result {
 /*
  * Contract pairs of m (positions and triangles only) until the targets are
  * met, the next valid pair costs more than max_cost, or no valid pair is
- * left (reached_target = 0; not an error). Vertices on non-manifold edges are
- * never moved. Returns 0, VDT_ENOMEM or VDT_EINVAL (bad options); on failure
+ * left (reached_target = 0; not an error). An edge in three or more faces
+ * is never contracted while it is so (its ends may move: freezing them
+ * pinned too much of meshes that clustering left a little non-manifold).
+ * Returns 0, VDT_ENOMEM or VDT_EINVAL (bad options); on failure
  * *res is empty.
  */
 int vdt_contract_run(const struct vdt_mesh *m, const struct vdt_contract_ops *ops,
