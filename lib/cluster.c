@@ -691,19 +691,29 @@ add_edge_normal(struct cell *cl, const double *u, const double *v, const double 
 int
 vdt_cluster_add(struct vdt_cluster *c, const double *tri, size_t n, struct vdt_err *err)
 {
+	double chk[4] = {0, 0, 0, 0};
+
+	/* x * 0 is NaN for an infinite or NaN x: one vectorisable pass. */
+	for (size_t i = 0; i + 4 <= 9 * n; i += 4)
+		for (int k = 0; k < 4; k++)
+			chk[k] += tri[i + k] * 0;
+	for (size_t i = 9 * n & ~(size_t)3; i < 9 * n; i++)
+		chk[0] += tri[i] * 0;
+	if (chk[0] + chk[1] + chk[2] + chk[3] != 0) {
+		for (size_t t = 0; t < n; t++)
+			for (int j = 0; j < 9; j++)
+				if (!isfinite(tri[9 * t + j]))
+					return vdt_err_set(err, VDT_EINVAL, "triangle %llu: non-finite coordinate",
+					                   (unsigned long long)(c->added + t));
+	}
 	for (size_t t = 0; t < n; t++, c->added++) {
 		const double *p[3] = {tri + 9 * t, tri + 9 * t + 3, tri + 9 * t + 6};
-		double e1[3], e2[3], nn[3], len, chk = 0;
+		double e1[3], e2[3], nn[3], len;
 		struct vdt_quadric fq;
 		uint64_t key[3];
 		long id[3];
 		int flat;
 
-		for (int j = 0; j < 9; j++)
-			chk += tri[9 * t + j] * 0;
-		if (chk != 0 || chk != chk)
-			return vdt_err_set(err, VDT_EINVAL, "triangle %llu: non-finite coordinate",
-			                   (unsigned long long)c->added);
 		for (int j = 0; j < 3; j++)
 			key[j] = key_of(c, p[j]);
 		for (int k = 0; k < 3; k++) {
@@ -715,6 +725,43 @@ vdt_cluster_add(struct vdt_cluster *c, const double *tri, size_t n, struct vdt_e
 		nn[2] = e1[0] * e2[1] - e1[1] * e2[0];
 		len = sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
 		flat = !(len > 0);
+
+		if (key[0] == key[1] && key[1] == key[2]) {
+			/*
+			 * The common case on a grid coarser than the input: the quadric
+			 * three times, w n n' = N N' / (6 |N|) each, with one division.
+			 */
+			struct cell *cl;
+			if ((id[0] = cell_id_cached(c, key[0], err)) < 0)
+				return err ? err->code : VDT_ENOMEM;
+			cl = &c->cells[id[0]];
+			for (int k = 0; k < 3; k++) {
+				cl->sum[k] += p[0][k] + p[1][k] + p[2][k];
+				cl->nsum[k] += 3 * nn[k];
+			}
+			cl->corners += 3;
+			if (flat)
+				continue;
+			{
+				double s3 = 0.5 / len, dn = -(nn[0] * p[0][0] + nn[1] * p[0][1] + nn[2] * p[0][2]);
+				double sn[3] = {s3 * nn[0], s3 * nn[1], s3 * nn[2]};
+				struct vdt_quadric *q = &cl->q;
+				q->a00 += sn[0] * nn[0];
+				q->a01 += sn[0] * nn[1];
+				q->a02 += sn[0] * nn[2];
+				q->a11 += sn[1] * nn[1];
+				q->a12 += sn[1] * nn[2];
+				q->a22 += sn[2] * nn[2];
+				q->b0 += sn[0] * dn;
+				q->b1 += sn[1] * dn;
+				q->b2 += sn[2] * dn;
+				q->c += s3 * dn * dn;
+				q->w += 0.5 * len;
+			}
+			/* The three edge normals sum to zero; their offsets to -2|N|. */
+			cl->edge[3] -= 2 * len;
+			continue;
+		}
 		if (!flat) {
 			nn[0] /= len;
 			nn[1] /= len;
@@ -722,25 +769,6 @@ vdt_cluster_add(struct vdt_cluster *c, const double *tri, size_t n, struct vdt_e
 			/* As vdt_quadric_triangle: the plane, weighted by a third of the area. */
 			face_quadric(&fq, nn, -(nn[0] * p[0][0] + nn[1] * p[0][1] + nn[2] * p[0][2]),
 			             len / 6);
-		}
-
-		if (key[0] == key[1] && key[1] == key[2]) {
-			/* The common case on a grid coarser than the input. */
-			struct cell *cl;
-			if ((id[0] = cell_id_cached(c, key[0], err)) < 0)
-				return err ? err->code : VDT_ENOMEM;
-			cl = &c->cells[id[0]];
-			for (int k = 0; k < 3; k++) {
-				cl->sum[k] += p[0][k] + p[1][k] + p[2][k];
-				cl->nsum[k] += flat ? 0 : 3 * len * nn[k];
-			}
-			cl->corners += 3;
-			if (flat)
-				continue;
-			/* The three edge normals sum to zero; their offsets to -2|N|. */
-			cl->edge[3] -= 2 * len;
-			add_scaled(&cl->q, &fq, 3);
-			continue;
 		}
 
 		for (int j = 0; j < 3; j++) {
@@ -761,7 +789,7 @@ vdt_cluster_add(struct vdt_cluster *c, const double *tri, size_t n, struct vdt_e
 				continue;
 			add_edge_normal(cl, p[(j + 2) % 3], p[j], p[(j + 1) % 3], nn);
 			for (int k = 0; k < 3; k++)
-				cl->nsum[k] += len * nn[k];
+				cl->nsum[k] += len * nn[k]; /* the unnormalised normal */
 			/* The quadric once per cell, times its corners there. */
 			if ((j >= 1 && id[j] == id[0]) || (j == 2 && id[2] == id[1]))
 				continue;
