@@ -481,8 +481,8 @@ out:
  * w_f (a third of the area, times lambda) and the face's attribute
  * functions s_j(p) = g_fj.p + d_fj:
  *   W = sum w_f,  G_j = sum w_f g_fj,  D_j = sum w_f d_fj.
- * The part of sum w_f (s_j - g_fj.p - d_fj)^2 that depends on p only is
- * added to the vertex's quadric `qc`, so that a wedge needs 1 + 4m doubles;
+ * The terms of sum w_f (s_j - g_fj.p - d_fj)^2 free of s_j, a quadric in
+ * p, go to the vertex's quadric `qc`, so that a wedge needs 1 + 4m doubles;
  * minimising over s_j gives s_j = (G_j.p + D_j) / W, and subtracting
  * (G_j.p + D_j)^2 / W from qc leaves the attribute error at p.
  */
@@ -496,7 +496,6 @@ struct attr {
 	                             vertex's error as it stands */
 	double *wd;               /* per wedge root */
 	uint32_t *wpar;           /* per input vertex: union-find parent */
-	uint32_t *wcount;         /* per root: input vertices in the wedge */
 	uint32_t *whead, *wnext;  /* wedge roots of each welded vertex */
 	uint32_t *cvert;          /* per corner of the engine's faces */
 	uint32_t *cw;             /* per corner: its wedge (a root, or on the
@@ -824,7 +823,6 @@ merged_attr(void *vc, uint32_t keep, uint32_t gone, const double pos[3], double 
 			uint32_t l = at->sw[at->sg[i]];
 			wedge_add(at->wd + S * l, at->wd + S * r, S);
 			at->wpar[r] = l;
-			at->wcount[l] += at->wcount[r];
 		}
 	}
 	at->wnext[last] = NONE;
@@ -870,7 +868,6 @@ attr_free(struct attr *at)
 	free(at->qr);
 	free(at->wd);
 	free(at->wpar);
-	free(at->wcount);
 	free(at->whead);
 	free(at->wnext);
 	free(at->cvert);
@@ -963,7 +960,6 @@ attr_setup(struct ctx *c, const struct vdt_mesh *in, const struct vdt_mesh *w,
 	at->qr = malloc((nw + 1) * sizeof(*at->qr));
 	at->wd = calloc(n + 1, at->stride * sizeof(double));
 	at->wpar = malloc((n + 1) * sizeof(uint32_t));
-	at->wcount = malloc((n + 1) * sizeof(uint32_t));
 	at->whead = malloc((nw + 1) * sizeof(uint32_t));
 	at->wnext = malloc((n + 1) * sizeof(uint32_t));
 	at->cvert = malloc((nc + 1) * sizeof(uint32_t));
@@ -974,7 +970,7 @@ attr_setup(struct ctx *c, const struct vdt_mesh *in, const struct vdt_mesh *w,
 	at->sw = malloc((n + 1) * sizeof(uint32_t));
 	at->sg = malloc((n + 1) * sizeof(uint32_t));
 	at->sm = malloc(n + 1);
-	if (!at->qc || !at->qr || !at->sm || !at->wd || !at->wpar || !at->wcount || !at->whead ||
+	if (!at->qc || !at->qr || !at->sm || !at->wd || !at->wpar || !at->whead ||
 	    !at->wnext || !at->cvert || !at->cw || !at->chead || !at->cnext ||
 	    !at->moved || !at->sw || !at->sg) {
 		attr_free(at);
@@ -1010,13 +1006,11 @@ attr_setup(struct ctx *c, const struct vdt_mesh *in, const struct vdt_mesh *w,
 		for (uint32_t j = wstart[v]; j < wstart[v + 1]; j++) {
 			uint32_t i = wlist[j], l;
 			at->wpar[i] = i;
-			at->wcount[i] = 1;
 			for (l = wstart[v]; l < j; l++)
 				if (at->wpar[wlist[l]] == wlist[l] && same_attrs(in, wlist[l], i))
 					break;
 			if (l < j) {
 				at->wpar[i] = wlist[l];
-				at->wcount[wlist[l]]++;
 				continue;
 			}
 			if (last == NONE)
