@@ -217,8 +217,7 @@ run(struct cmdline *cl)
 	                                  : cl->w.format != VDT_FMT_VDT))
 		usage_error("%zu frames need a pattern (out/%%03d.obj) or a vdt stream for -o",
 		            fr.frame_count);
-	vdt_chunks_remove(&extra, VDT_CHUNK_SEQN);
-	vdt_chunks_remove(&extra, VDT_CHUNK_QUAD);
+	vdt_chunks_drop_vertex_data(&extra);
 	cl->d.progress = progress_start(cl->quiet);
 	t1 = now_seconds();
 	rc = vdt_deform(&in, &fr, &cl->d, &r, &err);

@@ -127,8 +127,9 @@ run(struct cmdline *cl)
 		}
 		cl->q.quadrics = quads;
 	}
-	/* The quadrics describe the input's vertices, not the output's. */
-	vdt_chunks_remove(&extra, VDT_CHUNK_QUAD);
+	/* Quadrics, labels, trees, frames, records describe the input's
+	 * vertices, not the output's. */
+	vdt_chunks_drop_vertex_data(&extra);
 	vdt_mesh_bbox(&in, &box);
 	diag = vdt_bbox_diagonal(&box);
 	cl->q.max_error = cl->bound_pct ? cl->bound * diag / 100 : cl->bound;

@@ -408,6 +408,16 @@ vdt_chunks_remove(struct vdt_chunks *c, uint32_t type)
 	c->count = n;
 }
 
+void
+vdt_chunks_drop_vertex_data(struct vdt_chunks *c)
+{
+	static const uint32_t types[] = {VDT_CHUNK_QUAD, VDT_CHUNK_LABL, VDT_CHUNK_VTRE,
+	                                 VDT_CHUNK_FRMS, VDT_CHUNK_SEQN};
+
+	for (size_t i = 0; i < sizeof(types) / sizeof(types[0]); i++)
+		vdt_chunks_remove(c, types[i]);
+}
+
 static int
 put(FILE *f, const void *p, size_t n, struct vdt_err *err)
 {

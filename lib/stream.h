@@ -117,6 +117,14 @@ const struct vdt_chunk *vdt_chunks_find(const struct vdt_chunks *c,
 void vdt_chunks_remove(struct vdt_chunks *c, uint32_t type);
 
 /*
+ * Remove every chunk that describes the vertices of the MESH chunk by index
+ * (QUAD, LABL, VTRE, FRMS, SEQN): what a tool that changes the vertices
+ * must drop unless it writes it anew (vdt(5), Pass-through). Chunks of
+ * unknown types are kept.
+ */
+void vdt_chunks_drop_vertex_data(struct vdt_chunks *c);
+
+/*
  * Chunk-at-a-time writing: vdt_stream_write_header once, then
  * vdt_stream_write_chunk per chunk, then vdt_stream_write_end (which also
  * flushes f). They return 0 or VDT_EIO; vdt_stream_write_chunk returns

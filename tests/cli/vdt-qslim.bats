@@ -170,3 +170,10 @@ load helpers
 	"$BIN/vdt-qslim" -r 0.2 --attribute-weight 5 "$SAMPLES/torus.off" -o "$TMP/b.off"
 	cmp "$TMP/a.off" "$TMP/b.off"
 }
+
+@test "vdt-qslim drops chunks that describe the old vertices, keeps unknown ones" {
+	"$BIN/vdt-qslim" -t 100000 --record "$SAMPLES/sphere.off" -o "$TMP/rec.vdt"
+	grep -aq SEQN "$TMP/rec.vdt"
+	"$BIN/vdt-qslim" -r 0.5 "$TMP/rec.vdt" -o "$TMP/out.vdt"
+	! grep -aq SEQN "$TMP/out.vdt"
+}
