@@ -176,4 +176,9 @@ load helpers
 	grep -aq SEQN "$TMP/rec.vdt"
 	"$BIN/vdt-qslim" -r 0.5 "$TMP/rec.vdt" -o "$TMP/out.vdt"
 	! grep -aq SEQN "$TMP/out.vdt"
+	# the golden stream carries a QUAD chunk and an unknown XTRA chunk
+	grep -aq XTRA "$DATA/golden-v1.vdt"
+	"$BIN/vdt-qslim" -t 1 "$DATA/golden-v1.vdt" -o "$TMP/golden.vdt"
+	grep -aq XTRA "$TMP/golden.vdt"
+	! grep -aq QUAD "$TMP/golden.vdt"
 }
