@@ -1,0 +1,58 @@
+#!/usr/bin/env bats
+# Whole pipelines: tools chained through pipes and files, as users run them.
+
+load helpers
+
+kv() { # key, kv line on stdin
+	tr ' ' '\n' | sed -n "s/^$1=//p"
+}
+
+@test "multiphase: vdt-cluster | vdt-qslim reaches the target near vdt-qslim's error" {
+	"$BIN/vdt-cluster" -q --target 500 "$SAMPLES/sphere.off" | "$BIN/vdt-qslim" -q -t 500 -F off > "$TMP/mp.off"
+	[ "$(off_faces "$TMP/mp.off")" -eq 500 ]
+	"$BIN/vdt-qslim" -q -t 500 "$SAMPLES/sphere.off" -o "$TMP/q.off"
+	mp=$("$BIN/vdt-measure" --format=kv "$SAMPLES/sphere.off" "$TMP/mp.off" | kv rms_pct)
+	q=$("$BIN/vdt-measure" --format=kv "$SAMPLES/sphere.off" "$TMP/q.off" | kv rms_pct)
+	awk -v a="$mp" -v b="$q" 'BEGIN { exit !(a < 2 * b) }'
+}
+
+@test "multiphase through a file gives the same bytes as through a pipe" {
+	"$BIN/vdt-cluster" -q --target 300 "$SAMPLES/torus.off" -o "$TMP/i.vdq"
+	"$BIN/vdt-qslim" -q -t 300 "$TMP/i.vdq" -o "$TMP/a.ply"
+	"$BIN/vdt-cluster" -q --target 300 < "$SAMPLES/torus.off" | "$BIN/vdt-qslim" -q -t 300 -o "$TMP/b.ply"
+	cmp "$TMP/a.ply" "$TMP/b.ply"
+}
+
+@test "the coupled quadrics change the result; --ignore-quadrics is the de-coupled variant" {
+	"$BIN/vdt-cluster" -q --target 200 "$SAMPLES/plate.off" -o "$TMP/i.vdq"
+	"$BIN/vdt-qslim" -q -t 200 "$TMP/i.vdq" -o "$TMP/c.ply"
+	"$BIN/vdt-qslim" -q -t 200 --ignore-quadrics "$TMP/i.vdq" -o "$TMP/d.ply"
+	! cmp -s "$TMP/c.ply" "$TMP/d.ply"
+}
+
+@test "formats chain OBJ -> vdt -> PLY -> drc -> OBJ keeps the surface" {
+	"$BIN/vdt-qslim" -q -t 1000000 "$SAMPLES/sphere.off" -o "$TMP/a.obj"
+	"$BIN/vdt-qslim" -q -t 1000000 "$TMP/a.obj" -o "$TMP/b.vdt"
+	"$BIN/vdt-qslim" -q -t 1000000 "$TMP/b.vdt" -o "$TMP/c.ply"
+	"$BIN/vdt-qslim" -q -t 1000000 "$TMP/c.ply" -o "$TMP/d.drc"
+	"$BIN/vdt-qslim" -q -t 1000000 "$TMP/d.drc" -o "$TMP/e.obj"
+	exact=$("$BIN/vdt-measure" --format=kv "$SAMPLES/sphere.off" "$TMP/c.ply" | kv hausdorff)
+	[ "$exact" = 0 ] || awk -v h="$exact" 'BEGIN { exit !(h < 1e-9) }'
+	h=$("$BIN/vdt-measure" --format=kv "$SAMPLES/sphere.off" "$TMP/e.obj" | kv hausdorff_pct)
+	awk -v h="$h" 'BEGIN { exit !(h < 0.01) }'
+	[ "$(grep -c '^f ' "$TMP/e.obj")" -eq 5120 ]
+}
+
+@test "vdt-qslim | vdt-build: a tree of the simplified mesh that checks out" {
+	"$BIN/vdt-qslim" -q -r 0.5 "$SAMPLES/torus.off" | "$BIN/vdt-build" -q -o "$TMP/t.vdt"
+	grep -aq VTRE "$TMP/t.vdt"
+	run "$BIN/vdt-build" --check "$TMP/t.vdt"
+	[ "$status" -eq 0 ]
+}
+
+@test "a failing stage stops the pipeline with status 2 and leaves nothing" {
+	printf 'garbage\n' > "$TMP/bad.off"
+	run sh -c "'$BIN/vdt-cluster' -q '$TMP/bad.off' | '$BIN/vdt-qslim' -q -t 10 -o '$TMP/out.ply'"
+	[ "$status" -eq 2 ]
+	[ ! -e "$TMP/out.ply" ]
+}
