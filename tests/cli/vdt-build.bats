@@ -90,8 +90,16 @@ load helpers
 
 @test "vdt-build --check rejects a stale tree with status 2 and one line" {
 	"$BIN/vdt-build" "$SAMPLES/sphere.off" -o "$TMP/s.vdt"
-	# vdt-qslim changes the mesh and passes the old tree through
-	"$BIN/vdt-qslim" -r 0.5 "$TMP/s.vdt" -o "$TMP/stale.vdt"
+	"$BIN/vdt-build" "$SAMPLES/torus.off" -o "$TMP/t.vdt"
+	# A valid stream whose tree belongs to another mesh: the torus's MESH
+	# chunk spliced before the sphere's VTRE chunk (each chunk carries its
+	# own CRC). A chunk is 4 type + 8 length + payload + 4 CRC bytes.
+	end_of() { echo $(( $2 + 16 + $(od -An -t u8 -j $(( $2 + 4 )) -N 8 "$1" | tr -d ' ') )); }
+	ms=$(end_of "$TMP/s.vdt" 12); vs=$(end_of "$TMP/s.vdt" "$ms"); mt=$(end_of "$TMP/t.vdt" 12)
+	{ head -c 12 "$TMP/s.vdt"
+	  tail -c +13 "$TMP/t.vdt" | head -c $(( mt - 12 ))
+	  tail -c +$(( ms + 1 )) "$TMP/s.vdt" | head -c $(( vs - ms ))
+	  tail -c 16 "$TMP/s.vdt"; } > "$TMP/stale.vdt"
 	run "$BIN/vdt-build" --check "$TMP/stale.vdt"
 	[ "$status" -eq 2 ]
 	one_line
