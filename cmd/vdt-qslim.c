@@ -27,17 +27,28 @@ usage(FILE *f)
 	        "usage: vdt-qslim [-t TRIANGLES] [-r RATIO] [-e ERROR[%%]] [-o OUTPUT] [-F FORMAT]\n"
 	        "                 [-a DISTANCE[%%]] [--lock-border] [--boundary-weight W]\n"
 	        "                 [--max-angle DEGREES] [--min-quality Q] [--ignore-quadrics]\n"
-	        "                 [--attribute-weight W] [--record] [--draco-bits N] [-q] [-v]\n"
-	        "                 [INPUT]\n"
+	        "                 [--attribute-weight W] [--topology auto|keep|free] [--record]\n"
+	        "                 [--draco-bits N] [-q] [-v] [INPUT]\n"
 	        "Simplify a triangle mesh with quadric error metrics. INPUT and OUTPUT\n"
 	        "default to - (stdin, stdout); stops at the first target reached\n"
 	        "(default -r 0.5).\n");
 }
 
+static int
+topology_parse(const char *s)
+{
+	static const char *names[] = {"auto", "keep", "free"};
+
+	for (int i = 0; i < 3; i++)
+		if (strcmp(s, names[i]) == 0)
+			return i;
+	return -1;
+}
+
 static void
 parse_cmdline(int argc, char **argv, struct cmdline *cl)
 {
-	enum { O_LOCK = 256, O_BW, O_ANGLE, O_QUALITY, O_IGNORE, O_RECORD, O_DRACO, O_AW };
+	enum { O_LOCK = 256, O_BW, O_ANGLE, O_QUALITY, O_IGNORE, O_RECORD, O_DRACO, O_AW, O_TOPO };
 	static const struct option longopts[] = {
 		{"triangles", required_argument, NULL, 't'},
 		{"ratio", required_argument, NULL, 'r'},
@@ -50,6 +61,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		{"max-angle", required_argument, NULL, O_ANGLE},
 		{"min-quality", required_argument, NULL, O_QUALITY},
 		{"ignore-quadrics", no_argument, NULL, O_IGNORE},
+		{"topology", required_argument, NULL, O_TOPO},
 		{"attribute-weight", required_argument, NULL, O_AW},
 		{"record", no_argument, NULL, O_RECORD},
 		{"draco-bits", required_argument, NULL, O_DRACO},
@@ -82,6 +94,10 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		case O_ANGLE: cl->q.max_normal_angle = parse_real("--max-angle", optarg, 1, 180); break;
 		case O_QUALITY: cl->q.min_quality = parse_real("--min-quality", optarg, 0, 1); break;
 		case O_IGNORE: cl->ignore_quadrics = 1; break;
+		case O_TOPO:
+			if ((cl->q.topology = topology_parse(optarg)) < 0)
+				usage_error("--topology must be auto, keep or free, not '%s'", optarg);
+			break;
 		case O_AW: cl->q.attribute_weight = parse_real("--attribute-weight", optarg, 0, 1e9); break;
 		case O_RECORD: cl->record = 1; break;
 		case O_DRACO: cl->w.draco_position_bits = (int)parse_count("--draco-bits", optarg, 1, 30); break;
@@ -161,10 +177,12 @@ run(struct cmdline *cl)
 		        "bound and validity tests\n", progname, out.triangle_count);
 	if (cl->verbose)
 		fprintf(stderr, "%s: in_vertices=%zu in_triangles=%zu out_vertices=%zu "
-		        "out_triangles=%zu contractions=%zu rejected=%zu welded=%zu dropped=%zu error=%.6g error_pct=%.6g "
+		        "out_triangles=%zu contractions=%zu rejected=%zu welded=%zu dropped=%zu nonmanifold=%zu "
+		        "topology=%s error=%.6g error_pct=%.6g "
 		        "read_s=%.3f simplify_s=%.3f write_s=%.3f peak_mb=%.1f\n",
 		        progname, in.vertex_count, in.triangle_count, out.vertex_count,
-		        out.triangle_count, st.contractions, st.rejected, st.welded, st.dropped, st.max_error,
+		        out.triangle_count, st.contractions, st.rejected, st.welded, st.dropped,
+		        st.nonmanifold, st.free_topology ? "free" : "keep", st.max_error,
 		        diag > 0 ? 100 * st.max_error / diag : 0, t1 - t0, t2 - t1,
 		        now_seconds() - t2, peak_rss_bytes() / 1048576.0);
 	rc = EXIT_OK;

@@ -249,13 +249,14 @@ same_face(const uint32_t *a, const uint32_t *b)
  *    one goes, and both go when they face opposite ways (a fin of zero
  *    volume, as clustering leaves them), marked in `dead`;
  *  - find open edges: (v,x) is open when one live face of v's fan holds x.
- * Linear in the mesh, with no edge table. Marks boundary vertices in
+ * Linear in the mesh, with no edge table. Counts the edges of three or more
+ * faces in *nonmanifold. Marks boundary vertices in
  * `border`.
  */
 static int
 build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
                const uint32_t *canon, size_t nin, struct ctx *c, uint8_t *border,
-               uint8_t *dead)
+               uint8_t *dead, size_t *nonmanifold)
 {
 	size_t nt = w->triangle_count, nv = w->vertex_count;
 	uint32_t *start = calloc(nv + 2, sizeof(*start));
@@ -329,25 +330,34 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 						;
 					if (j == n) {
 						seen[2 * n] = x;
-						seen[2 * n + 1] = fan[i] << 1; /* face, once */
+						/* first face, and uses so far (at most 3) */
+						seen[2 * n + 1] = fan[i] << 2 | 1;
 						n++;
-					} else {
-						seen[2 * j + 1] |= 1; /* twice or more */
+					} else if ((seen[2 * j + 1] & 3) < 3) {
+						seen[2 * j + 1]++;
 					}
 				} else {
-					int uses = 0;
+					int uses = 0, first = 1;
 					for (uint32_t m = b; m < e; m++) {
 						const uint32_t *q = w->triangles + 3 * (size_t)fan[m];
-						uses += !dead[fan[m]] && (q[0] == x || q[1] == x || q[2] == x);
+						int has = !dead[fan[m]] && (q[0] == x || q[1] == x || q[2] == x);
+						uses += has;
+						if (has && m < i)
+							first = 0;
 					}
 					if (uses == 1)
 						add_boundary(c, w, o, fan[i], (uint32_t)v, x, border);
+					if (uses > 2 && first)
+						(*nonmanifold)++;
 				}
 			}
 		}
-		for (uint32_t j = 0; j < n; j++)
-			if (!(seen[2 * j + 1] & 1))
-				add_boundary(c, w, o, seen[2 * j + 1] >> 1, (uint32_t)v, seen[2 * j], border);
+		for (uint32_t j = 0; j < n; j++) {
+			if ((seen[2 * j + 1] & 3) == 1)
+				add_boundary(c, w, o, seen[2 * j + 1] >> 2, (uint32_t)v, seen[2 * j], border);
+			if ((seen[2 * j + 1] & 3) == 3)
+				(*nonmanifold)++;
+		}
 	}
 	free(start);
 	free(fan);
@@ -1286,7 +1296,7 @@ vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	c.max_error = o->max_error < INFINITY ? o->max_error * o->max_error : INFINITY;
 	dead = calloc(T + 1, 1);
 	fsrc = malloc((T + 1) * sizeof(*fsrc));
-	if (dead == NULL || fsrc == NULL || build_quadrics(&w, o, canon, n, &c, border, dead) != 0)
+	if (dead == NULL || fsrc == NULL || build_quadrics(&w, o, canon, n, &c, border, dead, &stats->nonmanifold) != 0)
 		goto nomem;
 	/* The engine sees the live faces only; fsrc maps back to the input. */
 	size_t live = 0;
@@ -1335,6 +1345,12 @@ vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	co.virtual_pairs = vpairs;
 	co.virtual_pair_count = nvp;
 	co.record = records != NULL;
+	/* The link condition keeps manifold input manifold; on input that is
+	 * not (a clustered intermediate, a scan with fins) it would also keep
+	 * every hole and inverted face the damage left, so it is dropped. */
+	co.allow_nonmanifold = o->topology == VDT_TOPOLOGY_FREE ||
+	                       (o->topology == VDT_TOPOLOGY_AUTO && stats->nonmanifold > 0);
+	stats->free_topology = co.allow_nonmanifold;
 	co.progress = o->progress;
 	rc = vdt_contract_run(&w, &ops, &co, &r, err);
 	free(seam);

@@ -17,12 +17,21 @@
 #include "progress.h"
 #include "quadric.h"
 
+/*
+ * When contractions may change topology. AUTO keeps manifold input manifold
+ * (the link condition) and lets input that already has non-manifold edges
+ * change freely; KEEP always applies the link condition; FREE never does.
+ * Faces are never flipped or left degenerate in any mode.
+ */
+enum vdt_topology { VDT_TOPOLOGY_AUTO = 0, VDT_TOPOLOGY_KEEP, VDT_TOPOLOGY_FREE };
+
 struct vdt_qslim_opts {
 	size_t target_triangles;  /* stop at this many (0: no count target) */
 	double target_ratio;      /* or this fraction of the input (0: none) */
 	double max_error;         /* distance bound, model units (INFINITY: none) */
 	double boundary_weight;   /* of the perpendicular boundary planes */
 	int lock_border;          /* vertices on open boundaries never move */
+	int topology;             /* enum vdt_topology */
 	double aggregate;         /* virtual pairs closer than this (0: none) */
 	double max_normal_angle;  /* fold-over threshold, degrees */
 	double min_quality;       /* sliver threshold, 0: off */
@@ -51,6 +60,8 @@ struct vdt_qslim_stats {
 	int reached_target; /* 0: stopped early (bound, or nothing valid left) */
 	size_t welded;      /* input vertices merged with an identical position */
 	size_t dropped;     /* repeated faces removed (see vdt_qslim) */
+	size_t nonmanifold; /* edges of three or more faces in the input */
+	int free_topology;  /* 1 if the link condition was not applied */
 };
 
 /*
