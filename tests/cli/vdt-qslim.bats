@@ -182,3 +182,24 @@ load helpers
 	grep -aq XTRA "$TMP/golden.vdt"
 	! grep -aq QUAD "$TMP/golden.vdt"
 }
+
+@test "vdt-qslim --topology: manifold input keeps it, non-manifold input is freed" {
+	run "$BIN/vdt-qslim" --topology sideways "$SAMPLES/sphere.off" -o "$TMP/x.off"
+	[ "$status" -eq 2 ]
+	one_line
+	run "$BIN/vdt-qslim" -v -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/a.off"
+	[[ "$output" == *" nonmanifold=0 topology=keep "* ]]
+	# a fin: a fourth face on an edge of the sphere's first face makes it
+	# non-manifold
+	{ sed -n 1p "$SAMPLES/sphere.off"; echo "2563 5121 0"
+	  sed -n '3,2564p' "$SAMPLES/sphere.off"; echo "0 0 2"
+	  sed -n '2565,$p' "$SAMPLES/sphere.off"
+	  set -- $(sed -n 2565p "$SAMPLES/sphere.off"); echo "3 $2 $3 2562"; } > "$TMP/fin.off"
+	run "$BIN/vdt-qslim" -v -r 0.5 "$TMP/fin.off" -o "$TMP/b.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *" nonmanifold=1 topology=free "* ]]
+	run "$BIN/vdt-qslim" -v --topology keep -r 0.5 "$TMP/fin.off" -o "$TMP/c.off"
+	[[ "$output" == *" topology=keep "* ]]
+	run "$BIN/vdt-qslim" -v --topology free -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/d.off"
+	[[ "$output" == *" topology=free "* ]]
+}
