@@ -12,7 +12,6 @@
 #include "../lib/deform.h"
 #include "../lib/io/anim.h"
 #include "../lib/io/meshio.h"
-#include "../lib/measure.h"
 #include "common.h"
 
 static const char *methods[] = {"ours", "dsd", "first-frame", "independent"};
@@ -97,15 +96,6 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		cl->d.target_ratio = 0.1;
 }
 
-/* Frame f of the input as a mesh (borrowing m's triangles). */
-static struct vdt_mesh
-input_frame(const struct vdt_mesh *m, const struct vdt_frames *fr, size_t f)
-{
-	struct vdt_mesh x = *m;
-	x.positions = fr->positions + 3 * fr->vertex_count * f;
-	return x;
-}
-
 static int
 write_frames(struct cmdline *cl, const struct vdt_deform_result *r, struct vdt_chunks *extra,
              struct vdt_err *err)
@@ -117,21 +107,10 @@ write_frames(struct cmdline *cl, const struct vdt_deform_result *r, struct vdt_c
 	int rc = 0;
 
 	if (vdt_anim_is_pattern(cl->out)) {
-		for (size_t f = 0; f < r->frame_count && rc == 0; f++) {
-			char *p = vdt_anim_format(cl->out, f);
-			if (p == NULL || (rc = vdt_deform_frame_mesh(r, f, &m, err)) != 0 ||
-			    (rc = vdt_write(p, &m, NULL, &cl->w, err)) != 0) {
-				rc = fail("cannot write", p ? p : cl->out, err);
-				for (size_t g = 0; g < f; g++) { /* leave nothing behind */
-					char *q = vdt_anim_format(cl->out, g);
-					if (q)
-						remove(q);
-					free(q);
-				}
-			}
-			free(p);
-			vdt_mesh_free(&m);
-		}
+		char *bad = NULL;
+		if ((rc = vdt_deform_write_pattern(r, cl->out, &cl->w, &bad, err)) != 0)
+			rc = fail("cannot write", bad ? bad : cl->out, err);
+		free(bad);
 		return rc;
 	}
 	if (r->frame_count == 1) {
@@ -151,38 +130,25 @@ static void
 statistics(struct cmdline *cl, const struct vdt_mesh *in, const struct vdt_frames *fr,
            const struct vdt_deform_result *r)
 {
-	struct vdt_measure_opts mo = {.samples = cl->samples};
-	double sum = 0, worst = 0, shared = 0, lowest = 1;
+	struct vdt_deform_summary s;
 	struct vdt_err err = {0};
 
-	for (size_t f = 0; f < r->frame_count; f++) {
-		struct vdt_mesh a = input_frame(in, fr, f), b = {0};
-		struct vdt_measure_result mr;
-		if (vdt_deform_frame_mesh(r, f, &b, &err) != 0 ||
-		    vdt_measure(&a, &b, &mo, &mr, NULL, NULL, &err) != 0) {
-			fprintf(stderr, "%s: frame %zu: cannot measure: %s\n", progname, f, err.msg);
-			vdt_mesh_free(&b);
-			continue;
-		}
-		double rms = 100 * mr.rms / mr.diag, hd = 100 * mr.max / mr.diag;
-		fprintf(stderr, "%s: frame=%zu vertices=%zu triangles=%zu rms_pct=%.6g "
-		        "hausdorff_pct=%.6g shared=%.4f\n", progname, f, b.vertex_count,
-		        b.triangle_count, rms, hd, r->shared[f]);
-		sum += rms;
-		worst = rms > worst ? rms : worst;
-		if (f > 0) {
-			shared += r->shared[f];
-			lowest = r->shared[f] < lowest ? r->shared[f] : lowest;
-		}
-		vdt_mesh_free(&b);
+	if (vdt_deform_measure_all(in, fr, r, cl->samples, &s, &err) != 0) {
+		fprintf(stderr, "%s: cannot measure: %s\n", progname, err.msg);
+		return;
 	}
-	size_t nf = r->frame_count;
+	for (size_t f = 0; f < r->frame_count; f++)
+		fprintf(stderr, "%s: frame=%zu vertices=%zu triangles=%zu rms_pct=%.6g "
+		        "hausdorff_pct=%.6g shared=%.4f\n", progname, f, s.frames[f].vertices,
+		        s.frames[f].triangles, s.frames[f].rms_pct, s.frames[f].hausdorff_pct,
+		        s.frames[f].shared);
 	fprintf(stderr, "%s: method=%s frames=%zu in_vertices=%zu welded=%zu out_vertices=%zu "
 	        "unified=%zu replayed=%zu mean_rms_pct=%.6g worst_rms_pct=%.6g "
 	        "mean_shared=%.4f min_shared=%.4f quadric_mb=%.1f\n", progname,
-	        methods[cl->d.method], nf, in->vertex_count, r->welded, r->live_vertices[0],
-	        r->unified, r->replayed, sum / nf, worst, nf > 1 ? shared / (nf - 1) : 1,
-	        lowest, r->quadric_bytes / 1048576.0);
+	        methods[cl->d.method], r->frame_count, in->vertex_count, r->welded,
+	        r->live_vertices[0], r->unified, r->replayed, s.mean_rms_pct, s.worst_rms_pct,
+	        s.mean_shared, s.min_shared, r->quadric_bytes / 1048576.0);
+	free(s.frames);
 }
 
 static int
@@ -193,22 +159,13 @@ run(struct cmdline *cl)
 	struct vdt_chunks extra = {0};
 	struct vdt_deform_result r = {0};
 	struct vdt_err err = {0};
-	char **list = NULL;
-	size_t n = 0, bad = 0;
+	char *bad = NULL;
 	double t0 = now_seconds(), t1, t2;
 	int rc;
 
-	if (cl->nin == 1 && vdt_anim_is_pattern(cl->in[0])) {
-		if ((rc = vdt_anim_pattern(cl->in[0], cl->start, cl->count, &list, &n, &err)) != 0)
-			return fail("cannot read", cl->in[0], &err);
-		rc = vdt_anim_read_files((const char *const *)list, n, &in, &fr, &bad, &err);
-	} else if (cl->nin == 1) {
-		rc = vdt_anim_read(cl->in[0], &in, &fr, &extra, &err);
-	} else {
-		rc = vdt_anim_read_files((const char *const *)cl->in, cl->nin, &in, &fr, &bad, &err);
-	}
-	if (rc != 0) {
-		rc = fail("cannot read", list ? list[bad] : cl->in[cl->nin > 1 ? bad : 0], &err);
+	if ((rc = vdt_anim_read_operands(cl->in, cl->nin, cl->start, cl->count, &in, &fr,
+	                                 &extra, &bad, &err)) != 0) {
+		rc = fail("cannot read", bad ? bad : cl->in[0], &err);
 		goto out;
 	}
 	if (fr.frame_count > 1 && !vdt_anim_is_pattern(cl->out) &&
@@ -239,9 +196,7 @@ run(struct cmdline *cl)
 	}
 	rc = EXIT_OK;
 out:
-	for (size_t i = 0; i < n; i++)
-		free(list[i]);
-	free(list);
+	free(bad);
 	vdt_mesh_free(&in);
 	vdt_frames_free(&fr);
 	vdt_chunks_free(&extra);

@@ -18,6 +18,10 @@
  */
 #include "deform.h"
 
+#include "io/anim.h"
+#include "io/meshio.h"
+#include "measure.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -1230,4 +1234,94 @@ fail:
 	vdt_mesh_free(mesh);
 	vdt_frames_free(fr);
 	return rc;
+}
+
+int
+vdt_deform_measure_frame(const struct vdt_mesh *in, const struct vdt_frames *fr,
+                         const struct vdt_deform_result *res, size_t f, size_t samples,
+                         struct vdt_deform_frame_stats *st, struct vdt_err *err)
+{
+	struct vdt_measure_opts mo = {.samples = samples};
+	struct vdt_measure_result mr;
+	struct vdt_mesh a = *in, b = {0};
+	int rc;
+
+	a.positions = fr->positions + 3 * fr->vertex_count * f;
+	if ((rc = vdt_deform_frame_mesh(res, f, &b, err)) == 0 &&
+	    (rc = vdt_measure(&a, &b, &mo, &mr, NULL, NULL, err)) == 0) {
+		st->vertices = b.vertex_count;
+		st->triangles = b.triangle_count;
+		st->rms_pct = mr.diag > 0 ? 100 * mr.rms / mr.diag : 0;
+		st->hausdorff_pct = mr.diag > 0 ? 100 * mr.max / mr.diag : 0;
+		st->shared = res->shared[f];
+	}
+	vdt_mesh_free(&b);
+	return rc;
+}
+
+int
+vdt_deform_write_pattern(const struct vdt_deform_result *res, const char *pattern,
+                         const struct vdt_write_opts *w, char **failed, struct vdt_err *err)
+{
+	struct vdt_mesh m = {0};
+	int rc = 0;
+
+	if (failed)
+		*failed = NULL;
+	for (size_t f = 0; f < res->frame_count && rc == 0; f++) {
+		char *p = vdt_anim_format(pattern, f);
+		if (p == NULL)
+			rc = vdt_err_set(err, VDT_ENOMEM, "cannot expand the pattern");
+		else if ((rc = vdt_deform_frame_mesh(res, f, &m, err)) == 0)
+			rc = vdt_write(p, &m, NULL, w, err);
+		vdt_mesh_free(&m);
+		if (rc == 0) {
+			free(p);
+			continue;
+		}
+		for (size_t g = 0; g < f; g++) { /* leave nothing behind */
+			char *q = vdt_anim_format(pattern, g);
+			if (q)
+				remove(q);
+			free(q);
+		}
+		if (failed)
+			*failed = p ? p : strdup(pattern);
+		else
+			free(p);
+	}
+	return rc;
+}
+
+int
+vdt_deform_measure_all(const struct vdt_mesh *in, const struct vdt_frames *fr,
+                       const struct vdt_deform_result *res, size_t samples,
+                       struct vdt_deform_summary *sum, struct vdt_err *err)
+{
+	size_t nf = res->frame_count;
+	double rms = 0, shared = 0;
+
+	memset(sum, 0, sizeof(*sum));
+	sum->min_shared = 1;
+	sum->frames = calloc(nf ? nf : 1, sizeof(*sum->frames));
+	if (sum->frames == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	for (size_t f = 0; f < nf; f++) {
+		struct vdt_deform_frame_stats *st = &sum->frames[f];
+		int rc = vdt_deform_measure_frame(in, fr, res, f, samples, st, err);
+		if (rc != 0) {
+			free(sum->frames);
+			sum->frames = NULL;
+			return vdt_err_prefix(err, "frame %zu", f);
+		}
+		rms += st->rms_pct;
+		sum->worst_rms_pct = fmax(sum->worst_rms_pct, st->rms_pct);
+		if (f > 0) {
+			shared += st->shared;
+			sum->min_shared = fmin(sum->min_shared, st->shared);
+		}
+	}
+	sum->mean_rms_pct = nf ? rms / nf : 0;
+	sum->mean_shared = nf > 1 ? shared / (nf - 1) : 1;
+	return 0;
 }

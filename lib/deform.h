@@ -101,6 +101,46 @@ int vdt_deform_frame_mesh(const struct vdt_deform_result *res, size_t f,
                           struct vdt_mesh *out, struct vdt_err *err);
 
 /*
+ * The error of frame f of the result against frame f of the input (`in`
+ * with the positions of fr), as vdt-measure measures it with `samples`
+ * samples per mesh, and the share of its triangles kept from frame f-1.
+ * Returns 0, or the measurement's error.
+ */
+struct vdt_deform_frame_stats {
+	size_t vertices, triangles;
+	double rms_pct, hausdorff_pct; /* of the input frame's diagonal */
+	double shared;
+};
+int vdt_deform_measure_frame(const struct vdt_mesh *in, const struct vdt_frames *fr,
+                             const struct vdt_deform_result *res, size_t f,
+                             size_t samples, struct vdt_deform_frame_stats *st,
+                             struct vdt_err *err);
+
+/*
+ * Write every frame of the result through a printf pattern (out/%03d.obj),
+ * all or nothing: if one frame cannot be written, the frames already written
+ * are removed. On failure *failed (if non-NULL) is the malloc'ed name that
+ * failed (the pattern itself if it could not be expanded).
+ */
+/*
+ * Every frame measured (st holds frame_count entries, malloc'ed), and the
+ * mean and worst RMS and the mean and lowest share over frames 1.. .
+ * Frames that cannot be measured fail the call.
+ */
+struct vdt_deform_summary {
+	struct vdt_deform_frame_stats *frames;
+	double mean_rms_pct, worst_rms_pct, mean_shared, min_shared;
+};
+int vdt_deform_measure_all(const struct vdt_mesh *in, const struct vdt_frames *fr,
+                           const struct vdt_deform_result *res, size_t samples,
+                           struct vdt_deform_summary *sum, struct vdt_err *err);
+
+struct vdt_write_opts;
+int vdt_deform_write_pattern(const struct vdt_deform_result *res, const char *pattern,
+                             const struct vdt_write_opts *w, char **failed,
+                             struct vdt_err *err);
+
+/*
  * The whole result for the stream: the slots used by any frame, numbered
  * in order of first use over frames 0, 1, ...; *mesh is frame 0 and *fr
  * holds every frame's positions, plus per-frame triangles when the frames

@@ -314,3 +314,31 @@ fail:
 	free(list);
 	return rc;
 }
+
+int
+vdt_anim_read_operands(char *const *names, size_t n, size_t start, size_t count,
+                       struct vdt_mesh *m, struct vdt_frames *fr,
+                       struct vdt_chunks *extra, char **bad, struct vdt_err *err)
+{
+	char **list = NULL;
+	size_t nl = 0, which = 0;
+	int rc;
+
+	if (bad)
+		*bad = NULL;
+	if (n == 1 && vdt_anim_is_pattern(names[0])) {
+		rc = vdt_anim_pattern(names[0], start, count, &list, &nl, err);
+		if (rc == 0)
+			rc = vdt_anim_read_files((const char *const *)list, nl, m, fr, &which, err);
+	} else if (n == 1) {
+		rc = vdt_anim_read(names[0], m, fr, extra, err);
+	} else {
+		rc = vdt_anim_read_files((const char *const *)names, n, m, fr, &which, err);
+	}
+	if (rc != 0 && bad)
+		*bad = strdup(list && which < nl ? list[which] : names[n > 1 ? which : 0]);
+	for (size_t i = 0; i < nl; i++)
+		free(list[i]);
+	free(list);
+	return rc;
+}

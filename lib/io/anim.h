@@ -66,6 +66,16 @@ int vdt_anim_read_files(const char *const *paths, size_t n, struct vdt_mesh *m,
 int vdt_anim_pattern(const char *pattern, size_t start, size_t count,
                      char ***paths, size_t *n, struct vdt_err *err);
 
+/*
+ * Read an animation as a tool's operands give it: one printf pattern
+ * (expanded as vdt_anim_pattern does with start and count), one file or
+ * stream (vdt_anim_read), or several frame files (vdt_anim_read_files).
+ * On failure *bad (if non-NULL) is the malloc'ed name the error is about.
+ */
+int vdt_anim_read_operands(char *const *names, size_t n, size_t start, size_t count,
+                           struct vdt_mesh *m, struct vdt_frames *fr,
+                           struct vdt_chunks *extra, char **bad, struct vdt_err *err);
+
 /* Whether s is a pattern with exactly one integer conversion. */
 int vdt_anim_is_pattern(const char *s);
 
