@@ -655,23 +655,6 @@ cell_id_cached(struct vdt_cluster *c, uint64_t key, struct vdt_err *err)
 	return id;
 }
 
-/* The fundamental quadric, as vdt_quadric_triangle computes it. */
-static inline void
-face_quadric(struct vdt_quadric *q, const double n[3], double d, double w)
-{
-	q->a00 = w * n[0] * n[0];
-	q->a01 = w * n[0] * n[1];
-	q->a02 = w * n[0] * n[2];
-	q->a11 = w * n[1] * n[1];
-	q->a12 = w * n[1] * n[2];
-	q->a22 = w * n[2] * n[2];
-	q->b0 = w * d * n[0];
-	q->b1 = w * d * n[1];
-	q->b2 = w * d * n[2];
-	q->c = w * d * d;
-	q->w = w;
-}
-
 /* The corner v of (u, v, w): its edge normal m = (w - u) x n, see the top. */
 static inline void
 add_edge_normal(struct cell *cl, const double *u, const double *v, const double *w,
@@ -767,7 +750,7 @@ vdt_cluster_add(struct vdt_cluster *c, const double *tri, size_t n, struct vdt_e
 			nn[1] /= len;
 			nn[2] /= len;
 			/* As vdt_quadric_triangle: the plane, weighted by a third of the area. */
-			face_quadric(&fq, nn, -(nn[0] * p[0][0] + nn[1] * p[0][1] + nn[2] * p[0][2]),
+			vdt_quadric_plane(&fq, nn, -(nn[0] * p[0][0] + nn[1] * p[0][1] + nn[2] * p[0][2]),
 			             len / 6);
 		}
 

@@ -18,6 +18,7 @@
 #include <string.h>
 
 #include "bytes.h"
+#include "sort.h"
 
 #define NONE UINT32_MAX
 
@@ -619,49 +620,6 @@ contract(struct engine *e, uint32_t keep, uint32_t gone, const double dpos[3],
 
 /* ---- set-up ---- */
 
-static int
-cmp_u64(const void *a, const void *b)
-{
-	uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
-	return x < y ? -1 : x > y;
-}
-
-/* Sort 64-bit keys: LSD radix sort on 16-bit digits, qsort when small. */
-static int
-sort_u64(uint64_t *k, size_t n)
-{
-	if (n < 4096) {
-		qsort(k, n, sizeof(*k), cmp_u64);
-		return 0;
-	}
-	uint64_t *tmp = malloc(n * sizeof(*tmp));
-	size_t *count = malloc(65536 * sizeof(*count));
-	if (tmp == NULL || count == NULL) {
-		free(tmp);
-		free(count);
-		return -1;
-	}
-	for (int shift = 0; shift < 64; shift += 16) {
-		memset(count, 0, 65536 * sizeof(*count));
-		for (size_t i = 0; i < n; i++)
-			count[(k[i] >> shift) & 0xffff]++;
-		if (count[k[0] >> shift & 0xffff] == n)
-			continue;
-		size_t sum = 0;
-		for (size_t d = 0; d < 65536; d++) {
-			size_t c = count[d];
-			count[d] = sum;
-			sum += c;
-		}
-		for (size_t i = 0; i < n; i++)
-			tmp[count[(k[i] >> shift) & 0xffff]++] = k[i];
-		memcpy(k, tmp, n * sizeof(*k));
-	}
-	free(tmp);
-	free(count);
-	return 0;
-}
-
 static void
 engine_free(struct engine *e)
 {
@@ -781,7 +739,7 @@ engine_init(struct engine *e, const struct vdt_mesh *m,
 				continue;
 			keys[nvirt++] = a < b ? a << 32 | b : b << 32 | a;
 		}
-		if (sort_u64(keys, nvirt) != 0)
+		if (vdt_sort_u64(keys, nvirt) != 0)
 			goto nomem;
 		size_t kept = 0;
 		for (size_t i = 0; i < nvirt; i++) {

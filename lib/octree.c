@@ -12,6 +12,7 @@
  * along the plane, so the whole is O(n log n) as the paper says.
  */
 #include "octree.h"
+#include "sort.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -228,38 +229,6 @@ split(struct octree *o, uint32_t c, int depth)
 	return 0;
 }
 
-/* LSD radix sort of 64-bit keys on 16-bit digits. */
-static int
-sort_keys(uint64_t *k, size_t n)
-{
-	uint64_t *tmp = malloc((n + 1) * sizeof(*tmp));
-	size_t *count = malloc(65536 * sizeof(*count));
-	if (tmp == NULL || count == NULL) {
-		free(tmp);
-		free(count);
-		return -1;
-	}
-	for (int shift = 0; shift < 64 && n > 0; shift += 16) {
-		memset(count, 0, 65536 * sizeof(*count));
-		for (size_t i = 0; i < n; i++)
-			count[(k[i] >> shift) & 0xffff]++;
-		if (count[(k[0] >> shift) & 0xffff] == n)
-			continue;
-		size_t sum = 0;
-		for (size_t d = 0; d < 65536; d++) {
-			size_t c = count[d];
-			count[d] = sum;
-			sum += c;
-		}
-		for (size_t i = 0; i < n; i++)
-			tmp[count[(k[i] >> shift) & 0xffff]++] = k[i];
-		memcpy(k, tmp, n * sizeof(*k));
-	}
-	free(tmp);
-	free(count);
-	return 0;
-}
-
 int
 vdt_octree_pairs(const float *positions, size_t n, uint32_t **pairs,
                  size_t *count, struct vdt_err *err)
@@ -283,7 +252,7 @@ vdt_octree_pairs(const float *positions, size_t n, uint32_t **pairs,
 		o.idx[i] = (uint32_t)i;
 	if (new_cell(&o, 0, (uint32_t)n) != 0 || split(&o, 0, 0) != 0)
 		goto nomem;
-	if (sort_keys(o.keys, o.nkeys) != 0)
+	if (vdt_sort_u64(o.keys, o.nkeys) != 0)
 		goto nomem;
 	out = malloc((2 * o.nkeys + 1) * sizeof(uint32_t));
 	if (out == NULL)
