@@ -34,6 +34,7 @@ struct ctx {
 	const uint8_t *seam;
 	double worst;          /* largest contraction error so far (squared) */
 	struct attr *at;       /* attribute quadrics, or NULL */
+	double *scale;         /* per welded vertex error scale, or NULL */
 };
 
 void
@@ -43,6 +44,24 @@ vdt_qslim_defaults(struct vdt_qslim_opts *o)
 	o->max_error = INFINITY;
 	o->boundary_weight = 100;
 	o->max_normal_angle = 75;
+}
+
+/*
+ * Mata, Pastor and Rodriguez, section 3.3: near the silhouette the allowed
+ * error is e * f. Quadric errors are squared distances, so a pair costs its
+ * error over f^2 (which also shrinks the max_error bound by f); f = 0 allows
+ * no error at all.
+ */
+static double
+scaled(const struct ctx *c, uint32_t a, uint32_t b, double e)
+{
+	double s = fmin(c->scale[a], c->scale[b]);
+
+	if (s == 1)
+		return e;
+	if (!(s > 0))
+		return INFINITY;
+	return e / (s * s);
 }
 
 static double
@@ -69,6 +88,8 @@ cost_fn(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	}
 	for (int k = 0; k < 3; k++)
 		pos[k] += c->centre[k];
+	if (c->scale)
+		e = scaled(c, a, b, e);
 	if (c->max_error < INFINITY && q.w > 0 && e > c->max_error * q.w)
 		return INFINITY;
 	return e;
@@ -80,6 +101,12 @@ merged_fn(void *vc, uint32_t keep, uint32_t gone, const double pos[3], double co
 	struct ctx *c = vc;
 
 	(void)pos;
+	if (c->scale) {
+		double s = fmin(c->scale[keep], c->scale[gone]);
+		if (s > 0 && s != 1)
+			cost *= s * s; /* the error itself, for the statistics */
+		c->scale[keep] = s;
+	}
 	vdt_quadric_add(&c->q[keep], &c->q[gone]);
 	if (c->q[keep].w > 0 && cost / c->q[keep].w > c->worst)
 		c->worst = cost / c->q[keep].w;
@@ -801,12 +828,15 @@ cost_attr(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	if (c->max_error < INFINITY) {
 		struct vdt_quadric g = c->q[a];
 		vdt_quadric_add(&g, &c->q[b]);
-		if (g.w > 0 && vdt_quadric_eval(&g, pos) > c->max_error * g.w)
+		double ge = vdt_quadric_eval(&g, pos);
+		if (c->scale)
+			ge = scaled(c, a, b, ge);
+		if (g.w > 0 && ge > c->max_error * g.w)
 			return INFINITY;
 	}
 	for (int k = 0; k < 3; k++)
 		pos[k] += c->centre[k];
-	return e;
+	return c->scale ? scaled(c, a, b, e) : e;
 }
 
 static void
@@ -820,6 +850,8 @@ merged_attr(void *vc, uint32_t keep, uint32_t gone, const double pos[3], double 
 	double p[3];
 
 	(void)cost;
+	if (c->scale)
+		c->scale[keep] = fmin(c->scale[keep], c->scale[gone]);
 	n = attr_pair_quadric(at, keep, gone, 1, &qr);
 	for (size_t i = 0; i < n; i++) {
 		uint32_t r = at->sw[i];
@@ -1249,6 +1281,10 @@ vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	    !(o->boundary_weight >= 0) || !(o->aggregate >= 0) ||
 	    !(o->attribute_weight >= 0) || !(o->attribute_weight < INFINITY))
 		return vdt_err_set(err, VDT_EINVAL, "invalid simplification options");
+	for (size_t i = 0; o->error_scale && i < n; i++)
+		if (!(o->error_scale[i] >= 0 && o->error_scale[i] < INFINITY))
+			return vdt_err_set(err, VDT_EINVAL, "error scale %g of vertex %zu is not a finite value >= 0",
+			                   o->error_scale[i], i);
 	if (o->target_triangles == 0 && o->target_ratio == 0 && !(o->max_error < INFINITY))
 		return vdt_err_set(err, VDT_EINVAL, "no target: give a triangle count, a ratio or an error bound");
 	if (o->target_triangles > 0)
@@ -1314,6 +1350,18 @@ vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 			border[v] |= 2;
 		if (o->lock_border && (border[v] & 1))
 			locked[v] = 1;
+	}
+	if (o->error_scale) {
+		c.scale = malloc(nw * sizeof(*c.scale));
+		if (c.scale == NULL)
+			goto nomem;
+		for (size_t v = 0; v < nw; v++)
+			c.scale[v] = 1;
+		for (size_t i = 0; i < n; i++)
+			c.scale[canon[i]] = fmin(c.scale[canon[i]], o->error_scale[i]);
+		for (size_t v = 0; v < nw; v++)
+			if (c.scale[v] == 0)
+				locked[v] = 1;
 	}
 	if (o->aggregate > 0 && virtual_pairs(&w, o->aggregate, &vpairs, &nvp) != 0)
 		goto nomem;
@@ -1384,6 +1432,7 @@ done:
 	free(wstart);
 	free(wlist);
 	free(c.q);
+	free(c.scale);
 	attr_free(c.at);
 	free(border);
 	free(locked);

@@ -39,6 +39,9 @@ struct vdt_qslim_opts {
 	double attribute_weight;  /* of attribute errors against distances
 	                             (see vdt_qslim); 0: attributes are copied,
 	                             never interpolated, and cost nothing */
+	const double *error_scale; /* per input vertex, or NULL: the factor of
+	                             its allowed error (Mata et al., section
+	                             3.3; see vdt_qslim) */
 	int record;               /* return the contraction record */
 	const struct vdt_progress *progress;
 };
@@ -86,8 +89,14 @@ struct vdt_qslim_stats {
  * has one vertex per surviving wedge, its attributes the minimiser of its
  * quadric at the final position (normals renormalised, UVs and colours
  * clamped to the input's range).
- * Returns 0, VDT_EINVAL (bad options, quadric count mismatch) or
- * VDT_ENOMEM.
+ * Error scale (silhouette labels, vdt_labl_error_scale): a pair whose
+ * smaller scale f is below 1 costs its error over f^2, since quadric errors
+ * are squared distances, so its allowed error (and max_error) shrink by f;
+ * f = 0 locks the vertex: it never moves, never merges and no neighbour
+ * merges into it. Welded vertices take the smallest scale of their input
+ * vertices, a merged vertex the smaller of the two.
+ * Returns 0, VDT_EINVAL (bad options, quadric count mismatch, a negative or
+ * non-finite scale) or VDT_ENOMEM.
  */
 int vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
               struct vdt_mesh *out, struct vdt_contraction **records,
