@@ -1,0 +1,210 @@
+/*
+ * camera.c - the view and the run-time criteria of El-Sana & Varshney,
+ * "View-Dependent Topology Simplification" (EGWR 99), section 5: screen-
+ * space error, view frustum, back-facing regions, foveation and local
+ * illumination, the last three through the distance of equation 1,
+ * dist = |v0 - v1| / ((1 + n0.n1) + eps).
+ */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "camera.h"
+
+static double
+dot(const double *a, const double *b)
+{
+	return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static double
+norm(double *a)
+{
+	double l = sqrt(dot(a, a));
+	if (l > 0)
+		for (int i = 0; i < 3; i++)
+			a[i] /= l;
+	return l;
+}
+
+static void
+cross(const double *a, const double *b, double *c)
+{
+	c[0] = a[1] * b[2] - a[2] * b[1];
+	c[1] = a[2] * b[0] - a[0] * b[2];
+	c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+int
+vdt_camera_setup(struct vdt_camera *c, const struct vdt_view *v, const struct vdt_bbox *box,
+                 struct vdt_err *err)
+{
+	double ty, tx;
+
+	memset(c, 0, sizeof(*c));
+	c->v = *v;
+	for (int i = 0; i < 3; i++)
+		c->fwd[i] = v->at[i] - v->eye[i];
+	if (!(norm(c->fwd) > 0))
+		return vdt_err_set(err, VDT_EINVAL, "the eye and the point looked at coincide");
+	cross(c->fwd, v->up, c->right);
+	if (!(norm(c->right) > 1e-12))
+		return vdt_err_set(err, VDT_EINVAL, "the up vector is zero or along the view direction");
+	cross(c->right, c->fwd, c->up);
+	if (!(v->fov > 0 && v->fov < 180))
+		return vdt_err_set(err, VDT_EINVAL, "field of view %g is not in (0, 180) degrees", v->fov);
+	if (v->width <= 0 || v->height <= 0)
+		return vdt_err_set(err, VDT_EINVAL, "image size %dx%d is empty", v->width, v->height);
+	if (box && v->eye[0] >= box->min[0] && v->eye[0] <= box->max[0] &&
+	    v->eye[1] >= box->min[1] && v->eye[1] <= box->max[1] && v->eye[2] >= box->min[2] &&
+	    v->eye[2] <= box->max[2])
+		return vdt_err_set(err, VDT_EINVAL, "the eye (%g, %g, %g) is inside the model's "
+		                   "bounding box", v->eye[0], v->eye[1], v->eye[2]);
+	ty = tan(v->fov * M_PI / 360);
+	tx = ty * v->width / v->height;
+	c->focal = v->height / (2 * ty);
+	/* Everything is drawn from in front of the box's nearest point. */
+	c->near = 1e-3;
+	if (box)
+		c->near = 1e-4 * vdt_bbox_diagonal(box);
+	for (int i = 0; i < 3; i++) {
+		c->side[0][i] = c->right[i] + tx * c->fwd[i];
+		c->side[1][i] = -c->right[i] + tx * c->fwd[i];
+		c->side[2][i] = c->up[i] + ty * c->fwd[i];
+		c->side[3][i] = -c->up[i] + ty * c->fwd[i];
+	}
+	for (int k = 0; k < 4; k++)
+		norm(c->side[k]);
+	return 0;
+}
+
+void
+vdt_camera_project(const struct vdt_camera *c, const float p[3], double out[3])
+{
+	double d[3] = {p[0] - c->v.eye[0], p[1] - c->v.eye[1], p[2] - c->v.eye[2]};
+	double z = dot(d, c->fwd);
+	double s = z > 0 ? c->focal / z : 0;
+
+	out[0] = c->v.width * 0.5 + s * dot(d, c->right);
+	out[1] = c->v.height * 0.5 - s * dot(d, c->up);
+	out[2] = z;
+}
+
+/*
+ * Equation 1's distance between a node and a reference direction, as a
+ * factor of the plain distance: 1 when they agree, (2 + eps) / eps when
+ * opposite. The node's normal is taken as the one in its cone nearest the
+ * reference, so a cone that straddles the silhouette counts as facing.
+ */
+static double
+eq1_factor(const float *n, double cone, const double *ref, double eps)
+{
+	double c = n[0] * ref[0] + n[1] * ref[1] + n[2] * ref[2];
+	double a = acos(c < -1 ? -1 : c > 1 ? 1 : c) - cone;
+	return (2 + eps) / (1 + cos(a > 0 ? a : 0) + eps);
+}
+
+double
+vdt_lod_error(void *ctx, uint32_t x)
+{
+	const struct vdt_lod_ctx *L = ctx;
+	const struct vdt_camera *c = L->cam;
+	const struct vdt_lod *o = L->lod;
+	const struct vdt_vtree *t = L->t;
+	const float *p = t->pos + 3 * x, *n = t->normal + 3 * x;
+	double dev = t->dev[x], cone = t->cone[x];
+	double v[3] = {p[0] - c->v.eye[0], p[1] - c->v.eye[1], p[2] - c->v.eye[2]};
+	double d = norm(v), toeye[3] = {-v[0], -v[1], -v[2]};
+
+	if (d <= dev)
+		return INFINITY;
+	if (o->frustum) {
+		if (d * dot(v, c->fwd) < -dev)
+			return -1;
+		for (int k = 0; k < 4; k++)
+			if (d * dot(v, c->side[k]) < -dev)
+				return -1;
+	}
+	double D = d;
+	if (o->backface || o->lighting) {
+		/* Wholly facing away, allowing for the bound's sphere. */
+		double cn = dot(toeye, (const double[3]){n[0], n[1], n[2]});
+		double a = acos(cn < -1 ? -1 : cn > 1 ? 1 : cn);
+		if (o->backface && a - cone > M_PI / 2 + asin(dev / d))
+			return -1;
+		double De = d * eq1_factor(n, cone, toeye, o->eps);
+		D = De;
+		if (o->lighting) {
+			double Dl = d * eq1_factor(n, cone, o->light, o->eps);
+			D = Dl < De ? Dl : De;
+		}
+	}
+	if (o->fovea > 0)
+		D *= pow(eq1_factor((const float[3]){(float)c->fwd[0], (float)c->fwd[1],
+		                                      (float)c->fwd[2]}, 0, v, o->eps), o->fovea);
+	return dev * c->focal / D;
+}
+
+int
+vdt_camera_read_path(const char *path, const struct vdt_view *base, struct vdt_view **views,
+                     size_t *count, struct vdt_err *err)
+{
+	FILE *f = fopen(path, "r");
+	char line[1024];
+	size_t n = 0, cap = 0, lineno = 0;
+	struct vdt_view *v = NULL;
+	int rc = 0;
+
+	*views = NULL;
+	*count = 0;
+	if (f == NULL)
+		return vdt_err_set(err, VDT_EIO, "%s", strerror(errno));
+	while (fgets(line, sizeof(line), f) != NULL) {
+		double x[9];
+		char *p = line, *end;
+		lineno++;
+		p += strspn(p, " \t\r\n");
+		if (*p == '\0' || *p == '#')
+			continue;
+		for (int i = 0; i < 9; i++, p = end) {
+			x[i] = strtod(p, &end);
+			if (end == p || !isfinite(x[i])) {
+				rc = vdt_err_set(err, VDT_EFORMAT, "line %zu: want nine numbers (eye, at, "
+				                 "up)", lineno);
+				goto out;
+			}
+		}
+		if (end[strspn(end, " \t\r\n")] != '\0') {
+			rc = vdt_err_set(err, VDT_EFORMAT, "line %zu: junk after nine numbers", lineno);
+			goto out;
+		}
+		if (n == cap) {
+			struct vdt_view *nv = realloc(v, (cap = cap ? 2 * cap : 64) * sizeof(*v));
+			if (nv == NULL) {
+				rc = vdt_err_set(err, VDT_ENOMEM, "out of memory for the path");
+				goto out;
+			}
+			v = nv;
+		}
+		v[n] = *base;
+		memcpy(v[n].eye, x, sizeof(v[n].eye));
+		memcpy(v[n].at, x + 3, sizeof(v[n].at));
+		memcpy(v[n].up, x + 6, sizeof(v[n].up));
+		n++;
+	}
+	if (ferror(f))
+		rc = vdt_err_set(err, VDT_EIO, "read error");
+	else if (n == 0)
+		rc = vdt_err_set(err, VDT_EFORMAT, "no views in the path");
+out:
+	fclose(f);
+	if (rc != 0) {
+		free(v);
+		return rc;
+	}
+	*views = v;
+	*count = n;
+	return 0;
+}

@@ -1,0 +1,488 @@
+/*
+ * front.c - run-time traversal of a view-dependence tree: El-Sana &
+ * Varshney, "View-Dependent Topology Simplification" (EGWR 99), section
+ * 4.3 (active vertices and triangles, implicit split and collapse checks
+ * with two integers per active vertex, frame-to-frame coherence).
+ *
+ * Corners at each active vertex are kept in a doubly linked list, so a
+ * split or collapse touches only the corners around it. Any cut of the tree
+ * gives a consistent triangulation (a triangle is alive exactly while the
+ * node that would make it vanish is above the cut); the 4.3 checks are what
+ * keep a cut to neighbourhoods the build saw, and so free of fold-overs.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "front.h"
+
+#define NONE VDT_VTREE_NONE
+
+static void
+unlink_corner(struct vdt_front *F, uint32_t e)
+{
+	uint32_t x = F->cur[e];
+	if (F->prev[e] != NONE)
+		F->next[F->prev[e]] = F->next[e];
+	else
+		F->head[x] = F->next[e];
+	if (F->next[e] != NONE)
+		F->prev[F->next[e]] = F->prev[e];
+}
+
+static void
+link_corner(struct vdt_front *F, uint32_t e, uint32_t x)
+{
+	F->cur[e] = x;
+	F->prev[e] = NONE;
+	F->next[e] = F->head[x];
+	if (F->head[x] != NONE)
+		F->prev[F->head[x]] = e;
+	F->head[x] = e;
+}
+
+static void
+add_active(struct vdt_front *F, uint32_t x)
+{
+	F->active_pos[x] = (uint32_t)F->active_count;
+	F->active[F->active_count++] = x;
+}
+
+static void
+remove_active(struct vdt_front *F, uint32_t x)
+{
+	uint32_t i = F->active_pos[x], last = F->active[--F->active_count];
+	F->active[i] = last;
+	F->active_pos[last] = i;
+	F->active_pos[x] = NONE;
+}
+
+static void
+add_tri(struct vdt_front *F, uint32_t f)
+{
+	F->tri_pos[f] = (uint32_t)F->tri_count;
+	F->tri[F->tri_count++] = f;
+}
+
+static void
+remove_tri(struct vdt_front *F, uint32_t f)
+{
+	uint32_t i = F->tri_pos[f], last = F->tri[--F->tri_count];
+	F->tri[i] = last;
+	F->tri_pos[last] = i;
+	F->tri_pos[f] = NONE;
+}
+
+/* Is leaf (by its interval start) under node x? */
+static int
+under(const struct vdt_front *F, uint32_t leaf, uint32_t x)
+{
+	return F->start[leaf] - F->start[x] < F->size[x];
+}
+
+static uint32_t
+active_of(const struct vdt_front *F, uint32_t leaf)
+{
+	uint32_t x = leaf;
+	while (F->active_pos[x] == NONE)
+		x = F->t->parent[x];
+	return x;
+}
+
+/* Queue x for another look this frame (once). */
+static void
+push_work(struct vdt_front *F, uint32_t x)
+{
+	if (F->stamp[x] == F->now)
+		return;
+	F->stamp[x] = F->now;
+	F->work[F->work_count++] = x;
+}
+
+/* Recompute the two 4.3 integers of active vertex x from its triangles. */
+static void
+refresh(struct vdt_front *F, uint32_t x)
+{
+	const uint32_t *parent = F->t->parent;
+	uint32_t mx = 0, mp = NONE, px = parent[x];
+
+	for (uint32_t e = F->head[x]; e != NONE; e = F->next[e]) {
+		uint32_t f = e / 3;
+		for (int j = 0; j < 3; j++) {
+			uint32_t y = F->cur[3 * f + j];
+			if (y == x)
+				continue;
+			if (y > mx)
+				mx = y;
+			/* The sibling's parent is the collapse itself. */
+			if (parent[y] != px && parent[y] < mp)
+				mp = parent[y];
+		}
+	}
+	F->maxnb[x] = mx;
+	F->minpar[x] = mp;
+	F->stats.updated++;
+}
+
+/* Refresh x and every neighbour of x, and queue them for this frame. */
+static void
+refresh_around(struct vdt_front *F, uint32_t x)
+{
+	refresh(F, x);
+	push_work(F, x);
+	for (uint32_t e = F->head[x]; e != NONE; e = F->next[e]) {
+		uint32_t f = e / 3;
+		for (int j = 0; j < 3; j++) {
+			uint32_t y = F->cur[3 * f + j];
+			if (y != x) {
+				refresh(F, y);
+				push_work(F, y);
+			}
+		}
+	}
+}
+
+int
+vdt_front_is_active(const struct vdt_front *F, uint32_t x)
+{
+	return x < F->t->node_count && F->active_pos[x] != NONE;
+}
+
+int
+vdt_front_can_split(const struct vdt_front *F, uint32_t x)
+{
+	return vdt_front_is_active(F, x) && x >= F->t->leaf_count && F->maxnb[x] < x;
+}
+
+int
+vdt_front_can_collapse(const struct vdt_front *F, uint32_t x)
+{
+	const struct vdt_vtree *t = F->t;
+	if (x < t->leaf_count || x >= t->node_count)
+		return 0;
+	size_t k = x - t->leaf_count;
+	uint32_t a = t->child[2 * k], b = t->child[2 * k + 1];
+	return F->active_pos[a] != NONE && F->active_pos[b] != NONE && x < F->minpar[a] &&
+	       x < F->minpar[b];
+}
+
+static void
+do_collapse(struct vdt_front *F, uint32_t x)
+{
+	const struct vdt_vtree *t = F->t;
+	size_t k = x - t->leaf_count;
+	uint32_t a = t->child[2 * k], b = t->child[2 * k + 1];
+
+	/* Both children active: exactly x's listed triangles join them. Their
+	 * third corners may lose a and b as neighbours: refreshed below. */
+	for (uint32_t i = t->tri_first[k]; i < t->tri_first[k + 1]; i++) {
+		uint32_t f = t->tris[i];
+		for (int j = 0; j < 3; j++)
+			unlink_corner(F, 3 * f + j);
+		remove_tri(F, f);
+	}
+	for (int side = 0; side < 2; side++) {
+		uint32_t c = side ? b : a;
+		for (uint32_t e = F->head[c]; e != NONE;) {
+			uint32_t nx = F->next[e];
+			link_corner(F, e, x);
+			e = nx;
+		}
+		F->head[c] = NONE;
+	}
+	remove_active(F, a);
+	remove_active(F, b);
+	add_active(F, x);
+	F->stats.collapses++;
+	refresh_around(F, x);
+	for (uint32_t i = t->tri_first[k]; i < t->tri_first[k + 1]; i++) {
+		uint32_t y = F->cur[3 * t->tris[i]];
+		for (int j = 0; j < 3 && (y == a || y == b); j++)
+			y = F->cur[3 * t->tris[i] + j];
+		/* cur of a dead triangle is stale but names its third corner's
+		 * vertex of the time, which is still active (outside x). */
+		if (F->active_pos[y] != NONE) {
+			refresh(F, y);
+			push_work(F, y);
+		}
+	}
+}
+
+static void
+do_split(struct vdt_front *F, uint32_t x)
+{
+	const struct vdt_vtree *t = F->t;
+	size_t k = x - t->leaf_count;
+	uint32_t a = t->child[2 * k], b = t->child[2 * k + 1];
+	const uint32_t *tri = F->m->triangles;
+
+	for (uint32_t e = F->head[x]; e != NONE;) {
+		uint32_t nx = F->next[e];
+		link_corner(F, e, under(F, tri[e], a) ? a : b);
+		e = nx;
+	}
+	F->head[x] = NONE;
+	remove_active(F, x);
+	add_active(F, a);
+	add_active(F, b);
+	for (uint32_t i = t->tri_first[k]; i < t->tri_first[k + 1]; i++) {
+		uint32_t f = t->tris[i];
+		for (int j = 0; j < 3; j++)
+			link_corner(F, 3 * f + j, active_of(F, tri[3 * f + j]));
+		add_tri(F, f);
+	}
+	F->stats.splits++;
+	refresh_around(F, a);
+	refresh_around(F, b);
+}
+
+int
+vdt_front_split(struct vdt_front *F, uint32_t x, struct vdt_err *err)
+{
+	if (!vdt_front_can_split(F, x))
+		return vdt_err_set(err, VDT_EINVAL, "node %u may not split", x);
+	F->now++;
+	F->work_count = 0;
+	do_split(F, x);
+	F->work_count = 0;
+	return 0;
+}
+
+int
+vdt_front_collapse(struct vdt_front *F, uint32_t x, struct vdt_err *err)
+{
+	if (!vdt_front_can_collapse(F, x))
+		return vdt_err_set(err, VDT_EINVAL, "node %u may not collapse", x);
+	F->now++;
+	F->work_count = 0;
+	do_collapse(F, x);
+	F->work_count = 0;
+	return 0;
+}
+
+void
+vdt_front_free(struct vdt_front *F)
+{
+	free(F->active);
+	free(F->active_pos);
+	free(F->tri);
+	free(F->tri_pos);
+	free(F->cur);
+	free(F->maxnb);
+	free(F->minpar);
+	free(F->head);
+	free(F->next);
+	free(F->prev);
+	free(F->start);
+	free(F->size);
+	free(F->stamp);
+	free(F->work);
+	memset(F, 0, sizeof(*F));
+}
+
+int
+vdt_front_init(struct vdt_front *F, const struct vdt_vtree *t, const struct vdt_mesh *m,
+               struct vdt_err *err)
+{
+	size_t n = t->leaf_count, N = t->node_count, nt = t->triangle_count;
+
+	memset(F, 0, sizeof(*F));
+	F->t = t;
+	F->m = m;
+	F->active = malloc((N + 1) * sizeof(uint32_t));
+	F->active_pos = malloc((N + 1) * sizeof(uint32_t));
+	F->tri = malloc((nt + 1) * sizeof(uint32_t));
+	F->tri_pos = malloc((nt + 1) * sizeof(uint32_t));
+	F->cur = malloc((3 * nt + 1) * sizeof(uint32_t));
+	F->next = malloc((3 * nt + 1) * sizeof(uint32_t));
+	F->prev = malloc((3 * nt + 1) * sizeof(uint32_t));
+	F->maxnb = calloc(N + 1, sizeof(uint32_t));
+	F->minpar = calloc(N + 1, sizeof(uint32_t));
+	F->head = malloc((N + 1) * sizeof(uint32_t));
+	F->start = malloc((N + 1) * sizeof(uint32_t));
+	F->size = malloc((N + 1) * sizeof(uint32_t));
+	F->stamp = calloc(N + 1, sizeof(uint32_t));
+	/* A vertex is queued at most once per round. */
+	F->work = malloc((N + 1) * sizeof(uint32_t));
+	if (!F->active || !F->active_pos || !F->tri || !F->tri_pos || !F->cur || !F->next ||
+	    !F->prev || !F->maxnb || !F->minpar || !F->head || !F->start || !F->size ||
+	    !F->stamp || !F->work) {
+		vdt_front_free(F);
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory for the active front");
+	}
+	/* Leaf intervals: the leaves under a node are contiguous in this order. */
+	for (size_t x = 0; x < N; x++)
+		F->size[x] = x < n ? 1 : F->size[t->child[2 * (x - n)]] + F->size[t->child[2 * (x - n) + 1]];
+	uint32_t next = 0;
+	for (size_t x = N; x-- > 0;) {
+		if (t->parent[x] == NONE) {
+			F->start[x] = next;
+			next += F->size[x];
+		}
+		if (x >= n) {
+			uint32_t a = t->child[2 * (x - n)], b = t->child[2 * (x - n) + 1];
+			F->start[a] = F->start[x];
+			F->start[b] = F->start[x] + F->size[a];
+		}
+	}
+	memset(F->head, 0xff, (N + 1) * sizeof(uint32_t));
+	memset(F->active_pos, 0xff, (N + 1) * sizeof(uint32_t));
+	for (size_t x = 0; x < n; x++)
+		add_active(F, (uint32_t)x);
+	for (size_t f = 0; f < nt; f++)
+		add_tri(F, (uint32_t)f);
+	for (size_t e = 3 * nt; e-- > 0;)
+		link_corner(F, (uint32_t)e, m->triangles[e]);
+	for (size_t x = 0; x < n; x++)
+		refresh(F, (uint32_t)x);
+	F->stats.updated = 0;
+	return 0;
+}
+
+/* Decide for one active vertex; returns 1 if it changed the front. */
+static int
+visit(struct vdt_front *F, uint32_t x, vdt_front_error_fn error, void *ctx, double tau)
+{
+	const struct vdt_vtree *t = F->t;
+
+	F->stats.visited++;
+	if (x >= t->leaf_count && error(ctx, x) > tau) {
+		if (F->maxnb[x] < x) {
+			do_split(F, x);
+			return 1;
+		}
+		F->stats.refused++;
+		return 0;
+	}
+	uint32_t p = t->parent[x];
+	if (p == NONE)
+		return 0;
+	size_t k = p - t->leaf_count;
+	uint32_t s = t->child[2 * k] == x ? t->child[2 * k + 1] : t->child[2 * k];
+	if (F->active_pos[s] == NONE || error(ctx, p) > tau)
+		return 0;
+	if (p < F->minpar[x] && p < F->minpar[s]) {
+		do_collapse(F, p);
+		return 1;
+	}
+	F->stats.refused++;
+	return 0;
+}
+
+static void
+adapt(struct vdt_front *F, vdt_front_error_fn error, void *ctx, double tau)
+{
+	/* Round 0 looks at the whole front; later rounds only at the vertices
+	 * a change created or touched. Each round works on a copy, since
+	 * changes reorder the active list and refill the work list. */
+	size_t count = F->active_count;
+	uint32_t *w = malloc((F->t->node_count + 1) * sizeof(uint32_t));
+
+	if (w == NULL)
+		return; /* the front stays valid, only less adapted */
+	memcpy(w, F->active, count * sizeof(uint32_t));
+	F->now++;
+	F->work_count = 0;
+	for (;;) {
+		for (size_t i = 0; i < count; i++)
+			if (F->active_pos[w[i]] != NONE && F->stamp[w[i]] != F->now)
+				visit(F, w[i], error, ctx, tau);
+		if (F->work_count == 0)
+			break;
+		count = F->work_count;
+		memcpy(w, F->work, count * sizeof(uint32_t));
+		F->now++;
+		F->work_count = 0;
+	}
+	free(w);
+}
+
+void
+vdt_front_adapt(struct vdt_front *F, vdt_front_error_fn error, void *ctx, double tau)
+{
+	memset(&F->stats, 0, sizeof(F->stats));
+	adapt(F, error, ctx, tau);
+}
+
+void
+vdt_front_adapt_budget(struct vdt_front *F, vdt_front_error_fn error, void *ctx,
+                       size_t budget, double *tau)
+{
+	double lo = 0, hi = 0, x = *tau > 0 && isfinite(*tau) ? *tau : 1;
+
+	memset(&F->stats, 0, sizeof(F->stats));
+	/* Bracket: hi fits, lo does not; then bisect the ratio to 1%. */
+	for (int i = 0; i < 60; i++) {
+		adapt(F, error, ctx, x);
+		if (F->tri_count <= budget) {
+			hi = x;
+			if (lo > 0 || x < 1e-6)
+				break;
+			x /= 4;
+		} else {
+			lo = x;
+			if (hi > 0)
+				break;
+			x *= 4;
+		}
+	}
+	if (hi == 0) {
+		*tau = x;
+		return;
+	}
+	while (lo > 0 && hi / lo > 1.01) {
+		x = sqrt(lo * hi);
+		adapt(F, error, ctx, x);
+		if (F->tri_count <= budget)
+			hi = x;
+		else
+			lo = x;
+	}
+	if (F->tri_count > budget)
+		adapt(F, error, ctx, hi);
+	*tau = hi;
+}
+
+int
+vdt_front_mesh(const struct vdt_front *F, int normals, struct vdt_mesh *out,
+               uint32_t **node_of, struct vdt_err *err)
+{
+	const struct vdt_vtree *t = F->t;
+	size_t N = t->node_count, nv = 0;
+	uint32_t *index = malloc((N + 1) * sizeof(uint32_t));
+
+	memset(out, 0, sizeof(*out));
+	if (node_of)
+		*node_of = NULL;
+	if (index == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory for the front's mesh");
+	memset(index, 0xff, (N + 1) * sizeof(uint32_t));
+	for (size_t i = 0; i < F->tri_count; i++)
+		for (int j = 0; j < 3; j++)
+			index[F->cur[3 * F->tri[i] + j]] = 0;
+	/* Number in node order so that the output does not depend on history. */
+	for (size_t x = 0; x < N; x++)
+		if (index[x] == 0)
+			index[x] = (uint32_t)nv++;
+	if (vdt_mesh_alloc(out, nv, F->tri_count, normals ? VDT_ATTR_NORMALS : 0, err) != 0 ||
+	    (node_of && (*node_of = malloc((nv + 1) * sizeof(uint32_t))) == NULL)) {
+		free(index);
+		vdt_mesh_free(out);
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory for the front's mesh");
+	}
+	for (size_t x = 0; x < N; x++) {
+		uint32_t v = index[x];
+		if (v == NONE)
+			continue;
+		memcpy(out->positions + 3 * v, t->pos + 3 * x, 3 * sizeof(float));
+		if (normals)
+			memcpy(out->normals + 3 * v, t->normal + 3 * x, 3 * sizeof(float));
+		if (node_of)
+			(*node_of)[v] = (uint32_t)x;
+	}
+	for (size_t i = 0; i < F->tri_count; i++)
+		for (int j = 0; j < 3; j++)
+			out->triangles[3 * i + j] = index[F->cur[3 * F->tri[i] + j]];
+	free(index);
+	return 0;
+}

@@ -1,0 +1,231 @@
+/*
+ * raster.c - the software rasteriser vdt-render draws the fronts of
+ * El-Sana & Varshney (EGWR 99, section 6 measures traversal against the
+ * time to draw) with: half-space edge functions over the triangle's
+ * bounding box, in double precision so that results do not depend on the
+ * order of evaluation.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "raster.h"
+
+int
+vdt_raster_init(struct vdt_raster *r, int width, int height, struct vdt_err *err)
+{
+	size_t np = (size_t)width * height;
+
+	memset(r, 0, sizeof(*r));
+	if (width <= 0 || height <= 0)
+		return vdt_err_set(err, VDT_EINVAL, "image size %dx%d is empty", width, height);
+	r->depth = calloc(np, sizeof(float));
+	r->rgb = calloc(np, 3);
+	if (r->depth == NULL || r->rgb == NULL) {
+		vdt_raster_free(r);
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory for a %dx%d image", width, height);
+	}
+	r->width = width;
+	r->height = height;
+	return 0;
+}
+
+void
+vdt_raster_free(struct vdt_raster *r)
+{
+	free(r->depth);
+	free(r->rgb);
+	memset(r, 0, sizeof(*r));
+}
+
+void
+vdt_raster_clear(struct vdt_raster *r, const unsigned char bg[3])
+{
+	size_t np = (size_t)r->width * r->height;
+	memset(r->depth, 0, np * sizeof(float));
+	for (size_t i = 0; i < np; i++)
+		memcpy(r->rgb + 3 * i, bg, 3);
+}
+
+static double
+edge(const double *a, const double *b, double x, double y)
+{
+	return (b[0] - a[0]) * (y - a[1]) - (b[1] - a[1]) * (x - a[0]);
+}
+
+/* Top-left rule: an edge owns the pixels exactly on it if it is a top or a
+ * left edge of the (area-positive) triangle. */
+static int
+owns(const double *a, const double *b)
+{
+	double dx = b[0] - a[0], dy = b[1] - a[1];
+	return dy < 0 || (dy == 0 && dx > 0);
+}
+
+static unsigned char
+to8(double v)
+{
+	v = v * 255 + 0.5;
+	return (unsigned char)(v < 0 ? 0 : v > 255 ? 255 : v);
+}
+
+void
+vdt_raster_triangle(struct vdt_raster *r, const double s[3][3], const float col[3][3])
+{
+	const double *p0 = s[0], *p1 = s[1], *p2 = s[2];
+	const float *c0 = col[0], *c1 = col[1], *c2 = col[2];
+	double area = edge(p0, p1, p2[0], p2[1]);
+
+	if (!(fabs(area) > 0) || !isfinite(area))
+		return;
+	if (area < 0) { /* draw both orientations the same way */
+		p1 = s[2], p2 = s[1], c1 = col[2], c2 = col[1];
+		area = -area;
+	}
+	double minx = fmin(p0[0], fmin(p1[0], p2[0])), maxx = fmax(p0[0], fmax(p1[0], p2[0]));
+	double miny = fmin(p0[1], fmin(p1[1], p2[1])), maxy = fmax(p0[1], fmax(p1[1], p2[1]));
+	int x0 = (int)fmax(0, floor(minx - 0.5)), x1 = (int)fmin(r->width - 1, ceil(maxx));
+	int y0 = (int)fmax(0, floor(miny - 0.5)), y1 = (int)fmin(r->height - 1, ceil(maxy));
+	int o0 = owns(p1, p2), o1 = owns(p2, p0), o2 = owns(p0, p1);
+	double iz0 = 1 / p0[2], iz1 = 1 / p1[2], iz2 = 1 / p2[2];
+
+	for (int y = y0; y <= y1; y++) {
+		double py = y + 0.5;
+		for (int x = x0; x <= x1; x++) {
+			double px = x + 0.5;
+			double w0 = edge(p1, p2, px, py), w1 = edge(p2, p0, px, py),
+			       w2 = edge(p0, p1, px, py);
+			if (w0 < 0 || w1 < 0 || w2 < 0 || (w0 == 0 && !o0) || (w1 == 0 && !o1) ||
+			    (w2 == 0 && !o2))
+				continue;
+			w0 /= area, w1 /= area, w2 /= area;
+			float iz = (float)(w0 * iz0 + w1 * iz1 + w2 * iz2);
+			size_t i = (size_t)y * r->width + x;
+			if (!(iz > r->depth[i]))
+				continue;
+			r->depth[i] = iz;
+			for (int k = 0; k < 3; k++)
+				r->rgb[3 * i + k] = to8(w0 * c0[k] + w1 * c1[k] + w2 * c2[k]);
+		}
+	}
+}
+
+void
+vdt_raster_line(struct vdt_raster *r, const double a[3], const double b[3],
+                const unsigned char rgb[3])
+{
+	double dx = b[0] - a[0], dy = b[1] - a[1];
+	int steps = (int)ceil(fmax(fabs(dx), fabs(dy)));
+
+	if (steps > 4 * (r->width + r->height) || !isfinite(dx) || !isfinite(dy))
+		return;
+	for (int s = 0; s <= steps; s++) {
+		double u = steps ? (double)s / steps : 0;
+		int x = (int)floor(a[0] + u * dx), y = (int)floor(a[1] + u * dy);
+		if (x < 0 || y < 0 || x >= r->width || y >= r->height)
+			continue;
+		size_t i = (size_t)y * r->width + x;
+		double iz = (1 - u) / a[2] + u / b[2];
+		/* In front of its own faces, behind anything clearly nearer. */
+		if (iz * 1.002 >= r->depth[i]) {
+			r->depth[i] = (float)fmax(r->depth[i], iz);
+			memcpy(r->rgb + 3 * i, rgb, 3);
+		}
+	}
+}
+
+int
+vdt_raster_mesh(struct vdt_raster *r, const struct vdt_camera *c, const struct vdt_mesh *m,
+                const struct vdt_raster_opts *o, struct vdt_err *err)
+{
+	static const unsigned char black[3] = {0, 0, 0};
+
+	if (o->smooth && m->normals == NULL)
+		return vdt_err_set(err, VDT_EINVAL, "smooth shading needs vertex normals");
+	for (size_t f = 0; f < m->triangle_count; f++) {
+		const uint32_t *v = m->triangles + 3 * f;
+		double s[3][3], fn[3], e1[3], e2[3], toeye[3];
+		float col[3][3];
+		int skip = 0;
+		for (int j = 0; j < 3; j++) {
+			vdt_camera_project(c, m->positions + 3 * v[j], s[j]);
+			skip |= !(s[j][2] > c->near);
+		}
+		if (skip)
+			continue;
+		const float *p0 = m->positions + 3 * v[0], *p1 = m->positions + 3 * v[1],
+		            *p2 = m->positions + 3 * v[2];
+		for (int k = 0; k < 3; k++) {
+			e1[k] = p1[k] - p0[k];
+			e2[k] = p2[k] - p0[k];
+			toeye[k] = c->v.eye[k] - p0[k];
+		}
+		fn[0] = e1[1] * e2[2] - e1[2] * e2[1];
+		fn[1] = e1[2] * e2[0] - e1[0] * e2[2];
+		fn[2] = e1[0] * e2[1] - e1[1] * e2[0];
+		double l = sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2]);
+		/* Light the side we see. */
+		double side = fn[0] * toeye[0] + fn[1] * toeye[1] + fn[2] * toeye[2] < 0 ? -1 : 1;
+		for (int j = 0; j < 3; j++) {
+			double n[3], d = 0;
+			for (int k = 0; k < 3; k++)
+				n[k] = o->smooth ? m->normals[3 * v[j] + k] : (l > 0 ? fn[k] / l : 0);
+			for (int k = 0; k < 3; k++)
+				d += side * n[k] * o->light[k];
+			double shade = o->ambient + (1 - o->ambient) * (d > 0 ? d : 0);
+			for (int k = 0; k < 3; k++)
+				col[j][k] = (float)(shade * (o->colors ? o->colors[3 * v[j] + k] : 0.8));
+		}
+		vdt_raster_triangle(r, (const double(*)[3])s, (const float(*)[3])col);
+	}
+	if (!o->wire)
+		return 0;
+	for (size_t f = 0; f < m->triangle_count; f++) {
+		double s[3][3];
+		int skip = 0;
+		for (int j = 0; j < 3; j++) {
+			vdt_camera_project(c, m->positions + 3 * m->triangles[3 * f + j], s[j]);
+			skip |= !(s[j][2] > c->near);
+		}
+		for (int j = 0; j < 3 && !skip; j++)
+			vdt_raster_line(r, s[j], s[(j + 1) % 3], black);
+	}
+	return 0;
+}
+
+double
+vdt_raster_rmse(const unsigned char *a, const unsigned char *b, size_t bytes)
+{
+	double s = 0;
+	for (size_t i = 0; i < bytes; i++) {
+		double d = (double)a[i] - b[i];
+		s += d * d;
+	}
+	return bytes ? sqrt(s / bytes) : 0;
+}
+
+void
+vdt_raster_vertex_normals(const struct vdt_mesh *m, float *out)
+{
+	memset(out, 0, 3 * m->vertex_count * sizeof(float));
+	for (size_t f = 0; f < m->triangle_count; f++) {
+		const uint32_t *v = m->triangles + 3 * f;
+		const float *a = m->positions + 3 * v[0], *b = m->positions + 3 * v[1],
+		            *c = m->positions + 3 * v[2];
+		double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+		double e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+		double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+		               e1[0] * e2[1] - e1[1] * e2[0]};
+		for (int j = 0; j < 3; j++)
+			for (int k = 0; k < 3; k++)
+				out[3 * v[j] + k] += (float)n[k];
+	}
+	for (size_t i = 0; i < m->vertex_count; i++) {
+		float *n = out + 3 * i;
+		double l = sqrt((double)n[0] * n[0] + (double)n[1] * n[1] + (double)n[2] * n[2]);
+		if (l > 0)
+			n[0] = (float)(n[0] / l), n[1] = (float)(n[1] / l), n[2] = (float)(n[2] / l);
+		else
+			n[0] = n[1] = 0, n[2] = 1;
+	}
+}
