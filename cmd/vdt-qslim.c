@@ -10,14 +10,16 @@
 
 #include "../lib/io/meshio.h"
 #include "../lib/qslim.h"
+#include "../lib/silhouette.h"
 #include "common.h"
 
 struct cmdline {
 	const char *in, *out;
 	struct vdt_qslim_opts q;
 	struct vdt_write_opts w;
-	double bound, aggregate;
-	int bound_pct, aggregate_pct, ignore_quadrics, record, quiet, verbose;
+	double bound, aggregate, contour, factor, view[3];
+	size_t nearest;
+	int has_view, bound_pct, aggregate_pct, ignore_quadrics, record, quiet, verbose;
 };
 
 static void
@@ -28,7 +30,8 @@ usage(FILE *f)
 	        "                 [-a DISTANCE[%%]] [--lock-border] [--boundary-weight W]\n"
 	        "                 [--max-angle DEGREES] [--min-quality Q] [--ignore-quadrics]\n"
 	        "                 [--attribute-weight W] [--topology auto|keep|free] [--record]\n"
-	        "                 [--draco-bits N] [-q] [-v] [INPUT]\n"
+	        "                 [--contour-distance PIXELS] [--error-factor F]\n"
+	        "                 [--view X,Y,Z [--nearest N]] [--draco-bits N] [-q] [-v] [INPUT]\n"
 	        "Simplify a triangle mesh with quadric error metrics. INPUT and OUTPUT\n"
 	        "default to - (stdin, stdout); stops at the first target reached\n"
 	        "(default -r 0.5).\n");
@@ -48,7 +51,8 @@ topology_parse(const char *s)
 static void
 parse_cmdline(int argc, char **argv, struct cmdline *cl)
 {
-	enum { O_LOCK = 256, O_BW, O_ANGLE, O_QUALITY, O_IGNORE, O_RECORD, O_DRACO, O_AW, O_TOPO };
+	enum { O_LOCK = 256, O_BW, O_ANGLE, O_QUALITY, O_IGNORE, O_RECORD, O_DRACO, O_AW, O_TOPO, O_CD, O_EF, O_VIEW, O_NEAR };
+	char junk;
 	static const struct option longopts[] = {
 		{"triangles", required_argument, NULL, 't'},
 		{"ratio", required_argument, NULL, 'r'},
@@ -65,6 +69,10 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		{"attribute-weight", required_argument, NULL, O_AW},
 		{"record", no_argument, NULL, O_RECORD},
 		{"draco-bits", required_argument, NULL, O_DRACO},
+		{"contour-distance", required_argument, NULL, O_CD},
+		{"error-factor", required_argument, NULL, O_EF},
+		{"view", required_argument, NULL, O_VIEW},
+		{"nearest", required_argument, NULL, O_NEAR},
 		{"quiet", no_argument, NULL, 'q'},
 		{"verbose", no_argument, NULL, 'v'},
 		{"help", no_argument, NULL, 'h'},
@@ -78,6 +86,9 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	cl->q.attribute_weight = VDT_QSLIM_ATTRIBUTE_WEIGHT;
 	cl->in = cl->out = "-";
 	cl->bound = INFINITY;
+	cl->contour = 2;
+	cl->factor = 0.25;
+	cl->nearest = 4;
 	while ((c = getopt_long(argc, argv, "t:r:e:o:F:a:qvhV", longopts, NULL)) != -1) {
 		switch (c) {
 		case 't': cl->q.target_triangles = parse_count("-t", optarg, 1, 4294967295UL); break;
@@ -101,6 +112,15 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		case O_AW: cl->q.attribute_weight = parse_real("--attribute-weight", optarg, 0, 1e9); break;
 		case O_RECORD: cl->record = 1; break;
 		case O_DRACO: cl->w.draco_position_bits = (int)parse_count("--draco-bits", optarg, 1, 30); break;
+		case O_CD: cl->contour = parse_real("--contour-distance", optarg, 0, 1e6); break;
+		case O_EF: cl->factor = parse_real("--error-factor", optarg, 0, 1); break;
+		case O_NEAR: cl->nearest = parse_count("--nearest", optarg, 1, VDT_SIL_NEAREST_MAX); break;
+		case O_VIEW:
+			if (sscanf(optarg, "%lf,%lf,%lf%c", &cl->view[0], &cl->view[1], &cl->view[2], &junk) != 3 ||
+			    !(cl->view[0] * cl->view[0] + cl->view[1] * cl->view[1] + cl->view[2] * cl->view[2] > 0))
+				usage_error("--view must be a non-zero direction X,Y,Z, not '%s'", optarg);
+			cl->has_view = 1;
+			break;
 		case 'q': cl->quiet = 1; break;
 		case 'v': cl->verbose = 1; break;
 		case 'h': usage(stdout); exit(EXIT_OK);
@@ -122,6 +142,9 @@ run(struct cmdline *cl)
 	struct vdt_mesh in = {0}, out = {0};
 	struct vdt_chunks extra = {0};
 	struct vdt_quadric *quads = NULL;
+	struct vdt_labl labl = {0};
+	float *labels = NULL;
+	double *scale = NULL;
 	struct vdt_contraction *rec = NULL;
 	struct vdt_qslim_stats st;
 	struct vdt_err err = {0};
@@ -142,6 +165,31 @@ run(struct cmdline *cl)
 			goto out;
 		}
 		cl->q.quadrics = quads;
+	}
+	/* Silhouette labels (Mata et al. 3.3): the error allowed near the
+	 * contour of the view, or of every camera, shrinks by the factor. */
+	const struct vdt_chunk *lc = vdt_chunks_find(&extra, VDT_CHUNK_LABL);
+	if (lc) {
+		if ((rc = vdt_labl_decode(lc->data, lc->length, &labl, &err)) != 0 ||
+		    (labl.vertex_count != in.vertex_count &&
+		     (rc = vdt_err_set(&err, VDT_EFORMAT, "LABL chunk has labels of %zu vertices for %zu",
+		                       labl.vertex_count, in.vertex_count)) != 0)) {
+			rc = fail("cannot read", cl->in, &err);
+			goto out;
+		}
+		labels = malloc(in.vertex_count * sizeof(*labels));
+		scale = malloc(in.vertex_count * sizeof(*scale));
+		if (labels == NULL || scale == NULL) {
+			vdt_err_set(&err, VDT_ENOMEM, "out of memory for labels");
+			rc = fail("cannot simplify", cl->in, &err);
+			goto out;
+		}
+		if (cl->has_view)
+			vdt_labl_view(&labl, cl->view, cl->nearest, labels);
+		else
+			vdt_labl_min(&labl, labels);
+		vdt_labl_error_scale(labels, in.vertex_count, cl->contour, cl->factor, scale);
+		cl->q.error_scale = scale;
 	}
 	/* Quadrics, labels, trees, frames, records describe the input's
 	 * vertices, not the output's. */
@@ -192,6 +240,9 @@ out:
 	vdt_chunks_free(&extra);
 	free(quads);
 	free(rec);
+	free(labels);
+	free(scale);
+	vdt_labl_free(&labl);
 	return rc;
 }
 

@@ -203,3 +203,42 @@ load helpers
 	run "$BIN/vdt-qslim" -v --topology free -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/d.off"
 	[[ "$output" == *" topology=free "* ]]
 }
+
+@test "vdt-qslim with labels and --error-factor 0 keeps the contour of the view" {
+	"$BIN/vdt-silhouette" -a 30 -r 64 "$SAMPLES/sphere.off" -o "$TMP/s.vdl"
+	"$BIN/vdt-qslim" -r 0.3 --view 0,0,1 --contour-distance 1 --error-factor 0 -F off "$TMP/s.vdl" -o "$TMP/l.off"
+	"$BIN/vdt-silhouette" -a 30 -r 64 --view 0,0,1 -n 4 "$SAMPLES/sphere.off" > "$TMP/labels"
+	# every vertex labelled 1 pixel or less is in the output, unmoved
+	awk 'NR > 2 && NR <= 2564 { print $1, $2, $3 }' "$SAMPLES/sphere.off" | paste - "$TMP/labels" |
+		awk '$4 <= 1 { print $1, $2, $3 }' | sort > "$TMP/contour"
+	[ -s "$TMP/contour" ]
+	awk 'NR > 2 && NF == 3 { print $1, $2, $3 }' "$TMP/l.off" | sort > "$TMP/out"
+	[ -z "$(comm -23 "$TMP/contour" "$TMP/out")" ]
+}
+
+@test "vdt-qslim rejects a LABL chunk for another mesh with status 2" {
+	"$BIN/vdt-silhouette" -a 45 -r 32 "$SAMPLES/sphere.off" -o "$TMP/s.vdl"
+	"$BIN/vdt-silhouette" -a 45 -r 32 "$SAMPLES/torus.off" -o "$TMP/t.vdl"
+	# splice: the torus's LABL after the sphere's MESH
+	python3 - "$TMP/s.vdl" "$TMP/t.vdl" "$TMP/bad.vdl" <<'PY'
+import struct, sys, zlib
+def chunks(b):
+    o, out = 12, []
+    while True:
+        t = b[o:o+4]; n = struct.unpack('<Q', b[o+4:o+12])[0]
+        out.append((t, b[o+12:o+12+n])); o += 16 + n
+        if t == b'END ': return out
+s = chunks(open(sys.argv[1], 'rb').read()); t = chunks(open(sys.argv[2], 'rb').read())
+b = open(sys.argv[1], 'rb').read()[:12]
+for ty, p in [s[0], [c for c in t if c[0] == b'LABL'][0], (b'END ', b'')]:
+    b += ty + struct.pack('<Q', len(p)) + p + struct.pack('<I', zlib.crc32(ty + p))
+open(sys.argv[3], 'wb').write(b)
+PY
+	run "$BIN/vdt-qslim" -r 0.5 "$TMP/bad.vdl" -o "$TMP/x.off"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"bad.vdl"*"LABL"* ]]
+	[ ! -e "$TMP/x.off" ]
+	run "$BIN/vdt-qslim" --error-factor 2 "$TMP/s.vdl" -o "$TMP/x.off"
+	[ "$status" -eq 2 ]
+}

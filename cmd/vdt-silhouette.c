@@ -1,0 +1,215 @@
+/*
+ * vdt-silhouette - label every vertex with its distance to the silhouette
+ * from a set of cameras (a LABL chunk), for vdt-qslim and vdt-render.
+ */
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../lib/io/meshio.h"
+#include "../lib/silhouette.h"
+#include "../lib/stream.h"
+#include "common.h"
+
+struct cmdline {
+	const char *in, *out, *cameras, *images;
+	double step, view[3];
+	int has_view, quiet, verbose;
+	size_t nearest;
+	struct vdt_sil_opts s;
+};
+
+static void
+usage(FILE *f)
+{
+	fprintf(f,
+	        "usage: vdt-silhouette [-a DEGREES | -c CAMERAS] [-r CELLS] [-d edt|chamfer]\n"
+	        "                      [--images DIR] [--view X,Y,Z [-n N]] [-o OUTPUT] [-q] [-v]\n"
+	        "                      [INPUT]\n"
+	        "Add silhouette distance labels (a LABL chunk) to a mesh. INPUT and OUTPUT\n"
+	        "default to - (stdin, stdout); -a 15 and -r 256 by default. With --view,\n"
+	        "print the labels of that view, one per vertex, instead.\n");
+}
+
+static void
+parse_cmdline(int argc, char **argv, struct cmdline *cl)
+{
+	enum { O_IMAGES = 256, O_VIEW };
+	static const struct option longopts[] = {
+		{"angle", required_argument, NULL, 'a'},
+		{"cameras", required_argument, NULL, 'c'},
+		{"resolution", required_argument, NULL, 'r'},
+		{"transform", required_argument, NULL, 'd'},
+		{"nearest", required_argument, NULL, 'n'},
+		{"output", required_argument, NULL, 'o'},
+		{"images", required_argument, NULL, O_IMAGES},
+		{"view", required_argument, NULL, O_VIEW},
+		{"quiet", no_argument, NULL, 'q'},
+		{"verbose", no_argument, NULL, 'v'},
+		{"help", no_argument, NULL, 'h'},
+		{"version", no_argument, NULL, 'V'},
+		{NULL, 0, NULL, 0},
+	};
+	int c;
+	char junk;
+
+	memset(cl, 0, sizeof(*cl));
+	cl->in = cl->out = "-";
+	cl->step = VDT_SIL_STEP_DEFAULT;
+	cl->s.res = 256;
+	cl->nearest = 4;
+	while ((c = getopt_long(argc, argv, "a:c:r:d:n:o:qvhV", longopts, NULL)) != -1) {
+		switch (c) {
+		case 'a': cl->step = parse_real("-a", optarg, 1, 90); break;
+		case 'c': cl->cameras = optarg; break;
+		case 'r': cl->s.res = (int)parse_count("-r", optarg, VDT_SIL_RES_MIN, VDT_SIL_RES_MAX); break;
+		case 'd':
+			if (strcmp(optarg, "edt") != 0 && strcmp(optarg, "chamfer") != 0)
+				usage_error("-d must be edt or chamfer, not '%s'", optarg);
+			cl->s.dt = optarg[0] == 'c' ? VDT_SIL_CHAMFER : VDT_SIL_EDT;
+			break;
+		case 'n': cl->nearest = parse_count("-n", optarg, 1, VDT_SIL_NEAREST_MAX); break;
+		case 'o': cl->out = optarg; break;
+		case O_IMAGES: cl->images = optarg; break;
+		case O_VIEW:
+			if (sscanf(optarg, "%lf,%lf,%lf%c", &cl->view[0], &cl->view[1], &cl->view[2], &junk) != 3 ||
+			    !(cl->view[0] * cl->view[0] + cl->view[1] * cl->view[1] + cl->view[2] * cl->view[2] > 0))
+				usage_error("--view must be a non-zero direction X,Y,Z, not '%s'", optarg);
+			cl->has_view = 1;
+			break;
+		case 'q': cl->quiet = 1; break;
+		case 'v': cl->verbose = 1; break;
+		case 'h': usage(stdout); exit(EXIT_OK);
+		case 'V': print_version(); exit(EXIT_OK);
+		default: usage(stderr); exit(EXIT_USAGE);
+		}
+	}
+	if (optind < argc)
+		cl->in = argv[optind++];
+	if (optind < argc)
+		usage_error("unexpected argument '%s'", argv[optind]);
+}
+
+/* --images: DIR/camNNN-binary.png (object white) and DIR/camNNN-distance.png
+ * (grey proportional to the distance, brightest at the largest). */
+static int
+write_images(void *ctx, size_t cam, const struct vdt_sil_work *w, struct vdt_err *err)
+{
+	const char *dir = ctx;
+	size_t rr = (size_t)w->res * w->res;
+	unsigned char *px = malloc(rr);
+	char path[4096];
+	float top = 0;
+	int rc;
+
+	if (px == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory for an image");
+	for (size_t i = 0; i < rr; i++) {
+		px[i] = w->binary[i] ? 255 : 0;
+		if (w->dist[i] > top && w->dist[i] < 1e30f)
+			top = w->dist[i];
+	}
+	snprintf(path, sizeof(path), "%s/cam%03zu-binary.png", dir, cam);
+	rc = vdt_image_write(path, w->res, w->res, 1, px, err);
+	for (size_t i = 0; rc == 0 && i < rr; i++)
+		px[i] = top > 0 ? (unsigned char)(255 * (w->dist[i] < top ? w->dist[i] : top) / top) : 0;
+	if (rc == 0) {
+		snprintf(path, sizeof(path), "%s/cam%03zu-distance.png", dir, cam);
+		rc = vdt_image_write(path, w->res, w->res, 1, px, err);
+	}
+	free(px);
+	return rc;
+}
+
+static int
+run(struct cmdline *cl)
+{
+	struct vdt_mesh m = {0};
+	struct vdt_chunks extra = {0};
+	struct vdt_cameras cams = {0};
+	struct vdt_labl l = {0};
+	struct vdt_err err = {0};
+	unsigned char *data;
+	uint64_t len;
+	double t0 = now_seconds(), t1;
+	int rc = EXIT_OK;
+
+	if (cl->cameras) {
+		FILE *f = fopen(cl->cameras, "r");
+		char *text = malloc(1 << 20);
+		size_t n = f && text ? fread(text, 1, 1 << 20, f) : 0;
+		if (f == NULL || text == NULL || ferror(f))
+			vdt_err_set(&err, VDT_EIO, "cannot open or read the camera list");
+		else
+			vdt_cameras_parse(&cams, text, n, &err);
+		if (f)
+			fclose(f);
+		free(text);
+		if (err.code != 0)
+			return fail("cannot read", cl->cameras, &err);
+	} else if (vdt_cameras_regular(&cams, cl->step, &err) != 0) {
+		return fail("cannot make cameras for", cl->in, &err);
+	}
+	if (vdt_read(cl->in, &m, &extra, &err) != 0) {
+		rc = fail("cannot read", cl->in, &err);
+		goto out;
+	}
+	if (cl->images) {
+		cl->s.on_camera = write_images;
+		cl->s.ctx = (void *)cl->images;
+	}
+	cl->s.progress = progress_start(cl->quiet);
+	rc = vdt_labl_compute(&m, &cams, &cl->s, &l, &err);
+	progress_done();
+	if (rc != 0) {
+		rc = fail(rc == VDT_EIO ? "cannot write images for" : "cannot label", cl->in, &err);
+		goto out;
+	}
+	t1 = now_seconds();
+	if (cl->has_view) {
+		float *v = malloc(m.vertex_count * sizeof(*v));
+		FILE *f = strcmp(cl->out, "-") == 0 ? stdout : fopen(cl->out, "w");
+		if (v == NULL || f == NULL) {
+			vdt_err_set(&err, VDT_EIO, "cannot open the output");
+			rc = fail("cannot write", cl->out, &err);
+		} else {
+			vdt_labl_view(&l, cl->view, cl->nearest, v);
+			for (size_t i = 0; i < m.vertex_count; i++)
+				fprintf(f, "%g\n", v[i]);
+			if ((f != stdout ? fclose(f) : fflush(f)) != 0) {
+				vdt_err_set(&err, VDT_EIO, "write error");
+				rc = fail("cannot write", cl->out, &err);
+			}
+		}
+		free(v);
+		goto out;
+	}
+	vdt_chunks_remove(&extra, VDT_CHUNK_LABL);
+	if (vdt_labl_encode(&l, &data, &len, &err) != 0 ||
+	    vdt_chunks_add(&extra, VDT_CHUNK_LABL, data, len, &err) != 0 ||
+	    vdt_write(cl->out, &m, &extra, &(struct vdt_write_opts){VDT_FMT_VDT, 0, 0}, &err) != 0) {
+		rc = fail("cannot write", cl->out, &err);
+		goto out;
+	}
+	if (cl->verbose)
+		fprintf(stderr, "%s: vertices=%zu triangles=%zu cameras=%zu resolution=%d "
+		        "label_bytes=%llu label_s=%.3f\n", progname, m.vertex_count, m.triangle_count,
+		        cams.count, cl->s.res, (unsigned long long)len, t1 - t0);
+out:
+	vdt_mesh_free(&m);
+	vdt_chunks_free(&extra);
+	vdt_cameras_free(&cams);
+	vdt_labl_free(&l);
+	return rc;
+}
+
+int
+main(int argc, char **argv)
+{
+	struct cmdline cl;
+
+	cmd_init(argv[0]);
+	parse_cmdline(argc, argv, &cl);
+	return run(&cl);
+}

@@ -1,0 +1,65 @@
+#!/usr/bin/env bats
+# Command-line tests of vdt-silhouette and of its labels in vdt-qslim.
+
+load helpers
+
+@test "vdt-silhouette --help prints usage and exits 0" {
+	run "$BIN/vdt-silhouette" --help
+	[ "$status" -eq 0 ]
+	[[ "$output" == usage:* ]]
+}
+
+@test "vdt-silhouette adds a LABL chunk and passes the mesh through" {
+	"$BIN/vdt-silhouette" -a 30 -r 64 "$SAMPLES/sphere.off" -o "$TMP/s.vdl"
+	grep -q LABL "$TMP/s.vdl"
+	"$BIN/vdt-qslim" -t 100000 -F off "$TMP/s.vdl" -o "$TMP/s.off"
+	[ "$(off_faces "$TMP/s.off")" -eq 5120 ]
+}
+
+@test "vdt-silhouette output is identical on every run, either transform" {
+	"$BIN/vdt-silhouette" -a 45 -r 32 -d chamfer "$SAMPLES/torus.off" -o "$TMP/a.vdl"
+	"$BIN/vdt-silhouette" -a 45 -r 32 -d chamfer "$SAMPLES/torus.off" -o "$TMP/b.vdl"
+	cmp "$TMP/a.vdl" "$TMP/b.vdl"
+}
+
+@test "vdt-silhouette --images writes a binary and a distance image per camera" {
+	mkdir "$TMP/img"
+	"$BIN/vdt-silhouette" -a 90 -r 32 --images "$TMP/img" "$SAMPLES/torus.off" -o "$TMP/t.vdl"
+	[ "$(ls "$TMP/img" | wc -l)" -eq 12 ]
+	[ -s "$TMP/img/cam000-binary.png" ]
+	[ -s "$TMP/img/cam005-distance.png" ]
+}
+
+@test "vdt-silhouette --view prints one label per vertex" {
+	run "$BIN/vdt-silhouette" -a 30 -r 64 --view 0.2,0.3,1 -n 1 "$SAMPLES/sphere.off"
+	[ "$status" -eq 0 ]
+	[ "$(printf '%s\n' "$output" | wc -l)" -eq 2562 ]
+}
+
+@test "vdt-silhouette reads a camera list" {
+	printf '# two\n0 0 1\n1 0 0\n' > "$TMP/cams"
+	run "$BIN/vdt-silhouette" -c "$TMP/cams" -r 32 --view 0,0,1 "$SAMPLES/sphere.off"
+	[ "$status" -eq 0 ]
+}
+
+@test "vdt-silhouette rejects bad options and input with status 2 and one line" {
+	for bad in "-r 0" "-r 100000" "-r 12x" "-a 0" "-a 200" "-d fast" "-n 0" "--view 0,0,0" "--view 1,2"; do
+		run "$BIN/vdt-silhouette" $bad "$SAMPLES/sphere.off" -o "$TMP/x.vdl"
+		[ "$status" -eq 2 ]
+		[ ! -e "$TMP/x.vdl" ]
+	done
+	printf 'OFF\n3 1 0\n1 1 1\n1 1 1\n1 1 1\n3 0 1 2\n' > "$TMP/point.off"
+	run "$BIN/vdt-silhouette" "$TMP/point.off" -o "$TMP/x.vdl"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"point.off"*"degenerate bounding box"* ]]
+	printf '0 0\n' > "$TMP/cams"
+	run "$BIN/vdt-silhouette" -c "$TMP/cams" "$SAMPLES/sphere.off" -o "$TMP/x.vdl"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"cams"*"line 1"* ]]
+	run "$BIN/vdt-silhouette" "$TMP/missing.off" -o "$TMP/x.vdl"
+	[ "$status" -eq 2 ]
+	one_line
+	[ ! -e "$TMP/x.vdl" ]
+}
