@@ -438,8 +438,14 @@ vdt_front_adapt_budget(struct vdt_front *F, vdt_front_error_fn error, void *ctx,
 		else
 			lo = x;
 	}
-	if (F->tri_count > budget)
+	/* Refusals depend on the order of changes: the front at hi may come
+	 * out a little over when reached from elsewhere. */
+	for (int i = 0; i < 200; i++) {
 		adapt(F, error, ctx, hi);
+		if (F->tri_count <= budget)
+			break;
+		hi *= 1.02;
+	}
 	*tau = hi;
 }
 

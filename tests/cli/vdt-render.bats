@@ -1,0 +1,125 @@
+#!/usr/bin/env bats
+# Command-line tests of vdt-render.
+
+load helpers
+
+tree() {
+	"$BIN/vdt-build" -q "$SAMPLES/torus.off" -o "$TMP/t.vdt"
+}
+
+@test "vdt-render --help prints usage and exits 0" {
+	run "$BIN/vdt-render" --help
+	[ "$status" -eq 0 ]
+	[[ "$output" == usage:* ]]
+	[[ "$output" == *"--mesh-out"* ]]
+}
+
+@test "vdt-render rejects every bad option value with status 2 and one line" {
+	tree
+	for bad in "--bogus" "-p 0" "-p x" "-b 0" "-b 1x" "--fovea -1" "--eye 1,2" "--at a,b,c" \
+	    "--up 1,2,3,4" "--fov 0" "--fov 180" "--size 0x10" "--size 10" "--size 10x10x" \
+	    "--light 1" "-o %d%d.png" "--mesh-out %s.off"; do
+		run "$BIN/vdt-render" $bad "$TMP/t.vdt" -o "$TMP/x.png"
+		[ "$status" -eq 2 ]
+		[ ! -e "$TMP/x.png" ]
+	done
+	run "$BIN/vdt-render" "$TMP/t.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	run "$BIN/vdt-render" "$TMP/t.vdt" "$TMP/t.vdt" -o "$TMP/x.png"
+	[ "$status" -eq 2 ]
+	one_line
+}
+
+@test "vdt-render refuses a stream without a tree, a corrupt tree and bad views" {
+	tree
+	run "$BIN/vdt-render" "$SAMPLES/torus.off" -o "$TMP/x.png"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"VTRE"* ]]
+	# Flip a byte inside the VTRE payload: a CRC or invariant failure.
+	cp "$TMP/t.vdt" "$TMP/bad.vdt"
+	off=$(grep -abo VTRE "$TMP/bad.vdt" | tail -1 | cut -d: -f1)
+	b=$(od -An -tu1 -j $((off + 40)) -N1 "$TMP/bad.vdt" | tr -d ' ')
+	printf "\\$(printf %o $(((b + 1) % 256)))" |
+		dd of="$TMP/bad.vdt" bs=1 seek=$((off + 40)) conv=notrunc 2>/dev/null
+	! cmp -s "$TMP/t.vdt" "$TMP/bad.vdt"
+	run "$BIN/vdt-render" "$TMP/bad.vdt" -o "$TMP/x.png"
+	[ "$status" -eq 2 ]
+	one_line
+	run "$BIN/vdt-render" --eye 0.1,0.1,0.1 "$TMP/t.vdt" -o "$TMP/x.png"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *inside* ]]
+	run "$BIN/vdt-render" --eye 0,0,5 --at 0,0,5 "$TMP/t.vdt" -o "$TMP/x.png"
+	[ "$status" -eq 2 ]
+	one_line
+	printf '0 0 5 0 0 0 0 1 0\n0 0 5 0 0 0\n' > "$TMP/p.txt"
+	run "$BIN/vdt-render" --path "$TMP/p.txt" "$TMP/t.vdt" -o "$TMP/x%d.png"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"line 2"* ]]
+	run "$BIN/vdt-render" --path "$TMP/none.txt" "$TMP/t.vdt" -o "$TMP/x%d.png"
+	[ "$status" -eq 2 ]
+	one_line
+	[ ! -e "$TMP/x0.png" ]
+}
+
+@test "vdt-render reports an unwritable output with status 2" {
+	tree
+	run "$BIN/vdt-render" "$TMP/t.vdt" -o "$TMP/no/such/dir/x.png"
+	[ "$status" -eq 2 ]
+	one_line
+	run "$BIN/vdt-render" "$TMP/t.vdt" --compare "$TMP/none.png" -o "$TMP/x.png"
+	[ "$status" -eq 2 ]
+}
+
+@test "vdt-render writes PNG, TIFF and EXR that read back at the right size" {
+	tree
+	for ext in png tif exr; do
+		run "$BIN/vdt-render" --size 64x48 "$TMP/t.vdt" -o "$TMP/a.$ext"
+		[ "$status" -eq 0 ]
+		[ -s "$TMP/a.$ext" ]
+	done
+	run "$BIN/vdt-render" --size 64x48 --full "$TMP/t.vdt" -o "$TMP/f.png" --compare "$TMP/a.png"
+	[ "$status" -eq 0 ]
+	[[ "$output" == "frame=0 rmse="* ]]
+	# A reference of another size is refused.
+	run "$BIN/vdt-render" --size 32x32 "$TMP/t.vdt" -o "$TMP/s.png" --compare "$TMP/a.png"
+	[ "$status" -eq 2 ]
+	if command -v oiiotool >/dev/null; then
+		run oiiotool --info "$TMP/a.png"
+		[[ "$output" == *"64 x  48"* || "$output" == *"64 x 48"* ]]
+	fi
+}
+
+@test "vdt-render is deterministic, and the full front matches --full exactly" {
+	tree
+	"$BIN/vdt-render" -p 0.001 "$TMP/t.vdt" -o "$TMP/a.png"
+	"$BIN/vdt-render" -p 0.001 "$TMP/t.vdt" -o "$TMP/b.png"
+	cmp "$TMP/a.png" "$TMP/b.png"
+	run "$BIN/vdt-render" --full "$TMP/t.vdt" -o "$TMP/f.png" --compare "$TMP/a.png"
+	[ "$output" = "frame=0 rmse=0.0000 psnr=inf" ]
+}
+
+@test "vdt-render follows a path, keeps the front and writes a mesh per frame" {
+	tree
+	for i in 0 1 2 3 4 5; do
+		echo "$((3 + i)) 1 $((8 - i)) 0 0 0 0 1 0"
+	done > "$TMP/p.txt"
+	run "$BIN/vdt-render" -v -p 3 --frustum --backface --lighting --fovea 2 --wire --levels \
+		--path "$TMP/p.txt" --size 80x60 "$TMP/t.vdt" -o "$TMP/f%02d.png" --mesh-out "$TMP/m%d.off"
+	[ "$status" -eq 0 ]
+	[ "$(printf '%s\n' "$output" | grep -c 'frame=.* traverse_ms=')" -eq 6 ]
+	[ -s "$TMP/f05.png" ]
+	[ -s "$TMP/m5.off" ]
+	[ "$(off_faces "$TMP/m0.off")" -lt 2304 ]
+}
+
+@test "vdt-render -b keeps the front within the budget" {
+	tree
+	run "$BIN/vdt-render" -v -b 500 "$TMP/t.vdt" --mesh-out "$TMP/m.off"
+	[ "$status" -eq 0 ]
+	[ "$(off_faces "$TMP/m.off")" -le 500 ]
+	[ "$(off_faces "$TMP/m.off")" -gt 250 ]
+}
