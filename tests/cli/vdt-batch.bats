@@ -1,0 +1,134 @@
+#!/usr/bin/env bats
+# vdt-batch over a small tree of samples, and the samples/Makefile asset
+# build, both on copies in a scratch directory.
+
+load helpers
+
+BATCH="$BATS_TEST_DIRNAME/../../scripts/vdt-batch"
+
+tree() { # a tree with a subdirectory and a corrupted model
+	mkdir -p "$TMP/in/sub"
+	cp "$SAMPLES/torus.off" "$SAMPLES/twosphere.off" "$TMP/in/"
+	cp "$SAMPLES/plate.off" "$TMP/in/sub/"
+	head -c 300 "$SAMPLES/sphere.off" > "$TMP/in/sub/broken.off"
+}
+
+@test "vdt-batch: bad usage is status 2" {
+	run "$BATCH" --bogus "$SAMPLES"
+	[ "$status" -eq 2 ]
+	run "$BATCH" -j x "$SAMPLES"
+	[ "$status" -eq 2 ]
+	run "$BATCH" --ratios 0 "$SAMPLES"
+	[ "$status" -eq 2 ]
+	run "$BATCH" --recipe nope "$SAMPLES"
+	[ "$status" -eq 2 ]
+	run "$BATCH" "$TMP/missing"
+	[ "$status" -eq 2 ]
+	run "$BATCH" --help
+	[ "$status" -eq 0 ]
+	run "$BATCH" --version
+	[ "$status" -eq 0 ]
+	[[ "$output" == "vdt-batch "* ]]
+}
+
+@test "vdt-batch -j 2: mirrored LOD chain, summary, the broken model named with status 1" {
+	tree
+	run "$BATCH" -j 2 --ratios 50,10 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 1 ]
+	for m in torus twosphere sub/plate; do
+		[ -s "$TMP/out/$m.lod1.ply" ]
+		[ -s "$TMP/out/$m.lod2.ply" ]
+	done
+	[ ! -e "$TMP/out/sub/broken.lod1.ply" ]
+	[[ "$output" == *"sub/broken.off failed: vdt-cluster: cannot read"* ]]
+	[[ "$output" == *"failed: sub/broken.off"* ]]
+	printf '%s\n' "$output" | grep -q '^torus.off  *2304 '
+	printf '%s\n' "$output" | grep -q '^  torus.lod1.ply  *1152 '
+	printf '%s\n' "$output" | grep -q '^  plate.lod2.ply  *2[0-9][0-9] '
+	# the outputs match the pipeline run by hand
+	"$BIN/vdt-cluster" -q --target 230 "$SAMPLES/torus.off" | "$BIN/vdt-qslim" -q -t 230 -o "$TMP/t.ply"
+	cmp "$TMP/t.ply" "$TMP/out/torus.lod2.ply"
+}
+
+@test "vdt-batch: a re-run makes nothing; touching one input remakes only its outputs" {
+	tree
+	rm "$TMP/in/sub/broken.off"
+	"$BATCH" -q -j 2 --ratios 50,10 -o "$TMP/out" "$TMP/in"
+	ls -l --time-style=full-iso "$TMP/out" "$TMP/out/sub" > "$TMP/before"
+	start=$(date +%s)
+	run "$BATCH" -v -j 2 --ratios 50,10 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+	[ $(($(date +%s) - start)) -lt 10 ]
+	! printf '%s\n' "$output" | grep -q ' done ('
+	ls -l --time-style=full-iso "$TMP/out" "$TMP/out/sub" > "$TMP/after"
+	cmp "$TMP/before" "$TMP/after"
+	# one kv line per model
+	[ "$(printf '%s\n' "$output" | grep -c '^vdt-batch: model=.* status=ok$')" -eq 3 ]
+	printf '%s\n' "$output" | grep -q 'model=torus.off in_triangles=2304 .*lod1_ply_triangles=1152 '
+	sleep 1
+	touch "$TMP/in/sub/plate.off"
+	run "$BATCH" -v -j 2 --ratios 50,10 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+	[ "$(printf '%s\n' "$output" | grep -c ' done (')" -eq 2 ]
+	printf '%s\n' "$output" | grep -q 'sub/plate.lod1.ply done'
+	printf '%s\n' "$output" | grep -q 'sub/plate.lod2.ply done'
+	[ "$TMP/out/torus.lod1.ply" -ot "$TMP/out/sub/plate.lod1.ply" ]
+}
+
+@test "vdt-batch: killed half-way, a re-run finishes only what is missing" {
+	tree
+	rm "$TMP/in/sub/broken.off"
+	cp "$SAMPLES/sphere.off" "$SAMPLES/open.off" "$TMP/in/"
+	setsid "$BATCH" -q -j 2 -o "$TMP/out" "$TMP/in" & pid=$!
+	for _ in $(seq 100); do
+		[ -e "$TMP/out/open.lod2.ply" ] && break
+		sleep 0.1
+	done
+	kill -TERM -- -"$pid" 2>/dev/null || :
+	wait "$pid" || :
+	(cd "$TMP/out" && ls -l --time-style=full-iso ./*.ply) > "$TMP/part"
+	[ "$(wc -l < "$TMP/part")" -lt 16 ]
+	run "$BATCH" -v -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+	[ "$(printf '%s\n' "$output" | grep -c 'status=ok$')" -eq 5 ]
+	for m in open sphere torus twosphere sub/plate; do
+		for k in 1 2 3 4; do
+			[ -s "$TMP/out/$m.lod$k.ply" ]
+		done
+	done
+	# what was finished before the kill was not made again
+	(cd "$TMP/out" && ls -l --time-style=full-iso $(awk '{ print $NF }' "$TMP/part")) > "$TMP/kept"
+	cmp "$TMP/part" "$TMP/kept"
+}
+
+@test "vdt-batch --recipe lod,drc,tree: Draco levels and trees" {
+	mkdir -p "$TMP/in"
+	cp "$SAMPLES/torus.off" "$TMP/in/"
+	run "$BATCH" --recipe lod,drc,tree --ratios 20 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+	[ -s "$TMP/out/torus.lod1.drc" ]
+	grep -aq VTRE "$TMP/out/torus.vdt"
+	printf '%s\n' "$output" | grep -q '^  torus.lod1.drc  *460 '
+	printf '%s\n' "$output" | grep -q '^  torus.vdt '
+}
+
+@test "samples/Makefile: make -j2 builds the assets; touching one model rebuilds only its own" {
+	mkdir "$TMP/s"
+	cp "$SAMPLES/Makefile" "$SAMPLES/torus.off" "$SAMPLES/plate.off" "$TMP/s/"
+	make -s -j2 -C "$TMP/s" VDT="$BIN/" MODELS='torus.ply plate.ply'
+	for m in torus plate; do
+		for a in lod1.ply lod2.ply vdt drc; do
+			[ -s "$TMP/s/$m.$a" ]
+		done
+	done
+	run make -j2 -C "$TMP/s" VDT="$BIN/" MODELS='torus.ply plate.ply'
+	[[ "$output" == *"Nothing to be done"* ]]
+	sleep 1
+	touch "$TMP/s/plate.off"
+	run make -j2 --no-print-directory -C "$TMP/s" VDT="$BIN/" MODELS='torus.ply plate.ply'
+	[ "$status" -eq 0 ]
+	[ "$(printf '%s\n' "$output" | grep -c plate)" -eq 5 ]
+	! printf '%s\n' "$output" | grep -q torus
+	make -s -C "$TMP/s" VDT="$BIN/" MODELS='torus.ply plate.ply' clean
+	[ "$(ls "$TMP/s" | sort | tr '\n' ' ')" = "Makefile plate.off torus.off " ]
+}
