@@ -1,0 +1,32 @@
+#!/usr/bin/env bats
+# make install into a scratch prefix: every tool runs, every page lints
+# clean, and make uninstall removes every file it put there.
+
+load helpers
+
+ROOT="$BATS_TEST_DIRNAME/../.."
+
+@test "make install DESTDIR PREFIX, --version, mandoc -Tlint, make uninstall" {
+	make -s -C "$ROOT" install DESTDIR="$TMP/d" PREFIX=/opt/vdt >/dev/null
+	p="$TMP/d/opt/vdt"
+	[ -x "$p/bin/vdt-batch" ]
+	for t in "$ROOT"/bin/vdt-*; do
+		n=$(basename "$t")
+		run "$p/bin/$n" --version
+		[ "$status" -eq 0 ]
+		[[ "$output" == "$n "* ]]
+	done
+	run "$p/bin/vdt-batch" --version
+	[ "$status" -eq 0 ]
+	for m in "$ROOT"/man/*.[157]; do
+		s=${m##*.}
+		f="$p/share/man/man$s/$(basename "$m")"
+		[ -f "$f" ]
+		mandoc -Tlint -W warning "$f"
+	done
+	[ -f "$p/share/man/man1/vdt-qslim.1" ]
+	[ -f "$p/share/man/man1/vdt-batch.1" ]
+	MANPATH="$p/share/man" man -w vdt-qslim | grep -q "$p/share/man/man1/vdt-qslim.1"
+	make -s -C "$ROOT" uninstall DESTDIR="$TMP/d" PREFIX=/opt/vdt
+	[ -z "$(find "$TMP/d" -type f)" ]
+}
