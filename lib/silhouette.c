@@ -647,6 +647,15 @@ vdt_labl_encode(const struct vdt_labl *l, unsigned char **data, uint64_t *length
 	return 0;
 }
 
+static uint32_t
+f32_bits(float f)
+{
+	unsigned char b[4];
+
+	vdt_put_f32le(b, f);
+	return vdt_get_u32le(b);
+}
+
 int
 vdt_labl_decode(const unsigned char *data, uint64_t length, struct vdt_labl *l,
                 struct vdt_err *err)
@@ -690,7 +699,8 @@ vdt_labl_decode(const unsigned char *data, uint64_t length, struct vdt_labl *l,
 			                   (unsigned long long)C, step, l->cams.count);
 		}
 		for (size_t i = 0; i < 3 * C; i++)
-			if (!(fabsf(vdt_get_f32le(dirs + 4 * i) - l->cams.dirs[i]) <= 1e-6f)) {
+			/* exactly: the writer stores the directions the step gives */
+			if (vdt_get_u32le(dirs + 4 * i) != f32_bits(l->cams.dirs[i])) {
 				vdt_labl_free(l);
 				return vdt_err_set(err, VDT_EFORMAT, "camera %zu is not where step %g puts it",
 				                   i / 3, step);
