@@ -242,3 +242,26 @@ PY
 	run "$BIN/vdt-qslim" --error-factor 2 "$TMP/s.vdl" -o "$TMP/x.off"
 	[ "$status" -eq 2 ]
 }
+
+@test "vdt-qslim options change what they say they change" {
+	# --boundary-weight: the planes along open edges hold the border
+	"$BIN/vdt-qslim" -q -r 0.1 --boundary-weight 0 "$SAMPLES/open.off" -o "$TMP/bw0.off"
+	"$BIN/vdt-qslim" -q -r 0.1 --boundary-weight 100 "$SAMPLES/open.off" -o "$TMP/bw100.off"
+	! cmp -s "$TMP/bw0.off" "$TMP/bw100.off"
+	# --max-angle: a tighter fold-over bound refuses more contractions
+	"$BIN/vdt-qslim" -q -r 0.05 --max-angle 10 "$SAMPLES/torus.off" -o "$TMP/a10.off"
+	"$BIN/vdt-qslim" -q -r 0.05 "$SAMPLES/torus.off" -o "$TMP/a75.off"
+	! cmp -s "$TMP/a10.off" "$TMP/a75.off"
+	# --min-quality: the sliver test changes the result
+	"$BIN/vdt-qslim" -q -r 0.1 --min-quality 0.5 "$SAMPLES/sphere.off" -o "$TMP/q.off"
+	"$BIN/vdt-qslim" -q -r 0.1 "$SAMPLES/sphere.off" -o "$TMP/nq.off"
+	! cmp -s "$TMP/q.off" "$TMP/nq.off"
+	# --draco-bits: fewer bits, a smaller file
+	"$BIN/vdt-qslim" -q -t 100000 --draco-bits 8 "$SAMPLES/sphere.off" -o "$TMP/8.drc"
+	"$BIN/vdt-qslim" -q -t 100000 --draco-bits 20 "$SAMPLES/sphere.off" -o "$TMP/20.drc"
+	[ "$(stat -c %s "$TMP/8.drc")" -lt "$(stat -c %s "$TMP/20.drc")" ]
+	# --ignore-quadrics on a stream without QUAD changes nothing
+	"$BIN/vdt-qslim" -q -r 0.3 --ignore-quadrics "$SAMPLES/torus.off" -o "$TMP/i.off"
+	"$BIN/vdt-qslim" -q -r 0.3 "$SAMPLES/torus.off" -o "$TMP/ni.off"
+	cmp "$TMP/i.off" "$TMP/ni.off"
+}
