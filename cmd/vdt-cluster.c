@@ -24,7 +24,7 @@ static void
 usage(FILE *f)
 {
 	fprintf(f,
-	        "usage: vdt-cluster [-s SIZE[%%] | -g NX[xNYxNZ] | --target TRIANGLES] [-m MB]\n"
+	        "usage: vdt-cluster [-s SIZE[%%] | -g NX[xNYxNZ] | -t TRIANGLES] [-m MB]\n"
 	        "                   [--decoupled] [-o OUTPUT] [-F FORMAT] [-q] [-v] [INPUT]\n"
 	        "Cluster a mesh of any size on a uniform grid, keeping one quadric per cell.\n"
 	        "INPUT and OUTPUT default to - (stdin, stdout); the output is a MESH + QUAD\n"
@@ -55,10 +55,10 @@ parse_dims(const char *s, uint32_t d[3])
 static void
 parse_cmdline(int argc, char **argv, struct cmdline *cl)
 {
-	enum { O_TARGET = 256, O_DECOUPLED };
+	enum { O_DECOUPLED = 256 };
 	static const struct option longopts[] = {
 		{"size", 1, NULL, 's'}, {"grid", 1, NULL, 'g'}, {"memory", 1, NULL, 'm'},
-		{"target", 1, NULL, O_TARGET}, {"decoupled", 0, NULL, O_DECOUPLED},
+		{"target", 1, NULL, 't'}, {"decoupled", 0, NULL, O_DECOUPLED},
 		{"output", 1, NULL, 'o'}, {"format", 1, NULL, 'F'}, {"quiet", 0, NULL, 'q'},
 		{"verbose", 0, NULL, 'v'}, {"help", 0, NULL, 'h'}, {"version", 0, NULL, 'V'},
 		{NULL, 0, NULL, 0},
@@ -67,7 +67,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 
 	memset(cl, 0, sizeof(*cl));
 	cl->in = cl->out = "-";
-	while ((c = getopt_long(argc, argv, "s:g:m:o:F:qvhV", longopts, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, "s:g:m:t:o:F:qvhV", longopts, NULL)) != -1) {
 		switch (c) {
 		case 's':
 			cl->size = parse_bound("-s", optarg, &cl->size_pct);
@@ -77,7 +77,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 			break;
 		case 'g': parse_dims(optarg, cl->ch.dims); cl->choices++; break;
 		case 'm': cl->memory_mb = parse_real("-m", optarg, 1, 1e9); break;
-		case O_TARGET: cl->ch.target = parse_count("--target", optarg, 1, 4294967295UL); cl->choices++; break;
+		case 't': cl->ch.target = parse_count("-t", optarg, 1, 4294967295UL); cl->choices++; break;
 		case O_DECOUPLED: cl->decoupled = 1; break;
 		case 'o': cl->out = optarg; break;
 		case 'F':

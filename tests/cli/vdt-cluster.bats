@@ -185,3 +185,13 @@ load helpers
 	run script -qec "$BIN/vdt-cluster -g 8 $SAMPLES/sphere.off" /dev/null
 	[[ "$output" == *"terminal"* ]]
 }
+
+@test "vdt-cluster -t is --target, as in the other tools" {
+	"$BIN/vdt-cluster" -q -t 500 "$SAMPLES/sphere.off" -o "$TMP/a.vdq"
+	"$BIN/vdt-cluster" -q --target 500 "$SAMPLES/sphere.off" -o "$TMP/b.vdq"
+	cmp "$TMP/a.vdq" "$TMP/b.vdq"
+	run "$BIN/vdt-cluster" -t 12x "$SAMPLES/sphere.off" -o "$TMP/c.vdq"
+	[ "$status" -eq 2 ]
+	one_line
+	[ ! -e "$TMP/c.vdq" ]
+}
