@@ -87,7 +87,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	cl->in = cl->out = "-";
 	cl->bound = INFINITY;
 	cl->contour = 2;
-	cl->factor = 0.25;
+	cl->factor = 0.1;
 	cl->nearest = 4;
 	while ((c = getopt_long(argc, argv, "t:r:e:o:F:a:qvhV", longopts, NULL)) != -1) {
 		switch (c) {
