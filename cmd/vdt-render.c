@@ -254,10 +254,10 @@ run(struct cmdline *cl)
 		}
 		if (cl->verbose && rc == EXIT_OK)
 			fprintf(stderr, "%s: frame=%zu active=%zu triangles=%zu visited=%zu splits=%zu "
-			        "collapses=%zu refused=%zu updated=%zu tau=%.4g traverse_ms=%.3f "
+			        "collapses=%zu forced=%zu refused=%zu updated=%zu tau=%.4g traverse_ms=%.3f "
 			        "raster_ms=%.3f traverse_pct=%.1f\n", progname, i, F.active_count,
 			        dm->triangle_count, F.stats.visited, F.stats.splits, F.stats.collapses,
-			        F.stats.refused, F.stats.updated, tau, 1e3 * (t1 - t0), 1e3 * (t2 - t1),
+			        F.stats.forced, F.stats.refused, F.stats.updated, tau, 1e3 * (t1 - t0), 1e3 * (t2 - t1),
 			        100 * (t1 - t0) / (t2 - t0));
 		vdt_mesh_free(&fm);
 		free(node_of);

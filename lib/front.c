@@ -339,6 +339,32 @@ vdt_front_init(struct vdt_front *F, const struct vdt_vtree *t, const struct vdt_
 	return 0;
 }
 
+/*
+ * Split x, first splitting the coarser neighbours that section 4.3 says
+ * must go before it (ids larger than x), recursively, as Hoppe's forced
+ * vertex splits do. Refusing instead left regions that came into view
+ * unable to refine, and the front drifted coarser along a path. Ids grow
+ * toward the roots, so the recursion ends; the forced nodes cannot collapse
+ * back while x is split (their children then have a neighbour whose parent
+ * is x, smaller than theirs).
+ */
+static void
+force_split(struct vdt_front *F, uint32_t x, int forced)
+{
+	while (F->maxnb[x] > x) {
+		uint32_t u = F->maxnb[x];
+		if (F->active_pos[u] == NONE || u < F->t->leaf_count) {
+			refresh(F, x);
+			if (F->maxnb[x] == u)
+				return; /* stale: cannot happen, but never loop */
+			continue;
+		}
+		force_split(F, u, 1);
+	}
+	do_split(F, x);
+	F->stats.forced += forced;
+}
+
 /* Decide for one active vertex; returns 1 if it changed the front. */
 static int
 visit(struct vdt_front *F, uint32_t x, vdt_front_error_fn error, void *ctx, double tau)
@@ -347,12 +373,11 @@ visit(struct vdt_front *F, uint32_t x, vdt_front_error_fn error, void *ctx, doub
 
 	F->stats.visited++;
 	if (x >= t->leaf_count && error(ctx, x) > tau) {
-		if (F->maxnb[x] < x) {
+		if (F->maxnb[x] < x)
 			do_split(F, x);
-			return 1;
-		}
-		F->stats.refused++;
-		return 0;
+		else
+			force_split(F, x, 0);
+		return 1;
 	}
 	uint32_t p = t->parent[x];
 	if (p == NONE)

@@ -27,7 +27,9 @@
 struct vdt_front_stats {
 	size_t visited;   /* active vertices whose criterion was evaluated */
 	size_t splits, collapses;
-	size_t refused;   /* wanted changes the 4.3 checks refused */
+	size_t refused;   /* wanted collapses the 4.3 checks refused */
+	size_t forced;    /* splits of coarser neighbours that a wanted split
+	                     needed first (counted in splits too) */
 	size_t updated;   /* vertices whose two integers were recomputed */
 };
 
