@@ -17,6 +17,7 @@
  * major so that costing a pair reads two contiguous runs.
  */
 #include "deform.h"
+#include "topo.h"
 
 #include "io/anim.h"
 #include "io/meshio.h"
@@ -153,41 +154,6 @@ same_everywhere(const struct vdt_frames *fr, size_t u, size_t v)
 	return 1;
 }
 
-/* Same three vertices; 1 same orientation, -1 opposite, 0 different. */
-static int
-same_face(const uint32_t *a, const uint32_t *b)
-{
-	for (int r = 0; r < 3; r++) {
-		if (a[0] == b[r] && a[1] == b[(r + 1) % 3] && a[2] == b[(r + 2) % 3])
-			return 1;
-		if (a[0] == b[r] && a[1] == b[(r + 2) % 3] && a[2] == b[(r + 1) % 3])
-			return -1;
-	}
-	return 0;
-}
-
-static int
-build_fans(size_t nv, const uint32_t *tri, size_t nt, uint32_t **fstart, uint32_t **fan)
-{
-	uint32_t *s = calloc(nv + 2, sizeof(*s)), *f = malloc((3 * nt + 1) * sizeof(*f));
-	if (s == NULL || f == NULL) {
-		free(s);
-		free(f);
-		return -1;
-	}
-	for (size_t t = 0; t < nt; t++)
-		for (int i = 0; i < 3; i++)
-			s[tri[3 * t + i] + 2]++;
-	for (size_t v = 0; v < nv; v++)
-		s[v + 2] += s[v + 1];
-	for (size_t t = 0; t < nt; t++)
-		for (int i = 0; i < 3; i++)
-			f[s[tri[3 * t + i] + 1]++] = (uint32_t)t;
-	*fstart = s;
-	*fan = f;
-	return 0;
-}
-
 /*
  * Weld vertices that coincide in every frame (vertices split only for
  * texture seams), numbered in order of first appearance as vdt_qslim
@@ -245,21 +211,9 @@ anim_build(struct anim *a, const struct vdt_mesh *m, const struct vdt_frames *fr
 			       3 * sizeof(float));
 	for (size_t i = 0; i < 3 * nt; i++)
 		a->tri[i] = res->canon[m->triangles[i]];
-	if (build_fans(nw, a->tri, nt, &fs, &fan) != 0)
+	if (vdt_topo_fans(nw, a->tri, nt, &fs, &fan) != 0)
 		goto out;
-	for (size_t t = 0; t < nt; t++) {
-		const uint32_t *v = a->tri + 3 * t;
-		uint32_t lo = v[0] < v[1] ? (v[0] < v[2] ? v[0] : v[2]) : (v[1] < v[2] ? v[1] : v[2]);
-		for (uint32_t i = fs[lo]; i < fs[lo + 1] && fan[i] < t; i++) {
-			int same = dead[fan[i]] ? 0 : same_face(v, a->tri + 3 * (size_t)fan[i]);
-			if (same != 0) {
-				dead[t] = 1;
-				if (same < 0)
-					dead[fan[i]] = 1;
-				break;
-			}
-		}
-	}
+	vdt_topo_drop_repeats(a->tri, nt, fs, fan, dead);
 	free(fs);
 	free(fan);
 	fs = fan = NULL;
@@ -269,7 +223,7 @@ anim_build(struct anim *a, const struct vdt_mesh *m, const struct vdt_frames *fr
 			memmove(a->tri + 3 * live++, a->tri + 3 * t, 3 * sizeof(uint32_t));
 	res->dropped = nt - live;
 	a->nt = live;
-	if (build_fans(nw, a->tri, live, &a->fstart, &a->fan) != 0)
+	if (vdt_topo_fans(nw, a->tri, live, &a->fstart, &a->fan) != 0)
 		goto out;
 	rc = 0;
 out:
@@ -516,7 +470,7 @@ vdt_deform_features(const float *pos, size_t nv, const uint32_t *tri, size_t nt,
 	/* Dihedral angles: the faces of each two-face edge. */
 	{
 		uint32_t *fs = NULL, *fan = NULL;
-		if (build_fans(nv, tri, nt, &fs, &fan) != 0)
+		if (vdt_topo_fans(nv, tri, nt, &fs, &fan) != 0)
 			goto nomem;
 		for (size_t i = 0; i < ne; i++) {
 			struct vdt_deform_edge *d = &e[i];

@@ -18,6 +18,7 @@
  * + c does not cancel away on models far from the origin.
  */
 #include "qslim.h"
+#include "topo.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -255,19 +256,6 @@ add_boundary(struct ctx *c, const struct vdt_mesh *w, const struct vdt_qslim_opt
 	}
 }
 
-/* Same three vertices; returns 1 for the same orientation, -1 opposite. */
-static int
-same_face(const uint32_t *a, const uint32_t *b)
-{
-	for (int r = 0; r < 3; r++) {
-		if (a[0] == b[r] && a[1] == b[(r + 1) % 3] && a[2] == b[(r + 2) % 3])
-			return 1;
-		if (a[0] == b[r] && a[1] == b[(r + 2) % 3] && a[2] == b[(r + 1) % 3])
-			return -1;
-	}
-	return 0;
-}
-
 /*
  * Quadrics of the welded vertices: fundamental quadrics of the faces (or the
  * ones given), plus perpendicular planes along open edges. Built on a table
@@ -286,37 +274,12 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
                uint8_t *dead, size_t *nonmanifold)
 {
 	size_t nt = w->triangle_count, nv = w->vertex_count;
-	uint32_t *start = calloc(nv + 2, sizeof(*start));
-	uint32_t *fan = malloc((3 * nt + 1) * sizeof(*fan));
+	uint32_t *start, *fan;
 	uint32_t seen[64 * 2];
 
-	if (start == NULL || fan == NULL) {
-		free(start);
-		free(fan);
+	if (vdt_topo_fans(nv, w->triangles, nt, &start, &fan) != 0)
 		return -1;
-	}
-	for (size_t t = 0; t < nt; t++)
-		for (int i = 0; i < 3; i++)
-			start[w->triangles[3 * t + i] + 2]++;
-	for (size_t v = 0; v < nv; v++)
-		start[v + 2] += start[v + 1];
-	for (size_t t = 0; t < nt; t++)
-		for (int i = 0; i < 3; i++)
-			fan[start[w->triangles[3 * t + i] + 1]++] = (uint32_t)t;
-
-	for (size_t t = 0; t < nt; t++) {
-		const uint32_t *v = w->triangles + 3 * t;
-		uint32_t m = v[0] < v[1] ? (v[0] < v[2] ? v[0] : v[2]) : (v[1] < v[2] ? v[1] : v[2]);
-		for (uint32_t i = start[m]; i < start[m + 1] && fan[i] < t; i++) {
-			int same = dead[fan[i]] ? 0 : same_face(v, w->triangles + 3 * (size_t)fan[i]);
-			if (same != 0) {
-				dead[t] = 1;
-				if (same < 0)
-					dead[fan[i]] = 1;
-				break;
-			}
-		}
-	}
+	vdt_topo_drop_repeats(w->triangles, nt, start, fan, dead);
 
 	if (o->quadrics) {
 		for (size_t i = 0; i < nin; i++) {

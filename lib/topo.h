@@ -1,0 +1,34 @@
+/*
+ * topo.h - the faces around each vertex, and what they tell about repeated
+ * faces: shared by the tools that prepare a mesh for contraction
+ * (vdt-qslim, vdt-deform).
+ */
+#ifndef VDT_TOPO_H
+#define VDT_TOPO_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+/*
+ * The faces around each of nv vertices, as a compressed table: the faces of
+ * vertex v are fan[start[v]] .. fan[start[v + 1] - 1], in increasing order.
+ * Both arrays are malloc'ed (start has nv + 2 entries). Returns 0, or -1
+ * when memory runs out (nothing allocated).
+ */
+int vdt_topo_fans(size_t nv, const uint32_t *tri, size_t nt, uint32_t **start,
+                  uint32_t **fan);
+
+/* Faces a and b on the same three vertices: 1 the same way round, -1 the
+ * opposite way, 0 not the same vertices. */
+int vdt_topo_same_face(const uint32_t *a, const uint32_t *b);
+
+/*
+ * Mark in dead[] (nt bytes, zeroed by the caller) each face on the same
+ * three vertices as an earlier live face, and both of them when they face
+ * opposite ways (a fin of zero volume, as clustering leaves them).
+ * Returns the number of faces marked.
+ */
+size_t vdt_topo_drop_repeats(const uint32_t *tri, size_t nt, const uint32_t *start,
+                             const uint32_t *fan, uint8_t *dead);
+
+#endif
