@@ -107,6 +107,23 @@ parse_real(const char *opt, const char *s, double min, double max)
 	return v;
 }
 
+void
+parse_vec3(const char *opt, const char *s, int nonzero, double out[3])
+{
+	const char *p = s;
+	char *end;
+
+	for (int i = 0; i < 3; i++) {
+		errno = 0;
+		out[i] = strtod(p, &end);
+		if (end == p || errno != 0 || !isfinite(out[i]) || *end != (i < 2 ? ',' : '\0'))
+			usage_error("invalid vector '%s' for %s: want X,Y,Z", s, opt);
+		p = end + 1;
+	}
+	if (nonzero && out[0] == 0 && out[1] == 0 && out[2] == 0)
+		usage_error("%s must be a non-zero direction X,Y,Z, not '%s'", opt, s);
+}
+
 double
 parse_bound(const char *opt, const char *s, int *percent)
 {

@@ -45,6 +45,12 @@ unsigned long parse_count(const char *opt, const char *s, unsigned long min,
 double parse_real(const char *opt, const char *s, double min, double max);
 
 /*
+ * Parse a vector "X,Y,Z" into out[3]; with nonzero, also refuse the zero
+ * vector (a direction). Calls usage_error naming the option on junk.
+ */
+void parse_vec3(const char *opt, const char *s, int nonzero, double out[3]);
+
+/*
  * Parse an error bound "0.01" (absolute) or "0.5%" (of the bounding-box
  * diagonal): *percent is set to 1 for the latter.
  */

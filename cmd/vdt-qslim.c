@@ -52,7 +52,6 @@ static void
 parse_cmdline(int argc, char **argv, struct cmdline *cl)
 {
 	enum { O_LOCK = 256, O_BW, O_ANGLE, O_QUALITY, O_IGNORE, O_RECORD, O_DRACO, O_AW, O_TOPO, O_CD, O_EF, O_VIEW, O_NEAR };
-	char junk;
 	static const struct option longopts[] = {
 		{"triangles", required_argument, NULL, 't'},
 		{"ratio", required_argument, NULL, 'r'},
@@ -116,9 +115,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		case O_EF: cl->factor = parse_real("--error-factor", optarg, 0, 1); break;
 		case O_NEAR: cl->nearest = parse_count("--nearest", optarg, 1, VDT_SIL_NEAREST_MAX); break;
 		case O_VIEW:
-			if (sscanf(optarg, "%lf,%lf,%lf%c", &cl->view[0], &cl->view[1], &cl->view[2], &junk) != 3 ||
-			    !(cl->view[0] * cl->view[0] + cl->view[1] * cl->view[1] + cl->view[2] * cl->view[2] > 0))
-				usage_error("--view must be a non-zero direction X,Y,Z, not '%s'", optarg);
+			parse_vec3("--view", optarg, 1, cl->view);
 			cl->has_view = 1;
 			break;
 		case 'q': cl->quiet = 1; break;

@@ -36,18 +36,6 @@ usage(FILE *f)
 	        "view and render it; IMAGE and PATTERN take a %%d for the frame number.\n");
 }
 
-static void
-vec3(const char *opt, const char *s, double *out)
-{
-	char *end;
-	for (int i = 0; i < 3; i++) {
-		out[i] = strtod(s, &end);
-		if (end == s || !isfinite(out[i]) || *end != (i < 2 ? ',' : '\0'))
-			usage_error("invalid vector '%s' for %s: want X,Y,Z", s, opt);
-		s = end + 1;
-	}
-}
-
 /* A file name with at most one integer conversion (and %% escapes). */
 static const char *
 pattern(const char *opt, const char *s)
@@ -95,9 +83,9 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		case O_BACK: cl->lod.backface = 1; break;
 		case O_FOVEA: cl->lod.fovea = parse_real("--fovea", optarg, 1e-3, 100); break;
 		case O_LIGHTING: cl->lod.lighting = 1; break;
-		case O_EYE: vec3("--eye", optarg, cl->v.eye); cl->has_eye = 1; break;
-		case O_AT: vec3("--at", optarg, cl->v.at); cl->has_at = 1; break;
-		case O_UP: vec3("--up", optarg, cl->v.up); break;
+		case O_EYE: parse_vec3("--eye", optarg, 0, cl->v.eye); cl->has_eye = 1; break;
+		case O_AT: parse_vec3("--at", optarg, 0, cl->v.at); cl->has_at = 1; break;
+		case O_UP: parse_vec3("--up", optarg, 0, cl->v.up); break;
 		case O_FOV: cl->v.fov = parse_real("--fov", optarg, 1e-3, 179); break;
 		case O_SIZE:
 			cl->v.width = (int)strtol(optarg, &end, 10);
@@ -105,7 +93,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 			    (cl->v.height = (int)strtol(end + 1, &end, 10)) < 1 || cl->v.height > 16384 || *end)
 				usage_error("invalid size '%s' for --size: want WxH, 1 to 16384", optarg);
 			break;
-		case O_LIGHT: vec3("--light", optarg, cl->ro.light); break;
+		case O_LIGHT: parse_vec3("--light", optarg, 0, cl->ro.light); break;
 		case O_PATH: cl->path = optarg; break;
 		case O_FLAT: cl->ro.smooth = 0; break;
 		case O_WIRE: cl->ro.wire = 1; break;

@@ -52,7 +52,6 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		{NULL, 0, NULL, 0},
 	};
 	int c;
-	char junk;
 
 	memset(cl, 0, sizeof(*cl));
 	cl->in = cl->out = "-";
@@ -73,9 +72,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		case 'o': cl->out = optarg; break;
 		case O_IMAGES: cl->images = optarg; break;
 		case O_VIEW:
-			if (sscanf(optarg, "%lf,%lf,%lf%c", &cl->view[0], &cl->view[1], &cl->view[2], &junk) != 3 ||
-			    !(cl->view[0] * cl->view[0] + cl->view[1] * cl->view[1] + cl->view[2] * cl->view[2] > 0))
-				usage_error("--view must be a non-zero direction X,Y,Z, not '%s'", optarg);
+			parse_vec3("--view", optarg, 1, cl->view);
 			cl->has_view = 1;
 			break;
 		case 'q': cl->quiet = 1; break;
