@@ -20,6 +20,10 @@ tree() { # a tree with a subdirectory and a corrupted model
 	[ "$status" -eq 2 ]
 	run "$BATCH" --ratios 0 "$SAMPLES"
 	[ "$status" -eq 2 ]
+	run "$BATCH" --samples 0 "$SAMPLES"
+	[ "$status" -eq 2 ]
+	run "$BATCH" --samples 12x "$SAMPLES"
+	[ "$status" -eq 2 ]
 	run "$BATCH" --recipe nope "$SAMPLES"
 	[ "$status" -eq 2 ]
 	run "$BATCH" "$TMP/missing"

@@ -176,3 +176,20 @@ setup() {
 	one_line
 	[ ! -e "$TMP/out.off" ]
 }
+
+@test "vdt-deform --start and --frames pick the frames of a pattern; --k1 and --k2 change the order" {
+	frames
+	"$BIN/vdt-deform" -q -n 100 --start 2 --frames 3 "$TMP/in/%03d.off" -o "$TMP/out/s%d.off"
+	[ "$(ls "$TMP/out" | wc -l)" -eq 3 ]
+	run "$BIN/vdt-deform" -q -n 100 --start 4 --frames 5 "$TMP/in/%03d.off" -o "$TMP/out/t%d.off"
+	[ "$status" -eq 2 ]
+	one_line
+	"$BIN/vdt-deform" -q -n 100 -P 1 --k1 0 "$TMP/in/%03d.off" -o "$TMP/out/a.vdt"
+	"$BIN/vdt-deform" -q -n 100 -P 1 --k1 50 "$TMP/in/%03d.off" -o "$TMP/out/b.vdt"
+	# the feature weight needs features: open.off has two boundary loops
+	"$MKANIM" -d bend -n 4 "$SAMPLES/open.off" -o "$TMP/in/p%03d.off"
+	"$BIN/vdt-deform" -q -n 200 -P 1 --k2 0 "$TMP/in/p%03d.off" -o "$TMP/out/c.vdt"
+	"$BIN/vdt-deform" -q -n 200 -P 1 --k2 1 "$TMP/in/p%03d.off" -o "$TMP/out/d.vdt"
+	! cmp -s "$TMP/out/a.vdt" "$TMP/out/b.vdt"
+	! cmp -s "$TMP/out/c.vdt" "$TMP/out/d.vdt"
+}

@@ -265,3 +265,14 @@ PY
 	"$BIN/vdt-qslim" -q -r 0.3 "$SAMPLES/torus.off" -o "$TMP/ni.off"
 	cmp "$TMP/i.off" "$TMP/ni.off"
 }
+
+@test "vdt-qslim --nearest sets how many cameras a view's labels come from" {
+	"$BIN/vdt-silhouette" -q -a 30 -r 64 "$SAMPLES/torus.off" -o "$TMP/t.vdl"
+	"$BIN/vdt-qslim" -q -r 0.2 --view 0.3,0.2,1 --nearest 1 "$TMP/t.vdl" -o "$TMP/n1.off"
+	"$BIN/vdt-qslim" -q -r 0.2 --view 0.3,0.2,1 --nearest 8 "$TMP/t.vdl" -o "$TMP/n8.off"
+	! cmp -s "$TMP/n1.off" "$TMP/n8.off"
+	for bad in 0 9 x; do
+		run "$BIN/vdt-qslim" -r 0.2 --view 0.3,0.2,1 --nearest $bad "$TMP/t.vdl" -o "$TMP/x.off"
+		[ "$status" -eq 2 ]
+	done
+}
