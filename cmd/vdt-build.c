@@ -21,8 +21,8 @@ static void
 usage(FILE *f)
 {
 	fprintf(f,
-	        "usage: vdt-build [-e EPS] [--place average|quadric] [--sliver Q] [-o OUTPUT]\n"
-	        "                 [-q] [-v] [INPUT]\n"
+	        "usage: vdt-build [--eps EPS] [--place average|quadric] [--sliver Q]\n"
+	        "                 [-o OUTPUT] [-F vdt] [-q] [-v] [INPUT]\n"
 	        "       vdt-build [-v] --check FILE\n"
 	        "Build the view-dependence tree of a mesh and write the mesh and the tree\n"
 	        "as a vdt stream (.vdt); INPUT and OUTPUT default to - (stdin, stdout).\n");
@@ -31,13 +31,14 @@ usage(FILE *f)
 static void
 parse_cmdline(int argc, char **argv, struct cmdline *cl)
 {
-	enum { O_PLACE = 256, O_SLIVER, O_CHECK };
+	enum { O_EPS = 256, O_PLACE, O_SLIVER, O_CHECK };
 	static const struct option longopts[] = {
-		{"eps", required_argument, NULL, 'e'},
+		{"eps", required_argument, NULL, O_EPS},
 		{"place", required_argument, NULL, O_PLACE},
 		{"sliver", required_argument, NULL, O_SLIVER},
 		{"check", required_argument, NULL, O_CHECK},
 		{"output", required_argument, NULL, 'o'},
+		{"format", required_argument, NULL, 'F'},
 		{"quiet", no_argument, NULL, 'q'},
 		{"verbose", no_argument, NULL, 'v'},
 		{"help", no_argument, NULL, 'h'},
@@ -49,9 +50,12 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	memset(cl, 0, sizeof(*cl));
 	vdt_vtree_defaults(&cl->o);
 	cl->in = cl->out = "-";
-	while ((c = getopt_long(argc, argv, "e:o:qvhV", longopts, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, "e:o:F:qvhV", longopts, NULL)) != -1) {
 		switch (c) {
-		case 'e': cl->o.eps = parse_real("-e", optarg, 1e-9, 1e9); break;
+		case 'e': /* -e is an error bound in the other tools */
+			usage_error("-e is not an option of vdt-build; the epsilon of "
+			            "equation 1 is --eps");
+		case O_EPS: cl->o.eps = parse_real("--eps", optarg, 1e-9, 1e9); break;
 		case O_PLACE:
 			if (strcmp(optarg, "average") == 0)
 				cl->o.place = VDT_VTREE_PLACE_AVERAGE;
@@ -63,6 +67,11 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		case O_SLIVER: cl->o.min_quality = parse_real("--sliver", optarg, 1e-9, 1); break;
 		case O_CHECK: cl->check = optarg; break;
 		case 'o': cl->out = optarg; break;
+		case 'F':
+			if (vdt_format_parse(optarg) != VDT_FMT_VDT)
+				usage_error("the output is only the vdt stream, not '%s' (-F vdt); "
+				            "vdt-qslim -r 1 converts its mesh", optarg);
+			break;
 		case 'q': cl->quiet = 1; break;
 		case 'v': cl->verbose = 1; break;
 		case 'h': usage(stdout); exit(EXIT_OK);

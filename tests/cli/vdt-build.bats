@@ -17,7 +17,8 @@ load helpers
 }
 
 @test "vdt-build rejects bad options with status 2 and writes nothing" {
-	for bad in "--bogus" "-e 0" "-e -1" "-e x" "-e 1x" "--place nope" "--sliver 2" "--sliver 0"; do
+	for bad in "--bogus" "--eps 0" "--eps -1" "--eps x" "--eps 1x" "--place nope" "--sliver 2" \
+		"--sliver 0" "-F ply" "-F nope"; do
 		run "$BIN/vdt-build" $bad "$SAMPLES/sphere.off" -o "$TMP/x.vdt"
 		[ "$status" -eq 2 ]
 		[ ! -e "$TMP/x.vdt" ]
@@ -69,7 +70,7 @@ load helpers
 	"$BIN/vdt-build" "$SAMPLES/torus.off" -o "$TMP/a.vdt"
 	"$BIN/vdt-build" "$SAMPLES/torus.off" -o "$TMP/b.vdt"
 	cmp "$TMP/a.vdt" "$TMP/b.vdt"
-	"$BIN/vdt-build" -e 2 "$SAMPLES/torus.off" -o "$TMP/e.vdt"
+	"$BIN/vdt-build" --eps 2 "$SAMPLES/torus.off" -o "$TMP/e.vdt"
 	! cmp -s "$TMP/a.vdt" "$TMP/e.vdt"
 	"$BIN/vdt-build" --place quadric "$SAMPLES/torus.off" -o "$TMP/q.vdt"
 	! cmp -s "$TMP/a.vdt" "$TMP/q.vdt"
@@ -169,4 +170,28 @@ load helpers
 	run "$BIN/vdt-build" "$SAMPLES/sphere.off" -o "$TMP/no/such/dir/out.vdt"
 	[ "$status" -eq 1 ]
 	one_line
+}
+
+@test "vdt-build: -e is the error bound elsewhere, so the epsilon is --eps only" {
+	run "$BIN/vdt-build" -e 2 "$SAMPLES/torus.off" -o "$TMP/e.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"--eps"* ]]
+	[ ! -e "$TMP/e.vdt" ]
+	"$BIN/vdt-build" --eps 2 "$SAMPLES/torus.off" -o "$TMP/e.vdt"
+	"$BIN/vdt-build" --eps=2 "$SAMPLES/torus.off" -o "$TMP/e2.vdt"
+	cmp "$TMP/e.vdt" "$TMP/e2.vdt"
+}
+
+@test "vdt-build -F vdt is the only output format, and others are refused on one line" {
+	"$BIN/vdt-build" "$SAMPLES/torus.off" -o "$TMP/a.vdt"
+	"$BIN/vdt-build" -F vdt "$SAMPLES/torus.off" -o "$TMP/b.vdt"
+	cmp "$TMP/a.vdt" "$TMP/b.vdt"
+	for f in ply obj drc; do
+		run "$BIN/vdt-build" -F $f "$SAMPLES/torus.off" -o "$TMP/c.$f"
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == "vdt-build: the output is only the vdt stream, not '$f'"* ]]
+		[ ! -e "$TMP/c.$f" ]
+	done
 }
