@@ -18,7 +18,7 @@ static const char *methods[] = {"ours", "dsd", "first-frame", "independent"};
 
 struct cmdline {
 	char **in;
-	size_t nin, start, count, samples;
+	size_t nin, start, count, samples, triangles, vertices;
 	const char *out;
 	struct vdt_deform_opts d;
 	struct vdt_write_opts w;
@@ -29,9 +29,10 @@ static void
 usage(FILE *f)
 {
 	fprintf(f,
-	        "usage: vdt-deform [-n VERTICES] [-r RATIO] [-m METHOD] [--k1 K] [--k2 K]\n"
-	        "                  [--sharp-angle DEGREES] [-P SHARE] [--start N] [--frames N]\n"
-	        "                  [--samples N] [-o OUTPUT] [-F FORMAT] [-q] [-v] INPUT...\n"
+	        "usage: vdt-deform [-t TRIANGLES | --vertices N | -r RATIO] [--method METHOD]\n"
+	        "                  [--k1 K] [--k2 K] [--sharp-angle DEGREES] [-P SHARE]\n"
+	        "                  [--start N] [--frames N] [--samples N] [-o OUTPUT] [-F FORMAT]\n"
+	        "                  [-q] [-v] [INPUT...]\n"
 	        "Simplify an animation: frame files, a printf pattern (frames/%%03d.obj),\n"
 	        "an MD2 model or a vdt stream with FRMS. METHOD is ours (default), dsd,\n"
 	        "first-frame or independent. OUTPUT is a pattern or a vdt stream.\n");
@@ -40,10 +41,11 @@ usage(FILE *f)
 static void
 parse_cmdline(int argc, char **argv, struct cmdline *cl)
 {
-	enum { O_K1 = 256, O_K2, O_SHARP, O_START, O_FRAMES, O_SAMPLES };
+	enum { O_VERTICES = 256, O_METHOD, O_K1, O_K2, O_SHARP, O_START, O_FRAMES, O_SAMPLES };
 	static const struct option longopts[] = {
-		{"vertices", required_argument, NULL, 'n'}, {"ratio", required_argument, NULL, 'r'},
-		{"method", required_argument, NULL, 'm'}, {"k1", required_argument, NULL, O_K1},
+		{"triangles", required_argument, NULL, 't'}, {"ratio", required_argument, NULL, 'r'},
+		{"vertices", required_argument, NULL, O_VERTICES},
+		{"method", required_argument, NULL, O_METHOD}, {"k1", required_argument, NULL, O_K1},
 		{"k2", required_argument, NULL, O_K2}, {"sharp-angle", required_argument, NULL, O_SHARP},
 		{"share", required_argument, NULL, 'P'}, {"start", required_argument, NULL, O_START},
 		{"frames", required_argument, NULL, O_FRAMES}, {"samples", required_argument, NULL, O_SAMPLES},
@@ -52,22 +54,29 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		{"help", no_argument, NULL, 'h'}, {"version", no_argument, NULL, 'V'},
 		{NULL, 0, NULL, 0},
 	};
-	int c, m;
+	int c, m, targets = 0;
 
 	memset(cl, 0, sizeof(*cl));
 	vdt_deform_defaults(&cl->d);
 	cl->out = "-";
 	cl->start = SIZE_MAX;
 	cl->samples = 100000;
-	while ((c = getopt_long(argc, argv, "n:r:m:P:o:F:qvhV", longopts, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, "t:r:n:m:P:o:F:qvhV", longopts, NULL)) != -1) {
 		switch (c) {
-		case 'n': cl->d.target_vertices = parse_count("-n", optarg, 1, 4294967295UL); break;
-		case 'r': cl->d.target_ratio = parse_real("-r", optarg, 1e-9, 1); break;
-		case 'm':
+		/* -n and -m mean samples and memory in the other tools */
+		case 'n': usage_error("-n is not an option of vdt-deform; the vertex target is --vertices");
+		case 'm': usage_error("-m is not an option of vdt-deform; the method is --method");
+		case 't': cl->triangles = parse_count("-t", optarg, 1, 4294967295UL); targets++; break;
+		case O_VERTICES:
+			cl->d.target_vertices = parse_count("--vertices", optarg, 1, 4294967295UL);
+			targets++;
+			break;
+		case 'r': cl->d.target_ratio = parse_real("-r", optarg, 1e-9, 1); targets++; break;
+		case O_METHOD:
 			for (m = 0; m < 4 && strcmp(optarg, methods[m]) != 0; m++)
 				;
 			if (m == 4)
-				usage_error("unknown method '%s' for -m", optarg);
+				usage_error("unknown method '%s' for --method", optarg);
 			cl->d.method = (enum vdt_deform_method)m;
 			break;
 		case O_K1: cl->d.k1 = parse_real("--k1", optarg, 0, 1e12); break;
@@ -92,8 +101,75 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	static char *std_in[] = {"-", NULL};
 	cl->in = optind < argc ? argv + optind : std_in;
 	cl->nin = optind < argc ? (size_t)(argc - optind) : 1;
-	if (cl->d.target_vertices == 0 && cl->d.target_ratio == 0)
+	if (targets == 0)
 		cl->d.target_ratio = 0.1;
+}
+
+/* Vertices left after welding those that coincide in every frame, as
+ * vdt_deform welds them. */
+static const struct vdt_frames *sorting;
+
+static int
+cmp_vertex(const void *a, const void *b)
+{
+	size_t u = *(const size_t *)a, v = *(const size_t *)b;
+
+	for (size_t f = 0; f < sorting->frame_count; f++) {
+		const float *p = sorting->positions + 3 * sorting->vertex_count * f;
+		for (int k = 0; k < 3; k++)
+			if (p[3 * u + k] != p[3 * v + k])
+				return p[3 * u + k] < p[3 * v + k] ? -1 : 1;
+	}
+	return 0;
+}
+
+/*
+ * -t TRIANGLES as a vertex target: on a closed mesh each contraction
+ * removes one vertex and two triangles, so ceil((T - TRIANGLES) / 2) of them
+ * reach it; a contraction on a boundary removes one, leaving a few more.
+ */
+static int
+triangle_target(struct cmdline *cl, const struct vdt_mesh *in, const struct vdt_frames *fr)
+{
+	size_t n = fr->vertex_count, welded = n > 0, t = in->triangle_count, k, *ix;
+
+	if ((ix = malloc(n * sizeof(*ix) + 1)) == NULL)
+		return -1;
+	for (size_t v = 0; v < n; v++)
+		ix[v] = v;
+	sorting = fr;
+	qsort(ix, n, sizeof(*ix), cmp_vertex);
+	for (size_t i = 1; i < n; i++)
+		welded += cmp_vertex(ix + i - 1, ix + i) != 0;
+	free(ix);
+	k = t > cl->triangles ? (t - cl->triangles + 1) / 2 : 0;
+	k = welded > k ? welded - k : 1;
+	cl->vertices = cl->d.target_vertices;
+	if (k > cl->d.target_vertices)
+		cl->d.target_vertices = k;
+	return 0;
+}
+
+/*
+ * After a run for -t that kept too many triangles (boundaries lose one per
+ * contraction), a vertex target from the run's own V - T / 2; 0 if none.
+ * Two such runs at most: each lands closer.
+ */
+static size_t
+retarget(const struct cmdline *cl, const struct vdt_deform_result *r)
+{
+	size_t worst = 0, t, v;
+	long long want;
+
+	for (size_t f = 1; f < r->frame_count; f++)
+		if (r->tri_start[f + 1] - r->tri_start[f] > r->tri_start[worst + 1] - r->tri_start[worst])
+			worst = f;
+	t = r->tri_start[worst + 1] - r->tri_start[worst];
+	v = r->live_vertices[worst];
+	want = ((long long)cl->triangles + 2 * (long long)v - (long long)t) / 2;
+	if (t <= cl->triangles || want >= (long long)cl->d.target_vertices)
+		return 0;
+	return want > (long long)cl->vertices ? (size_t)want : cl->vertices > 0 ? cl->vertices : 1;
 }
 
 static int
@@ -126,28 +202,29 @@ write_frames(struct cmdline *cl, const struct vdt_deform_result *r, struct vdt_c
 	return rc ? fail("cannot write", cl->out, err) : 0;
 }
 
+/* -v: a line per frame, then one line of every statistic. */
 static void
 statistics(struct cmdline *cl, const struct vdt_mesh *in, const struct vdt_frames *fr,
-           const struct vdt_deform_result *r)
+           const struct vdt_deform_result *r, const double sec[3])
 {
-	struct vdt_deform_summary s;
+	struct vdt_deform_summary s = {0};
 	struct vdt_err err = {0};
 
-	if (vdt_deform_measure_all(in, fr, r, cl->samples, &s, &err) != 0) {
+	if (vdt_deform_measure_all(in, fr, r, cl->samples, &s, &err) != 0)
 		fprintf(stderr, "%s: cannot measure: %s\n", progname, err.msg);
-		return;
-	}
-	for (size_t f = 0; f < r->frame_count; f++)
+	for (size_t f = 0; s.frames && f < r->frame_count; f++)
 		fprintf(stderr, "%s: frame=%zu vertices=%zu triangles=%zu rms_pct=%.6g "
 		        "hausdorff_pct=%.6g shared=%.4f\n", progname, f, s.frames[f].vertices,
 		        s.frames[f].triangles, s.frames[f].rms_pct, s.frames[f].hausdorff_pct,
 		        s.frames[f].shared);
-	fprintf(stderr, "%s: method=%s frames=%zu in_vertices=%zu welded=%zu out_vertices=%zu "
-	        "unified=%zu replayed=%zu mean_rms_pct=%.6g worst_rms_pct=%.6g "
-	        "mean_shared=%.4f min_shared=%.4f quadric_mb=%.1f\n", progname,
-	        methods[cl->d.method], r->frame_count, in->vertex_count, r->welded,
-	        r->live_vertices[0], r->unified, r->replayed, s.mean_rms_pct, s.worst_rms_pct,
-	        s.mean_shared, s.min_shared, r->quadric_bytes / 1048576.0);
+	fprintf(stderr, "%s: method=%s frames=%zu in_vertices=%zu in_triangles=%zu welded=%zu "
+	        "out_vertices=%zu out_triangles=%zu unified=%zu replayed=%zu mean_rms_pct=%.6g "
+	        "worst_rms_pct=%.6g mean_shared=%.4f min_shared=%.4f quadric_mb=%.1f "
+	        "read_s=%.3f simplify_s=%.3f write_s=%.3f peak_mb=%.1f\n", progname,
+	        methods[cl->d.method], r->frame_count, in->vertex_count, in->triangle_count,
+	        r->welded, r->live_vertices[0], r->tri_start[1] - r->tri_start[0], r->unified,
+	        r->replayed, s.mean_rms_pct, s.worst_rms_pct, s.mean_shared, s.min_shared,
+	        r->quadric_bytes / 1048576.0, sec[0], sec[1], sec[2], peak_rss_bytes() / 1048576.0);
 	free(s.frames);
 }
 
@@ -174,10 +251,23 @@ run(struct cmdline *cl)
 	                                  : cl->w.format != VDT_FMT_VDT))
 		usage_error("%zu frames need a pattern (out/%%03d.obj) or a vdt stream for -o",
 		            fr.frame_count);
+	if (cl->triangles > 0 && triangle_target(cl, &in, &fr) != 0) {
+		vdt_err_set(&err, VDT_ENOMEM, "out of memory");
+		rc = fail("cannot simplify", cl->in[0], &err);
+		goto out;
+	}
 	vdt_chunks_drop_vertex_data(&extra);
 	cl->d.progress = progress_start(cl->quiet);
 	t1 = now_seconds();
 	rc = vdt_deform(&in, &fr, &cl->d, &r, &err);
+	for (int again = 2; rc == 0 && cl->triangles > 0 && again > 0; again--) {
+		size_t v = retarget(cl, &r);
+		if (v == 0)
+			break;
+		cl->d.target_vertices = v;
+		vdt_deform_result_free(&r);
+		rc = vdt_deform(&in, &fr, &cl->d, &r, &err);
+	}
 	progress_done();
 	if (rc != 0) {
 		rc = fail("cannot simplify", cl->in[0], &err);
@@ -189,11 +279,8 @@ run(struct cmdline *cl)
 	if (!r.reached_target && !cl->quiet)
 		fprintf(stderr, "%s: some frames stopped above the target: no further valid "
 		        "contraction\n", progname);
-	if (cl->verbose) {
-		fprintf(stderr, "%s: read_s=%.3f simplify_s=%.3f write_s=%.3f peak_mb=%.1f\n",
-		        progname, t1 - t0, t2 - t1, now_seconds() - t2, peak_rss_bytes() / 1048576.0);
-		statistics(cl, &in, &fr, &r);
-	}
+	if (cl->verbose)
+		statistics(cl, &in, &fr, &r, (double[3]){t1 - t0, t2 - t1, now_seconds() - t2});
 	rc = EXIT_OK;
 out:
 	free(bad);

@@ -25,7 +25,8 @@ setup() {
 
 @test "vdt-deform rejects bad options with status 2" {
 	frames
-	for bad in "-n 12x" "-n 0" "-r 2" "-m nope" "--k2 1.5" "--k1 -1" "-P 2" "--sharp-angle 200"; do
+	for bad in "--vertices 12x" "--vertices 0" "-t 0" "-t 1x" "-r 2" "--method nope" "--k2 1.5" \
+		"--k1 -1" "-P 2" "--sharp-angle 200"; do
 		run "$BIN/vdt-deform" $bad "$TMP/in/%03d.off" -o "$TMP/out/%03d.off"
 		[ "$status" -eq 2 ]
 		one_line
@@ -35,7 +36,7 @@ setup() {
 
 @test "vdt-deform simplifies a pattern of frames to a pattern" {
 	frames
-	run "$BIN/vdt-deform" -n 100 "$TMP/in/%03d.off" -o "$TMP/out/%03d.off"
+	run "$BIN/vdt-deform" --vertices 100 "$TMP/in/%03d.off" -o "$TMP/out/%03d.off"
 	[ "$status" -eq 0 ]
 	[ "$(ls "$TMP/out" | wc -l)" -eq 6 ]
 	for f in "$TMP"/out/*.off; do
@@ -46,7 +47,7 @@ setup() {
 @test "vdt-deform takes a list of files and every method" {
 	frames
 	for m in ours dsd first-frame independent; do
-		"$BIN/vdt-deform" -m "$m" -n 80 "$TMP"/in/00[0-5].off -o "$TMP/out/$m-%d.off"
+		"$BIN/vdt-deform" --method "$m" --vertices 80 "$TMP"/in/00[0-5].off -o "$TMP/out/$m-%d.off"
 		[ "$(off_vertices "$TMP/out/$m-5.off")" -eq 80 ]
 	done
 	# one order for all frames: the same faces in every frame
@@ -55,18 +56,18 @@ setup() {
 
 @test "vdt-deform reads and writes a stream with FRMS" {
 	"$MKANIM" -d twist -n 5 "$SAMPLES/torus.off" -o "$TMP/in.vdt"
-	"$BIN/vdt-deform" -m dsd -n 100 "$TMP/in.vdt" -o "$TMP/out.vdt"
-	"$BIN/vdt-deform" -m dsd -r 1 "$TMP/out.vdt" -o "$TMP/out/%d.off"
+	"$BIN/vdt-deform" --method dsd --vertices 100 "$TMP/in.vdt" -o "$TMP/out.vdt"
+	"$BIN/vdt-deform" --method dsd -r 1 "$TMP/out.vdt" -o "$TMP/out/%d.off"
 	[ "$(ls "$TMP/out" | wc -l)" -eq 5 ]
 	[ "$(off_vertices "$TMP/out/4.off")" -eq 100 ]
-	"$BIN/vdt-deform" -m dsd -n 100 < "$TMP/in.vdt" > "$TMP/piped.vdt"
+	"$BIN/vdt-deform" --method dsd --vertices 100 < "$TMP/in.vdt" > "$TMP/piped.vdt"
 	cmp "$TMP/out.vdt" "$TMP/piped.vdt"
 }
 
 @test "vdt-deform writes per-frame faces in FRMS, and will not take them as input" {
 	"$MKANIM" -d twist -n 5 "$SAMPLES/torus.off" -o "$TMP/in.vdt"
-	"$BIN/vdt-deform" -n 100 "$TMP/in.vdt" -o "$TMP/out.vdt"
-	run "$BIN/vdt-deform" -n 50 "$TMP/out.vdt" -o "$TMP/again.vdt"
+	"$BIN/vdt-deform" --vertices 100 "$TMP/in.vdt" -o "$TMP/out.vdt"
+	run "$BIN/vdt-deform" --vertices 50 "$TMP/out.vdt" -o "$TMP/again.vdt"
 	[ "$status" -eq 2 ]
 	one_line
 	[[ "$output" == *"frame "*" differs in connectivity from frame 0"* ]]
@@ -75,31 +76,34 @@ setup() {
 
 @test "vdt-deform -v prints per-frame error and coherence" {
 	frames
-	run "$BIN/vdt-deform" -v --samples 2000 -n 100 "$TMP/in/%03d.off" -o "$TMP/out/%03d.off"
+	run "$BIN/vdt-deform" -v --samples 2000 --vertices 100 "$TMP/in/%03d.off" -o "$TMP/out/%03d.off"
 	[ "$status" -eq 0 ]
 	[ "$(printf '%s\n' "$output" | grep -c 'frame=.*rms_pct=.*shared=')" -eq 6 ]
 	[[ "$output" == *"mean_rms_pct="*"min_shared="* ]]
+	# every statistic in one line: the sizes, the errors and the times
+	[ "$(printf '%s\n' "$output" | grep -c '^vdt-deform: method=ours frames=6 .*out_triangles=[0-9]* .*mean_rms_pct=.* read_s=.* simplify_s=.* peak_mb=')" -eq 1 ]
+	[ "$(printf '%s\n' "$output" | wc -l)" -eq 7 ]
 }
 
 @test "vdt-deform on a single frame equals vdt-qslim" {
-	"$BIN/vdt-deform" -n 100 "$SAMPLES/sphere.off" -o "$TMP/d.off"
+	"$BIN/vdt-deform" --vertices 100 "$SAMPLES/sphere.off" -o "$TMP/d.off"
 	"$BIN/vdt-qslim" -t "$(off_faces "$TMP/d.off")" "$SAMPLES/sphere.off" -o "$TMP/q.off"
 	cmp "$TMP/d.off" "$TMP/q.off"
-	"$BIN/vdt-deform" -m independent -n 100 "$SAMPLES/open.off" -o "$TMP/d.off"
+	"$BIN/vdt-deform" --method independent --vertices 100 "$SAMPLES/open.off" -o "$TMP/d.off"
 	"$BIN/vdt-qslim" -t "$(off_faces "$TMP/d.off")" "$SAMPLES/open.off" -o "$TMP/q.off"
 	cmp "$TMP/d.off" "$TMP/q.off"
 }
 
 @test "vdt-deform is deterministic" {
 	frames
-	"$BIN/vdt-deform" -n 100 "$TMP/in/%03d.off" -o "$TMP/a.vdt"
-	"$BIN/vdt-deform" -n 100 "$TMP/in/%03d.off" -o "$TMP/b.vdt"
+	"$BIN/vdt-deform" --vertices 100 "$TMP/in/%03d.off" -o "$TMP/a.vdt"
+	"$BIN/vdt-deform" --vertices 100 "$TMP/in/%03d.off" -o "$TMP/b.vdt"
 	cmp "$TMP/a.vdt" "$TMP/b.vdt"
 }
 
 @test "vdt-deform reads an MD2 keyframe model" {
 	[ -r "$MD2" ] || skip "assimp-testmodels is not installed"
-	run "$BIN/vdt-deform" -v --samples 1000 -n 150 "$MD2" -o "$TMP/out/%03d.obj"
+	run "$BIN/vdt-deform" -v --samples 1000 --vertices 150 "$MD2" -o "$TMP/out/%03d.obj"
 	[ "$status" -eq 0 ]
 	[ "$(ls "$TMP/out" | wc -l)" -eq 198 ]
 	[[ "$output" == *"in_vertices=342"* ]]
@@ -108,7 +112,7 @@ setup() {
 @test "vdt-deform names the frame with a different vertex count" {
 	frames
 	cp "$SAMPLES/sphere.off" "$TMP/in/003.off"
-	run "$BIN/vdt-deform" -n 100 "$TMP/in/%03d.off" -o "$TMP/out/%03d.off"
+	run "$BIN/vdt-deform" --vertices 100 "$TMP/in/%03d.off" -o "$TMP/out/%03d.off"
 	[ "$status" -eq 2 ]
 	one_line
 	[[ "$output" == *"'$TMP/in/003.off'"*"frame 3 has"*"vertices, frame 0 has"* ]]
@@ -119,7 +123,7 @@ setup() {
 	frames
 	# same vertices, one face fewer
 	awk 'NR==2{$2=$2-1} {print}' "$TMP/in/002.off" | head -n -1 > "$TMP/x" && mv "$TMP/x" "$TMP/in/002.off"
-	run "$BIN/vdt-deform" -n 100 "$TMP/in/%03d.off" -o "$TMP/out/%03d.off"
+	run "$BIN/vdt-deform" --vertices 100 "$TMP/in/%03d.off" -o "$TMP/out/%03d.off"
 	[ "$status" -eq 2 ]
 	one_line
 	[[ "$output" == *"frame 2 has"*"triangles, frame 0 has"* ]]
@@ -129,11 +133,11 @@ setup() {
 @test "vdt-deform names a missing frame file" {
 	frames
 	rm "$TMP/in/004.off"
-	run "$BIN/vdt-deform" -n 100 "$TMP/in/%03d.off" -o "$TMP/out/%03d.off"
+	run "$BIN/vdt-deform" --vertices 100 "$TMP/in/%03d.off" -o "$TMP/out/%03d.off"
 	[ "$status" -eq 2 ]
 	one_line
 	[[ "$output" == *"frame 4: no file '$TMP/in/004.off'"* ]]
-	run "$BIN/vdt-deform" -n 100 "$TMP"/in/00[0-3].off "$TMP/in/004.off" -o "$TMP/out/%03d.off"
+	run "$BIN/vdt-deform" --vertices 100 "$TMP"/in/00[0-3].off "$TMP/in/004.off" -o "$TMP/out/%03d.off"
 	[ "$status" -eq 2 ]
 	one_line
 	[[ "$output" == *"'$TMP/in/004.off'"* ]]
@@ -143,7 +147,7 @@ setup() {
 @test "vdt-deform names the frame with a NaN" {
 	frames
 	awk 'NR==5{$1="nan"} {print}' "$TMP/in/003.off" > "$TMP/x" && mv "$TMP/x" "$TMP/in/003.off"
-	run "$BIN/vdt-deform" -n 100 "$TMP/in/%03d.off" -o "$TMP/out/%03d.off"
+	run "$BIN/vdt-deform" --vertices 100 "$TMP/in/%03d.off" -o "$TMP/out/%03d.off"
 	[ "$status" -eq 2 ]
 	one_line
 	[[ "$output" == *"'$TMP/in/003.off'"* ]]
@@ -152,7 +156,7 @@ setup() {
 
 @test "vdt-deform names the frame with a NaN in a stream" {
 	"$MKANIM" -d bend -n 4 -x 2 "$SAMPLES/torus.off" -o "$TMP/in.vdt"
-	run "$BIN/vdt-deform" -n 100 "$TMP/in.vdt" -o "$TMP/out.vdt"
+	run "$BIN/vdt-deform" --vertices 100 "$TMP/in.vdt" -o "$TMP/out.vdt"
 	[ "$status" -eq 2 ]
 	one_line
 	[[ "$output" == *"frame 2: vertex 0 has a non-finite coordinate"* ]]
@@ -162,7 +166,7 @@ setup() {
 @test "vdt-deform rejects a truncated MD2 model" {
 	[ -r "$MD2" ] || skip "assimp-testmodels is not installed"
 	head -c 5000 "$MD2" > "$TMP/cut.md2"
-	run "$BIN/vdt-deform" -n 100 "$TMP/cut.md2" -o "$TMP/out/%03d.obj"
+	run "$BIN/vdt-deform" --vertices 100 "$TMP/cut.md2" -o "$TMP/out/%03d.obj"
 	[ "$status" -eq 2 ]
 	one_line
 	[[ "$output" == *"'$TMP/cut.md2'"* ]]
@@ -171,7 +175,7 @@ setup() {
 
 @test "vdt-deform wants a pattern or a stream for several frames" {
 	frames
-	run "$BIN/vdt-deform" -n 100 "$TMP/in/%03d.off" -o "$TMP/out.off"
+	run "$BIN/vdt-deform" --vertices 100 "$TMP/in/%03d.off" -o "$TMP/out.off"
 	[ "$status" -eq 2 ]
 	one_line
 	[ ! -e "$TMP/out.off" ]
@@ -179,17 +183,51 @@ setup() {
 
 @test "vdt-deform --start and --frames pick the frames of a pattern; --k1 and --k2 change the order" {
 	frames
-	"$BIN/vdt-deform" -q -n 100 --start 2 --frames 3 "$TMP/in/%03d.off" -o "$TMP/out/s%d.off"
+	"$BIN/vdt-deform" -q --vertices 100 --start 2 --frames 3 "$TMP/in/%03d.off" -o "$TMP/out/s%d.off"
 	[ "$(ls "$TMP/out" | wc -l)" -eq 3 ]
-	run "$BIN/vdt-deform" -q -n 100 --start 4 --frames 5 "$TMP/in/%03d.off" -o "$TMP/out/t%d.off"
+	run "$BIN/vdt-deform" -q --vertices 100 --start 4 --frames 5 "$TMP/in/%03d.off" -o "$TMP/out/t%d.off"
 	[ "$status" -eq 2 ]
 	one_line
-	"$BIN/vdt-deform" -q -n 100 -P 1 --k1 0 "$TMP/in/%03d.off" -o "$TMP/out/a.vdt"
-	"$BIN/vdt-deform" -q -n 100 -P 1 --k1 50 "$TMP/in/%03d.off" -o "$TMP/out/b.vdt"
+	"$BIN/vdt-deform" -q --vertices 100 -P 1 --k1 0 "$TMP/in/%03d.off" -o "$TMP/out/a.vdt"
+	"$BIN/vdt-deform" -q --vertices 100 -P 1 --k1 50 "$TMP/in/%03d.off" -o "$TMP/out/b.vdt"
 	# the feature weight needs features: open.off has two boundary loops
 	"$MKANIM" -d bend -n 4 "$SAMPLES/open.off" -o "$TMP/in/p%03d.off"
-	"$BIN/vdt-deform" -q -n 200 -P 1 --k2 0 "$TMP/in/p%03d.off" -o "$TMP/out/c.vdt"
-	"$BIN/vdt-deform" -q -n 200 -P 1 --k2 1 "$TMP/in/p%03d.off" -o "$TMP/out/d.vdt"
+	"$BIN/vdt-deform" -q --vertices 200 -P 1 --k2 0 "$TMP/in/p%03d.off" -o "$TMP/out/c.vdt"
+	"$BIN/vdt-deform" -q --vertices 200 -P 1 --k2 1 "$TMP/in/p%03d.off" -o "$TMP/out/d.vdt"
 	! cmp -s "$TMP/out/a.vdt" "$TMP/out/b.vdt"
 	! cmp -s "$TMP/out/c.vdt" "$TMP/out/d.vdt"
+}
+
+@test "vdt-deform: -n and -m mean samples and memory elsewhere: --vertices and --method" {
+	frames
+	for old in "-n 100" "-m dsd"; do
+		run "$BIN/vdt-deform" $old "$TMP/in/%03d.off" -o "$TMP/out/%03d.off"
+		[ "$status" -eq 2 ]
+		one_line
+	done
+	[ -z "$(ls "$TMP/out")" ]
+	run "$BIN/vdt-deform" -n 100 "$SAMPLES/sphere.off" -o "$TMP/d.off"
+	[[ "$output" == *"--vertices"* ]]
+	run "$BIN/vdt-deform" -m dsd "$SAMPLES/sphere.off" -o "$TMP/d.off"
+	[[ "$output" == *"--method"* ]]
+	"$BIN/vdt-deform" --method=dsd --vertices=100 "$SAMPLES/sphere.off" -o "$TMP/d.off"
+	[ "$(off_vertices "$TMP/d.off")" -eq 100 ]
+}
+
+@test "vdt-deform -t TRIANGLES: the triangle target, as in vdt-qslim and vdt-cluster" {
+	frames
+	# closed: exact
+	"$BIN/vdt-deform" -t 300 "$TMP/in/%03d.off" -o "$TMP/out/%03d.off"
+	for f in "$TMP"/out/*.off; do
+		[ "$(off_faces "$f")" -eq 300 ]
+	done
+	"$BIN/vdt-deform" --triangles 200 "$SAMPLES/sphere.off" -o "$TMP/d.off"
+	[ "$(off_faces "$TMP/d.off")" -eq 200 ]
+	# with a boundary: within 1% after the corrected runs
+	"$BIN/vdt-deform" --method independent -t 400 "$SAMPLES/open.off" -o "$TMP/o.off"
+	n=$(off_faces "$TMP/o.off")
+	[ "$n" -ge 396 ] && [ "$n" -le 404 ]
+	# a vertex target reached first wins, as in vdt-qslim
+	"$BIN/vdt-deform" -t 200 --vertices 500 "$SAMPLES/sphere.off" -o "$TMP/v.off"
+	[ "$(off_vertices "$TMP/v.off")" -eq 500 ]
 }
