@@ -15,7 +15,7 @@ enum { FMT_TEXT, FMT_KV, FMT_JSON };
 static const char *formats[3] = {"text", "kv", "json"};
 
 struct cmdline {
-	const char *a, *b, *color;
+	const char *a, *b, *color, *out;
 	struct vdt_measure_opts m;
 	int format, quiet, verbose;
 };
@@ -24,21 +24,22 @@ static void
 usage(FILE *f)
 {
 	fprintf(f, "usage: vdt-measure [-n SAMPLES | -d DENSITY] [-1] [-j THREADS]\n"
-	           "                   [--format text|kv|json] [-c COLOR.ply] [-q] [-v] A B\n"
+	           "                   [-F text|kv|json] [-o REPORT] [-c COLOR.ply] [-q] [-v] A B\n"
 	           "Distance from the surface of A (the original) to B (the approximation)\n"
-	           "and back: Hausdorff, mean, RMS. A or B may be - (stdin), not both.\n");
+	           "and back: Hausdorff, mean, RMS. A or B may be - (stdin), not both; the\n"
+	           "report goes to REPORT (default -, stdout).\n");
 }
 
 static void
 parse_cmdline(int argc, char **argv, struct cmdline *cl)
 {
-	enum { O_FORMAT = 256 };
 	static const struct option longopts[] = {
 		{"samples", required_argument, NULL, 'n'},
 		{"density", required_argument, NULL, 'd'},
 		{"one-sided", no_argument, NULL, '1'},
 		{"threads", required_argument, NULL, 'j'},
-		{"format", required_argument, NULL, O_FORMAT},
+		{"format", required_argument, NULL, 'F'},
+		{"output", required_argument, NULL, 'o'},
 		{"color-out", required_argument, NULL, 'c'},
 		{"quiet", no_argument, NULL, 'q'},
 		{"verbose", no_argument, NULL, 'v'},
@@ -50,19 +51,21 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 
 	memset(cl, 0, sizeof(*cl));
 	cl->m.threads = 2;
-	while ((c = getopt_long(argc, argv, "n:d:1j:c:qvhV", longopts, NULL)) != -1) {
+	cl->out = "-";
+	while ((c = getopt_long(argc, argv, "n:d:1j:c:F:o:qvhV", longopts, NULL)) != -1) {
 		switch (c) {
 		case 'n': cl->m.samples = parse_count("-n", optarg, 1, 1UL << 40); break;
 		case 'd': cl->m.density = parse_real("-d", optarg, 1e-300, 1e300); break;
 		case '1': cl->m.one_sided = 1; break;
 		case 'j': cl->m.threads = (int)parse_count("-j", optarg, 1, 64); break;
 		case 'c': cl->color = optarg; break;
-		case O_FORMAT:
+		case 'F':
 			for (cl->format = 0; cl->format < 3 && strcmp(optarg, formats[cl->format]);)
 				cl->format++;
 			if (cl->format == 3)
-				usage_error("unknown format '%s' for --format", optarg);
+				usage_error("unknown report format '%s' for -F (text, kv or json)", optarg);
 			break;
+		case 'o': cl->out = optarg; break;
 		case 'q': cl->quiet = 1; break;
 		case 'v': cl->verbose = 1; break;
 		case 'h': usage(stdout); exit(EXIT_OK);
@@ -79,7 +82,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 }
 
 static void
-report(const struct cmdline *cl, const struct vdt_measure_result *r)
+report(FILE *f, const struct cmdline *cl, const struct vdt_measure_result *r)
 {
 	static const char *keys[14] = {
 		"hausdorff", "hausdorff_pct", "mean", "mean_pct", "rms", "rms_pct",
@@ -98,19 +101,19 @@ report(const struct cmdline *cl, const struct vdt_measure_result *r)
 	if (cl->format != FMT_TEXT) { /* counts are exact below 2^53 */
 		int json = cl->format == FMT_JSON;
 		for (int i = 0; i < 14; i++) {
-			printf(json ? "%s\"%s\": " : "%s%s=", i ? (json ? ", " : " ") : (json ? "{" : ""),
+			fprintf(f, json ? "%s\"%s\": " : "%s%s=", i ? (json ? ", " : " ") : (json ? "{" : ""),
 			       keys[i]);
-			printf(i >= 10 && i <= 12 ? "%.0f" : "%.6g", v[i]);
+			fprintf(f, i >= 10 && i <= 12 ? "%.0f" : "%.6g", v[i]);
 		}
-		printf(json ? "}\n" : "\n");
+		fputs(json ? "}\n" : "\n", f);
 		return;
 	}
-	printf("%-10s %22s %22s %22s\n", "", "hausdorff", "mean", "rms");
+	fprintf(f, "%-10s %22s %22s %22s\n", "", "hausdorff", "mean", "rms");
 	for (int i = 0; i < (cl->m.one_sided ? 1 : 3); i++)
-		printf("%-10s %12.6g (%6.4f%%) %12.6g (%6.4f%%) %12.6g (%6.4f%%)\n", names[i],
+		fprintf(f, "%-10s %12.6g (%6.4f%%) %12.6g (%6.4f%%) %12.6g (%6.4f%%)\n", names[i],
 		       rows[i]->max, rows[i]->max * pct, rows[i]->mean, rows[i]->mean * pct,
 		       rows[i]->rms, rows[i]->rms * pct);
-	printf("diagonal of A %.6g, %.0f samples, %zu of %zu faces of B flipped\n", r->diag,
+	fprintf(f, "diagonal of A %.6g, %.0f samples, %zu of %zu faces of B flipped\n", r->diag,
 	       v[10], r->normals.flipped, r->normals.faces);
 }
 
@@ -160,26 +163,32 @@ run(const struct cmdline *cl)
 		goto out;
 	}
 	progress_done();
-	report(cl, &r);
-	if (fflush(stdout) != 0 || ferror(stdout)) {
-		vdt_err_set(&err, VDT_EIO, "write error");
-		rc = fail("cannot write", "-", &err);
-	} else if (cl->color && write_colors(cl, &a, verr, &err) != 0) {
-		rc = fail("cannot write", cl->color, &err);
-	}
-	if (rc != 0)
+	struct vdt_output o;
+	if (vdt_output_open(&o, cl->out, &err) != 0) {
+		rc = fail("cannot write", cl->out, &err);
 		goto out;
+	}
+	report(o.f, cl, &r);
+	/* The colours before the report is committed: all or nothing. */
+	if (cl->color && write_colors(cl, &a, verr, &err) != 0) {
+		vdt_output_abort(&o);
+		rc = fail("cannot write", cl->color, &err);
+		goto out;
+	}
+	if (vdt_output_commit(&o, &err) != 0) {
+		if (cl->color && strcmp(cl->color, "-") != 0)
+			remove(cl->color);
+		rc = fail("cannot write", cl->out, &err);
+		goto out;
+	}
 	if (cl->verbose)
-		fprintf(stderr,
-		        "%s: A %zu triangles, B %zu triangles, %d threads\n"
-		        "%s: read %.3f s, tree of B %.3f s, A->B %.3f s, B->A %.3f s, "
-		        "orientation %.3f s, total %.3f s, peak memory %.1f MiB\n"
-		        "%s: normals of B off by %.3g degrees on average, %.3g at most; "
-		        "%zu faces degenerate\n",
-		        progname, a.triangle_count, b.triangle_count, cl->m.threads, progname,
-		        t1 - t0, r.seconds[0], r.seconds[1], r.seconds[2], r.seconds[3],
-		        now_seconds() - t0, peak_rss_bytes() / 1048576.0, progname,
-		        r.normals.mean_angle, r.normals.max_angle, r.normals.degenerate);
+		fprintf(stderr, "%s: a_triangles=%zu b_triangles=%zu threads=%d read_s=%.3f "
+		        "tree_s=%.3f ab_s=%.3f ba_s=%.3f orientation_s=%.3f total_s=%.3f "
+		        "peak_mb=%.1f normal_mean_deg=%.3g normal_max_deg=%.3g degenerate=%zu\n",
+		        progname, a.triangle_count, b.triangle_count, cl->m.threads, t1 - t0,
+		        r.seconds[0], r.seconds[1], r.seconds[2], r.seconds[3], now_seconds() - t0,
+		        peak_rss_bytes() / 1048576.0, r.normals.mean_angle, r.normals.max_angle,
+		        r.normals.degenerate);
 out:
 	free(verr);
 	vdt_mesh_free(&a);

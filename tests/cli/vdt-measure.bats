@@ -28,7 +28,8 @@ near() {
 	run "$BIN/vdt-measure" --help
 	[ "$status" -eq 0 ]
 	[[ "$output" == usage:* ]]
-	[[ "$output" == *"--format text|kv|json"* ]]
+	[[ "$output" == *"-F text|kv|json"* ]]
+	[[ "$output" == *"-o REPORT"* ]]
 }
 
 @test "vdt-measure --version names the stream format" {
@@ -153,7 +154,7 @@ assert abs(d["hausdorff"] - 0.25) < 1e-6 and d["samples"] == 4000'
 	run "$BIN/vdt-measure" -v -n 1000 -c "$TMP/err.ply" "$SQ" "$UP"
 	[ "$status" -eq 0 ]
 	[[ "$output" == *"colours: blue 0"* ]]
-	[[ "$output" == *"peak memory"* ]]
+	[[ "$output" == *"peak_mb="* ]]
 	head -c 400 "$TMP/err.ply" | grep -aq "property uchar red"
 }
 
@@ -162,4 +163,43 @@ assert abs(d["hausdorff"] - 0.25) < 1e-6 and d["samples"] == 4000'
 	[ "$status" -eq 1 ]
 	[[ "$output" == *"cannot write '$TMP/no/err.ply'"* ]]
 	[ ! -e "$TMP/no/err.ply" ]
+}
+
+@test "vdt-measure -v: one key=value line of statistics" {
+	"$BIN/vdt-measure" -v -F kv -n 1000 "$SQ" "$UP" > "$TMP/out" 2> "$TMP/err"
+	[ "$(wc -l < "$TMP/err")" -eq 1 ]
+	grep -q '^vdt-measure: a_triangles=[0-9]* b_triangles=[0-9]* threads=2 read_s=.* total_s=.* peak_mb=.* degenerate=0$' "$TMP/err"
+	grep -q '^hausdorff=' "$TMP/out"
+}
+
+@test "vdt-measure -F is the report format, as --format" {
+	a=$("$BIN/vdt-measure" --format=kv -n 1000 "$SQ" "$UP")
+	b=$("$BIN/vdt-measure" -F kv -n 1000 "$SQ" "$UP")
+	[ "$a" = "$b" ]
+	[[ "$("$BIN/vdt-measure" -F json -n 1000 "$SQ" "$UP")" == "{\"hausdorff\": "* ]]
+	run "$BIN/vdt-measure" -F ply -n 1000 "$SQ" "$UP"
+	[ "$status" -eq 2 ]
+	one_line
+}
+
+@test "vdt-measure -o writes the report to a file, - to stdout" {
+	run "$BIN/vdt-measure" -F kv -n 1000 -o "$TMP/r.txt" "$SQ" "$UP"
+	[ "$status" -eq 0 ]
+	[ -z "$output" ]
+	[ "$(cat "$TMP/r.txt")" = "$("$BIN/vdt-measure" -F kv -n 1000 -o - "$SQ" "$UP")" ]
+	"$BIN/vdt-measure" --output "$TMP/t.txt" -n 1000 "$SQ" "$UP"
+	grep -q '^symmetric ' "$TMP/t.txt"
+	# nothing left behind when the report or the colours cannot be written
+	run "$BIN/vdt-measure" -n 1000 -o "$TMP/no/r.txt" "$SQ" "$UP"
+	[ "$status" -eq 1 ]
+	one_line
+	[[ "$output" == "vdt-measure: cannot write '$TMP/no/r.txt': "* ]]
+	run "$BIN/vdt-measure" -n 1000 -o "$TMP/r2.txt" -c "$TMP/no/c.ply" "$SQ" "$UP"
+	[ "$status" -eq 1 ]
+	[ ! -e "$TMP/r2.txt" ]
+	[ -z "$(ls -A "$TMP" | grep '^\.')" ]
+	# a bad input leaves no report
+	run "$BIN/vdt-measure" -n 1000 -o "$TMP/r3.txt" "$SQ" "$TMP/missing.off"
+	[ "$status" -eq 2 ]
+	[ ! -e "$TMP/r3.txt" ]
 }
