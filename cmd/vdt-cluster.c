@@ -16,7 +16,7 @@ struct cmdline {
 	const char *in, *out;
 	struct vdt_write_opts w;
 	struct vdt_cluster_choice ch;
-	double size, memory_mb;
+	double size, memory_mb, ratio;
 	int size_pct, decoupled, quiet, verbose, choices;
 };
 
@@ -24,7 +24,7 @@ static void
 usage(FILE *f)
 {
 	fprintf(f,
-	        "usage: vdt-cluster [-s SIZE[%%] | -g NX[xNYxNZ] | -t TRIANGLES] [-m MB]\n"
+	        "usage: vdt-cluster [-s SIZE[%%] | -g NX[xNYxNZ] | -t TRIANGLES | -r RATIO] [-m MB]\n"
 	        "                   [--decoupled] [-o OUTPUT] [-F FORMAT] [-q] [-v] [INPUT]\n"
 	        "Cluster a mesh of any size on a uniform grid, keeping one quadric per cell.\n"
 	        "INPUT and OUTPUT default to - (stdin, stdout); the output is a MESH + QUAD\n"
@@ -58,7 +58,8 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	enum { O_DECOUPLED = 256 };
 	static const struct option longopts[] = {
 		{"size", 1, NULL, 's'}, {"grid", 1, NULL, 'g'}, {"memory", 1, NULL, 'm'},
-		{"target", 1, NULL, 't'}, {"decoupled", 0, NULL, O_DECOUPLED},
+		{"triangles", 1, NULL, 't'}, {"target", 1, NULL, 't'}, {"ratio", 1, NULL, 'r'},
+		{"decoupled", 0, NULL, O_DECOUPLED},
 		{"output", 1, NULL, 'o'}, {"format", 1, NULL, 'F'}, {"quiet", 0, NULL, 'q'},
 		{"verbose", 0, NULL, 'v'}, {"help", 0, NULL, 'h'}, {"version", 0, NULL, 'V'},
 		{NULL, 0, NULL, 0},
@@ -67,7 +68,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 
 	memset(cl, 0, sizeof(*cl));
 	cl->in = cl->out = "-";
-	while ((c = getopt_long(argc, argv, "s:g:m:t:o:F:qvhV", longopts, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, "s:g:m:t:r:o:F:qvhV", longopts, NULL)) != -1) {
 		switch (c) {
 		case 's':
 			cl->size = parse_bound("-s", optarg, &cl->size_pct);
@@ -78,6 +79,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		case 'g': parse_dims(optarg, cl->ch.dims); cl->choices++; break;
 		case 'm': cl->memory_mb = parse_real("-m", optarg, 1, 1e9); break;
 		case 't': cl->ch.target = parse_count("-t", optarg, 1, 4294967295UL); cl->choices++; break;
+		case 'r': cl->ratio = parse_real("-r", optarg, 1e-9, 1); cl->choices++; break;
 		case O_DECOUPLED: cl->decoupled = 1; break;
 		case 'o': cl->out = optarg; break;
 		case 'F':
@@ -96,7 +98,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	if (optind < argc)
 		usage_error("unexpected argument '%s'", argv[optind]);
 	if (cl->choices > 1)
-		usage_error("-s, -g and --target each choose the grid: give one");
+		usage_error("-s, -g, -t and -r each choose the grid: give one");
 	if (cl->choices == 0 && cl->memory_mb == 0)
 		cl->ch.dims[0] = 256;
 }
@@ -126,6 +128,8 @@ run(struct cmdline *cl)
 	}
 	t1 = now_seconds();
 	ch.max_cells = max_cells;
+	if (cl->ratio > 0) /* of the triangles the input announces */
+		ch.target = fmax(1, round(cl->ratio * (double)vdt_tsource_triangle_hint(ts)));
 	ch.size = cl->size_pct ? cl->size * vdt_bbox_diagonal(&box) / 100 : cl->size;
 	if ((rc = vdt_cluster_choose(&ch, ts, &box, &g, p, &err)) != 0 ||
 	    (rc = vdt_cluster_new(&c, &g, max_cells, &err)) != 0 ||

@@ -20,7 +20,7 @@ load helpers
 	[ "$status" -eq 2 ]
 	for bad in "-s 0" "-s -1" "-s x" "-s 200%" "-g 0" "-g 12x" "-g 3x4" "-g 2x2x2x2" \
 		"-g 9999999" "--target 0" "--target -5" "-m 0" "-m x" "-F nope" "-s 1 -g 8" \
-		"-g 8 --target 100"; do
+		"-g 8 --target 100" "-r 0" "-r 1.5" "-r x" "-r 0.1 -t 100" "-g 8 -r 0.5"; do
 		run "$BIN/vdt-cluster" $bad "$SAMPLES/sphere.off" -o "$TMP/x.off"
 		[ "$status" -eq 2 ]
 		one_line
@@ -194,4 +194,20 @@ load helpers
 	[ "$status" -eq 2 ]
 	one_line
 	[ ! -e "$TMP/c.vdq" ]
+}
+
+@test "vdt-cluster --triangles and -r RATIO, as vdt-qslim spells the targets" {
+	"$BIN/vdt-cluster" -q -t 2000 "$SAMPLES/fetched/bunny.ply" -o "$TMP/a.vdq"
+	"$BIN/vdt-cluster" -q --triangles 2000 "$SAMPLES/fetched/bunny.ply" -o "$TMP/b.vdq"
+	cmp "$TMP/a.vdq" "$TMP/b.vdq"
+	# the bunny has 69451 triangles: -r is that share of them as -t
+	n=$("$BIN/vdt-cluster" -v -g 8 -F ply "$SAMPLES/fetched/bunny.ply" -o /dev/null 2>&1 |
+		sed -n 's/.*in_triangles=\([0-9]*\).*/\1/p')
+	t=$(awk -v n="$n" 'BEGIN { printf "%.0f", n * 0.05 }')
+	"$BIN/vdt-cluster" -q -t "$t" "$SAMPLES/fetched/bunny.ply" -o "$TMP/c.vdq"
+	"$BIN/vdt-cluster" -q -r 0.05 "$SAMPLES/fetched/bunny.ply" -o "$TMP/d.vdq"
+	cmp "$TMP/c.vdq" "$TMP/d.vdq"
+	"$BIN/vdt-cluster" -q --ratio 0.05 - < "$SAMPLES/fetched/bunny.ply" > "$TMP/e.vdq"
+	cmp "$TMP/c.vdq" "$TMP/e.vdq"
+	! cmp -s "$TMP/a.vdq" "$TMP/c.vdq"
 }
