@@ -147,6 +147,35 @@ vdt_lod_error(void *ctx, uint32_t x)
 	return dev * c->focal / D;
 }
 
+void
+vdt_view_aim(struct vdt_view *v, const struct vdt_bbox *box, int keep_eye, int keep_at)
+{
+	double d = vdt_bbox_diagonal(box);
+
+	for (int i = 0; i < 3; i++) {
+		double mid = (box->min[i] + box->max[i]) / 2;
+		if (!keep_at)
+			v->at[i] = mid;
+		if (!keep_eye)
+			v->eye[i] = mid + (i == 2 ? 1.5 * d : 0);
+	}
+}
+
+int
+vdt_views_check(const struct vdt_view *v, size_t count, const struct vdt_bbox *box,
+                struct vdt_err *err)
+{
+	struct vdt_camera c;
+	int rc;
+
+	for (size_t i = 0; i < count; i++)
+		if ((rc = vdt_camera_setup(&c, v + i, box, err)) != 0) {
+			vdt_err_prefix(err, "view %zu", i + 1);
+			return rc;
+		}
+	return 0;
+}
+
 int
 vdt_camera_read_path(const char *path, const struct vdt_view *base, struct vdt_view **views,
                      size_t *count, struct vdt_err *err)

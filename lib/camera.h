@@ -36,6 +36,19 @@ int vdt_camera_setup(struct vdt_camera *c, const struct vdt_view *v,
                      const struct vdt_bbox *box, struct vdt_err *err);
 
 /*
+ * The default aim for box: look at its centre from +z, 1.5 diagonals
+ * away; keep_eye, keep_at leave that part of v as given.
+ */
+void vdt_view_aim(struct vdt_view *v, const struct vdt_bbox *box, int keep_eye, int keep_at);
+
+/*
+ * vdt_camera_setup for each of count views, so that a bad one is found
+ * before any is drawn. Returns 0 or VDT_EINVAL naming the view (from 1).
+ */
+int vdt_views_check(const struct vdt_view *v, size_t count, const struct vdt_bbox *box,
+                    struct vdt_err *err);
+
+/*
  * Project p: out[0], out[1] pixel coordinates (x right, y down, pixel
  * centres at +0.5), out[2] depth along the view direction.
  */

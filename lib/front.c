@@ -372,7 +372,7 @@ visit(struct vdt_front *F, uint32_t x, vdt_front_error_fn error, void *ctx, doub
 	const struct vdt_vtree *t = F->t;
 
 	F->stats.visited++;
-	if (x >= t->leaf_count && error(ctx, x) > tau) {
+	if (x >= t->leaf_count && error(ctx, x) > (F->scale ? tau * F->scale[x] : tau)) {
 		if (F->maxnb[x] < x)
 			do_split(F, x);
 		else
@@ -384,7 +384,7 @@ visit(struct vdt_front *F, uint32_t x, vdt_front_error_fn error, void *ctx, doub
 		return 0;
 	size_t k = p - t->leaf_count;
 	uint32_t s = t->child[2 * k] == x ? t->child[2 * k + 1] : t->child[2 * k];
-	if (F->active_pos[s] == NONE || error(ctx, p) > tau)
+	if (F->active_pos[s] == NONE || error(ctx, p) > (F->scale ? tau * F->scale[p] : tau))
 		return 0;
 	if (p < F->minpar[x] && p < F->minpar[s]) {
 		do_collapse(F, p);
@@ -392,6 +392,16 @@ visit(struct vdt_front *F, uint32_t x, vdt_front_error_fn error, void *ctx, doub
 	}
 	F->stats.refused++;
 	return 0;
+}
+
+void
+vdt_front_scale_up(const struct vdt_vtree *t, double *scale)
+{
+	/* Children have smaller ids than their parent. */
+	for (size_t x = t->leaf_count; x < t->node_count; x++) {
+		const uint32_t *c = t->child + 2 * (x - t->leaf_count);
+		scale[x] = fmin(scale[c[0]], scale[c[1]]);
+	}
 }
 
 static void

@@ -46,6 +46,10 @@ struct vdt_front {
 	uint32_t *maxnb;       /* per node: largest neighbour id (4.3 a) */
 	uint32_t *minpar;      /* per node: smallest parent id of its
 	                          neighbours other than its sibling (4.3 b) */
+	const double *scale;   /* per node, a factor on the threshold (Mata
+	                          et al. 3.3: smaller near the silhouette, 0
+	                          never coarsens), or NULL for 1 everywhere;
+	                          set by the caller, owned by it */
 	/* private */
 	uint32_t *head, *next, *prev, *start, *size, *stamp, now;
 	uint32_t *work;
@@ -86,8 +90,15 @@ int vdt_front_collapse(struct vdt_front *F, uint32_t x, struct vdt_err *err);
 typedef double (*vdt_front_error_fn)(void *ctx, uint32_t x);
 
 /*
+ * Fill the internal nodes of scale[t->node_count], whose leaves the caller
+ * has set, with the smallest scale of their two children: a node is as
+ * strict as the strictest mesh vertex it stands for.
+ */
+void vdt_front_scale_up(const struct vdt_vtree *t, double *scale);
+
+/*
  * One frame: visit every active vertex once, split it if its error exceeds
- * tau and the check allows, or collapse it with its sibling if their
+ * tau (times F->scale of the vertex, if set) and the check allows, or collapse it with its sibling if their
  * parent's error does not; then revisit only the vertices a change created
  * or touched, until nothing changes. Counts go to F->stats (reset first).
  * Deterministic.

@@ -123,3 +123,70 @@ tree() {
 	[ "$(off_faces "$TMP/m.off")" -le 500 ]
 	[ "$(off_faces "$TMP/m.off")" -gt 250 ]
 }
+
+labelled_sphere() {
+	"$BIN/vdt-silhouette" -a 30 -r 64 "$SAMPLES/sphere.off" -o "$TMP/s.vdl"
+	"$BIN/vdt-build" -q "$TMP/s.vdl" -o "$TMP/s.vdt"
+}
+
+@test "vdt-render with labels and --error-factor 0 keeps the view's contour at full resolution" {
+	labelled_sphere
+	"$BIN/vdt-silhouette" -a 30 -r 64 --view 0,0,1 --nearest 4 "$SAMPLES/sphere.off" > "$TMP/labels"
+	awk 'NR > 2 && NR <= 2564 { print $1, $2, $3 }' "$SAMPLES/sphere.off" | paste - "$TMP/labels" |
+		awk '$4 <= 1 { print $1, $2, $3 }' | sort > "$TMP/contour"
+	[ -s "$TMP/contour" ]
+	# A coarse threshold: without the labels' scale the contour coarsens too.
+	for ef in 0 1; do
+		run "$BIN/vdt-render" -v -p 20 --eye 0,0,5 --contour-distance 1 --error-factor $ef \
+			"$TMP/s.vdt" --mesh-out "$TMP/l$ef.off"
+		[ "$status" -eq 0 ]
+		[[ "$output" == *" labels=1 "* ]]
+		awk 'NR > 2 && NF == 3 { print $1, $2, $3 }' "$TMP/l$ef.off" | sort > "$TMP/out$ef"
+	done
+	[ -z "$(comm -23 "$TMP/contour" "$TMP/out0")" ]
+	[ -n "$(comm -23 "$TMP/contour" "$TMP/out1")" ]
+	[ "$(off_faces "$TMP/l0.off")" -gt "$(off_faces "$TMP/l1.off")" ]
+}
+
+@test "vdt-render with labels and --error-factor 1 draws what it draws without labels" {
+	labelled_sphere
+	"$BIN/vdt-build" -q "$SAMPLES/sphere.off" -o "$TMP/plain.vdt"
+	"$BIN/vdt-render" -p 20 --eye 1,2,5 --error-factor 1 "$TMP/s.vdt" -o "$TMP/a.png"
+	"$BIN/vdt-render" -p 20 --eye 1,2,5 "$TMP/plain.vdt" -o "$TMP/b.png"
+	cmp "$TMP/a.png" "$TMP/b.png"
+	"$BIN/vdt-render" -p 20 --eye 1,2,5 "$TMP/s.vdt" -o "$TMP/c.png"
+	run cmp -s "$TMP/a.png" "$TMP/c.png"
+	[ "$status" -ne 0 ]
+}
+
+@test "vdt-render rejects labels of another mesh and bad label options with status 2" {
+	labelled_sphere
+	"$BIN/vdt-silhouette" -a 45 -r 32 "$SAMPLES/torus.off" -o "$TMP/t.vdl"
+	# splice: the torus's LABL instead of the sphere's
+	python3 - "$TMP/s.vdt" "$TMP/t.vdl" "$TMP/bad.vdt" <<'PY'
+import struct, sys, zlib
+def chunks(b):
+    o, out = 12, []
+    while True:
+        t = b[o:o+4]; n = struct.unpack('<Q', b[o+4:o+12])[0]
+        out.append((t, b[o+12:o+12+n])); o += 16 + n
+        if t == b'END ': return out
+s = chunks(open(sys.argv[1], 'rb').read()); t = chunks(open(sys.argv[2], 'rb').read())
+b = open(sys.argv[1], 'rb').read()[:12]
+keep = [c for c in s if c[0] not in (b'LABL', b'END ')]
+for ty, p in keep + [[c for c in t if c[0] == b'LABL'][0], (b'END ', b'')]:
+    b += ty + struct.pack('<Q', len(p)) + p + struct.pack('<I', zlib.crc32(ty + p))
+open(sys.argv[3], 'wb').write(b)
+PY
+	run "$BIN/vdt-render" "$TMP/bad.vdt" -o "$TMP/x.png"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"bad.vdt"*"LABL"* ]]
+	[ ! -e "$TMP/x.png" ]
+	for bad in "--error-factor 2" "--error-factor -0.1" "--contour-distance -1" "--contour-distance x" \
+	    "--nearest 0" "--nearest 9"; do
+		run "$BIN/vdt-render" $bad "$TMP/s.vdt" -o "$TMP/x.png"
+		[ "$status" -eq 2 ]
+		[ ! -e "$TMP/x.png" ]
+	done
+}

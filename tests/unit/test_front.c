@@ -127,6 +127,52 @@ square_views(void **state)
 	vdt_vtree_free(&t);
 }
 
+/*
+ * Mata et al. 3.3 on the square: vertex 0 lies on the contour and its
+ * factor is 0, so every node above it (4, then 6) takes scale 0 and must
+ * split at any distance, which keeps the square whole (4.3 then forbids
+ * collapsing 5). Without the scale the same views give square_views'
+ * fronts; with a factor 0.5 only node 4 splits where it would not.
+ */
+static void
+square_scale(void **state)
+{
+	struct vdt_mesh m = {4, (float *)square_p, NULL, NULL, NULL, 2, (uint32_t *)square_t};
+	struct vdt_vtree t;
+	struct vdt_front F;
+	struct vdt_camera c;
+	struct vdt_lod lod = {0};
+	struct vdt_lod_ctx L = {&c, &lod, &t};
+	double scale[7] = {0, 1, 1, 1, -1, -1, -1};
+
+	(void)state;
+	build(&m, &t);
+	lod.eps = t.eps;
+	vdt_front_scale_up(&t, scale);
+	assert_true(scale[4] == 0 && scale[5] == 1 && scale[6] == 0);
+	assert_int_equal(vdt_front_init(&F, &t, &m, NULL), 0);
+	F.scale = scale;
+	for (int i = 0; i < 2; i++) {
+		view_at(&c, i ? 100 : 30);
+		vdt_front_adapt(&F, vdt_lod_error, &L, 1);
+		assert_int_equal(mask(&F), 0xf); /* 5 may not collapse over 0, 1 */
+		assert_int_equal(F.tri_count, 2);
+	}
+	F.scale = NULL;
+	vdt_front_adapt(&F, vdt_lod_error, &L, 1);
+	assert_int_equal(mask(&F), 0x40);
+	/* A factor 0.5 halves the threshold of nodes 4 and 6 only: at 30, 4
+	 * (0.83 px) splits where square_views leaves 0x30. */
+	scale[0] = 0.5;
+	vdt_front_scale_up(&t, scale);
+	F.scale = scale;
+	view_at(&c, 30);
+	vdt_front_adapt(&F, vdt_lod_error, &L, 1);
+	assert_int_equal(mask(&F), 0x23);
+	vdt_front_free(&F);
+	vdt_vtree_free(&t);
+}
+
 /* Every active triangle keeps the side of its mesh triangle. */
 static void
 no_foldover(const struct vdt_front *F, const struct vdt_mesh *m)
@@ -212,6 +258,7 @@ main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(square_legality),
 		cmocka_unit_test(square_views),
+		cmocka_unit_test(square_scale),
 		cmocka_unit_test(sphere_path),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
