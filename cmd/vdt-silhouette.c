@@ -25,8 +25,8 @@ usage(FILE *f)
 {
 	fprintf(f,
 	        "usage: vdt-silhouette [-a DEGREES | -c CAMERAS] [-r CELLS] [-d edt|chamfer]\n"
-	        "                      [--images DIR] [--view X,Y,Z [-n N]] [-o OUTPUT] [-q] [-v]\n"
-	        "                      [INPUT]\n"
+	        "                      [--external] [--images DIR] [--view X,Y,Z [--nearest N]]\n"
+	        "                      [-o OUTPUT] [-q] [-v] [INPUT]\n"
 	        "Add silhouette distance labels (a LABL chunk) to a mesh. INPUT and OUTPUT\n"
 	        "default to - (stdin, stdout); -a 15 and -r 256 by default. With --view,\n"
 	        "print the labels of that view, one per vertex, instead.\n");
@@ -35,7 +35,7 @@ usage(FILE *f)
 static void
 parse_cmdline(int argc, char **argv, struct cmdline *cl)
 {
-	enum { O_IMAGES = 256, O_VIEW };
+	enum { O_IMAGES = 256, O_VIEW, O_EXTERNAL };
 	static const struct option longopts[] = {
 		{"angle", required_argument, NULL, 'a'},
 		{"cameras", required_argument, NULL, 'c'},
@@ -45,6 +45,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		{"output", required_argument, NULL, 'o'},
 		{"images", required_argument, NULL, O_IMAGES},
 		{"view", required_argument, NULL, O_VIEW},
+		{"external", no_argument, NULL, O_EXTERNAL},
 		{"quiet", no_argument, NULL, 'q'},
 		{"verbose", no_argument, NULL, 'v'},
 		{"help", no_argument, NULL, 'h'},
@@ -68,7 +69,10 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 				usage_error("-d must be edt or chamfer, not '%s'", optarg);
 			cl->s.dt = optarg[0] == 'c' ? VDT_SIL_CHAMFER : VDT_SIL_EDT;
 			break;
-		case 'n': cl->nearest = parse_count("-n", optarg, 1, VDT_SIL_NEAREST_MAX); break;
+		case 'n': /* -n: an old spelling, kept quiet */
+			cl->nearest = parse_count("--nearest", optarg, 1, VDT_SIL_NEAREST_MAX);
+			break;
+		case O_EXTERNAL: cl->s.external = 1; break;
 		case 'o': cl->out = optarg; break;
 		case O_IMAGES: cl->images = optarg; break;
 		case O_VIEW:
@@ -88,37 +92,6 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		usage_error("unexpected argument '%s'", argv[optind]);
 }
 
-/* --images: DIR/camNNN-binary.png (object white) and DIR/camNNN-distance.png
- * (grey proportional to the distance, brightest at the largest). */
-static int
-write_images(void *ctx, size_t cam, const struct vdt_sil_work *w, struct vdt_err *err)
-{
-	const char *dir = ctx;
-	size_t rr = (size_t)w->res * w->res;
-	unsigned char *px = malloc(rr);
-	char path[4096];
-	float top = 0;
-	int rc;
-
-	if (px == NULL)
-		return vdt_err_set(err, VDT_ENOMEM, "out of memory for an image");
-	for (size_t i = 0; i < rr; i++) {
-		px[i] = w->binary[i] ? 255 : 0;
-		if (w->dist[i] > top && w->dist[i] < 1e30f)
-			top = w->dist[i];
-	}
-	snprintf(path, sizeof(path), "%s/cam%03zu-binary.png", dir, cam);
-	rc = vdt_image_write(path, w->res, w->res, 1, px, err);
-	for (size_t i = 0; rc == 0 && i < rr; i++)
-		px[i] = top > 0 ? (unsigned char)(255 * (w->dist[i] < top ? w->dist[i] : top) / top) : 0;
-	if (rc == 0) {
-		snprintf(path, sizeof(path), "%s/cam%03zu-distance.png", dir, cam);
-		rc = vdt_image_write(path, w->res, w->res, 1, px, err);
-	}
-	free(px);
-	return rc;
-}
-
 static int
 run(struct cmdline *cl)
 {
@@ -133,17 +106,7 @@ run(struct cmdline *cl)
 	int rc = EXIT_OK;
 
 	if (cl->cameras) {
-		FILE *f = fopen(cl->cameras, "r");
-		char *text = malloc(1 << 20);
-		size_t n = f && text ? fread(text, 1, 1 << 20, f) : 0;
-		if (f == NULL || text == NULL || ferror(f))
-			vdt_err_set(&err, VDT_EIO, "cannot open or read the camera list");
-		else
-			vdt_cameras_parse(&cams, text, n, &err);
-		if (f)
-			fclose(f);
-		free(text);
-		if (err.code != 0)
+		if (vdt_cameras_read(&cams, cl->cameras, &err) != 0)
 			return fail("cannot read", cl->cameras, &err);
 	} else if (vdt_cameras_regular(&cams, cl->step, &err) != 0) {
 		return fail("cannot make cameras for", cl->in, &err);
@@ -153,7 +116,7 @@ run(struct cmdline *cl)
 		goto out;
 	}
 	if (cl->images) {
-		cl->s.on_camera = write_images;
+		cl->s.on_camera = vdt_sil_write_images;
 		cl->s.ctx = (void *)cl->images;
 	}
 	cl->s.progress = progress_start(cl->quiet);
@@ -191,8 +154,11 @@ run(struct cmdline *cl)
 	}
 	if (cl->verbose)
 		fprintf(stderr, "%s: vertices=%zu triangles=%zu cameras=%zu resolution=%d "
-		        "label_bytes=%llu label_s=%.3f\n", progname, m.vertex_count, m.triangle_count,
-		        cams.count, cl->s.res, (unsigned long long)len, t1 - t0);
+		        "contours=%s label_bytes=%llu label_s=%.3f min_within_1px_pct=%.1f "
+		        "min_within_2px_pct=%.1f\n", progname, m.vertex_count, m.triangle_count,
+		        cams.count, cl->s.res, cl->s.external ? "external" : "all",
+		        (unsigned long long)len, t1 - t0, 100 * vdt_labl_min_share(&l, 1),
+		        100 * vdt_labl_min_share(&l, 2));
 out:
 	vdt_mesh_free(&m);
 	vdt_chunks_free(&extra);

@@ -15,11 +15,14 @@
 #include "silhouette.h"
 
 #include <ctype.h>
+#include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "bytes.h"
+#include "io/meshio.h"
 
 #define DEG (M_PI / 180)
 #define BIG 1e20 /* "no background yet" in the transforms: finite, so that
@@ -144,6 +147,41 @@ vdt_cameras_parse(struct vdt_cameras *c, const char *text, size_t len,
 	if (c->count == 0)
 		return vdt_err_set(err, VDT_EFORMAT, "no camera in the list");
 	return 0;
+}
+
+int
+vdt_cameras_read(struct vdt_cameras *c, const char *path, struct vdt_err *err)
+{
+	FILE *f = fopen(path, "r");
+	char *text = NULL;
+	size_t len = 0, cap = 0;
+	int rc = 0;
+
+	memset(c, 0, sizeof(*c));
+	if (f == NULL)
+		return vdt_err_set(err, VDT_EIO, "%s", strerror(errno));
+	for (;;) {
+		if (len == cap) {
+			char *t = realloc(text, (cap = cap ? 2 * cap : 4096));
+			if (t == NULL) {
+				rc = vdt_err_set(err, VDT_ENOMEM, "out of memory for the camera list");
+				break;
+			}
+			text = t;
+		}
+		size_t n = fread(text + len, 1, cap - len, f);
+		len += n;
+		if (n == 0) {
+			if (ferror(f))
+				rc = vdt_err_set(err, VDT_EIO, "read error");
+			break;
+		}
+	}
+	fclose(f);
+	if (rc == 0)
+		rc = vdt_cameras_parse(c, text, len, err);
+	free(text);
+	return rc;
 }
 
 /* Insert camera i with cosine d into the best-first list of at most n. */
@@ -491,7 +529,8 @@ to_units(float d)
 
 void
 vdt_sil_camera(const struct vdt_mesh *m, const double centre[3], double radius,
-               const float dir[3], int dt, struct vdt_sil_work *w, uint8_t *labels)
+               const float dir[3], int dt, int external, struct vdt_sil_work *w,
+               uint8_t *labels)
 {
 	int res = w->res;
 	size_t rr = (size_t)res * res, nv = m->vertex_count;
@@ -534,7 +573,7 @@ vdt_sil_camera(const struct vdt_mesh *m, const double centre[3], double radius,
 		       w->xy + 2 * (size_t)v[2], bits);
 	}
 	for (size_t i = 0; i < rr; i++)
-		w->binary[i] = w->cells[i] == VDT_SIL_OCCUPIED;
+		w->binary[i] = external ? w->cells[i] != 0 : w->cells[i] == VDT_SIL_OCCUPIED;
 	/* 3.1.3 */
 	if (dt == VDT_SIL_CHAMFER)
 		vdt_sil_chamfer(w->binary, res, res, w->dist);
@@ -605,7 +644,7 @@ vdt_labl_compute(const struct vdt_mesh *m, const struct vdt_cameras *cams,
 	out->dt = o->dt;
 	out->vertex_count = nv;
 	for (size_t c = 0; c < cams->count; c++) {
-		vdt_sil_camera(m, centre, radius, cams->dirs + 3 * c, o->dt, &w,
+		vdt_sil_camera(m, centre, radius, cams->dirs + 3 * c, o->dt, o->external, &w,
 		               out->labels + c * nv);
 		if (o->on_camera && (rc = o->on_camera(o->ctx, c, &w, err)) != 0) {
 			vdt_sil_work_free(&w);
@@ -616,6 +655,35 @@ vdt_labl_compute(const struct vdt_mesh *m, const struct vdt_cameras *cams,
 	}
 	vdt_sil_work_free(&w);
 	return 0;
+}
+
+int
+vdt_sil_write_images(void *ctx, size_t camera, const struct vdt_sil_work *w, struct vdt_err *err)
+{
+	const char *dir = ctx;
+	size_t rr = (size_t)w->res * w->res;
+	unsigned char *px = malloc(rr);
+	char path[4096];
+	float top = 0;
+	int rc;
+
+	if (px == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory for an image");
+	for (size_t i = 0; i < rr; i++) {
+		px[i] = w->binary[i] ? 255 : 0;
+		if (w->dist[i] > top && w->dist[i] < 1e30f)
+			top = w->dist[i];
+	}
+	snprintf(path, sizeof(path), "%s/cam%03zu-binary.png", dir, camera);
+	rc = vdt_image_write(path, w->res, w->res, 1, px, err);
+	for (size_t i = 0; rc == 0 && i < rr; i++)
+		px[i] = top > 0 ? (unsigned char)(255 * (w->dist[i] < top ? w->dist[i] : top) / top) : 0;
+	if (rc == 0) {
+		snprintf(path, sizeof(path), "%s/cam%03zu-distance.png", dir, camera);
+		rc = vdt_image_write(path, w->res, w->res, 1, px, err);
+	}
+	free(px);
+	return rc;
 }
 
 #define LABL_HEADER 40
@@ -773,6 +841,20 @@ vdt_labl_min(const struct vdt_labl *l, float *out)
 				m = l->labels[c * V + i];
 		out[i] = (float)m / VDT_SIL_UNITS;
 	}
+}
+
+double
+vdt_labl_min_share(const struct vdt_labl *l, double px)
+{
+	size_t V = l->vertex_count, near = 0;
+
+	for (size_t i = 0; i < V; i++) {
+		size_t c = 0;
+		while (c < l->cams.count && l->labels[c * V + i] > px * VDT_SIL_UNITS)
+			c++;
+		near += c < l->cams.count;
+	}
+	return V ? (double)near / (double)V : 0;
 }
 
 void

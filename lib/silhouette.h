@@ -118,13 +118,15 @@ void vdt_sil_work_free(struct vdt_sil_work *w);
  * every face conservatively (a cell is touched when the projected triangle
  * and the cell's square overlap at all), find silhouette vertices (a face
  * exactly edge-on counts as both front and back facing), turn the cells of
- * their faces into background, run the transform `dt`, and write to
+ * their faces into background unless external is set (3.1.2's first case:
+ * the external contour only; cells keeps the CONTOUR bits either way),
+ * run the transform `dt`, and write to
  * labels (if not NULL) each vertex's distance in label units
  * (VDT_SIL_UNITS per pixel, rounded, saturating at 255) of the cell it
  * projects into. m must be valid; w sized for it.
  */
 void vdt_sil_camera(const struct vdt_mesh *m, const double centre[3],
-                    double radius, const float dir[3], int dt,
+                    double radius, const float dir[3], int dt, int external,
                     struct vdt_sil_work *w, uint8_t *labels);
 
 /*
@@ -158,6 +160,7 @@ struct vdt_sil_opts {
 	                 struct vdt_err *err);
 	void *ctx;
 	const struct vdt_progress *progress;
+	int external; /* the external contour only (section 3.1.2) */
 };
 
 /*
@@ -171,6 +174,21 @@ int vdt_labl_compute(const struct vdt_mesh *m, const struct vdt_cameras *cams,
                      struct vdt_err *err);
 
 void vdt_labl_free(struct vdt_labl *l);
+
+/*
+ * Read a camera list file (vdt_cameras_parse). Returns 0, VDT_EIO (cannot
+ * open or read), VDT_EFORMAT or VDT_ENOMEM; on failure *c is empty.
+ */
+int vdt_cameras_read(struct vdt_cameras *c, const char *path, struct vdt_err *err);
+
+/*
+ * An on_camera callback for struct vdt_sil_opts that writes, into the
+ * directory ctx (a const char *), camNNN-binary.png (object cells white)
+ * and camNNN-distance.png (grey proportional to the distance, brightest
+ * at the image's largest). Returns 0 or the image writer's status.
+ */
+int vdt_sil_write_images(void *ctx, size_t camera, const struct vdt_sil_work *w,
+                         struct vdt_err *err);
 
 /*
  * LABL payload (vdt(5)): u32 kind (0 regular, 1 list), u32 resolution,
@@ -197,6 +215,11 @@ void vdt_labl_view(const struct vdt_labl *l, const double dir[3], size_t n,
 /* Each vertex's smallest label over every camera, in pixels: near the
  * contour from some view, hence preserved from all of them. */
 void vdt_labl_min(const struct vdt_labl *l, float *out);
+
+/* The share of vertices, in [0, 1], whose smallest label over every
+ * camera is at most px pixels: how much of the mesh the view-independent
+ * rule (vdt_labl_min) protects at contour distance px. */
+double vdt_labl_min_share(const struct vdt_labl *l, double px);
 
 /*
  * Section 3.3: the factor by which a vertex's allowed error is scaled:

@@ -31,7 +31,7 @@ load helpers
 }
 
 @test "vdt-silhouette --view prints one label per vertex" {
-	run "$BIN/vdt-silhouette" -a 30 -r 64 --view 0.2,0.3,1 -n 1 "$SAMPLES/sphere.off"
+	run "$BIN/vdt-silhouette" -a 30 -r 64 --view 0.2,0.3,1 --nearest 1 "$SAMPLES/sphere.off"
 	[ "$status" -eq 0 ]
 	[ "$(printf '%s\n' "$output" | wc -l)" -eq 2562 ]
 }
@@ -43,7 +43,7 @@ load helpers
 }
 
 @test "vdt-silhouette rejects bad options and input with status 2 and one line" {
-	for bad in "-r 0" "-r 100000" "-r 12x" "-a 0" "-a 200" "-d fast" "-n 0" "--view 0,0,0" "--view 1,2"; do
+	for bad in "-r 0" "-r 100000" "-r 12x" "-a 0" "-a 200" "-d fast" "--nearest 0" "--nearest 9" "--view 0,0,0" "--view 1,2"; do
 		run "$BIN/vdt-silhouette" $bad "$SAMPLES/sphere.off" -o "$TMP/x.vdl"
 		[ "$status" -eq 2 ]
 		[ ! -e "$TMP/x.vdl" ]
@@ -62,4 +62,21 @@ load helpers
 	[ "$status" -eq 2 ]
 	one_line
 	[ ! -e "$TMP/x.vdl" ]
+}
+
+@test "vdt-silhouette --external measures to the outline only, and keeps -n as --nearest" {
+	"$BIN/vdt-silhouette" -a 45 -r 64 "$SAMPLES/torus.off" -o "$TMP/a.vdl"
+	run "$BIN/vdt-silhouette" -v -a 45 -r 64 --external "$SAMPLES/torus.off" -o "$TMP/e.vdl"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *" contours=external "* ]]
+	run cmp -s "$TMP/a.vdl" "$TMP/e.vdl"
+	[ "$status" -ne 0 ]
+	# Labels only grow when internal contours stop counting.
+	"$BIN/vdt-silhouette" -a 45 -r 64 --view 0.3,0.2,1 "$SAMPLES/torus.off" > "$TMP/la"
+	"$BIN/vdt-silhouette" -a 45 -r 64 --external --view 0.3,0.2,1 "$SAMPLES/torus.off" > "$TMP/le"
+	[ -z "$(paste "$TMP/la" "$TMP/le" | awk '$2 < $1')" ]
+	[ -n "$(paste "$TMP/la" "$TMP/le" | awk '$2 > $1')" ]
+	"$BIN/vdt-silhouette" -a 45 -r 64 -n 2 --view 0.3,0.2,1 "$SAMPLES/torus.off" > "$TMP/n1"
+	"$BIN/vdt-silhouette" -a 45 -r 64 --nearest 2 --view 0.3,0.2,1 "$SAMPLES/torus.off" > "$TMP/n2"
+	cmp "$TMP/n1" "$TMP/n2"
 }

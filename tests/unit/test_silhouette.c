@@ -48,7 +48,7 @@ test_grid_one_camera(void **state)
 	shape_grid(&g, 4);
 	assert_int_equal(vdt_sil_frame(&g, centre, &radius, NULL), 0);
 	assert_int_equal(vdt_sil_work_alloc(&w, 16, g.vertex_count, NULL), 0);
-	vdt_sil_camera(&g, centre, radius, up, VDT_SIL_EDT, &w, labels);
+	vdt_sil_camera(&g, centre, radius, up, VDT_SIL_EDT, 0, &w, labels);
 	for (int y = 0; y < 16; y++)
 		for (int x = 0; x < 16; x++) {
 			int in = x >= 3 && x <= 12 && y >= 3 && y <= 12;
@@ -101,7 +101,7 @@ test_octahedron_silhouette(void **state)
 	(void)state;
 	assert_int_equal(vdt_sil_frame(&m, centre, &radius, NULL), 0);
 	assert_int_equal(vdt_sil_work_alloc(&w, 32, 6, NULL), 0);
-	vdt_sil_camera(&m, centre, radius, up, VDT_SIL_CHAMFER, &w, labels);
+	vdt_sil_camera(&m, centre, radius, up, VDT_SIL_CHAMFER, 0, &w, labels);
 	for (int i = 0; i < 6; i++) {
 		assert_int_equal(w.silhouette[i], i < 4);
 		assert_int_equal(labels[i], 0);
@@ -109,7 +109,32 @@ test_octahedron_silhouette(void **state)
 	for (int i = 0; i < 32 * 32; i++)
 		assert_true(w.cells[i] == 0 || w.cells[i] == (VDT_SIL_OCCUPIED | VDT_SIL_CONTOUR));
 	assert_int_equal(w.cells[16 * 32 + 16], VDT_SIL_OCCUPIED | VDT_SIL_CONTOUR);
+	/* The external contour only (3.1.2's first case): the same cells, but
+	 * the whole diamond |x| + |y| <= 1 is object. A pixel is 2 sqrt(3) / 30
+	 * = 0.115 units, so the tips are a pixel from the background and the
+	 * apices, 0.707 units from the edges, about 6. */
+	vdt_sil_camera(&m, centre, radius, up, VDT_SIL_EDT, 1, &w, labels);
+	assert_int_equal(w.cells[16 * 32 + 16], VDT_SIL_OCCUPIED | VDT_SIL_CONTOUR);
+	assert_int_equal(w.binary[16 * 32 + 16], 1);
+	for (int i = 0; i < 4; i++)
+		assert_true(labels[i] <= VDT_SIL_UNITS);
+	for (int i = 4; i < 6; i++)
+		assert_true(labels[i] >= 5 * VDT_SIL_UNITS && labels[i] <= 7 * VDT_SIL_UNITS);
 	vdt_sil_work_free(&w);
+}
+
+/* vdt_labl_min_share: vertex 0 is near the contour of camera 1 only,
+ * vertex 1 within 2 px of camera 0's, vertex 2 of none. */
+static void
+test_labl_min_share(void **state)
+{
+	uint8_t lab[6] = {40, 8, 40, /* camera 1: */ 0, 12, 255};
+	struct vdt_labl l = {{2, NULL, 0, 0, NULL}, 8, 0, 3, lab};
+
+	(void)state;
+	assert_true(vdt_labl_min_share(&l, 0) == 1.0 / 3);
+	assert_true(vdt_labl_min_share(&l, 2) == 2.0 / 3);
+	assert_true(vdt_labl_min_share(&l, 10) == 1);
 }
 
 /* Random blobs: the exact transform equals brute force to float rounding;
@@ -225,7 +250,7 @@ static void
 labels_of_sphere(struct vdt_mesh *s, struct vdt_labl *l, double step, int level)
 {
 	struct vdt_cameras c;
-	struct vdt_sil_opts o = {64, VDT_SIL_EDT, NULL, NULL, NULL};
+	struct vdt_sil_opts o = {64, VDT_SIL_EDT, NULL, NULL, NULL, 0};
 
 	shape_icosphere(s, level);
 	assert_int_equal(vdt_cameras_regular(&c, step, NULL), 0);
@@ -416,7 +441,7 @@ test_bad_input(void **state)
 	const struct vdt_mesh m = {3, (float *)p, NULL, NULL, NULL, 1, (uint32_t *)t};
 	struct vdt_cameras c;
 	struct vdt_labl l;
-	struct vdt_sil_opts o = {64, VDT_SIL_EDT, NULL, NULL, NULL};
+	struct vdt_sil_opts o = {64, VDT_SIL_EDT, NULL, NULL, NULL, 0};
 	struct vdt_mesh g;
 
 	(void)state;
@@ -438,6 +463,7 @@ main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_grid_one_camera),
 		cmocka_unit_test(test_octahedron_silhouette),
+		cmocka_unit_test(test_labl_min_share),
 		cmocka_unit_test(test_transforms_brute_force),
 		cmocka_unit_test(test_cameras),
 		cmocka_unit_test(test_labl_round_trip_and_rejections),
