@@ -23,10 +23,21 @@ ROOT="$BATS_TEST_DIRNAME/../.."
 		f="$p/share/man/man$s/$(basename "$m")"
 		[ -f "$f" ]
 		mandoc -Tlint -W warning "$f"
+		# and man renders it, with no complaint from the formatter
+		MANWIDTH=80 man -l "$f" > "$TMP/page" 2> "$TMP/err"
+		[ ! -s "$TMP/err" ]
+		grep -q "^NAME" "$TMP/page"
 	done
 	[ -f "$p/share/man/man1/vdt-qslim.1" ]
 	[ -f "$p/share/man/man1/vdt-batch.1" ]
 	MANPATH="$p/share/man" man -w vdt-qslim | grep -q "$p/share/man/man1/vdt-qslim.1"
+	# the installed vdt-batch runs the installed tools beside it, with no
+	# source tree on the way
+	mkdir "$TMP/in"
+	cp "$SAMPLES/torus.off" "$TMP/in/"
+	(cd "$TMP" && PATH=/usr/bin:/bin "$p/bin/vdt-batch" -q --ratios 50 -o "$TMP/out" "$TMP/in")
+	[ -s "$TMP/out/torus.lod1.ply" ]
+	grep -q "'$p/bin/vdt-batch' --step" "$TMP/out/.vdt-batch/Makefile"
 	make -s -C "$ROOT" uninstall DESTDIR="$TMP/d" PREFIX=/opt/vdt
 	[ -z "$(find "$TMP/d" -type f)" ]
 }
