@@ -29,7 +29,7 @@ static void
 usage(FILE *f)
 {
 	fprintf(f,
-	        "usage: vdt-deform [-t TRIANGLES | --vertices N | -r RATIO] [--method METHOD]\n"
+	        "usage: vdt-deform [-t TRIANGLES] [--vertices N] [-r RATIO] [--method METHOD]\n"
 	        "                  [--k1 K] [--k2 K] [--sharp-angle DEGREES] [-P SHARE]\n"
 	        "                  [--start N] [--frames N] [--samples N] [-o OUTPUT] [-F FORMAT]\n"
 	        "                  [-q] [-v] [INPUT...]\n"
