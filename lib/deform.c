@@ -71,6 +71,7 @@ vdt_deform_defaults(struct vdt_deform_opts *o)
 	o->k2 = VDT_DEFORM_K2;
 	o->sharp_angle = 60;
 	o->p = 0.96;
+	o->coherence = VDT_DEFORM_COHERENCE;
 	o->boundary_weight = 100;
 	o->max_normal_angle = 75;
 }
@@ -731,9 +732,63 @@ fw_free(struct flist *fw, size_t n)
 
 /* ---- per frame: replay, then the frame's own order ---- */
 
+/*
+ * The pairs a frame's tail prefers (see simplify_frame): an open-addressed
+ * set of (min << 32 | max) slot pairs; UINT64_MAX is empty (no pair has
+ * max == UINT32_MAX).
+ */
+struct pairset {
+	uint64_t *key;
+	size_t cap, n;
+};
+
+static uint64_t
+pair_key(uint32_t a, uint32_t b)
+{
+	return a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
+}
+
+static void
+pairset_clear(struct pairset *s)
+{
+	memset(s->key, 0xff, s->cap * sizeof(*s->key));
+	s->n = 0;
+}
+
+/* Add a pair; the set holds at most cap / 2. */
+static void
+pairset_add(struct pairset *s, uint32_t a, uint32_t b)
+{
+	uint64_t k = pair_key(a, b);
+	size_t j = mix(k) & (s->cap - 1);
+	if (2 * s->n >= s->cap)
+		return;
+	while (s->key[j] != UINT64_MAX && s->key[j] != k)
+		j = (j + 1) & (s->cap - 1);
+	if (s->key[j] == UINT64_MAX) {
+		s->key[j] = k;
+		s->n++;
+	}
+}
+
+static int
+pairset_has(const struct pairset *s, uint32_t a, uint32_t b)
+{
+	uint64_t k = pair_key(a, b);
+	size_t j = mix(k) & (s->cap - 1);
+	while (s->key[j] != UINT64_MAX) {
+		if (s->key[j] == k)
+			return 1;
+		j = (j + 1) & (s->cap - 1);
+	}
+	return 0;
+}
+
 struct fctx {
 	struct qd *q;
 	double centre[3];
+	const struct pairset *prefer; /* or NULL */
+	double discount;              /* 1 / (1 + coherence) */
 };
 
 static double
@@ -744,6 +799,8 @@ frame_cost(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	double e = place(&c->q[a], &c->q[b], pa, pb, c->centre, fixed, pos);
 	for (int k = 0; k < 3; k++)
 		pos[k] += c->centre[k];
+	if (c->prefer && c->prefer->n && pairset_has(c->prefer, a, b))
+		e *= c->discount;
 	return e;
 }
 
@@ -774,6 +831,7 @@ struct scratch {
 	struct qd *q;
 	float *pos;
 	uint32_t *parent, *tri, *rep;
+	struct pairset prefer; /* the pairs the next frame's tail prefers */
 };
 
 /*
@@ -781,6 +839,16 @@ struct scratch {
  * vertices placed at the minimiser of the frame's quadric; frame 0 at the
  * recorded position), then, unless everything was replayed, contract the
  * rest by the frame's own quadric cost down to the target.
+ *
+ * The tail (method ours): section 3.3 finishes each frame by its own QEM
+ * order, which alone picks partly different pairs in consecutive frames
+ * even where their costs differ by a few percent (on the bench's
+ * animations 4-10% of the triangles change from frame to frame). So the
+ * cost of a pair that frame f-1's tail contracted is divided by
+ * 1 + coherence: frame f repeats frame f-1's choice unless another pair
+ * is cheaper by more than that factor. Every frame starts its tail from
+ * the same replayed mesh, so slot pairs name the same vertices in both.
+ * s->prefer holds frame f-1's tail pairs and receives frame f's.
  */
 static int
 simplify_frame(const struct anim *a, size_t f, const struct vdt_contraction *rec,
@@ -794,6 +862,8 @@ simplify_frame(const struct anim *a, size_t f, const struct vdt_contraction *rec
 
 	frame_centre(a, f, c.centre);
 	c.q = s->q;
+	c.prefer = o->method == VDT_DEFORM_OURS && o->coherence > 0 ? &s->prefer : NULL;
+	c.discount = 1 / (1 + o->coherence);
 	frame_quadrics(a, f, c.centre, o->boundary_weight, s->q, 1);
 	memcpy(s->pos, a->pos + 3 * nv * f, 3 * nv * sizeof(float));
 	for (size_t v0 = 0; v0 < nv; v0++)
@@ -839,8 +909,14 @@ simplify_frame(const struct anim *a, size_t f, const struct vdt_contraction *rec
 		co.target_triangles = SIZE_MAX;
 		co.target_vertices = target;
 		co.max_normal_angle = o->max_normal_angle;
+		co.record = c.prefer != NULL;
 		if ((rc = vdt_contract_run(&m, &ops, &co, &r, err)) != 0)
 			return rc;
+		if (c.prefer) {
+			pairset_clear(&s->prefer);
+			for (size_t i = 0; i < r.record_count; i++)
+				pairset_add(&s->prefer, r.records[i].keep, r.records[i].gone);
+		}
 		src = r.positions;
 		memcpy(s->tri, r.triangles, 3 * r.triangle_count * sizeof(uint32_t));
 		nt = r.triangle_count;
@@ -953,7 +1029,7 @@ vdt_deform(const struct vdt_mesh *m, const struct vdt_frames *fr,
 
 	memset(res, 0, sizeof(*res));
 	if (!(o->k1 >= 0 && o->k1 < INFINITY) || !(o->k2 >= 0 && o->k2 <= 1) ||
-	    !(o->p >= 0 && o->p <= 1) || !(o->sharp_angle >= 0 && o->sharp_angle <= 180) ||
+	    !(o->p >= 0 && o->p <= 1) || !(o->coherence >= 0 && o->coherence < INFINITY) || !(o->sharp_angle >= 0 && o->sharp_angle <= 180) ||
 	    !(o->boundary_weight >= 0) || !(o->target_ratio >= 0 && o->target_ratio <= 1) ||
 	    o->method > VDT_DEFORM_INDEPENDENT)
 		return vdt_err_set(err, VDT_EINVAL, "invalid simplification options");
@@ -1061,8 +1137,13 @@ vdt_deform(const struct vdt_mesh *m, const struct vdt_frames *fr,
 	s.rep = malloc((nv + 1) * sizeof(uint32_t));
 	if (s.q == NULL)
 		s.q = malloc((nv + 1) * sizeof(*s.q));
-	if (!s.pos || !s.parent || !s.tri || !s.rep || !s.q)
+	s.prefer.cap = 16;
+	while (s.prefer.cap < 4 * nv)
+		s.prefer.cap *= 2;
+	s.prefer.key = malloc(s.prefer.cap * sizeof(*s.prefer.key));
+	if (!s.pos || !s.parent || !s.tri || !s.rep || !s.q || !s.prefer.key)
 		goto nomem;
+	pairset_clear(&s.prefer);
 	int finish = o->method == VDT_DEFORM_INDEPENDENT || nrep < ur.record_count ||
 	             (o->method == VDT_DEFORM_OURS && !ur.reached_target);
 	for (size_t f = 0; f < nf; f++) {
@@ -1096,6 +1177,7 @@ done:
 	free(s.parent);
 	free(s.tri);
 	free(s.rep);
+	free(s.prefer.key);
 	return rc;
 }
 

@@ -11,7 +11,11 @@
  * order is one engine run over frame 0's geometry (topology, fold-over)
  * whose cost callback sums per-frame quadric costs; each frame then replays
  * the first P of that order on its own geometry and finishes with an
- * engine run on its own quadrics.
+ * engine run on its own quadrics (the tail). Frames are done in order, and
+ * a frame's tail favours the pairs the previous frame's tail contracted
+ * (opts.coherence): an addition to the paper, which finishes every frame
+ * on its own, so that consecutive frames make the same choices where
+ * their costs nearly agree.
  */
 #ifndef VDT_DEFORM_H
 #define VDT_DEFORM_H
@@ -42,14 +46,19 @@ struct vdt_deform_opts {
 	                            dihedral angle below this is sharp */
 	double p;                /* share of the unified order every frame
 	                            follows (section 3.3), in [0, 1] */
+	double coherence;        /* tail of each frame after the first: a pair
+	                            the previous frame's tail contracted costs
+	                            its own cost / (1 + coherence), >= 0 (0: the
+	                            paper's tail, each frame on its own) */
 	double boundary_weight;  /* perpendicular boundary planes, as vdt-qslim */
 	double max_normal_angle; /* fold-over threshold, degrees */
 	const struct vdt_progress *progress;
 };
 
-/* Defaults: ours, k1 1, k2 VDT_DEFORM_K2, 60 degrees, P 0.96, boundary
- * weight 100, 75 degrees; no target. */
+/* Defaults: ours, k1 1, k2 VDT_DEFORM_K2, 60 degrees, P 0.96, coherence
+ * VDT_DEFORM_COHERENCE, boundary weight 100, 75 degrees; no target. */
 #define VDT_DEFORM_K2 0.5
+#define VDT_DEFORM_COHERENCE 0.5
 void vdt_deform_defaults(struct vdt_deform_opts *o);
 
 /*
@@ -64,8 +73,10 @@ struct vdt_deform_result {
 	uint32_t *triangles;   /* 3 * tri_start[frame_count] slot ids */
 	size_t *live_vertices; /* per frame: slots used by a triangle */
 	double *shared;        /* per frame: fraction of its triangles that are
-	                          also triangles of the previous frame (1 for
-	                          frame 0): temporal coherence */
+	                          also triangles of the previous frame, as
+	                          unordered triples of slot ids (1 for frame
+	                          0): temporal coherence, the connectivity the
+	                          two frames' triangle lists have in common */
 	uint32_t *canon;       /* per input vertex: its slot */
 	size_t welded;         /* input vertices merged into another slot */
 	size_t dropped;        /* repeated faces removed */
