@@ -403,21 +403,28 @@ raster(uint8_t *cells, int res, const float *a, const float *b, const float *c,
 		B[k] = sg * ((double)q[0] - p[0]);
 		C[k] = -(A[k] * p[0] + B[k] * p[1]);
 	}
-	for (int y = y0; y <= y1; y++)
-		for (int x = x0; x <= x1; x++) {
-			int in = 1;
-			for (int k = 0; k < ne && in; k++) {
-				double hi = A[k] * (x + (A[k] > 0)) + B[k] * (y + (B[k] > 0)) + C[k];
-				if (ne == 1) {
-					double lo = A[k] * (x + (A[k] < 0)) + B[k] * (y + (B[k] < 0)) + C[k];
-					in = hi >= 0 && lo <= 0;
-				} else {
-					in = hi >= 0;
-				}
+	if (ne == 1) {
+		for (int y = y0; y <= y1; y++)
+			for (int x = x0; x <= x1; x++) {
+				double hi = A[0] * (x + (A[0] > 0)) + B[0] * (y + (B[0] > 0)) + C[0];
+				double lo = A[0] * (x + (A[0] < 0)) + B[0] * (y + (B[0] < 0)) + C[0];
+				if (hi >= 0 && lo <= 0)
+					cells[(size_t)y * res + x] |= bits;
 			}
-			if (in)
-				cells[(size_t)y * res + x] |= bits;
-		}
+		return;
+	}
+	/* The cell corner that maximises each edge function, hoisted out of
+	 * the loops with the arithmetic unchanged (the same roundings). */
+	double ax[3] = {A[0] > 0, A[1] > 0, A[2] > 0}, by[3];
+	for (int y = y0; y <= y1; y++) {
+		uint8_t *row = cells + (size_t)y * res;
+		for (int k = 0; k < 3; k++)
+			by[k] = B[k] * (y + (double)(B[k] > 0));
+		for (int x = x0; x <= x1; x++)
+			if (A[0] * (x + ax[0]) + by[0] + C[0] >= 0 && A[1] * (x + ax[1]) + by[1] + C[1] >= 0 &&
+			    A[2] * (x + ax[2]) + by[2] + C[2] >= 0)
+				row[x] |= bits;
+	}
 }
 
 /* One row or column of Felzenszwalb-Huttenlocher: d = min_q (p-q)^2 + f(q). */
