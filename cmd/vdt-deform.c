@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../lib/animtarget.h"
 #include "../lib/deform.h"
 #include "../lib/io/anim.h"
 #include "../lib/io/meshio.h"
@@ -105,71 +106,24 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		cl->d.target_ratio = 0.1;
 }
 
-/* Vertices left after welding those that coincide in every frame, as
- * vdt_deform welds them. */
-static const struct vdt_frames *sorting;
-
-static int
-cmp_vertex(const void *a, const void *b)
-{
-	size_t u = *(const size_t *)a, v = *(const size_t *)b;
-
-	for (size_t f = 0; f < sorting->frame_count; f++) {
-		const float *p = sorting->positions + 3 * sorting->vertex_count * f;
-		for (int k = 0; k < 3; k++)
-			if (p[3 * u + k] != p[3 * v + k])
-				return p[3 * u + k] < p[3 * v + k] ? -1 : 1;
-	}
-	return 0;
-}
-
 /*
- * -t TRIANGLES as a vertex target: on a closed mesh each contraction
- * removes one vertex and two triangles, so ceil((T - TRIANGLES) / 2) of them
- * reach it; a contraction on a boundary removes one, leaving a few more.
- */
-static int
-triangle_target(struct cmdline *cl, const struct vdt_mesh *in, const struct vdt_frames *fr)
-{
-	size_t n = fr->vertex_count, welded = n > 0, t = in->triangle_count, k, *ix;
-
-	if ((ix = malloc(n * sizeof(*ix) + 1)) == NULL)
-		return -1;
-	for (size_t v = 0; v < n; v++)
-		ix[v] = v;
-	sorting = fr;
-	qsort(ix, n, sizeof(*ix), cmp_vertex);
-	for (size_t i = 1; i < n; i++)
-		welded += cmp_vertex(ix + i - 1, ix + i) != 0;
-	free(ix);
-	k = t > cl->triangles ? (t - cl->triangles + 1) / 2 : 0;
-	k = welded > k ? welded - k : 1;
-	cl->vertices = cl->d.target_vertices;
-	if (k > cl->d.target_vertices)
-		cl->d.target_vertices = k;
-	return 0;
-}
-
-/*
- * After a run for -t that kept too many triangles (boundaries lose one per
- * contraction), a vertex target from the run's own V - T / 2; 0 if none.
- * Two such runs at most: each lands closer.
+ * After a run for -t: the largest frame against the target, and a
+ * corrected vertex target when it kept too many; 0 if none. A vertex
+ * target of the user's, reached first, stays.
  */
 static size_t
 retarget(const struct cmdline *cl, const struct vdt_deform_result *r)
 {
-	size_t worst = 0, t, v;
-	long long want;
+	size_t w = 0, v;
 
 	for (size_t f = 1; f < r->frame_count; f++)
-		if (r->tri_start[f + 1] - r->tri_start[f] > r->tri_start[worst + 1] - r->tri_start[worst])
-			worst = f;
-	t = r->tri_start[worst + 1] - r->tri_start[worst];
-	v = r->live_vertices[worst];
-	want = ((long long)cl->triangles + 2 * (long long)v - (long long)t) / 2;
-	if (t <= cl->triangles || want >= (long long)cl->d.target_vertices)
-		return 0;
-	return want > (long long)cl->vertices ? (size_t)want : cl->vertices > 0 ? cl->vertices : 1;
+		if (r->tri_start[f + 1] - r->tri_start[f] > r->tri_start[w + 1] - r->tri_start[w])
+			w = f;
+	v = vdt_anim_vertices_again(r->live_vertices[w], r->tri_start[w + 1] - r->tri_start[w],
+	                            cl->triangles, cl->d.target_vertices);
+	if (v != 0 && v < cl->vertices)
+		v = cl->vertices < cl->d.target_vertices ? cl->vertices : 0;
+	return v;
 }
 
 static int
@@ -251,10 +205,15 @@ run(struct cmdline *cl)
 	                                  : cl->w.format != VDT_FMT_VDT))
 		usage_error("%zu frames need a pattern (out/%%03d.obj) or a vdt stream for -o",
 		            fr.frame_count);
-	if (cl->triangles > 0 && triangle_target(cl, &in, &fr) != 0) {
-		vdt_err_set(&err, VDT_ENOMEM, "out of memory");
-		rc = fail("cannot simplify", cl->in[0], &err);
-		goto out;
+	if (cl->triangles > 0) { /* the engine counts vertices */
+		size_t nv, v;
+		if ((rc = vdt_anim_welded_vertices(&fr, &nv, &err)) != 0) {
+			rc = fail("cannot simplify", cl->in[0], &err);
+			goto out;
+		}
+		v = vdt_anim_vertices_for(nv, in.triangle_count, cl->triangles);
+		cl->vertices = cl->d.target_vertices;
+		cl->d.target_vertices = v > cl->vertices ? v : cl->vertices;
 	}
 	vdt_chunks_drop_vertex_data(&extra);
 	cl->d.progress = progress_start(cl->quiet);
