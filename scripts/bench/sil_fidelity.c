@@ -5,10 +5,15 @@
  * approximation, and count the pixels that differ and the Hausdorff
  * distance, in pixels, between their contours.
  *
- * usage: sil_fidelity [-n VIEWS] [-r RES] [-d X,Y,Z] ORIGINAL APPROX...
+ * usage: sil_fidelity [-n VIEWS] [-r RES] [-d X,Y,Z | -f] ORIGINAL APPROX...
  *        sil_fidelity -l [-n VIEWS]
+ *        sil_fidelity -p [-n VIEWS] ORIGINAL
  * -d judges from that one view only (for approximations made for it, as
- * vdt-qslim --view makes them); -l lists the views as X,Y,Z lines.
+ * vdt-qslim --view makes them); -l lists the views as X,Y,Z lines; -p
+ * prints them as a vdt-render --path (eye 20 frame radii away along the
+ * view, looking at the frame centre: with --fov 6 nearly orthographic);
+ * -f takes each APPROX as a pattern with one %d, the mesh of frame v
+ * judged from view v (vdt-render --mesh-out along that path).
  * One line per approximation on stdout:
  *   file=F views=V res=R mean_mismatch_px=.. worst_mismatch_px=..
  *   mean_contour_hausdorff_px=.. worst_contour_hausdorff_px=..
@@ -79,15 +84,18 @@ view_dir(int v, int views, double dir[3])
 int
 main(int argc, char **argv)
 {
-	int views = 50, res = 256, i = 1, list = 0, one = 0;
+	int views = 50, res = 256, i = 1, list = 0, one = 0, path = 0, frames = 0;
 	double fixed[3] = {0, 0, 1};
 	struct vdt_mesh orig = {0};
 	struct vdt_err err = {0};
 	double centre[3], radius;
 
 	for (; i < argc && argv[i][0] == '-'; i += 2) {
-		if (strcmp(argv[i], "-l") == 0) {
-			list = 1;
+		if (strcmp(argv[i], "-l") == 0 || strcmp(argv[i], "-p") == 0 ||
+		    strcmp(argv[i], "-f") == 0) {
+			list |= argv[i][1] == 'l';
+			path |= argv[i][1] == 'p';
+			frames |= argv[i][1] == 'f';
 			i--;
 			continue;
 		}
@@ -114,13 +122,22 @@ main(int argc, char **argv)
 	}
 	if (one)
 		views = 1;
-	if (argc - i < 2 || views < 1 || res < 16 || res > 4096)
+	if (argc - i < 2 - path || views < 1 || res < 16 || res > 4096 || (one && frames))
 		goto usage;
 	if (vdt_read(argv[i], &orig, NULL, &err) != 0 ||
 	    vdt_sil_frame(&orig, centre, &radius, &err) != 0) {
 		fprintf(stderr, "sil_fidelity: cannot read '%s': %s\n", argv[i], err.msg);
 		return 2;
 	}
+	for (int v = 0; path && v < views; v++) {
+		double d[3];
+		view_dir(v, views, d);
+		printf("%.9g %.9g %.9g %.9g %.9g %.9g %d %d %d\n", centre[0] + 20 * radius * d[0],
+		       centre[1] + 20 * radius * d[1], centre[2] + 20 * radius * d[2], centre[0],
+		       centre[1], centre[2], 0, fabs(d[1]) > 0.9 ? 0 : 1, fabs(d[1]) > 0.9);
+	}
+	if (path)
+		return 0;
 	size_t np = (size_t)res * res;
 	uint8_t *mo = malloc(np), *ma = malloc(np);
 	int *co = malloc(2 * np * sizeof(int)), *ca = malloc(2 * np * sizeof(int));
@@ -129,12 +146,19 @@ main(int argc, char **argv)
 	for (int k = i + 1; k < argc; k++) {
 		struct vdt_mesh a = {0};
 		double sum_mis = 0, worst_mis = 0, sum_h = 0, worst_h = 0;
-		if (vdt_read(argv[k], &a, NULL, &err) != 0) {
-			fprintf(stderr, "sil_fidelity: cannot read '%s': %s\n", argv[k], err.msg);
-			return 2;
-		}
+		char name[4096];
 		for (int v = 0; v < views; v++) {
 			double dir[3] = {fixed[0], fixed[1], fixed[2]};
+			if (frames)
+				vdt_mesh_free(&a);
+			if (frames)
+				snprintf(name, sizeof(name), argv[k], v);
+			else
+				snprintf(name, sizeof(name), "%s", argv[k]);
+			if ((frames || v == 0) && vdt_read(name, &a, NULL, &err) != 0) {
+				fprintf(stderr, "sil_fidelity: cannot read '%s': %s\n", name, err.msg);
+				return 2;
+			}
 			if (!one)
 				view_dir(v, views, dir);
 			vdt_sil_mask(&orig, centre, radius, dir, res, mo);
@@ -167,7 +191,8 @@ main(int argc, char **argv)
 	vdt_mesh_free(&orig);
 	return 0;
 usage:
-	fprintf(stderr, "usage: sil_fidelity [-n VIEWS] [-r RES] [-d X,Y,Z] ORIGINAL APPROX...\n"
-	                "       sil_fidelity -l [-n VIEWS]\n");
+	fprintf(stderr, "usage: sil_fidelity [-n VIEWS] [-r RES] [-d X,Y,Z | -f] ORIGINAL APPROX...\n"
+	                "       sil_fidelity -l [-n VIEWS]\n"
+	                "       sil_fidelity -p [-n VIEWS] ORIGINAL\n");
 	return 2;
 }
