@@ -1029,7 +1029,8 @@ vdt_deform(const struct vdt_mesh *m, const struct vdt_frames *fr,
 
 	memset(res, 0, sizeof(*res));
 	if (!(o->k1 >= 0 && o->k1 < INFINITY) || !(o->k2 >= 0 && o->k2 <= 1) ||
-	    !(o->p >= 0 && o->p <= 1) || !(o->coherence >= 0 && o->coherence < INFINITY) || !(o->sharp_angle >= 0 && o->sharp_angle <= 180) ||
+	    !(o->p >= 0 && o->p <= 1) || !(o->coherence >= 0 && o->coherence < INFINITY) ||
+	    !(o->sharp_angle >= 0 && o->sharp_angle <= 180) ||
 	    !(o->boundary_weight >= 0) || !(o->target_ratio >= 0 && o->target_ratio <= 1) ||
 	    o->method > VDT_DEFORM_INDEPENDENT)
 		return vdt_err_set(err, VDT_EINVAL, "invalid simplification options");
