@@ -293,6 +293,10 @@ coherent_tail(void **state)
 	assert_true(r1.shared[1] > 0.98);
 	vdt_deform_result_free(&r0);
 	vdt_deform_result_free(&r1);
+	o.coherence = -1;
+	assert_int_equal(vdt_deform(&m, &fr, &o, &r1, NULL), VDT_EINVAL);
+	o.coherence = INFINITY;
+	assert_int_equal(vdt_deform(&m, &fr, &o, &r1, NULL), VDT_EINVAL);
 	vdt_mesh_free(&m);
 	vdt_frames_free(&fr);
 }
