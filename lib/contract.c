@@ -22,7 +22,10 @@
 
 #define NONE UINT32_MAX
 
-enum { V_DEAD = 1, V_LOCKED = 2 };
+/* V_CHECKED: the queued pair passed the validity tests (the cheapest had
+ * not); V_STALE: the key is a lower bound, recompute on reaching the top;
+ * V_NOALT: the second cheapest pair is not known. */
+enum { V_DEAD = 1, V_LOCKED = 2, V_CHECKED = 4, V_STALE = 8, V_NOALT = 16 };
 enum { P_DEAD = 1, P_REJECTED = 2 };
 
 struct list {
@@ -32,18 +35,25 @@ struct list {
 struct pool {
 	uint32_t *data;
 	size_t len, cap;
+	size_t holes; /* entries left behind by lists that moved */
 };
 
 struct hent {
 	float cost;
-	uint32_t pair;
+	uint32_t pair; /* or vertex, in a vertex queue */
+};
+
+/* A neighbour of a vertex and the cost of their pair. */
+struct vcost {
+	uint32_t x;
+	float cost;
 };
 
 struct engine {
 	size_t nv, nt;
 	float *pos;
 	uint32_t *tri;    /* 3 per triangle; tri[3t] == NONE when dead */
-	float *tnormal;   /* input unit normal per triangle */
+	int16_t *tnormal; /* input unit normal per triangle, times 32767 */
 	uint8_t *vflag;
 	struct list *vt;  /* triangles around each vertex */
 	struct list *vp;  /* pairs at each vertex */
@@ -69,6 +79,17 @@ struct engine {
 	size_t nbr_cap;
 	uint32_t *stamp, *slot, stamp_now;
 	uint16_t *vrej;   /* set-aside pairs at each vertex */
+
+	/* vertex queue: the heap holds vertices, best[v] is v's partner and
+	 * alt[v] the partner of its second cheapest pair, at cost altc[v] */
+	int vq;
+	uint32_t *best, *alt;
+	float *altc;
+	const uint8_t *rank;
+	struct vcost *vn, *vk; /* scratch: a vertex's pairs, keep's pairs */
+	size_t vn_cap, vk_cap;
+	uint32_t *wing;        /* third corners of the faces a contraction removed */
+	size_t wing_len, wing_cap;
 };
 
 /* ---- pools of per-vertex lists ---- */
@@ -90,30 +111,61 @@ pool_reserve(struct pool *p, size_t extra)
 }
 
 /*
- * Rewrite every list contiguously with a little slack, dropping the holes
- * left by lists that moved. Runs when the pool would otherwise grow.
+ * Slide every list down over the holes left by lists that moved, in place
+ * (lists in order of their offsets, so none is overwritten before it has
+ * moved), keeping up to two entries of slack each. Runs when the pool is
+ * full and an eighth of it is holes, so it costs O(1) per moved entry and
+ * the pool stays near its live size.
  */
 static int
 pool_compact(struct pool *p, struct list *lists, size_t n)
 {
-	size_t need = 0;
-	for (size_t i = 0; i < n; i++)
-		need += lists[i].len + (lists[i].len ? 2 : 0);
-	uint32_t *d = malloc((need + 64) * sizeof(*d));
-	if (d == NULL)
+	uint64_t *k = malloc((n + 1) * sizeof(*k));
+	size_t m = 0, at = 0;
+
+	if (k == NULL)
 		return -1;
-	size_t at = 0;
-	for (size_t i = 0; i < n; i++) {
-		struct list *l = &lists[i];
-		memcpy(d + at, p->data + l->off, l->len * sizeof(*d));
-		l->off = (uint32_t)at;
-		l->cap = l->len + (l->len ? 2 : 0);
-		at += l->cap;
+	for (size_t i = 0; i < n; i++)
+		if (lists[i].cap > 0)
+			k[m++] = (uint64_t)lists[i].off << 32 | i;
+	if (vdt_sort_u64(k, m) != 0) {
+		free(k);
+		return -1;
 	}
-	free(p->data);
-	p->data = d;
+	for (size_t j = 0; j < m; j++) {
+		struct list *l = &lists[(uint32_t)k[j]];
+		uint32_t cap = l->len + 2 < l->cap ? l->len + 2 : l->cap;
+		memmove(p->data + at, p->data + l->off, l->len * sizeof(*p->data));
+		l->off = (uint32_t)at;
+		l->cap = cap;
+		at += cap;
+	}
+	free(k);
 	p->len = at;
-	p->cap = need + 64;
+	p->holes = 0;
+	return 0;
+}
+
+/* Room for `need` entries in v's list: moved to the end of the pool if it must grow. */
+static int
+list_grow(struct pool *p, struct list *lists, size_t n, uint32_t v, uint32_t need)
+{
+	struct list *l = &lists[v];
+
+	if (need <= l->cap)
+		return 0;
+	uint32_t cap = need < 6 ? 8 : need + need / 2 + 2;
+	if (p->len + cap > p->cap && p->holes > p->cap / 8) {
+		if (pool_compact(p, lists, n) != 0)
+			return -1;
+	}
+	if (pool_reserve(p, cap) != 0)
+		return -1;
+	p->holes += l->cap;
+	memcpy(p->data + p->len, p->data + l->off, l->len * sizeof(uint32_t));
+	l->off = (uint32_t)p->len;
+	l->cap = cap;
+	p->len += cap;
 	return 0;
 }
 
@@ -122,20 +174,35 @@ list_push(struct pool *p, struct list *lists, size_t n, uint32_t v, uint32_t x)
 {
 	struct list *l = &lists[v];
 
-	if (l->len == l->cap) {
-		uint32_t cap = l->cap < 4 ? 8 : 2 * l->cap;
-		if (p->len + cap > p->cap && p->len > 2 * (size_t)n * 8) {
-			if (pool_compact(p, lists, n) != 0)
-				return -1;
-		}
-		if (pool_reserve(p, cap) != 0)
-			return -1;
-		memcpy(p->data + p->len, p->data + l->off, l->len * sizeof(uint32_t));
-		l->off = (uint32_t)p->len;
-		l->cap = cap;
-		p->len += cap;
-	}
+	if (list_grow(p, lists, n, v, l->len + 1) != 0)
+		return -1;
 	p->data[l->off + l->len++] = x;
+	return 0;
+}
+
+/*
+ * Append gone's list to keep's, in keep's region if it fits, else in gone's
+ * (which is free from now on), else at the end of the pool.
+ */
+static int
+list_merge(struct pool *p, struct list *lists, size_t n, uint32_t keep, uint32_t gone)
+{
+	struct list *lk = &lists[keep], *lg = &lists[gone];
+	uint32_t len = lk->len + lg->len;
+
+	if (len > lk->cap && len <= lg->cap) {
+		memcpy(p->data + lg->off + lg->len, p->data + lk->off, lk->len * sizeof(uint32_t));
+		p->holes += lk->cap;
+		lk->off = lg->off;
+		lk->cap = lg->cap;
+	} else {
+		if (list_grow(p, lists, n, keep, len) != 0)
+			return -1;
+		memcpy(p->data + lk->off + lk->len, p->data + lg->off, lg->len * sizeof(uint32_t));
+		p->holes += lg->cap;
+	}
+	lk->len = len;
+	lg->off = lg->len = lg->cap = 0;
 	return 0;
 }
 
@@ -472,7 +539,8 @@ fan_ok(struct engine *e, uint32_t v, uint32_t other, const float pos[3])
 			return 0;
 		if (!within_angle(dot3(n0, n1), l0, l1, e->cos_max))
 			return 0;
-		double tn[3] = {e->tnormal[3 * t], e->tnormal[3 * t + 1], e->tnormal[3 * t + 2]};
+		const int16_t *qn = e->tnormal + 3 * (size_t)t;
+		double tn[3] = {qn[0] / 32767.0, qn[1] / 32767.0, qn[2] / 32767.0};
 		if (!within_angle(dot3(tn, n1), 1, l1, e->cos_max))
 			return 0;
 		if (e->min_quality > 0) {
@@ -518,6 +586,327 @@ duplicates(struct engine *e, uint32_t keep, uint32_t gone)
 	return 0;
 }
 
+/* ---- pairs, whichever queue holds them ---- */
+
+/* Of a < b, the vertex that survives: a locked one, else the higher rank. */
+static void
+orient(const struct engine *e, uint32_t a, uint32_t b, uint32_t *keep, uint32_t *gone)
+{
+	int la = e->vflag[a] & V_LOCKED, lb = e->vflag[b] & V_LOCKED;
+
+	*keep = a;
+	if (lb && !la)
+		*keep = b;
+	else if (!la && e->rank && e->rank[b] > e->rank[a])
+		*keep = b;
+	*gone = *keep == a ? b : a;
+}
+
+/* The caller's cost of pair (a, b), a < b, or INFINITY. */
+static double
+eval_pair(struct engine *e, uint32_t a, uint32_t b, double pos[3])
+{
+	int la = e->vflag[a] & V_LOCKED, lb = e->vflag[b] & V_LOCKED;
+
+	if (la && lb)
+		return INFINITY;
+	double c = e->ops->cost(e->ops->ctx, a, b, la ? 0 : lb ? 1 : -1,
+	                        e->pos + 3 * (size_t)a, e->pos + 3 * (size_t)b, pos);
+	return c >= 0 && c < INFINITY ? c : INFINITY;
+}
+
+/*
+ * Whether pair (u, v) may be contracted now: every validity test of the
+ * header. Fills keep, gone, the new position and the cost.
+ */
+static int
+try_pair(struct engine *e, uint32_t u, uint32_t v, uint32_t *keep, uint32_t *gone,
+         double pos[3], double *cost)
+{
+	uint32_t a = u < v ? u : v, b = u < v ? v : u;
+	const struct vdt_contract_ops *ops = e->ops;
+
+	orient(e, a, b, keep, gone);
+	*cost = eval_pair(e, a, b, pos);
+	float fpos[3] = {(float)pos[0], (float)pos[1], (float)pos[2]};
+	return *cost < INFINITY && (e->allow_nonmanifold || link_ok(e, *keep, *gone)) &&
+	       !duplicates(e, *keep, *gone) && fan_ok(e, *keep, *gone, fpos) &&
+	       fan_ok(e, *gone, *keep, fpos) &&
+	       (ops->valid == NULL || ops->valid(ops->ctx, *keep, *gone, pos));
+}
+
+/* ---- the vertex queue ---- */
+
+static uint32_t
+next_stamp(struct engine *e)
+{
+	if (e->stamp_now >= UINT32_MAX - 4) {
+		memset(e->stamp, 0, e->nv * sizeof(*e->stamp));
+		e->stamp_now = 0;
+	}
+	return ++e->stamp_now;
+}
+
+static int
+vcost_reserve(struct vcost **d, size_t *cap, size_t n)
+{
+	if (n <= *cap)
+		return 0;
+	struct vcost *p = realloc(*d, (2 * n + 16) * sizeof(*p));
+	if (p == NULL)
+		return -1;
+	*d = p;
+	*cap = 2 * n + 16;
+	return 0;
+}
+
+/* v's neighbours and the costs of their pairs, in e->vn; their number or -1. */
+static long
+vertex_pairs(struct engine *e, uint32_t v)
+{
+	const struct list *l = &e->vt[v];
+	uint32_t stamp = next_stamp(e);
+	double pos[3];
+	size_t n = 0;
+
+	if (vcost_reserve(&e->vn, &e->vn_cap, 2 * (size_t)l->len) != 0)
+		return -1;
+	for (uint32_t i = 0; i < l->len; i++) {
+		const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + i];
+		for (int k = 0; k < 3; k++) {
+			uint32_t x = t[k];
+			if (x == v || e->stamp[x] == stamp)
+				continue;
+			e->stamp[x] = stamp;
+			e->vn[n].x = x;
+			e->vn[n++].cost = (float)(x < v ? eval_pair(e, x, v, pos) : eval_pair(e, v, x, pos));
+		}
+	}
+	return (long)n;
+}
+
+/* Pair (., x) at cost c before pair (., bx) at bc; a refused pair never is. */
+static inline int
+cheaper(float c, uint32_t x, float bc, uint32_t bx)
+{
+	return c < bc || (c == bc && x < bx && c < INFINITY);
+}
+
+/* The two cheapest of a vertex's pairs. */
+struct top2 {
+	uint32_t x1, x2;
+	float c1, c2;
+};
+
+static inline void
+top2_add(struct top2 *t, uint32_t x, float c)
+{
+	if (cheaper(c, x, t->c1, t->x1)) {
+		t->x2 = t->x1;
+		t->c2 = t->c1;
+		t->x1 = x;
+		t->c1 = c;
+	} else if (cheaper(c, x, t->c2, t->x2)) {
+		t->x2 = x;
+		t->c2 = c;
+	}
+}
+
+static void
+vertex_set(struct engine *e, uint32_t v, uint32_t x, float c)
+{
+	e->best[v] = x;
+	if (x == NONE)
+		heap_remove(e, v);
+	else
+		heap_set(e, v, c);
+}
+
+static int
+by_cost(const void *p, const void *q)
+{
+	const struct vcost *a = p, *b = q;
+	return cheaper(a->cost, a->x, b->cost, b->x) ? -1 : cheaper(b->cost, b->x, a->cost, a->x);
+}
+
+/*
+ * Make v's queue entry its cheapest pair, or with valid_only its cheapest
+ * pair that passes the validity tests now; with none, v leaves the queue.
+ */
+static int
+vertex_update(struct engine *e, uint32_t v, int valid_only)
+{
+	long n = vertex_pairs(e, v);
+	struct top2 t = {NONE, NONE, INFINITY, INFINITY};
+	uint32_t keep, gone;
+	double pos[3], c;
+
+	if (n < 0)
+		return -1;
+	if (!valid_only) {
+		for (long i = 0; i < n; i++)
+			if (e->vn[i].cost < INFINITY)
+				top2_add(&t, e->vn[i].x, e->vn[i].cost);
+		e->vflag[v] &= (uint8_t)~(V_CHECKED | V_STALE | V_NOALT);
+	} else {
+		qsort(e->vn, (size_t)n, sizeof(*e->vn), by_cost);
+		for (long i = 0; i < n && e->vn[i].cost < INFINITY; i++)
+			if (try_pair(e, v, e->vn[i].x, &keep, &gone, pos, &c)) {
+				t.c1 = e->vn[i].cost;
+				t.x1 = e->vn[i].x;
+				break;
+			}
+		e->vflag[v] = (uint8_t)((e->vflag[v] | V_CHECKED | V_NOALT) & ~V_STALE);
+	}
+	e->alt[v] = t.x2;
+	e->altc[v] = t.c2;
+	vertex_set(e, v, t.x1, t.c1);
+	return 0;
+}
+
+/*
+ * After gone merged into keep: keep's pairs are all new; a neighbour keeps
+ * its partner unless that was keep or gone, or the pair with keep is now
+ * cheaper. Neighbours whose pair had failed a test are searched afresh:
+ * their neighbourhood changed.
+ */
+static int
+vertex_merged(struct engine *e, uint32_t keep, uint32_t gone)
+{
+	heap_remove(e, gone);
+	e->best[gone] = NONE;
+	long n = vertex_pairs(e, keep);
+	if (n < 0 || vcost_reserve(&e->vk, &e->vk_cap, (size_t)n) != 0)
+		return -1;
+	memcpy(e->vk, e->vn, (size_t)n * sizeof(*e->vk));
+
+	struct top2 t = {NONE, NONE, INFINITY, INFINITY};
+	for (long i = 0; i < n; i++) {
+		uint32_t x = e->vk[i].x;
+		float c = e->vk[i].cost;
+		uint8_t f = e->vflag[x];
+		if (c < INFINITY)
+			top2_add(&t, x, c);
+		if (f & V_STALE)
+			continue;
+		uint32_t b = e->best[x], s = e->alt[x];
+		if (b == NONE || (f & V_CHECKED)) {
+			if (vertex_update(e, x, 0) != 0)
+				return -1;
+			continue;
+		}
+		float bc = e->heap[e->hpos[x]].cost, sc = e->altc[x];
+		int b_hit = b == keep || b == gone;
+		int s_hit = !(f & V_NOALT) && (s == keep || s == gone);
+		if (b_hit) {
+			if ((f & V_NOALT) || s_hit) {
+				/* Merging only adds to quadrics, so x's pairs cost no
+				 * less than its old cheapest: that stays its key until
+				 * it comes to the top and is recomputed. */
+				e->vflag[x] |= V_STALE;
+				continue;
+			}
+			/* Every other pair of x costs at least sc. */
+			if (s == NONE || cheaper(c, keep, sc, s)) {
+				e->vflag[x] = (uint8_t)(f & ~V_NOALT);
+				e->alt[x] = s;
+				e->altc[x] = sc;
+				if (c < INFINITY)
+					vertex_set(e, x, keep, c);
+				else
+					vertex_set(e, x, s, sc);
+			} else {
+				e->vflag[x] = f | V_NOALT;
+				vertex_set(e, x, s, sc);
+			}
+		} else if (cheaper(c, keep, bc, b)) {
+			e->alt[x] = b;
+			e->altc[x] = bc;
+			e->vflag[x] = (uint8_t)(f & ~V_NOALT);
+			vertex_set(e, x, keep, c);
+		} else if (s_hit) {
+			e->vflag[x] = f | V_NOALT;
+		} else if (!(f & V_NOALT) && cheaper(c, keep, sc, s)) {
+			e->alt[x] = keep;
+			e->altc[x] = c;
+		}
+	}
+	e->vflag[keep] &= (uint8_t)~(V_CHECKED | V_STALE | V_NOALT);
+	e->alt[keep] = t.x2;
+	e->altc[keep] = t.c2;
+	vertex_set(e, keep, t.x1, t.c1);
+
+	/* A corner of a removed face may have lost its edge to keep. */
+	for (size_t i = 0; i < e->wing_len; i++) {
+		uint32_t w = e->wing[i], adjacent = 0;
+		int s_hit = e->alt[w] == keep || e->alt[w] == gone;
+		if ((e->vflag[w] & (V_DEAD | V_STALE)) ||
+		    (e->best[w] != keep && e->best[w] != gone && !s_hit))
+			continue;
+		const struct list *l = &e->vt[w];
+		for (uint32_t j = 0; j < l->len && !adjacent; j++) {
+			const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + j];
+			adjacent = t[0] == keep || t[1] == keep || t[2] == keep;
+		}
+		if (!adjacent && s_hit)
+			e->vflag[w] |= V_NOALT;
+		if ((!adjacent && e->best[w] == keep) || e->best[w] == gone)
+			e->vflag[w] |= V_STALE;
+	}
+	return 0;
+}
+
+/* Every vertex's cheapest pair, each edge costed once, then one heapify. */
+static int
+vertex_queue_init(struct engine *e)
+{
+	double pos[3];
+
+	for (size_t v = 0; v < e->nv; v++) {
+		e->heap[v] = (struct hent){INFINITY, (uint32_t)v};
+		e->best[v] = e->alt[v] = NONE;
+		e->altc[v] = INFINITY;
+	}
+	for (size_t v = 0; v < e->nv; v++) {
+		const struct list *l = &e->vt[v];
+		uint32_t stamp = next_stamp(e);
+		for (uint32_t i = 0; i < l->len; i++) {
+			const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + i];
+			for (int k = 0; k < 3; k++) {
+				uint32_t x = t[k];
+				if (x <= v || e->stamp[x] == stamp)
+					continue;
+				e->stamp[x] = stamp;
+				float c = (float)eval_pair(e, (uint32_t)v, x, pos);
+				if (!(c < INFINITY))
+					continue;
+				uint32_t ends[2] = {(uint32_t)v, x};
+				for (int j = 0; j < 2; j++) {
+					uint32_t a = ends[j], b = ends[1 - j];
+					struct top2 t2 = {e->best[a], e->alt[a], e->heap[a].cost, e->altc[a]};
+					top2_add(&t2, b, c);
+					e->best[a] = t2.x1;
+					e->heap[a].cost = t2.c1;
+					e->alt[a] = t2.x2;
+					e->altc[a] = t2.c2;
+				}
+			}
+		}
+	}
+	e->hlen = 0;
+	for (size_t v = 0; v < e->nv; v++) {
+		e->hpos[v] = NONE;
+		if (e->best[v] != NONE) {
+			e->hpos[v] = (uint32_t)e->hlen;
+			e->heap[e->hlen++] = e->heap[v];
+		}
+	}
+	for (size_t i = e->hlen / 4 + 1; i-- > 0;)
+		if (i < e->hlen)
+			heap_down(e, i);
+	return 0;
+}
+
 /* ---- contraction ---- */
 
 static int
@@ -528,8 +917,11 @@ contract(struct engine *e, uint32_t keep, uint32_t gone, const double dpos[3],
 
 	for (int k = 0; k < 3; k++)
 		e->pos[3 * (size_t)keep + k] = (float)dpos[k];
+	e->wing_len = 0;
 
-	/* Triangles: those with both die, the rest move to keep. */
+	/* Triangles: those with both die, the rest move to keep (first
+	 * gathered at the front of gone's list). */
+	uint32_t moved = 0;
 	for (uint32_t i = 0; i < lg->len; i++) {
 		uint32_t t = e->tpool.data[lg->off + i];
 		uint32_t *c = e->tri + 3 * (size_t)t;
@@ -537,6 +929,19 @@ contract(struct engine *e, uint32_t keep, uint32_t gone, const double dpos[3],
 			for (int k = 0; k < 3; k++)
 				if (c[k] != gone)
 					list_remove(&e->tpool, &e->vt[c[k]], t);
+			if (e->vq) {
+				if (e->wing_len == e->wing_cap) {
+					size_t cap = 2 * e->wing_cap + 8;
+					uint32_t *d = realloc(e->wing, cap * sizeof(*d));
+					if (d == NULL)
+						return -1;
+					e->wing = d;
+					e->wing_cap = cap;
+				}
+				for (int k = 0; k < 3; k++)
+					if (c[k] != gone && c[k] != keep)
+						e->wing[e->wing_len++] = c[k];
+			}
 			c[0] = c[1] = c[2] = NONE;
 			e->live_tris--;
 			continue;
@@ -544,11 +949,20 @@ contract(struct engine *e, uint32_t keep, uint32_t gone, const double dpos[3],
 		for (int k = 0; k < 3; k++)
 			if (c[k] == gone)
 				c[k] = keep;
-		if (list_push(&e->tpool, e->vt, e->nv, keep, t) != 0)
-			return -1;
-		lg = &e->vt[gone]; /* the pool may have moved */
+		e->tpool.data[lg->off + moved++] = t;
 	}
-	e->vt[gone].len = 0;
+	lg->len = moved;
+	if (list_merge(&e->tpool, e->vt, e->nv, keep, gone) != 0)
+		return -1;
+
+	if (e->vq) {
+		e->vflag[gone] |= V_DEAD;
+		e->parent[gone] = keep;
+		e->live_verts--;
+		if (e->ops->merged)
+			e->ops->merged(e->ops->ctx, keep, gone, dpos, cost);
+		return vertex_merged(e, keep, gone);
+	}
 
 	/* Pairs: re-point gone's pairs to keep, dropping duplicates. */
 	struct list *pg = &e->vp[gone];
@@ -620,6 +1034,23 @@ contract(struct engine *e, uint32_t keep, uint32_t gone, const double dpos[3],
 
 /* ---- set-up ---- */
 
+/* Free what the results do not need (all but positions, faces, parents). */
+static void
+engine_shed(struct engine *e)
+{
+	void **p[] = {(void **)&e->tnormal, (void **)&e->vflag, (void **)&e->vt,
+	              (void **)&e->vp, (void **)&e->tpool.data, (void **)&e->ppool.data,
+	              (void **)&e->pv, (void **)&e->pflag, (void **)&e->heap,
+	              (void **)&e->hpos, (void **)&e->nbr, (void **)&e->stamp,
+	              (void **)&e->slot, (void **)&e->vrej, (void **)&e->best,
+	              (void **)&e->alt, (void **)&e->altc,
+	              (void **)&e->vn, (void **)&e->vk, (void **)&e->wing};
+	for (size_t i = 0; i < sizeof(p) / sizeof(p[0]); i++) {
+		free(*p[i]);
+		*p[i] = NULL;
+	}
+}
+
 static void
 engine_free(struct engine *e)
 {
@@ -640,20 +1071,27 @@ engine_free(struct engine *e)
 	free(e->stamp);
 	free(e->slot);
 	free(e->vrej);
+	free(e->best);
+	free(e->alt);
+	free(e->altc);
+	free(e->vn);
+	free(e->vk);
+	free(e->wing);
 }
 
+/* The engine works in m's arrays when they are handed over (own), else in copies. */
 static int
-engine_init(struct engine *e, const struct vdt_mesh *m,
-            const struct vdt_contract_opts *o)
+engine_init(struct engine *e, const struct vdt_mesh *m, float *own_pos,
+            uint32_t *own_tri, const struct vdt_contract_opts *o)
 {
 	size_t nv = m->vertex_count, nt = m->triangle_count;
 	uint64_t *keys = NULL;
 
 	e->nv = nv;
 	e->nt = nt;
-	e->pos = malloc(3 * nv * sizeof(float));
-	e->tri = malloc(3 * nt * sizeof(uint32_t));
-	e->tnormal = malloc(3 * nt * sizeof(float));
+	e->pos = own_pos ? own_pos : malloc(3 * nv * sizeof(float));
+	e->tri = own_tri ? own_tri : malloc(3 * nt * sizeof(uint32_t));
+	e->tnormal = malloc(3 * nt * sizeof(*e->tnormal));
 	e->vflag = calloc(nv, 1);
 	e->vt = calloc(nv, sizeof(struct list));
 	e->vp = calloc(nv, sizeof(struct list));
@@ -664,7 +1102,8 @@ engine_init(struct engine *e, const struct vdt_mesh *m,
 	keys = malloc((o->virtual_pair_count + 1) * sizeof(uint64_t));
 	if (!e->pos || !e->tri || !e->tnormal || !e->vflag || !e->vt || !e->vp || !e->parent || !e->stamp || !e->slot || !e->vrej || !keys)
 		goto nomem;
-	memcpy(e->pos, m->positions, 3 * nv * sizeof(float));
+	if (e->pos != m->positions)
+		memcpy(e->pos, m->positions, 3 * nv * sizeof(float));
 	for (size_t v = 0; v < nv; v++)
 		e->parent[v] = (uint32_t)v;
 
@@ -678,18 +1117,19 @@ engine_init(struct engine *e, const struct vdt_mesh *m,
 			d[0] = d[1] = d[2] = NONE;
 			continue;
 		}
-		memcpy(d, c, 3 * sizeof(*d));
-		tri_normal(m->positions + 3 * (size_t)c[0], m->positions + 3 * (size_t)c[1],
-		           m->positions + 3 * (size_t)c[2], n);
+		if (d != c)
+			memcpy(d, c, 3 * sizeof(*d));
+		tri_normal(e->pos + 3 * (size_t)d[0], e->pos + 3 * (size_t)d[1],
+		           e->pos + 3 * (size_t)d[2], n);
 		double l = len3(n);
 		for (int k = 0; k < 3; k++)
-			e->tnormal[3 * t + k] = l > 0 ? (float)(n[k] / l) : 0;
+			e->tnormal[3 * t + k] = (int16_t)(l > 0 ? lrint(32767 * n[k] / l) : 0);
 		for (int k = 0; k < 3; k++)
 			e->vt[c[k]].cap++;
 		live++;
 	}
 	e->live_tris = live;
-	if (pool_reserve(&e->tpool, 3 * live + 64) != 0)
+	if (pool_reserve(&e->tpool, 3 * live + live / 4 + 64) != 0)
 		goto nomem;
 	for (size_t v = 0; v < nv; v++) {
 		e->vt[v].off = (uint32_t)e->tpool.len;
@@ -703,6 +1143,19 @@ engine_init(struct engine *e, const struct vdt_mesh *m,
 			struct list *l = &e->vt[c[k]];
 			e->tpool.data[l->off + l->len++] = (uint32_t)t;
 		}
+	}
+
+	if (e->vq) {
+		free(keys);
+		keys = NULL;
+		e->best = malloc((nv + 1) * sizeof(*e->best));
+		e->alt = malloc((nv + 1) * sizeof(*e->alt));
+		e->altc = malloc((nv + 1) * sizeof(*e->altc));
+		e->heap = malloc((nv + 1) * sizeof(struct hent));
+		e->hpos = malloc((nv + 1) * sizeof(uint32_t));
+		if (!e->best || !e->alt || !e->altc || !e->heap || !e->hpos)
+			goto nomem;
+		goto flags;
 	}
 
 	/*
@@ -789,11 +1242,12 @@ engine_init(struct engine *e, const struct vdt_mesh *m,
 			e->ppool.data[l->off + l->len++] = (uint32_t)p;
 		}
 
+flags:
 	e->live_verts = 0;
 	for (size_t v = 0; v < nv; v++) {
 		if (o->locked && o->locked[v])
 			e->vflag[v] |= V_LOCKED;
-		if (e->vt[v].len > 0 || e->vp[v].len > 0)
+		if (e->vt[v].len > 0 || (!e->vq && e->vp[v].len > 0))
 			e->live_verts++;
 		else
 			e->vflag[v] |= V_DEAD;
@@ -821,10 +1275,10 @@ done(const struct engine *e, const struct vdt_contract_opts *o)
 	return 0;
 }
 
-int
-vdt_contract_run(const struct vdt_mesh *m, const struct vdt_contract_ops *ops,
-                 const struct vdt_contract_opts *o,
-                 struct vdt_contract_result *res, struct vdt_err *err)
+static int
+run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
+    const struct vdt_contract_ops *ops, const struct vdt_contract_opts *o,
+    struct vdt_contract_result *res, struct vdt_err *err)
 {
 	struct engine e;
 	size_t rec_cap = 0;
@@ -832,26 +1286,36 @@ vdt_contract_run(const struct vdt_mesh *m, const struct vdt_contract_ops *ops,
 
 	memset(res, 0, sizeof(*res));
 	memset(&e, 0, sizeof(e));
+	int bad = 0;
 	if (ops == NULL || ops->cost == NULL)
-		return vdt_err_set(err, VDT_EINVAL, "no cost function");
-	if (!(o->max_normal_angle > 0 && o->max_normal_angle <= 180))
-		return vdt_err_set(err, VDT_EINVAL, "fold-over angle %g is not in (0, 180]",
-		                   o->max_normal_angle);
-	if (!(o->min_quality >= 0 && o->min_quality <= 1))
-		return vdt_err_set(err, VDT_EINVAL, "sliver quality %g is not in [0, 1]",
-		                   o->min_quality);
-	if (m->vertex_count >= NONE || m->triangle_count >= NONE / 3)
-		return vdt_err_set(err, VDT_EINVAL, "mesh too large for 32-bit indices");
+		bad = vdt_err_set(err, VDT_EINVAL, "no cost function");
+	else if (!(o->max_normal_angle > 0 && o->max_normal_angle <= 180))
+		bad = vdt_err_set(err, VDT_EINVAL, "fold-over angle %g is not in (0, 180]",
+		                  o->max_normal_angle);
+	else if (!(o->min_quality >= 0 && o->min_quality <= 1))
+		bad = vdt_err_set(err, VDT_EINVAL, "sliver quality %g is not in [0, 1]",
+		                  o->min_quality);
+	else if (m->vertex_count >= NONE || m->triangle_count >= NONE / 3)
+		bad = vdt_err_set(err, VDT_EINVAL, "mesh too large for 32-bit indices");
+	if (bad) {
+		free(own_pos);
+		free(own_tri);
+		return bad;
+	}
 	e.ops = ops;
 	e.cos_max = cos(o->max_normal_angle * M_PI / 180);
 	if (o->max_normal_angle >= 180)
 		e.cos_max = -2;
 	e.min_quality = o->min_quality;
 	e.allow_nonmanifold = o->allow_nonmanifold;
-	if (engine_init(&e, m, o) != 0)
+	e.rank = o->rank;
+	e.vq = !o->pair_queue && o->virtual_pair_count == 0;
+	if (engine_init(&e, m, own_pos, own_tri, o) != 0)
 		goto nomem;
 
 	/* Initial costs, then one heapify. */
+	if (e.vq)
+		vertex_queue_init(&e);
 	for (size_t p = 0; p < e.np; p++) {
 		uint32_t a = e.pv[2 * p], b = e.pv[2 * p + 1];
 		int la = e.vflag[a] & V_LOCKED, lb = e.vflag[b] & V_LOCKED;
@@ -869,31 +1333,29 @@ vdt_contract_run(const struct vdt_mesh *m, const struct vdt_contract_ops *ops,
 
 	size_t start_tris = e.live_tris, step = 0;
 	while (e.hlen > 0 && !done(&e, o)) {
-		uint32_t p = e.heap[0].pair;
+		uint32_t p = e.heap[0].pair, keep, gone;
+		double c;
 		if (!(e.heap[0].cost <= o->max_cost))
 			break;
-		uint32_t a = e.pv[2 * p], b = e.pv[2 * p + 1];
-		int la = e.vflag[a] & V_LOCKED, lb = e.vflag[b] & V_LOCKED;
-		uint32_t keep = a;
-		if (lb && !la)
-			keep = b;
-		else if (!la && o->rank && o->rank[b] > o->rank[a])
-			keep = b;
-		uint32_t gone = keep == a ? b : a;
-		double c = la && lb ? INFINITY
-		           : ops->cost(ops->ctx, a, b, la ? 0 : lb ? 1 : -1,
-		                       e.pos + 3 * (size_t)a, e.pos + 3 * (size_t)b, pos);
-		float fpos[3] = {(float)pos[0], (float)pos[1], (float)pos[2]};
-
-		if (!(c < INFINITY) || (!e.allow_nonmanifold && !link_ok(&e, keep, gone)) ||
-		    duplicates(&e, keep, gone) || !fan_ok(&e, keep, gone, fpos) ||
-		    !fan_ok(&e, gone, keep, fpos) ||
-		    (ops->valid && !ops->valid(ops->ctx, keep, gone, pos))) {
+		if (e.vq) {
+			if ((e.vflag[p] & V_STALE) || (e.vflag[e.best[p]] & V_DEAD)) {
+				if (vertex_update(&e, p, 0) != 0)
+					goto nomem;
+				continue;
+			}
+			if (!try_pair(&e, p, e.best[p], &keep, &gone, pos, &c)) {
+				res->rejected++;
+				if (vertex_update(&e, p, 1) != 0)
+					goto nomem;
+				continue;
+			}
+		} else if (!try_pair(&e, e.pv[2 * p], e.pv[2 * p + 1], &keep, &gone, pos, &c)) {
 			heap_remove(&e, p);
 			reject(&e, p);
 			res->rejected++;
 			continue;
 		}
+		float fpos[3] = {(float)pos[0], (float)pos[1], (float)pos[2]};
 		if (o->record) {
 			if (res->record_count == rec_cap) {
 				size_t cap = rec_cap ? 2 * rec_cap : 1024;
@@ -909,8 +1371,10 @@ vdt_contract_run(const struct vdt_mesh *m, const struct vdt_contract_ops *ops,
 			memcpy(r->pos, fpos, sizeof(fpos));
 			r->cost = (float)c;
 		}
-		heap_remove(&e, p);
-		e.pflag[p] = P_DEAD;
+		if (!e.vq) {
+			heap_remove(&e, p);
+			e.pflag[p] = P_DEAD;
+		}
 		if (contract(&e, keep, gone, pos, c) != 0)
 			goto nomem;
 		res->contractions++;
@@ -922,6 +1386,7 @@ vdt_contract_run(const struct vdt_mesh *m, const struct vdt_contract_ops *ops,
 			                            (start_tris - o->target_triangles));
 	}
 	res->reached_target = done(&e, o);
+	engine_shed(&e);
 
 	/* Results: positions, surviving triangles, where each vertex went. */
 	res->vertex_count = e.nv;
@@ -956,6 +1421,26 @@ nomem:
 	engine_free(&e);
 	vdt_contract_result_free(res);
 	return vdt_err_set(err, VDT_ENOMEM, "out of memory while simplifying");
+}
+
+int
+vdt_contract_run(const struct vdt_mesh *m, const struct vdt_contract_ops *ops,
+                 const struct vdt_contract_opts *o,
+                 struct vdt_contract_result *res, struct vdt_err *err)
+{
+	return run(m, NULL, NULL, ops, o, res, err);
+}
+
+int
+vdt_contract_run_in_place(struct vdt_mesh *m, const struct vdt_contract_ops *ops,
+                          const struct vdt_contract_opts *o,
+                          struct vdt_contract_result *res, struct vdt_err *err)
+{
+	struct vdt_mesh view = *m;
+
+	m->positions = NULL;
+	m->triangles = NULL;
+	return run(&view, view.positions, view.triangles, ops, o, res, err);
 }
 
 void

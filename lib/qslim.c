@@ -74,6 +74,10 @@ cost_fn(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	double p0[3], p1[3], e;
 
 	vdt_quadric_add(&q, &c->q[b]);
+	if (fixed < 0 && vdt_quadric_minimum(&q, pos) == 0) {
+		e = vdt_quadric_eval(&q, pos);
+		goto found;
+	}
 	for (int k = 0; k < 3; k++) {
 		p0[k] = pa[k] - c->centre[k];
 		p1[k] = pb[k] - c->centre[k];
@@ -87,6 +91,7 @@ cost_fn(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	} else {
 		e = vdt_quadric_optimize(&q, p0, p1, pos);
 	}
+found:
 	for (int k = 0; k < 3; k++)
 		pos[k] += c->centre[k];
 	if (c->scale)
@@ -1273,6 +1278,8 @@ vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 		memcpy(w.positions + 3 * i, in->positions + 3 * (size_t)first[i], 3 * sizeof(float));
 	for (size_t i = 0; i < 3 * T; i++)
 		w.triangles[i] = canon[in->triangles[i]];
+	free(first);
+	first = NULL;
 
 	/* Input vertices by welded vertex (CSR). */
 	wstart = calloc(nw + 2, sizeof(*wstart));
@@ -1306,6 +1313,8 @@ vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 		}
 	w.triangle_count = live;
 	stats->dropped = T - live;
+	free(dead);
+	dead = NULL;
 	/* Seam vertices: more than one input vertex at the position. */
 	for (size_t v = 0; v < nw; v++) {
 		border[v] = border[v] ? 1 : 0;
@@ -1363,7 +1372,7 @@ vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	                       (o->topology == VDT_TOPOLOGY_AUTO && stats->nonmanifold > 0);
 	stats->free_topology = co.allow_nonmanifold;
 	co.progress = o->progress;
-	rc = vdt_contract_run(&w, &ops, &co, &r, err);
+	rc = vdt_contract_run_in_place(&w, &ops, &co, &r, err);
 	free(seam);
 	if (rc != 0)
 		goto fail;

@@ -85,22 +85,6 @@ vdt_quadric_boundary(struct vdt_quadric *q, const double p0[3],
 }
 
 void
-vdt_quadric_add(struct vdt_quadric *q, const struct vdt_quadric *r)
-{
-	q->a00 += r->a00;
-	q->a01 += r->a01;
-	q->a02 += r->a02;
-	q->a11 += r->a11;
-	q->a12 += r->a12;
-	q->a22 += r->a22;
-	q->b0 += r->b0;
-	q->b1 += r->b1;
-	q->b2 += r->b2;
-	q->c += r->c;
-	q->w += r->w;
-}
-
-void
 vdt_quadric_scale(struct vdt_quadric *q, double s)
 {
 	q->a00 *= s;
@@ -114,17 +98,6 @@ vdt_quadric_scale(struct vdt_quadric *q, double s)
 	q->b2 *= s;
 	q->c *= s;
 	q->w *= s;
-}
-
-double
-vdt_quadric_eval(const struct vdt_quadric *q, const double v[3])
-{
-	double x = v[0], y = v[1], z = v[2];
-	double r = q->a00 * x * x + 2 * q->a01 * x * y + 2 * q->a02 * x * z +
-	           q->a11 * y * y + 2 * q->a12 * y * z + q->a22 * z * z +
-	           2 * (q->b0 * x + q->b1 * y + q->b2 * z) + q->c;
-
-	return r > 0 ? r : 0;
 }
 
 void
@@ -149,33 +122,6 @@ vdt_quadric_transform(struct vdt_quadric *q, double s, const double t[3])
 	q->a22 *= s * s;
 }
 
-/*
- * Solve Av = -b by cofactors. The system counts as ill-conditioned when the
- * determinant is small against the cube of A's largest diagonal entry (A is
- * positive semi-definite, so that bounds its eigenvalues): a nearly flat or
- * cylindrical neighbourhood, where the minimiser runs off along the flat
- * directions.
- */
-static int
-solve(const struct vdt_quadric *q, double v[3])
-{
-	double c00 = q->a11 * q->a22 - q->a12 * q->a12;
-	double c01 = q->a02 * q->a12 - q->a01 * q->a22;
-	double c02 = q->a01 * q->a12 - q->a02 * q->a11;
-	double c11 = q->a00 * q->a22 - q->a02 * q->a02;
-	double c12 = q->a01 * q->a02 - q->a00 * q->a12;
-	double c22 = q->a00 * q->a11 - q->a01 * q->a01;
-	double det = q->a00 * c00 + q->a01 * c01 + q->a02 * c02;
-	double trace = q->a00 + q->a11 + q->a22;
-
-	if (!(trace > 0) || !(fabs(det) > 1e-9 * trace * trace * trace))
-		return -1;
-	v[0] = -(c00 * q->b0 + c01 * q->b1 + c02 * q->b2) / det;
-	v[1] = -(c01 * q->b0 + c11 * q->b1 + c12 * q->b2) / det;
-	v[2] = -(c02 * q->b0 + c12 * q->b1 + c22 * q->b2) / det;
-	return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]) ? 0 : -1;
-}
-
 double
 vdt_quadric_optimize(const struct vdt_quadric *q, const double p0[3],
                      const double p1[3], double v[3])
@@ -184,7 +130,7 @@ vdt_quadric_optimize(const struct vdt_quadric *q, const double p0[3],
 	const double *cand[2] = {p0, p1};
 	double mid[3];
 
-	if (solve(q, v) == 0)
+	if (vdt_quadric_minimum(q, v) == 0)
 		return vdt_quadric_eval(q, v);
 
 	/* Q(p0 + t d) = a t^2 + 2 b t + Q(p0), with a = d'Ad, b = d'(A p0 + b). */

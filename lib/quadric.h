@@ -14,6 +14,8 @@
 #ifndef VDT_QUADRIC_H
 #define VDT_QUADRIC_H
 
+#include <math.h>
+
 struct vdt_quadric {
 	/* A = [a00 a01 a02; a01 a11 a12; a02 a12 a22], b = (b0 b1 b2) */
 	double a00, a01, a02, a11, a12, a22;
@@ -48,20 +50,71 @@ int vdt_quadric_triangle(struct vdt_quadric *q, const double p0[3],
 int vdt_quadric_boundary(struct vdt_quadric *q, const double p0[3],
                          const double p1[3], const double n[3], double weight);
 
-/* q += r. */
-void vdt_quadric_add(struct vdt_quadric *q, const struct vdt_quadric *r);
+/* q += r. Inline: the inner loop of every simplifier. */
+static inline void
+vdt_quadric_add(struct vdt_quadric *q, const struct vdt_quadric *r)
+{
+	q->a00 += r->a00;
+	q->a01 += r->a01;
+	q->a02 += r->a02;
+	q->a11 += r->a11;
+	q->a12 += r->a12;
+	q->a22 += r->a22;
+	q->b0 += r->b0;
+	q->b1 += r->b1;
+	q->b2 += r->b2;
+	q->c += r->c;
+	q->w += r->w;
+}
 
 /* q *= s (weight included). */
 void vdt_quadric_scale(struct vdt_quadric *q, double s);
 
 /* Q(v) = v'Av + 2b'v + c, clamped at 0 against rounding. */
-double vdt_quadric_eval(const struct vdt_quadric *q, const double v[3]);
+static inline double
+vdt_quadric_eval(const struct vdt_quadric *q, const double v[3])
+{
+	double x = v[0], y = v[1], z = v[2];
+	double r = q->a00 * x * x + 2 * q->a01 * x * y + 2 * q->a02 * x * z +
+	           q->a11 * y * y + 2 * q->a12 * y * z + q->a22 * z * z +
+	           2 * (q->b0 * x + q->b1 * y + q->b2 * z) + q->c;
+
+	return r > 0 ? r : 0;
+}
 
 /*
  * The quadric in coordinates x' where x = s x' + t (s > 0): used to work in a
  * normalised frame for conditioning and to map quadrics back.
  */
 void vdt_quadric_transform(struct vdt_quadric *q, double s, const double t[3]);
+
+/*
+ * The minimiser of Q when A is well conditioned: solve Av = -b by cofactors
+ * and return 0; return -1 when the determinant is small against the cube of
+ * A's trace (A is positive semi-definite, so the trace bounds its
+ * eigenvalues): a nearly flat or cylindrical neighbourhood, where the
+ * minimiser runs off along the flat directions. Inline: simplifiers call it
+ * for every pair they cost.
+ */
+static inline int
+vdt_quadric_minimum(const struct vdt_quadric *q, double v[3])
+{
+	double c00 = q->a11 * q->a22 - q->a12 * q->a12;
+	double c01 = q->a02 * q->a12 - q->a01 * q->a22;
+	double c02 = q->a01 * q->a12 - q->a02 * q->a11;
+	double c11 = q->a00 * q->a22 - q->a02 * q->a02;
+	double c12 = q->a01 * q->a02 - q->a00 * q->a12;
+	double c22 = q->a00 * q->a11 - q->a01 * q->a01;
+	double det = q->a00 * c00 + q->a01 * c01 + q->a02 * c02;
+	double trace = q->a00 + q->a11 + q->a22;
+
+	if (!(trace > 0) || !(fabs(det) > 1e-9 * trace * trace * trace))
+		return -1;
+	v[0] = -(c00 * q->b0 + c01 * q->b1 + c02 * q->b2) / det;
+	v[1] = -(c01 * q->b0 + c11 * q->b1 + c12 * q->b2) / det;
+	v[2] = -(c02 * q->b0 + c12 * q->b1 + c22 * q->b2) / det;
+	return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]) ? 0 : -1;
+}
 
 /*
  * The minimiser of Q: solve Av = -b when A is well conditioned (relative
