@@ -89,6 +89,7 @@ void vdt_render_adapt(struct vdt_render *R, const struct vdt_camera *c);
 int vdt_render_draw(struct vdt_render *R, const struct vdt_camera *c,
                     const unsigned char bg[3], struct vdt_err *err);
 
+/* Free what R owns (not m) and zero it. Safe on a zeroed R. */
 void vdt_render_free(struct vdt_render *R);
 
 /*
