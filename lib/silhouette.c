@@ -374,8 +374,12 @@ raster(uint8_t *cells, int res, const float *a, const float *b, const float *c,
 	double A[3], B[3], C[3];
 	int ne = 3;
 
-	if (x0 == x1 && y0 == y1) {
-		cells[(size_t)y0 * res + x0] |= bits;
+	if (x0 == x1 || y0 == y1) {
+		/* One row or column of cells: the triangle is connected and
+		 * spans the box, so it meets every cell of it. */
+		for (int y = y0; y <= y1; y++)
+			for (int x = x0; x <= x1; x++)
+				cells[(size_t)y * res + x] |= bits;
 		return;
 	}
 	double area = ((double)b[0] - a[0]) * ((double)c[1] - a[1]) -
