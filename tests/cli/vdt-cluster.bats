@@ -37,7 +37,8 @@ load helpers
 	[[ "$output" == *"in_triangles=5120"* ]]
 	[[ "$output" == *"peak_mb="* ]]
 	n=$(off_faces "$TMP/out.off")
-	[ "$n" -gt 100 ] && [ "$n" -lt 5120 ]
+	[ "$n" -gt 100 ]
+	[ "$n" -lt 5120 ]
 }
 
 @test "vdt-cluster -g NXxNYxNZ uses exactly those dimensions" {
@@ -68,7 +69,8 @@ load helpers
 	run "$BIN/vdt-cluster" -v --target 2000 "$SAMPLES/fetched/bunny.ply" -o "$TMP/out.ply"
 	[ "$status" -eq 0 ]
 	v=$(printf '%s\n' "$output" | sed -n 's/.*out_vertices=\([0-9]*\).*/\1/p')
-	[ "$v" -ge 8000 ] && [ "$v" -le 16000 ]
+	[ "$v" -ge 8000 ]
+	[ "$v" -le 16000 ]
 }
 
 @test "vdt-cluster -m picks a grid within the limit" {
@@ -106,7 +108,8 @@ load helpers
 	run "$BIN/vdt-measure" --format=kv "$SAMPLES/fetched/bunny.ply" "$TMP/a.ply"
 	[ "$status" -eq 0 ]
 	f=$(printf '%s\n' "$output" | sed -n 's/.*faces=\([0-9]*\).*/\1/p')
-	[ "$f" -ge 990 ] && [ "$f" -le 1000 ]
+	[ "$f" -ge 990 ]
+	[ "$f" -le 1000 ]
 }
 
 @test "vdt-cluster gives the same bytes every run and from standard input" {
@@ -128,7 +131,8 @@ load helpers
 		[ "$f" = obj ] || cmp "$TMP/ref.off" "$TMP/$f.off"
 	done
 	n=$(off_faces "$TMP/obj.off")
-	[ "$n" -gt 1300 ] && [ "$n" -lt 1600 ]
+	[ "$n" -gt 1300 ]
+	[ "$n" -lt 1600 ]
 }
 
 @test "a triangle soup with duplicated vertices clusters like the mesh" {
