@@ -276,3 +276,11 @@ PY
 		[ "$status" -eq 2 ]
 	done
 }
+
+@test "vdt-qslim does not load OpenImageIO (its libraries cost ~130 MB at start-up)" {
+	command -v ldd >/dev/null || skip "no ldd"
+	run ldd "$BIN/vdt-qslim"
+	[ "$status" -eq 0 ]
+	[[ "$output" != *OpenImageIO* ]]
+	[[ "$output" != *opencv* ]]
+}
