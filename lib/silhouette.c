@@ -22,7 +22,6 @@
 #include <string.h>
 
 #include "bytes.h"
-#include "io/meshio.h"
 
 #define DEG (M_PI / 180)
 #define BIG 1e20 /* "no background yet" in the transforms: finite, so that
