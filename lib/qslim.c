@@ -1219,6 +1219,30 @@ build_output(const struct vdt_mesh *in, const uint32_t *canon,
 	return rc;
 }
 
+/* The input vertices of each welded vertex (CSR), built only when needed:
+ * they are not, during contraction, unless attributes are. */
+static int
+input_lists(const uint32_t *canon, size_t n, size_t nw, uint32_t **start,
+            uint32_t **list)
+{
+	uint32_t *s = calloc(nw + 2, sizeof(*s)), *l = malloc((n + 1) * sizeof(*l));
+
+	if (s == NULL || l == NULL) {
+		free(s);
+		free(l);
+		return -1;
+	}
+	for (size_t i = 0; i < n; i++)
+		s[canon[i] + 2]++;
+	for (size_t v = 0; v < nw; v++)
+		s[v + 2] += s[v + 1];
+	for (size_t i = 0; i < n; i++)
+		l[s[canon[i] + 1]++] = (uint32_t)i;
+	*start = s;
+	*list = l;
+	return 0;
+}
+
 int
 vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
           struct vdt_mesh *out, struct vdt_contraction **records,
@@ -1282,19 +1306,11 @@ vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	first = NULL;
 
 	/* Input vertices by welded vertex (CSR). */
-	wstart = calloc(nw + 2, sizeof(*wstart));
-	wlist = malloc((n + 1) * sizeof(*wlist));
 	c.q = calloc(nw, sizeof(*c.q));
 	border = calloc(nw, 1);
 	locked = calloc(nw, 1);
-	if (!wstart || !wlist || !c.q || !border || !locked)
+	if (!c.q || !border || !locked)
 		goto nomem;
-	for (size_t i = 0; i < n; i++)
-		wstart[canon[i] + 2]++;
-	for (size_t v = 0; v < nw; v++)
-		wstart[v + 2] += wstart[v + 1];
-	for (size_t i = 0; i < n; i++)
-		wlist[wstart[canon[i] + 1]++] = (uint32_t)i;
 
 	vdt_mesh_bbox(&w, &box);
 	for (int k = 0; k < 3; k++)
@@ -1315,11 +1331,12 @@ vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	stats->dropped = T - live;
 	free(dead);
 	dead = NULL;
-	/* Seam vertices: more than one input vertex at the position. */
+	/* Seam vertices (2): more than one input vertex at the position; 4
+	 * marks one seen. Boundary vertices are 1. */
+	for (size_t i = 0; i < n; i++)
+		border[canon[i]] |= (border[canon[i]] & 4) ? 2 : 4;
 	for (size_t v = 0; v < nw; v++) {
-		border[v] = border[v] ? 1 : 0;
-		if (wstart[v + 1] - wstart[v] > 1)
-			border[v] |= 2;
+		border[v] &= 3;
 		if (o->lock_border && (border[v] & 1))
 			locked[v] = 1;
 	}
@@ -1346,6 +1363,10 @@ vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	/* Attribute errors in bounding-box diagonals, like Hoppe's unit box. */
 	if (o->attribute_weight > 0 && vdt_mesh_attrs(in) != 0) {
 		double d = vdt_bbox_diagonal(&box);
+		if (input_lists(canon, n, nw, &wstart, &wlist) != 0) {
+			free(seam);
+			goto nomem;
+		}
 		if (attr_setup(&c, in, &w, fsrc, wstart, wlist, o->attribute_weight * d * d,
 		               o->boundary_weight * fmax(1, o->attribute_weight), nvp > 0,
 		               seam) == NULL) {
@@ -1382,6 +1403,8 @@ vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	stats->max_error = sqrt(c.worst);
 	for (size_t t = 0; t < r.triangle_count; t++)
 		r.sources[t] = fsrc[r.sources[t]];
+	if (c.at == NULL && input_lists(canon, n, nw, &wstart, &wlist) != 0)
+		goto nomem;
 	rc = c.at ? build_output_attr(in, &c, &r, out, err)
 	          : build_output(in, canon, wstart, wlist, &r, out, err);
 	if (rc != 0)
