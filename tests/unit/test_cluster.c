@@ -137,6 +137,73 @@ quadrics_are_exact_sums(void **state)
 	vdt_mesh_free(&m);
 }
 
+/*
+ * The quadric handed to phase II is the sum, over the corners in the cell,
+ * of the fundamental quadric of each corner's triangle (section 3.2), on
+ * every path: triangles inside one cell, triangles with two corners in one
+ * cell, triangles over three cells. A bent 4 x 4 lattice (18 triangles, no
+ * two planes alike) on a 2 x 2 grid holds each kind; the sums are made here
+ * corner by corner and compared with each output vertex's quadric.
+ */
+static void
+quadrics_sum_every_corner(void **state)
+{
+	const struct vdt_bbox box = {{0, 0, 0}, {2, 2, 0.6}};
+	const uint32_t dims[3] = {2, 2, 1};
+	double p[16][3], t[18 * 9];
+	struct vdt_quadric want[4], *q;
+	struct vdt_cluster_grid g;
+	struct vdt_cluster *c;
+	struct vdt_mesh m;
+	size_t n = 0;
+
+	(void)state;
+	assert_int_equal(vdt_cluster_grid_dims(&box, dims, &g, NULL), 0);
+	for (int j = 0; j < 4; j++)
+		for (int i = 0; i < 4; i++) {
+			double x = 0.25 + 0.5 * i, y = 0.25 + 0.5 * j;
+			p[4 * j + i][0] = x;
+			p[4 * j + i][1] = y;
+			p[4 * j + i][2] = 0.1 * x * y + 0.05 * x * x;
+		}
+	for (int k = 0; k < 4; k++)
+		vdt_quadric_zero(&want[k]);
+	for (int j = 0; j < 3; j++)
+		for (int i = 0; i < 3; i++) {
+			const double *a = p[4 * j + i], *b = p[4 * j + i + 1], *d = p[4 * j + i + 4],
+			             *e = p[4 * j + i + 5];
+			const double *tri[2][3] = {{a, b, e}, {a, e, d}};
+			for (int h = 0; h < 2; h++, n++) {
+				struct vdt_quadric fq;
+				put_tri(t + 9 * n, tri[h][0], tri[h][1], tri[h][2]);
+				assert_int_equal(vdt_quadric_triangle(&fq, tri[h][0], tri[h][1], tri[h][2]), 0);
+				for (int v = 0; v < 3; v++) {
+					uint32_t cl[3];
+					vdt_cluster_cell_of(&g, tri[h][v], cl);
+					vdt_quadric_add(&want[cl[1] * 2 + cl[0]], &fq);
+				}
+			}
+		}
+	assert_int_equal(vdt_cluster_new(&c, &g, 0, NULL), 0);
+	assert_int_equal(vdt_cluster_add(c, t, n, NULL), 0);
+	assert_int_equal(vdt_cluster_finish(c, &m, &q, NULL, NULL), 0);
+	vdt_cluster_free(c);
+	/* Only the middle quad spans three cells: its two triangles, four cells. */
+	assert_int_equal(m.triangle_count, 2);
+	assert_int_equal(m.vertex_count, 4);
+	for (size_t v = 0; v < 4; v++) {
+		double pos[3] = {m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]};
+		const double *x = &q[v].a00, *y;
+		uint32_t cl[3];
+		vdt_cluster_cell_of(&g, pos, cl);
+		y = &want[cl[1] * 2 + cl[0]].a00;
+		for (int i = 0; i < 11; i++)
+			assert_true(fabs(x[i] - y[i]) <= 1e-12 * (1 + fabs(y[i])));
+	}
+	free(q);
+	vdt_mesh_free(&m);
+}
+
 /* A binary STL in memory: n triangles of 9 floats. */
 static unsigned char *
 make_stl(const double *t, size_t n, size_t *len)
@@ -389,6 +456,7 @@ main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(two_cells_one_triangle),
 		cmocka_unit_test(quadrics_are_exact_sums),
+		cmocka_unit_test(quadrics_sum_every_corner),
 		cmocka_unit_test(triangle_soup_welds),
 		cmocka_unit_test(output_triangles_are_unique),
 		cmocka_unit_test(boundary_edges_are_kept),
