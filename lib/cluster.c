@@ -47,6 +47,7 @@ struct cell {
 struct vdt_cluster {
 	struct vdt_cluster_grid g;
 	double inv[3];
+	double top[3]; /* dims - 1, as doubles */
 	size_t max_cells;
 
 	struct cell *cells; /* in order of first appearance */
@@ -158,15 +159,19 @@ vdt_cluster_grid_dims(const struct vdt_bbox *box, const uint32_t dims[3],
 	return check_dims(g, err);
 }
 
+/*
+ * The cell index along axis k, clamped into [0, dims - 1] (top[k] is
+ * dims[k] - 1 as a double; NaN goes to 0). Clamping the coordinate before
+ * truncating gives the same index as clamping after, and both ternaries
+ * compile to branchless max/min: this runs three times per corner.
+ */
 static inline uint32_t
-axis_cell(const struct vdt_cluster_grid *g, const double *inv, const double *p, int k)
+axis_cell(const double *origin, const double *inv, const double *top, const double *p, int k)
 {
-	double f = (p[k] - g->origin[k]) * inv[k];
+	double f = (p[k] - origin[k]) * inv[k];
 
-	if (!(f > 0))
-		return 0;
-	if (f >= g->dims[k])
-		return g->dims[k] - 1;
+	f = f > 0 ? f : 0;
+	f = f < top[k] ? f : top[k];
 	return (uint32_t)f;
 }
 
@@ -174,9 +179,10 @@ void
 vdt_cluster_cell_of(const struct vdt_cluster_grid *g, const double p[3], uint32_t cell[3])
 {
 	double inv[3] = {1 / g->cell[0], 1 / g->cell[1], 1 / g->cell[2]};
+	double top[3] = {g->dims[0] - 1.0, g->dims[1] - 1.0, g->dims[2] - 1.0};
 
 	for (int k = 0; k < 3; k++)
-		cell[k] = axis_cell(g, inv, p, k);
+		cell[k] = axis_cell(g->origin, inv, top, p, k);
 }
 
 /* ---- hashing ------------------------------------------------------------- */
@@ -428,8 +434,10 @@ vdt_cluster_new(struct vdt_cluster **cp, const struct vdt_cluster_grid *g, size_
 	if ((c = calloc(1, sizeof(*c))) == NULL)
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
 	c->g = *g;
-	for (int k = 0; k < 3; k++)
+	for (int k = 0; k < 3; k++) {
 		c->inv[k] = 1 / g->cell[k];
+		c->top[k] = g->dims[k] - 1.0;
+	}
 	c->max_cells = max_cells;
 	c->hmask = 1023;
 	c->thmask = 1023;
@@ -634,9 +642,9 @@ add_scaled(struct vdt_quadric *q, const struct vdt_quadric *r, double s)
 static inline uint64_t
 key_of(const struct vdt_cluster *c, const double *p)
 {
-	return (uint64_t)axis_cell(&c->g, c->inv, p, 0) |
-	       (uint64_t)axis_cell(&c->g, c->inv, p, 1) << KEY_BITS |
-	       (uint64_t)axis_cell(&c->g, c->inv, p, 2) << 2 * KEY_BITS;
+	return (uint64_t)axis_cell(c->g.origin, c->inv, c->top, p, 0) |
+	       (uint64_t)axis_cell(c->g.origin, c->inv, c->top, p, 1) << KEY_BITS |
+	       (uint64_t)axis_cell(c->g.origin, c->inv, c->top, p, 2) << 2 * KEY_BITS;
 }
 
 /* cell_id through the small cache of recent cells. */
