@@ -25,7 +25,7 @@ struct cmdline {
 static void
 usage(FILE *f)
 {
-	fprintf(f, "usage: vdt-render [-p PIXELS] [-b TRIANGLES] [--frustum] [--backface] [--fovea K]\n"
+	fprintf(f, "usage: vdt-render [-p PIXELS] [-t TRIANGLES] [--frustum] [--backface] [--fovea K]\n"
 	        "                  [--lighting] [--eye X,Y,Z] [--at X,Y,Z] [--up X,Y,Z] [--fov DEG]\n"
 	        "                  [--size WxH] [--light X,Y,Z] [--path FILE] [--flat] [--wire]\n"
 	        "                  [--levels] [--full] [--compare REF] [--mesh-out PATTERN]\n"
@@ -50,7 +50,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	       O_LIGHT, O_PATH, O_FLAT, O_WIRE, O_LEVELS, O_FULL, O_COMPARE, O_MESH, O_CD, O_EF,
 	       O_NEAR };
 	static const struct option lo[] = {
-		{"pixels", 1, NULL, 'p'}, {"budget", 1, NULL, 'b'}, {"frustum", 0, NULL, O_FRUSTUM},
+		{"pixels", 1, NULL, 'p'}, {"budget", 1, NULL, 'b'}, {"triangles", 1, NULL, 't'}, {"frustum", 0, NULL, O_FRUSTUM},
 		{"backface", 0, NULL, O_BACK}, {"fovea", 1, NULL, O_FOVEA},
 		{"lighting", 0, NULL, O_LIGHTING}, {"eye", 1, NULL, O_EYE}, {"at", 1, NULL, O_AT},
 		{"up", 1, NULL, O_UP}, {"fov", 1, NULL, O_FOV}, {"size", 1, NULL, O_SIZE},
@@ -73,10 +73,11 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	cl->o.contour = 2;   /* the defaults of vdt-qslim */
 	cl->o.factor = 0.1;
 	cl->o.nearest = 4;
-	while ((c = getopt_long(argc, argv, "p:b:o:qvhV", lo, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, "p:b:t:o:qvhV", lo, NULL)) != -1) {
 		switch (c) {
 		case 'p': cl->o.tau = parse_real("-p", optarg, 1e-6, 1e6); break;
-		case 'b': cl->o.budget = parse_count("-b", optarg, 1, 4000000000UL); break;
+		case 'b': /* the paper's letter; -t as in every other tool */
+		case 't': cl->o.budget = parse_count(c == 't' ? "-t" : "-b", optarg, 1, 4000000000UL); break;
 		case O_FRUSTUM: cl->o.lod.frustum = 1; break;
 		case O_BACK: cl->o.lod.backface = 1; break;
 		case O_FOVEA: cl->o.lod.fovea = parse_real("--fovea", optarg, 1e-3, 100); break;

@@ -26,7 +26,7 @@ usage(FILE *f)
 	fprintf(f,
 	        "usage: vdt-silhouette [-a DEGREES | -c CAMERAS] [-r CELLS] [-d edt|chamfer]\n"
 	        "                      [--external] [--images DIR] [--view X,Y,Z [--nearest N]]\n"
-	        "                      [-o OUTPUT] [-q] [-v] [INPUT]\n"
+	        "                      [-o OUTPUT] [-F vdt] [-q] [-v] [INPUT]\n"
 	        "Add silhouette distance labels (a LABL chunk) to a mesh. INPUT and OUTPUT\n"
 	        "default to - (stdin, stdout); -a 15 and -r 256 by default. With --view,\n"
 	        "print the labels of that view, one per vertex, instead.\n");
@@ -43,6 +43,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		{"transform", required_argument, NULL, 'd'},
 		{"nearest", required_argument, NULL, 'n'},
 		{"output", required_argument, NULL, 'o'},
+		{"format", required_argument, NULL, 'F'},
 		{"images", required_argument, NULL, O_IMAGES},
 		{"view", required_argument, NULL, O_VIEW},
 		{"external", no_argument, NULL, O_EXTERNAL},
@@ -59,7 +60,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	cl->step = VDT_SIL_STEP_DEFAULT;
 	cl->s.res = 256;
 	cl->nearest = 4;
-	while ((c = getopt_long(argc, argv, "a:c:r:d:n:o:qvhV", longopts, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, "a:c:r:d:n:o:F:qvhV", longopts, NULL)) != -1) {
 		switch (c) {
 		case 'a': cl->step = parse_real("-a", optarg, 1, 90); break;
 		case 'c': cl->cameras = optarg; break;
@@ -74,6 +75,11 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 			break;
 		case O_EXTERNAL: cl->s.external = 1; break;
 		case 'o': cl->out = optarg; break;
+		case 'F':
+			if (vdt_format_parse(optarg) != VDT_FMT_VDT)
+				usage_error("the output is the mesh with its labels, a vdt stream, "
+				            "not '%s' (-F vdt)", optarg);
+			break;
 		case O_IMAGES: cl->images = optarg; break;
 		case O_VIEW:
 			parse_vec3("--view", optarg, 1, cl->view);

@@ -124,6 +124,17 @@ tree() {
 	[ "$(off_faces "$TMP/m.off")" -gt 250 ]
 }
 
+@test "vdt-render -t is the budget, as -t is a triangle count in every tool" {
+	tree
+	"$BIN/vdt-render" -b 500 "$TMP/t.vdt" --mesh-out "$TMP/b.off"
+	"$BIN/vdt-render" -t 500 "$TMP/t.vdt" --mesh-out "$TMP/t.off"
+	cmp "$TMP/b.off" "$TMP/t.off"
+	"$BIN/vdt-render" --triangles 300 "$TMP/t.vdt" --mesh-out "$TMP/t3.off"
+	[ "$(off_faces "$TMP/t3.off")" -le 300 ]
+	run "$BIN/vdt-render" -t 0 "$TMP/t.vdt"
+	[ "$status" -eq 2 ]
+}
+
 labelled_sphere() {
 	"$BIN/vdt-silhouette" -a 30 -r 64 "$SAMPLES/sphere.off" -o "$TMP/s.vdl"
 	"$BIN/vdt-build" -q "$TMP/s.vdl" -o "$TMP/s.vdt"

@@ -16,6 +16,15 @@ load helpers
 	[ "$(off_faces "$TMP/s.off")" -eq 5120 ]
 }
 
+@test "vdt-silhouette -F accepts only the vdt stream it writes" {
+	"$BIN/vdt-silhouette" -F vdt -a 30 -r 64 "$SAMPLES/sphere.off" -o "$TMP/f.vdl"
+	grep -q LABL "$TMP/f.vdl"
+	run "$BIN/vdt-silhouette" -F ply -a 30 -r 64 "$SAMPLES/sphere.off" -o "$TMP/g.vdl"
+	[ "$status" -eq 2 ]
+	one_line
+	[ ! -e "$TMP/g.vdl" ]
+}
+
 @test "vdt-silhouette output is identical on every run, either transform" {
 	"$BIN/vdt-silhouette" -a 45 -r 32 -d chamfer "$SAMPLES/torus.off" -o "$TMP/a.vdl"
 	"$BIN/vdt-silhouette" -a 45 -r 32 -d chamfer "$SAMPLES/torus.off" -o "$TMP/b.vdl"
