@@ -682,21 +682,6 @@ add_edge_normal(struct cell *cl, const double *u, const double *v, const double 
 int
 vdt_cluster_add(struct vdt_cluster *c, const double *tri, size_t n, struct vdt_err *err)
 {
-	double chk[4] = {0, 0, 0, 0};
-
-	/* x * 0 is NaN for an infinite or NaN x: one vectorisable pass. */
-	for (size_t i = 0; i + 4 <= 9 * n; i += 4)
-		for (int k = 0; k < 4; k++)
-			chk[k] += tri[i + k] * 0;
-	for (size_t i = 9 * n & ~(size_t)3; i < 9 * n; i++)
-		chk[0] += tri[i] * 0;
-	if (chk[0] + chk[1] + chk[2] + chk[3] != 0) {
-		for (size_t t = 0; t < n; t++)
-			for (int j = 0; j < 9; j++)
-				if (!isfinite(tri[9 * t + j]))
-					return vdt_err_set(err, VDT_EINVAL, "triangle %llu: non-finite coordinate",
-					                   (unsigned long long)(c->added + t));
-	}
 	for (size_t t = 0; t < n; t++, c->added++) {
 		const double *p[3] = {tri + 9 * t, tri + 9 * t + 3, tri + 9 * t + 6};
 		double e1[3], e2[3], nn[3], len;
@@ -715,6 +700,20 @@ vdt_cluster_add(struct vdt_cluster *c, const double *tri, size_t n, struct vdt_e
 		nn[1] = e1[2] * e2[0] - e1[0] * e2[2];
 		nn[2] = e1[0] * e2[1] - e1[1] * e2[0];
 		len = sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
+		/*
+		 * A non-finite coordinate makes the normal non-finite: an infinite
+		 * or NaN difference along one axis enters the normal's other two
+		 * components only multiplied (never finite) and then subtracted from
+		 * another product, which is never finite either. So only a
+		 * non-finite length needs the corners looked at; a finite corner
+		 * whose normal overflows goes on as before. Nothing of the triangle
+		 * has been added yet.
+		 */
+		if (!(len < INFINITY))
+			for (int j = 0; j < 9; j++)
+				if (!isfinite(tri[9 * t + j]))
+					return vdt_err_set(err, VDT_EINVAL, "triangle %llu: non-finite coordinate",
+					                   (unsigned long long)c->added);
 		flat = !(len > 0);
 
 		if (key[0] == key[1] && key[1] == key[2]) {

@@ -123,7 +123,7 @@ int vdt_cluster_new(struct vdt_cluster **c, const struct vdt_cluster_grid *g,
  * fundamental quadrics of its vertices (section 3.2). A triangle whose
  * corners fall in three different cells is kept for the output, once per
  * set of cells. Non-finite coordinates are VDT_EINVAL naming the triangle
- * (counted from the first added). Returns 0, VDT_EINVAL, VDT_ELIMIT or
+ * (counted from the first added); those before it in the batch are added. Returns 0, VDT_EINVAL, VDT_ELIMIT or
  * VDT_ENOMEM.
  */
 int vdt_cluster_add(struct vdt_cluster *c, const double *tri, size_t n,

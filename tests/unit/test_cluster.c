@@ -432,6 +432,47 @@ ply_any_layout(void **state)
 	vdt_tsource_close(ts);
 }
 
+/*
+ * A corner that is infinite or NaN along any axis is refused, naming the
+ * triangle counted from the first added, whichever corner and axis it is;
+ * so is a triangle whose corners are all infinite along one axis. Huge
+ * finite corners are not refused.
+ */
+static void
+non_finite_corners(void **state)
+{
+	const double bad[3] = {INFINITY, -INFINITY, NAN};
+	double a[3] = {0.5, 0.5, 0}, b[3] = {1.5, 0.5, 0}, d[3] = {0.5, 1.5, 0}, t[18];
+	struct vdt_cluster_grid g;
+	struct vdt_cluster *c;
+	struct vdt_err err = {0};
+
+	(void)state;
+	grid22(&g);
+	for (int pos = 0; pos < 9; pos++)
+		for (int v = 0; v < 3; v++) {
+			put_tri(t, a, b, d);
+			put_tri(t + 9, d, a, b);
+			t[9 + pos] = bad[v];
+			assert_int_equal(vdt_cluster_new(&c, &g, 0, NULL), 0);
+			assert_int_equal(vdt_cluster_add(c, t, 1, NULL), 0);
+			assert_int_equal(vdt_cluster_add(c, t, 2, &err), VDT_EINVAL);
+			assert_string_equal(err.msg, "triangle 2: non-finite coordinate");
+			vdt_cluster_free(c);
+		}
+	put_tri(t, a, b, d);
+	t[0] = t[3] = t[6] = INFINITY;
+	assert_int_equal(vdt_cluster_new(&c, &g, 0, NULL), 0);
+	assert_int_equal(vdt_cluster_add(c, t, 1, &err), VDT_EINVAL);
+	assert_string_equal(err.msg, "triangle 0: non-finite coordinate");
+	vdt_cluster_free(c);
+	put_tri(t, a, b, d);
+	t[2] = 1e300, t[5] = -1e300;
+	assert_int_equal(vdt_cluster_new(&c, &g, 0, NULL), 0);
+	assert_int_equal(vdt_cluster_add(c, t, 1, NULL), 0);
+	vdt_cluster_free(c);
+}
+
 /* A memory limit is a bound on occupied cells, said as such. */
 static void
 memory_limit(void **state)
@@ -463,6 +504,7 @@ main(void)
 		cmocka_unit_test(target_rule),
 		cmocka_unit_test(ply_any_layout),
 		cmocka_unit_test(memory_limit),
+		cmocka_unit_test(non_finite_corners),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
