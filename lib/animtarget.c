@@ -4,49 +4,12 @@
  * vertices). The counts follow Euler's formula V - E + F = 2 - 2g - b.
  */
 #include "animtarget.h"
+#include "hash.h"
 
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
-static uint64_t
-mix(uint64_t x)
-{
-	x ^= x >> 33;
-	x *= 0xff51afd7ed558ccdULL;
-	x ^= x >> 33;
-	x *= 0xc4ceb9fe1a85ec53ULL;
-	return x ^ (x >> 33);
-}
-
-/* A hash of vertex v over every frame; equal positions hash equally. */
-static uint64_t
-key(const struct vdt_frames *fr, size_t v)
-{
-	uint64_t h = 0x9e3779b97f4a7c15ULL;
-
-	for (size_t f = 0; f < fr->frame_count; f++)
-		for (int k = 0; k < 3; k++) {
-			float x = fr->positions[3 * (fr->vertex_count * f + v) + k];
-			uint32_t b;
-			x = x == 0 ? 0 : x; /* -0 welds with +0 */
-			memcpy(&b, &x, 4);
-			h = mix(h ^ b);
-		}
-	return h;
-}
-
-static int
-same(const struct vdt_frames *fr, size_t u, size_t v)
-{
-	for (size_t f = 0; f < fr->frame_count; f++) {
-		const float *p = fr->positions + 3 * fr->vertex_count * f;
-		for (int k = 0; k < 3; k++)
-			if (p[3 * u + k] != p[3 * v + k])
-				return 0;
-	}
-	return 1;
-}
 
 int
 vdt_anim_welded_vertices(const struct vdt_frames *fr, size_t *count, struct vdt_err *err)
@@ -67,9 +30,9 @@ vdt_anim_welded_vertices(const struct vdt_frames *fr, size_t *count, struct vdt_
 	for (size_t s = 0; s < cap; s++)
 		hv[s] = SIZE_MAX;
 	for (size_t v = 0; v < n; v++) {
-		uint64_t h = key(fr, v);
-		size_t s = mix(h) & (cap - 1);
-		while (hv[s] != SIZE_MAX && !(hk[s] == h && same(fr, hv[s], v)))
+		uint64_t h = vdt_frames_vertex_hash(fr, v);
+		size_t s = vdt_hash_mix(h) & (cap - 1);
+		while (hv[s] != SIZE_MAX && !(hk[s] == h && vdt_frames_same_vertex(fr, hv[s], v)))
 			s = (s + 1) & (cap - 1);
 		if (hv[s] == SIZE_MAX) {
 			hk[s] = h;

@@ -17,6 +17,7 @@
  * major so that costing a pair reads two contiguous runs.
  */
 #include "deform.h"
+#include "hash.h"
 #include "topo.h"
 
 #include "io/anim.h"
@@ -116,44 +117,6 @@ anim_free(struct anim *a)
 	free(a->locked);
 }
 
-static uint64_t
-mix(uint64_t x)
-{
-	x ^= x >> 33;
-	x *= 0xff51afd7ed558ccdULL;
-	x ^= x >> 33;
-	x *= 0xc4ceb9fe1a85ec53ULL;
-	return x ^ (x >> 33);
-}
-
-static uint64_t
-vertex_key(const struct vdt_frames *fr, size_t v)
-{
-	uint64_t h = 0x9e3779b97f4a7c15ULL;
-	for (size_t f = 0; f < fr->frame_count; f++) {
-		const float *p = fr->positions + 3 * (fr->vertex_count * f + v);
-		for (int k = 0; k < 3; k++) {
-			uint32_t x;
-			memcpy(&x, p + k, 4);
-			if (x == 0x80000000u)
-				x = 0; /* -0 welds with +0 */
-			h = mix(h ^ x);
-		}
-	}
-	return h == UINT64_MAX ? 0 : h;
-}
-
-static int
-same_everywhere(const struct vdt_frames *fr, size_t u, size_t v)
-{
-	for (size_t f = 0; f < fr->frame_count; f++) {
-		const float *p = fr->positions + 3 * (fr->vertex_count * f);
-		for (int k = 0; k < 3; k++)
-			if (p[3 * u + k] != p[3 * v + k])
-				return 0;
-	}
-	return 1;
-}
 
 /*
  * Weld vertices that coincide in every frame (vertices split only for
@@ -181,8 +144,8 @@ anim_build(struct anim *a, const struct vdt_mesh *m, const struct vdt_frames *fr
 		goto out;
 	memset(hkey, 0xff, cap * sizeof(*hkey));
 	for (size_t i = 0; i < n; i++) {
-		uint64_t key = vertex_key(fr, i);
-		size_t s = mix(key) & (cap - 1);
+		uint64_t key = vdt_frames_vertex_hash(fr, i);
+		size_t s = vdt_hash_mix(key) & (cap - 1);
 		for (;;) {
 			if (hkey[s] == UINT64_MAX) {
 				hkey[s] = key;
@@ -191,7 +154,7 @@ anim_build(struct anim *a, const struct vdt_mesh *m, const struct vdt_frames *fr
 				res->canon[i] = (uint32_t)nw++;
 				break;
 			}
-			if (hkey[s] == key && same_everywhere(fr, first[hval[s]], i)) {
+			if (hkey[s] == key && vdt_frames_same_vertex(fr, first[hval[s]], i)) {
 				res->canon[i] = hval[s];
 				break;
 			}
@@ -760,7 +723,7 @@ static void
 pairset_add(struct pairset *s, uint32_t a, uint32_t b)
 {
 	uint64_t k = pair_key(a, b);
-	size_t j = mix(k) & (s->cap - 1);
+	size_t j = vdt_hash_mix(k) & (s->cap - 1);
 	if (2 * s->n >= s->cap)
 		return;
 	while (s->key[j] != UINT64_MAX && s->key[j] != k)
@@ -775,7 +738,7 @@ static int
 pairset_has(const struct pairset *s, uint32_t a, uint32_t b)
 {
 	uint64_t k = pair_key(a, b);
-	size_t j = mix(k) & (s->cap - 1);
+	size_t j = vdt_hash_mix(k) & (s->cap - 1);
 	while (s->key[j] != UINT64_MAX) {
 		if (s->key[j] == k)
 			return 1;
@@ -988,7 +951,7 @@ shared_with_previous(const struct vdt_deform_result *res, size_t f)
 			if (y > z) s = y, y = z, z = s;
 			if (x > y) s = x, x = y, y = s;
 			uint64_t k0 = (uint64_t)x << 32 | y, k1 = z;
-			size_t j = mix(k0 ^ mix(k1)) & (cap - 1);
+			size_t j = vdt_hash_mix(k0 ^ vdt_hash_mix(k1)) & (cap - 1);
 			while (h[2 * j] != UINT64_MAX && (h[2 * j] != k0 || h[2 * j + 1] != k1))
 				j = (j + 1) & (cap - 1);
 			if (pass == 0) {

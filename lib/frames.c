@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "bytes.h"
+#include "hash.h"
 
 int
 vdt_frames_alloc(struct vdt_frames *fr, size_t frame_count, size_t vertex_count,
@@ -173,4 +174,34 @@ vdt_frms_decode(const unsigned char *data, uint64_t length, struct vdt_frames *f
 		return rc;
 	}
 	return 0;
+}
+
+uint64_t
+vdt_frames_vertex_hash(const struct vdt_frames *fr, size_t v)
+{
+	uint64_t h = 0x9e3779b97f4a7c15ULL;
+
+	for (size_t f = 0; f < fr->frame_count; f++) {
+		const float *p = fr->positions + 3 * (fr->vertex_count * f + v);
+		for (int k = 0; k < 3; k++) {
+			uint32_t x;
+			memcpy(&x, p + k, 4);
+			if (x == 0x80000000u)
+				x = 0; /* -0 welds with +0 */
+			h = vdt_hash_mix(h ^ x);
+		}
+	}
+	return h;
+}
+
+int
+vdt_frames_same_vertex(const struct vdt_frames *fr, size_t u, size_t v)
+{
+	for (size_t f = 0; f < fr->frame_count; f++) {
+		const float *p = fr->positions + 3 * (fr->vertex_count * f);
+		for (int k = 0; k < 3; k++)
+			if (p[3 * u + k] != p[3 * v + k])
+				return 0;
+	}
+	return 1;
 }

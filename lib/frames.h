@@ -40,6 +40,14 @@ int vdt_frames_alloc(struct vdt_frames *fr, size_t frame_count,
 void vdt_frames_free(struct vdt_frames *fr);
 
 /*
+ * A hash of vertex v's positions in every frame, and whether vertices u and
+ * v coincide in every frame: what welding an animation compares (-0 and +0
+ * hash and compare equal).
+ */
+uint64_t vdt_frames_vertex_hash(const struct vdt_frames *fr, size_t v);
+int vdt_frames_same_vertex(const struct vdt_frames *fr, size_t u, size_t v);
+
+/*
  * Check every coordinate is finite and every per-frame index below V; the
  * message names the first bad frame (counted from 0) and vertex:
  * "frame 7: vertex 12 has a non-finite coordinate". Returns 0 or

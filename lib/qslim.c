@@ -18,6 +18,7 @@
  * + c does not cancel away on models far from the origin.
  */
 #include "qslim.h"
+#include "hash.h"
 #include "topo.h"
 
 #include <math.h>
@@ -136,15 +137,6 @@ struct hash {
 	size_t mask;
 };
 
-static uint64_t
-mix(uint64_t x)
-{
-	x ^= x >> 33;
-	x *= 0xff51afd7ed558ccdULL;
-	x ^= x >> 33;
-	x *= 0xc4ceb9fe1a85ec53ULL;
-	return x ^ (x >> 33);
-}
 
 static int
 hash_init(struct hash *h, size_t n)
@@ -165,7 +157,7 @@ hash_init(struct hash *h, size_t n)
 static size_t
 hash_slot(struct hash *h, uint64_t key, uint32_t v)
 {
-	size_t i = mix(key) & h->mask;
+	size_t i = vdt_hash_mix(key) & h->mask;
 	while (h->key[i] != key && h->key[i] != UINT64_MAX)
 		i = (i + 1) & h->mask;
 	if (h->key[i] == UINT64_MAX) {
@@ -203,10 +195,10 @@ weld(const struct vdt_mesh *m, uint32_t *canon, uint32_t *first)
 		for (int k = 0; k < 3; k++)
 			if (x[k] == 0x80000000u)
 				x[k] = 0; /* -0 welds with +0 */
-		uint64_t key = mix(((uint64_t)x[0] << 32 | x[1]) ^ mix(x[2]));
+		uint64_t key = vdt_hash_mix(((uint64_t)x[0] << 32 | x[1]) ^ vdt_hash_mix(x[2]));
 		/* Chain on full equality: probe until a slot with equal
 		 * position or an empty one. */
-		size_t s = mix(key) & h.mask;
+		size_t s = vdt_hash_mix(key) & h.mask;
 		for (;;) {
 			if (h.key[s] == UINT64_MAX) {
 				h.key[s] = key;
@@ -418,7 +410,7 @@ virtual_pairs(const struct vdt_mesh *w, double d, uint32_t **out, size_t *count)
 					uint64_t key = (uint64_t)(c[0] & 0x1fffff) << 42 |
 					               (uint64_t)(c[1] & 0x1fffff) << 21 |
 					               (uint64_t)(c[2] & 0x1fffff);
-					size_t s = mix(key) & h.mask;
+					size_t s = vdt_hash_mix(key) & h.mask;
 					while (h.key[s] != key && h.key[s] != UINT64_MAX)
 						s = (s + 1) & h.mask;
 					if (h.key[s] == UINT64_MAX)
