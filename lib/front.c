@@ -45,6 +45,8 @@ static void
 add_active(struct vdt_front *F, uint32_t x)
 {
 	F->active_pos[x] = (uint32_t)F->active_count;
+	if (F->due)
+		F->due[F->active_count] = -1; /* new on the front: look at it */
 	F->active[F->active_count++] = x;
 }
 
@@ -53,6 +55,8 @@ remove_active(struct vdt_front *F, uint32_t x)
 {
 	uint32_t i = F->active_pos[x], last = F->active[--F->active_count];
 	F->active[i] = last;
+	if (F->due)
+		F->due[i] = F->due[F->active_count];
 	F->active_pos[last] = i;
 	F->active_pos[x] = NONE;
 }
@@ -277,6 +281,8 @@ vdt_front_free(struct vdt_front *F)
 	free(F->size);
 	free(F->stamp);
 	free(F->work);
+	free(F->due);
+	free(F->visit_list);
 	memset(F, 0, sizeof(*F));
 }
 
@@ -404,24 +410,43 @@ vdt_front_scale_up(const struct vdt_vtree *t, double *scale)
 	}
 }
 
+/*
+ * With a margin function, a vertex looked at and left as it is is not
+ * looked at again until the eye has travelled its margin, unless a change
+ * touches it first (the work lists). Without one, every vertex every call.
+ */
 static void
-adapt(struct vdt_front *F, vdt_front_error_fn error, void *ctx, double tau)
+adapt(struct vdt_front *F, vdt_front_error_fn error, vdt_front_margin_fn margin,
+      void *ctx, double tau)
 {
-	/* Round 0 looks at the whole front; later rounds only at the vertices
-	 * a change created or touched. Each round works on a copy, since
-	 * changes reorder the active list and refill the work list. */
-	size_t count = F->active_count;
-	uint32_t *w = malloc((F->t->node_count + 1) * sizeof(uint32_t));
+	/* Round 0 looks at the whole front (or, with margins, at the part
+	 * that is due); later rounds only at the vertices a change created or
+	 * touched. Each round works on a copy, since changes reorder the
+	 * active list and refill the work list. */
+	size_t count = 0;
+	uint32_t *w = F->visit_list;
 
-	if (w == NULL)
+	if (w == NULL && (w = F->visit_list = malloc((F->t->node_count + 1) * sizeof(uint32_t))) == NULL)
 		return; /* the front stays valid, only less adapted */
-	memcpy(w, F->active, count * sizeof(uint32_t));
+	if (margin) {
+		/* One sequential pass picks the vertices that are due. */
+		for (size_t i = 0; i < F->active_count; i++)
+			if (F->due[i] <= F->travel)
+				w[count++] = F->active[i];
+	} else {
+		count = F->active_count;
+		memcpy(w, F->active, count * sizeof(uint32_t));
+	}
 	F->now++;
 	F->work_count = 0;
 	for (;;) {
-		for (size_t i = 0; i < count; i++)
-			if (F->active_pos[w[i]] != NONE && F->stamp[w[i]] != F->now)
-				visit(F, w[i], error, ctx, tau);
+		for (size_t i = 0; i < count; i++) {
+			uint32_t x = w[i];
+			if (F->active_pos[x] == NONE || F->stamp[x] == F->now)
+				continue;
+			if (!visit(F, x, error, ctx, tau) && margin)
+				F->due[F->active_pos[x]] = F->travel + margin(ctx, x, tau);
+		}
 		if (F->work_count == 0)
 			break;
 		count = F->work_count;
@@ -429,14 +454,38 @@ adapt(struct vdt_front *F, vdt_front_error_fn error, void *ctx, double tau)
 		F->now++;
 		F->work_count = 0;
 	}
-	free(w);
 }
 
 void
 vdt_front_adapt(struct vdt_front *F, vdt_front_error_fn error, void *ctx, double tau)
 {
 	memset(&F->stats, 0, sizeof(F->stats));
-	adapt(F, error, ctx, tau);
+	adapt(F, error, NULL, ctx, tau);
+}
+
+void
+vdt_front_adapt_moving(struct vdt_front *F, vdt_front_error_fn error,
+                       vdt_front_margin_fn margin, void *ctx, double tau, double moved)
+{
+	size_t N = F->t->node_count;
+
+	memset(&F->stats, 0, sizeof(F->stats));
+	if (F->due == NULL) {
+		if ((F->due = malloc((N + 1) * sizeof(*F->due))) == NULL) {
+			adapt(F, error, NULL, ctx, tau);
+			return;
+		}
+		moved = INFINITY;
+	}
+	if (!(moved >= 0 && moved < INFINITY)) {
+		/* Unknown travel: everything is due. */
+		F->travel = 0;
+		for (size_t i = 0; i < F->active_count; i++)
+			F->due[i] = -1;
+	} else {
+		F->travel += moved;
+	}
+	adapt(F, error, margin, ctx, tau);
 }
 
 void
@@ -448,7 +497,7 @@ vdt_front_adapt_budget(struct vdt_front *F, vdt_front_error_fn error, void *ctx,
 	memset(&F->stats, 0, sizeof(F->stats));
 	/* Bracket: hi fits, lo does not; then bisect the ratio to 1%. */
 	for (int i = 0; i < 60; i++) {
-		adapt(F, error, ctx, x);
+		adapt(F, error, NULL, ctx, x);
 		if (F->tri_count <= budget) {
 			hi = x;
 			if (lo > 0 || x < 1e-6)
@@ -467,7 +516,7 @@ vdt_front_adapt_budget(struct vdt_front *F, vdt_front_error_fn error, void *ctx,
 	}
 	while (lo > 0 && hi / lo > 1.01) {
 		x = sqrt(lo * hi);
-		adapt(F, error, ctx, x);
+		adapt(F, error, NULL, ctx, x);
 		if (F->tri_count <= budget)
 			hi = x;
 		else
@@ -476,7 +525,7 @@ vdt_front_adapt_budget(struct vdt_front *F, vdt_front_error_fn error, void *ctx,
 	/* Refusals depend on the order of changes: the front at hi may come
 	 * out a little over when reached from elsewhere. */
 	for (int i = 0; i < 200; i++) {
-		adapt(F, error, ctx, hi);
+		adapt(F, error, NULL, ctx, hi);
 		if (F->tri_count <= budget)
 			break;
 		hi *= 1.02;
@@ -521,9 +570,16 @@ vdt_front_mesh(const struct vdt_front *F, int normals, struct vdt_mesh *out,
 		if (node_of)
 			(*node_of)[v] = (uint32_t)x;
 	}
-	for (size_t i = 0; i < F->tri_count; i++)
+	/* Triangles in mesh order too: the same front gives the same mesh
+	 * (and image) whatever sequence of changes led to it. */
+	size_t i = 0;
+	for (size_t f = 0; f < t->triangle_count; f++) {
+		if (F->tri_pos[f] == NONE)
+			continue;
 		for (int j = 0; j < 3; j++)
-			out->triangles[3 * i + j] = index[F->cur[3 * F->tri[i] + j]];
+			out->triangles[3 * i + j] = index[F->cur[3 * f + j]];
+		i++;
+	}
 	free(index);
 	return 0;
 }

@@ -51,6 +51,10 @@ struct vdt_front {
 	                          never coarsens), or NULL for 1 everywhere;
 	                          set by the caller, owned by it */
 	/* private */
+	double *due;           /* per active[] slot: the eye travel at which
+	                          to look again (vdt_front_adapt_moving) */
+	uint32_t *visit_list;  /* scratch of a round */
+	double travel;         /* eye travel so far */
 	uint32_t *head, *next, *prev, *start, *size, *stamp, now;
 	uint32_t *work;
 	size_t work_count;
@@ -105,6 +109,26 @@ void vdt_front_scale_up(const struct vdt_vtree *t, double *scale);
  */
 void vdt_front_adapt(struct vdt_front *F, vdt_front_error_fn error, void *ctx,
                      double tau);
+
+/*
+ * How far the eye may move before node x's decision (split it; collapse it
+ * with its sibling into their parent) can change at threshold tau, in
+ * model units; 0 when it may change at once.
+ */
+typedef double (*vdt_front_margin_fn)(void *ctx, uint32_t x, double tau);
+
+/*
+ * vdt_front_adapt for an eye that moved by `moved` since the last call
+ * (INFINITY, or a changed tau, error or scale: unknown), so that only the
+ * vertices whose margin that travel has used up, and those a change
+ * creates or touches, are looked at: the work of a frame follows the
+ * changes, not the size of the front (section 4.3's frame-to-frame
+ * coherence). The front is the one vdt_front_adapt would give when the
+ * margins are true bounds. F->stats.visited counts the looks.
+ */
+void vdt_front_adapt_moving(struct vdt_front *F, vdt_front_error_fn error,
+                            vdt_front_margin_fn margin, void *ctx, double tau,
+                            double moved);
 
 /*
  * The finest front within budget active triangles: vdt_front_adapt with the

@@ -122,10 +122,23 @@ vdt_render_adapt(struct vdt_render *R, const struct vdt_camera *c)
 		return;
 	if (R->scale)
 		frame_scale(R, c);
-	if (R->o.budget)
+	if (R->o.budget) {
 		vdt_front_adapt_budget(&R->F, vdt_lod_error, &L, R->o.budget, &R->tau);
-	else
+	} else if (R->scale || lod.frustum || lod.backface || lod.lighting || lod.fovea > 0) {
+		/* These turn with the view: every vertex every frame. */
 		vdt_front_adapt(&R->F, vdt_lod_error, &L, R->tau);
+		R->last_focal = 0;
+	} else {
+		/* Screen-space error alone: only the eye's travel matters. */
+		double moved = INFINITY, d[3];
+		for (int k = 0; k < 3; k++)
+			d[k] = c->v.eye[k] - R->last_eye[k];
+		if (R->last_focal == c->focal)
+			moved = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+		vdt_front_adapt_moving(&R->F, vdt_lod_error, vdt_lod_margin, &L, R->tau, moved);
+		memcpy(R->last_eye, c->v.eye, sizeof(R->last_eye));
+		R->last_focal = c->focal;
+	}
 }
 
 int

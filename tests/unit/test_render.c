@@ -169,12 +169,56 @@ test_init_refuses(void **state)
 	fixture_free(&f);
 }
 
+/*
+ * Along a moving eye, the front adapted by eye travel (screen-space error
+ * alone: only vertices whose margin the travel used up are looked at) is
+ * the front that looking at every vertex every frame gives, frame after
+ * frame, for fewer looks.
+ */
+static void
+test_travel_matches_full(void **state)
+{
+	struct fixture f;
+	struct vdt_render A, B;
+	struct vdt_render_opts o = opts(3, 1);
+	size_t looks_a = 0, looks_b = 0, changes = 0;
+
+	(void)state;
+	fixture(&f, 0);
+	assert_int_equal(vdt_render_init(&A, &f.m, &f.extra, &o, 64, 64, NULL), 0);
+	assert_int_equal(vdt_render_init(&B, &f.m, &f.extra, &o, 64, 64, NULL), 0);
+	for (int i = 0; i < 48; i++) {
+		double a = 2 * M_PI * i / 48, r = 3 + 1.8 * sin(2 * a);
+		struct vdt_view v = {{r * cos(a), 0.4, r * sin(a)}, {0, 0, 0}, {0, 1, 0}, 30, 64, 64};
+		struct vdt_camera c;
+		assert_int_equal(vdt_camera_setup(&c, &v, NULL, NULL), 0);
+		vdt_render_adapt(&A, &c);
+		struct vdt_lod lod = B.o.lod;
+		lod.eps = B.t.eps;
+		struct vdt_lod_ctx L = {&c, &lod, &B.t};
+		vdt_front_adapt(&B.F, vdt_lod_error, &L, B.tau);
+		looks_a += A.F.stats.visited;
+		looks_b += B.F.stats.visited;
+		changes += B.F.stats.splits + B.F.stats.collapses;
+		assert_int_equal(A.F.active_count, B.F.active_count);
+		for (size_t x = 0; x < B.t.node_count; x++)
+			assert_int_equal(vdt_front_is_active(&A.F, (uint32_t)x),
+			                 vdt_front_is_active(&B.F, (uint32_t)x));
+	}
+	assert_true(changes > 100);        /* the path does change the front */
+	assert_true(looks_a < looks_b / 2); /* and travel saves looks */
+	vdt_render_free(&A);
+	vdt_render_free(&B);
+	fixture_free(&f);
+}
+
 int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_labels_keep_contour),
 		cmocka_unit_test(test_init_refuses),
+		cmocka_unit_test(test_travel_matches_full),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
