@@ -125,23 +125,37 @@ refresh(struct vdt_front *F, uint32_t x)
 	}
 	F->maxnb[x] = mx;
 	F->minpar[x] = mp;
+	F->dirty[x] = 0;
 	F->stats.updated++;
+}
+
+/* x's neighbourhood changed: its integers are recomputed when next read,
+ * once however many changes touched it, and it is looked at again. */
+static void
+touch(struct vdt_front *F, uint32_t x)
+{
+	F->dirty[x] = 1;
+	push_work(F, x);
+}
+
+static void
+fresh(struct vdt_front *F, uint32_t x)
+{
+	if (F->dirty[x])
+		refresh(F, x);
 }
 
 /* Refresh x and every neighbour of x, and queue them for this frame. */
 static void
 refresh_around(struct vdt_front *F, uint32_t x)
 {
-	refresh(F, x);
-	push_work(F, x);
+	touch(F, x);
 	for (uint32_t e = F->head[x]; e != NONE; e = F->next[e]) {
 		uint32_t f = e / 3;
 		for (int j = 0; j < 3; j++) {
 			uint32_t y = F->cur[3 * f + j];
-			if (y != x) {
-				refresh(F, y);
-				push_work(F, y);
-			}
+			if (y != x)
+				touch(F, y);
 		}
 	}
 }
@@ -153,21 +167,27 @@ vdt_front_is_active(const struct vdt_front *F, uint32_t x)
 }
 
 int
-vdt_front_can_split(const struct vdt_front *F, uint32_t x)
+vdt_front_can_split(struct vdt_front *F, uint32_t x)
 {
-	return vdt_front_is_active(F, x) && x >= F->t->leaf_count && F->maxnb[x] < x;
+	if (!vdt_front_is_active(F, x) || x < F->t->leaf_count)
+		return 0;
+	fresh(F, x);
+	return F->maxnb[x] < x;
 }
 
 int
-vdt_front_can_collapse(const struct vdt_front *F, uint32_t x)
+vdt_front_can_collapse(struct vdt_front *F, uint32_t x)
 {
 	const struct vdt_vtree *t = F->t;
 	if (x < t->leaf_count || x >= t->node_count)
 		return 0;
 	size_t k = x - t->leaf_count;
 	uint32_t a = t->child[2 * k], b = t->child[2 * k + 1];
-	return F->active_pos[a] != NONE && F->active_pos[b] != NONE && x < F->minpar[a] &&
-	       x < F->minpar[b];
+	if (F->active_pos[a] == NONE || F->active_pos[b] == NONE)
+		return 0;
+	fresh(F, a);
+	fresh(F, b);
+	return x < F->minpar[a] && x < F->minpar[b];
 }
 
 static void
@@ -205,10 +225,8 @@ do_collapse(struct vdt_front *F, uint32_t x)
 			y = F->cur[3 * t->tris[i] + j];
 		/* cur of a dead triangle is stale but names its third corner's
 		 * vertex of the time, which is still active (outside x). */
-		if (F->active_pos[y] != NONE) {
-			refresh(F, y);
-			push_work(F, y);
-		}
+		if (F->active_pos[y] != NONE)
+			touch(F, y);
 	}
 }
 
@@ -274,6 +292,7 @@ vdt_front_free(struct vdt_front *F)
 	free(F->cur);
 	free(F->maxnb);
 	free(F->minpar);
+	free(F->dirty);
 	free(F->head);
 	free(F->next);
 	free(F->prev);
@@ -304,6 +323,7 @@ vdt_front_init(struct vdt_front *F, const struct vdt_vtree *t, const struct vdt_
 	F->prev = malloc((3 * nt + 1) * sizeof(uint32_t));
 	F->maxnb = calloc(N + 1, sizeof(uint32_t));
 	F->minpar = calloc(N + 1, sizeof(uint32_t));
+	F->dirty = calloc(N + 1, 1);
 	F->head = malloc((N + 1) * sizeof(uint32_t));
 	F->start = malloc((N + 1) * sizeof(uint32_t));
 	F->size = malloc((N + 1) * sizeof(uint32_t));
@@ -311,7 +331,7 @@ vdt_front_init(struct vdt_front *F, const struct vdt_vtree *t, const struct vdt_
 	/* A vertex is queued at most once per round. */
 	F->work = malloc((N + 1) * sizeof(uint32_t));
 	if (!F->active || !F->active_pos || !F->tri || !F->tri_pos || !F->cur || !F->next ||
-	    !F->prev || !F->maxnb || !F->minpar || !F->head || !F->start || !F->size ||
+	    !F->prev || !F->maxnb || !F->minpar || !F->dirty || !F->head || !F->start || !F->size ||
 	    !F->stamp || !F->work) {
 		vdt_front_free(F);
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory for the active front");
@@ -357,7 +377,7 @@ vdt_front_init(struct vdt_front *F, const struct vdt_vtree *t, const struct vdt_
 static void
 force_split(struct vdt_front *F, uint32_t x, int forced)
 {
-	while (F->maxnb[x] > x) {
+	for (fresh(F, x); F->maxnb[x] > x; fresh(F, x)) {
 		uint32_t u = F->maxnb[x];
 		if (F->active_pos[u] == NONE || u < F->t->leaf_count) {
 			refresh(F, x);
@@ -379,6 +399,7 @@ visit(struct vdt_front *F, uint32_t x, vdt_front_error_fn error, void *ctx, doub
 
 	F->stats.visited++;
 	if (x >= t->leaf_count && error(ctx, x) > (F->scale ? tau * F->scale[x] : tau)) {
+		fresh(F, x);
 		if (F->maxnb[x] < x)
 			do_split(F, x);
 		else
@@ -392,6 +413,8 @@ visit(struct vdt_front *F, uint32_t x, vdt_front_error_fn error, void *ctx, doub
 	uint32_t s = t->child[2 * k] == x ? t->child[2 * k + 1] : t->child[2 * k];
 	if (F->active_pos[s] == NONE || error(ctx, p) > (F->scale ? tau * F->scale[p] : tau))
 		return 0;
+	fresh(F, x);
+	fresh(F, s);
 	if (p < F->minpar[x] && p < F->minpar[s]) {
 		do_collapse(F, p);
 		return 1;

@@ -10,9 +10,10 @@
  * vertex: the largest id among its neighbours (a vertex may split only if
  * its own id is larger) and the smallest parent id among its neighbours,
  * leaving out its sibling (a pair may collapse only if their parent's id is
- * smaller than both children's values). Both are refreshed only around a
- * split or collapse, so the bookkeeping of a frame is proportional to the
- * changes.
+ * smaller than both children's values). Both are marked stale only around a
+ * split or collapse and recomputed when next read (once, however many
+ * changes touched the vertex), so the bookkeeping of a frame is
+ * proportional to the changes.
  */
 #ifndef VDT_FRONT_H
 #define VDT_FRONT_H
@@ -54,6 +55,7 @@ struct vdt_front {
 	double *due;           /* per active[] slot: the eye travel at which
 	                          to look again (vdt_front_adapt_moving) */
 	uint32_t *visit_list;  /* scratch of a round */
+	uint8_t *dirty;        /* per node: integers to recompute before use */
 	double travel;         /* eye travel so far */
 	uint32_t *head, *next, *prev, *start, *size, *stamp, now;
 	uint32_t *work;
@@ -75,8 +77,8 @@ int vdt_front_is_active(const struct vdt_front *F, uint32_t x);
 
 /* The 4.3 checks: may active internal node x split; may the two active
  * children of internal node x collapse into it. 0 or 1. */
-int vdt_front_can_split(const struct vdt_front *F, uint32_t x);
-int vdt_front_can_collapse(const struct vdt_front *F, uint32_t x);
+int vdt_front_can_split(struct vdt_front *F, uint32_t x);
+int vdt_front_can_collapse(struct vdt_front *F, uint32_t x);
 
 /*
  * Split x into its children, or collapse x's children into x, if the
