@@ -1,15 +1,18 @@
 /*
  * meshopt_simplify - bench driver: meshoptimizer's meshopt_simplify
- * (Debian libmeshoptimizer-dev 0.18) on a mesh read with vdt_read.
+ * (Debian libmeshoptimizer-dev 0.18) on a mesh read with vdt_read, or with
+ * -s its clustering simplifier meshopt_simplifySloppy, the peer of
+ * vdt-cluster at equal output size.
  *
- *   meshopt_simplify -t TRIANGLES IN OUT
+ *   meshopt_simplify [-s] -t TRIANGLES IN OUT
  *
- * Only the meshopt_simplify call is timed; reading, welding, compacting the
+ * Only the simplifier call is timed; reading, welding, compacting the
  * vertices and writing are not. The error limit is left open (FLT_MAX) and
  * borders are not locked, so the triangle target alone decides where to
  * stop, as for vdt-qslim -t. Prints one line on stdout:
  *
- *   tool=meshopt triangles_in=.. triangles_out=.. seconds=.. peak_rss_kb=..
+ *   tool=meshopt|meshopt_sloppy triangles_in=.. triangles_out=.. seconds=..
+ *   peak_rss_kb=..
  *
  * Peak RSS is that of the whole process (getrusage), so it includes the
  * mesh as read.
@@ -51,7 +54,7 @@ peak_rss_kb(void)
 static void
 usage(void)
 {
-	fprintf(stderr, "usage: %s -t TRIANGLES IN OUT\n", progname);
+	fprintf(stderr, "usage: %s [-s] -t TRIANGLES IN OUT\n", progname);
 	exit(2);
 }
 
@@ -80,11 +83,13 @@ main(int argc, char **argv)
 	unsigned int *remap, *indices, *dst;
 	float result_error = 0;
 	double t0, secs;
-	int c;
+	int c, sloppy = 0;
 
-	while ((c = getopt(argc, argv, "t:")) != -1) {
+	while ((c = getopt(argc, argv, "st:")) != -1) {
 		if (c == 't')
 			target = parse_count(optarg);
+		else if (c == 's')
+			sloppy = 1;
 		else
 			usage();
 	}
@@ -122,9 +127,14 @@ main(int argc, char **argv)
 	free(remap);
 
 	t0 = now();
-	n = meshopt_simplify(dst, indices, index_count, out.positions, welded,
-	                     3 * sizeof(float), 3 * target, FLT_MAX, 0,
-	                     &result_error);
+	if (sloppy)
+		n = meshopt_simplifySloppy(dst, indices, index_count, out.positions, welded,
+		                           3 * sizeof(float), 3 * target, FLT_MAX,
+		                           &result_error);
+	else
+		n = meshopt_simplify(dst, indices, index_count, out.positions, welded,
+		                     3 * sizeof(float), 3 * target, FLT_MAX, 0,
+		                     &result_error);
 	secs = now() - t0;
 
 	/* Compact: keep only the vertices the result uses. */
@@ -154,10 +164,11 @@ main(int argc, char **argv)
 		        argv[optind + 1], err.msg);
 		return 1;
 	}
-	printf("tool=meshopt triangles_in=%zu triangles_out=%zu seconds=%.6f "
+	printf("tool=%s triangles_in=%zu triangles_out=%zu seconds=%.6f "
 	       "peak_rss_kb=%ld vertices_in=%zu vertices_welded=%zu "
 	       "result_error=%g\n",
-	       in.triangle_count, out.triangle_count, secs, peak_rss_kb(),
+	       sloppy ? "meshopt_sloppy" : "meshopt", in.triangle_count,
+	       out.triangle_count, secs, peak_rss_kb(),
 	       in.vertex_count, welded, result_error);
 	free(indices);
 	vdt_mesh_free(&in);
