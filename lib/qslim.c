@@ -66,6 +66,25 @@ scaled(const struct ctx *c, uint32_t a, uint32_t b, double e)
 	return e / (s * s);
 }
 
+/*
+ * Where the pair (pa, pb) goes under quadric q and the error there, in the
+ * centred frame the quadrics live in: the end that must stay (fixed 0 or
+ * 1), else the minimiser. The centred ends are left in p0 and p1.
+ */
+static double
+place(const struct ctx *c, const struct vdt_quadric *q, int fixed, const float pa[3],
+      const float pb[3], double p0[3], double p1[3], double pos[3])
+{
+	for (int k = 0; k < 3; k++) {
+		p0[k] = pa[k] - c->centre[k];
+		p1[k] = pb[k] - c->centre[k];
+	}
+	if (fixed < 0)
+		return vdt_quadric_optimize(q, p0, p1, pos);
+	memcpy(pos, fixed ? p1 : p0, 3 * sizeof(double));
+	return vdt_quadric_eval(q, pos);
+}
+
 static double
 cost_fn(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
         const float pb[3], double pos[3])
@@ -75,24 +94,7 @@ cost_fn(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	double p0[3], p1[3], e;
 
 	vdt_quadric_add(&q, &c->q[b]);
-	if (fixed < 0 && vdt_quadric_minimum(&q, pos) == 0) {
-		e = vdt_quadric_eval(&q, pos);
-		goto found;
-	}
-	for (int k = 0; k < 3; k++) {
-		p0[k] = pa[k] - c->centre[k];
-		p1[k] = pb[k] - c->centre[k];
-	}
-	if (fixed == 0) {
-		memcpy(pos, p0, sizeof(p0));
-		e = vdt_quadric_eval(&q, pos);
-	} else if (fixed == 1) {
-		memcpy(pos, p1, sizeof(p1));
-		e = vdt_quadric_eval(&q, pos);
-	} else {
-		e = vdt_quadric_optimize(&q, p0, p1, pos);
-	}
-found:
+	e = place(c, &q, fixed, pa, pb, p0, p1, pos);
 	for (int k = 0; k < 3; k++)
 		pos[k] += c->centre[k];
 	if (c->scale)
@@ -753,18 +755,8 @@ cost_attr(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	double p0[3], p1[3], e;
 
 	attr_pair_quadric(c->at, a, b, 0, &q);
-	for (int k = 0; k < 3; k++) {
-		p0[k] = pa[k] - c->centre[k];
-		p1[k] = pb[k] - c->centre[k];
-	}
-	if (fixed == 0) {
-		memcpy(pos, p0, sizeof(p0));
-		e = vdt_quadric_eval(&q, pos);
-	} else if (fixed == 1) {
-		memcpy(pos, p1, sizeof(p1));
-		e = vdt_quadric_eval(&q, pos);
-	} else {
-		e = vdt_quadric_optimize(&q, p0, p1, pos);
+	e = place(c, &q, fixed, pa, pb, p0, p1, pos);
+	if (fixed < 0) {
 		/* Attributes make the system well conditioned where geometry
 		 * alone was flat, and the solve can then land a rounding error
 		 * away from an endpoint: snap to it, so that vertices which need
