@@ -196,3 +196,28 @@ peak_rss_bytes(void)
 		return 0;
 	return (size_t)ru.ru_maxrss * 1024;
 }
+
+void
+other_option(int c, void (*usage)(FILE *))
+{
+	if (c == 'h') {
+		usage(stdout);
+		exit(EXIT_OK);
+	}
+	if (c == 'V') {
+		print_version();
+		exit(EXIT_OK);
+	}
+	usage(stderr);
+	exit(EXIT_USAGE);
+}
+
+const char *
+input_operand(int argc, char **argv, const char *dflt)
+{
+	const char *in = optind < argc ? argv[optind++] : dflt;
+
+	if (optind < argc)
+		usage_error("unexpected argument '%s'", argv[optind]);
+	return in;
+}

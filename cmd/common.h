@@ -27,6 +27,20 @@ void usage_error(const char *fmt, ...) __attribute__((format(printf, 1, 2), nore
 void print_version(void);
 
 /*
+ * The options every tool treats alike, for the default: of its getopt
+ * switch: -h/--help prints usage on stdout and exits 0, -V/--version
+ * prints the version and exits 0, anything else prints usage on stderr
+ * and exits 2. Does not return.
+ */
+void other_option(int c, void (*usage)(FILE *)) __attribute__((noreturn));
+
+/*
+ * The one optional input operand after the options, or dflt when there is
+ * none; a second operand is a usage error.
+ */
+const char *input_operand(int argc, char **argv, const char *dflt);
+
+/*
  * Report a library error about a file: "progname: cannot read 'f': msg".
  * `what` is the verb phrase ("cannot read", "cannot write"). Returns the exit
  * status for err->code: 2 for bad input, 1 for failures of the work.

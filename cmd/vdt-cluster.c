@@ -88,15 +88,10 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 			break;
 		case 'q': cl->quiet = 1; break;
 		case 'v': cl->verbose = 1; break;
-		case 'h': usage(stdout); exit(EXIT_OK);
-		case 'V': print_version(); exit(EXIT_OK);
-		default: usage(stderr); exit(EXIT_USAGE);
+		default: other_option(c, usage);
 		}
 	}
-	if (optind < argc)
-		cl->in = argv[optind++];
-	if (optind < argc)
-		usage_error("unexpected argument '%s'", argv[optind]);
+	cl->in = input_operand(argc, argv, cl->in);
 	if (cl->choices > 1)
 		usage_error("-s, -g, -t and -r each choose the grid: give one");
 	if (cl->choices == 0 && cl->memory_mb == 0)

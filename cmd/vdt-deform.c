@@ -94,9 +94,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 			break;
 		case 'q': cl->quiet = 1; break;
 		case 'v': cl->verbose = 1; break;
-		case 'h': usage(stdout); exit(EXIT_OK);
-		case 'V': print_version(); exit(EXIT_OK);
-		default: usage(stderr); exit(EXIT_USAGE);
+		default: other_option(c, usage);
 		}
 	}
 	static char *std_in[] = {"-", NULL};

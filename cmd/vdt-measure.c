@@ -68,9 +68,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		case 'o': cl->out = optarg; break;
 		case 'q': cl->quiet = 1; break;
 		case 'v': cl->verbose = 1; break;
-		case 'h': usage(stdout); exit(EXIT_OK);
-		case 'V': print_version(); exit(EXIT_OK);
-		default: usage(stderr); exit(EXIT_USAGE);
+		default: other_option(c, usage);
 		}
 	}
 	if (argc - optind != 2)

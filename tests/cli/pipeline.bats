@@ -56,3 +56,12 @@ kv() { # key, kv line on stdin
 	[ "$status" -eq 2 ]
 	[ ! -e "$TMP/out.ply" ]
 }
+
+@test "every tool: a second input operand is refused with status 2 and one line" {
+	for t in vdt-qslim vdt-cluster vdt-render vdt-silhouette; do
+		run "$BIN/$t" "$SAMPLES/sphere.off" "$SAMPLES/torus.off"
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == *"unexpected argument"* ]]
+	done
+}
