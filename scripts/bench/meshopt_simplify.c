@@ -41,37 +41,8 @@ now(void)
 	return ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
-static long
-peak_rss_kb(void)
-{
-	struct rusage ru;
-
-	if (getrusage(RUSAGE_SELF, &ru) != 0)
-		return -1;
-	return ru.ru_maxrss; /* kilobytes on Linux */
-}
-
-static void
-usage(void)
-{
-	fprintf(stderr, "usage: %s [-s] -t TRIANGLES IN OUT\n", progname);
-	exit(2);
-}
-
-static size_t
-parse_count(const char *s)
-{
-	char *end;
-	unsigned long long v;
-
-	errno = 0;
-	if (*s < '0' || *s > '9')
-		usage();
-	v = strtoull(s, &end, 10);
-	if (errno != 0 || *end != '\0' || v == 0)
-		usage();
-	return (size_t)v;
-}
+#define BENCH_FLAGS "[-s] "
+#include "driver.h"
 
 int
 main(int argc, char **argv)

@@ -47,65 +47,7 @@ typedef OpenMesh::Decimater::ModQuadricT<Mesh>::Handle ModQuadric;
 
 static const char *progname = "openmesh_decimate";
 
-static long
-peak_rss_kb()
-{
-	struct rusage ru;
-
-	if (getrusage(RUSAGE_SELF, &ru) != 0)
-		return -1;
-	return ru.ru_maxrss;
-}
-
-[[noreturn]] static void
-usage()
-{
-	std::fprintf(stderr, "usage: %s -t TRIANGLES IN OUT\n", progname);
-	std::exit(2);
-}
-
-static std::size_t
-parse_count(const char *s)
-{
-	char *end;
-	unsigned long long v;
-
-	errno = 0;
-	if (*s < '0' || *s > '9')
-		usage();
-	v = std::strtoull(s, &end, 10);
-	if (errno != 0 || *end != '\0' || v == 0)
-		usage();
-	return v;
-}
-
-/*
- * Map every vertex to the first vertex of equal position, so that vertices
- * split by the reader at attribute seams become one again.
- */
-static std::vector<uint32_t>
-weld(const vdt_mesh &m, std::size_t *unique)
-{
-	std::vector<uint32_t> order(m.vertex_count), remap(m.vertex_count);
-	const float *p = m.positions;
-
-	for (std::size_t i = 0; i < order.size(); i++)
-		order[i] = i;
-	std::sort(order.begin(), order.end(), [p](uint32_t a, uint32_t b) {
-		return std::lexicographical_compare(p + 3 * a, p + 3 * a + 3,
-		                                    p + 3 * b, p + 3 * b + 3);
-	});
-	*unique = 0;
-	for (std::size_t i = 0; i < order.size(); i++) {
-		uint32_t v = order[i];
-		if (i > 0 && std::equal(p + 3 * v, p + 3 * v + 3,
-		                        p + 3 * order[i - 1]))
-			remap[v] = remap[order[i - 1]];
-		else
-			remap[v] = v, ++*unique;
-	}
-	return remap;
-}
+#include "driver.h"
 
 int
 main(int argc, char **argv)

@@ -44,20 +44,7 @@ now()
 	return ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
-static long
-peak_rss_kb()
-{
-	struct rusage ru;
-
-	return getrusage(RUSAGE_SELF, &ru) == 0 ? ru.ru_maxrss : -1;
-}
-
-static void
-usage()
-{
-	fprintf(stderr, "usage: %s -t TRIANGLES IN OUT\n", progname);
-	exit(2);
-}
+#include "driver.h"
 
 /* Cluster with n cells along the longest side; the output and its time. */
 static vtkSmartPointer<vtkPolyData>
