@@ -104,6 +104,8 @@ struct anim {
 	float *pos;          /* 3 * nv per frame, frame-major */
 	uint32_t *tri;       /* 3 * nt, welded, repeated faces dropped */
 	uint32_t *fstart, *fan; /* faces around each vertex (CSR) */
+	uint32_t *open;      /* open edges: face, a, b (the same every frame) */
+	size_t nopen;
 	uint8_t *locked;     /* on an edge of three or more faces */
 };
 
@@ -114,6 +116,7 @@ anim_free(struct anim *a)
 	free(a->tri);
 	free(a->fstart);
 	free(a->fan);
+	free(a->open);
 	free(a->locked);
 }
 
@@ -189,6 +192,11 @@ anim_build(struct anim *a, const struct vdt_mesh *m, const struct vdt_frames *fr
 	a->nt = live;
 	if (vdt_topo_fans(nw, a->tri, live, &a->fstart, &a->fan) != 0)
 		goto out;
+	size_t nonmanifold;
+	long nopen = vdt_topo_open_edges(nw, a->tri, a->fstart, a->fan, NULL, &a->open, &nonmanifold);
+	if (nopen < 0)
+		goto out;
+	a->nopen = (size_t)nopen;
 	rc = 0;
 out:
 	free(first);
@@ -255,7 +263,6 @@ frame_quadrics(const struct anim *a, size_t f, const double c[3], double bw,
                struct qd *q, size_t stride)
 {
 	const float *pos = a->pos + 3 * a->nv * f;
-	uint32_t seen[64 * 2];
 
 	for (size_t v = 0; v < a->nv; v++)
 		memset(&q[v * stride], 0, sizeof(*q));
@@ -270,40 +277,9 @@ frame_quadrics(const struct anim *a, size_t f, const double c[3], double bw,
 			for (int i = 0; i < 3; i++)
 				qd_add(&q[v[i] * stride], &tq);
 	}
-	for (size_t v = 0; v < a->nv; v++) {
-		uint32_t n = 0, b = a->fstart[v], e = a->fstart[v + 1];
-		for (uint32_t i = b; i < e; i++) {
-			const uint32_t *tv = a->tri + 3 * (size_t)a->fan[i];
-			for (int k = 0; k < 3; k++) {
-				uint32_t x = tv[k], j;
-				if (x <= v)
-					continue;
-				if (e - b <= 32) {
-					for (j = 0; j < n && seen[2 * j] != x; j++)
-						;
-					if (j == n) {
-						seen[2 * n] = x;
-						seen[2 * n + 1] = a->fan[i] << 1;
-						n++;
-					} else {
-						seen[2 * j + 1] |= 1;
-					}
-				} else {
-					int uses = 0;
-					for (uint32_t m = b; m < e; m++) {
-						const uint32_t *qv = a->tri + 3 * (size_t)a->fan[m];
-						uses += qv[0] == x || qv[1] == x || qv[2] == x;
-					}
-					if (uses == 1)
-						add_boundary(q, stride, pos, c, tv, (uint32_t)v, x, bw);
-				}
-			}
-		}
-		for (uint32_t j = 0; j < n; j++)
-			if (!(seen[2 * j + 1] & 1))
-				add_boundary(q, stride, pos, c, a->tri + 3 * (size_t)(seen[2 * j + 1] >> 1),
-				             (uint32_t)v, seen[2 * j], bw);
-	}
+	for (size_t k = 0; k < a->nopen; k++)
+		add_boundary(q, stride, pos, c, a->tri + 3 * (size_t)a->open[3 * k], a->open[3 * k + 1],
+		             a->open[3 * k + 2], bw);
 }
 
 /* ---- feature weights (section 3.2) ---- */

@@ -274,7 +274,6 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 {
 	size_t nt = w->triangle_count, nv = w->vertex_count;
 	uint32_t *start, *fan;
-	uint32_t seen[64 * 2];
 
 	if (vdt_topo_fans(nv, w->triangles, nt, &start, &fan) != 0)
 		return -1;
@@ -302,51 +301,15 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 		}
 	}
 
-	/* Edge (v,x), x > v, is open when x appears in one live face of v's
-	 * fan only; fans larger than the scratch table fall back to a scan. */
-	for (size_t v = 0; v < nv; v++) {
-		uint32_t n = 0, b = start[v], e = start[v + 1];
-		for (uint32_t i = b; i < e; i++) {
-			const uint32_t *tv = w->triangles + 3 * (size_t)fan[i];
-			if (dead[fan[i]])
-				continue;
-			for (int k = 0; k < 3; k++) {
-				uint32_t x = tv[k], j;
-				if (x <= v)
-					continue;
-				if (e - b <= 32) {
-					for (j = 0; j < n && seen[2 * j] != x; j++)
-						;
-					if (j == n) {
-						seen[2 * n] = x;
-						/* first face, and uses so far (at most 3) */
-						seen[2 * n + 1] = fan[i] << 2 | 1;
-						n++;
-					} else if ((seen[2 * j + 1] & 3) < 3) {
-						seen[2 * j + 1]++;
-					}
-				} else {
-					int uses = 0, first = 1;
-					for (uint32_t m = b; m < e; m++) {
-						const uint32_t *q = w->triangles + 3 * (size_t)fan[m];
-						int has = !dead[fan[m]] && (q[0] == x || q[1] == x || q[2] == x);
-						uses += has;
-						if (has && m < i)
-							first = 0;
-					}
-					if (uses == 1)
-						add_boundary(c, w, o, fan[i], (uint32_t)v, x, border);
-					if (uses > 2 && first)
-						(*nonmanifold)++;
-				}
-			}
-		}
-		for (uint32_t j = 0; j < n; j++) {
-			if ((seen[2 * j + 1] & 3) == 1)
-				add_boundary(c, w, o, seen[2 * j + 1] >> 2, (uint32_t)v, seen[2 * j], border);
-			if ((seen[2 * j + 1] & 3) == 3)
-				(*nonmanifold)++;
-		}
+	uint32_t *open;
+	long nopen = vdt_topo_open_edges(nv, w->triangles, start, fan, dead, &open, nonmanifold);
+	for (long k = 0; k < nopen; k++)
+		add_boundary(c, w, o, open[3 * k], open[3 * k + 1], open[3 * k + 2], border);
+	free(open);
+	if (nopen < 0) {
+		free(start);
+		free(fan);
+		return -1;
 	}
 	free(start);
 	free(fan);

@@ -65,3 +65,92 @@ vdt_topo_drop_repeats(const uint32_t *tri, size_t nt, const uint32_t *start,
 	}
 	return n;
 }
+
+struct open_list {
+	uint32_t *e;
+	size_t n, cap;
+};
+
+static int
+open_push(struct open_list *l, uint32_t t, uint32_t a, uint32_t b)
+{
+	if (l->n == l->cap) {
+		size_t cap = l->cap ? 2 * l->cap : 64;
+		uint32_t *d = realloc(l->e, 3 * cap * sizeof(*d));
+		if (d == NULL)
+			return -1;
+		l->e = d;
+		l->cap = cap;
+	}
+	l->e[3 * l->n] = t;
+	l->e[3 * l->n + 1] = a;
+	l->e[3 * l->n + 2] = b;
+	l->n++;
+	return 0;
+}
+
+/*
+ * Edge (v,x), x > v, is open when x appears in one live face of v's fan
+ * only; fans larger than the scratch table fall back to a scan.
+ */
+long
+vdt_topo_open_edges(size_t nv, const uint32_t *tri, const uint32_t *start,
+                    const uint32_t *fan, const uint8_t *dead, uint32_t **edges,
+                    size_t *nonmanifold)
+{
+	struct open_list l = {NULL, 0, 0};
+	uint32_t seen[64 * 2];
+
+	*edges = NULL;
+	*nonmanifold = 0;
+	for (size_t v = 0; v < nv; v++) {
+		uint32_t n = 0, b = start[v], e = start[v + 1];
+		for (uint32_t i = b; i < e; i++) {
+			const uint32_t *tv = tri + 3 * (size_t)fan[i];
+			if (dead && dead[fan[i]])
+				continue;
+			for (int k = 0; k < 3; k++) {
+				uint32_t x = tv[k], j;
+				if (x <= v)
+					continue;
+				if (e - b <= 32) {
+					for (j = 0; j < n && seen[2 * j] != x; j++)
+						;
+					if (j == n) {
+						seen[2 * n] = x;
+						/* first face, and uses so far (at most 3) */
+						seen[2 * n + 1] = fan[i] << 2 | 1;
+						n++;
+					} else if ((seen[2 * j + 1] & 3) < 3) {
+						seen[2 * j + 1]++;
+					}
+					continue;
+				}
+				int uses = 0, first = 1;
+				for (uint32_t m = b; m < e; m++) {
+					const uint32_t *q = tri + 3 * (size_t)fan[m];
+					int has = !(dead && dead[fan[m]]) && (q[0] == x || q[1] == x || q[2] == x);
+					uses += has;
+					if (has && m < i)
+						first = 0;
+				}
+				if (uses == 1 && open_push(&l, fan[i], (uint32_t)v, x) != 0)
+					goto nomem;
+				if (uses > 2 && first)
+					(*nonmanifold)++;
+			}
+		}
+		for (uint32_t j = 0; j < n; j++) {
+			if ((seen[2 * j + 1] & 3) == 1 &&
+			    open_push(&l, seen[2 * j + 1] >> 2, (uint32_t)v, seen[2 * j]) != 0)
+				goto nomem;
+			if ((seen[2 * j + 1] & 3) == 3)
+				(*nonmanifold)++;
+		}
+	}
+	*edges = l.e;
+	return (long)l.n;
+nomem:
+	free(l.e);
+	return -1;
+}

@@ -31,4 +31,16 @@ int vdt_topo_same_face(const uint32_t *a, const uint32_t *b);
 size_t vdt_topo_drop_repeats(const uint32_t *tri, size_t nt, const uint32_t *start,
                              const uint32_t *fan, uint8_t *dead);
 
+/*
+ * The open edges: (a, b), a < b, held by exactly one live face (dead may be
+ * NULL: every face lives). *edges gets 3 numbers per edge, the face, a and
+ * b, vertex by vertex in fan order (malloc'ed, may be NULL when there are
+ * none); *nonmanifold the number of edges of three or more live faces.
+ * Linear in the mesh, with no edge table. Returns the number of open edges,
+ * or -1 when memory runs out.
+ */
+long vdt_topo_open_edges(size_t nv, const uint32_t *tri, const uint32_t *start,
+                         const uint32_t *fan, const uint8_t *dead, uint32_t **edges,
+                         size_t *nonmanifold);
+
 #endif
