@@ -909,7 +909,7 @@ fail:
 
 /* ---- passes over a source ------------------------------------------------ */
 
-#define BATCH 4096
+#define BATCH 256
 
 int
 vdt_cluster_scan_bbox(struct vdt_tsource *ts, struct vdt_bbox *box, uint64_t *vertices,
