@@ -64,6 +64,8 @@ struct vdt_cluster {
 	size_t thmask;
 
 	uint64_t added;
+	/* The range of corner positions in cell units, before clamping. */
+	double lo[3], hi[3];
 	/* Recently found cells, direct-mapped: neighbouring triangles share cells. */
 	uint64_t recent_key[RECENT]; /* key + 1, 0: none */
 	uint32_t recent_id[RECENT];
@@ -438,6 +440,10 @@ vdt_cluster_new(struct vdt_cluster **cp, const struct vdt_cluster_grid *g, size_
 		c->inv[k] = 1 / g->cell[k];
 		c->top[k] = g->dims[k] - 1.0;
 	}
+	for (int k = 0; k < 3; k++) {
+		c->lo[k] = INFINITY;
+		c->hi[k] = -INFINITY;
+	}
 	c->max_cells = max_cells;
 	c->hmask = 1023;
 	c->thmask = 1023;
@@ -639,12 +645,24 @@ add_scaled(struct vdt_quadric *q, const struct vdt_quadric *r, double s)
 	q->w += s * r->w;
 }
 
+/*
+ * The cell of p as a key, widening lo and hi (in cell units, unclamped) so
+ * that a box given in advance can be checked; lo/hi compile to min/max.
+ */
 static inline uint64_t
-key_of(const struct vdt_cluster *c, const double *p)
+key_of(const struct vdt_cluster *c, const double *p, double *lo, double *hi)
 {
-	return (uint64_t)axis_cell(c->g.origin, c->inv, c->top, p, 0) |
-	       (uint64_t)axis_cell(c->g.origin, c->inv, c->top, p, 1) << KEY_BITS |
-	       (uint64_t)axis_cell(c->g.origin, c->inv, c->top, p, 2) << 2 * KEY_BITS;
+	uint64_t key = 0;
+
+	for (int k = 0; k < 3; k++) {
+		double f = (p[k] - c->g.origin[k]) * c->inv[k];
+		lo[k] = f < lo[k] ? f : lo[k];
+		hi[k] = f > hi[k] ? f : hi[k];
+		f = f > 0 ? f : 0;
+		f = f < c->top[k] ? f : c->top[k];
+		key |= (uint64_t)f << k * KEY_BITS;
+	}
+	return key;
 }
 
 /* cell_id through the small cache of recent cells. */
@@ -680,7 +698,17 @@ add_edge_normal(struct cell *cl, const double *u, const double *v, const double 
 }
 
 int
-vdt_cluster_add(struct vdt_cluster *c, const double *tri, size_t n, struct vdt_err *err)
+vdt_cluster_outside(const struct vdt_cluster *c)
+{
+	for (int k = 0; k < 3; k++)
+		if (c->lo[k] < 0 || c->hi[k] > c->g.dims[k])
+			return 1;
+	return 0;
+}
+
+static int
+add_batch(struct vdt_cluster *c, const double *tri, size_t n, double *lo, double *hi,
+          struct vdt_err *err)
 {
 	for (size_t t = 0; t < n; t++, c->added++) {
 		const double *p[3] = {tri + 9 * t, tri + 9 * t + 3, tri + 9 * t + 6};
@@ -691,7 +719,7 @@ vdt_cluster_add(struct vdt_cluster *c, const double *tri, size_t n, struct vdt_e
 		int flat;
 
 		for (int j = 0; j < 3; j++)
-			key[j] = key_of(c, p[j]);
+			key[j] = key_of(c, p[j], lo, hi);
 		for (int k = 0; k < 3; k++) {
 			e1[k] = p[1][k] - p[0][k];
 			e2[k] = p[2][k] - p[0][k];
@@ -797,6 +825,17 @@ vdt_cluster_add(struct vdt_cluster *c, const double *tri, size_t n, struct vdt_e
 		}
 	}
 	return 0;
+}
+
+int
+vdt_cluster_add(struct vdt_cluster *c, const double *tri, size_t n, struct vdt_err *err)
+{
+	double lo[3] = {c->lo[0], c->lo[1], c->lo[2]}, hi[3] = {c->hi[0], c->hi[1], c->hi[2]};
+	int rc = add_batch(c, tri, n, lo, hi, err);
+
+	memcpy(c->lo, lo, sizeof(lo));
+	memcpy(c->hi, hi, sizeof(hi));
+	return rc;
 }
 
 int

@@ -123,8 +123,8 @@ int vdt_cluster_new(struct vdt_cluster **c, const struct vdt_cluster_grid *g,
  * fundamental quadrics of its vertices (section 3.2). A triangle whose
  * corners fall in three different cells is kept for the output, once per
  * set of cells. Non-finite coordinates are VDT_EINVAL naming the triangle
- * (counted from the first added); those before it in the batch are added. Returns 0, VDT_EINVAL, VDT_ELIMIT or
- * VDT_ENOMEM.
+ * (counted from the first added); those before it in the batch are added.
+ * Returns 0, VDT_EINVAL, VDT_ELIMIT or VDT_ENOMEM.
  */
 int vdt_cluster_add(struct vdt_cluster *c, const double *tri, size_t n,
                     struct vdt_err *err);
@@ -150,6 +150,13 @@ struct vdt_cluster_stats {
 int vdt_cluster_finish(struct vdt_cluster *c, struct vdt_mesh *out,
                        struct vdt_quadric **quads,
                        struct vdt_cluster_stats *stats, struct vdt_err *err);
+
+/*
+ * 1 if a corner added so far lay outside the grid (it went to the nearest
+ * cell): the grid was made for a box that does not hold the input, such as
+ * one a file header claimed.
+ */
+int vdt_cluster_outside(const struct vdt_cluster *c);
 
 /* Free c. NULL is a no-op. */
 void vdt_cluster_free(struct vdt_cluster *c);

@@ -1420,25 +1420,54 @@ big_flush(struct big_ctx *c)
 	c->len = 0;
 }
 
+/* The sphere point p displaced by fractal noise along the normal. */
+static void
+big_position(const double *p, uint32_t seed, float out[3])
+{
+	double q[3], r = 1, amp = 0.06, freq = 1.5;
+
+	/* six octaves of gradient noise */
+	for (int o = 0; o < 6; o++) {
+		for (int k = 0; k < 3; k++)
+			q[k] = p[k] * freq + 17.0 * o;
+		r += amp * gradient_noise(q, seed + (uint32_t)o);
+		amp *= 0.5;
+		freq *= 2.2;
+	}
+	for (int k = 0; k < 3; k++)
+		out[k] = (float)(p[k] * r);
+}
+
 static void
 big_vertex(const double *p, void *vctx)
 {
 	struct big_ctx *c = vctx;
-	double q[3], r = 1, amp = 0.06, freq = 1.5;
+	float f[3];
 
-	/* fractal noise: six octaves of gradient noise along the normal */
-	for (int o = 0; o < 6; o++) {
-		for (int k = 0; k < 3; k++)
-			q[k] = p[k] * freq + 17.0 * o;
-		r += amp * gradient_noise(q, c->seed + (uint32_t)o);
-		amp *= 0.5;
-		freq *= 2.2;
-	}
+	big_position(p, c->seed, f);
 	if (c->len + 12 > sizeof(c->buf))
 		big_flush(c);
 	for (int k = 0; k < 3; k++)
-		vdt_put_f32le(c->buf + c->len + 4 * k, (float)(p[k] * r));
+		vdt_put_f32le(c->buf + c->len + 4 * k, f[k]);
 	c->len += 12;
+}
+
+struct big_box {
+	uint32_t seed;
+	float min[3], max[3];
+};
+
+static void
+big_box_vertex(const double *p, void *vctx)
+{
+	struct big_box *b = vctx;
+	float f[3];
+
+	big_position(p, b->seed, f);
+	for (int k = 0; k < 3; k++) {
+		b->min[k] = f[k] < b->min[k] ? f[k] : b->min[k];
+		b->max[k] = f[k] > b->max[k] ? f[k] : b->max[k];
+	}
 }
 
 static void
@@ -1462,6 +1491,7 @@ make_big(const struct opts *o)
 	struct vdt_output out;
 	struct vdt_err err = {0};
 	struct geo g;
+	struct big_box box;
 	uint32_t k = 1;
 	enum vdt_format fmt = o->format ? o->format : vdt_format_from_path(o->output);
 
@@ -1475,14 +1505,24 @@ make_big(const struct opts *o)
 	c.out = &out;
 	c.o = o;
 	c.seed = (uint32_t)o->seed;
+	/* A first pass for the box, which the header gives (vdt-cluster's
+	 * "comment bbox"): the vertices are cheaper to make twice than to keep. */
+	box.seed = c.seed;
+	for (int a = 0; a < 3; a++) {
+		box.min[a] = INFINITY;
+		box.max[a] = -INFINITY;
+	}
+	geo_vertices(&g, big_box_vertex, &box);
 	c.len = (size_t)snprintf((char *)c.buf, sizeof(c.buf),
 	                         "ply\nformat binary_little_endian 1.0\n"
 	                         "comment mkshapes big -n %lu --seed %lu\n"
+	                         "comment bbox %.9g %.9g %.9g %.9g %.9g %.9g\n"
 	                         "element vertex %llu\n"
 	                         "property float x\nproperty float y\nproperty float z\n"
 	                         "element face %llu\n"
 	                         "property list uchar int vertex_indices\nend_header\n",
-	                         o->n, o->seed, (unsigned long long)geo_vertex_count(k),
+	                         o->n, o->seed, box.min[0], box.min[1], box.min[2], box.max[0],
+	                         box.max[1], box.max[2], (unsigned long long)geo_vertex_count(k),
 	                         (unsigned long long)geo_triangle_count(k));
 	geo_vertices(&g, big_vertex, &c);
 	geo_triangles(&g, big_tri, &c);

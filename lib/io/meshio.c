@@ -584,8 +584,9 @@ write_off(FILE *f, const struct vdt_mesh *m)
 static void
 write_ply_ascii(FILE *f, const struct vdt_mesh *m)
 {
-	fprintf(f, "ply\nformat ascii 1.0\ncomment vdt\nelement vertex %zu\n"
-	           "property float x\nproperty float y\nproperty float z\n",
+	fputs("ply\nformat ascii 1.0\ncomment vdt\n", f);
+	vdt_ply_bbox_comment(f, m);
+	fprintf(f, "element vertex %zu\nproperty float x\nproperty float y\nproperty float z\n",
 	        m->vertex_count);
 	if (m->normals)
 		fputs("property float nx\nproperty float ny\nproperty float nz\n", f);

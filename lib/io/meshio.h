@@ -146,6 +146,13 @@ int vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 int vdt_obj_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
                  struct vdt_err *err);
 int vdt_ply_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err);
+
+/*
+ * The header line "comment bbox XMIN YMIN ZMIN XMAX YMAX ZMAX" for m's
+ * positions (nothing for an empty mesh), which vdt-cluster reads to skip
+ * its bounding-box pass.
+ */
+void vdt_ply_bbox_comment(FILE *f, const struct vdt_mesh *m);
 int vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
                  struct vdt_err *err);
 int vdt_stl_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err);

@@ -987,6 +987,22 @@ flush_buf(FILE *f, unsigned char *b, size_t *n, struct vdt_err *err)
 	return 0;
 }
 
+void
+vdt_ply_bbox_comment(FILE *f, const struct vdt_mesh *m)
+{
+	struct vdt_bbox b;
+
+	if (m->vertex_count == 0)
+		return;
+	vdt_mesh_bbox(m, &b);
+	for (int k = 0; k < 3; k++)
+		if (!(isfinite(b.min[k]) && isfinite(b.max[k])))
+			return;
+	/* Floats: nine digits give them back exactly. */
+	fprintf(f, "comment bbox %.9g %.9g %.9g %.9g %.9g %.9g\n", b.min[0], b.min[1], b.min[2],
+	        b.max[0], b.max[1], b.max[2]);
+}
+
 int
 vdt_ply_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err)
 {
@@ -995,8 +1011,10 @@ vdt_ply_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err)
 	size_t n = 0, rec = 12;
 	int rc = 0;
 
-	if (fprintf(f, "ply\nformat binary_little_endian 1.0\ncomment vdt\n"
-	               "element vertex %zu\nproperty float x\nproperty float y\nproperty float z\n",
+	if (fputs("ply\nformat binary_little_endian 1.0\ncomment vdt\n", f) < 0)
+		return vdt_err_set(err, VDT_EIO, "write error");
+	vdt_ply_bbox_comment(f, m);
+	if (fprintf(f, "element vertex %zu\nproperty float x\nproperty float y\nproperty float z\n",
 	            m->vertex_count) < 0)
 		return vdt_err_set(err, VDT_EIO, "write error");
 	if (m->normals) {

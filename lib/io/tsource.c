@@ -88,6 +88,10 @@ struct vdt_tsource {
 	/* formats read whole */
 	struct vdt_mesh mesh;
 
+	/* a PLY header's "comment bbox" line, if well formed */
+	struct vdt_bbox hbox;
+	int has_hbox;
+
 	const unsigned char *drop_mark; /* mapped pages before it are released */
 };
 
@@ -310,6 +314,36 @@ ply_fixed(const struct pelem *e, size_t *size)
 	return 1;
 }
 
+/*
+ * "comment bbox XMIN YMIN ZMIN XMAX YMAX ZMAX", as vdt's PLY writer puts
+ * it: the box of the vertices, which spares vdt-cluster a pass. Anything
+ * else after "comment bbox" is an ordinary comment. The box is only a
+ * claim: vdt-cluster measures it anyway if a vertex falls outside.
+ */
+static void
+header_box(struct vdt_tsource *s, const char *text)
+{
+	double v[6];
+	char *end;
+
+	for (int i = 0; i < 6; i++) {
+		/* As floats: the nine digits of a float's text give it back. */
+		v[i] = strtof(text, &end);
+		if (end == text || !isfinite(v[i]))
+			return;
+		text = end;
+	}
+	while (*text == ' ' || *text == '\t' || *text == '\r')
+		text++;
+	if (*text != '\0' || !(v[0] <= v[3] && v[1] <= v[4] && v[2] <= v[5]))
+		return;
+	for (int k = 0; k < 3; k++) {
+		s->hbox.min[k] = v[k];
+		s->hbox.max[k] = v[3 + k];
+	}
+	s->has_hbox = 1;
+}
+
 static int
 ply_header(struct vdt_tsource *s, struct pelem *el, size_t *nel, size_t *data,
            int *ascii, struct vdt_err *err)
@@ -335,6 +369,10 @@ ply_header(struct vdt_tsource *s, struct pelem *el, size_t *nel, size_t *data,
 		pos += ll + 1;
 		if (lineno == 1)
 			continue; /* "ply", checked by format detection */
+		if (strncmp(line, "comment bbox ", 13) == 0) {
+			header_box(s, line + 13);
+			continue;
+		}
 		if (strncmp(line, "comment", 7) == 0 || strncmp(line, "obj_info", 8) == 0)
 			continue;
 		n = sscanf(line, "%63s %63s %63s %63s %63s %63s", w[0], w[1], w[2], w[3], w[4], w[5]);
@@ -1173,6 +1211,14 @@ uint64_t
 vdt_tsource_triangle_hint(const struct vdt_tsource *ts)
 {
 	return ts->tri_hint;
+}
+
+int
+vdt_tsource_header_box(const struct vdt_tsource *ts, struct vdt_bbox *box)
+{
+	if (ts->has_hbox)
+		*box = ts->hbox;
+	return ts->has_hbox;
 }
 
 uint64_t

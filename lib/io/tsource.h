@@ -69,6 +69,12 @@ int vdt_tsource_streamed(const struct vdt_tsource *ts);
  */
 uint64_t vdt_tsource_triangle_hint(const struct vdt_tsource *ts);
 
+/*
+ * The bounding box the header declares (a PLY "comment bbox" line of six
+ * numbers), into *box: 1 if there is one, else 0. A claim, not checked.
+ */
+int vdt_tsource_header_box(const struct vdt_tsource *ts, struct vdt_bbox *box);
+
 /* Bytes of input (after spooling), for messages and statistics. */
 uint64_t vdt_tsource_bytes(const struct vdt_tsource *ts);
 

@@ -135,6 +135,31 @@ load helpers
 	[ "$n" -lt 1600 ]
 }
 
+@test "a box declared in the PLY header spares a pass; a wrong one is measured" {
+	"$BIN/vdt-qslim" -r 1 "$SAMPLES/torus.off" -o "$TMP/t.ply"
+	LC_ALL=C grep -a -q '^comment bbox ' "$TMP/t.ply"
+	LC_ALL=C sed '/^comment bbox /d' "$TMP/t.ply" > "$TMP/none.ply"
+	! LC_ALL=C grep -a -q '^comment bbox ' "$TMP/none.ply"
+	"$BIN/vdt-cluster" -g 20 "$TMP/none.ply" -o "$TMP/measured.off"
+	"$BIN/vdt-cluster" -g 20 "$TMP/t.ply" -o "$TMP/declared.off"
+	cmp "$TMP/measured.off" "$TMP/declared.off"
+	# the claim is what the grid is made on
+	LC_ALL=C sed 's/^comment bbox .*/comment bbox -20 -20 -20 20 20 20/' "$TMP/t.ply" > "$TMP/big.ply"
+	run "$BIN/vdt-cluster" -v -g 20 "$TMP/big.ply" -o "$TMP/big.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"cell_size=2 "* ]]
+	# a box that does not hold the vertices is measured, with a word
+	LC_ALL=C sed 's/^comment bbox .*/comment bbox 0 0 0 0.1 0.1 0.1/' "$TMP/t.ply" > "$TMP/small.ply"
+	run "$BIN/vdt-cluster" -g 20 "$TMP/small.ply" -o "$TMP/small.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"small.ply: vertices outside the header's bounding box: measuring it"* ]]
+	cmp "$TMP/measured.off" "$TMP/small.off"
+	# so is a flat one, silently
+	LC_ALL=C sed 's/^comment bbox .*/comment bbox 0 0 0 1 1 0/' "$TMP/t.ply" > "$TMP/flat.ply"
+	"$BIN/vdt-cluster" -q -g 20 "$TMP/flat.ply" -o "$TMP/flat.off"
+	cmp "$TMP/measured.off" "$TMP/flat.off"
+}
+
 @test "a triangle soup with duplicated vertices clusters like the mesh" {
 	"$BIN/vdt-qslim" -r 1 "$SAMPLES/sphere.off" -o "$TMP/s.stl"
 	"$BIN/vdt-cluster" -g 12 "$TMP/s.stl" -o "$TMP/soup.off"

@@ -491,6 +491,78 @@ memory_limit(void **state)
 	vdt_cluster_free(c);
 }
 
+/*
+ * A corner outside the grid goes to the nearest cell, and the clustering
+ * says so (vdt-cluster then measures the box a header claimed); the far
+ * faces of the grid are inside.
+ */
+static void
+outside_the_grid(void **state)
+{
+	double a[3] = {0.5, 0.5, 0}, b[3] = {2, 0.5, 0}, d[3] = {0.5, 2, 0}, t[9];
+	struct vdt_cluster_grid g;
+	struct vdt_cluster *c;
+
+	(void)state;
+	grid22(&g);
+	put_tri(t, a, b, d);
+	assert_int_equal(vdt_cluster_new(&c, &g, 0, NULL), 0);
+	assert_int_equal(vdt_cluster_add(c, t, 1, NULL), 0);
+	assert_int_equal(vdt_cluster_outside(c), 0);
+	for (int k = 0; k < 2; k++) {
+		for (double x = -0.25; x < 3; x += 2.75) {
+			double e[3] = {0.5, 0.5, 0};
+			e[k] = x;
+			put_tri(t, a, b, e);
+			vdt_cluster_free(c);
+			assert_int_equal(vdt_cluster_new(&c, &g, 0, NULL), 0);
+			assert_int_equal(vdt_cluster_add(c, t, 1, NULL), 0);
+			assert_int_equal(vdt_cluster_outside(c), 1);
+		}
+	}
+	vdt_cluster_free(c);
+}
+
+/* The "comment bbox" of a PLY header, only when it is six ordered numbers. */
+static void
+header_box(void **state)
+{
+	static const struct {
+		const char *line;
+		int ok;
+	} cases[] = {
+		{"comment bbox -1 0 0.5 1 2 3", 1},
+		{"comment bbox -1 0 0.5 1 2 3 \r", 1},
+		{"comment bbox -1 0 0.5 1 2", 0},
+		{"comment bbox -1 0 0.5 1 2 3 4", 0},
+		{"comment bbox 2 0 0.5 1 2 3", 0},
+		{"comment bbox -1 0 nan 1 2 3", 0},
+		{"comment bbox -1 0 0.5 1 inf 3", 0},
+		{"comment bbox of the scan", 0},
+		{"comment vdt", 0},
+	};
+	(void)state;
+	for (size_t i = 0; i < sizeof(cases) / sizeof(cases[0]); i++) {
+		unsigned char buf[512];
+		struct vdt_tsource *ts;
+		struct vdt_bbox box = {{9, 9, 9}, {9, 9, 9}};
+		int len = snprintf((char *)buf, sizeof(buf),
+		                   "ply\nformat binary_little_endian 1.0\n%s\nelement vertex 1\n"
+		                   "property float x\nproperty float y\nproperty float z\n"
+		                   "element face 0\nproperty list uchar int vertex_indices\nend_header\n",
+		                   cases[i].line);
+		memset(buf + len, 0, 12);
+		assert_int_equal(vdt_tsource_open_memory(&ts, buf, (size_t)len + 12, NULL), 0);
+		assert_int_equal(vdt_tsource_header_box(ts, &box), cases[i].ok);
+		if (cases[i].ok)
+			assert_true(box.min[0] == -1 && box.min[1] == 0 && box.min[2] == 0.5 &&
+			            box.max[0] == 1 && box.max[1] == 2 && box.max[2] == 3);
+		else
+			assert_true(box.min[0] == 9);
+		vdt_tsource_close(ts);
+	}
+}
+
 int
 main(void)
 {
@@ -505,6 +577,8 @@ main(void)
 		cmocka_unit_test(ply_any_layout),
 		cmocka_unit_test(memory_limit),
 		cmocka_unit_test(non_finite_corners),
+		cmocka_unit_test(outside_the_grid),
+		cmocka_unit_test(header_box),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
