@@ -10,6 +10,7 @@
 
 CC ?= cc
 CXX ?= c++
+CFLAGS_ORIGIN := $(origin CFLAGS)
 CFLAGS ?= -O2 -g
 CXXFLAGS ?= -O2 -g
 PREFIX ?= /usr/local
@@ -67,6 +68,13 @@ FORCE:
 $(B)/%.o: %.c
 	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS) $(CFLAGS) -c -o $@ $<
+
+# Phase I is a pass of arithmetic per input triangle: -O3 takes about a
+# fifth off its time on big-20m (alternating runs, same output bytes);
+# elsewhere it measured no gain. A CFLAGS of the user's is left alone.
+ifeq ($(CFLAGS_ORIGIN),undefined)
+$(B)/lib/cluster.o: override CFLAGS += -O3
+endif
 
 $(B)/%.o: %.cc
 	@mkdir -p $(@D)
