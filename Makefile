@@ -50,7 +50,7 @@ MAN1 := $(sort $(wildcard man/*.1))
 MAN57 := $(sort $(wildcard man/*.5 man/*.7))
 
 .PHONY: all deps check unit cli demo bench fuzz samples install uninstall \
-	clean lint helpers
+	clean lint helpers FORCE
 .SUFFIXES:
 .DELETE_ON_ERROR:
 .SECONDARY:
