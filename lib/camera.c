@@ -238,33 +238,21 @@ out:
 	return 0;
 }
 
-/* The margin of one node: distance to both of its decision boundaries. */
-static double
-node_margin(const struct vdt_lod_ctx *L, uint32_t x, double tau)
-{
-	const struct vdt_vtree *t = L->t;
-	const float *p = t->pos + 3 * (size_t)x;
-	double v[3] = {p[0] - L->cam->v.eye[0], p[1] - L->cam->v.eye[1], p[2] - L->cam->v.eye[2]};
-	double d = norm(v), dev = t->dev[x], r = dev * L->cam->focal / tau;
-	double m = fmin(fabs(d - r), fabs(d - dev));
-
-	/* Rounding of the two sides of the comparison. */
-	return fmax(0, m - 1e-9 * (d + r));
-}
-
 double
 vdt_lod_margin(void *ctx, uint32_t x, double tau)
 {
 	const struct vdt_lod_ctx *L = ctx;
 	const struct vdt_lod *o = L->lod;
 	const struct vdt_vtree *t = L->t;
-	double m = INFINITY;
+	const float *p = t->pos + 3 * (size_t)x;
 
 	if (o->frustum || o->backface || o->lighting || o->fovea > 0 || !(tau > 0))
 		return 0;
-	if (x >= t->leaf_count)
-		m = node_margin(L, x, tau);
-	if (t->parent[x] != VDT_VTREE_NONE)
-		m = fmin(m, node_margin(L, t->parent[x], tau));
-	return m;
+	double v[3] = {p[0] - L->cam->v.eye[0], p[1] - L->cam->v.eye[1], p[2] - L->cam->v.eye[2]};
+	double d = sqrt(dot(v, v)), dev = t->dev[x], r = dev * L->cam->focal / tau;
+	double a = fabs(d - r), b = fabs(d - dev), m = a < b ? a : b;
+
+	/* Less the rounding of the two sides of the comparison. */
+	m -= 1e-9 * (d + r);
+	return m > 0 ? m : 0;
 }

@@ -391,7 +391,16 @@ force_split(struct vdt_front *F, uint32_t x, int forced)
 	F->stats.forced += forced;
 }
 
-/* Decide for one active vertex; returns 1 if it changed the front. */
+/* What a visit found: whether the eye's travel can change it next. */
+enum { KEPT, KEPT_SPLIT_ONLY, CHANGED };
+
+/*
+ * Decide for one active vertex. KEPT_SPLIT_ONLY: the pair cannot collapse
+ * whatever the eye does (the sibling is not active, or 4.3 refuses), so
+ * only x's own split can come from the eye's travel; the rest comes from
+ * changes, which look at the vertices they touch, and from the sibling,
+ * which decides the same collapse when it is looked at.
+ */
 static int
 visit(struct vdt_front *F, uint32_t x, vdt_front_error_fn error, void *ctx, double tau)
 {
@@ -404,23 +413,25 @@ visit(struct vdt_front *F, uint32_t x, vdt_front_error_fn error, void *ctx, doub
 			do_split(F, x);
 		else
 			force_split(F, x, 0);
-		return 1;
+		return CHANGED;
 	}
 	uint32_t p = t->parent[x];
 	if (p == NONE)
-		return 0;
+		return KEPT_SPLIT_ONLY;
 	size_t k = p - t->leaf_count;
 	uint32_t s = t->child[2 * k] == x ? t->child[2 * k + 1] : t->child[2 * k];
-	if (F->active_pos[s] == NONE || error(ctx, p) > (F->scale ? tau * F->scale[p] : tau))
-		return 0;
+	if (F->active_pos[s] == NONE)
+		return KEPT_SPLIT_ONLY;
+	if (error(ctx, p) > (F->scale ? tau * F->scale[p] : tau))
+		return KEPT;
 	fresh(F, x);
 	fresh(F, s);
 	if (p < F->minpar[x] && p < F->minpar[s]) {
 		do_collapse(F, p);
-		return 1;
+		return CHANGED;
 	}
 	F->stats.refused++;
-	return 0;
+	return KEPT_SPLIT_ONLY;
 }
 
 void
@@ -467,8 +478,13 @@ adapt(struct vdt_front *F, vdt_front_error_fn error, vdt_front_margin_fn margin,
 			uint32_t x = w[i];
 			if (F->active_pos[x] == NONE || F->stamp[x] == F->now)
 				continue;
-			if (!visit(F, x, error, ctx, tau) && margin)
-				F->due[F->active_pos[x]] = F->travel + margin(ctx, x, tau);
+			int r = visit(F, x, error, ctx, tau);
+			if (r == CHANGED || !margin)
+				continue;
+			double m = x >= F->t->leaf_count ? margin(ctx, x, tau) : INFINITY;
+			if (r == KEPT && m > 0)
+				m = fmin(m, margin(ctx, F->t->parent[x], tau));
+			F->due[F->active_pos[x]] = F->travel + m;
 		}
 		if (F->work_count == 0)
 			break;

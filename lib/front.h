@@ -113,9 +113,10 @@ void vdt_front_adapt(struct vdt_front *F, vdt_front_error_fn error, void *ctx,
                      double tau);
 
 /*
- * How far the eye may move before node x's decision (split it; collapse it
- * with its sibling into their parent) can change at threshold tau, in
- * model units; 0 when it may change at once.
+ * How far the eye may move before the error of internal node x can cross
+ * threshold tau, in model units; 0 when it may at once. An active vertex's
+ * margin is its own (its split) and, when its sibling is active and 4.3
+ * would let the pair collapse, its parent's.
  */
 typedef double (*vdt_front_margin_fn)(void *ctx, uint32_t x, double tau);
 
