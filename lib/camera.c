@@ -239,20 +239,14 @@ out:
 }
 
 double
-vdt_lod_margin(void *ctx, uint32_t x, double tau)
+vdt_lod_radius(void *ctx, uint32_t x, double tau)
 {
 	const struct vdt_lod_ctx *L = ctx;
 	const struct vdt_lod *o = L->lod;
-	const struct vdt_vtree *t = L->t;
-	const float *p = t->pos + 3 * (size_t)x;
+	double dev = L->t->dev[x], r = dev * L->cam->focal / tau;
 
 	if (o->frustum || o->backface || o->lighting || o->fovea > 0 || !(tau > 0))
-		return 0;
-	double v[3] = {p[0] - L->cam->v.eye[0], p[1] - L->cam->v.eye[1], p[2] - L->cam->v.eye[2]};
-	double d = sqrt(dot(v, v)), dev = t->dev[x], r = dev * L->cam->focal / tau;
-	double a = fabs(d - r), b = fabs(d - dev), m = a < b ? a : b;
-
-	/* Less the rounding of the two sides of the comparison. */
-	m -= 1e-9 * (d + r);
-	return m > 0 ? m : 0;
+		return NAN;
+	/* Within dev the error is infinite. */
+	return r > dev ? r : dev;
 }
