@@ -18,6 +18,9 @@
 
 #define NONE VDT_VTREE_NONE
 
+/* A region no eye is in: look at the vertex next time. */
+static const struct vdt_front_due LOOK = {{0, 0, 0}, INFINITY, 0};
+
 static void
 unlink_corner(struct vdt_front *F, uint32_t e)
 {
@@ -46,7 +49,7 @@ add_active(struct vdt_front *F, uint32_t x)
 {
 	F->active_pos[x] = (uint32_t)F->active_count;
 	if (F->due)
-		F->due[F->active_count].lo2 = INFINITY; /* new on the front: look at it */
+		F->due[F->active_count] = LOOK; /* new on the front: look at it */
 	F->active[F->active_count++] = x;
 }
 
@@ -471,7 +474,7 @@ keep_region(struct vdt_front *F, uint32_t x, int kept, vdt_front_radius_fn radiu
 	}
 	/* NaN (no such radius) or an empty region: look every time. */
 	if (!(lo >= 0 && hi >= lo)) {
-		d->lo2 = INFINITY;
+		*d = LOOK;
 		return;
 	}
 	d->lo2 = (float)(lo * lo);
@@ -555,7 +558,7 @@ vdt_front_adapt_moving(struct vdt_front *F, vdt_front_error_fn error,
 		/* Unknown regions: everything is due, and the eye anywhere. */
 		static const double origin[3] = {0, 0, 0};
 		for (size_t i = 0; i < F->active_count; i++)
-			F->due[i].lo2 = INFINITY;
+			F->due[i] = LOOK;
 		eye = origin;
 	}
 	adapt(F, error, radius, ctx, tau, eye);
