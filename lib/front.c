@@ -544,11 +544,12 @@ void
 vdt_front_adapt_moving(struct vdt_front *F, vdt_front_error_fn error,
                        vdt_front_radius_fn radius, void *ctx, double tau, const double *eye)
 {
-	size_t N = F->t->node_count;
+	/* A cut of the tree has at most one node per leaf. */
+	size_t n = F->t->leaf_count;
 
 	memset(&F->stats, 0, sizeof(F->stats));
 	if (F->due == NULL) {
-		if ((F->due = malloc((N + 1) * sizeof(*F->due))) == NULL) {
+		if ((F->due = malloc((n + 1) * sizeof(*F->due))) == NULL) {
 			adapt(F, error, NULL, ctx, tau, NULL);
 			return;
 		}
