@@ -95,15 +95,18 @@ vdt_camera_project(const struct vdt_camera *c, const float p[3], double out[3])
 /*
  * Equation 1's distance between a node and a reference direction, as a
  * factor of the plain distance: 1 when they agree, (2 + eps) / eps when
- * opposite. The node's normal is taken as the one in its cone nearest the
- * reference, so a cone that straddles the silhouette counts as facing.
+ * opposite. As in the paper, with the node's own normal: taking the normal
+ * of its cone nearest the reference instead (every node of a rough surface
+ * then counts as facing the eye) left the back of the bench's rock as fine
+ * as its front under a budget (-b 10%, --backface: 34.9 dB against 35.9).
+ * The cone still decides culling, where a wrong guess would lose what is
+ * seen.
  */
 static double
-eq1_factor(const float *n, double cone, const double *ref, double eps)
+eq1_factor(const float *n, const double *ref, double eps)
 {
 	double c = n[0] * ref[0] + n[1] * ref[1] + n[2] * ref[2];
-	double a = acos(c < -1 ? -1 : c > 1 ? 1 : c) - cone;
-	return (2 + eps) / (1 + cos(a > 0 ? a : 0) + eps);
+	return (2 + eps) / (1 + (c < -1 ? -1 : c > 1 ? 1 : c) + eps);
 }
 
 double
@@ -134,16 +137,16 @@ vdt_lod_error(void *ctx, uint32_t x)
 		double a = acos(cn < -1 ? -1 : cn > 1 ? 1 : cn);
 		if (o->backface && a - cone > M_PI / 2 + asin(dev / d))
 			return -1;
-		double De = d * eq1_factor(n, cone, toeye, o->eps);
+		double De = d * eq1_factor(n, toeye, o->eps);
 		D = De;
 		if (o->lighting) {
-			double Dl = d * eq1_factor(n, cone, o->light, o->eps);
+			double Dl = d * eq1_factor(n, o->light, o->eps);
 			D = Dl < De ? Dl : De;
 		}
 	}
 	if (o->fovea > 0)
 		D *= pow(eq1_factor((const float[3]){(float)c->fwd[0], (float)c->fwd[1],
-		                                      (float)c->fwd[2]}, 0, v, o->eps), o->fovea);
+		                                      (float)c->fwd[2]}, v, o->eps), o->fovea);
 	return dev * c->focal / D;
 }
 
@@ -238,33 +241,15 @@ out:
 	return 0;
 }
 
-/* The margin of one node: distance to both of its decision boundaries. */
-static double
-node_margin(const struct vdt_lod_ctx *L, uint32_t x, double tau)
-{
-	const struct vdt_vtree *t = L->t;
-	const float *p = t->pos + 3 * (size_t)x;
-	double v[3] = {p[0] - L->cam->v.eye[0], p[1] - L->cam->v.eye[1], p[2] - L->cam->v.eye[2]};
-	double d = norm(v), dev = t->dev[x], r = dev * L->cam->focal / tau;
-	double m = fmin(fabs(d - r), fabs(d - dev));
-
-	/* Rounding of the two sides of the comparison. */
-	return fmax(0, m - 1e-9 * (d + r));
-}
-
 double
-vdt_lod_margin(void *ctx, uint32_t x, double tau)
+vdt_lod_radius(void *ctx, uint32_t x, double tau)
 {
 	const struct vdt_lod_ctx *L = ctx;
 	const struct vdt_lod *o = L->lod;
-	const struct vdt_vtree *t = L->t;
-	double m = INFINITY;
+	double dev = L->t->dev[x], r = dev * L->cam->focal / tau;
 
 	if (o->frustum || o->backface || o->lighting || o->fovea > 0 || !(tau > 0))
-		return 0;
-	if (x >= t->leaf_count)
-		m = node_margin(L, x, tau);
-	if (t->parent[x] != VDT_VTREE_NONE)
-		m = fmin(m, node_margin(L, t->parent[x], tau));
-	return m;
+		return NAN;
+	/* Within dev the error is infinite. */
+	return r > dev ? r : dev;
 }

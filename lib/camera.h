@@ -95,12 +95,11 @@ struct vdt_lod_ctx {
 double vdt_lod_error(void *ctx, uint32_t x);
 
 /*
- * How far the eye may move before vdt_lod_error can carry node x, or its
- * parent, across tau: with the screen-space criterion alone the error is
- * dev focal / d, and d changes by at most the eye's travel. 0 when another
- * criterion is on (they also turn with the view). vdt_front_margin_fn's
- * signature.
+ * The distance from node x within which vdt_lod_error exceeds tau: with the
+ * screen-space criterion alone the error is dev focal / d (infinite within
+ * dev). NaN when another criterion is on (they also turn with the view).
+ * vdt_front_radius_fn's signature.
  */
-double vdt_lod_margin(void *ctx, uint32_t x, double tau);
+double vdt_lod_radius(void *ctx, uint32_t x, double tau);
 
 #endif

@@ -18,6 +18,9 @@
 
 #define NONE VDT_VTREE_NONE
 
+/* A region no eye is in: look at the vertex next time. */
+static const struct vdt_front_due LOOK = {{0, 0, 0}, INFINITY, 0};
+
 static void
 unlink_corner(struct vdt_front *F, uint32_t e)
 {
@@ -46,7 +49,7 @@ add_active(struct vdt_front *F, uint32_t x)
 {
 	F->active_pos[x] = (uint32_t)F->active_count;
 	if (F->due)
-		F->due[F->active_count] = -1; /* new on the front: look at it */
+		F->due[F->active_count] = LOOK; /* new on the front: look at it */
 	F->active[F->active_count++] = x;
 }
 
@@ -391,7 +394,16 @@ force_split(struct vdt_front *F, uint32_t x, int forced)
 	F->stats.forced += forced;
 }
 
-/* Decide for one active vertex; returns 1 if it changed the front. */
+/* What a visit found: what the eye's moving can change next. */
+enum { KEPT, KEPT_SPLIT_ONLY, CHANGED };
+
+/*
+ * Decide for one active vertex. KEPT_SPLIT_ONLY: the pair cannot collapse
+ * whatever the eye does (the sibling is not active, or 4.3 refuses), so
+ * only x's own split can come from the eye's moving; the rest comes from
+ * changes, which look at the vertices they touch, and from the sibling,
+ * which decides the same collapse when it is looked at.
+ */
 static int
 visit(struct vdt_front *F, uint32_t x, vdt_front_error_fn error, void *ctx, double tau)
 {
@@ -404,23 +416,25 @@ visit(struct vdt_front *F, uint32_t x, vdt_front_error_fn error, void *ctx, doub
 			do_split(F, x);
 		else
 			force_split(F, x, 0);
-		return 1;
+		return CHANGED;
 	}
 	uint32_t p = t->parent[x];
 	if (p == NONE)
-		return 0;
+		return KEPT_SPLIT_ONLY;
 	size_t k = p - t->leaf_count;
 	uint32_t s = t->child[2 * k] == x ? t->child[2 * k + 1] : t->child[2 * k];
-	if (F->active_pos[s] == NONE || error(ctx, p) > (F->scale ? tau * F->scale[p] : tau))
-		return 0;
+	if (F->active_pos[s] == NONE)
+		return KEPT_SPLIT_ONLY;
+	if (error(ctx, p) > (F->scale ? tau * F->scale[p] : tau))
+		return KEPT;
 	fresh(F, x);
 	fresh(F, s);
 	if (p < F->minpar[x] && p < F->minpar[s]) {
 		do_collapse(F, p);
-		return 1;
+		return CHANGED;
 	}
 	F->stats.refused++;
-	return 0;
+	return KEPT_SPLIT_ONLY;
 }
 
 void
@@ -434,16 +448,51 @@ vdt_front_scale_up(const struct vdt_vtree *t, double *scale)
 }
 
 /*
- * With a margin function, a vertex looked at and left as it is is not
- * looked at again until the eye has travelled its margin, unless a change
- * touches it first (the work lists). Without one, every vertex every call.
+ * The eye positions from which x's visit would find what it just found:
+ * those whose distance to x is at least x's radius (no split) and, when
+ * the pair may collapse, less than its parent's radius from the parent,
+ * which holds within that radius less the distance between the two from
+ * x. A little is taken off both sides for the rounding of the error's
+ * comparison and of the floats kept.
  */
 static void
-adapt(struct vdt_front *F, vdt_front_error_fn error, vdt_front_margin_fn margin,
-      void *ctx, double tau)
+keep_region(struct vdt_front *F, uint32_t x, int kept, vdt_front_radius_fn radius, void *ctx,
+            double tau)
 {
-	/* Round 0 looks at the whole front (or, with margins, at the part
-	 * that is due); later rounds only at the vertices a change created or
+	const struct vdt_vtree *t = F->t;
+	struct vdt_front_due *d = F->due + F->active_pos[x];
+	double lo = 0, hi = INFINITY;
+
+	memcpy(d->centre, t->pos + 3 * (size_t)x, sizeof(d->centre));
+	if (x >= t->leaf_count)
+		lo = radius(ctx, x, tau) * (1 + 1e-5);
+	if (kept == KEPT) {
+		uint32_t p = t->parent[x];
+		const float *a = t->pos + 3 * (size_t)x, *b = t->pos + 3 * (size_t)p;
+		double v[3] = {(double)a[0] - b[0], (double)a[1] - b[1], (double)a[2] - b[2]};
+		hi = (radius(ctx, p, tau) - sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])) * (1 - 1e-5);
+	}
+	/* NaN (no such radius) or an empty region: look every time. */
+	if (!(lo >= 0 && hi >= lo)) {
+		*d = LOOK;
+		return;
+	}
+	d->lo2 = (float)(lo * lo);
+	d->hi2 = hi < INFINITY ? (float)(hi * hi) : INFINITY;
+}
+
+/*
+ * With a radius function and an eye, a vertex looked at and left as it is
+ * is not looked at again until the eye leaves the region where the visit's
+ * outcome stays (or a change touches it first: the work lists). Without,
+ * every vertex every call.
+ */
+static void
+adapt(struct vdt_front *F, vdt_front_error_fn error, vdt_front_radius_fn radius, void *ctx,
+      double tau, const double *eye)
+{
+	/* Round 0 looks at the whole front (or, with radii, at the part that
+	 * is due); later rounds only at the vertices a change created or
 	 * touched. Each round works on a copy, since changes reorder the
 	 * active list and refill the work list. */
 	size_t count = 0;
@@ -451,11 +500,15 @@ adapt(struct vdt_front *F, vdt_front_error_fn error, vdt_front_margin_fn margin,
 
 	if (w == NULL && (w = F->visit_list = malloc((F->t->node_count + 1) * sizeof(uint32_t))) == NULL)
 		return; /* the front stays valid, only less adapted */
-	if (margin) {
+	if (radius) {
 		/* One sequential pass picks the vertices that are due. */
-		for (size_t i = 0; i < F->active_count; i++)
-			if (F->due[i] <= F->travel)
+		for (size_t i = 0; i < F->active_count; i++) {
+			const struct vdt_front_due *d = F->due + i;
+			double v0 = eye[0] - d->centre[0], v1 = eye[1] - d->centre[1],
+			       v2 = eye[2] - d->centre[2], d2 = v0 * v0 + v1 * v1 + v2 * v2;
+			if (!(d2 > d->lo2 && d2 < d->hi2))
 				w[count++] = F->active[i];
+		}
 	} else {
 		count = F->active_count;
 		memcpy(w, F->active, count * sizeof(uint32_t));
@@ -467,8 +520,9 @@ adapt(struct vdt_front *F, vdt_front_error_fn error, vdt_front_margin_fn margin,
 			uint32_t x = w[i];
 			if (F->active_pos[x] == NONE || F->stamp[x] == F->now)
 				continue;
-			if (!visit(F, x, error, ctx, tau) && margin)
-				F->due[F->active_pos[x]] = F->travel + margin(ctx, x, tau);
+			int r = visit(F, x, error, ctx, tau);
+			if (r != CHANGED && radius)
+				keep_region(F, x, r, radius, ctx, tau);
 		}
 		if (F->work_count == 0)
 			break;
@@ -483,32 +537,32 @@ void
 vdt_front_adapt(struct vdt_front *F, vdt_front_error_fn error, void *ctx, double tau)
 {
 	memset(&F->stats, 0, sizeof(F->stats));
-	adapt(F, error, NULL, ctx, tau);
+	adapt(F, error, NULL, ctx, tau, NULL);
 }
 
 void
 vdt_front_adapt_moving(struct vdt_front *F, vdt_front_error_fn error,
-                       vdt_front_margin_fn margin, void *ctx, double tau, double moved)
+                       vdt_front_radius_fn radius, void *ctx, double tau, const double *eye)
 {
-	size_t N = F->t->node_count;
+	/* A cut of the tree has at most one node per leaf. */
+	size_t n = F->t->leaf_count;
 
 	memset(&F->stats, 0, sizeof(F->stats));
 	if (F->due == NULL) {
-		if ((F->due = malloc((N + 1) * sizeof(*F->due))) == NULL) {
-			adapt(F, error, NULL, ctx, tau);
+		if ((F->due = malloc((n + 1) * sizeof(*F->due))) == NULL) {
+			adapt(F, error, NULL, ctx, tau, NULL);
 			return;
 		}
-		moved = INFINITY;
+		eye = NULL;
 	}
-	if (!(moved >= 0 && moved < INFINITY)) {
-		/* Unknown travel: everything is due. */
-		F->travel = 0;
+	if (eye == NULL) {
+		/* Unknown regions: everything is due, and the eye anywhere. */
+		static const double origin[3] = {0, 0, 0};
 		for (size_t i = 0; i < F->active_count; i++)
-			F->due[i] = -1;
-	} else {
-		F->travel += moved;
+			F->due[i] = LOOK;
+		eye = origin;
 	}
-	adapt(F, error, margin, ctx, tau);
+	adapt(F, error, radius, ctx, tau, eye);
 }
 
 void
@@ -520,7 +574,7 @@ vdt_front_adapt_budget(struct vdt_front *F, vdt_front_error_fn error, void *ctx,
 	memset(&F->stats, 0, sizeof(F->stats));
 	/* Bracket: hi fits, lo does not; then bisect the ratio to 1%. */
 	for (int i = 0; i < 60; i++) {
-		adapt(F, error, NULL, ctx, x);
+		adapt(F, error, NULL, ctx, x, NULL);
 		if (F->tri_count <= budget) {
 			hi = x;
 			if (lo > 0 || x < 1e-6)
@@ -539,7 +593,7 @@ vdt_front_adapt_budget(struct vdt_front *F, vdt_front_error_fn error, void *ctx,
 	}
 	while (lo > 0 && hi / lo > 1.01) {
 		x = sqrt(lo * hi);
-		adapt(F, error, NULL, ctx, x);
+		adapt(F, error, NULL, ctx, x, NULL);
 		if (F->tri_count <= budget)
 			hi = x;
 		else
@@ -548,7 +602,7 @@ vdt_front_adapt_budget(struct vdt_front *F, vdt_front_error_fn error, void *ctx,
 	/* Refusals depend on the order of changes: the front at hi may come
 	 * out a little over when reached from elsewhere. */
 	for (int i = 0; i < 200; i++) {
-		adapt(F, error, NULL, ctx, hi);
+		adapt(F, error, NULL, ctx, hi, NULL);
 		if (F->tri_count <= budget)
 			break;
 		hi *= 1.02;

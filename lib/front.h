@@ -34,6 +34,12 @@ struct vdt_front_stats {
 	size_t updated;   /* vertices whose two integers were recomputed */
 };
 
+/* The eye positions from which a vertex's last look still holds: squared
+ * distance from centre in [lo2, hi2). */
+struct vdt_front_due {
+	float centre[3], lo2, hi2;
+};
+
 struct vdt_front {
 	const struct vdt_vtree *t;
 	const struct vdt_mesh *m;
@@ -52,11 +58,10 @@ struct vdt_front {
 	                          never coarsens), or NULL for 1 everywhere;
 	                          set by the caller, owned by it */
 	/* private */
-	double *due;           /* per active[] slot: the eye travel at which
-	                          to look again (vdt_front_adapt_moving) */
+	struct vdt_front_due *due; /* per active[] slot: where the eye may be
+	                          without a look (vdt_front_adapt_moving) */
 	uint32_t *visit_list;  /* scratch of a round */
 	uint8_t *dirty;        /* per node: integers to recompute before use */
-	double travel;         /* eye travel so far */
 	uint32_t *head, *next, *prev, *start, *size, *stamp, now;
 	uint32_t *work;
 	size_t work_count;
@@ -113,24 +118,25 @@ void vdt_front_adapt(struct vdt_front *F, vdt_front_error_fn error, void *ctx,
                      double tau);
 
 /*
- * How far the eye may move before node x's decision (split it; collapse it
- * with its sibling into their parent) can change at threshold tau, in
- * model units; 0 when it may change at once.
+ * The radius of internal node x at threshold tau: error(x) exceeds tau
+ * exactly when the eye is nearer than this to x's position in the tree
+ * (model units); NaN when the error depends on more than that distance.
  */
-typedef double (*vdt_front_margin_fn)(void *ctx, uint32_t x, double tau);
+typedef double (*vdt_front_radius_fn)(void *ctx, uint32_t x, double tau);
 
 /*
- * vdt_front_adapt for an eye that moved by `moved` since the last call
- * (INFINITY, or a changed tau, error or scale: unknown), so that only the
- * vertices whose margin that travel has used up, and those a change
- * creates or touches, are looked at: the work of a frame follows the
- * changes, not the size of the front (section 4.3's frame-to-frame
- * coherence). The front is the one vdt_front_adapt would give when the
- * margins are true bounds. F->stats.visited counts the looks.
+ * vdt_front_adapt for an eye now at eye[3] (NULL when tau, the error or the
+ * scale changed since the last call: everything is looked at), so that only
+ * the vertices whose outcome the eye's move may have changed (by the radii
+ * of the vertex and of its parent), and those a change creates or touches,
+ * are looked at: the work of a frame follows the changes, not the size of
+ * the front (section 4.3's frame-to-frame coherence), apart from one
+ * sequential pass over the front. The front is the one vdt_front_adapt
+ * would give. F->stats.visited counts the looks.
  */
 void vdt_front_adapt_moving(struct vdt_front *F, vdt_front_error_fn error,
-                            vdt_front_margin_fn margin, void *ctx, double tau,
-                            double moved);
+                            vdt_front_radius_fn radius, void *ctx, double tau,
+                            const double *eye);
 
 /*
  * The finest front within budget active triangles: vdt_front_adapt with the

@@ -129,14 +129,9 @@ vdt_render_adapt(struct vdt_render *R, const struct vdt_camera *c)
 		vdt_front_adapt(&R->F, vdt_lod_error, &L, R->tau);
 		R->last_focal = 0;
 	} else {
-		/* Screen-space error alone: only the eye's travel matters. */
-		double moved = INFINITY, d[3];
-		for (int k = 0; k < 3; k++)
-			d[k] = c->v.eye[k] - R->last_eye[k];
-		if (R->last_focal == c->focal)
-			moved = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-		vdt_front_adapt_moving(&R->F, vdt_lod_error, vdt_lod_margin, &L, R->tau, moved);
-		memcpy(R->last_eye, c->v.eye, sizeof(R->last_eye));
+		/* Screen-space error alone: only the eye's distances matter. */
+		vdt_front_adapt_moving(&R->F, vdt_lod_error, vdt_lod_radius, &L, R->tau,
+		                       R->last_focal == c->focal ? c->v.eye : NULL);
 		R->last_focal = c->focal;
 	}
 }

@@ -51,9 +51,8 @@ struct vdt_render {
 	double *scale;             /* per tree node, for this frame */
 	float *normals;            /* --full: vertex normals of m */
 	double tau;                /* threshold of the last frame */
-	double last_eye[3];        /* the eye of the last frame adapted by */
-	double last_focal;         /* eye travel, and its focal length (0:
-	                              none yet) */
+	double last_focal;         /* focal length of the last frame adapted
+	                              by the eye's distances (0: none yet) */
 	/* The last frame drawn. */
 	struct vdt_mesh fm, whole; /* the front's mesh; m with normals */
 	const struct vdt_mesh *drawn;

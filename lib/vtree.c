@@ -249,7 +249,7 @@ eq1_merged(void *ctx, uint32_t keep, uint32_t gone, const double pos[3], double 
 	struct vdt_vtree *t = B->t;
 	uint32_t x = B->next++, c[2] = {B->node_of[keep], B->node_of[gone]};
 	size_t k = x - t->leaf_count;
-	double n[3], dev = 0, cone = 0;
+	double n[3], dev = 0;
 
 	(void)cost;
 	t->child[2 * k] = c[0];
@@ -268,16 +268,11 @@ eq1_merged(void *ctx, uint32_t keep, uint32_t gone, const double pos[3], double 
 	set_normal(t->normal + 3 * (size_t)x, n);
 	for (int i = 0; i < 2; i++) {
 		double d = dist3(t->pos + 3 * (size_t)x, t->pos + 3 * (size_t)c[i]) + t->dev[c[i]];
-		double cn[3] = {t->normal[3 * (size_t)c[i]], t->normal[3 * (size_t)c[i] + 1],
-		                t->normal[3 * (size_t)c[i] + 2]};
-		double a = angle3(t->normal + 3 * (size_t)x, cn) + t->cone[c[i]];
 		if (d > dev)
 			dev = d;
-		if (a > cone)
-			cone = a;
 	}
 	t->dev[x] = round_up(dev);
-	t->cone[x] = cone_decode(cone_encode(cone));
+	t->cone[x] = 0; /* node_cones, once the tree is whole */
 	B->node_of[keep] = x;
 	if (B->q != NULL)
 		vdt_quadric_add(&B->q[keep], &B->q[gone]);
@@ -395,6 +390,67 @@ leaf_normals(const struct vdt_mesh *m, struct vdt_vtree *t, double *acc)
 		t->cone[v] = cone_decode(cone_encode(t->cone[v]));
 }
 
+/*
+ * The cone of every internal node: the largest angle between its normal
+ * and the normal of a mesh triangle with a corner under it, the definition
+ * itself. Cones built from the children's (their angle to the parent plus
+ * their cone) add up the tree and come out far wider on a rough surface,
+ * where vdt-render's back-face test then culls little (big-1m, -b 10%
+ * --backface: 35.91 dB against 35.99). Returns 0 or -1 (out of memory).
+ */
+static int
+node_cones(const struct vdt_mesh *m, struct vdt_vtree *t)
+{
+	size_t n = t->leaf_count, internal = t->node_count - n;
+	double *lo = malloc((internal + 1) * sizeof(double)); /* smallest cosine */
+
+	if (lo == NULL)
+		return -1;
+	for (size_t k = 0; k < internal; k++)
+		lo[k] = 2;
+	for (size_t f = 0; f < m->triangle_count; f++) {
+		const uint32_t *c = m->triangles + 3 * f;
+		const float *p0 = m->positions + 3 * (size_t)c[0];
+		const float *p1 = m->positions + 3 * (size_t)c[1];
+		const float *p2 = m->positions + 3 * (size_t)c[2];
+		double u[3], v[3], fn[3], l;
+		for (int k = 0; k < 3; k++) {
+			u[k] = (double)p1[k] - p0[k];
+			v[k] = (double)p2[k] - p0[k];
+		}
+		fn[0] = u[1] * v[2] - u[2] * v[1];
+		fn[1] = u[2] * v[0] - u[0] * v[2];
+		fn[2] = u[0] * v[1] - u[1] * v[0];
+		l = sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2]);
+		if (!(l > 0))
+			continue; /* as for the leaves: no direction to hold */
+		for (int k = 0; k < 3; k++)
+			fn[k] /= l;
+		/* Up the three corners' paths at once, each ancestor once: ids
+		 * grow towards the roots, so the smallest is next (NONE last). */
+		uint32_t x[3] = {t->parent[c[0]], t->parent[c[1]], t->parent[c[2]]};
+		for (;;) {
+			uint32_t y = x[0] < x[1] ? x[0] : x[1];
+			y = x[2] < y ? x[2] : y;
+			if (y == NONE)
+				break;
+			const float *a = t->normal + 3 * (size_t)y;
+			double d = a[0] * fn[0] + a[1] * fn[1] + a[2] * fn[2];
+			if (d < lo[y - n])
+				lo[y - n] = d;
+			for (int j = 0; j < 3; j++)
+				if (x[j] == y)
+					x[j] = t->parent[y];
+		}
+	}
+	/* acos is decreasing: the largest angle is that of the smallest cosine,
+	 * which angle3 would give. No triangle with a direction: 0. */
+	for (size_t k = 0; k < internal; k++)
+		t->cone[n + k] = lo[k] > 1 ? 0 : cone_decode(cone_encode(acos(lo[k] < -1 ? -1 : lo[k])));
+	free(lo);
+	return 0;
+}
+
 static void
 quadrics(const struct vdt_mesh *m, struct vdt_quadric *q)
 {
@@ -500,6 +556,8 @@ vdt_vtree_build(const struct vdt_mesh *m, const struct vdt_vtree_opts *o,
 	 * grow towards the roots). */
 	size_t internal = B.next - n;
 	t->node_count = n + internal;
+	if (node_cones(m, t) != 0)
+		goto nomem;
 	uint32_t *van = malloc((nt + 1) * sizeof(uint32_t));
 	count = calloc(internal + 2, sizeof(uint32_t));
 	if (van == NULL || count == NULL) {

@@ -76,6 +76,52 @@ square_tree_is_exact(void **state)
 }
 
 /*
+ * A node's cone is as narrow as its definition allows: the largest angle
+ * between its normal and the normal of a mesh triangle with a corner under
+ * it (an icosphere, every triangle's corners walked up by brute force),
+ * rounded up by at most one step of the stored u16.
+ */
+static void
+cones_are_tight(void **state)
+{
+	struct vdt_mesh m;
+	struct vdt_vtree t;
+
+	(void)state;
+	shape_icosphere(&m, 2);
+	build(&m, 0.1, &t);
+	double *want = calloc(t.node_count, sizeof(double));
+	assert_non_null(want);
+	for (size_t f = 0; f < m.triangle_count; f++) {
+		const uint32_t *c = m.triangles + 3 * f;
+		const float *p0 = m.positions + 3 * c[0], *p1 = m.positions + 3 * c[1],
+		            *p2 = m.positions + 3 * c[2];
+		double u[3], v[3], fn[3];
+		for (int k = 0; k < 3; k++)
+			u[k] = (double)p1[k] - p0[k], v[k] = (double)p2[k] - p0[k];
+		fn[0] = u[1] * v[2] - u[2] * v[1];
+		fn[1] = u[2] * v[0] - u[0] * v[2];
+		fn[2] = u[0] * v[1] - u[1] * v[0];
+		double l = sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2]);
+		for (int j = 0; j < 3; j++)
+			for (uint32_t x = c[j]; x != NO; x = t.parent[x]) {
+				const float *n = t.normal + 3 * (size_t)x;
+				double d = (n[0] * fn[0] + n[1] * fn[1] + n[2] * fn[2]) / l;
+				double a = acos(d > 1 ? 1 : d < -1 ? -1 : d);
+				if (a > want[x])
+					want[x] = a;
+			}
+	}
+	for (size_t x = t.leaf_count; x < t.node_count; x++) {
+		assert_true(t.cone[x] >= (float)want[x] - 1e-6f);
+		assert_true(t.cone[x] <= want[x] + M_PI / 65535 + 1e-6);
+	}
+	free(want);
+	vdt_vtree_free(&t);
+	vdt_mesh_free(&m);
+}
+
+/*
  * Two separate triangles, the second the first moved 4 along x:
  *
  *   2               5          octree pairs that are not edges join them:
@@ -310,6 +356,7 @@ main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(square_tree_is_exact),
+		cmocka_unit_test(cones_are_tight),
 		cmocka_unit_test(two_parts_merge_through_an_octree_pair),
 		cmocka_unit_test(eps_prefers_geometry_or_topology),
 		cmocka_unit_test(codec_round_trip),
