@@ -101,7 +101,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		case O_CD: cl->o.contour = parse_real("--contour-distance", optarg, 0, 1e6); break;
 		case O_EF: cl->o.factor = parse_real("--error-factor", optarg, 0, 1); break;
 		case O_NEAR: cl->o.nearest = parse_count("--nearest", optarg, 1, VDT_SIL_NEAREST_MAX); break;
-		case O_COMPARE: cl->compare = optarg; break;
+		case O_COMPARE: cl->compare = pattern("--compare", optarg); break;
 		case O_MESH: cl->mesh_out = pattern("--mesh-out", optarg); break;
 		case 'o': cl->out = pattern("-o", optarg); break;
 		case 'q': cl->quiet = 1; break;

@@ -102,6 +102,23 @@ tree() {
 	[ "$output" = "frame=0 rmse=0.0000 psnr=inf" ]
 }
 
+@test "vdt-render --compare takes a reference per frame along a path" {
+	tree
+	for i in 0 1 2; do echo "$((3 + i)) 1 $((8 - i)) 0 0 0 0 1 0"; done > "$TMP/p.txt"
+	"$BIN/vdt-render" --size 48x32 --full --path "$TMP/p.txt" "$TMP/t.vdt" -o "$TMP/ref%d.png"
+	run "$BIN/vdt-render" --size 48x32 -p 0.001 --path "$TMP/p.txt" "$TMP/t.vdt" --compare "$TMP/ref%d.png" -o "$TMP/o%d.png"
+	[ "$status" -eq 0 ]
+	[ "$output" = "$(printf 'frame=%d rmse=0.0000 psnr=inf\n' 0 1 2)" ]
+	# frame 1 against frame 0's image differs
+	cp "$TMP/ref0.png" "$TMP/ref1.png"
+	run "$BIN/vdt-render" --size 48x32 -p 0.001 --path "$TMP/p.txt" "$TMP/t.vdt" --compare "$TMP/ref%d.png" -o "$TMP/o%d.png"
+	[[ "${lines[1]}" != *"psnr=inf" ]]
+	# the pattern is a format: anything but one integer conversion is refused
+	run "$BIN/vdt-render" --full "$TMP/t.vdt" --compare "$TMP/ref%s.png" -o "$TMP/o.png"
+	[ "$status" -eq 2 ]
+	one_line
+}
+
 @test "vdt-render follows a path, keeps the front and writes a mesh per frame" {
 	tree
 	for i in 0 1 2 3 4 5; do
