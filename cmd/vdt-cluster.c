@@ -104,46 +104,28 @@ run(struct cmdline *cl)
 	struct vdt_tsource *ts = NULL;
 	struct vdt_cluster *c = NULL;
 	struct vdt_cluster_grid g;
-	struct vdt_cluster_choice ch = cl->ch;
+	struct vdt_cluster_request rq = {cl->ch, cl->size_pct, cl->ratio};
 	struct vdt_cluster_stats st;
 	struct vdt_mesh out = {0};
 	struct vdt_quadric *q = NULL;
 	struct vdt_chunks extra = {0};
 	struct vdt_err err = {0};
-	struct vdt_bbox box;
 	const struct vdt_progress *p = progress_start(cl->quiet);
-	size_t max_cells = cl->memory_mb > 0 ? (size_t)(cl->memory_mb * 1048576 / VDT_CLUSTER_CELL_BYTES) : 0;
-	double t0 = now_seconds(), t1, t2, t3;
-	int rc;
+	double t0 = now_seconds(), t1, t2, t3, box_s;
+	int rc, remeasured;
 
+	rq.ch.size = cl->size;
+	rq.ch.max_cells = cl->memory_mb > 0 ? (size_t)(cl->memory_mb * 1048576 / VDT_CLUSTER_CELL_BYTES) : 0;
 	if ((rc = vdt_tsource_open(&ts, cl->in, &err)) != 0) {
 		rc = fail("cannot read", cl->in, &err);
 		goto out;
 	}
-	/* A box the header declares spares a pass; if it proves wrong, measure. */
-	for (int claimed = vdt_tsource_header_box(ts, &box);; claimed = 0) {
-		if (!claimed && (rc = vdt_cluster_scan_bbox(ts, &box, NULL, p, &err)) != 0) {
-			rc = fail("cannot read", cl->in, &err);
-			goto out;
-		}
-		t1 = now_seconds();
-		ch = cl->ch;
-		ch.max_cells = max_cells;
-		if (cl->ratio > 0) /* of the triangles the input announces */
-			ch.target = fmax(1, round(cl->ratio * (double)vdt_tsource_triangle_hint(ts)));
-		ch.size = cl->size_pct ? cl->size * vdt_bbox_diagonal(&box) / 100 : cl->size;
-		if ((rc = vdt_cluster_choose(&ch, ts, &box, &g, p, &err)) == 0 &&
-		    (rc = vdt_cluster_new(&c, &g, max_cells, &err)) == 0)
-			rc = vdt_cluster_scan(c, ts, p, &err);
-		if (!claimed || (rc == 0 && !vdt_cluster_outside(c)))
-			break;
-		/* A wrong claim (or a failure under it): measure and start again. */
-		if (rc == 0 && !cl->quiet)
-			fprintf(stderr, "%s: %s: vertices outside the header's bounding box: measuring it\n",
-			        progname, cl->in);
-		vdt_cluster_free(c);
-		c = NULL;
-	}
+	t1 = now_seconds();
+	rc = vdt_cluster_source(ts, &rq, &c, &g, &remeasured, &box_s, p, &err);
+	if (remeasured && !cl->quiet)
+		fprintf(stderr, "%s: %s: vertices outside the header's bounding box: measured it\n",
+		        progname, cl->in);
+	t1 += box_s;
 	if (rc != 0 || (rc = vdt_cluster_finish(c, &out, cl->decoupled ? NULL : &q, &st, &err)) != 0) {
 		rc = err.code == VDT_ELIMIT ? (fail("cannot cluster", cl->in, &err), EXIT_USAGE)
 		                            : fail("cannot read", cl->in, &err);

@@ -25,6 +25,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #define KEY_BITS 21
 #define KEY_MASK ((1ull << KEY_BITS) - 1)
@@ -1075,4 +1076,52 @@ vdt_cluster_choose(const struct vdt_cluster_choice *ch, struct vdt_tsource *ts,
 		                   est * VDT_CLUSTER_CELL_BYTES / 1048576,
 		                   (double)ch->max_cells * VDT_CLUSTER_CELL_BYTES / 1048576);
 	return 0;
+}
+
+static double
+seconds(void)
+{
+	struct timespec t;
+
+	clock_gettime(CLOCK_MONOTONIC, &t);
+	return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+int
+vdt_cluster_source(struct vdt_tsource *ts, const struct vdt_cluster_request *rq,
+                   struct vdt_cluster **cp, struct vdt_cluster_grid *g, int *remeasured,
+                   double *box_seconds, const struct vdt_progress *p, struct vdt_err *err)
+{
+	struct vdt_bbox box;
+	int rc;
+
+	*cp = NULL;
+	*remeasured = 0;
+	*box_seconds = 0;
+	for (int claimed = vdt_tsource_header_box(ts, &box);; claimed = 0) {
+		struct vdt_cluster_choice ch = rq->ch;
+		if (!claimed) {
+			double t0 = seconds();
+			if ((rc = vdt_cluster_scan_bbox(ts, &box, NULL, p, err)) != 0)
+				return rc;
+			*box_seconds = seconds() - t0;
+		}
+		if (rq->ratio > 0) /* of the triangles the input announces */
+			ch.target = fmax(1, round(rq->ratio * (double)vdt_tsource_triangle_hint(ts)));
+		if (rq->size_pct)
+			ch.size = ch.size * vdt_bbox_diagonal(&box) / 100;
+		if ((rc = vdt_cluster_choose(&ch, ts, &box, g, p, err)) == 0 &&
+		    (rc = vdt_cluster_new(cp, g, ch.max_cells, err)) == 0)
+			rc = vdt_cluster_scan(*cp, ts, p, err);
+		if (!claimed || (rc == 0 && !vdt_cluster_outside(*cp)))
+			break;
+		*remeasured = rc == 0;
+		vdt_cluster_free(*cp);
+		*cp = NULL;
+	}
+	if (rc != 0) {
+		vdt_cluster_free(*cp);
+		*cp = NULL;
+	}
+	return rc;
 }

@@ -205,4 +205,26 @@ int vdt_cluster_choose(const struct vdt_cluster_choice *ch, struct vdt_tsource *
                        const struct vdt_bbox *box, struct vdt_cluster_grid *g,
                        const struct vdt_progress *p, struct vdt_err *err);
 
+/*
+ * Phase I over a source, the passes in order: the bounding box (the one the
+ * header claims, vdt_tsource_header_box, else measured), the grid
+ * (vdt_cluster_choose with ch, whose size is first turned from a percent
+ * of the box's diagonal if size_pct, and whose target is set to ratio
+ * times the source's triangle hint if ratio > 0), then the clustering into
+ * a new *cp (which the caller frees). A claimed box that proves wrong (a
+ * corner outside the grid, or any failure under it) is dropped: the box is
+ * measured and everything starts again, with *remeasured set to 1 if it
+ * failed by the corners. *box_seconds gets the time of the measuring
+ * pass (0 if none ran). On failure *cp is NULL; errors are those of the
+ * passes.
+ */
+struct vdt_cluster_request {
+	struct vdt_cluster_choice ch;
+	int size_pct;  /* ch.size is a percent of the box's diagonal */
+	double ratio;  /* > 0: the target is this share of the triangles */
+};
+int vdt_cluster_source(struct vdt_tsource *ts, const struct vdt_cluster_request *rq,
+                       struct vdt_cluster **cp, struct vdt_cluster_grid *g, int *remeasured,
+                       double *box_seconds, const struct vdt_progress *p, struct vdt_err *err);
+
 #endif
