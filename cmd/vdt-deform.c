@@ -19,7 +19,7 @@ static const char *methods[] = {"ours", "dsd", "first-frame", "independent"};
 
 struct cmdline {
 	char **in;
-	size_t nin, start, count, samples, triangles, vertices;
+	size_t nin, start, count, samples, triangles;
 	const char *out;
 	struct vdt_deform_opts d;
 	struct vdt_write_opts w;
@@ -104,26 +104,6 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		cl->d.target_ratio = 0.1;
 }
 
-/*
- * After a run for -t: the largest frame against the target, and a
- * corrected vertex target when it kept too many; 0 if none. A vertex
- * target of the user's, reached first, stays.
- */
-static size_t
-retarget(const struct cmdline *cl, const struct vdt_deform_result *r)
-{
-	size_t w = 0, v;
-
-	for (size_t f = 1; f < r->frame_count; f++)
-		if (r->tri_start[f + 1] - r->tri_start[f] > r->tri_start[w + 1] - r->tri_start[w])
-			w = f;
-	v = vdt_anim_vertices_again(r->live_vertices[w], r->tri_start[w + 1] - r->tri_start[w],
-	                            cl->triangles, cl->d.target_vertices);
-	if (v != 0 && v < cl->vertices)
-		v = cl->vertices < cl->d.target_vertices ? cl->vertices : 0;
-	return v;
-}
-
 static int
 write_frames(struct cmdline *cl, const struct vdt_deform_result *r, struct vdt_chunks *extra,
              struct vdt_err *err)
@@ -203,28 +183,10 @@ run(struct cmdline *cl)
 	                                  : cl->w.format != VDT_FMT_VDT))
 		usage_error("%zu frames need a pattern (out/%%03d.obj) or a vdt stream for -o",
 		            fr.frame_count);
-	if (cl->triangles > 0) { /* the engine counts vertices */
-		size_t nv, v;
-		if ((rc = vdt_anim_welded_vertices(&fr, &nv, &err)) != 0) {
-			rc = fail("cannot simplify", cl->in[0], &err);
-			goto out;
-		}
-		v = vdt_anim_vertices_for(nv, in.triangle_count, cl->triangles);
-		cl->vertices = cl->d.target_vertices;
-		cl->d.target_vertices = v > cl->vertices ? v : cl->vertices;
-	}
 	vdt_chunks_drop_vertex_data(&extra);
 	cl->d.progress = progress_start(cl->quiet);
 	t1 = now_seconds();
-	rc = vdt_deform(&in, &fr, &cl->d, &r, &err);
-	for (int again = 2; rc == 0 && cl->triangles > 0 && again > 0; again--) {
-		size_t v = retarget(cl, &r);
-		if (v == 0)
-			break;
-		cl->d.target_vertices = v;
-		vdt_deform_result_free(&r);
-		rc = vdt_deform(&in, &fr, &cl->d, &r, &err);
-	}
+	rc = vdt_anim_deform_triangles(&in, &fr, &cl->d, cl->triangles, &r, &err);
 	progress_done();
 	if (rc != 0) {
 		rc = fail("cannot simplify", cl->in[0], &err);
