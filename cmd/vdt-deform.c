@@ -4,7 +4,6 @@
  * Wu, or the baselines first-frame, dsd and independent.
  */
 #include <getopt.h>
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,8 +13,6 @@
 #include "../lib/io/anim.h"
 #include "../lib/io/meshio.h"
 #include "common.h"
-
-static const char *methods[] = {"ours", "dsd", "first-frame", "independent"};
 
 struct cmdline {
 	char **in;
@@ -55,7 +52,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		{"help", no_argument, NULL, 'h'}, {"version", no_argument, NULL, 'V'},
 		{NULL, 0, NULL, 0},
 	};
-	int c, m, targets = 0;
+	int c, targets = 0;
 
 	memset(cl, 0, sizeof(*cl));
 	vdt_deform_defaults(&cl->d);
@@ -74,11 +71,8 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 			break;
 		case 'r': cl->d.target_ratio = parse_real("-r", optarg, 1e-9, 1); targets++; break;
 		case O_METHOD:
-			for (m = 0; m < 4 && strcmp(optarg, methods[m]) != 0; m++)
-				;
-			if (m == 4)
+			if (vdt_deform_method_parse(optarg, &cl->d.method, NULL) != 0)
 				usage_error("unknown method '%s' for --method", optarg);
-			cl->d.method = (enum vdt_deform_method)m;
 			break;
 		case O_K1: cl->d.k1 = parse_real("--k1", optarg, 0, 1e12); break;
 		case O_K2: cl->d.k2 = parse_real("--k2", optarg, 0, 1); break;
@@ -104,36 +98,6 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		cl->d.target_ratio = 0.1;
 }
 
-static int
-write_frames(struct cmdline *cl, const struct vdt_deform_result *r, struct vdt_chunks *extra,
-             struct vdt_err *err)
-{
-	struct vdt_mesh m = {0};
-	struct vdt_frames fr = {0};
-	unsigned char *data;
-	uint64_t len;
-	int rc = 0;
-
-	if (vdt_anim_is_pattern(cl->out)) {
-		char *bad = NULL;
-		if ((rc = vdt_deform_write_pattern(r, cl->out, &cl->w, &bad, err)) != 0)
-			rc = fail("cannot write", bad ? bad : cl->out, err);
-		free(bad);
-		return rc;
-	}
-	if (r->frame_count == 1) {
-		if ((rc = vdt_deform_frame_mesh(r, 0, &m, err)) == 0)
-			rc = vdt_write(cl->out, &m, extra, &cl->w, err);
-	} else if ((rc = vdt_deform_to_frames(r, &m, &fr, err)) == 0 &&
-	           (rc = vdt_frms_encode(&fr, &data, &len, err)) == 0 &&
-	           (rc = vdt_chunks_add(extra, VDT_CHUNK_FRMS, data, len, err)) == 0) {
-		rc = vdt_write(cl->out, &m, extra, &cl->w, err);
-	}
-	vdt_mesh_free(&m);
-	vdt_frames_free(&fr);
-	return rc ? fail("cannot write", cl->out, err) : 0;
-}
-
 /* -v: a line per frame, then one line of every statistic. */
 static void
 statistics(struct cmdline *cl, const struct vdt_mesh *in, const struct vdt_frames *fr,
@@ -153,10 +117,11 @@ statistics(struct cmdline *cl, const struct vdt_mesh *in, const struct vdt_frame
 	        "out_vertices=%zu out_triangles=%zu unified=%zu replayed=%zu mean_rms_pct=%.6g "
 	        "worst_rms_pct=%.6g mean_shared=%.4f min_shared=%.4f quadric_mb=%.1f "
 	        "read_s=%.3f simplify_s=%.3f write_s=%.3f peak_mb=%.1f\n", progname,
-	        methods[cl->d.method], r->frame_count, in->vertex_count, in->triangle_count,
-	        r->welded, r->live_vertices[0], r->tri_start[1] - r->tri_start[0], r->unified,
-	        r->replayed, s.mean_rms_pct, s.worst_rms_pct, s.mean_shared, s.min_shared,
-	        r->quadric_bytes / 1048576.0, sec[0], sec[1], sec[2], peak_rss_bytes() / 1048576.0);
+	        vdt_deform_method_name(cl->d.method), r->frame_count, in->vertex_count,
+	        in->triangle_count, r->welded, r->live_vertices[0],
+	        r->tri_start[1] - r->tri_start[0], r->unified, r->replayed, s.mean_rms_pct,
+	        s.worst_rms_pct, s.mean_shared, s.min_shared, r->quadric_bytes / 1048576.0, sec[0],
+	        sec[1], sec[2], peak_rss_bytes() / 1048576.0);
 	free(s.frames);
 }
 
@@ -177,10 +142,7 @@ run(struct cmdline *cl)
 		rc = fail("cannot read", bad ? bad : cl->in[0], &err);
 		goto out;
 	}
-	if (fr.frame_count > 1 && !vdt_anim_is_pattern(cl->out) &&
-	    (cl->w.format == VDT_FMT_AUTO ? strcmp(cl->out, "-") != 0 &&
-	                                    vdt_format_from_path(cl->out) != VDT_FMT_VDT
-	                                  : cl->w.format != VDT_FMT_VDT))
+	if (fr.frame_count > 1 && !vdt_deform_writes_frames(cl->out, &cl->w))
 		usage_error("%zu frames need a pattern (out/%%03d.obj) or a vdt stream for -o",
 		            fr.frame_count);
 	vdt_chunks_drop_vertex_data(&extra);
@@ -193,8 +155,10 @@ run(struct cmdline *cl)
 		goto out;
 	}
 	t2 = now_seconds();
-	if ((rc = write_frames(cl, &r, &extra, &err)) != 0)
+	if ((rc = vdt_deform_write(&r, cl->out, &extra, &cl->w, &bad, &err)) != 0) {
+		rc = fail("cannot write", bad ? bad : cl->out, &err);
 		goto out;
+	}
 	if (!r.reached_target && !cl->quiet)
 		fprintf(stderr, "%s: some frames stopped above the target: no further valid "
 		        "contraction\n", progname);
