@@ -4,7 +4,6 @@
  * Wu, or the baselines first-frame, dsd and independent.
  */
 #include <getopt.h>
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,11 +14,9 @@
 #include "../lib/io/meshio.h"
 #include "common.h"
 
-static const char *methods[] = {"ours", "dsd", "first-frame", "independent"};
-
 struct cmdline {
 	char **in;
-	size_t nin, start, count, samples, triangles, vertices;
+	size_t nin, start, count, samples, triangles;
 	const char *out;
 	struct vdt_deform_opts d;
 	struct vdt_write_opts w;
@@ -55,7 +52,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		{"help", no_argument, NULL, 'h'}, {"version", no_argument, NULL, 'V'},
 		{NULL, 0, NULL, 0},
 	};
-	int c, m, targets = 0;
+	int c, targets = 0;
 
 	memset(cl, 0, sizeof(*cl));
 	vdt_deform_defaults(&cl->d);
@@ -74,11 +71,8 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 			break;
 		case 'r': cl->d.target_ratio = parse_real("-r", optarg, 1e-9, 1); targets++; break;
 		case O_METHOD:
-			for (m = 0; m < 4 && strcmp(optarg, methods[m]) != 0; m++)
-				;
-			if (m == 4)
+			if (vdt_deform_method_parse(optarg, &cl->d.method, NULL) != 0)
 				usage_error("unknown method '%s' for --method", optarg);
-			cl->d.method = (enum vdt_deform_method)m;
 			break;
 		case O_K1: cl->d.k1 = parse_real("--k1", optarg, 0, 1e12); break;
 		case O_K2: cl->d.k2 = parse_real("--k2", optarg, 0, 1); break;
@@ -104,56 +98,6 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		cl->d.target_ratio = 0.1;
 }
 
-/*
- * After a run for -t: the largest frame against the target, and a
- * corrected vertex target when it kept too many; 0 if none. A vertex
- * target of the user's, reached first, stays.
- */
-static size_t
-retarget(const struct cmdline *cl, const struct vdt_deform_result *r)
-{
-	size_t w = 0, v;
-
-	for (size_t f = 1; f < r->frame_count; f++)
-		if (r->tri_start[f + 1] - r->tri_start[f] > r->tri_start[w + 1] - r->tri_start[w])
-			w = f;
-	v = vdt_anim_vertices_again(r->live_vertices[w], r->tri_start[w + 1] - r->tri_start[w],
-	                            cl->triangles, cl->d.target_vertices);
-	if (v != 0 && v < cl->vertices)
-		v = cl->vertices < cl->d.target_vertices ? cl->vertices : 0;
-	return v;
-}
-
-static int
-write_frames(struct cmdline *cl, const struct vdt_deform_result *r, struct vdt_chunks *extra,
-             struct vdt_err *err)
-{
-	struct vdt_mesh m = {0};
-	struct vdt_frames fr = {0};
-	unsigned char *data;
-	uint64_t len;
-	int rc = 0;
-
-	if (vdt_anim_is_pattern(cl->out)) {
-		char *bad = NULL;
-		if ((rc = vdt_deform_write_pattern(r, cl->out, &cl->w, &bad, err)) != 0)
-			rc = fail("cannot write", bad ? bad : cl->out, err);
-		free(bad);
-		return rc;
-	}
-	if (r->frame_count == 1) {
-		if ((rc = vdt_deform_frame_mesh(r, 0, &m, err)) == 0)
-			rc = vdt_write(cl->out, &m, extra, &cl->w, err);
-	} else if ((rc = vdt_deform_to_frames(r, &m, &fr, err)) == 0 &&
-	           (rc = vdt_frms_encode(&fr, &data, &len, err)) == 0 &&
-	           (rc = vdt_chunks_add(extra, VDT_CHUNK_FRMS, data, len, err)) == 0) {
-		rc = vdt_write(cl->out, &m, extra, &cl->w, err);
-	}
-	vdt_mesh_free(&m);
-	vdt_frames_free(&fr);
-	return rc ? fail("cannot write", cl->out, err) : 0;
-}
-
 /* -v: a line per frame, then one line of every statistic. */
 static void
 statistics(struct cmdline *cl, const struct vdt_mesh *in, const struct vdt_frames *fr,
@@ -173,10 +117,11 @@ statistics(struct cmdline *cl, const struct vdt_mesh *in, const struct vdt_frame
 	        "out_vertices=%zu out_triangles=%zu unified=%zu replayed=%zu mean_rms_pct=%.6g "
 	        "worst_rms_pct=%.6g mean_shared=%.4f min_shared=%.4f quadric_mb=%.1f "
 	        "read_s=%.3f simplify_s=%.3f write_s=%.3f peak_mb=%.1f\n", progname,
-	        methods[cl->d.method], r->frame_count, in->vertex_count, in->triangle_count,
-	        r->welded, r->live_vertices[0], r->tri_start[1] - r->tri_start[0], r->unified,
-	        r->replayed, s.mean_rms_pct, s.worst_rms_pct, s.mean_shared, s.min_shared,
-	        r->quadric_bytes / 1048576.0, sec[0], sec[1], sec[2], peak_rss_bytes() / 1048576.0);
+	        vdt_deform_method_name(cl->d.method), r->frame_count, in->vertex_count,
+	        in->triangle_count, r->welded, r->live_vertices[0],
+	        r->tri_start[1] - r->tri_start[0], r->unified, r->replayed, s.mean_rms_pct,
+	        s.worst_rms_pct, s.mean_shared, s.min_shared, r->quadric_bytes / 1048576.0, sec[0],
+	        sec[1], sec[2], peak_rss_bytes() / 1048576.0);
 	free(s.frames);
 }
 
@@ -197,42 +142,23 @@ run(struct cmdline *cl)
 		rc = fail("cannot read", bad ? bad : cl->in[0], &err);
 		goto out;
 	}
-	if (fr.frame_count > 1 && !vdt_anim_is_pattern(cl->out) &&
-	    (cl->w.format == VDT_FMT_AUTO ? strcmp(cl->out, "-") != 0 &&
-	                                    vdt_format_from_path(cl->out) != VDT_FMT_VDT
-	                                  : cl->w.format != VDT_FMT_VDT))
+	if (fr.frame_count > 1 && !vdt_deform_writes_frames(cl->out, &cl->w))
 		usage_error("%zu frames need a pattern (out/%%03d.obj) or a vdt stream for -o",
 		            fr.frame_count);
-	if (cl->triangles > 0) { /* the engine counts vertices */
-		size_t nv, v;
-		if ((rc = vdt_anim_welded_vertices(&fr, &nv, &err)) != 0) {
-			rc = fail("cannot simplify", cl->in[0], &err);
-			goto out;
-		}
-		v = vdt_anim_vertices_for(nv, in.triangle_count, cl->triangles);
-		cl->vertices = cl->d.target_vertices;
-		cl->d.target_vertices = v > cl->vertices ? v : cl->vertices;
-	}
 	vdt_chunks_drop_vertex_data(&extra);
 	cl->d.progress = progress_start(cl->quiet);
 	t1 = now_seconds();
-	rc = vdt_deform(&in, &fr, &cl->d, &r, &err);
-	for (int again = 2; rc == 0 && cl->triangles > 0 && again > 0; again--) {
-		size_t v = retarget(cl, &r);
-		if (v == 0)
-			break;
-		cl->d.target_vertices = v;
-		vdt_deform_result_free(&r);
-		rc = vdt_deform(&in, &fr, &cl->d, &r, &err);
-	}
+	rc = vdt_anim_deform_triangles(&in, &fr, &cl->d, cl->triangles, &r, &err);
 	progress_done();
 	if (rc != 0) {
 		rc = fail("cannot simplify", cl->in[0], &err);
 		goto out;
 	}
 	t2 = now_seconds();
-	if ((rc = write_frames(cl, &r, &extra, &err)) != 0)
+	if ((rc = vdt_deform_write(&r, cl->out, &extra, &cl->w, &bad, &err)) != 0) {
+		rc = fail("cannot write", bad ? bad : cl->out, &err);
 		goto out;
+	}
 	if (!r.reached_target && !cl->quiet)
 		fprintf(stderr, "%s: some frames stopped above the target: no further valid "
 		        "contraction\n", progname);

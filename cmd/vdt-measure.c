@@ -8,11 +8,11 @@
 #include <string.h>
 
 #include "../lib/io/meshio.h"
+#include "../lib/io/report.h"
 #include "../lib/measure.h"
 #include "common.h"
 
-enum { FMT_TEXT, FMT_KV, FMT_JSON };
-static const char *formats[3] = {"text", "kv", "json"};
+static const char *formats[3] = {"text", "kv", "json"}; /* enum vdt_report_format */
 
 struct cmdline {
 	const char *a, *b, *color, *out;
@@ -79,42 +79,6 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		usage_error("A and B cannot both be standard input");
 }
 
-static void
-report(FILE *f, const struct cmdline *cl, const struct vdt_measure_result *r)
-{
-	static const char *keys[14] = {
-		"hausdorff", "hausdorff_pct", "mean", "mean_pct", "rms", "rms_pct",
-		"ab_hausdorff", "ab_rms", "ba_hausdorff", "ba_rms", "samples", "flipped",
-		"faces", "diag"};
-	static const char *names[3] = {"A->B", "B->A", "symmetric"};
-	const struct vdt_dist_stats sym = {.max = r->max, .mean = r->mean, .rms = r->rms};
-	const struct vdt_dist_stats *rows[3] = {&r->ab, &r->ba, &sym};
-	double pct = r->diag > 0 ? 100 / r->diag : 0;
-	double v[14] = {r->max, r->max * pct, r->mean, r->mean * pct, r->rms, r->rms * pct,
-	                r->ab.max, r->ab.rms, r->ba.max, r->ba.rms,
-	                (double)(r->ab.vertex_samples + r->ab.face_samples +
-	                         r->ba.vertex_samples + r->ba.face_samples),
-	                (double)r->normals.flipped, (double)r->normals.faces, r->diag};
-
-	if (cl->format != FMT_TEXT) { /* counts are exact below 2^53 */
-		int json = cl->format == FMT_JSON;
-		for (int i = 0; i < 14; i++) {
-			fprintf(f, json ? "%s\"%s\": " : "%s%s=", i ? (json ? ", " : " ") : (json ? "{" : ""),
-			       keys[i]);
-			fprintf(f, i >= 10 && i <= 12 ? "%.0f" : "%.6g", v[i]);
-		}
-		fputs(json ? "}\n" : "\n", f);
-		return;
-	}
-	fprintf(f, "%-10s %22s %22s %22s\n", "", "hausdorff", "mean", "rms");
-	for (int i = 0; i < (cl->m.one_sided ? 1 : 3); i++)
-		fprintf(f, "%-10s %12.6g (%6.4f%%) %12.6g (%6.4f%%) %12.6g (%6.4f%%)\n", names[i],
-		       rows[i]->max, rows[i]->max * pct, rows[i]->mean, rows[i]->mean * pct,
-		       rows[i]->rms, rows[i]->rms * pct);
-	fprintf(f, "diagonal of A %.6g, %.0f samples, %zu of %zu faces of B flipped\n", r->diag,
-	       v[10], r->normals.flipped, r->normals.faces);
-}
-
 static int
 write_colors(const struct cmdline *cl, const struct vdt_mesh *a, const float *e,
              struct vdt_err *err)
@@ -166,7 +130,7 @@ run(const struct cmdline *cl)
 		rc = fail("cannot write", cl->out, &err);
 		goto out;
 	}
-	report(o.f, cl, &r);
+	vdt_report_write(o.f, &r, (enum vdt_report_format)cl->format, cl->m.one_sided);
 	/* The colours before the report is committed: all or nothing. */
 	if (cl->color && write_colors(cl, &a, verr, &err) != 0) {
 		vdt_output_abort(&o);

@@ -65,3 +65,51 @@ vdt_anim_vertices_again(size_t vertices, size_t triangles, size_t want, size_t c
 		return 0;
 	return v > 1 ? (size_t)v : 1;
 }
+
+/*
+ * After a run: the largest frame against the target, and a corrected
+ * vertex target when it kept too many; 0 if none. A vertex target of the
+ * caller's (`user`, 0 if none), reached first, stays.
+ */
+static size_t
+retarget(const struct vdt_deform_result *r, size_t triangles, size_t current, size_t user)
+{
+	size_t w = 0, v;
+
+	for (size_t f = 1; f < r->frame_count; f++)
+		if (r->tri_start[f + 1] - r->tri_start[f] > r->tri_start[w + 1] - r->tri_start[w])
+			w = f;
+	v = vdt_anim_vertices_again(r->live_vertices[w], r->tri_start[w + 1] - r->tri_start[w],
+	                            triangles, current);
+	if (v != 0 && v < user)
+		v = user < current ? user : 0;
+	return v;
+}
+
+int
+vdt_anim_deform_triangles(const struct vdt_mesh *m, const struct vdt_frames *fr,
+                          const struct vdt_deform_opts *o, size_t triangles,
+                          struct vdt_deform_result *res, struct vdt_err *err)
+{
+	struct vdt_deform_opts d = *o;
+	size_t nv, v;
+	int rc;
+
+	if (triangles > 0) { /* the engine counts vertices */
+		if ((rc = vdt_anim_welded_vertices(fr, &nv, err)) != 0) {
+			memset(res, 0, sizeof(*res));
+			return rc;
+		}
+		v = vdt_anim_vertices_for(nv, m->triangle_count, triangles);
+		d.target_vertices = v > o->target_vertices ? v : o->target_vertices;
+	}
+	rc = vdt_deform(m, fr, &d, res, err);
+	for (int again = 2; rc == 0 && triangles > 0 && again > 0; again--) {
+		if ((v = retarget(res, triangles, d.target_vertices, o->target_vertices)) == 0)
+			break;
+		d.target_vertices = v;
+		vdt_deform_result_free(res);
+		rc = vdt_deform(m, fr, &d, res, err);
+	}
+	return rc;
+}

@@ -8,6 +8,7 @@
 
 #include <stddef.h>
 
+#include "deform.h"
 #include "err.h"
 #include "frames.h"
 
@@ -37,5 +38,20 @@ size_t vdt_anim_vertices_for(size_t vertices, size_t triangles, size_t want);
  */
 size_t vdt_anim_vertices_again(size_t vertices, size_t triangles, size_t want,
                                size_t current);
+
+/*
+ * vdt_deform to at most `triangles` triangles in every frame where the
+ * engine can (0: no triangle target, vdt_deform with o as it is). The
+ * vertex target starts at vdt_anim_vertices_for on the welded vertices,
+ * or at o->target_vertices if that is larger (a vertex target of the
+ * caller's is reached first, and stays); while the largest frame keeps
+ * more than `triangles`, up to twice, the run is done again with the
+ * target vdt_anim_vertices_again gives it, never below
+ * o->target_vertices. o is not changed. Returns vdt_deform's status, or
+ * VDT_ENOMEM; on failure *res is empty.
+ */
+int vdt_anim_deform_triangles(const struct vdt_mesh *m, const struct vdt_frames *fr,
+                              const struct vdt_deform_opts *o, size_t triangles,
+                              struct vdt_deform_result *res, struct vdt_err *err);
 
 #endif

@@ -77,6 +77,25 @@ vdt_deform_defaults(struct vdt_deform_opts *o)
 	o->max_normal_angle = 75;
 }
 
+static const char *const method_names[] = {"ours", "dsd", "first-frame", "independent"};
+
+const char *
+vdt_deform_method_name(enum vdt_deform_method m)
+{
+	return method_names[m];
+}
+
+int
+vdt_deform_method_parse(const char *name, enum vdt_deform_method *m, struct vdt_err *err)
+{
+	for (size_t i = 0; i < sizeof(method_names) / sizeof(method_names[0]); i++)
+		if (strcmp(name, method_names[i]) == 0) {
+			*m = (enum vdt_deform_method)i;
+			return 0;
+		}
+	return vdt_err_set(err, VDT_EINVAL, "unknown method '%s'", name);
+}
+
 double
 vdt_deform_cost(const double *ec, size_t frames, double fw, double k1, double k2)
 {
@@ -1267,6 +1286,47 @@ vdt_deform_write_pattern(const struct vdt_deform_result *res, const char *patter
 			free(p);
 	}
 	return rc;
+}
+
+int
+vdt_deform_write(const struct vdt_deform_result *res, const char *path, struct vdt_chunks *extra,
+                 const struct vdt_write_opts *w, char **failed, struct vdt_err *err)
+{
+	struct vdt_chunks own = {0};
+	struct vdt_mesh m = {0};
+	struct vdt_frames fr = {0};
+	unsigned char *data;
+	uint64_t len;
+	int rc;
+
+	if (vdt_anim_is_pattern(path))
+		return vdt_deform_write_pattern(res, path, w, failed, err);
+	if (failed)
+		*failed = NULL;
+	if (extra == NULL)
+		extra = &own;
+	if (res->frame_count == 1) {
+		if ((rc = vdt_deform_frame_mesh(res, 0, &m, err)) == 0)
+			rc = vdt_write(path, &m, extra, w, err);
+	} else if ((rc = vdt_deform_to_frames(res, &m, &fr, err)) == 0 &&
+	           (rc = vdt_frms_encode(&fr, &data, &len, err)) == 0 &&
+	           (rc = vdt_chunks_add(extra, VDT_CHUNK_FRMS, data, len, err)) == 0) {
+		rc = vdt_write(path, &m, extra, w, err);
+	}
+	vdt_mesh_free(&m);
+	vdt_frames_free(&fr);
+	vdt_chunks_free(&own);
+	return rc;
+}
+
+int
+vdt_deform_writes_frames(const char *path, const struct vdt_write_opts *w)
+{
+	if (vdt_anim_is_pattern(path))
+		return 1;
+	if (w->format != VDT_FMT_AUTO)
+		return w->format == VDT_FMT_VDT;
+	return strcmp(path, "-") == 0 || vdt_format_from_path(path) == VDT_FMT_VDT;
 }
 
 int

@@ -61,6 +61,15 @@ struct vdt_deform_opts {
 #define VDT_DEFORM_COHERENCE 0.5
 void vdt_deform_defaults(struct vdt_deform_opts *o);
 
+/* The name of a method, as vdt-deform's --method takes it: "ours", "dsd",
+ * "first-frame" or "independent". */
+const char *vdt_deform_method_name(enum vdt_deform_method m);
+
+/* The method of a name vdt_deform_method_name gives, into *m. Returns 0,
+ * or VDT_EINVAL for any other name (*m unchanged). */
+int vdt_deform_method_parse(const char *name, enum vdt_deform_method *m,
+                            struct vdt_err *err);
+
 /*
  * Result: for every frame, positions of every slot (welded input vertex)
  * and the surviving triangles in slot ids, input order.
@@ -128,12 +137,6 @@ int vdt_deform_measure_frame(const struct vdt_mesh *in, const struct vdt_frames 
                              struct vdt_err *err);
 
 /*
- * Write every frame of the result through a printf pattern (out/%03d.obj),
- * all or nothing: if one frame cannot be written, the frames already written
- * are removed. On failure *failed (if non-NULL) is the malloc'ed name that
- * failed (the pattern itself if it could not be expanded).
- */
-/*
  * Every frame measured (st holds frame_count entries, malloc'ed), and the
  * mean and worst RMS and the mean and lowest share over frames 1.. .
  * Frames that cannot be measured fail the call.
@@ -147,9 +150,37 @@ int vdt_deform_measure_all(const struct vdt_mesh *in, const struct vdt_frames *f
                            struct vdt_deform_summary *sum, struct vdt_err *err);
 
 struct vdt_write_opts;
+/*
+ * Write every frame of the result through a printf pattern (out/%03d.obj),
+ * all or nothing: if one frame cannot be written, the frames already written
+ * are removed. On failure *failed (if non-NULL) is the malloc'ed name that
+ * failed (the pattern itself if it could not be expanded).
+ */
 int vdt_deform_write_pattern(const struct vdt_deform_result *res, const char *pattern,
                              const struct vdt_write_opts *w, char **failed,
                              struct vdt_err *err);
+
+/*
+ * Write the result to path as vdt-deform's -o names it: through a printf
+ * pattern (vdt_deform_write_pattern; extra is not written), else as one
+ * file (vdt_write with w and extra, which may be NULL): frame 0 as a mesh
+ * when there is one frame, or a vdt stream of vdt_deform_to_frames' mesh
+ * with an FRMS chunk, appended to extra, for several. Several frames in
+ * one file need a stream (see vdt_deform_writes_frames). On failure
+ * *failed (if non-NULL) is the malloc'ed name that failed, or NULL when it
+ * is path. Returns 0 or the writer's error.
+ */
+struct vdt_chunks;
+int vdt_deform_write(const struct vdt_deform_result *res, const char *path,
+                     struct vdt_chunks *extra, const struct vdt_write_opts *w,
+                     char **failed, struct vdt_err *err);
+
+/*
+ * Whether vdt_deform_write can put several frames at path with w: a
+ * pattern, or a vdt stream, given by w->format or, when that is
+ * VDT_FMT_AUTO, by path's name ("-", standard output, is a stream).
+ */
+int vdt_deform_writes_frames(const char *path, const struct vdt_write_opts *w);
 
 /*
  * The whole result for the stream: the slots used by any frame, numbered

@@ -6,6 +6,7 @@
 #include <cmocka.h>
 
 #include "../../lib/animtarget.h"
+#include "shapes.h"
 
 /*
  * Two frames of five vertices:
@@ -70,6 +71,107 @@ vertices_again_after_a_boundary(void **state)
 	assert_int_equal(vdt_anim_vertices_again(10, 40, 1, 10), 1);
 }
 
+/* The outcome of a run: frame 0's vertices, the largest frame's triangles. */
+struct outcome {
+	size_t vertices, triangles;
+};
+
+/*
+ * vdt_anim_deform_triangles for `triangles` (0: none) with a vertex target
+ * `vertices` (0: none) on two frames of m: its own positions, then
+ * stretched along x by 1 + y / 2. m is freed.
+ */
+static struct outcome
+run(struct vdt_mesh *m, size_t vertices, size_t triangles)
+{
+	struct vdt_frames fr;
+	struct vdt_deform_opts o;
+	struct vdt_deform_result r, d;
+	struct outcome out = {0, 0};
+
+	assert_int_equal(vdt_frames_alloc(&fr, 2, m->vertex_count, NULL), 0);
+	for (size_t v = 0; v < m->vertex_count; v++)
+		for (int k = 0; k < 3; k++) {
+			const float *p = m->positions + 3 * v;
+			fr.positions[3 * v + k] = p[k];
+			fr.positions[3 * (m->vertex_count + v) + k] =
+			        p[k] * (k == 0 ? 1 + 0.5f * p[1] : 1);
+		}
+	vdt_deform_defaults(&o);
+	o.target_vertices = vertices;
+	assert_int_equal(vdt_anim_deform_triangles(m, &fr, &o, triangles, &r, NULL), 0);
+	assert_int_equal(o.target_vertices, vertices);
+	out.vertices = r.live_vertices[0];
+	for (size_t f = 0; f < r.frame_count; f++)
+		if (r.tri_start[f + 1] - r.tri_start[f] > out.triangles)
+			out.triangles = r.tri_start[f + 1] - r.tri_start[f];
+	if (triangles == 0) { /* vdt_deform itself */
+		assert_int_equal(vdt_deform(m, &fr, &o, &d, NULL), 0);
+		assert_int_equal(r.tri_start[2], d.tri_start[2]);
+		assert_memory_equal(r.triangles, d.triangles, 3 * r.tri_start[2] * sizeof(uint32_t));
+		vdt_deform_result_free(&d);
+	}
+	vdt_deform_result_free(&r);
+	vdt_frames_free(&fr);
+	vdt_mesh_free(m);
+	return out;
+}
+
+/*
+ * The icosphere of level 3 (642 vertices, 1280 triangles, closed): 200
+ * triangles are 102 vertices, reached in one run. A vertex target of the
+ * caller's above that (150 vertices, 296 triangles) is reached first and
+ * stays.
+ */
+static void
+triangles_on_a_closed_mesh(void **state)
+{
+	struct vdt_mesh m;
+	struct outcome o;
+
+	(void)state;
+	shape_icosphere(&m, 3);
+	o = run(&m, 0, 200);
+	assert_int_equal(o.vertices, 102);
+	assert_int_equal(o.triangles, 200);
+	shape_icosphere(&m, 3);
+	o = run(&m, 150, 200);
+	assert_int_equal(o.vertices, 150);
+	assert_int_equal(o.triangles, 296);
+}
+
+/*
+ * An open 8 x 8 grid (81 vertices, 128 triangles): its boundary keeps
+ * more triangles per vertex than a closed mesh. For 40 triangles the
+ * first run (37 vertices) keeps 52; 2 V - T = 22 asks for (40 + 22) / 2 =
+ * 31 vertices, which keep 41; 2 V - T = 21 asks for 30, which keep 39:
+ * the two runs again that it may take.
+ *
+ *   run   vertices   triangles
+ *   1     37         52
+ *   2     31         41
+ *   3     30         39
+ */
+static void
+triangles_on_an_open_mesh(void **state)
+{
+	static const size_t runs[3][2] = {{37, 52}, {31, 41}, {30, 39}};
+	struct vdt_mesh m;
+	struct outcome o;
+
+	(void)state;
+	for (int i = 0; i < 3; i++) {
+		shape_grid(&m, 8);
+		o = run(&m, runs[i][0], 0);
+		assert_int_equal(o.vertices, runs[i][0]);
+		assert_int_equal(o.triangles, runs[i][1]);
+	}
+	shape_grid(&m, 8);
+	o = run(&m, 0, 40);
+	assert_int_equal(o.vertices, 30);
+	assert_int_equal(o.triangles, 39);
+}
+
 int
 main(void)
 {
@@ -77,6 +179,8 @@ main(void)
 		cmocka_unit_test(welded_in_every_frame),
 		cmocka_unit_test(vertices_for_a_closed_mesh),
 		cmocka_unit_test(vertices_again_after_a_boundary),
+		cmocka_unit_test(triangles_on_a_closed_mesh),
+		cmocka_unit_test(triangles_on_an_open_mesh),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -14,6 +14,7 @@
 #include "../../lib/deform.h"
 #include "../../lib/frames.h"
 #include "../../lib/io/anim.h"
+#include "../../lib/io/meshio.h"
 #include "../../lib/qslim.h"
 #include "shapes.h"
 
@@ -202,6 +203,22 @@ single_frame_is_qslim(void **state)
 	vdt_frames_free(&fr);
 }
 
+/* The icosphere of level 3 in two frames: as it is, then stretched along x
+ * by 1 + y / 2. */
+static void
+stretched_icosphere(struct vdt_mesh *m, struct vdt_frames *fr)
+{
+	shape_icosphere(m, 3);
+	assert_int_equal(vdt_frames_alloc(fr, 2, m->vertex_count, NULL), 0);
+	for (size_t v = 0; v < m->vertex_count; v++)
+		for (int k = 0; k < 3; k++) {
+			fr->positions[3 * v + k] = m->positions[3 * v + k];
+			fr->positions[3 * (m->vertex_count + v) + k] =
+			        m->positions[3 * v + k] *
+			        (k == 0 ? 1 + 0.5f * m->positions[3 * v + 1] : 1);
+		}
+}
+
 /*
  * Two frames, the second a stretched copy of the first: DSD and
  * first-frame give both frames the same connectivity (all shared); ours
@@ -217,14 +234,7 @@ unified_and_split(void **state)
 	struct vdt_deform_result r;
 
 	(void)state;
-	shape_icosphere(&m, 3);
-	assert_int_equal(vdt_frames_alloc(&fr, 2, m.vertex_count, NULL), 0);
-	for (size_t v = 0; v < m.vertex_count; v++)
-		for (int k = 0; k < 3; k++) {
-			fr.positions[3 * v + k] = m.positions[3 * v + k];
-			fr.positions[3 * (m.vertex_count + v) + k] =
-			        m.positions[3 * v + k] * (k == 0 ? 1 + 0.5f * m.positions[3 * v + 1] : 1);
-		}
+	stretched_icosphere(&m, &fr);
 	for (int method = 0; method < 4; method++) {
 		vdt_deform_defaults(&o);
 		o.method = (enum vdt_deform_method)method;
@@ -423,6 +433,117 @@ patterns(void **state)
 	free(s);
 }
 
+/* Method names round trip; any other name is refused. */
+static void
+method_names(void **state)
+{
+	enum vdt_deform_method m = VDT_DEFORM_DSD;
+	struct vdt_err err = {0};
+
+	(void)state;
+	for (int i = 0; i < 4; i++) {
+		assert_int_equal(vdt_deform_method_parse(vdt_deform_method_name(i), &m, NULL), 0);
+		assert_int_equal(m, i);
+	}
+	assert_string_equal(vdt_deform_method_name(VDT_DEFORM_FIRST), "first-frame");
+	assert_int_equal(vdt_deform_method_parse("qslim", &m, &err), VDT_EINVAL);
+	assert_string_equal(err.msg, "unknown method 'qslim'");
+	assert_int_equal(m, VDT_DEFORM_INDEPENDENT);
+}
+
+/* Where several frames can go: a pattern or a vdt stream. */
+static void
+frames_need_a_stream(void **state)
+{
+	struct vdt_write_opts w = {0};
+
+	(void)state;
+	assert_true(vdt_deform_writes_frames("-", &w));
+	assert_true(vdt_deform_writes_frames("out.vdt", &w));
+	assert_true(vdt_deform_writes_frames("out/%03d.obj", &w));
+	assert_false(vdt_deform_writes_frames("out.obj", &w));
+	w.format = VDT_FMT_VDT;
+	assert_true(vdt_deform_writes_frames("out.obj", &w));
+	w.format = VDT_FMT_OBJ;
+	assert_false(vdt_deform_writes_frames("-", &w));
+	assert_false(vdt_deform_writes_frames("out.vdt", &w));
+	assert_true(vdt_deform_writes_frames("out/%03d.obj", &w));
+}
+
+/*
+ * The stretched icosphere, simplified by dsd to 100 vertices and written
+ * as one stream (read back: the same frames), as a pattern (one mesh per
+ * frame, as vdt_deform_frame_mesh gives it), and frame 0 alone as a mesh;
+ * a pattern that cannot be written names the file and leaves nothing
+ * behind.
+ */
+static void
+write_result(void **state)
+{
+	char dir[] = "/tmp/vdt-deform-XXXXXX", path[64], pat[64];
+	struct vdt_mesh m, back, f1;
+	struct vdt_frames fr, frb;
+	struct vdt_deform_opts o;
+	struct vdt_deform_result r, one;
+	struct vdt_write_opts w = {0};
+	struct vdt_err err = {0};
+	char *bad;
+
+	(void)state;
+	assert_non_null(mkdtemp(dir));
+	stretched_icosphere(&m, &fr);
+	vdt_deform_defaults(&o);
+	o.method = VDT_DEFORM_DSD; /* one connectivity, as vdt_anim_read wants */
+	o.target_vertices = 100;
+	assert_int_equal(vdt_deform(&m, &fr, &o, &r, NULL), 0);
+
+	snprintf(path, sizeof(path), "%s/all.vdt", dir);
+	assert_int_equal(vdt_deform_write(&r, path, NULL, &w, &bad, NULL), 0);
+	assert_null(bad);
+	assert_int_equal(vdt_anim_read(path, &back, &frb, NULL, NULL), 0);
+	assert_int_equal(frb.frame_count, 2);
+	assert_int_equal(back.vertex_count, 100);
+	assert_int_equal(vdt_deform_frame_mesh(&r, 1, &f1, NULL), 0);
+	assert_int_equal(back.triangle_count, f1.triangle_count);
+	vdt_mesh_free(&back);
+	vdt_frames_free(&frb);
+	unlink(path);
+
+	snprintf(pat, sizeof(pat), "%s/%%d.off", dir);
+	assert_int_equal(vdt_deform_write(&r, pat, NULL, &w, &bad, NULL), 0);
+	snprintf(path, sizeof(path), "%s/1.off", dir);
+	assert_int_equal(vdt_read(path, &back, NULL, NULL), 0);
+	assert_same_mesh(&f1, &back);
+	vdt_mesh_free(&back);
+	unlink(path);
+	snprintf(path, sizeof(path), "%s/0.off", dir);
+	unlink(path);
+
+	fr.frame_count = 1; /* frame 0 alone: a plain mesh */
+	assert_int_equal(vdt_deform(&m, &fr, &o, &one, NULL), 0);
+	snprintf(path, sizeof(path), "%s/one.off", dir);
+	assert_int_equal(vdt_deform_write(&one, path, NULL, &w, &bad, NULL), 0);
+	assert_int_equal(vdt_read(path, &back, NULL, NULL), 0);
+	vdt_mesh_free(&f1);
+	assert_int_equal(vdt_deform_frame_mesh(&one, 0, &f1, NULL), 0);
+	assert_same_mesh(&f1, &back);
+	vdt_mesh_free(&back);
+	unlink(path);
+
+	snprintf(pat, sizeof(pat), "%s/no/%%d.off", dir);
+	assert_int_not_equal(vdt_deform_write(&r, pat, NULL, &w, &bad, &err), 0);
+	snprintf(path, sizeof(path), "%s/no/0.off", dir);
+	assert_string_equal(bad, path);
+	free(bad);
+	assert_int_equal(rmdir(dir), 0); /* empty: nothing left behind */
+
+	vdt_mesh_free(&f1);
+	vdt_deform_result_free(&one);
+	vdt_deform_result_free(&r);
+	vdt_mesh_free(&m);
+	vdt_frames_free(&fr);
+}
+
 int
 main(void)
 {
@@ -439,6 +560,9 @@ main(void)
 		cmocka_unit_test(frms_codec),
 		cmocka_unit_test(frames_must_match),
 		cmocka_unit_test(patterns),
+		cmocka_unit_test(method_names),
+		cmocka_unit_test(frames_need_a_stream),
+		cmocka_unit_test(write_result),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,0 +1,42 @@
+/*
+ * report.c - the report of a measurement: a table, key=value pairs or
+ * JSON, the latter two the same fourteen keys in the same order.
+ */
+#include "report.h"
+
+void
+vdt_report_write(FILE *f, const struct vdt_measure_result *r, enum vdt_report_format fmt,
+                 int one_sided)
+{
+	static const char *keys[14] = {
+		"hausdorff", "hausdorff_pct", "mean", "mean_pct", "rms", "rms_pct",
+		"ab_hausdorff", "ab_rms", "ba_hausdorff", "ba_rms", "samples", "flipped",
+		"faces", "diag"};
+	static const char *names[3] = {"A->B", "B->A", "symmetric"};
+	const struct vdt_dist_stats sym = {.max = r->max, .mean = r->mean, .rms = r->rms};
+	const struct vdt_dist_stats *rows[3] = {&r->ab, &r->ba, &sym};
+	double pct = r->diag > 0 ? 100 / r->diag : 0;
+	double v[14] = {r->max, r->max * pct, r->mean, r->mean * pct, r->rms, r->rms * pct,
+	                r->ab.max, r->ab.rms, r->ba.max, r->ba.rms,
+	                (double)(r->ab.vertex_samples + r->ab.face_samples +
+	                         r->ba.vertex_samples + r->ba.face_samples),
+	                (double)r->normals.flipped, (double)r->normals.faces, r->diag};
+
+	if (fmt != VDT_REPORT_TEXT) { /* counts are exact below 2^53 */
+		int json = fmt == VDT_REPORT_JSON;
+		for (int i = 0; i < 14; i++) {
+			fprintf(f, json ? "%s\"%s\": " : "%s%s=",
+			        i ? (json ? ", " : " ") : (json ? "{" : ""), keys[i]);
+			fprintf(f, i >= 10 && i <= 12 ? "%.0f" : "%.6g", v[i]);
+		}
+		fputs(json ? "}\n" : "\n", f);
+		return;
+	}
+	fprintf(f, "%-10s %22s %22s %22s\n", "", "hausdorff", "mean", "rms");
+	for (int i = 0; i < (one_sided ? 1 : 3); i++)
+		fprintf(f, "%-10s %12.6g (%6.4f%%) %12.6g (%6.4f%%) %12.6g (%6.4f%%)\n", names[i],
+		       rows[i]->max, rows[i]->max * pct, rows[i]->mean, rows[i]->mean * pct,
+		       rows[i]->rms, rows[i]->rms * pct);
+	fprintf(f, "diagonal of A %.6g, %.0f samples, %zu of %zu faces of B flipped\n", r->diag,
+	       v[10], r->normals.flipped, r->normals.faces);
+}
