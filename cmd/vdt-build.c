@@ -4,7 +4,6 @@
  */
 #include <getopt.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "../lib/io/meshio.h"
@@ -57,11 +56,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 			            "equation 1 is --eps");
 		case O_EPS: cl->o.eps = parse_real("--eps", optarg, 1e-9, 1e9); break;
 		case O_PLACE:
-			if (strcmp(optarg, "average") == 0)
-				cl->o.place = VDT_VTREE_PLACE_AVERAGE;
-			else if (strcmp(optarg, "quadric") == 0)
-				cl->o.place = VDT_VTREE_PLACE_QUADRIC;
-			else
+			if ((cl->o.place = vdt_vtree_place_parse(optarg)) < 0)
 				usage_error("unknown placement '%s' for --place", optarg);
 			break;
 		case O_SLIVER: cl->o.min_quality = parse_real("--sliver", optarg, 1e-9, 1); break;
@@ -90,43 +85,27 @@ check(struct cmdline *cl)
 	struct vdt_mesh m = {0};
 	struct vdt_chunks extra = {0};
 	struct vdt_vtree t = {0};
+	struct vdt_vtree_summary s;
 	struct vdt_err err = {0};
-	struct vdt_vtree_cut cuts[40];
-	size_t at[40], ncuts = 0, nbrs = 0;
 	int rc;
 
 	if (vdt_read(cl->check, &m, &extra, &err) != 0)
 		return fail("cannot read", cl->check, &err);
-	const struct vdt_chunk *c = vdt_chunks_find(&extra, VDT_CHUNK_VTRE);
-	if (c == NULL)
-		vdt_err_set(&err, VDT_EFORMAT, "no VTRE chunk: not a view-dependence tree");
-	else if (vdt_vtree_decode(c->data, c->length, &m, &t, &err) != 0)
-		vdt_err_prefix(&err, "chunk VTRE at byte %llu", (unsigned long long)c->offset);
-	if (c == NULL || err.code != 0) {
-		rc = fail("invalid tree in", cl->check, &err);
-		goto out;
-	}
-	/* Cuts where the active vertices halve, and the roots. */
-	size_t n = t.leaf_count, internal = t.node_count - n;
-	for (size_t a = n; ncuts < 39 && n - a < internal; a = (a + 1) / 2)
-		at[ncuts++] = n - a;
-	at[ncuts++] = internal;
-	if ((rc = vdt_vtree_check(&t, &m, at, ncuts, cuts, &nbrs, &err)) != 0) {
+	if ((rc = vdt_vtree_decode_chunk(&extra, &m, &t, &err)) != 0 ||
+	    (rc = vdt_vtree_summarize(&t, &m, &s, &err)) != 0) {
 		rc = fail("invalid tree in", cl->check, &err);
 		goto out;
 	}
 	if (cl->verbose) {
-		uint64_t bytes = vdt_vtree_encoded_size(&t), expl = bytes + internal + 4 * (uint64_t)nbrs;
 		printf("collapsed active vertices edges triangles euler components boundary nonmanifold\n");
-		for (size_t i = 0; i < ncuts; i++)
-			printf("%zu %zu %zu %zu %zu %ld %zu %zu %zu\n", cuts[i].collapsed, cuts[i].active,
-			       cuts[i].vertices, cuts[i].edges, cuts[i].triangles, cuts[i].euler,
-			       cuts[i].components, cuts[i].boundary_edges, cuts[i].nonmanifold_edges);
+		for (const struct vdt_vtree_cut *c = s.cuts; c < s.cuts + s.cut_count; c++)
+			printf("%zu %zu %zu %zu %zu %ld %zu %zu %zu\n", c->collapsed, c->active, c->vertices,
+			       c->edges, c->triangles, c->euler, c->components, c->boundary_edges,
+			       c->nonmanifold_edges);
 		fprintf(stderr, "%s: ok nodes=%zu roots=%zu bytes=%llu bytes_per_vertex=%.2f "
 		        "explicit_bytes_per_vertex=%.2f saving_pct=%.1f peak_mb=%.1f\n", progname,
-		        t.node_count, vdt_vtree_roots(&t), (unsigned long long)bytes, (double)bytes / n,
-		        (double)expl / n, 100.0 * (1 - (double)bytes / expl),
-		        peak_rss_bytes() / 1048576.0);
+		        t.node_count, s.roots, (unsigned long long)s.bytes, s.bytes_per_vertex,
+		        s.explicit_bytes_per_vertex, s.saving_pct, peak_rss_bytes() / 1048576.0);
 	}
 	rc = EXIT_OK;
 out:
@@ -145,7 +124,6 @@ run(struct cmdline *cl)
 	struct vdt_vtree_stats st;
 	struct vdt_write_opts w = {VDT_FMT_VDT, 0, 0};
 	struct vdt_err err = {0};
-	unsigned char *data;
 	uint64_t len;
 	size_t dropped;
 	double t0 = now_seconds(), t1, t2;
@@ -153,8 +131,6 @@ run(struct cmdline *cl)
 
 	if (vdt_read(cl->in, &m, &extra, &err) != 0)
 		return fail("cannot read", cl->in, &err);
-	/* A tree already there describes the old build. */
-	vdt_chunks_remove(&extra, VDT_CHUNK_VTRE);
 	if ((rc = vdt_vtree_prepare(&m, &dropped, &err)) != 0) {
 		rc = fail("cannot build a tree of", cl->in, &err);
 		goto out;
@@ -168,8 +144,7 @@ run(struct cmdline *cl)
 		goto out;
 	}
 	t2 = now_seconds();
-	if (vdt_vtree_encode(&t, &data, &len, &err) != 0 ||
-	    vdt_chunks_add(&extra, VDT_CHUNK_VTRE, data, len, &err) != 0 ||
+	if (vdt_vtree_encode_chunk(&extra, &t, &len, &err) != 0 ||
 	    vdt_write(cl->out, &m, &extra, &w, &err) != 0) {
 		rc = fail("cannot write", cl->out, &err);
 		goto out;

@@ -5,7 +5,6 @@
 #include <getopt.h>
 #include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "../lib/io/meshio.h"
@@ -17,9 +16,8 @@ struct cmdline {
 	const char *in, *out;
 	struct vdt_qslim_opts q;
 	struct vdt_write_opts w;
-	double bound, aggregate, contour, factor, view[3];
-	size_t nearest;
-	int has_view, bound_pct, aggregate_pct, ignore_quadrics, record, quiet, verbose;
+	struct vdt_labl_scale_opts l;
+	int ignore_quadrics, quiet, verbose;
 };
 
 static void
@@ -35,17 +33,6 @@ usage(FILE *f)
 	        "Simplify a triangle mesh with quadric error metrics. INPUT and OUTPUT\n"
 	        "default to - (stdin, stdout); stops at the first target reached\n"
 	        "(default -r 0.5).\n");
-}
-
-static int
-topology_parse(const char *s)
-{
-	static const char *names[] = {"auto", "keep", "free"};
-
-	for (int i = 0; i < 3; i++)
-		if (strcmp(s, names[i]) == 0)
-			return i;
-	return -1;
 }
 
 static void
@@ -83,40 +70,37 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	memset(cl, 0, sizeof(*cl));
 	vdt_qslim_defaults(&cl->q);
 	cl->q.attribute_weight = VDT_QSLIM_ATTRIBUTE_WEIGHT;
+	vdt_labl_scale_defaults(&cl->l);
 	cl->in = cl->out = "-";
-	cl->bound = INFINITY;
-	cl->contour = 2;
-	cl->factor = 0.1;
-	cl->nearest = 4;
 	while ((c = getopt_long(argc, argv, "t:r:e:o:F:a:qvhV", longopts, NULL)) != -1) {
 		switch (c) {
 		case 't': cl->q.target_triangles = parse_count("-t", optarg, 1, 4294967295UL); break;
 		case 'r': cl->q.target_ratio = parse_real("-r", optarg, 1e-9, 1); break;
-		case 'e': cl->bound = parse_bound("-e", optarg, &cl->bound_pct); break;
+		case 'e': cl->q.max_error = parse_bound("-e", optarg, &cl->q.max_error_percent); break;
 		case 'o': cl->out = optarg; break;
 		case 'F':
 			if ((cl->w.format = vdt_format_parse(optarg)) == VDT_FMT_AUTO)
 				usage_error("unknown format '%s' for -F", optarg);
 			break;
-		case 'a': cl->aggregate = parse_bound("-a", optarg, &cl->aggregate_pct); break;
+		case 'a': cl->q.aggregate = parse_bound("-a", optarg, &cl->q.aggregate_percent); break;
 		case O_LOCK: cl->q.lock_border = 1; break;
 		case O_BW: cl->q.boundary_weight = parse_real("--boundary-weight", optarg, 0, 1e12); break;
 		case O_ANGLE: cl->q.max_normal_angle = parse_real("--max-angle", optarg, 1, 180); break;
 		case O_QUALITY: cl->q.min_quality = parse_real("--min-quality", optarg, 0, 1); break;
 		case O_IGNORE: cl->ignore_quadrics = 1; break;
 		case O_TOPO:
-			if ((cl->q.topology = topology_parse(optarg)) < 0)
+			if ((cl->q.topology = vdt_topology_parse(optarg)) < 0)
 				usage_error("--topology must be auto, keep or free, not '%s'", optarg);
 			break;
 		case O_AW: cl->q.attribute_weight = parse_real("--attribute-weight", optarg, 0, 1e9); break;
-		case O_RECORD: cl->record = 1; break;
+		case O_RECORD: cl->q.record = 1; break;
 		case O_DRACO: cl->w.draco_position_bits = (int)parse_count("--draco-bits", optarg, 1, 30); break;
-		case O_CD: cl->contour = parse_real("--contour-distance", optarg, 0, 1e6); break;
-		case O_EF: cl->factor = parse_real("--error-factor", optarg, 0, 1); break;
-		case O_NEAR: cl->nearest = parse_count("--nearest", optarg, 1, VDT_SIL_NEAREST_MAX); break;
+		case O_CD: cl->l.contour_distance = parse_real("--contour-distance", optarg, 0, 1e6); break;
+		case O_EF: cl->l.factor = parse_real("--error-factor", optarg, 0, 1); break;
+		case O_NEAR: cl->l.nearest = parse_count("--nearest", optarg, 1, VDT_SIL_NEAREST_MAX); break;
 		case O_VIEW:
-			parse_vec3("--view", optarg, 1, cl->view);
-			cl->has_view = 1;
+			parse_vec3("--view", optarg, 1, cl->l.view);
+			cl->l.has_view = 1;
 			break;
 		case 'q': cl->quiet = 1; break;
 		case 'v': cl->verbose = 1; break;
@@ -124,7 +108,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		}
 	}
 	cl->in = input_operand(argc, argv, cl->in);
-	if (cl->q.target_triangles == 0 && cl->q.target_ratio == 0 && !(cl->bound < INFINITY))
+	if (cl->q.target_triangles == 0 && cl->q.target_ratio == 0 && !(cl->q.max_error < INFINITY))
 		cl->q.target_ratio = 0.5;
 }
 
@@ -133,82 +117,29 @@ run(struct cmdline *cl)
 {
 	struct vdt_mesh in = {0}, out = {0};
 	struct vdt_chunks extra = {0};
-	struct vdt_quadric *quads = NULL;
-	struct vdt_labl labl = {0};
-	float *labels = NULL;
-	double *scale = NULL;
-	struct vdt_contraction *rec = NULL;
+	struct vdt_qslim_extra x = {0};
 	struct vdt_qslim_stats st;
 	struct vdt_err err = {0};
-	struct vdt_bbox box;
-	size_t nrec = 0, nq = 0;
-	double t0 = now_seconds(), t1, t2, diag;
+	double t0 = now_seconds(), t1, t2;
 	int rc;
 
 	if ((rc = vdt_read(cl->in, &in, &extra, &err)) != 0)
 		return fail("cannot read", cl->in, &err);
-	const struct vdt_chunk *qc = vdt_chunks_find(&extra, VDT_CHUNK_QUAD);
-	if (qc && !cl->ignore_quadrics) {
-		if ((rc = vdt_quad_decode(qc->data, qc->length, &quads, &nq, &err)) != 0 ||
-		    (nq != in.vertex_count &&
-		     (rc = vdt_err_set(&err, VDT_EFORMAT, "QUAD chunk has %zu quadrics for %zu vertices",
-		                       nq, in.vertex_count)) != 0)) {
-			rc = fail("cannot read", cl->in, &err);
-			goto out;
-		}
-		cl->q.quadrics = quads;
+	if ((rc = vdt_qslim_extra_decode(&x, &extra, in.vertex_count, cl->ignore_quadrics, &err)) != 0) {
+		rc = fail("cannot read", cl->in, &err);
+		goto out;
 	}
-	/* Silhouette labels (Mata et al. 3.3): the error allowed near the
-	 * contour of the view, or of every camera, shrinks by the factor. */
-	const struct vdt_chunk *lc = vdt_chunks_find(&extra, VDT_CHUNK_LABL);
-	if (lc) {
-		if ((rc = vdt_labl_decode(lc->data, lc->length, &labl, &err)) != 0 ||
-		    (labl.vertex_count != in.vertex_count &&
-		     (rc = vdt_err_set(&err, VDT_EFORMAT, "LABL chunk has labels of %zu vertices for %zu",
-		                       labl.vertex_count, in.vertex_count)) != 0)) {
-			rc = fail("cannot read", cl->in, &err);
-			goto out;
-		}
-		labels = malloc(in.vertex_count * sizeof(*labels));
-		scale = malloc(in.vertex_count * sizeof(*scale));
-		if (labels == NULL || scale == NULL) {
-			vdt_err_set(&err, VDT_ENOMEM, "out of memory for labels");
-			rc = fail("cannot simplify", cl->in, &err);
-			goto out;
-		}
-		if (cl->has_view)
-			vdt_labl_view(&labl, cl->view, cl->nearest, labels);
-		else
-			vdt_labl_min(&labl, labels);
-		vdt_labl_error_scale(labels, in.vertex_count, cl->contour, cl->factor, scale);
-		cl->q.error_scale = scale;
-	}
-	/* Quadrics, labels, trees, frames, records describe the input's
-	 * vertices, not the output's. */
-	vdt_chunks_drop_vertex_data(&extra);
-	vdt_mesh_bbox(&in, &box);
-	diag = vdt_bbox_diagonal(&box);
-	cl->q.max_error = cl->bound_pct ? cl->bound * diag / 100 : cl->bound;
-	cl->q.aggregate = cl->aggregate_pct ? cl->aggregate * diag / 100 : cl->aggregate;
 	cl->q.progress = progress_start(cl->quiet);
 	t1 = now_seconds();
-	rc = vdt_qslim(&in, &cl->q, &out, cl->record ? &rec : NULL, &nrec, &st, &err);
+	rc = vdt_qslim_extra_run(&x, &in, &cl->q, &cl->l, &out, &st, &err);
 	progress_done();
 	if (rc != 0) {
 		rc = fail("cannot simplify", cl->in, &err);
 		goto out;
 	}
 	t2 = now_seconds();
-	if (cl->record) {
-		unsigned char *data;
-		uint64_t len;
-		if (vdt_seqn_encode(rec, nrec, &data, &len, &err) != 0 ||
-		    vdt_chunks_add(&extra, VDT_CHUNK_SEQN, data, len, &err) != 0) {
-			rc = fail("cannot write", cl->out, &err);
-			goto out;
-		}
-	}
-	if ((rc = vdt_write(cl->out, &out, &extra, &cl->w, &err)) != 0) {
+	if ((rc = vdt_qslim_extra_encode(&x, &extra, &err)) != 0 ||
+	    (rc = vdt_write(cl->out, &out, &extra, &cl->w, &err)) != 0) {
 		rc = fail("cannot write", cl->out, &err);
 		goto out;
 	}
@@ -223,18 +154,14 @@ run(struct cmdline *cl)
 		        progname, in.vertex_count, in.triangle_count, out.vertex_count,
 		        out.triangle_count, st.contractions, st.rejected, st.welded, st.dropped,
 		        st.nonmanifold, st.free_topology ? "free" : "keep", st.max_error,
-		        diag > 0 ? 100 * st.max_error / diag : 0, t1 - t0, t2 - t1,
+		        st.error_pct, t1 - t0, t2 - t1,
 		        now_seconds() - t2, peak_rss_bytes() / 1048576.0);
 	rc = EXIT_OK;
 out:
 	vdt_mesh_free(&in);
 	vdt_mesh_free(&out);
 	vdt_chunks_free(&extra);
-	free(quads);
-	free(rec);
-	free(labels);
-	free(scale);
-	vdt_labl_free(&labl);
+	vdt_qslim_extra_free(&x);
 	return rc;
 }
 

@@ -48,6 +48,40 @@ vdt_qslim_defaults(struct vdt_qslim_opts *o)
 	o->max_normal_angle = 75;
 }
 
+int
+vdt_topology_parse(const char *name)
+{
+	static const char *names[] = {"auto", "keep", "free"};
+
+	for (int i = 0; i < 3; i++)
+		if (strcmp(name, names[i]) == 0)
+			return i;
+	return -1;
+}
+
+/* The QUAD chunk of c, if any, for a mesh of vertex_count vertices. */
+static int
+decode_quadrics(const struct vdt_chunks *c, size_t vertex_count, struct vdt_quadric **q,
+                struct vdt_err *err)
+{
+	const struct vdt_chunk *ch = vdt_chunks_find(c, VDT_CHUNK_QUAD);
+	size_t n;
+	int rc;
+
+	*q = NULL;
+	if (ch == NULL)
+		return 0;
+	if ((rc = vdt_quad_decode(ch->data, ch->length, q, &n, err)) != 0)
+		return rc;
+	if (n != vertex_count) {
+		free(*q);
+		*q = NULL;
+		return vdt_err_set(err, VDT_EFORMAT, "QUAD chunk has %zu quadrics for %zu vertices", n,
+		                   vertex_count);
+	}
+	return 0;
+}
+
 /*
  * Mata, Pastor and Rodriguez, section 3.3: near the silhouette the allowed
  * error is e * f. Quadric errors are squared distances, so a pair costs its
@@ -1190,11 +1224,12 @@ input_lists(const uint32_t *canon, size_t n, size_t nw, uint32_t **start,
 	return 0;
 }
 
-int
-vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
-          struct vdt_mesh *out, struct vdt_contraction **records,
-          size_t *record_count, struct vdt_qslim_stats *stats,
-          struct vdt_err *err)
+/* vdt_qslim with every distance option in model units. */
+static int
+simplify(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
+         struct vdt_mesh *out, struct vdt_contraction **records,
+         size_t *record_count, struct vdt_qslim_stats *stats,
+         struct vdt_err *err)
 {
 	size_t n = in->vertex_count, T = in->triangle_count, target = 0;
 	struct vdt_mesh w = {0};
@@ -1382,4 +1417,89 @@ done:
 	free(dead);
 	free(fsrc);
 	return rc;
+}
+
+int
+vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o, struct vdt_mesh *out,
+          struct vdt_contraction **records, size_t *record_count, struct vdt_qslim_stats *stats,
+          struct vdt_err *err)
+{
+	struct vdt_qslim_opts units = *o;
+	struct vdt_bbox box;
+	double diag;
+	int rc;
+
+	vdt_mesh_bbox(in, &box);
+	diag = vdt_bbox_diagonal(&box);
+	if (o->max_error_percent)
+		units.max_error = o->max_error * diag / 100;
+	if (o->aggregate_percent)
+		units.aggregate = o->aggregate * diag / 100;
+	rc = simplify(in, &units, out, records, record_count, stats, err);
+	if (rc == 0)
+		stats->error_pct = diag > 0 ? 100 * stats->max_error / diag : 0;
+	return rc;
+}
+
+int
+vdt_qslim_extra_decode(struct vdt_qslim_extra *x, struct vdt_chunks *c, size_t vertex_count,
+                       int ignore_quadrics, struct vdt_err *err)
+{
+	int rc;
+
+	memset(x, 0, sizeof(*x));
+	if ((!ignore_quadrics && (rc = decode_quadrics(c, vertex_count, &x->quadrics, err)) != 0) ||
+	    (rc = vdt_labl_decode_chunk(c, vertex_count, &x->labl, err)) != 0) {
+		vdt_qslim_extra_free(x);
+		return rc;
+	}
+	vdt_chunks_drop_vertex_data(c);
+	return 0;
+}
+
+int
+vdt_qslim_extra_run(struct vdt_qslim_extra *x, const struct vdt_mesh *in,
+                    const struct vdt_qslim_opts *o, const struct vdt_labl_scale_opts *lo,
+                    struct vdt_mesh *out, struct vdt_qslim_stats *stats, struct vdt_err *err)
+{
+	struct vdt_qslim_opts with = *o;
+	int rc;
+
+	/* Silhouette labels (Mata et al. 3.3): the error allowed near the
+	 * contour of the view, or of every camera, shrinks by the factor. */
+	free(x->error_scale);
+	if ((rc = vdt_labl_scale(&x->labl, lo, &x->error_scale, err)) != 0)
+		return rc;
+	with.quadrics = x->quadrics;
+	with.error_scale = x->error_scale;
+	free(x->records);
+	x->records = NULL;
+	x->record_count = 0;
+	x->record = o->record;
+	return vdt_qslim(in, &with, out, o->record ? &x->records : NULL, &x->record_count, stats,
+	                 err);
+}
+
+int
+vdt_qslim_extra_encode(const struct vdt_qslim_extra *x, struct vdt_chunks *c, struct vdt_err *err)
+{
+	unsigned char *data;
+	uint64_t len;
+	int rc;
+
+	if (!x->record)
+		return 0;
+	if ((rc = vdt_seqn_encode(x->records, x->record_count, &data, &len, err)) != 0)
+		return rc;
+	return vdt_chunks_add(c, VDT_CHUNK_SEQN, data, len, err);
+}
+
+void
+vdt_qslim_extra_free(struct vdt_qslim_extra *x)
+{
+	free(x->quadrics);
+	vdt_labl_free(&x->labl);
+	free(x->error_scale);
+	free(x->records);
+	memset(x, 0, sizeof(*x));
 }

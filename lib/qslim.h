@@ -16,6 +16,8 @@
 #include "mesh.h"
 #include "progress.h"
 #include "quadric.h"
+#include "silhouette.h"
+#include "stream.h"
 
 /*
  * When contractions may change topology. AUTO keeps manifold input manifold
@@ -25,6 +27,10 @@
  */
 enum vdt_topology { VDT_TOPOLOGY_AUTO = 0, VDT_TOPOLOGY_KEEP, VDT_TOPOLOGY_FREE };
 
+/* The mode named "auto", "keep" or "free" (as --topology takes it), or
+ * -1 for any other name. */
+int vdt_topology_parse(const char *name);
+
 struct vdt_qslim_opts {
 	size_t target_triangles;  /* stop at this many (0: no count target) */
 	double target_ratio;      /* or this fraction of the input (0: none) */
@@ -33,6 +39,9 @@ struct vdt_qslim_opts {
 	int lock_border;          /* vertices on open boundaries never move */
 	int topology;             /* enum vdt_topology */
 	double aggregate;         /* virtual pairs closer than this (0: none) */
+	int max_error_percent;    /* 1: max_error is in percent of the
+	                             input's bounding-box diagonal */
+	int aggregate_percent;    /* 1: so is aggregate */
 	double max_normal_angle;  /* fold-over threshold, degrees */
 	double min_quality;       /* sliver threshold, 0: off */
 	const struct vdt_quadric *quadrics; /* one per input vertex, or NULL */
@@ -42,7 +51,9 @@ struct vdt_qslim_opts {
 	const double *error_scale; /* per input vertex, or NULL: the factor of
 	                             its allowed error (Mata et al., section
 	                             3.3; see vdt_qslim) */
-	int record;               /* return the contraction record */
+	int record;               /* keep the contraction record
+	                             (vdt_qslim_extra_run; vdt_qslim takes
+	                             its records argument instead) */
 	const struct vdt_progress *progress;
 };
 
@@ -65,6 +76,8 @@ struct vdt_qslim_stats {
 	size_t dropped;     /* repeated faces removed (see vdt_qslim) */
 	size_t nonmanifold; /* edges of three or more faces in the input */
 	int free_topology;  /* 1 if the link condition was not applied */
+	double error_pct;   /* max_error in percent of the input's
+	                       bounding-box diagonal (0 if that is 0) */
 };
 
 /*
@@ -95,6 +108,8 @@ struct vdt_qslim_stats {
  * f = 0 locks the vertex: it never moves, never merges and no neighbour
  * merges into it. Welded vertices take the smallest scale of their input
  * vertices, a merged vertex the smaller of the two.
+ * Bounds given in percent (max_error_percent, aggregate_percent) are
+ * taken of the input's bounding-box diagonal.
  * Returns 0, VDT_EINVAL (bad options, quadric count mismatch, a negative or
  * non-finite scale) or VDT_ENOMEM.
  */
@@ -102,5 +117,57 @@ int vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
               struct vdt_mesh *out, struct vdt_contraction **records,
               size_t *record_count, struct vdt_qslim_stats *stats,
               struct vdt_err *err);
+
+/*
+ * vdt_qslim on a mesh as a vdt stream carries it (what vdt-qslim does):
+ * the other chunks of the stream may hold the quadrics of vdt-cluster's
+ * phase I (QUAD, the multiphase coupling) and silhouette labels (LABL,
+ * which scale the allowed error); the output stream may carry the
+ * contraction record (SEQN).
+ */
+struct vdt_qslim_extra {
+	struct vdt_quadric *quadrics;  /* one per input vertex, or NULL */
+	struct vdt_labl labl;          /* cams.count 0 when there are none */
+	double *error_scale;           /* of the labels, or NULL */
+	int record;                    /* 1: records are kept */
+	struct vdt_contraction *records; /* (vdt_qslim_extra_run) */
+	size_t record_count;
+};
+
+/*
+ * Decode into *x the QUAD chunk of c (unless ignore_quadrics) and its LABL
+ * chunk, each of which must describe vertex_count vertices; then remove
+ * from c every chunk that describes the input's vertices
+ * (vdt_chunks_drop_vertex_data), since the output's vertices differ.
+ * Returns 0, a decoder's status, or VDT_EFORMAT for a count that differs
+ * ("QUAD chunk has 10 quadrics for 12 vertices", "LABL chunk has labels
+ * of 10 vertices for 12"); on failure *x is empty and c unchanged.
+ */
+int vdt_qslim_extra_decode(struct vdt_qslim_extra *x, struct vdt_chunks *c,
+                           size_t vertex_count, int ignore_quadrics,
+                           struct vdt_err *err);
+
+/*
+ * vdt_qslim on in, whose chunks x holds: the quadrics replace o's, the
+ * labels give the error scale under lo (vdt_labl_scale), and with
+ * o->record the contraction record is kept in x. Returns 0, VDT_ENOMEM
+ * ("out of memory for labels") or vdt_qslim's status.
+ */
+int vdt_qslim_extra_run(struct vdt_qslim_extra *x, const struct vdt_mesh *in,
+                        const struct vdt_qslim_opts *o,
+                        const struct vdt_labl_scale_opts *lo,
+                        struct vdt_mesh *out, struct vdt_qslim_stats *stats,
+                        struct vdt_err *err);
+
+/*
+ * Append the contraction record x keeps, if any (even of no
+ * contractions), to c as a SEQN chunk.
+ * Returns 0, or vdt_seqn_encode's or vdt_chunks_add's status.
+ */
+int vdt_qslim_extra_encode(const struct vdt_qslim_extra *x, struct vdt_chunks *c,
+                           struct vdt_err *err);
+
+/* Free what x holds and zero it. Safe on a zeroed x. */
+void vdt_qslim_extra_free(struct vdt_qslim_extra *x);
 
 #endif

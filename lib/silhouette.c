@@ -846,6 +846,61 @@ vdt_labl_error_scale(const float *labels, size_t count, double contour_distance,
 		scale[i] = labels[i] <= contour_distance ? factor : 1;
 }
 
+int
+vdt_labl_decode_chunk(const struct vdt_chunks *c, size_t vertex_count, struct vdt_labl *l,
+                      struct vdt_err *err)
+{
+	const struct vdt_chunk *ch = vdt_chunks_find(c, VDT_CHUNK_LABL);
+	int rc;
+
+	memset(l, 0, sizeof(*l));
+	if (ch == NULL)
+		return 0;
+	if ((rc = vdt_labl_decode(ch->data, ch->length, l, err)) != 0)
+		return rc;
+	if (l->vertex_count != vertex_count) {
+		rc = vdt_err_set(err, VDT_EFORMAT, "LABL chunk has labels of %zu vertices for %zu",
+		                 l->vertex_count, vertex_count);
+		vdt_labl_free(l);
+	}
+	return rc;
+}
+
+void
+vdt_labl_scale_defaults(struct vdt_labl_scale_opts *o)
+{
+	memset(o, 0, sizeof(*o));
+	o->contour_distance = 2;
+	o->factor = 0.1;
+	o->nearest = 4;
+}
+
+int
+vdt_labl_scale(const struct vdt_labl *l, const struct vdt_labl_scale_opts *o, double **scale,
+               struct vdt_err *err)
+{
+	float *labels;
+
+	*scale = NULL;
+	if (l->cams.count == 0)
+		return 0;
+	labels = malloc(l->vertex_count * sizeof(*labels));
+	*scale = malloc(l->vertex_count * sizeof(**scale));
+	if (labels == NULL || *scale == NULL) {
+		free(labels);
+		free(*scale);
+		*scale = NULL;
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory for labels");
+	}
+	if (o->has_view)
+		vdt_labl_view(l, o->view, o->nearest, labels);
+	else
+		vdt_labl_min(l, labels);
+	vdt_labl_error_scale(labels, l->vertex_count, o->contour_distance, o->factor, *scale);
+	free(labels);
+	return 0;
+}
+
 void
 vdt_sil_mask(const struct vdt_mesh *m, const double centre[3], double radius,
              const double dir[3], int res, uint8_t *mask)

@@ -22,6 +22,7 @@
 #include "err.h"
 #include "mesh.h"
 #include "progress.h"
+#include "stream.h"
 
 #define VDT_SIL_RES_MIN 4
 #define VDT_SIL_RES_MAX 4096 /* squared distances stay exact in float */
@@ -229,6 +230,36 @@ double vdt_labl_min_share(const struct vdt_labl *l, double px);
 void vdt_labl_error_scale(const float *labels, size_t count,
                           double contour_distance, double factor,
                           double *scale);
+
+/*
+ * The labels of a stream: decode the first LABL chunk of c into *l, which
+ * must label vertex_count vertices; *l is left empty (cams.count 0) when
+ * there is none. Returns 0, vdt_labl_decode's status, or VDT_EFORMAT when
+ * the vertex counts differ ("LABL chunk has labels of 10 vertices for
+ * 12"); *l is empty on failure.
+ */
+int vdt_labl_decode_chunk(const struct vdt_chunks *c, size_t vertex_count,
+                          struct vdt_labl *l, struct vdt_err *err);
+
+/* How labels scale the error a simplifier allows (sections 3.2, 3.3). */
+struct vdt_labl_scale_opts {
+	double contour_distance; /* pixels (default 2) */
+	double factor;           /* in [0, 1] (default 0.1) */
+	int has_view;            /* 0: every camera (vdt_labl_min) */
+	double view[3];          /* else this direction (vdt_labl_view) */
+	size_t nearest;          /* cameras a view interpolates (default 4) */
+};
+
+void vdt_labl_scale_defaults(struct vdt_labl_scale_opts *o);
+
+/*
+ * The error scale of each of l's vertices under o (vdt_labl_error_scale
+ * of the view's labels, or of the smallest over every camera), in *scale
+ * (allocated here, l->vertex_count of them); *scale is NULL when l is
+ * empty. Returns 0 or VDT_ENOMEM ("out of memory for labels").
+ */
+int vdt_labl_scale(const struct vdt_labl *l, const struct vdt_labl_scale_opts *o,
+                   double **scale, struct vdt_err *err);
 
 /*
  * Silhouette mask for evaluation: mask[res * res] is 1 where a pixel

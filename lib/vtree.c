@@ -217,6 +217,16 @@ vdt_vtree_defaults(struct vdt_vtree_opts *o)
 	o->max_normal_angle = 90;
 }
 
+int
+vdt_vtree_place_parse(const char *name)
+{
+	if (strcmp(name, "average") == 0)
+		return VDT_VTREE_PLACE_AVERAGE;
+	if (strcmp(name, "quadric") == 0)
+		return VDT_VTREE_PLACE_QUADRIC;
+	return -1;
+}
+
 /* Equation 1, with the merged vertex placed by the chosen rule. */
 static double
 eq1_cost(void *ctx, uint32_t a, uint32_t b, int fixed, const float pa[3],
@@ -916,6 +926,38 @@ vdt_vtree_decode(const unsigned char *d, uint64_t length, const struct vdt_mesh 
 	return 0;
 }
 
+int
+vdt_vtree_decode_chunk(const struct vdt_chunks *c, const struct vdt_mesh *m,
+                       struct vdt_vtree *t, struct vdt_err *err)
+{
+	const struct vdt_chunk *ch = vdt_chunks_find(c, VDT_CHUNK_VTRE);
+	int rc;
+
+	memset(t, 0, sizeof(*t));
+	if (ch == NULL)
+		return vdt_err_set(err, VDT_EFORMAT, "no VTRE chunk: not a view-dependence tree");
+	if ((rc = vdt_vtree_decode(ch->data, ch->length, m, t, err)) != 0)
+		vdt_err_prefix(err, "chunk VTRE at byte %llu", (unsigned long long)ch->offset);
+	return rc;
+}
+
+int
+vdt_vtree_encode_chunk(struct vdt_chunks *c, const struct vdt_vtree *t, uint64_t *length,
+                       struct vdt_err *err)
+{
+	unsigned char *data;
+	uint64_t len;
+	int rc;
+
+	vdt_chunks_remove(c, VDT_CHUNK_VTRE);
+	if ((rc = vdt_vtree_encode(t, &data, &len, err)) != 0 ||
+	    (rc = vdt_chunks_add(c, VDT_CHUNK_VTRE, data, len, err)) != 0)
+		return rc;
+	if (length)
+		*length = len;
+	return 0;
+}
+
 /* ---- running the tree: the front of active vertices ---- */
 
 struct front {
@@ -1175,4 +1217,28 @@ out:
 	free(F.size);
 	free(F.stamp);
 	return rc;
+}
+
+int
+vdt_vtree_summarize(const struct vdt_vtree *t, const struct vdt_mesh *m,
+                    struct vdt_vtree_summary *s, struct vdt_err *err)
+{
+	size_t at[VDT_VTREE_SUMMARY_CUTS], n = t->leaf_count, internal = t->node_count - n;
+	size_t neighbours = 0;
+	int rc;
+
+	memset(s, 0, sizeof(*s));
+	for (size_t a = n; s->cut_count < VDT_VTREE_SUMMARY_CUTS - 1 && n - a < internal;
+	     a = (a + 1) / 2)
+		at[s->cut_count++] = n - a;
+	at[s->cut_count++] = internal;
+	if ((rc = vdt_vtree_check(t, m, at, s->cut_count, s->cuts, &neighbours, err)) != 0)
+		return rc;
+	s->roots = vdt_vtree_roots(t);
+	s->bytes = vdt_vtree_encoded_size(t);
+	s->explicit_bytes = s->bytes + internal + 4 * (uint64_t)neighbours;
+	s->bytes_per_vertex = (double)s->bytes / n;
+	s->explicit_bytes_per_vertex = (double)s->explicit_bytes / n;
+	s->saving_pct = 100.0 * (1 - (double)s->bytes / s->explicit_bytes);
+	return 0;
 }

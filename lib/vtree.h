@@ -22,6 +22,7 @@
 #include "err.h"
 #include "mesh.h"
 #include "progress.h"
+#include "stream.h"
 
 #define VDT_VTREE_NONE UINT32_MAX
 
@@ -74,6 +75,12 @@ struct vdt_vtree_stats {
 
 /* Defaults: eps 0.1, average placement, no sliver test, 90 degrees. */
 void vdt_vtree_defaults(struct vdt_vtree_opts *opts);
+
+/*
+ * The placement named "average" or "quadric" (as --place takes it), or -1
+ * for any other name.
+ */
+int vdt_vtree_place_parse(const char *name);
 
 /*
  * Make m fit for a tree in place: drop each triangle that repeats a vertex
@@ -130,6 +137,25 @@ int vdt_vtree_decode(const unsigned char *data, uint64_t length,
 /* Bytes of the VTRE payload of t. */
 uint64_t vdt_vtree_encoded_size(const struct vdt_vtree *t);
 
+/*
+ * The tree of a stream: decode the first VTRE chunk of c against m, its
+ * MESH. Returns 0, or VDT_EFORMAT when there is no VTRE chunk ("no VTRE
+ * chunk: not a view-dependence tree") and vdt_vtree_decode's status, its
+ * message prefixed with the chunk's byte offset ("chunk VTRE at byte 70:
+ * ..."), when it does not decode; *t is empty on failure.
+ */
+int vdt_vtree_decode_chunk(const struct vdt_chunks *c, const struct vdt_mesh *m,
+                           struct vdt_vtree *t, struct vdt_err *err);
+
+/*
+ * Replace every VTRE chunk of c (a tree of an earlier build describes
+ * other nodes) by the encoding of t, appended at the end; *length (may be
+ * NULL) gets its payload size. Returns 0, or vdt_vtree_encode's or
+ * vdt_chunks_add's status; c then holds no VTRE chunk.
+ */
+int vdt_vtree_encode_chunk(struct vdt_chunks *c, const struct vdt_vtree *t,
+                           uint64_t *length, struct vdt_err *err);
+
 /* The mesh of one cut of the tree (a front of active vertices). */
 struct vdt_vtree_cut {
 	size_t collapsed;  /* collapses applied, in id order */
@@ -157,5 +183,30 @@ int vdt_vtree_check(const struct vdt_vtree *t, const struct vdt_mesh *m,
                     const size_t *cut_at, size_t ncuts,
                     struct vdt_vtree_cut *cuts, size_t *neighbours,
                     struct vdt_err *err);
+
+#define VDT_VTREE_SUMMARY_CUTS 40
+
+/* What vdt-build --check reports of a tree. */
+struct vdt_vtree_summary {
+	size_t cut_count;
+	struct vdt_vtree_cut cuts[VDT_VTREE_SUMMARY_CUTS];
+	size_t roots;
+	uint64_t bytes;          /* of the VTRE payload */
+	uint64_t explicit_bytes; /* an explicit-dependency tree's: the payload
+	                            plus, per collapse, a neighbour count byte
+	                            and a u32 per neighbour of the new vertex */
+	double bytes_per_vertex, explicit_bytes_per_vertex; /* per leaf */
+	double saving_pct;       /* of bytes against explicit_bytes */
+};
+
+/*
+ * Run vdt_vtree_check on t and m, measuring the cuts where the active
+ * vertices halve (n of them: the full mesh, then (n + 1) / 2, and so on
+ * while some collapse remains; at most VDT_VTREE_SUMMARY_CUTS - 1 cuts)
+ * and the roots' cut (every collapse), ascending; fill s with them and the
+ * sizes of the tree. Returns vdt_vtree_check's status.
+ */
+int vdt_vtree_summarize(const struct vdt_vtree *t, const struct vdt_mesh *m,
+                        struct vdt_vtree_summary *s, struct vdt_err *err);
 
 #endif

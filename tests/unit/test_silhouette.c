@@ -2,7 +2,8 @@
  * Unit tests of lib/silhouette (Mata, Pastor and Rodriguez, section 3):
  * one camera over a tiny mesh with its exact grid, the transforms against
  * brute force, the camera set and its nearest-camera lookup, the LABL codec
- * and its rejections, and the labels' effect on vdt_qslim.
+ * and its rejections, the labels of a stream's chunk and the error scale
+ * they give, and the labels' effect on vdt_qslim.
  */
 #include <stdarg.h>
 #include <stddef.h>
@@ -10,6 +11,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -258,6 +260,69 @@ labels_of_sphere(struct vdt_mesh *s, struct vdt_labl *l, double step, int level)
 	vdt_cameras_free(&c);
 }
 
+/*
+ * The labels of a stream's LABL chunk, and the error scale they give:
+ * the view's labels (vdt_labl_view) or the smallest over every camera
+ * (vdt_labl_min), each through vdt_labl_error_scale.
+ */
+static void
+test_labl_chunk_and_scale(void **state)
+{
+	struct vdt_mesh s;
+	struct vdt_labl l, r;
+	struct vdt_chunks c = {0};
+	struct vdt_labl_scale_opts o;
+	struct vdt_err err = {0};
+	unsigned char *d;
+	uint64_t len;
+	double *scale, dir[3] = {0.3, 0.2, 1};
+	float *lab;
+
+	(void)state;
+	labels_of_sphere(&s, &l, 30, 2);
+	size_t V = s.vertex_count;
+	assert_int_equal(vdt_labl_decode_chunk(&c, V, &r, &err), 0);
+	assert_int_equal(r.cams.count, 0);
+	vdt_labl_scale_defaults(&o);
+	assert_true(o.contour_distance == 2 && o.factor == 0.1 && o.nearest == 4 && !o.has_view);
+	assert_int_equal(vdt_labl_scale(&r, &o, &scale, &err), 0);
+	assert_null(scale);
+	assert_int_equal(vdt_labl_encode(&l, &d, &len, NULL), 0);
+	assert_int_equal(vdt_chunks_add(&c, VDT_CHUNK_LABL, d, len, NULL), 0);
+	assert_int_equal(vdt_labl_decode_chunk(&c, V + 1, &r, &err), VDT_EFORMAT);
+	assert_int_equal(r.cams.count, 0);
+	char want[80];
+	snprintf(want, sizeof(want), "LABL chunk has labels of %zu vertices for %zu", V, V + 1);
+	assert_string_equal(err.msg, want);
+	assert_int_equal(vdt_labl_decode_chunk(&c, V, &r, &err), 0);
+	assert_int_equal(r.cams.count, l.cams.count);
+
+	lab = malloc(V * sizeof(*lab));
+	double *want_scale = malloc(V * sizeof(*want_scale));
+	assert_non_null(lab);
+	assert_non_null(want_scale);
+	for (int view = 0; view < 2; view++) {
+		o.has_view = view;
+		memcpy(o.view, dir, sizeof(dir));
+		o.contour_distance = 3;
+		o.factor = 0.25;
+		if (view)
+			vdt_labl_view(&l, o.view, o.nearest, lab);
+		else
+			vdt_labl_min(&l, lab);
+		vdt_labl_error_scale(lab, V, 3, 0.25, want_scale);
+		assert_int_equal(vdt_labl_scale(&r, &o, &scale, &err), 0);
+		assert_memory_equal(scale, want_scale, V * sizeof(*scale));
+		free(scale);
+	}
+	free(want_scale);
+	free(lab);
+	vdt_labl_free(&r);
+	vdt_labl_free(&l);
+	vdt_chunks_free(&c);
+	vdt_mesh_free(&s);
+}
+
 /* Encode, decode: the same bytes back; then every field broken in turn. */
 static void
 test_labl_round_trip_and_rejections(void **state)
@@ -470,6 +535,7 @@ main(void)
 		cmocka_unit_test(test_labl_view_min_scale),
 		cmocka_unit_test(test_qslim_keeps_contour),
 		cmocka_unit_test(test_bad_input),
+		cmocka_unit_test(test_labl_chunk_and_scale),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

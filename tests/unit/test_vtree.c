@@ -1,7 +1,8 @@
 /*
  * Unit tests of view-dependence trees (lib/vtree) and their octree pairs
  * (lib/octree): exact trees on tiny meshes, equation 1's preference, the
- * VTRE codec and its rejections, and collapse-all / split-all on samples.
+ * VTRE codec and its rejections, collapse-all / split-all on samples, and
+ * the tree in a stream's chunks with what --check reports of it.
  */
 #include <stdarg.h>
 #include <stddef.h>
@@ -351,6 +352,59 @@ bunny_round_trip(void **state)
 	sample_round_trip("samples/fetched/bunny.ply", 2, 1);
 }
 
+/*
+ * The square's tree through a stream's chunks, and what --check reports of
+ * it: with n = 4 leaves and 3 collapses, the active vertices halve at 0
+ * and 2 collapses (4, then 2 active), then the root's cut at 3.
+ */
+static void
+chunks_and_summary(void **state)
+{
+	struct vdt_mesh m = {4, (float *)square_p, NULL, NULL, NULL, 2, (uint32_t *)square_t};
+	struct vdt_chunks c = {0};
+	struct vdt_vtree t, u;
+	struct vdt_vtree_summary s;
+	struct vdt_err err = {0};
+	size_t at[] = {0, 2, 3}, nbrs;
+	uint64_t len;
+	unsigned char *stale = malloc(3);
+
+	(void)state;
+	assert_int_equal(vdt_vtree_place_parse("average"), VDT_VTREE_PLACE_AVERAGE);
+	assert_int_equal(vdt_vtree_place_parse("quadric"), VDT_VTREE_PLACE_QUADRIC);
+	assert_int_equal(vdt_vtree_place_parse("Average"), -1);
+	build(&m, 0.1, &t);
+	assert_int_equal(vdt_vtree_decode_chunk(&c, &m, &u, &err), VDT_EFORMAT);
+	assert_string_equal(err.msg, "no VTRE chunk: not a view-dependence tree");
+	assert_int_equal(u.node_count, 0);
+	assert_non_null(stale);
+	memset(stale, 0, 3);
+	assert_int_equal(vdt_chunks_add(&c, VDT_CHUNK_VTRE, stale, 3, &err), 0);
+	assert_int_not_equal(vdt_vtree_decode_chunk(&c, &m, &u, &err), 0);
+	assert_memory_equal(err.msg, "chunk VTRE at byte 0: ", 22);
+	/* encoding replaces the stale tree */
+	assert_int_equal(vdt_vtree_encode_chunk(&c, &t, &len, &err), 0);
+	assert_int_equal(c.count, 1);
+	assert_int_equal(len, vdt_vtree_encoded_size(&t));
+	assert_int_equal(vdt_vtree_decode_chunk(&c, &m, &u, &err), 0);
+	assert_int_equal(u.node_count, 7);
+	assert_int_equal(vdt_vtree_summarize(&u, &m, &s, &err), 0);
+	assert_int_equal(s.cut_count, 3);
+	for (size_t i = 0; i < 3; i++)
+		assert_int_equal(s.cuts[i].collapsed, at[i]);
+	assert_int_equal(s.cuts[0].triangles, 2);
+	assert_int_equal(s.cuts[2].active, 1);
+	assert_int_equal(s.roots, 1);
+	assert_int_equal(s.bytes, len);
+	assert_int_equal(vdt_vtree_check(&u, &m, at, 3, s.cuts, &nbrs, &err), 0);
+	assert_int_equal(s.explicit_bytes, len + 3 + 4 * nbrs);
+	assert_true(s.saving_pct > 0 && s.saving_pct < 100);
+	assert_true(fabs(s.bytes_per_vertex - len / 4.0) < 1e-12);
+	vdt_vtree_free(&u);
+	vdt_vtree_free(&t);
+	vdt_chunks_free(&c);
+}
+
 int
 main(void)
 {
@@ -364,6 +418,7 @@ main(void)
 		cmocka_unit_test(prepare_drops_degenerate_and_repeated_faces),
 		cmocka_unit_test(plate_round_trip),
 		cmocka_unit_test(bunny_round_trip),
+		cmocka_unit_test(chunks_and_summary),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

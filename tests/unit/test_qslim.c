@@ -1,0 +1,215 @@
+/*
+ * Unit tests of lib/qslim as vdt-qslim drives it: topology names, bounds in
+ * percent of the bounding-box diagonal, and a mesh's stream chunks (QUAD
+ * quadrics, the contraction record as SEQN) through vdt_qslim_extra.
+ * The attribute-aware cost has its own file, test_qslim_attr.c.
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../../lib/qslim.h"
+#include "shapes.h"
+
+static void
+topology_names(void **state)
+{
+	(void)state;
+	assert_int_equal(vdt_topology_parse("auto"), VDT_TOPOLOGY_AUTO);
+	assert_int_equal(vdt_topology_parse("keep"), VDT_TOPOLOGY_KEEP);
+	assert_int_equal(vdt_topology_parse("free"), VDT_TOPOLOGY_FREE);
+	assert_int_equal(vdt_topology_parse("Free"), -1);
+	assert_int_equal(vdt_topology_parse(""), -1);
+}
+
+/* The same meshes are equal down to the last bit of every position. */
+static void
+assert_same_mesh(const struct vdt_mesh *a, const struct vdt_mesh *b)
+{
+	assert_int_equal(a->vertex_count, b->vertex_count);
+	assert_int_equal(a->triangle_count, b->triangle_count);
+	assert_memory_equal(a->positions, b->positions, 3 * sizeof(float) * a->vertex_count);
+	assert_memory_equal(a->triangles, b->triangles, 3 * sizeof(uint32_t) * a->triangle_count);
+}
+
+/*
+ * On the icosphere, bounds of 1 and 2 percent are those of diag / 100 and
+ * 2 diag / 100 model units (diag: the input's bounding-box diagonal), and
+ * the error is reported in both.
+ */
+static void
+percent_bounds_are_of_the_diagonal(void **state)
+{
+	struct vdt_mesh m, a, b;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats sa, sb;
+	struct vdt_bbox box;
+
+	(void)state;
+	shape_icosphere(&m, 3);
+	vdt_mesh_bbox(&m, &box);
+	double diag = vdt_bbox_diagonal(&box);
+	vdt_qslim_defaults(&o);
+	o.max_error = 1;
+	o.max_error_percent = 1;
+	o.aggregate = 2;
+	o.aggregate_percent = 1;
+	assert_int_equal(vdt_qslim(&m, &o, &a, NULL, NULL, &sa, NULL), 0);
+	o.max_error = diag / 100;
+	o.max_error_percent = 0;
+	o.aggregate = 2 * diag / 100;
+	o.aggregate_percent = 0;
+	assert_int_equal(vdt_qslim(&m, &o, &b, NULL, NULL, &sb, NULL), 0);
+	assert_same_mesh(&a, &b);
+	assert_true(a.triangle_count < m.triangle_count);
+	assert_true(sa.max_error > 0 && sa.max_error <= diag / 100);
+	assert_true(sa.max_error == sb.max_error);
+	assert_true(sa.error_pct == 100 * sa.max_error / diag);
+	vdt_mesh_free(&a);
+	vdt_mesh_free(&b);
+	vdt_mesh_free(&m);
+}
+
+/* A QUAD chunk of n tangent-plane quadrics for the sphere's n vertices. */
+static void
+add_quad_chunk(struct vdt_chunks *c, const struct vdt_mesh *m, size_t n)
+{
+	struct vdt_quadric *q = calloc(n, sizeof(*q));
+	unsigned char *data;
+	uint64_t len;
+
+	assert_non_null(q);
+	for (size_t i = 0; i < n; i++) {
+		const float *p = m->positions + 3 * (i % m->vertex_count);
+		double nrm[3] = {p[0], p[1], p[2]};
+		vdt_quadric_plane(&q[i], nrm, -1, 1);
+	}
+	assert_int_equal(vdt_quad_encode(q, n, &data, &len, NULL), 0);
+	assert_int_equal(vdt_chunks_add(c, VDT_CHUNK_QUAD, data, len, NULL), 0);
+	free(q);
+}
+
+/*
+ * A QUAD chunk for another vertex count is refused, and leaves the chunks
+ * alone, unless quadrics are ignored; then the vertex data is dropped.
+ */
+static void
+extra_refuses_quadrics_of_another_mesh(void **state)
+{
+	struct vdt_mesh m;
+	struct vdt_chunks c = {0};
+	struct vdt_qslim_extra x;
+	struct vdt_err err = {0};
+	char want[80];
+
+	(void)state;
+	shape_icosphere(&m, 2);
+	add_quad_chunk(&c, &m, m.vertex_count - 1);
+	assert_int_equal(vdt_qslim_extra_decode(&x, &c, m.vertex_count, 0, &err), VDT_EFORMAT);
+	snprintf(want, sizeof(want), "QUAD chunk has %zu quadrics for %zu vertices",
+	         m.vertex_count - 1, m.vertex_count);
+	assert_string_equal(err.msg, want);
+	assert_null(x.quadrics);
+	assert_int_equal(c.count, 1);
+	assert_int_equal(vdt_qslim_extra_decode(&x, &c, m.vertex_count, 1, &err), 0);
+	assert_null(x.quadrics);
+	assert_int_equal(c.count, 0);
+	vdt_qslim_extra_free(&x);
+	vdt_chunks_free(&c);
+	vdt_mesh_free(&m);
+}
+
+/* The quadrics of the chunk are those vdt_qslim uses; the record comes
+ * back as SEQN. */
+static void
+extra_runs_with_the_chunk_quadrics(void **state)
+{
+	struct vdt_mesh m, a, b;
+	struct vdt_chunks c = {0};
+	struct vdt_qslim_extra x;
+	struct vdt_qslim_opts o;
+	struct vdt_labl_scale_opts lo;
+	struct vdt_qslim_stats st;
+	struct vdt_contraction *rec;
+	size_t nrec;
+
+	(void)state;
+	shape_icosphere(&m, 2);
+	add_quad_chunk(&c, &m, m.vertex_count);
+	assert_int_equal(vdt_qslim_extra_decode(&x, &c, m.vertex_count, 0, NULL), 0);
+	assert_non_null(x.quadrics);
+	assert_int_equal(c.count, 0);
+	vdt_qslim_defaults(&o);
+	vdt_labl_scale_defaults(&lo);
+	o.target_ratio = 0.25;
+	o.record = 1;
+	assert_int_equal(vdt_qslim_extra_run(&x, &m, &o, &lo, &a, &st, NULL), 0);
+	assert_null(x.error_scale);
+	o.quadrics = x.quadrics;
+	assert_int_equal(vdt_qslim(&m, &o, &b, &rec, &nrec, &st, NULL), 0);
+	assert_same_mesh(&a, &b);
+	assert_int_equal(x.record_count, nrec);
+	assert_memory_equal(x.records, rec, nrec * sizeof(*rec));
+	assert_int_equal(vdt_qslim_extra_encode(&x, &c, NULL), 0);
+	assert_int_equal(c.count, 1);
+	assert_int_equal(c.items[0].type, VDT_CHUNK_SEQN);
+	vdt_chunks_free(&c);
+	free(rec);
+	vdt_qslim_extra_free(&x);
+	vdt_mesh_free(&a);
+	vdt_mesh_free(&b);
+	vdt_mesh_free(&m);
+}
+
+/*
+ * With o.record, a record is written even of no contraction (a ratio of
+ * 1): a SEQN chunk of a u64 count of 0; without it, no chunk.
+ */
+static void
+extra_records_only_when_asked(void **state)
+{
+	struct vdt_mesh m, a;
+	struct vdt_chunks c = {0};
+	struct vdt_qslim_extra x = {0};
+	struct vdt_qslim_opts o;
+	struct vdt_labl_scale_opts lo;
+	struct vdt_qslim_stats st;
+
+	(void)state;
+	shape_icosphere(&m, 1);
+	vdt_qslim_defaults(&o);
+	vdt_labl_scale_defaults(&lo);
+	o.target_ratio = 1;
+	for (int record = 1; record >= 0; record--) {
+		o.record = record;
+		assert_int_equal(vdt_qslim_extra_run(&x, &m, &o, &lo, &a, &st, NULL), 0);
+		assert_int_equal(st.contractions, 0);
+		assert_int_equal(vdt_qslim_extra_encode(&x, &c, NULL), 0);
+		assert_int_equal(c.count, (size_t)record);
+		if (record)
+			assert_int_equal(c.items[0].length, 8);
+		vdt_chunks_free(&c);
+		vdt_mesh_free(&a);
+	}
+	vdt_qslim_extra_free(&x);
+	vdt_mesh_free(&m);
+}
+
+int
+main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(topology_names),
+		cmocka_unit_test(percent_bounds_are_of_the_diagonal),
+		cmocka_unit_test(extra_refuses_quadrics_of_another_mesh),
+		cmocka_unit_test(extra_runs_with_the_chunk_quadrics),
+		cmocka_unit_test(extra_records_only_when_asked),
+	};
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
