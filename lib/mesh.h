@@ -58,6 +58,12 @@ unsigned vdt_mesh_attrs(const struct vdt_mesh *m);
  */
 int vdt_mesh_validate(const struct vdt_mesh *m, struct vdt_err *err);
 
+/*
+ * The normal of triangle t, not normalised (its length is twice the
+ * triangle's area), from its corners in double precision.
+ */
+void vdt_mesh_face_cross(const struct vdt_mesh *m, size_t t, double n[3]);
+
 /* Axis-aligned bounding box of the positions (of every vertex). */
 void vdt_mesh_bbox(const struct vdt_mesh *m, struct vdt_bbox *box);
 

@@ -552,17 +552,8 @@ vdt_sil_camera(const struct vdt_mesh *m, const double centre[3], double radius,
 	memset(w->silhouette, 0, nv);
 	for (size_t t = 0; t < m->triangle_count; t++) {
 		const uint32_t *v = m->triangles + 3 * t;
-		const float *p0 = m->positions + 3 * (size_t)v[0];
-		const float *p1 = m->positions + 3 * (size_t)v[1];
-		const float *p2 = m->positions + 3 * (size_t)v[2];
-		double e1[3], e2[3], n[3];
-		for (int k = 0; k < 3; k++) {
-			e1[k] = (double)p1[k] - p0[k];
-			e2[k] = (double)p2[k] - p0[k];
-		}
-		n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-		n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-		n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+		double n[3];
+		vdt_mesh_face_cross(m, t, n);
 		double f = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
 		uint8_t side = f > 0 ? 1 : f < 0 ? 2 : 3;
 		for (int k = 0; k < 3; k++)

@@ -341,6 +341,21 @@ alloc_tree(struct vdt_vtree *t, size_t n, size_t nodes, size_t nt)
 	       t->tri_first && t->tris ? 0 : -1;
 }
 
+/* Face f's unit normal; 0 (fn unset) if the face has no direction. */
+static int
+unit_face_normal(const struct vdt_mesh *m, size_t f, double fn[3])
+{
+	double l;
+
+	vdt_mesh_face_cross(m, f, fn);
+	l = sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2]);
+	if (!(l > 0))
+		return 0;
+	for (int k = 0; k < 3; k++)
+		fn[k] /= l;
+	return 1;
+}
+
 /* Leaf normals (given, or area-weighted) and the cones of their faces. */
 static void
 leaf_normals(const struct vdt_mesh *m, struct vdt_vtree *t, double *acc)
@@ -350,17 +365,8 @@ leaf_normals(const struct vdt_mesh *m, struct vdt_vtree *t, double *acc)
 	memset(acc, 0, 3 * n * sizeof(double));
 	for (size_t f = 0; f < m->triangle_count; f++) {
 		const uint32_t *c = m->triangles + 3 * f;
-		const float *p0 = m->positions + 3 * (size_t)c[0];
-		const float *p1 = m->positions + 3 * (size_t)c[1];
-		const float *p2 = m->positions + 3 * (size_t)c[2];
-		double u[3], v[3], fn[3];
-		for (int k = 0; k < 3; k++) {
-			u[k] = (double)p1[k] - p0[k];
-			v[k] = (double)p2[k] - p0[k];
-		}
-		fn[0] = u[1] * v[2] - u[2] * v[1];
-		fn[1] = u[2] * v[0] - u[0] * v[2];
-		fn[2] = u[0] * v[1] - u[1] * v[0];
+		double fn[3];
+		vdt_mesh_face_cross(m, f, fn);
 		for (int j = 0; j < 3; j++)
 			for (int k = 0; k < 3; k++)
 				acc[3 * (size_t)c[j] + k] += fn[k];
@@ -374,22 +380,9 @@ leaf_normals(const struct vdt_mesh *m, struct vdt_vtree *t, double *acc)
 	}
 	for (size_t f = 0; f < m->triangle_count; f++) {
 		const uint32_t *c = m->triangles + 3 * f;
-		const float *p0 = m->positions + 3 * (size_t)c[0];
-		const float *p1 = m->positions + 3 * (size_t)c[1];
-		const float *p2 = m->positions + 3 * (size_t)c[2];
-		double u[3], v[3], fn[3], l;
-		for (int k = 0; k < 3; k++) {
-			u[k] = (double)p1[k] - p0[k];
-			v[k] = (double)p2[k] - p0[k];
-		}
-		fn[0] = u[1] * v[2] - u[2] * v[1];
-		fn[1] = u[2] * v[0] - u[0] * v[2];
-		fn[2] = u[0] * v[1] - u[1] * v[0];
-		l = sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2]);
-		if (!(l > 0))
+		double fn[3];
+		if (!unit_face_normal(m, f, fn))
 			continue;
-		for (int k = 0; k < 3; k++)
-			fn[k] /= l;
 		for (int j = 0; j < 3; j++) {
 			double a = angle3(t->normal + 3 * (size_t)c[j], fn);
 			if (a > t->cone[c[j]])
@@ -420,22 +413,9 @@ node_cones(const struct vdt_mesh *m, struct vdt_vtree *t)
 		lo[k] = 2;
 	for (size_t f = 0; f < m->triangle_count; f++) {
 		const uint32_t *c = m->triangles + 3 * f;
-		const float *p0 = m->positions + 3 * (size_t)c[0];
-		const float *p1 = m->positions + 3 * (size_t)c[1];
-		const float *p2 = m->positions + 3 * (size_t)c[2];
-		double u[3], v[3], fn[3], l;
-		for (int k = 0; k < 3; k++) {
-			u[k] = (double)p1[k] - p0[k];
-			v[k] = (double)p2[k] - p0[k];
-		}
-		fn[0] = u[1] * v[2] - u[2] * v[1];
-		fn[1] = u[2] * v[0] - u[0] * v[2];
-		fn[2] = u[0] * v[1] - u[1] * v[0];
-		l = sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2]);
-		if (!(l > 0))
+		double fn[3];
+		if (!unit_face_normal(m, f, fn))
 			continue; /* as for the leaves: no direction to hold */
-		for (int k = 0; k < 3; k++)
-			fn[k] /= l;
 		/* Up the three corners' paths at once, each ancestor once: ids
 		 * grow towards the roots, so the smallest is next (NONE last). */
 		uint32_t x[3] = {t->parent[c[0]], t->parent[c[1]], t->parent[c[2]]};

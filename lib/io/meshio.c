@@ -505,19 +505,9 @@ vdt_output_abort(struct vdt_output *o)
 static void
 face_normal(const struct vdt_mesh *m, size_t t, double n[3])
 {
-	const uint32_t *v = m->triangles + 3 * t;
-	const float *a = m->positions + 3 * (size_t)v[0];
-	const float *b = m->positions + 3 * (size_t)v[1];
-	const float *c = m->positions + 3 * (size_t)v[2];
-	double e1[3], e2[3], l;
+	double l;
 
-	for (int k = 0; k < 3; k++) {
-		e1[k] = (double)b[k] - a[k];
-		e2[k] = (double)c[k] - a[k];
-	}
-	n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-	n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-	n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+	vdt_mesh_face_cross(m, t, n);
 	l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
 	for (int k = 0; k < 3; k++)
 		n[k] = l > 0 ? n[k] / l : 0;

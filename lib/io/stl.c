@@ -165,16 +165,10 @@ vdt_stl_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err)
 			const float *a = m->positions + 3 * (size_t)t[0];
 			const float *bb = m->positions + 3 * (size_t)t[1];
 			const float *c = m->positions + 3 * (size_t)t[2];
-			double e1[3], e2[3], nrm[3], l;
+			double nrm[3], l;
 			unsigned char *q = b + 50 * j;
 
-			for (int k = 0; k < 3; k++) {
-				e1[k] = (double)bb[k] - a[k];
-				e2[k] = (double)c[k] - a[k];
-			}
-			nrm[0] = e1[1] * e2[2] - e1[2] * e2[1];
-			nrm[1] = e1[2] * e2[0] - e1[0] * e2[2];
-			nrm[2] = e1[0] * e2[1] - e1[1] * e2[0];
+			vdt_mesh_face_cross(m, t0 + j, nrm);
 			l = sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
 			for (int k = 0; k < 3; k++) {
 				vdt_put_f32le(q + 4 * k, l > 0 ? (float)(nrm[k] / l) : 0.0f);

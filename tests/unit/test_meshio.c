@@ -576,6 +576,26 @@ teardown(void **state)
 	return system(cmd) == 0 ? 0 : -1;
 }
 
+/* A face's cross product: twice its area along its normal, corner order. */
+static void
+test_face_cross(void **state)
+{
+	float pos[] = {1, 1, 1, 3, 1, 1, 1, 4, 1};
+	uint32_t tri[] = {0, 1, 2, 0, 2, 1};
+	struct vdt_mesh m = {0};
+	double n[3];
+
+	(void)state;
+	m.positions = pos;
+	m.vertex_count = 3;
+	m.triangles = tri;
+	m.triangle_count = 2;
+	vdt_mesh_face_cross(&m, 0, n);
+	assert_true(n[0] == 0 && n[1] == 0 && n[2] == 6);
+	vdt_mesh_face_cross(&m, 1, n);
+	assert_true(n[0] == 0 && n[1] == 0 && n[2] == -6);
+}
+
 int
 main(void)
 {
@@ -592,6 +612,7 @@ main(void)
 		cmocka_unit_test(test_stream_extra),
 		cmocka_unit_test(test_atomic),
 		cmocka_unit_test(test_image),
+		cmocka_unit_test(test_face_cross),
 	};
 
 	return cmocka_run_group_tests(tests, setup, teardown);
