@@ -26,3 +26,23 @@ off_vertices() {
 one_line() {
 	[ "$(printf '%s\n' "$output" | wc -l)" -eq 1 ]
 }
+
+# splice_labl STREAM OTHER OUT: STREAM's chunks with OTHER's LABL chunk in
+# place of its own (CRCs recomputed), for label/mesh mismatch tests.
+splice_labl() {
+	python3 - "$1" "$2" "$3" <<'PY'
+import struct, sys, zlib
+def chunks(b):
+    o, out = 12, []
+    while True:
+        t = b[o:o+4]; n = struct.unpack('<Q', b[o+4:o+12])[0]
+        out.append((t, b[o+12:o+12+n])); o += 16 + n
+        if t == b'END ': return out
+s = chunks(open(sys.argv[1], 'rb').read()); t = chunks(open(sys.argv[2], 'rb').read())
+b = open(sys.argv[1], 'rb').read()[:12]
+keep = [c for c in s if c[0] not in (b'LABL', b'END ')]
+for ty, p in keep + [[c for c in t if c[0] == b'LABL'][0], (b'END ', b'')]:
+    b += ty + struct.pack('<Q', len(p)) + p + struct.pack('<I', zlib.crc32(ty + p))
+open(sys.argv[3], 'wb').write(b)
+PY
+}

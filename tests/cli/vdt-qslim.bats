@@ -220,20 +220,7 @@ load helpers
 	"$BIN/vdt-silhouette" -a 45 -r 32 "$SAMPLES/sphere.off" -o "$TMP/s.vdl"
 	"$BIN/vdt-silhouette" -a 45 -r 32 "$SAMPLES/torus.off" -o "$TMP/t.vdl"
 	# splice: the torus's LABL after the sphere's MESH
-	python3 - "$TMP/s.vdl" "$TMP/t.vdl" "$TMP/bad.vdl" <<'PY'
-import struct, sys, zlib
-def chunks(b):
-    o, out = 12, []
-    while True:
-        t = b[o:o+4]; n = struct.unpack('<Q', b[o+4:o+12])[0]
-        out.append((t, b[o+12:o+12+n])); o += 16 + n
-        if t == b'END ': return out
-s = chunks(open(sys.argv[1], 'rb').read()); t = chunks(open(sys.argv[2], 'rb').read())
-b = open(sys.argv[1], 'rb').read()[:12]
-for ty, p in [s[0], [c for c in t if c[0] == b'LABL'][0], (b'END ', b'')]:
-    b += ty + struct.pack('<Q', len(p)) + p + struct.pack('<I', zlib.crc32(ty + p))
-open(sys.argv[3], 'wb').write(b)
-PY
+	splice_labl "$TMP/s.vdl" "$TMP/t.vdl" "$TMP/bad.vdl"
 	run "$BIN/vdt-qslim" -r 0.5 "$TMP/bad.vdl" -o "$TMP/x.off"
 	[ "$status" -eq 2 ]
 	one_line
