@@ -58,55 +58,79 @@ view_at(struct vdt_camera *c, double z)
 	assert_int_equal(vdt_camera_setup(c, &v, NULL, NULL), 0);
 }
 
+/* The square, its tree, a front on it, and a camera judged by eq. 1. */
+struct square {
+	struct vdt_mesh m;
+	struct vdt_vtree t;
+	struct vdt_front F;
+	struct vdt_camera c;
+	struct vdt_lod lod;
+	struct vdt_lod_ctx L;
+};
+
+static void
+square_open(struct square *s)
+{
+	struct vdt_mesh m = {4, (float *)square_p, NULL, NULL, NULL, 2, (uint32_t *)square_t};
+
+	memset(s, 0, sizeof(*s));
+	s->m = m;
+	build(&s->m, &s->t);
+	s->lod.eps = s->t.eps;
+	s->L.cam = &s->c;
+	s->L.lod = &s->lod;
+	s->L.t = &s->t;
+	assert_int_equal(vdt_front_init(&s->F, &s->t, &s->m, NULL), 0);
+}
+
+static void
+square_close(struct square *s)
+{
+	vdt_front_free(&s->F);
+	vdt_vtree_free(&s->t);
+}
+
 static void
 square_legality(void **state)
 {
-	struct vdt_mesh m = {4, (float *)square_p, NULL, NULL, NULL, 2, (uint32_t *)square_t};
-	struct vdt_vtree t;
-	struct vdt_front F;
+	struct square sq;
+	struct vdt_front *F = &sq.F;
 
 	(void)state;
-	build(&m, &t);
-	assert_int_equal(vdt_front_init(&F, &t, &m, NULL), 0);
-	assert_int_equal(mask(&F), 0xf);
-	assert_int_equal(F.tri_count, 2);
-	assert_true(vdt_front_can_collapse(&F, 4));
-	assert_false(vdt_front_can_collapse(&F, 5)); /* neighbour 0's parent 4 < 5 */
-	assert_false(vdt_front_can_collapse(&F, 6));
-	assert_int_equal(vdt_front_collapse(&F, 5, NULL), VDT_EINVAL);
-	assert_int_equal(vdt_front_collapse(&F, 4, NULL), 0);
-	assert_int_equal(mask(&F), 0x1c);
-	assert_int_equal(F.tri_count, 1);
-	assert_int_equal(F.tri[0], 1);
-	assert_true(vdt_front_can_split(&F, 4)); /* 4 > neighbours 2, 3 */
-	assert_true(vdt_front_can_collapse(&F, 5));
-	assert_int_equal(vdt_front_collapse(&F, 5, NULL), 0);
-	assert_int_equal(mask(&F), 0x30);
-	assert_int_equal(F.tri_count, 0);
-	assert_int_equal(vdt_front_collapse(&F, 6, NULL), 0);
-	assert_int_equal(mask(&F), 0x40);
-	assert_int_equal(vdt_front_split(&F, 6, NULL), 0);
-	assert_int_equal(vdt_front_split(&F, 4, NULL), 0); /* no triangle: no neighbour */
-	assert_int_equal(mask(&F), 0x23);
-	assert_false(vdt_front_can_split(&F, 0));
-	assert_int_equal(vdt_front_split(&F, 5, NULL), 0);
-	assert_int_equal(mask(&F), 0xf);
-	assert_int_equal(F.tri_count, 2);
+	square_open(&sq);
+	assert_int_equal(mask(F), 0xf);
+	assert_int_equal(F->tri_count, 2);
+	assert_true(vdt_front_can_collapse(F, 4));
+	assert_false(vdt_front_can_collapse(F, 5)); /* neighbour 0's parent 4 < 5 */
+	assert_false(vdt_front_can_collapse(F, 6));
+	assert_int_equal(vdt_front_collapse(F, 5, NULL), VDT_EINVAL);
+	assert_int_equal(vdt_front_collapse(F, 4, NULL), 0);
+	assert_int_equal(mask(F), 0x1c);
+	assert_int_equal(F->tri_count, 1);
+	assert_int_equal(F->tri[0], 1);
+	assert_true(vdt_front_can_split(F, 4)); /* 4 > neighbours 2, 3 */
+	assert_true(vdt_front_can_collapse(F, 5));
+	assert_int_equal(vdt_front_collapse(F, 5, NULL), 0);
+	assert_int_equal(mask(F), 0x30);
+	assert_int_equal(F->tri_count, 0);
+	assert_int_equal(vdt_front_collapse(F, 6, NULL), 0);
+	assert_int_equal(mask(F), 0x40);
+	assert_int_equal(vdt_front_split(F, 6, NULL), 0);
+	assert_int_equal(vdt_front_split(F, 4, NULL), 0); /* no triangle: no neighbour */
+	assert_int_equal(mask(F), 0x23);
+	assert_false(vdt_front_can_split(F, 0));
+	assert_int_equal(vdt_front_split(F, 5, NULL), 0);
+	assert_int_equal(mask(F), 0xf);
+	assert_int_equal(F->tri_count, 2);
 	for (int e = 0; e < 6; e++)
-		assert_int_equal(F.cur[e], square_t[e]);
-	vdt_front_free(&F);
-	vdt_vtree_free(&t);
+		assert_int_equal(F->cur[e], square_t[e]);
+	square_close(&sq);
 }
 
 static void
 square_views(void **state)
 {
-	struct vdt_mesh m = {4, (float *)square_p, NULL, NULL, NULL, 2, (uint32_t *)square_t};
-	struct vdt_vtree t;
-	struct vdt_front F;
-	struct vdt_camera c;
-	struct vdt_lod lod = {0};
-	struct vdt_lod_ctx L = {&c, &lod, &t};
+	struct square sq;
 	/* focal 50 px: node 6 (bound ~0.71) is finer than a pixel beyond ~36,
 	 * nodes 4 and 5 (bound 0.5) beyond 25. */
 	static const struct { double z; unsigned front; size_t tris; } path[] = {
@@ -114,17 +138,14 @@ square_views(void **state)
 	};
 
 	(void)state;
-	build(&m, &t);
-	lod.eps = t.eps;
-	assert_int_equal(vdt_front_init(&F, &t, &m, NULL), 0);
+	square_open(&sq);
 	for (size_t i = 0; i < sizeof(path) / sizeof(path[0]); i++) {
-		view_at(&c, path[i].z);
-		vdt_front_adapt(&F, vdt_lod_error, &L, 1);
-		assert_int_equal(mask(&F), path[i].front);
-		assert_int_equal(F.tri_count, path[i].tris);
+		view_at(&sq.c, path[i].z);
+		vdt_front_adapt(&sq.F, vdt_lod_error, &sq.L, 1);
+		assert_int_equal(mask(&sq.F), path[i].front);
+		assert_int_equal(sq.F.tri_count, path[i].tris);
 	}
-	vdt_front_free(&F);
-	vdt_vtree_free(&t);
+	square_close(&sq);
 }
 
 /*
@@ -137,40 +158,32 @@ square_views(void **state)
 static void
 square_scale(void **state)
 {
-	struct vdt_mesh m = {4, (float *)square_p, NULL, NULL, NULL, 2, (uint32_t *)square_t};
-	struct vdt_vtree t;
-	struct vdt_front F;
-	struct vdt_camera c;
-	struct vdt_lod lod = {0};
-	struct vdt_lod_ctx L = {&c, &lod, &t};
+	struct square sq;
 	double scale[7] = {0, 1, 1, 1, -1, -1, -1};
 
 	(void)state;
-	build(&m, &t);
-	lod.eps = t.eps;
-	vdt_front_scale_up(&t, scale);
+	square_open(&sq);
+	vdt_front_scale_up(&sq.t, scale);
 	assert_true(scale[4] == 0 && scale[5] == 1 && scale[6] == 0);
-	assert_int_equal(vdt_front_init(&F, &t, &m, NULL), 0);
-	F.scale = scale;
+	sq.F.scale = scale;
 	for (int i = 0; i < 2; i++) {
-		view_at(&c, i ? 100 : 30);
-		vdt_front_adapt(&F, vdt_lod_error, &L, 1);
-		assert_int_equal(mask(&F), 0xf); /* 5 may not collapse over 0, 1 */
-		assert_int_equal(F.tri_count, 2);
+		view_at(&sq.c, i ? 100 : 30);
+		vdt_front_adapt(&sq.F, vdt_lod_error, &sq.L, 1);
+		assert_int_equal(mask(&sq.F), 0xf); /* 5 may not collapse over 0, 1 */
+		assert_int_equal(sq.F.tri_count, 2);
 	}
-	F.scale = NULL;
-	vdt_front_adapt(&F, vdt_lod_error, &L, 1);
-	assert_int_equal(mask(&F), 0x40);
+	sq.F.scale = NULL;
+	vdt_front_adapt(&sq.F, vdt_lod_error, &sq.L, 1);
+	assert_int_equal(mask(&sq.F), 0x40);
 	/* A factor 0.5 halves the threshold of nodes 4 and 6 only: at 30, 4
 	 * (0.83 px) splits where square_views leaves 0x30. */
 	scale[0] = 0.5;
-	vdt_front_scale_up(&t, scale);
-	F.scale = scale;
-	view_at(&c, 30);
-	vdt_front_adapt(&F, vdt_lod_error, &L, 1);
-	assert_int_equal(mask(&F), 0x23);
-	vdt_front_free(&F);
-	vdt_vtree_free(&t);
+	vdt_front_scale_up(&sq.t, scale);
+	sq.F.scale = scale;
+	view_at(&sq.c, 30);
+	vdt_front_adapt(&sq.F, vdt_lod_error, &sq.L, 1);
+	assert_int_equal(mask(&sq.F), 0x23);
+	square_close(&sq);
 }
 
 /* Every active triangle keeps the side of its mesh triangle. */
