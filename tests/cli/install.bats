@@ -41,3 +41,15 @@ ROOT="$BATS_TEST_DIRNAME/../.."
 	make -s -C "$ROOT" uninstall DESTDIR="$TMP/d" PREFIX=/opt/vdt
 	[ -z "$(find "$TMP/d" -type f)" ]
 }
+
+@test "a variant switch relinks the tools; phase I's -O3 yields to the user's CFLAGS" {
+	if [ "$(cat "$ROOT/build/variant")" = san ]; then other= b=rel; else other=1 b=san; fi
+	run make -n -C "$ROOT" SANITIZE=$other bin/vdt-measure
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"-o bin/vdt-measure "* ]]
+	run make -n -B -C "$ROOT" SANITIZE=$other "build/$b/lib/cluster.o"
+	[[ "$output" == *" -O3 "* ]]
+	run make -n -B -C "$ROOT" SANITIZE=$other CFLAGS=-O1 "build/$b/lib/cluster.o"
+	[ "$status" -eq 0 ]
+	[[ "$output" != *"-O3"* ]]
+}
