@@ -6,7 +6,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "../lib/stream.h"
@@ -149,7 +148,7 @@ static struct {
 static void
 progress_draw(void *ctx, const char *phase, double fraction)
 {
-	double t = now_seconds();
+	double t = vdt_seconds();
 
 	(void)ctx;
 	if (fraction < 1 && t - progress.last < 0.1)
@@ -176,15 +175,6 @@ progress_done(void)
 	if (progress.active)
 		fprintf(stderr, "\r\033[K");
 	progress.active = 0;
-}
-
-double
-now_seconds(void)
-{
-	struct timespec ts;
-
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
 size_t

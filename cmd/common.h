@@ -78,8 +78,6 @@ double parse_bound(const char *opt, const char *s, int *percent);
 struct vdt_progress *progress_start(int quiet);
 void progress_done(void);
 
-/* Seconds since an arbitrary start, monotonic. */
-double now_seconds(void);
 
 /* Peak resident set size of this process in bytes (0 if unknown). */
 size_t peak_rss_bytes(void);

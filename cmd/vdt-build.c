@@ -126,7 +126,7 @@ run(struct cmdline *cl)
 	struct vdt_err err = {0};
 	uint64_t len;
 	size_t dropped;
-	double t0 = now_seconds(), t1, t2;
+	double t0 = vdt_seconds(), t1, t2;
 	int rc;
 
 	if (vdt_read(cl->in, &m, &extra, &err) != 0)
@@ -136,14 +136,14 @@ run(struct cmdline *cl)
 		goto out;
 	}
 	cl->o.progress = progress_start(cl->quiet);
-	t1 = now_seconds();
+	t1 = vdt_seconds();
 	rc = vdt_vtree_build(&m, &cl->o, &t, &st, &err);
 	progress_done();
 	if (rc != 0) {
 		rc = fail("cannot build a tree of", cl->in, &err);
 		goto out;
 	}
-	t2 = now_seconds();
+	t2 = vdt_seconds();
 	if (vdt_vtree_encode_chunk(&extra, &t, &len, &err) != 0 ||
 	    vdt_write(cl->out, &m, &extra, &w, &err) != 0) {
 		rc = fail("cannot write", cl->out, &err);
@@ -160,7 +160,7 @@ run(struct cmdline *cl)
 		        progname, m.vertex_count, m.triangle_count, t.node_count, st.roots, st.depth,
 		        st.octree_pairs, st.silent, st.rejected, (unsigned long long)len,
 		        (double)len / m.vertex_count, t1 - t0, st.octree_s, st.contract_s,
-		        st.finish_s, now_seconds() - t2, t2 - t1, peak_rss_bytes() / 1048576.0);
+		        st.finish_s, vdt_seconds() - t2, t2 - t1, peak_rss_bytes() / 1048576.0);
 	rc = EXIT_OK;
 out:
 	vdt_vtree_free(&t);

@@ -111,7 +111,7 @@ run(struct cmdline *cl)
 	struct vdt_chunks extra = {0};
 	struct vdt_err err = {0};
 	const struct vdt_progress *p = progress_start(cl->quiet);
-	double t0 = now_seconds(), t1, t2, t3, box_s;
+	double t0 = vdt_seconds(), t1, t2, t3, box_s;
 	int rc, remeasured;
 
 	rq.ch.size = cl->size;
@@ -120,7 +120,7 @@ run(struct cmdline *cl)
 		rc = fail("cannot read", cl->in, &err);
 		goto out;
 	}
-	t1 = now_seconds();
+	t1 = vdt_seconds();
 	rc = vdt_cluster_source(ts, &rq, &c, &g, &remeasured, &box_s, p, &err);
 	if (remeasured && !cl->quiet)
 		fprintf(stderr, "%s: %s: vertices outside the header's bounding box: measured it\n",
@@ -131,7 +131,7 @@ run(struct cmdline *cl)
 		                            : fail("cannot read", cl->in, &err);
 		goto out;
 	}
-	t2 = now_seconds();
+	t2 = vdt_seconds();
 	vdt_cluster_free(c); /* before the output is encoded: a lower peak */
 	c = NULL;
 	if (q != NULL) {
@@ -145,7 +145,7 @@ run(struct cmdline *cl)
 	q = NULL;
 	if ((rc = vdt_write(cl->out, &out, &extra, &cl->w, &err)) != 0)
 		goto write_failed;
-	t3 = now_seconds();
+	t3 = vdt_seconds();
 	progress_done();
 	if (cl->verbose)
 		fprintf(stderr, "%s: in_triangles=%llu streamed=%d cells=%zu boundary_cells=%zu "

@@ -134,7 +134,7 @@ run(struct cmdline *cl)
 	struct vdt_deform_result r = {0};
 	struct vdt_err err = {0};
 	char *bad = NULL;
-	double t0 = now_seconds(), t1, t2;
+	double t0 = vdt_seconds(), t1, t2;
 	int rc;
 
 	if ((rc = vdt_anim_read_operands(cl->in, cl->nin, cl->start, cl->count, &in, &fr,
@@ -147,14 +147,14 @@ run(struct cmdline *cl)
 		            fr.frame_count);
 	vdt_chunks_drop_vertex_data(&extra);
 	cl->d.progress = progress_start(cl->quiet);
-	t1 = now_seconds();
+	t1 = vdt_seconds();
 	rc = vdt_anim_deform_triangles(&in, &fr, &cl->d, cl->triangles, &r, &err);
 	progress_done();
 	if (rc != 0) {
 		rc = fail("cannot simplify", cl->in[0], &err);
 		goto out;
 	}
-	t2 = now_seconds();
+	t2 = vdt_seconds();
 	if ((rc = vdt_deform_write(&r, cl->out, &extra, &cl->w, &bad, &err)) != 0) {
 		rc = fail("cannot write", bad ? bad : cl->out, &err);
 		goto out;
@@ -163,7 +163,7 @@ run(struct cmdline *cl)
 		fprintf(stderr, "%s: some frames stopped above the target: no further valid "
 		        "contraction\n", progname);
 	if (cl->verbose)
-		statistics(cl, &in, &fr, &r, (double[3]){t1 - t0, t2 - t1, now_seconds() - t2});
+		statistics(cl, &in, &fr, &r, (double[3]){t1 - t0, t2 - t1, vdt_seconds() - t2});
 	rc = EXIT_OK;
 out:
 	free(bad);

@@ -108,7 +108,7 @@ run(const struct cmdline *cl)
 	struct vdt_measure_result r;
 	struct vdt_err err = {0};
 	float *verr = NULL;
-	double t0 = now_seconds(), t1;
+	double t0 = vdt_seconds(), t1;
 	int rc = EXIT_OK;
 
 	if (vdt_read(cl->a, &a, NULL, &err) != 0)
@@ -119,7 +119,7 @@ run(const struct cmdline *cl)
 	}
 	if (cl->color && (verr = malloc(a.vertex_count * sizeof(float) + 1)) == NULL)
 		rc = vdt_err_set(&err, VDT_ENOMEM, "out of memory");
-	t1 = now_seconds();
+	t1 = vdt_seconds();
 	if (rc != 0 || vdt_measure(&a, &b, &cl->m, &r, verr, progress_start(cl->quiet), &err) != 0) {
 		rc = fail("cannot measure", cl->b, &err);
 		goto out;
@@ -148,7 +148,7 @@ run(const struct cmdline *cl)
 		        "tree_s=%.3f ab_s=%.3f ba_s=%.3f orientation_s=%.3f total_s=%.3f "
 		        "peak_mb=%.1f normal_mean_deg=%.3g normal_max_deg=%.3g degenerate=%zu\n",
 		        progname, a.triangle_count, b.triangle_count, cl->m.threads, t1 - t0,
-		        r.seconds[0], r.seconds[1], r.seconds[2], r.seconds[3], now_seconds() - t0,
+		        r.seconds[0], r.seconds[1], r.seconds[2], r.seconds[3], vdt_seconds() - t0,
 		        peak_rss_bytes() / 1048576.0, r.normals.mean_angle, r.normals.max_angle,
 		        r.normals.degenerate);
 out:

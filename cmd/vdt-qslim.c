@@ -120,7 +120,7 @@ run(struct cmdline *cl)
 	struct vdt_qslim_extra x = {0};
 	struct vdt_qslim_stats st;
 	struct vdt_err err = {0};
-	double t0 = now_seconds(), t1, t2;
+	double t0 = vdt_seconds(), t1, t2;
 	int rc;
 
 	if ((rc = vdt_read(cl->in, &in, &extra, &err)) != 0)
@@ -130,14 +130,14 @@ run(struct cmdline *cl)
 		goto out;
 	}
 	cl->q.progress = progress_start(cl->quiet);
-	t1 = now_seconds();
+	t1 = vdt_seconds();
 	rc = vdt_qslim_extra_run(&x, &in, &cl->q, &cl->l, &out, &st, &err);
 	progress_done();
 	if (rc != 0) {
 		rc = fail("cannot simplify", cl->in, &err);
 		goto out;
 	}
-	t2 = now_seconds();
+	t2 = vdt_seconds();
 	if ((rc = vdt_qslim_extra_encode(&x, &extra, &err)) != 0 ||
 	    (rc = vdt_write(cl->out, &out, &extra, &cl->w, &err)) != 0) {
 		rc = fail("cannot write", cl->out, &err);
@@ -155,7 +155,7 @@ run(struct cmdline *cl)
 		        out.triangle_count, st.contractions, st.rejected, st.welded, st.dropped,
 		        st.nonmanifold, st.free_topology ? "free" : "keep", st.max_error,
 		        st.error_pct, t1 - t0, t2 - t1,
-		        now_seconds() - t2, peak_rss_bytes() / 1048576.0);
+		        vdt_seconds() - t2, peak_rss_bytes() / 1048576.0);
 	rc = EXIT_OK;
 out:
 	vdt_mesh_free(&in);

@@ -147,13 +147,13 @@ run(struct cmdline *cl)
 		goto out;
 	}
 	for (size_t i = 0; i < nviews && rc == EXIT_OK; i++) {
-		double t0 = now_seconds(), t1, t2, rmse;
+		double t0 = vdt_seconds(), t1, t2, rmse;
 		vdt_camera_setup(&cam, &views[i], &box, NULL);
 		vdt_render_adapt(&R, &cam);
-		t1 = now_seconds();
+		t1 = vdt_seconds();
 		if (vdt_render_draw(&R, &cam, bg, &err) != 0)
 			rc = fail("cannot render", cl->in, &err);
-		t2 = now_seconds();
+		t2 = vdt_seconds();
 		if (rc == EXIT_OK && cl->out && (snprintf(name, sizeof(name), cl->out, (int)i),
 		    vdt_image_write(name, R.r.width, R.r.height, 3, R.r.rgb, &err) != 0))
 			rc = fail("cannot write", name, &err) ? EXIT_USAGE : 0;

@@ -103,7 +103,7 @@ run(struct cmdline *cl)
 	struct vdt_err err = {0};
 	unsigned char *data;
 	uint64_t len;
-	double t0 = now_seconds(), t1;
+	double t0 = vdt_seconds(), t1;
 	int rc = EXIT_OK;
 
 	if (cl->cameras) {
@@ -127,7 +127,7 @@ run(struct cmdline *cl)
 		rc = fail(rc == VDT_EIO ? "cannot write images for" : "cannot label", cl->in, &err);
 		goto out;
 	}
-	t1 = now_seconds();
+	t1 = vdt_seconds();
 	if (cl->has_view) {
 		float *v = malloc(m.vertex_count * sizeof(*v));
 		FILE *f = strcmp(cl->out, "-") == 0 ? stdout : fopen(cl->out, "w");

@@ -25,7 +25,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #define KEY_BITS 21
 #define KEY_MASK ((1ull << KEY_BITS) - 1)
@@ -1078,14 +1077,6 @@ vdt_cluster_choose(const struct vdt_cluster_choice *ch, struct vdt_tsource *ts,
 	return 0;
 }
 
-static double
-seconds(void)
-{
-	struct timespec t;
-
-	clock_gettime(CLOCK_MONOTONIC, &t);
-	return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 int
 vdt_cluster_source(struct vdt_tsource *ts, const struct vdt_cluster_request *rq,
@@ -1101,10 +1092,10 @@ vdt_cluster_source(struct vdt_tsource *ts, const struct vdt_cluster_request *rq,
 	for (int claimed = vdt_tsource_header_box(ts, &box);; claimed = 0) {
 		struct vdt_cluster_choice ch = rq->ch;
 		if (!claimed) {
-			double t0 = seconds();
+			double t0 = vdt_seconds();
 			if ((rc = vdt_cluster_scan_bbox(ts, &box, NULL, p, err)) != 0)
 				return rc;
-			*box_seconds = seconds() - t0;
+			*box_seconds = vdt_seconds() - t0;
 		}
 		if (rq->ratio > 0) /* of the triangles the input announces */
 			ch.target = fmax(1, round(rq->ratio * (double)vdt_tsource_triangle_hint(ts)));

@@ -32,7 +32,6 @@
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 enum {
 	BLOCK = 4096,      /* samples per unit of parallel work */
@@ -555,14 +554,6 @@ vdt_measure_normals(const struct vdt_mesh *a, const struct vdt_bvh *bvh_a,
 
 /* ---- the whole measurement ---- */
 
-static double
-seconds(void)
-{
-	struct timespec ts;
-
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
 
 struct bvh_task {
 	struct vdt_bvh *bvh;
@@ -626,13 +617,13 @@ vdt_measure(const struct vdt_mesh *a, const struct vdt_mesh *b,
 	 * a -> b needs only the tree of b. The tree of a, usually the large
 	 * one, is built on a second thread meanwhile; b -> a waits for it.
 	 */
-	t0 = seconds();
+	t0 = vdt_seconds();
 	if (!o.one_sided && o.threads > 1)
 		threaded = pthread_create(&th, NULL, bvh_task, &ta) == 0;
 	vdt_progress_report(progress, "building BVH", 0);
 	rc = vdt_bvh_build(&bvh_b, b, err);
-	res->seconds[0] = seconds() - t0;
-	t0 = seconds();
+	res->seconds[0] = vdt_seconds() - t0;
+	t0 = vdt_seconds();
 	/*
 	 * All threads work on a -> b, even while the tree of a is being built:
 	 * that tree is small as often as large, and a core left idle costs more
@@ -640,8 +631,8 @@ vdt_measure(const struct vdt_mesh *a, const struct vdt_mesh *b,
 	 */
 	if (rc == 0)
 		rc = one_way(a, &bvh_b, &o, &res->ab, vertex_error, progress, err);
-	res->seconds[1] = seconds() - t0;
-	t0 = seconds();
+	res->seconds[1] = vdt_seconds() - t0;
+	t0 = vdt_seconds();
 	if (threaded)
 		pthread_join(th, NULL);
 	else if (!o.one_sided && rc == 0)
@@ -654,12 +645,12 @@ vdt_measure(const struct vdt_mesh *a, const struct vdt_mesh *b,
 	if (rc != 0 || o.one_sided)
 		goto out;
 	rc = one_way(b, &bvh_a, &o, &res->ba, NULL, progress, err);
-	res->seconds[2] = seconds() - t0;
+	res->seconds[2] = vdt_seconds() - t0;
 	if (rc != 0)
 		goto out;
-	t0 = seconds();
+	t0 = vdt_seconds();
 	rc = vdt_measure_normals(a, &bvh_a, b, o.threads, &res->normals, progress, err);
-	res->seconds[3] = seconds() - t0;
+	res->seconds[3] = vdt_seconds() - t0;
 out:
 	vdt_bvh_free(&bvh_a);
 	vdt_bvh_free(&bvh_b);

@@ -16,7 +16,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "bytes.h"
 #include "contract.h"
@@ -28,13 +27,6 @@
 #define LEAF_REC 10
 #define NODE_REC 35
 
-static double
-seconds(void)
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
 
 static double
 dist3(const float *a, const float *b)
@@ -472,7 +464,7 @@ vdt_vtree_build(const struct vdt_mesh *m, const struct vdt_vtree_opts *o,
 	uint32_t *pairs = NULL, *count = NULL;
 	double *acc = NULL;
 	size_t n = m->vertex_count, nt = m->triangle_count, npairs = 0;
-	double t0 = seconds(), t1, t2;
+	double t0 = vdt_seconds(), t1, t2;
 	int rc;
 
 	memset(t, 0, sizeof(*t));
@@ -522,7 +514,7 @@ vdt_vtree_build(const struct vdt_mesh *m, const struct vdt_vtree_opts *o,
 	if ((rc = vdt_octree_pairs(m->positions, n, &pairs, &npairs, err)) != 0)
 		goto fail;
 	st.octree_pairs = npairs;
-	t1 = seconds();
+	t1 = vdt_seconds();
 
 	vdt_contract_defaults(&co);
 	co.target_triangles = 0;
@@ -539,7 +531,7 @@ vdt_vtree_build(const struct vdt_mesh *m, const struct vdt_vtree_opts *o,
 	free(pairs);
 	pairs = NULL;
 	st.rejected = res.rejected;
-	t2 = seconds();
+	t2 = vdt_seconds();
 
 	/* Each triangle vanishes at the first collapse that joins two of its
 	 * corners: the smallest of its corners' lowest common ancestors (ids
@@ -597,7 +589,7 @@ vdt_vtree_build(const struct vdt_mesh *m, const struct vdt_vtree_opts *o,
 	st.roots = vdt_vtree_roots(t);
 	st.octree_s = t1 - t0;
 	st.contract_s = t2 - t1;
-	st.finish_s = seconds() - t2;
+	st.finish_s = vdt_seconds() - t2;
 	vdt_contract_result_free(&res);
 	free(B.node_of);
 	free(B.q);

@@ -23,23 +23,14 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
-#include <time.h>
 #include <unistd.h>
 
 #include <meshoptimizer.h>
 
 #include "../../lib/io/meshio.h"
+#include "../../lib/progress.h"
 
 static const char *progname = "meshopt_simplify";
-
-static double
-now(void)
-{
-	struct timespec ts;
-
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
 
 #define BENCH_FLAGS "[-s] "
 #include "driver.h"
@@ -97,7 +88,7 @@ main(int argc, char **argv)
 	                          3 * sizeof(float), remap);
 	free(remap);
 
-	t0 = now();
+	t0 = vdt_seconds();
 	if (sloppy)
 		n = meshopt_simplifySloppy(dst, indices, index_count, out.positions, welded,
 		                           3 * sizeof(float), 3 * target, FLT_MAX,
@@ -106,7 +97,7 @@ main(int argc, char **argv)
 		n = meshopt_simplify(dst, indices, index_count, out.positions, welded,
 		                     3 * sizeof(float), 3 * target, FLT_MAX, 0,
 		                     &result_error);
-	secs = now() - t0;
+	secs = vdt_seconds() - t0;
 
 	/* Compact: keep only the vertices the result uses. */
 	{

@@ -17,7 +17,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <ctime>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -31,18 +30,10 @@
 
 extern "C" {
 #include "../../lib/io/meshio.h"
+#include "../../lib/progress.h"
 }
 
 static const char *progname = "vtk_cluster";
-
-static double
-now()
-{
-	struct timespec ts;
-
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
 
 #include "driver.h"
 
@@ -62,9 +53,9 @@ cluster(vtkPolyData *in, const double ext[3], int n, double *secs)
 	q->UseInputPointsOff();
 	q->UseFeatureEdgesOff();
 	q->CopyCellDataOff();
-	double t0 = now();
+	double t0 = vdt_seconds();
 	q->Update();
-	*secs = now() - t0;
+	*secs = vdt_seconds() - t0;
 	vtkSmartPointer<vtkPolyData> out = q->GetOutput();
 	return out;
 }
