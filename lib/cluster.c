@@ -162,19 +162,24 @@ vdt_cluster_grid_dims(const struct vdt_bbox *box, const uint32_t dims[3],
 }
 
 /*
- * The cell index along axis k, clamped into [0, dims - 1] (top[k] is
- * dims[k] - 1 as a double; NaN goes to 0). Clamping the coordinate before
- * truncating gives the same index as clamping after, and both ternaries
- * compile to branchless max/min: this runs three times per corner.
+ * The cell index of a coordinate f in cell units, clamped into
+ * [0, dims - 1] (top is dims - 1 as a double; NaN goes to 0). Clamping
+ * the coordinate before truncating gives the same index as clamping after,
+ * and both ternaries compile to branchless max/min: this runs three times
+ * per corner.
  */
+static inline uint32_t
+clamp_cell(double f, double top)
+{
+	f = f > 0 ? f : 0;
+	f = f < top ? f : top;
+	return (uint32_t)f;
+}
+
 static inline uint32_t
 axis_cell(const double *origin, const double *inv, const double *top, const double *p, int k)
 {
-	double f = (p[k] - origin[k]) * inv[k];
-
-	f = f > 0 ? f : 0;
-	f = f < top[k] ? f : top[k];
-	return (uint32_t)f;
+	return clamp_cell((p[k] - origin[k]) * inv[k], top[k]);
 }
 
 void
@@ -439,8 +444,6 @@ vdt_cluster_new(struct vdt_cluster **cp, const struct vdt_cluster_grid *g, size_
 	for (int k = 0; k < 3; k++) {
 		c->inv[k] = 1 / g->cell[k];
 		c->top[k] = g->dims[k] - 1.0;
-	}
-	for (int k = 0; k < 3; k++) {
 		c->lo[k] = INFINITY;
 		c->hi[k] = -INFINITY;
 	}
@@ -658,9 +661,7 @@ key_of(const struct vdt_cluster *c, const double *p, double *lo, double *hi)
 		double f = (p[k] - c->g.origin[k]) * c->inv[k];
 		lo[k] = f < lo[k] ? f : lo[k];
 		hi[k] = f > hi[k] ? f : hi[k];
-		f = f > 0 ? f : 0;
-		f = f < c->top[k] ? f : c->top[k];
-		key |= (uint64_t)f << k * KEY_BITS;
+		key |= (uint64_t)clamp_cell(f, c->top[k]) << k * KEY_BITS;
 	}
 	return key;
 }
