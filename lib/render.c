@@ -16,7 +16,6 @@ vdt_render_init(struct vdt_render *R, const struct vdt_mesh *m, const struct vdt
                 const struct vdt_render_opts *o, int width, int height, struct vdt_err *err)
 {
 	const struct vdt_chunk *c = vdt_chunks_find(extra, VDT_CHUNK_VTRE);
-	const struct vdt_chunk *lc = vdt_chunks_find(extra, VDT_CHUNK_LABL);
 	double radius;
 	int rc;
 
@@ -36,16 +35,9 @@ vdt_render_init(struct vdt_render *R, const struct vdt_mesh *m, const struct vdt
 		return rc;
 	}
 	/* Labels matter only where a front adapts. */
-	if (lc && c && !o->full) {
-		if ((rc = vdt_labl_decode(lc->data, lc->length, &R->labl, err)) != 0) {
-			vdt_err_prefix(err, "chunk LABL");
-			goto fail;
-		}
-		if (R->labl.vertex_count != m->vertex_count) {
-			rc = vdt_err_set(err, VDT_EFORMAT, "LABL chunk has labels of %zu vertices for %zu",
-			                 R->labl.vertex_count, m->vertex_count);
-			goto fail;
-		}
+	if (c && !o->full && (rc = vdt_labl_decode_chunk(extra, m->vertex_count, &R->labl, err)) != 0)
+		goto fail;
+	if (R->labl.cams.count > 0) {
 		if ((rc = vdt_sil_frame(m, R->centre, &radius, err)) != 0) {
 			vdt_err_prefix(err, "chunk LABL");
 			rc = VDT_EFORMAT;

@@ -847,8 +847,10 @@ vdt_labl_decode_chunk(const struct vdt_chunks *c, size_t vertex_count, struct vd
 	memset(l, 0, sizeof(*l));
 	if (ch == NULL)
 		return 0;
-	if ((rc = vdt_labl_decode(ch->data, ch->length, l, err)) != 0)
+	if ((rc = vdt_labl_decode(ch->data, ch->length, l, err)) != 0) {
+		vdt_err_prefix(err, "chunk LABL");
 		return rc;
+	}
 	if (l->vertex_count != vertex_count) {
 		rc = vdt_err_set(err, VDT_EFORMAT, "LABL chunk has labels of %zu vertices for %zu",
 		                 l->vertex_count, vertex_count);

@@ -234,9 +234,9 @@ void vdt_labl_error_scale(const float *labels, size_t count,
 /*
  * The labels of a stream: decode the first LABL chunk of c into *l, which
  * must label vertex_count vertices; *l is left empty (cams.count 0) when
- * there is none. Returns 0, vdt_labl_decode's status, or VDT_EFORMAT when
- * the vertex counts differ ("LABL chunk has labels of 10 vertices for
- * 12"); *l is empty on failure.
+ * there is none. Returns 0, vdt_labl_decode's status (its message after
+ * "chunk LABL: "), or VDT_EFORMAT when the vertex counts differ ("LABL
+ * chunk has labels of 10 vertices for 12"); *l is empty on failure.
  */
 int vdt_labl_decode_chunk(const struct vdt_chunks *c, size_t vertex_count,
                           struct vdt_labl *l, struct vdt_err *err);

@@ -296,6 +296,19 @@ test_labl_chunk_and_scale(void **state)
 	assert_string_equal(err.msg, want);
 	assert_int_equal(vdt_labl_decode_chunk(&c, V, &r, &err), 0);
 	assert_int_equal(r.cams.count, l.cams.count);
+	{
+		/* A payload that does not decode is named as the LABL chunk's. */
+		struct vdt_chunks bad = {0};
+		struct vdt_labl junk;
+		unsigned char *head = malloc(8); /* the chunk list owns what it gets */
+		assert_non_null(head);
+		memcpy(head, d, 8);
+		assert_int_equal(vdt_chunks_add(&bad, VDT_CHUNK_LABL, head, 8, NULL), 0);
+		assert_int_not_equal(vdt_labl_decode_chunk(&bad, V, &junk, &err), 0);
+		assert_int_equal(junk.cams.count, 0);
+		assert_true(strncmp(err.msg, "chunk LABL: ", 12) == 0);
+		vdt_chunks_free(&bad);
+	}
 
 	lab = malloc(V * sizeof(*lab));
 	double *want_scale = malloc(V * sizeof(*want_scale));
