@@ -4,6 +4,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#define DIGIT 11
+#define BUCKETS (1u << DIGIT)
+#define MAXD ((64 + DIGIT - 1) / DIGIT)
+
 static int
 cmp_u64(const void *a, const void *b)
 {
@@ -11,38 +15,79 @@ cmp_u64(const void *a, const void *b)
 	return x < y ? -1 : x > y;
 }
 
-int
-vdt_sort_u64(uint64_t *k, size_t n)
+static int
+cmp_high(const void *a, const void *b, int low_bit)
 {
-	if (n < 4096) {
-		if (n > 1)
+	uint64_t x = *(const uint64_t *)a >> low_bit, y = *(const uint64_t *)b >> low_bit;
+	return x < y ? -1 : x > y;
+}
+
+/* Insertion sort on bits [low_bit, 64): stable, for short runs. */
+static void
+insertion(uint64_t *k, size_t n, int low_bit)
+{
+	for (size_t i = 1; i < n; i++) {
+		uint64_t x = k[i];
+		size_t j = i;
+		while (j > 0 && cmp_high(&k[j - 1], &x, low_bit) > 0) {
+			k[j] = k[j - 1];
+			j--;
+		}
+		k[j] = x;
+	}
+}
+
+int
+vdt_sort_u64_from(uint64_t *k, size_t n, int low_bit)
+{
+	if (n < 64) {
+		if (low_bit == 0 && n > 1)
 			qsort(k, n, sizeof(*k), cmp_u64);
+		else
+			insertion(k, n, low_bit);
 		return 0;
 	}
 	uint64_t *tmp = malloc(n * sizeof(*tmp));
-	size_t *count = malloc(65536 * sizeof(*count));
+	size_t *count = calloc((size_t)MAXD * BUCKETS, sizeof(*count));
 	if (tmp == NULL || count == NULL) {
 		free(tmp);
 		free(count);
 		return -1;
 	}
-	for (int shift = 0; shift < 64; shift += 16) {
-		memset(count, 0, 65536 * sizeof(*count));
-		for (size_t i = 0; i < n; i++)
-			count[(k[i] >> shift) & 0xffff]++;
-		if (count[(k[0] >> shift) & 0xffff] == n)
-			continue;
+	/* Every digit's histogram in one pass over the keys. */
+	int nd = (64 - low_bit + DIGIT - 1) / DIGIT;
+	for (size_t i = 0; i < n; i++) {
+		uint64_t x = k[i] >> low_bit;
+		for (int d = 0; d < nd; d++)
+			count[(size_t)d * BUCKETS + ((x >> (d * DIGIT)) & (BUCKETS - 1))]++;
+	}
+	uint64_t *src = k, *dst = tmp;
+	for (int d = 0; d < nd; d++) {
+		size_t *c = count + (size_t)d * BUCKETS;
+		int shift = low_bit + d * DIGIT;
+		if (c[(src[0] >> shift) & (BUCKETS - 1)] == n)
+			continue; /* the same digit in every key */
 		size_t sum = 0;
-		for (size_t d = 0; d < 65536; d++) {
-			size_t c = count[d];
-			count[d] = sum;
-			sum += c;
+		for (size_t b = 0; b < BUCKETS; b++) {
+			size_t t = c[b];
+			c[b] = sum;
+			sum += t;
 		}
 		for (size_t i = 0; i < n; i++)
-			tmp[count[(k[i] >> shift) & 0xffff]++] = k[i];
-		memcpy(k, tmp, n * sizeof(*k));
+			dst[c[(src[i] >> shift) & (BUCKETS - 1)]++] = src[i];
+		uint64_t *t = src;
+		src = dst;
+		dst = t;
 	}
+	if (src != k)
+		memcpy(k, src, n * sizeof(*k));
 	free(tmp);
 	free(count);
 	return 0;
+}
+
+int
+vdt_sort_u64(uint64_t *k, size_t n)
+{
+	return vdt_sort_u64_from(k, n, 0);
 }

@@ -9,10 +9,19 @@
 #include <stdint.h>
 
 /*
- * Sort n keys ascending: LSD radix sort on 16-bit digits (digits that are
- * the same in every key are skipped), insertion-free qsort below 4096 keys.
- * Returns 0, or -1 if the scratch buffer cannot be allocated (k unchanged).
+ * Sort n keys ascending: LSD radix sort on 11-bit digits, every digit's
+ * histogram counted in one pass and digits that are the same in every key
+ * skipped; qsort below 64 keys. Returns 0, or -1 if the scratch buffer
+ * cannot be allocated (k unchanged).
  */
 int vdt_sort_u64(uint64_t *k, size_t n);
+
+/*
+ * Sort n keys by their bits from low_bit up (0 <= low_bit < 64), stably:
+ * keys equal there keep their order, so keys put in order of their low
+ * bits come out sorted by (high bits, low bits) at the cost of the high
+ * bits alone.
+ */
+int vdt_sort_u64_from(uint64_t *k, size_t n, int low_bit);
 
 #endif
