@@ -27,8 +27,8 @@ usage(FILE *f)
 	        "usage: vdt-qslim [-t TRIANGLES] [-r RATIO] [-e ERROR[%%]] [-o OUTPUT] [-F FORMAT]\n"
 	        "                 [-a DISTANCE[%%]] [--lock-border] [--boundary-weight W]\n"
 	        "                 [--max-angle DEGREES] [--min-quality Q] [--ignore-quadrics]\n"
-	        "                 [--attribute-weight W] [--topology auto|keep|free] [--record]\n"
-	        "                 [--contour-distance PIXELS] [--error-factor F]\n"
+	        "                 [--attribute-weight W] [--topology auto|keep|free] [--greedy]\n"
+	        "                 [--record] [--contour-distance PIXELS] [--error-factor F]\n"
 	        "                 [--view X,Y,Z [--nearest N]] [--draco-bits N] [-q] [-v] [INPUT]\n"
 	        "Simplify a triangle mesh with quadric error metrics. INPUT and OUTPUT\n"
 	        "default to - (stdin, stdout); stops at the first target reached\n"
@@ -38,7 +38,7 @@ usage(FILE *f)
 static void
 parse_cmdline(int argc, char **argv, struct cmdline *cl)
 {
-	enum { O_LOCK = 256, O_BW, O_ANGLE, O_QUALITY, O_IGNORE, O_RECORD, O_DRACO, O_AW, O_TOPO, O_CD, O_EF, O_VIEW, O_NEAR };
+	enum { O_LOCK = 256, O_BW, O_ANGLE, O_QUALITY, O_IGNORE, O_RECORD, O_DRACO, O_AW, O_TOPO, O_CD, O_EF, O_VIEW, O_NEAR, O_GREEDY };
 	static const struct option longopts[] = {
 		{"triangles", required_argument, NULL, 't'},
 		{"ratio", required_argument, NULL, 'r'},
@@ -54,6 +54,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		{"topology", required_argument, NULL, O_TOPO},
 		{"attribute-weight", required_argument, NULL, O_AW},
 		{"record", no_argument, NULL, O_RECORD},
+		{"greedy", no_argument, NULL, O_GREEDY},
 		{"draco-bits", required_argument, NULL, O_DRACO},
 		{"contour-distance", required_argument, NULL, O_CD},
 		{"error-factor", required_argument, NULL, O_EF},
@@ -94,6 +95,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 			break;
 		case O_AW: cl->q.attribute_weight = parse_real("--attribute-weight", optarg, 0, 1e9); break;
 		case O_RECORD: cl->q.record = 1; break;
+		case O_GREEDY: cl->q.greedy = 1; break;
 		case O_DRACO: cl->w.draco_position_bits = (int)parse_count("--draco-bits", optarg, 1, 30); break;
 		case O_CD: cl->l.contour_distance = parse_real("--contour-distance", optarg, 0, 1e6); break;
 		case O_EF: cl->l.factor = parse_real("--error-factor", optarg, 0, 1); break;

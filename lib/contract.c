@@ -26,6 +26,10 @@
  * not); V_STALE: the key is a lower bound, recompute on reaching the top;
  * V_NOALT: the second cheapest pair is not known. */
 enum { V_DEAD = 1, V_LOCKED = 2, V_CHECKED = 4, V_STALE = 8, V_NOALT = 16 };
+/* In passes: V_DIRTY: the neighbourhood changed, find the cheapest pair
+ * again; V_REFUSED: the cheapest pair failed a test, find the cheapest
+ * valid one. */
+enum { V_DIRTY = 32, V_REFUSED = 64, V_KEPT = 128 };
 enum { P_DEAD = 1, P_REJECTED = 2 };
 
 struct list {
@@ -90,6 +94,9 @@ struct engine {
 	size_t vn_cap, vk_cap;
 	uint32_t *wing;        /* third corners of the faces a contraction removed */
 	size_t wing_len, wing_cap;
+
+	int passes;            /* contract in passes (vdt_contract_opts.passes) */
+	uint64_t *keys;        /* passes: (cost bits, vertex) to sort */
 };
 
 /* ---- pools of per-vertex lists ---- */
@@ -961,7 +968,7 @@ contract(struct engine *e, uint32_t keep, uint32_t gone, const double dpos[3],
 		e->live_verts--;
 		if (e->ops->merged)
 			e->ops->merged(e->ops->ctx, keep, gone, dpos, cost);
-		return vertex_merged(e, keep, gone);
+		return e->passes ? 0 : vertex_merged(e, keep, gone);
 	}
 
 	/* Pairs: re-point gone's pairs to keep, dropping duplicates. */
@@ -1032,6 +1039,274 @@ contract(struct engine *e, uint32_t keep, uint32_t gone, const double dpos[3],
 	return 0;
 }
 
+/* ---- passes ---- */
+
+static int
+done(const struct engine *e, const struct vdt_contract_opts *o)
+{
+	if (e->live_tris <= o->target_triangles &&
+	    (o->target_vertices == 0 || e->live_verts <= o->target_vertices))
+		return 1;
+	return 0;
+}
+
+/* Append a contraction to res->records (capacity *cap). */
+static int
+record(struct vdt_contract_result *res, size_t *cap, uint32_t keep, uint32_t gone,
+       const float pos[3], double cost)
+{
+	if (res->record_count == *cap) {
+		size_t n = *cap ? 2 * *cap : 1024;
+		struct vdt_contraction *r = realloc(res->records, n * sizeof(*r));
+		if (r == NULL)
+			return -1;
+		res->records = r;
+		*cap = n;
+	}
+	struct vdt_contraction *r = &res->records[res->record_count++];
+	r->keep = keep;
+	r->gone = gone;
+	memcpy(r->pos, pos, sizeof(r->pos));
+	r->cost = (float)cost;
+	return 0;
+}
+
+
+/*
+ * v's cheapest pair into best[v] and its cost into altc[v]; with V_REFUSED
+ * its cheapest pair that passes the validity tests now.
+ */
+static int
+pass_best(struct engine *e, uint32_t v)
+{
+	long n = vertex_pairs(e, v);
+	uint32_t bx = NONE, keep, gone;
+	float bc = INFINITY;
+	double pos[3], c;
+
+	if (n < 0)
+		return -1;
+	if (e->vflag[v] & V_REFUSED) {
+		qsort(e->vn, (size_t)n, sizeof(*e->vn), by_cost);
+		for (long i = 0; i < n && e->vn[i].cost < INFINITY; i++)
+			if (try_pair(e, v, e->vn[i].x, &keep, &gone, pos, &c)) {
+				bx = e->vn[i].x;
+				bc = e->vn[i].cost;
+				break;
+			}
+	} else {
+		for (long i = 0; i < n; i++)
+			if (cheaper(e->vn[i].cost, e->vn[i].x, bc, bx)) {
+				bx = e->vn[i].x;
+				bc = e->vn[i].cost;
+			}
+	}
+	e->best[v] = bx;
+	e->altc[v] = bc;
+	e->vflag[v] &= (uint8_t)~(V_DIRTY | V_REFUSED);
+	return 0;
+}
+
+/*
+ * After a pass in which v survived a contraction: only v's pairs changed.
+ * v takes its cheapest; a neighbour takes its pair with v if cheaper than
+ * its own, or looks again (V_DIRTY) if its own was with v or with a
+ * vertex that is gone.
+ */
+static int
+pass_kept(struct engine *e, uint32_t v)
+{
+	long n = vertex_pairs(e, v);
+	uint32_t bx = NONE;
+	float bc = INFINITY;
+
+	if (n < 0)
+		return -1;
+	for (long i = 0; i < n; i++) {
+		uint32_t y = e->vn[i].x, b = e->best[y];
+		float c = e->vn[i].cost;
+		if (cheaper(c, y, bc, bx)) {
+			bx = y;
+			bc = c;
+		}
+		if (e->vflag[y] & (V_DIRTY | V_KEPT))
+			continue;
+		if (b != NONE && (b == v || (e->vflag[b] & V_DEAD)))
+			e->vflag[y] |= V_DIRTY;
+		else if (cheaper(c, v, e->altc[y], b)) {
+			e->best[y] = v;
+			e->altc[y] = c;
+		}
+	}
+	e->best[v] = bx;
+	e->altc[v] = bc;
+	e->vflag[v] &= (uint8_t)~(V_KEPT | V_DIRTY | V_REFUSED);
+	return 0;
+}
+
+/* Every vertex's cheapest pair, each edge costed once. */
+static void
+pass_init(struct engine *e)
+{
+	double pos[3];
+
+	for (size_t v = 0; v < e->nv; v++) {
+		e->best[v] = NONE;
+		e->altc[v] = INFINITY;
+		e->hpos[v] = 0;
+	}
+	for (size_t v = 0; v < e->nv; v++) {
+		const struct list *l = &e->vt[v];
+		uint32_t stamp = next_stamp(e);
+		for (uint32_t i = 0; i < l->len; i++) {
+			const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + i];
+			for (int k = 0; k < 3; k++) {
+				uint32_t x = t[k];
+				if (x <= v || e->stamp[x] == stamp)
+					continue;
+				e->stamp[x] = stamp;
+				float c = (float)eval_pair(e, (uint32_t)v, x, pos);
+				if (cheaper(c, x, e->altc[v], e->best[v])) {
+					e->best[v] = x;
+					e->altc[v] = c;
+				}
+				if (cheaper(c, (uint32_t)v, e->altc[x], e->best[x])) {
+					e->best[x] = (uint32_t)v;
+					e->altc[x] = c;
+				}
+			}
+		}
+	}
+}
+
+/* How many more contractions the targets ask for, roughly. */
+static size_t
+pass_need(const struct engine *e, const struct vdt_contract_opts *o)
+{
+	size_t n = 0;
+
+	if (e->live_tris > o->target_triangles)
+		n = (e->live_tris - o->target_triangles + 1) / 2;
+	if (o->target_vertices && e->live_verts > o->target_vertices &&
+	    e->live_verts - o->target_vertices > n)
+		n = e->live_verts - o->target_vertices;
+	return n ? n : 1;
+}
+
+static float
+key_cost(uint64_t k)
+{
+	uint32_t b = (uint32_t)(k >> 32);
+	float c;
+	memcpy(&c, &b, sizeof(c));
+	return c;
+}
+
+/*
+ * Contraction in passes (vdt_contract_opts.passes). A pass lists every
+ * vertex's cheapest pair by cost and claims pairs in that order, a pair
+ * only if neither vertex is claimed yet, up to PASS_SHARE of the live
+ * vertices and to PASS_SLACK times the cost of the last pair the target
+ * needs. The claimed pairs are disjoint, so contracting them leaves the
+ * cost of each unclaimed one exact; they are contracted in vertex order,
+ * which walks memory in order, each after the validity tests on the mesh
+ * as it then is. Then only the pairs at the surviving vertices are costed
+ * again (pass_kept), and the next pass begins.
+ */
+#define PASS_SHARE 8
+#define PASS_SLACK 1.5
+
+static int
+run_passes(struct engine *e, const struct vdt_contract_opts *o,
+           struct vdt_contract_result *res, size_t *rec_cap)
+{
+	size_t start_tris = e->live_tris, step = 0;
+	uint32_t pass = 0;
+	double pos[3];
+
+	pass_init(e);
+	while (!done(e, o)) {
+		size_t n = 0, m = 0, did = 0, refused = 0;
+		int stop = 0;
+		pass++;
+		/* The last pass's survivors cost their pairs again... */
+		for (size_t v = 0; v < e->nv; v++)
+			if ((e->vflag[v] & (V_KEPT | V_DEAD)) == V_KEPT && pass_kept(e, (uint32_t)v) != 0)
+				return -1;
+		/* ... and the vertices whose pair went with them, or whose
+		 * partner vanished from a face it no longer shares with them */
+		for (size_t v = 0; v < e->nv; v++) {
+			uint8_t f = e->vflag[v];
+			uint32_t b = e->best[v];
+			if (f & V_DEAD)
+				continue;
+			if (((f & (V_DIRTY | V_REFUSED)) || (b != NONE && (e->vflag[b] & V_DEAD))) &&
+			    pass_best(e, (uint32_t)v) != 0)
+				return -1;
+		}
+		/* (cost, vertex) keys, listed by vertex so that sorting on the
+		 * cost alone orders ties by vertex */
+		for (size_t v = 0; v < e->nv; v++) {
+			uint32_t x = e->best[v], bits;
+			if ((e->vflag[v] & V_DEAD) || x == NONE || !(e->altc[v] < INFINITY))
+				continue;
+			if (e->best[x] == v && x < v && e->altc[x] == e->altc[v])
+				continue; /* the same pair, listed at x */
+			memcpy(&bits, &e->altc[v], sizeof(bits));
+			e->keys[n++] = (uint64_t)bits << 32 | v;
+		}
+		if (n == 0 || vdt_sort_u64_from(e->keys, n, 32) != 0)
+			break;
+		size_t need = pass_need(e, o), share = e->live_verts / PASS_SHARE;
+		if (need > share && share > 0)
+			need = share;
+		double limit = PASS_SLACK * key_cost(e->keys[(need < n ? need : n) - 1]);
+		for (size_t i = 0; i < n && m < need; i++) {
+			uint32_t v = (uint32_t)e->keys[i], x = e->best[v];
+			float c = key_cost(e->keys[i]);
+			if (!(c <= o->max_cost)) {
+				stop = 1;
+				break;
+			}
+			if (c > limit && m > need / 10)
+				break;
+			if (e->hpos[v] == pass || e->hpos[x] == pass)
+				continue;
+			e->hpos[v] = e->hpos[x] = pass;
+			e->keys[m++] = v;
+		}
+		if (vdt_sort_u64(e->keys, m) != 0)
+			return -1;
+		for (size_t i = 0; i < m && !done(e, o); i++) {
+			uint32_t v = (uint32_t)e->keys[i], keep, gone;
+			double c;
+			if (!try_pair(e, v, e->best[v], &keep, &gone, pos, &c)) {
+				res->rejected++;
+				refused++;
+				e->vflag[v] |= V_REFUSED;
+				continue;
+			}
+			float fpos[3] = {(float)pos[0], (float)pos[1], (float)pos[2]};
+			if (o->record && record(res, rec_cap, keep, gone, fpos, c) != 0)
+				return -1;
+			if (contract(e, keep, gone, pos, c) != 0)
+				return -1;
+			res->contractions++;
+			if (c > res->max_cost)
+				res->max_cost = c;
+			did++;
+			e->vflag[keep] |= V_KEPT;
+			if ((++step & 4095) == 0 && start_tris > o->target_triangles)
+				vdt_progress_report(o->progress, "simplifying",
+				                    (double)(start_tris - e->live_tris) /
+				                            (start_tris - o->target_triangles));
+		}
+		if (stop || (did == 0 && refused == 0))
+			break;
+	}
+	return 0;
+}
+
 /* ---- set-up ---- */
 
 /* Free what the results do not need (all but positions, faces, parents). */
@@ -1044,7 +1319,8 @@ engine_shed(struct engine *e)
 	              (void **)&e->hpos, (void **)&e->nbr, (void **)&e->stamp,
 	              (void **)&e->slot, (void **)&e->vrej, (void **)&e->best,
 	              (void **)&e->alt, (void **)&e->altc,
-	              (void **)&e->vn, (void **)&e->vk, (void **)&e->wing};
+	              (void **)&e->vn, (void **)&e->vk, (void **)&e->wing,
+	              (void **)&e->keys};
 	for (size_t i = 0; i < sizeof(p) / sizeof(p[0]); i++) {
 		free(*p[i]);
 		*p[i] = NULL;
@@ -1077,6 +1353,7 @@ engine_free(struct engine *e)
 	free(e->vn);
 	free(e->vk);
 	free(e->wing);
+	free(e->keys);
 }
 
 /* The engine works in m's arrays when they are handed over (own), else in copies. */
@@ -1267,15 +1544,6 @@ vdt_contract_defaults(struct vdt_contract_opts *o)
 }
 
 static int
-done(const struct engine *e, const struct vdt_contract_opts *o)
-{
-	if (e->live_tris <= o->target_triangles &&
-	    (o->target_vertices == 0 || e->live_verts <= o->target_vertices))
-		return 1;
-	return 0;
-}
-
-static int
 run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
     const struct vdt_contract_ops *ops, const struct vdt_contract_opts *o,
     struct vdt_contract_result *res, struct vdt_err *err)
@@ -1310,8 +1578,15 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 	e.allow_nonmanifold = o->allow_nonmanifold;
 	e.rank = o->rank;
 	e.vq = !o->pair_queue && o->virtual_pair_count == 0;
+	e.passes = e.vq && o->passes;
 	if (engine_init(&e, m, own_pos, own_tri, o) != 0)
 		goto nomem;
+	if (e.passes) {
+		e.keys = malloc((e.nv + 1) * sizeof(*e.keys));
+		if (e.keys == NULL || run_passes(&e, o, res, &rec_cap) != 0)
+			goto nomem;
+		goto finish;
+	}
 
 	/* Initial costs, then one heapify. */
 	if (e.vq)
@@ -1356,21 +1631,8 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 			continue;
 		}
 		float fpos[3] = {(float)pos[0], (float)pos[1], (float)pos[2]};
-		if (o->record) {
-			if (res->record_count == rec_cap) {
-				size_t cap = rec_cap ? 2 * rec_cap : 1024;
-				struct vdt_contraction *r = realloc(res->records, cap * sizeof(*r));
-				if (r == NULL)
-					goto nomem;
-				res->records = r;
-				rec_cap = cap;
-			}
-			struct vdt_contraction *r = &res->records[res->record_count++];
-			r->keep = keep;
-			r->gone = gone;
-			memcpy(r->pos, fpos, sizeof(fpos));
-			r->cost = (float)c;
-		}
+		if (o->record && record(res, &rec_cap, keep, gone, fpos, c) != 0)
+			goto nomem;
 		if (!e.vq) {
 			heap_remove(&e, p);
 			e.pflag[p] = P_DEAD;
@@ -1385,6 +1647,7 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 			                    (double)(start_tris - e.live_tris) /
 			                            (start_tris - o->target_triangles));
 	}
+finish:
 	res->reached_target = done(&e, o);
 	engine_shed(&e);
 

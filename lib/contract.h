@@ -9,7 +9,9 @@
  * on. What the cost is (quadric error, the view-dependence distance of
  * El-Sana & Varshney, a deforming-mesh cost summed over frames) and what
  * bookkeeping a contraction needs are callbacks; the engine owns topology,
- * validity and the queue.
+ * validity and the queue. Optionally (vdt_contract_opts.passes) the
+ * contractions are made in passes of disjoint cheap pairs instead of one
+ * at a time, which needs no queue updates and walks memory in order.
  *
  * Validity tests, applied when a pair reaches the top of the queue:
  *  - the link condition (Dey et al.; Hoppe et al. 93): an edge contraction
@@ -93,6 +95,17 @@ struct vdt_contract_opts {
 	 * Nonzero pair_queue (or any virtual pairs) queues every pair instead.
 	 */
 	int pair_queue;
+	/*
+	 * Nonzero: contract in passes instead of one pair at a time. Each
+	 * pass sorts every vertex's cheapest pair by cost and contracts them
+	 * in that order, skipping a pair when the pass has already moved one
+	 * of its vertices (its cost would be stale) and stopping at 1.5 times
+	 * the cost of the pair the remaining target would reach; then the
+	 * vertices around each contraction find their cheapest pair again.
+	 * No queue to maintain, so faster, at the price of a greedy order
+	 * that is only approximate. Ignored with pair_queue or virtual pairs.
+	 */
+	int passes;
 };
 
 /* Fill opts with the defaults (target 0 triangles, no bound, 75 degrees). */

@@ -1375,6 +1375,7 @@ simplify(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	                       (o->topology == VDT_TOPOLOGY_AUTO && stats->nonmanifold > 0);
 	stats->free_topology = co.allow_nonmanifold;
 	co.progress = o->progress;
+	co.passes = !o->greedy;
 	rc = vdt_contract_run_in_place(&w, &ops, &co, &r, err);
 	free(seam);
 	if (rc != 0)

@@ -51,6 +51,9 @@ struct vdt_qslim_opts {
 	const double *error_scale; /* per input vertex, or NULL: the factor of
 	                             its allowed error (Mata et al., section
 	                             3.3; see vdt_qslim) */
+	int greedy;               /* 1: contract one pair at a time in strict
+	                             cost order; 0 (the default): in passes
+	                             (vdt_contract_opts.passes) */
 	int record;               /* keep the contraction record
 	                             (vdt_qslim_extra_run; vdt_qslim takes
 	                             its records argument instead) */

@@ -247,6 +247,11 @@ load helpers
 	"$BIN/vdt-qslim" -q -t 100000 --draco-bits 8 "$SAMPLES/sphere.off" -o "$TMP/8.drc"
 	"$BIN/vdt-qslim" -q -t 100000 --draco-bits 20 "$SAMPLES/sphere.off" -o "$TMP/20.drc"
 	[ "$(stat -c %s "$TMP/8.drc")" -lt "$(stat -c %s "$TMP/20.drc")" ]
+	# --greedy: one pair at a time gives another mesh of the same size
+	"$BIN/vdt-qslim" -q -r 0.1 --greedy "$SAMPLES/torus.off" -o "$TMP/g.off"
+	"$BIN/vdt-qslim" -q -r 0.1 "$SAMPLES/torus.off" -o "$TMP/p.off"
+	! cmp -s "$TMP/g.off" "$TMP/p.off"
+	[ "$(off_faces "$TMP/g.off")" -eq "$(off_faces "$TMP/p.off")" ]
 	# --ignore-quadrics on a stream without QUAD changes nothing
 	"$BIN/vdt-qslim" -q -r 0.3 --ignore-quadrics "$SAMPLES/torus.off" -o "$TMP/i.off"
 	"$BIN/vdt-qslim" -q -r 0.3 "$SAMPLES/torus.off" -o "$TMP/ni.off"

@@ -217,12 +217,25 @@ flat_grid_reduces_to_its_corners(void **state)
 	assert_true(st.max_error < 1e-5);
 	vdt_mesh_free(&out);
 
-	/* With the border locked, all 32 border vertices remain. */
+	/*
+	 * With the border locked, all 32 border vertices remain. The greedy
+	 * order then removes every inner vertex; passes may strand one whose
+	 * every contraction would flatten a face against the straight border.
+	 */
 	o.lock_border = 1;
-	assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
-	assert_int_equal(out.vertex_count, 32);
-	assert_false(st.reached_target);
-	vdt_mesh_free(&out);
+	for (int greedy = 0; greedy < 2; greedy++) {
+		size_t border = 0;
+		o.greedy = greedy;
+		assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
+		for (size_t i = 0; i < out.vertex_count; i++) {
+			const float *p = out.positions + 3 * i;
+			border += p[0] == 0 || p[0] == 1 || p[1] == 0 || p[1] == 1;
+		}
+		assert_int_equal(border, 32);
+		assert_true(out.vertex_count <= (greedy ? 32u : 33u));
+		assert_false(st.reached_target);
+		vdt_mesh_free(&out);
+	}
 	vdt_mesh_free(&m);
 }
 
@@ -542,8 +555,10 @@ quadric_merged(void *ctx, uint32_t keep, uint32_t gone, const double pos[3], dou
 	vdt_quadric_add(&c->q[keep], &c->q[gone]);
 }
 
+enum { VERTEX_QUEUE, PAIR_QUEUE, PASSES };
+
 static void
-run_queue(const struct vdt_mesh *m, const uint8_t *locked, int pair_queue,
+run_queue(const struct vdt_mesh *m, const uint8_t *locked, int mode,
           struct vdt_contract_result *r)
 {
 	struct qctx c = {calloc(m->vertex_count, sizeof(struct vdt_quadric))};
@@ -565,9 +580,19 @@ run_queue(const struct vdt_mesh *m, const uint8_t *locked, int pair_queue,
 	o.target_triangles = 200;
 	o.locked = locked;
 	o.record = 1;
-	o.pair_queue = pair_queue;
+	o.pair_queue = mode == PAIR_QUEUE;
+	o.passes = mode == PASSES;
 	assert_int_equal(vdt_contract_run(m, &ops, &o, r, NULL), 0);
 	free(c.q);
+}
+
+static double
+max_record_cost(const struct vdt_contract_result *r)
+{
+	double c = 0;
+	for (size_t i = 0; i < r->record_count; i++)
+		c = fmax(c, r->records[i].cost);
+	return c;
 }
 
 /*
@@ -592,8 +617,8 @@ vertex_queue_matches_pair_queue(void **state)
 	assert_non_null(locked);
 	for (size_t v = 0; v < m.vertex_count; v += 37)
 		locked[v] = 1;
-	run_queue(&m, locked, 0, &a);
-	run_queue(&m, locked, 1, &b);
+	run_queue(&m, locked, VERTEX_QUEUE, &a);
+	run_queue(&m, locked, PAIR_QUEUE, &b);
 	assert_true(a.reached_target);
 	assert_int_equal(a.record_count, b.record_count);
 	for (size_t i = 0; i < a.record_count; i++) {
@@ -608,6 +633,81 @@ vertex_queue_matches_pair_queue(void **state)
 	vdt_contract_result_free(&a);
 	vdt_contract_result_free(&b);
 	free(locked);
+	vdt_mesh_free(&m);
+}
+
+/*
+ * Passes (a jittered sphere, some vertices locked): a closed manifold at
+ * the target, locked vertices where they were, the same result every run,
+ * another order than the greedy one, and an error of the same size: no
+ * contraction dearer than 1.25 times the greedy order's dearest.
+ */
+static void
+passes_track_the_greedy_order(void **state)
+{
+	struct vdt_mesh m, out;
+	struct vdt_contract_result g, p, again;
+	uint32_t seed = 4242;
+
+	(void)state;
+	shape_icosphere(&m, 4);
+	for (size_t i = 0; i < 3 * m.vertex_count; i++) {
+		seed = seed * 1664525u + 1013904223u;
+		m.positions[i] *= 1 + 0.02f * ((float)(seed >> 8) / (1u << 24) - 0.5f);
+	}
+	uint8_t *locked = calloc(m.vertex_count, 1);
+	assert_non_null(locked);
+	for (size_t v = 0; v < m.vertex_count; v += 37)
+		locked[v] = 1;
+	run_queue(&m, locked, VERTEX_QUEUE, &g);
+	run_queue(&m, locked, PASSES, &p);
+	run_queue(&m, locked, PASSES, &again);
+	assert_true(p.reached_target);
+	assert_int_equal(p.triangle_count, 200);
+	out = (struct vdt_mesh){p.vertex_count, p.positions, NULL, NULL, NULL,
+	                        p.triangle_count, p.triangles};
+	assert_true(shape_closed_manifold(&out));
+	for (size_t v = 0; v < m.vertex_count; v += 37) {
+		assert_int_equal(p.final[v], v);
+		assert_memory_equal(p.positions + 3 * v, m.positions + 3 * v, 3 * sizeof(float));
+	}
+	assert_int_equal(again.record_count, p.record_count);
+	assert_memory_equal(again.records, p.records, p.record_count * sizeof(*p.records));
+	assert_memory_equal(again.triangles, p.triangles, 3 * p.triangle_count * sizeof(uint32_t));
+	int same = g.record_count == p.record_count;
+	for (size_t i = 0; same && i < g.record_count; i++)
+		same = g.records[i].keep == p.records[i].keep && g.records[i].gone == p.records[i].gone;
+	assert_false(same);
+	assert_true(max_record_cost(&p) <= 1.25 * max_record_cost(&g));
+	vdt_contract_result_free(&g);
+	vdt_contract_result_free(&p);
+	vdt_contract_result_free(&again);
+	free(locked);
+	vdt_mesh_free(&m);
+}
+
+/* A cost bound stops passes as it stops the queue: nothing dearer is
+ * contracted, and the target is reported missed. */
+static void
+passes_stop_at_the_bound(void **state)
+{
+	struct vdt_mesh m;
+	struct vdt_contract_opts o;
+	struct vdt_contract_result r;
+
+	(void)state;
+	shape_icosphere(&m, 3);
+	vdt_contract_defaults(&o);
+	o.passes = 1;
+	o.record = 1;
+	o.target_triangles = 4;
+	o.max_cost = 0.02; /* squared edge length: about twice the input's */
+	assert_int_equal(vdt_contract_run(&m, &length_ops, &o, &r, NULL), 0);
+	assert_false(r.reached_target);
+	assert_true(r.contractions > 0);
+	assert_true(r.triangle_count > 4);
+	assert_true(max_record_cost(&r) <= 0.02);
+	vdt_contract_result_free(&r);
 	vdt_mesh_free(&m);
 }
 
@@ -628,6 +728,8 @@ main(void)
 		cmocka_unit_test(repeated_faces_are_dropped),
 		cmocka_unit_test(nonmanifold_virtual_pair_is_opt_in),
 		cmocka_unit_test(vertex_queue_matches_pair_queue),
+		cmocka_unit_test(passes_track_the_greedy_order),
+		cmocka_unit_test(passes_stop_at_the_bound),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
