@@ -1296,6 +1296,12 @@ run_passes(struct engine *e, const struct vdt_contract_opts *o,
 				res->max_cost = c;
 			did++;
 			e->vflag[keep] |= V_KEPT;
+			/* A corner of a removed face may share no face with keep
+			 * any more: its pair with keep is then no edge, and
+			 * pass_kept will not come by. */
+			for (size_t j = 0; j < e->wing_len; j++)
+				if (e->best[e->wing[j]] == keep)
+					e->vflag[e->wing[j]] |= V_DIRTY;
 			if ((++step & 4095) == 0 && start_tris > o->target_triangles)
 				vdt_progress_report(o->progress, "simplifying",
 				                    (double)(start_tris - e->live_tris) /

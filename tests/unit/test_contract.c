@@ -711,6 +711,74 @@ passes_stop_at_the_bound(void **state)
 	vdt_mesh_free(&m);
 }
 
+/*
+ * Every contraction of a pass is of an edge at the time it is made, even
+ * where faces vanish along boundaries and the link condition is off: a
+ * bumpy grid with holes, replayed from the record. A vertex whose pair
+ * lost its last shared face must look for another.
+ */
+static void
+passes_contract_only_edges(void **state)
+{
+	struct vdt_mesh m;
+	struct vdt_contract_opts o;
+	struct vdt_contract_result r;
+	uint32_t seed = 777;
+
+	(void)state;
+	shape_grid(&m, 24);
+	for (size_t i = 0; i < m.vertex_count; i++) {
+		seed = seed * 1664525u + 1013904223u;
+		m.positions[3 * i + 2] = 0.05f * (float)(seed >> 8) / (1u << 24);
+	}
+	size_t nt = 0; /* drop every seventh face: holes and fins of boundary */
+	for (size_t t = 0; t < m.triangle_count; t++)
+		if (t % 7 != 3)
+			memmove(m.triangles + 3 * nt++, m.triangles + 3 * t, 3 * sizeof(uint32_t));
+	m.triangle_count = nt;
+	struct qctx c = {calloc(m.vertex_count, sizeof(struct vdt_quadric))};
+	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c};
+	assert_non_null(c.q);
+	for (size_t t = 0; t < nt; t++) {
+		double p[3][3];
+		struct vdt_quadric q;
+		for (int i = 0; i < 3; i++)
+			for (int k = 0; k < 3; k++)
+				p[i][k] = m.positions[3 * (size_t)m.triangles[3 * t + i] + k];
+		if (vdt_quadric_triangle(&q, p[0], p[1], p[2]) == 0)
+			for (int i = 0; i < 3; i++)
+				vdt_quadric_add(&c.q[m.triangles[3 * t + i]], &q);
+	}
+	vdt_contract_defaults(&o);
+	o.passes = 1;
+	o.record = 1;
+	o.allow_nonmanifold = 1;
+	o.target_triangles = 40;
+	assert_int_equal(vdt_contract_run(&m, &ops, &o, &r, NULL), 0);
+	assert_true(r.contractions > 300);
+	uint32_t *tri = malloc(3 * nt * sizeof(*tri));
+	assert_non_null(tri);
+	memcpy(tri, m.triangles, 3 * nt * sizeof(*tri));
+	for (size_t i = 0; i < r.record_count; i++) {
+		uint32_t k = r.records[i].keep, g = r.records[i].gone;
+		int edge = 0;
+		for (size_t t = 0; t < nt && !edge; t++) {
+			const uint32_t *f = tri + 3 * t;
+			edge = f[0] != f[1] && f[1] != f[2] && f[0] != f[2] &&
+			       (f[0] == k || f[1] == k || f[2] == k) &&
+			       (f[0] == g || f[1] == g || f[2] == g);
+		}
+		assert_true(edge);
+		for (size_t j = 0; j < 3 * nt; j++)
+			if (tri[j] == g)
+				tri[j] = k;
+	}
+	free(tri);
+	free(c.q);
+	vdt_contract_result_free(&r);
+	vdt_mesh_free(&m);
+}
+
 int
 main(void)
 {
@@ -730,6 +798,7 @@ main(void)
 		cmocka_unit_test(vertex_queue_matches_pair_queue),
 		cmocka_unit_test(passes_track_the_greedy_order),
 		cmocka_unit_test(passes_stop_at_the_bound),
+		cmocka_unit_test(passes_contract_only_edges),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
