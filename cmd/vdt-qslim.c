@@ -27,8 +27,9 @@ usage(FILE *f)
 	        "usage: vdt-qslim [-t TRIANGLES] [-r RATIO] [-e ERROR[%%]] [-o OUTPUT] [-F FORMAT]\n"
 	        "                 [-a DISTANCE[%%]] [--lock-border] [--boundary-weight W]\n"
 	        "                 [--max-angle DEGREES] [--min-quality Q] [--ignore-quadrics]\n"
-	        "                 [--attribute-weight W] [--topology auto|keep|free] [--greedy]\n"
-	        "                 [--record] [--contour-distance PIXELS] [--error-factor F]\n"
+	        "                 [--attribute-weight W] [--topology auto|keep|free]\n"
+	        "                 [--order auto|greedy|passes] [--record]\n"
+	        "                 [--contour-distance PIXELS] [--error-factor F]\n"
 	        "                 [--view X,Y,Z [--nearest N]] [--draco-bits N] [-q] [-v] [INPUT]\n"
 	        "Simplify a triangle mesh with quadric error metrics. INPUT and OUTPUT\n"
 	        "default to - (stdin, stdout); stops at the first target reached\n"
@@ -38,7 +39,7 @@ usage(FILE *f)
 static void
 parse_cmdline(int argc, char **argv, struct cmdline *cl)
 {
-	enum { O_LOCK = 256, O_BW, O_ANGLE, O_QUALITY, O_IGNORE, O_RECORD, O_DRACO, O_AW, O_TOPO, O_CD, O_EF, O_VIEW, O_NEAR, O_GREEDY };
+	enum { O_LOCK = 256, O_BW, O_ANGLE, O_QUALITY, O_IGNORE, O_RECORD, O_DRACO, O_AW, O_TOPO, O_CD, O_EF, O_VIEW, O_NEAR, O_ORDER };
 	static const struct option longopts[] = {
 		{"triangles", required_argument, NULL, 't'},
 		{"ratio", required_argument, NULL, 'r'},
@@ -54,7 +55,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		{"topology", required_argument, NULL, O_TOPO},
 		{"attribute-weight", required_argument, NULL, O_AW},
 		{"record", no_argument, NULL, O_RECORD},
-		{"greedy", no_argument, NULL, O_GREEDY},
+		{"order", required_argument, NULL, O_ORDER},
 		{"draco-bits", required_argument, NULL, O_DRACO},
 		{"contour-distance", required_argument, NULL, O_CD},
 		{"error-factor", required_argument, NULL, O_EF},
@@ -95,7 +96,10 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 			break;
 		case O_AW: cl->q.attribute_weight = parse_real("--attribute-weight", optarg, 0, 1e9); break;
 		case O_RECORD: cl->q.record = 1; break;
-		case O_GREEDY: cl->q.greedy = 1; break;
+		case O_ORDER:
+			if ((cl->q.order = vdt_qslim_order_parse(optarg)) < 0)
+				usage_error("--order must be auto, greedy or passes, not '%s'", optarg);
+			break;
 		case O_DRACO: cl->w.draco_position_bits = (int)parse_count("--draco-bits", optarg, 1, 30); break;
 		case O_CD: cl->l.contour_distance = parse_real("--contour-distance", optarg, 0, 1e6); break;
 		case O_EF: cl->l.factor = parse_real("--error-factor", optarg, 0, 1); break;
@@ -151,11 +155,12 @@ run(struct cmdline *cl)
 	if (cl->verbose)
 		fprintf(stderr, "%s: in_vertices=%zu in_triangles=%zu out_vertices=%zu "
 		        "out_triangles=%zu contractions=%zu rejected=%zu welded=%zu dropped=%zu nonmanifold=%zu "
-		        "topology=%s error=%.6g error_pct=%.6g "
+		        "topology=%s order=%s error=%.6g error_pct=%.6g "
 		        "read_s=%.3f simplify_s=%.3f write_s=%.3f peak_mb=%.1f\n",
 		        progname, in.vertex_count, in.triangle_count, out.vertex_count,
 		        out.triangle_count, st.contractions, st.rejected, st.welded, st.dropped,
-		        st.nonmanifold, st.free_topology ? "free" : "keep", st.max_error,
+		        st.nonmanifold, st.free_topology ? "free" : "keep",
+		        st.passes ? "passes" : "greedy", st.max_error,
 		        st.error_pct, t1 - t0, t2 - t1,
 		        vdt_seconds() - t2, peak_rss_bytes() / 1048576.0);
 	rc = EXIT_OK;

@@ -59,6 +59,17 @@ vdt_topology_parse(const char *name)
 	return -1;
 }
 
+int
+vdt_qslim_order_parse(const char *name)
+{
+	static const char *names[] = {"auto", "greedy", "passes"};
+
+	for (int i = 0; i < 3; i++)
+		if (strcmp(name, names[i]) == 0)
+			return i;
+	return -1;
+}
+
 /* The QUAD chunk of c, if any, for a mesh of vertex_count vertices. */
 static int
 decode_quadrics(const struct vdt_chunks *c, size_t vertex_count, struct vdt_quadric **q,
@@ -1375,7 +1386,9 @@ simplify(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	                       (o->topology == VDT_TOPOLOGY_AUTO && stats->nonmanifold > 0);
 	stats->free_topology = co.allow_nonmanifold;
 	co.progress = o->progress;
-	co.passes = !o->greedy;
+	co.passes = o->order == VDT_QSLIM_ORDER_PASSES ||
+	            (o->order == VDT_QSLIM_ORDER_AUTO && nw >= VDT_QSLIM_PASSES_MIN);
+	stats->passes = co.passes && nvp == 0;
 	rc = vdt_contract_run_in_place(&w, &ops, &co, &r, err);
 	free(seam);
 	if (rc != 0)

@@ -31,6 +31,21 @@ enum vdt_topology { VDT_TOPOLOGY_AUTO = 0, VDT_TOPOLOGY_KEEP, VDT_TOPOLOGY_FREE 
  * -1 for any other name. */
 int vdt_topology_parse(const char *name);
 
+/*
+ * The order of contractions. GREEDY: one cheapest pair at a time, the
+ * order of Garland and Heckbert's queue. PASSES: passes of disjoint cheap
+ * pairs in memory order (vdt_contract_opts.passes), faster once the mesh
+ * outgrows the caches. AUTO: passes from VDT_QSLIM_PASSES_MIN welded
+ * vertices up, below that greedy, which there costs no more time.
+ */
+enum vdt_qslim_order { VDT_QSLIM_ORDER_AUTO = 0, VDT_QSLIM_ORDER_GREEDY, VDT_QSLIM_ORDER_PASSES };
+
+#define VDT_QSLIM_PASSES_MIN 65536
+
+/* The order named "auto", "greedy" or "passes" (as --order takes it), or
+ * -1 for any other name. */
+int vdt_qslim_order_parse(const char *name);
+
 struct vdt_qslim_opts {
 	size_t target_triangles;  /* stop at this many (0: no count target) */
 	double target_ratio;      /* or this fraction of the input (0: none) */
@@ -51,9 +66,7 @@ struct vdt_qslim_opts {
 	const double *error_scale; /* per input vertex, or NULL: the factor of
 	                             its allowed error (Mata et al., section
 	                             3.3; see vdt_qslim) */
-	int greedy;               /* 1: contract one pair at a time in strict
-	                             cost order; 0 (the default): in passes
-	                             (vdt_contract_opts.passes) */
+	int order;                /* enum vdt_qslim_order */
 	int record;               /* keep the contraction record
 	                             (vdt_qslim_extra_run; vdt_qslim takes
 	                             its records argument instead) */
@@ -79,6 +92,7 @@ struct vdt_qslim_stats {
 	size_t dropped;     /* repeated faces removed (see vdt_qslim) */
 	size_t nonmanifold; /* edges of three or more faces in the input */
 	int free_topology;  /* 1 if the link condition was not applied */
+	int passes;         /* 1 if contracted in passes, 0 greedy */
 	double error_pct;   /* max_error in percent of the input's
 	                       bounding-box diagonal (0 if that is 0) */
 };

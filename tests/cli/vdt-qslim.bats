@@ -18,7 +18,7 @@ load helpers
 @test "vdt-qslim rejects bad options with status 2" {
 	run "$BIN/vdt-qslim" --bogus "$SAMPLES/sphere.off"
 	[ "$status" -eq 2 ]
-	for bad in "-t 12x" "-t -1" "-t 0" "-r 2" "-r -0.5" "-r x" "-e -1" "-e 200%" "-F nope" "--max-angle 0" "--min-quality 2"; do
+	for bad in "-t 12x" "-t -1" "-t 0" "-r 2" "-r -0.5" "-r x" "-e -1" "-e 200%" "-F nope" "--max-angle 0" "--min-quality 2" "--order fast"; do
 		run "$BIN/vdt-qslim" $bad "$SAMPLES/sphere.off" -o "$TMP/x.off"
 		[ "$status" -eq 2 ]
 		[ ! -e "$TMP/x.off" ]
@@ -247,11 +247,18 @@ load helpers
 	"$BIN/vdt-qslim" -q -t 100000 --draco-bits 8 "$SAMPLES/sphere.off" -o "$TMP/8.drc"
 	"$BIN/vdt-qslim" -q -t 100000 --draco-bits 20 "$SAMPLES/sphere.off" -o "$TMP/20.drc"
 	[ "$(stat -c %s "$TMP/8.drc")" -lt "$(stat -c %s "$TMP/20.drc")" ]
-	# --greedy: one pair at a time gives another mesh of the same size
-	"$BIN/vdt-qslim" -q -r 0.1 --greedy "$SAMPLES/torus.off" -o "$TMP/g.off"
-	"$BIN/vdt-qslim" -q -r 0.1 "$SAMPLES/torus.off" -o "$TMP/p.off"
+	# --order: passes give another mesh of the same size; a small mesh is
+	# contracted greedily unless passes are asked for, and -v says which
+	"$BIN/vdt-qslim" -q -r 0.1 --order greedy "$SAMPLES/torus.off" -o "$TMP/g.off"
+	"$BIN/vdt-qslim" -q -r 0.1 --order passes "$SAMPLES/torus.off" -o "$TMP/p.off"
+	"$BIN/vdt-qslim" -q -r 0.1 "$SAMPLES/torus.off" -o "$TMP/a.off"
 	! cmp -s "$TMP/g.off" "$TMP/p.off"
 	[ "$(off_faces "$TMP/g.off")" -eq "$(off_faces "$TMP/p.off")" ]
+	cmp "$TMP/g.off" "$TMP/a.off"
+	run "$BIN/vdt-qslim" -q -v -r 0.1 --order passes "$SAMPLES/torus.off" -o "$TMP/p.off"
+	[[ "$output" == *" order=passes "* ]]
+	run "$BIN/vdt-qslim" -q -v -r 0.1 "$SAMPLES/torus.off" -o "$TMP/a.off"
+	[[ "$output" == *" order=greedy "* ]]
 	# --ignore-quadrics on a stream without QUAD changes nothing
 	"$BIN/vdt-qslim" -q -r 0.3 --ignore-quadrics "$SAMPLES/torus.off" -o "$TMP/i.off"
 	"$BIN/vdt-qslim" -q -r 0.3 "$SAMPLES/torus.off" -o "$TMP/ni.off"

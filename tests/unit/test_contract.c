@@ -225,7 +225,7 @@ flat_grid_reduces_to_its_corners(void **state)
 	o.lock_border = 1;
 	for (int greedy = 0; greedy < 2; greedy++) {
 		size_t border = 0;
-		o.greedy = greedy;
+		o.order = greedy ? VDT_QSLIM_ORDER_GREEDY : VDT_QSLIM_ORDER_PASSES;
 		assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
 		for (size_t i = 0; i < out.vertex_count; i++) {
 			const float *p = out.positions + 3 * i;
@@ -779,6 +779,37 @@ passes_contract_only_edges(void **state)
 	vdt_mesh_free(&m);
 }
 
+/* --order auto: passes from VDT_QSLIM_PASSES_MIN welded vertices up,
+ * greedy below; the explicit orders whatever the size. */
+static void
+auto_order_follows_the_size(void **state)
+{
+	struct vdt_mesh m, out;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+
+	(void)state;
+	vdt_qslim_defaults(&o);
+	o.target_ratio = 0.95;
+	for (int n = 254; n <= 255; n++) {
+		shape_grid(&m, n); /* (n + 1)^2 vertices: 65025, then 65536 */
+		assert_true((m.vertex_count >= VDT_QSLIM_PASSES_MIN) == (n == 255));
+		for (int order = VDT_QSLIM_ORDER_AUTO; order <= VDT_QSLIM_ORDER_PASSES; order++) {
+			o.order = order;
+			assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
+			int want = order == VDT_QSLIM_ORDER_PASSES ||
+			           (order == VDT_QSLIM_ORDER_AUTO && n == 255);
+			assert_int_equal(st.passes, want);
+			vdt_mesh_free(&out);
+		}
+		vdt_mesh_free(&m);
+	}
+	assert_int_equal(vdt_qslim_order_parse("auto"), VDT_QSLIM_ORDER_AUTO);
+	assert_int_equal(vdt_qslim_order_parse("greedy"), VDT_QSLIM_ORDER_GREEDY);
+	assert_int_equal(vdt_qslim_order_parse("passes"), VDT_QSLIM_ORDER_PASSES);
+	assert_int_equal(vdt_qslim_order_parse("fast"), -1);
+}
+
 int
 main(void)
 {
@@ -799,6 +830,7 @@ main(void)
 		cmocka_unit_test(passes_track_the_greedy_order),
 		cmocka_unit_test(passes_stop_at_the_bound),
 		cmocka_unit_test(passes_contract_only_edges),
+		cmocka_unit_test(auto_order_follows_the_size),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

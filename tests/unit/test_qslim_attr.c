@@ -130,7 +130,7 @@ weight_zero_is_the_old_output(void **state)
 	seam_grid(&m, 4, ALL_ATTRS);
 	vdt_qslim_defaults(&o);
 	assert_true(o.attribute_weight == 0);
-	o.greedy = 1; /* the order the gold output was recorded in */
+	o.order = VDT_QSLIM_ORDER_GREEDY; /* the order the gold output was recorded in */
 	o.target_triangles = 10;
 	assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
 	assert_int_equal(out.vertex_count, 13);
