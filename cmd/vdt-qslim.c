@@ -28,7 +28,7 @@ usage(FILE *f)
 	        "                 [-a DISTANCE[%%]] [--lock-border] [--boundary-weight W]\n"
 	        "                 [--max-angle DEGREES] [--min-quality Q] [--ignore-quadrics]\n"
 	        "                 [--attribute-weight W] [--topology auto|keep|free]\n"
-	        "                 [--order auto|greedy|passes] [--record]\n"
+	        "                 [--order auto|greedy|passes] [-j THREADS] [--record]\n"
 	        "                 [--contour-distance PIXELS] [--error-factor F]\n"
 	        "                 [--view X,Y,Z [--nearest N]] [--draco-bits N] [-q] [-v] [INPUT]\n"
 	        "Simplify a triangle mesh with quadric error metrics. INPUT and OUTPUT\n"
@@ -56,6 +56,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		{"attribute-weight", required_argument, NULL, O_AW},
 		{"record", no_argument, NULL, O_RECORD},
 		{"order", required_argument, NULL, O_ORDER},
+		{"threads", required_argument, NULL, 'j'},
 		{"draco-bits", required_argument, NULL, O_DRACO},
 		{"contour-distance", required_argument, NULL, O_CD},
 		{"error-factor", required_argument, NULL, O_EF},
@@ -74,7 +75,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	cl->q.attribute_weight = VDT_QSLIM_ATTRIBUTE_WEIGHT;
 	vdt_labl_scale_defaults(&cl->l);
 	cl->in = cl->out = "-";
-	while ((c = getopt_long(argc, argv, "t:r:e:o:F:a:qvhV", longopts, NULL)) != -1) {
+	while ((c = getopt_long(argc, argv, "t:r:e:o:F:a:j:qvhV", longopts, NULL)) != -1) {
 		switch (c) {
 		case 't': cl->q.target_triangles = parse_count("-t", optarg, 1, 4294967295UL); break;
 		case 'r': cl->q.target_ratio = parse_real("-r", optarg, 1e-9, 1); break;
@@ -85,6 +86,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 				usage_error("unknown format '%s' for -F", optarg);
 			break;
 		case 'a': cl->q.aggregate = parse_bound("-a", optarg, &cl->q.aggregate_percent); break;
+		case 'j': cl->q.threads = (int)parse_count("-j", optarg, 1, VDT_CONTRACT_MAX_THREADS); break;
 		case O_LOCK: cl->q.lock_border = 1; break;
 		case O_BW: cl->q.boundary_weight = parse_real("--boundary-weight", optarg, 0, 1e12); break;
 		case O_ANGLE: cl->q.max_normal_angle = parse_real("--max-angle", optarg, 1, 180); break;

@@ -14,8 +14,10 @@
 #include "contract.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "bytes.h"
 #include "sort.h"
@@ -97,6 +99,12 @@ struct engine {
 
 	int passes;            /* contract in passes (vdt_contract_opts.passes) */
 	uint64_t *keys;        /* passes: (cost bits, vertex) to sort */
+	int threads;           /* passes: threads that cost pairs */
+	uint32_t *plist;       /* passes: a batch of vertices to cost */
+	size_t *poff;          /* where each one's pairs start in pout */
+	uint32_t *pcount;      /* how many pairs each has */
+	struct vcost *pout;
+	size_t pout_cap;
 };
 
 /* ---- pools of per-vertex lists ---- */
@@ -1076,35 +1084,31 @@ record(struct vdt_contract_result *res, size_t *cap, uint32_t keep, uint32_t gon
  * v's cheapest pair into best[v] and its cost into altc[v]; with V_REFUSED
  * its cheapest pair that passes the validity tests now.
  */
-static int
-pass_best(struct engine *e, uint32_t v)
+static void
+pass_best_of(struct engine *e, uint32_t v, struct vcost *vn, long n)
 {
-	long n = vertex_pairs(e, v);
 	uint32_t bx = NONE, keep, gone;
 	float bc = INFINITY;
 	double pos[3], c;
 
-	if (n < 0)
-		return -1;
 	if (e->vflag[v] & V_REFUSED) {
-		qsort(e->vn, (size_t)n, sizeof(*e->vn), by_cost);
-		for (long i = 0; i < n && e->vn[i].cost < INFINITY; i++)
-			if (try_pair(e, v, e->vn[i].x, &keep, &gone, pos, &c)) {
-				bx = e->vn[i].x;
-				bc = e->vn[i].cost;
+		qsort(vn, (size_t)n, sizeof(*vn), by_cost);
+		for (long i = 0; i < n && vn[i].cost < INFINITY; i++)
+			if (try_pair(e, v, vn[i].x, &keep, &gone, pos, &c)) {
+				bx = vn[i].x;
+				bc = vn[i].cost;
 				break;
 			}
 	} else {
 		for (long i = 0; i < n; i++)
-			if (cheaper(e->vn[i].cost, e->vn[i].x, bc, bx)) {
-				bx = e->vn[i].x;
-				bc = e->vn[i].cost;
+			if (cheaper(vn[i].cost, vn[i].x, bc, bx)) {
+				bx = vn[i].x;
+				bc = vn[i].cost;
 			}
 	}
 	e->best[v] = bx;
 	e->altc[v] = bc;
 	e->vflag[v] &= (uint8_t)~(V_DIRTY | V_REFUSED);
-	return 0;
 }
 
 /*
@@ -1113,18 +1117,15 @@ pass_best(struct engine *e, uint32_t v)
  * its own, or looks again (V_DIRTY) if its own was with v or with a
  * vertex that is gone.
  */
-static int
-pass_kept(struct engine *e, uint32_t v)
+static void
+pass_kept_of(struct engine *e, uint32_t v, const struct vcost *vn, long n)
 {
-	long n = vertex_pairs(e, v);
 	uint32_t bx = NONE;
 	float bc = INFINITY;
 
-	if (n < 0)
-		return -1;
 	for (long i = 0; i < n; i++) {
-		uint32_t y = e->vn[i].x, b = e->best[y];
-		float c = e->vn[i].cost;
+		uint32_t y = vn[i].x, b = e->best[y];
+		float c = vn[i].cost;
 		if (cheaper(c, y, bc, bx)) {
 			bx = y;
 			bc = c;
@@ -1141,42 +1142,117 @@ pass_kept(struct engine *e, uint32_t v)
 	e->best[v] = bx;
 	e->altc[v] = bc;
 	e->vflag[v] &= (uint8_t)~(V_KEPT | V_DIRTY | V_REFUSED);
+}
+
+/* ---- costing pairs on several threads ---- */
+
+struct pjob {
+	struct engine *e;
+	size_t begin, end; /* of e->plist */
+	int upper;         /* only the pairs with vertices above */
+};
+
+/* The distinct neighbours of each vertex of the job and their costs,
+ * in fan order (as vertex_pairs gives them). Reads the engine only. */
+static void *
+pjob_run(void *arg)
+{
+	const struct pjob *j = arg;
+	struct engine *e = j->e;
+	double pos[3];
+
+	for (size_t i = j->begin; i < j->end; i++) {
+		uint32_t v = e->plist[i], n = 0;
+		struct vcost *o = e->pout + e->poff[i];
+		const struct list *l = &e->vt[v];
+		for (uint32_t f = 0; f < l->len; f++) {
+			const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + f];
+			for (int k = 0; k < 3; k++) {
+				uint32_t x = t[k], s = 0;
+				if (x == v || (j->upper && x < v))
+					continue;
+				while (s < n && o[s].x != x)
+					s++;
+				if (s < n)
+					continue;
+				o[n].x = x;
+				o[n++].cost = (float)(x < v ? eval_pair(e, x, v, pos) : eval_pair(e, v, x, pos));
+			}
+		}
+		e->pcount[i] = n;
+	}
+	return NULL;
+}
+
+#define PASS_BATCH 16384
+
+/*
+ * Cost the pairs of plist[0..n) into pout, split over e->threads threads
+ * (each vertex's pairs are costed by one thread, so the result is the
+ * same however they are split).
+ */
+static int
+pass_cost(struct engine *e, size_t n, int upper)
+{
+	struct pjob job[VDT_CONTRACT_MAX_THREADS];
+	pthread_t th[VDT_CONTRACT_MAX_THREADS];
+	size_t total = 0;
+	int t = e->threads, started = 0;
+
+	for (size_t i = 0; i < n; i++) {
+		e->poff[i] = total;
+		total += 2 * (size_t)e->vt[e->plist[i]].len;
+	}
+	if (vcost_reserve(&e->pout, &e->pout_cap, total) != 0)
+		return -1;
+	if ((size_t)t > n / 64 + 1)
+		t = (int)(n / 64 + 1);
+	for (int k = 0; k < t; k++)
+		job[k] = (struct pjob){e, n * (size_t)k / (size_t)t, n * (size_t)(k + 1) / (size_t)t,
+		                       upper};
+	while (started + 1 < t && pthread_create(&th[started], NULL, pjob_run, &job[started]) == 0)
+		started++;
+	for (int k = started; k < t; k++)
+		pjob_run(&job[k]);
+	for (int k = 0; k < started; k++)
+		pthread_join(th[k], NULL);
 	return 0;
 }
 
-/* Every vertex's cheapest pair, each edge costed once. */
-static void
-pass_init(struct engine *e)
+/*
+ * Cost again, in batches, the pairs of the last pass's survivors, then of
+ * the vertices that must find their cheapest pair again (flag) or whose
+ * partner vanished; apply each batch in vertex order, as one thread would.
+ */
+static int
+pass_recost(struct engine *e, int kept)
 {
-	double pos[3];
+	size_t v = 0;
 
-	for (size_t v = 0; v < e->nv; v++) {
-		e->best[v] = NONE;
-		e->altc[v] = INFINITY;
-		e->hpos[v] = 0;
-	}
-	for (size_t v = 0; v < e->nv; v++) {
-		const struct list *l = &e->vt[v];
-		uint32_t stamp = next_stamp(e);
-		for (uint32_t i = 0; i < l->len; i++) {
-			const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + i];
-			for (int k = 0; k < 3; k++) {
-				uint32_t x = t[k];
-				if (x <= v || e->stamp[x] == stamp)
-					continue;
-				e->stamp[x] = stamp;
-				float c = (float)eval_pair(e, (uint32_t)v, x, pos);
-				if (cheaper(c, x, e->altc[v], e->best[v])) {
-					e->best[v] = x;
-					e->altc[v] = c;
-				}
-				if (cheaper(c, (uint32_t)v, e->altc[x], e->best[x])) {
-					e->best[x] = (uint32_t)v;
-					e->altc[x] = c;
-				}
-			}
+	while (v < e->nv) {
+		size_t n = 0;
+		for (; v < e->nv && n < PASS_BATCH; v++) {
+			uint8_t f = e->vflag[v];
+			uint32_t b = e->best[v];
+			if (f & V_DEAD)
+				continue;
+			if (kept ? (f & V_KEPT) != 0
+			         : ((f & (V_DIRTY | V_REFUSED)) || (b != NONE && (e->vflag[b] & V_DEAD))))
+				e->plist[n++] = (uint32_t)v;
+		}
+		if (n == 0)
+			continue;
+		if (pass_cost(e, n, 0) != 0)
+			return -1;
+		for (size_t i = 0; i < n; i++) {
+			struct vcost *vn = e->pout + e->poff[i];
+			if (kept)
+				pass_kept_of(e, e->plist[i], vn, e->pcount[i]);
+			else
+				pass_best_of(e, e->plist[i], vn, e->pcount[i]);
 		}
 	}
+	return 0;
 }
 
 /* How many more contractions the targets ask for, roughly. */
@@ -1202,6 +1278,43 @@ key_cost(uint64_t k)
 	return c;
 }
 
+/* Every vertex's cheapest pair, each edge costed once (by its lower end,
+ * in batches costed in parallel). */
+static int
+pass_init(struct engine *e)
+{
+	for (size_t v = 0; v < e->nv; v++) {
+		e->best[v] = NONE;
+		e->altc[v] = INFINITY;
+		e->hpos[v] = 0;
+	}
+	for (size_t v = 0; v < e->nv;) {
+		size_t n = 0;
+		for (; v < e->nv && n < PASS_BATCH; v++)
+			if (e->vt[v].len > 0)
+				e->plist[n++] = (uint32_t)v;
+		if (pass_cost(e, n, 1) != 0)
+			return -1;
+		for (size_t i = 0; i < n; i++) {
+			uint32_t a = e->plist[i];
+			const struct vcost *vn = e->pout + e->poff[i];
+			for (uint32_t k = 0; k < e->pcount[i]; k++) {
+				uint32_t x = vn[k].x;
+				float c = vn[k].cost;
+				if (cheaper(c, x, e->altc[a], e->best[a])) {
+					e->best[a] = x;
+					e->altc[a] = c;
+				}
+				if (cheaper(c, a, e->altc[x], e->best[x])) {
+					e->best[x] = a;
+					e->altc[x] = c;
+				}
+			}
+		}
+	}
+	return 0;
+}
+
 /*
  * Contraction in passes (vdt_contract_opts.passes). A pass lists every
  * vertex's cheapest pair by cost and claims pairs in that order, a pair
@@ -1224,26 +1337,17 @@ run_passes(struct engine *e, const struct vdt_contract_opts *o,
 	uint32_t pass = 0;
 	double pos[3];
 
-	pass_init(e);
+	if (pass_init(e) != 0)
+		return -1;
 	while (!done(e, o)) {
 		size_t n = 0, m = 0, did = 0, refused = 0;
 		int stop = 0;
 		pass++;
-		/* The last pass's survivors cost their pairs again... */
-		for (size_t v = 0; v < e->nv; v++)
-			if ((e->vflag[v] & (V_KEPT | V_DEAD)) == V_KEPT && pass_kept(e, (uint32_t)v) != 0)
-				return -1;
-		/* ... and the vertices whose pair went with them, or whose
-		 * partner vanished from a face it no longer shares with them */
-		for (size_t v = 0; v < e->nv; v++) {
-			uint8_t f = e->vflag[v];
-			uint32_t b = e->best[v];
-			if (f & V_DEAD)
-				continue;
-			if (((f & (V_DIRTY | V_REFUSED)) || (b != NONE && (e->vflag[b] & V_DEAD))) &&
-			    pass_best(e, (uint32_t)v) != 0)
-				return -1;
-		}
+		/* The last pass's survivors cost their pairs again, then the
+		 * vertices whose pair went with them, or whose partner vanished
+		 * from a face it no longer shares with them. */
+		if (pass_recost(e, 1) != 0 || pass_recost(e, 0) != 0)
+			return -1;
 		/* (cost, vertex) keys, listed by vertex so that sorting on the
 		 * cost alone orders ties by vertex */
 		for (size_t v = 0; v < e->nv; v++) {
@@ -1326,7 +1430,8 @@ engine_shed(struct engine *e)
 	              (void **)&e->slot, (void **)&e->vrej, (void **)&e->best,
 	              (void **)&e->alt, (void **)&e->altc,
 	              (void **)&e->vn, (void **)&e->vk, (void **)&e->wing,
-	              (void **)&e->keys};
+	              (void **)&e->keys, (void **)&e->plist, (void **)&e->poff,
+	              (void **)&e->pcount, (void **)&e->pout};
 	for (size_t i = 0; i < sizeof(p) / sizeof(p[0]); i++) {
 		free(*p[i]);
 		*p[i] = NULL;
@@ -1360,6 +1465,10 @@ engine_free(struct engine *e)
 	free(e->vk);
 	free(e->wing);
 	free(e->keys);
+	free(e->plist);
+	free(e->poff);
+	free(e->pcount);
+	free(e->pout);
 }
 
 /* The engine works in m's arrays when they are handed over (own), else in copies. */
@@ -1588,8 +1697,18 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 	if (engine_init(&e, m, own_pos, own_tri, o) != 0)
 		goto nomem;
 	if (e.passes) {
+		long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+		e.threads = o->threads > 0 ? o->threads : cpus > 0 ? (int)cpus : 1;
+		if (e.threads > VDT_CONTRACT_MAX_THREADS)
+			e.threads = VDT_CONTRACT_MAX_THREADS;
+		if (!ops->concurrent)
+			e.threads = 1;
 		e.keys = malloc((e.nv + 1) * sizeof(*e.keys));
-		if (e.keys == NULL || run_passes(&e, o, res, &rec_cap) != 0)
+		e.plist = malloc(PASS_BATCH * sizeof(*e.plist));
+		e.poff = malloc(PASS_BATCH * sizeof(*e.poff));
+		e.pcount = malloc(PASS_BATCH * sizeof(*e.pcount));
+		if (e.keys == NULL || e.plist == NULL || e.poff == NULL || e.pcount == NULL ||
+		    run_passes(&e, o, res, &rec_cap) != 0)
 			goto nomem;
 		goto finish;
 	}

@@ -58,6 +58,9 @@ struct vdt_contract_ops {
 	/* Optional extra validity test; return 0 to refuse. May be NULL. */
 	int (*valid)(void *ctx, uint32_t keep, uint32_t gone, const double pos[3]);
 	void *ctx;
+	/* Nonzero: cost may run on several threads at once (it only reads
+	 * ctx), which passes use to cost pairs in parallel. */
+	int concurrent;
 };
 
 struct vdt_contract_opts {
@@ -106,7 +109,13 @@ struct vdt_contract_opts {
 	 * that is only approximate. Ignored with pair_queue or virtual pairs.
 	 */
 	int passes;
+	/* Threads for the passes' costing, with a concurrent cost: 0 one per
+	 * online processor (at most VDT_CONTRACT_MAX_THREADS), 1 none. The
+	 * result does not depend on it. */
+	int threads;
 };
+
+#define VDT_CONTRACT_MAX_THREADS 16
 
 /* Fill opts with the defaults (target 0 triangles, no bound, 75 degrees). */
 void vdt_contract_defaults(struct vdt_contract_opts *opts);

@@ -1246,7 +1246,7 @@ simplify(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	struct vdt_mesh w = {0};
 	struct ctx c = {0};
 	struct vdt_contract_opts co;
-	struct vdt_contract_ops ops = {cost_fn, merged_fn, valid_fn, &c};
+	struct vdt_contract_ops ops = {cost_fn, merged_fn, valid_fn, &c, 0};
 	struct vdt_contract_result r = {0};
 	struct vdt_bbox box;
 	uint32_t *canon = NULL, *first = NULL, *wstart = NULL, *wlist = NULL;
@@ -1389,6 +1389,10 @@ simplify(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	co.passes = o->order == VDT_QSLIM_ORDER_PASSES ||
 	            (o->order == VDT_QSLIM_ORDER_AUTO && nw >= VDT_QSLIM_PASSES_MIN);
 	stats->passes = co.passes && nvp == 0;
+	co.threads = o->threads;
+	/* The plain cost only reads the quadrics; the attribute cost works in
+	 * shared scratch. */
+	ops.concurrent = c.at == NULL;
 	rc = vdt_contract_run_in_place(&w, &ops, &co, &r, err);
 	free(seam);
 	if (rc != 0)

@@ -18,7 +18,7 @@ load helpers
 @test "vdt-qslim rejects bad options with status 2" {
 	run "$BIN/vdt-qslim" --bogus "$SAMPLES/sphere.off"
 	[ "$status" -eq 2 ]
-	for bad in "-t 12x" "-t -1" "-t 0" "-r 2" "-r -0.5" "-r x" "-e -1" "-e 200%" "-F nope" "--max-angle 0" "--min-quality 2" "--order fast"; do
+	for bad in "-t 12x" "-t -1" "-t 0" "-r 2" "-r -0.5" "-r x" "-e -1" "-e 200%" "-F nope" "--max-angle 0" "--min-quality 2" "--order fast" "-j 0" "-j 17"; do
 		run "$BIN/vdt-qslim" $bad "$SAMPLES/sphere.off" -o "$TMP/x.off"
 		[ "$status" -eq 2 ]
 		[ ! -e "$TMP/x.off" ]
@@ -259,6 +259,11 @@ load helpers
 	[[ "$output" == *" order=passes "* ]]
 	run "$BIN/vdt-qslim" -q -v -r 0.1 "$SAMPLES/torus.off" -o "$TMP/a.off"
 	[[ "$output" == *" order=greedy "* ]]
+	# -j: the same passes on one thread as on four
+	"$BIN/vdt-qslim" -q -r 0.1 --order passes -j 1 "$SAMPLES/torus.off" -o "$TMP/j1.off"
+	"$BIN/vdt-qslim" -q -r 0.1 --order passes -j 4 "$SAMPLES/torus.off" -o "$TMP/j4.off"
+	cmp "$TMP/j1.off" "$TMP/j4.off"
+	cmp "$TMP/j1.off" "$TMP/p.off"
 	# --ignore-quadrics on a stream without QUAD changes nothing
 	"$BIN/vdt-qslim" -q -r 0.3 --ignore-quadrics "$SAMPLES/torus.off" -o "$TMP/i.off"
 	"$BIN/vdt-qslim" -q -r 0.3 "$SAMPLES/torus.off" -o "$TMP/ni.off"

@@ -27,7 +27,7 @@ length_cost(void *ctx, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	return d;
 }
 
-static const struct vdt_contract_ops length_ops = {length_cost, NULL, NULL, NULL};
+static const struct vdt_contract_ops length_ops = {length_cost, NULL, NULL, NULL, 1};
 
 /*
  * A closed tetrahedron cannot lose a vertex: every edge contraction would
@@ -113,7 +113,7 @@ fold_over_is_refused(void **state)
 	static const float p[] = {-0.05f, 0, 0, 0.2f, 0, 0, 1, 0, 0, 0.1f, 1, 0, 0.1f, -1, 0};
 	static const uint32_t t[] = {0, 1, 3, 1, 2, 3, 1, 0, 4, 2, 1, 4};
 	struct vdt_mesh m = {5, (float *)p, NULL, NULL, NULL, 4, (uint32_t *)t};
-	struct vdt_contract_ops ops = {to_zero_cost, NULL, NULL, NULL};
+	struct vdt_contract_ops ops = {to_zero_cost, NULL, NULL, NULL, 0};
 	struct vdt_contract_opts o;
 	struct vdt_contract_result r;
 
@@ -503,7 +503,7 @@ nonmanifold_virtual_pair_is_opt_in(void **state)
 	static const float p[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 1, 0, 0.2f, 1, -1, 0.2f};
 	static const uint32_t t[] = {0, 1, 2, 0, 3, 4};
 	static const uint32_t pairs[] = {1, 3};
-	static const struct vdt_contract_ops ops = {pair13_cost, NULL, NULL, NULL};
+	static const struct vdt_contract_ops ops = {pair13_cost, NULL, NULL, NULL, 0};
 	struct vdt_mesh m = {5, (float *)p, NULL, NULL, NULL, 2, (uint32_t *)t};
 	struct vdt_contract_opts o;
 	struct vdt_contract_result r;
@@ -557,12 +557,14 @@ quadric_merged(void *ctx, uint32_t keep, uint32_t gone, const double pos[3], dou
 
 enum { VERTEX_QUEUE, PAIR_QUEUE, PASSES };
 
+static int queue_threads; /* vdt_contract_opts.threads for run_queue */
+
 static void
 run_queue(const struct vdt_mesh *m, const uint8_t *locked, int mode,
           struct vdt_contract_result *r)
 {
 	struct qctx c = {calloc(m->vertex_count, sizeof(struct vdt_quadric))};
-	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c};
+	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1};
 	struct vdt_contract_opts o;
 
 	assert_non_null(c.q);
@@ -582,6 +584,7 @@ run_queue(const struct vdt_mesh *m, const uint8_t *locked, int mode,
 	o.record = 1;
 	o.pair_queue = mode == PAIR_QUEUE;
 	o.passes = mode == PASSES;
+	o.threads = queue_threads;
 	assert_int_equal(vdt_contract_run(m, &ops, &o, r, NULL), 0);
 	free(c.q);
 }
@@ -638,7 +641,8 @@ vertex_queue_matches_pair_queue(void **state)
 
 /*
  * Passes (a jittered sphere, some vertices locked): a closed manifold at
- * the target, locked vertices where they were, the same result every run,
+ * the target, locked vertices where they were, the same result on one
+ * thread as on three,
  * another order than the greedy one, and an error of the same size: no
  * contraction dearer than 1.25 times the greedy order's dearest.
  */
@@ -660,8 +664,11 @@ passes_track_the_greedy_order(void **state)
 	for (size_t v = 0; v < m.vertex_count; v += 37)
 		locked[v] = 1;
 	run_queue(&m, locked, VERTEX_QUEUE, &g);
+	queue_threads = 1;
 	run_queue(&m, locked, PASSES, &p);
+	queue_threads = 3; /* the pairs are costed on three threads: same result */
 	run_queue(&m, locked, PASSES, &again);
+	queue_threads = 0;
 	assert_true(p.reached_target);
 	assert_int_equal(p.triangle_count, 200);
 	out = (struct vdt_mesh){p.vertex_count, p.positions, NULL, NULL, NULL,
@@ -737,7 +744,7 @@ passes_contract_only_edges(void **state)
 			memmove(m.triangles + 3 * nt++, m.triangles + 3 * t, 3 * sizeof(uint32_t));
 	m.triangle_count = nt;
 	struct qctx c = {calloc(m.vertex_count, sizeof(struct vdt_quadric))};
-	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c};
+	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1};
 	assert_non_null(c.q);
 	for (size_t t = 0; t < nt; t++) {
 		double p[3][3];
