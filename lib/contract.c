@@ -1184,7 +1184,7 @@ pjob_run(void *arg)
 	return NULL;
 }
 
-#define PASS_BATCH 16384
+#define PASS_BATCH 4096
 
 /*
  * Cost the pairs of plist[0..n) into pout, split over e->threads threads
@@ -1203,8 +1203,13 @@ pass_cost(struct engine *e, size_t n, int upper)
 		e->poff[i] = total;
 		total += 2 * (size_t)e->vt[e->plist[i]].len;
 	}
-	if (vcost_reserve(&e->pout, &e->pout_cap, total) != 0)
-		return -1;
+	if (total > e->pout_cap) { /* no slack: this is most of the passes' scratch */
+		struct vcost *d = realloc(e->pout, total * sizeof(*d));
+		if (d == NULL)
+			return -1;
+		e->pout = d;
+		e->pout_cap = total;
+	}
 	if ((size_t)t > n / 64 + 1)
 		t = (int)(n / 64 + 1);
 	for (int k = 0; k < t; k++)
