@@ -48,11 +48,10 @@ vdt_qslim_defaults(struct vdt_qslim_opts *o)
 	o->max_normal_angle = 75;
 }
 
-int
-vdt_topology_parse(const char *name)
+/* The index of name among three, or -1. */
+static int
+name_index(const char *name, const char *const names[3])
 {
-	static const char *names[] = {"auto", "keep", "free"};
-
 	for (int i = 0; i < 3; i++)
 		if (strcmp(name, names[i]) == 0)
 			return i;
@@ -60,14 +59,17 @@ vdt_topology_parse(const char *name)
 }
 
 int
+vdt_topology_parse(const char *name)
+{
+	static const char *const names[] = {"auto", "keep", "free"};
+	return name_index(name, names);
+}
+
+int
 vdt_qslim_order_parse(const char *name)
 {
-	static const char *names[] = {"auto", "greedy", "passes"};
-
-	for (int i = 0; i < 3; i++)
-		if (strcmp(name, names[i]) == 0)
-			return i;
-	return -1;
+	static const char *const names[] = {"auto", "greedy", "passes"};
+	return name_index(name, names);
 }
 
 /* The QUAD chunk of c, if any, for a mesh of vertex_count vertices. */

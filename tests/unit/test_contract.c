@@ -555,19 +555,13 @@ quadric_merged(void *ctx, uint32_t keep, uint32_t gone, const double pos[3], dou
 	vdt_quadric_add(&c->q[keep], &c->q[gone]);
 }
 
-enum { VERTEX_QUEUE, PAIR_QUEUE, PASSES };
-
-static int queue_threads; /* vdt_contract_opts.threads for run_queue */
-
-static void
-run_queue(const struct vdt_mesh *m, const uint8_t *locked, int mode,
-          struct vdt_contract_result *r)
+/* Each vertex's sum of the fundamental quadrics of its faces (to free). */
+static struct vdt_quadric *
+face_quadrics(const struct vdt_mesh *m)
 {
-	struct qctx c = {calloc(m->vertex_count, sizeof(struct vdt_quadric))};
-	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1};
-	struct vdt_contract_opts o;
+	struct vdt_quadric *qs = calloc(m->vertex_count, sizeof(*qs));
 
-	assert_non_null(c.q);
+	assert_non_null(qs);
 	for (size_t t = 0; t < m->triangle_count; t++) {
 		double p[3][3];
 		struct vdt_quadric q;
@@ -576,8 +570,23 @@ run_queue(const struct vdt_mesh *m, const uint8_t *locked, int mode,
 				p[i][k] = m->positions[3 * (size_t)m->triangles[3 * t + i] + k];
 		if (vdt_quadric_triangle(&q, p[0], p[1], p[2]) == 0)
 			for (int i = 0; i < 3; i++)
-				vdt_quadric_add(&c.q[m->triangles[3 * t + i]], &q);
+				vdt_quadric_add(&qs[m->triangles[3 * t + i]], &q);
 	}
+	return qs;
+}
+
+enum { VERTEX_QUEUE, PAIR_QUEUE, PASSES };
+
+static int queue_threads; /* vdt_contract_opts.threads for run_queue */
+
+static void
+run_queue(const struct vdt_mesh *m, const uint8_t *locked, int mode,
+          struct vdt_contract_result *r)
+{
+	struct qctx c = {face_quadrics(m)};
+	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1};
+	struct vdt_contract_opts o;
+
 	vdt_contract_defaults(&o);
 	o.target_triangles = 200;
 	o.locked = locked;
@@ -598,6 +607,23 @@ max_record_cost(const struct vdt_contract_result *r)
 	return c;
 }
 
+/* A level-4 icosphere with every coordinate jittered by up to 1% (so that
+ * no two costs tie), and every 37th vertex locked: the locks, to free. */
+static uint8_t *
+jittered_sphere(struct vdt_mesh *m, uint32_t seed)
+{
+	shape_icosphere(m, 4);
+	for (size_t i = 0; i < 3 * m->vertex_count; i++) {
+		seed = seed * 1664525u + 1013904223u;
+		m->positions[i] *= 1 + 0.02f * ((float)(seed >> 8) / (1u << 24) - 0.5f);
+	}
+	uint8_t *locked = calloc(m->vertex_count, 1);
+	assert_non_null(locked);
+	for (size_t v = 0; v < m->vertex_count; v += 37)
+		locked[v] = 1;
+	return locked;
+}
+
 /*
  * The vertex queue contracts exactly what the queue of every pair does when
  * no two costs tie (a jittered sphere, some vertices locked): same pairs,
@@ -611,15 +637,7 @@ vertex_queue_matches_pair_queue(void **state)
 	uint32_t seed = 12345;
 
 	(void)state;
-	shape_icosphere(&m, 4);
-	for (size_t i = 0; i < 3 * m.vertex_count; i++) {
-		seed = seed * 1664525u + 1013904223u;
-		m.positions[i] *= 1 + 0.02f * ((float)(seed >> 8) / (1u << 24) - 0.5f);
-	}
-	uint8_t *locked = calloc(m.vertex_count, 1);
-	assert_non_null(locked);
-	for (size_t v = 0; v < m.vertex_count; v += 37)
-		locked[v] = 1;
+	uint8_t *locked = jittered_sphere(&m, seed);
 	run_queue(&m, locked, VERTEX_QUEUE, &a);
 	run_queue(&m, locked, PAIR_QUEUE, &b);
 	assert_true(a.reached_target);
@@ -642,9 +660,9 @@ vertex_queue_matches_pair_queue(void **state)
 /*
  * Passes (a jittered sphere, some vertices locked): a closed manifold at
  * the target, locked vertices where they were, the same result on one
- * thread as on three,
- * another order than the greedy one, and an error of the same size: no
- * contraction dearer than 1.25 times the greedy order's dearest.
+ * thread as on three, another order than the greedy one, and an error of
+ * the same size: no contraction dearer than 1.25 times the greedy order's
+ * dearest.
  */
 static void
 passes_track_the_greedy_order(void **state)
@@ -654,15 +672,7 @@ passes_track_the_greedy_order(void **state)
 	uint32_t seed = 4242;
 
 	(void)state;
-	shape_icosphere(&m, 4);
-	for (size_t i = 0; i < 3 * m.vertex_count; i++) {
-		seed = seed * 1664525u + 1013904223u;
-		m.positions[i] *= 1 + 0.02f * ((float)(seed >> 8) / (1u << 24) - 0.5f);
-	}
-	uint8_t *locked = calloc(m.vertex_count, 1);
-	assert_non_null(locked);
-	for (size_t v = 0; v < m.vertex_count; v += 37)
-		locked[v] = 1;
+	uint8_t *locked = jittered_sphere(&m, seed);
 	run_queue(&m, locked, VERTEX_QUEUE, &g);
 	queue_threads = 1;
 	run_queue(&m, locked, PASSES, &p);
@@ -743,19 +753,8 @@ passes_contract_only_edges(void **state)
 		if (t % 7 != 3)
 			memmove(m.triangles + 3 * nt++, m.triangles + 3 * t, 3 * sizeof(uint32_t));
 	m.triangle_count = nt;
-	struct qctx c = {calloc(m.vertex_count, sizeof(struct vdt_quadric))};
+	struct qctx c = {face_quadrics(&m)};
 	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1};
-	assert_non_null(c.q);
-	for (size_t t = 0; t < nt; t++) {
-		double p[3][3];
-		struct vdt_quadric q;
-		for (int i = 0; i < 3; i++)
-			for (int k = 0; k < 3; k++)
-				p[i][k] = m.positions[3 * (size_t)m.triangles[3 * t + i] + k];
-		if (vdt_quadric_triangle(&q, p[0], p[1], p[2]) == 0)
-			for (int i = 0; i < 3; i++)
-				vdt_quadric_add(&c.q[m.triangles[3 * t + i]], &q);
-	}
 	vdt_contract_defaults(&o);
 	o.passes = 1;
 	o.record = 1;
