@@ -87,7 +87,9 @@ struct engine {
 	uint16_t *vrej;   /* set-aside pairs at each vertex */
 
 	/* vertex queue: the heap holds vertices, best[v] is v's partner and
-	 * alt[v] the partner of its second cheapest pair, at cost altc[v] */
+	 * alt[v] the partner of its second cheapest pair, at cost altc[v];
+	 * in passes altc[v] is the cost of best[v], and hpos[v] the last
+	 * pass that claimed v */
 	int vq;
 	uint32_t *best, *alt;
 	float *altc;
@@ -1047,7 +1049,7 @@ contract(struct engine *e, uint32_t keep, uint32_t gone, const double dpos[3],
 	return 0;
 }
 
-/* ---- passes ---- */
+/* ---- what both loops share ---- */
 
 static int
 done(const struct engine *e, const struct vdt_contract_opts *o)
@@ -1079,6 +1081,7 @@ record(struct vdt_contract_result *res, size_t *cap, uint32_t keep, uint32_t gon
 	return 0;
 }
 
+/* ---- passes ---- */
 
 /*
  * v's cheapest pair into best[v] and its cost into altc[v]; with V_REFUSED
