@@ -677,29 +677,42 @@ vcost_reserve(struct vcost **d, size_t *cap, size_t n)
 	return 0;
 }
 
+/*
+ * The distinct neighbours of v (only those above it with upper) and the
+ * costs of their pairs, into out in fan order; their number. Reads the
+ * engine only, so threads may run it at once; out holds 2 * v's faces.
+ */
+static uint32_t
+fan_costs(struct engine *e, uint32_t v, int upper, struct vcost *out)
+{
+	const struct list *l = &e->vt[v];
+	double pos[3];
+	uint32_t n = 0;
+
+	for (uint32_t f = 0; f < l->len; f++) {
+		const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + f];
+		for (int k = 0; k < 3; k++) {
+			uint32_t x = t[k], s = 0;
+			if (x == v || (upper && x < v))
+				continue;
+			while (s < n && out[s].x != x)
+				s++;
+			if (s < n)
+				continue;
+			out[n].x = x;
+			out[n++].cost = (float)(x < v ? eval_pair(e, x, v, pos) : eval_pair(e, v, x, pos));
+		}
+	}
+	return n;
+}
+
 /* v's neighbours and the costs of their pairs, in e->vn; their number or -1. */
 static long
 vertex_pairs(struct engine *e, uint32_t v)
 {
-	const struct list *l = &e->vt[v];
-	uint32_t stamp = next_stamp(e);
-	double pos[3];
-	size_t n = 0;
-
-	if (vcost_reserve(&e->vn, &e->vn_cap, 2 * (size_t)l->len) != 0)
+	if (vcost_reserve(&e->vn, &e->vn_cap, 2 * (size_t)e->vt[v].len) != 0)
 		return -1;
-	for (uint32_t i = 0; i < l->len; i++) {
-		const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + i];
-		for (int k = 0; k < 3; k++) {
-			uint32_t x = t[k];
-			if (x == v || e->stamp[x] == stamp)
-				continue;
-			e->stamp[x] = stamp;
-			e->vn[n].x = x;
-			e->vn[n++].cost = (float)(x < v ? eval_pair(e, x, v, pos) : eval_pair(e, v, x, pos));
-		}
-	}
-	return (long)n;
+	return fan_costs(e, v, 0, e->vn);
 }
 
 /* Pair (., x) at cost c before pair (., bx) at bc; a refused pair never is. */
@@ -747,6 +760,28 @@ by_cost(const void *p, const void *q)
 }
 
 /*
+ * Of v's pairs vn[0..n) (sorted here by cost), the cheapest that passes
+ * the validity tests now: its partner into *x and cost into *c, or NONE
+ * and INFINITY.
+ */
+static void
+cheapest_valid(struct engine *e, uint32_t v, struct vcost *vn, long n, uint32_t *x, float *c)
+{
+	uint32_t keep, gone;
+	double pos[3], cost;
+
+	*x = NONE;
+	*c = INFINITY;
+	qsort(vn, (size_t)n, sizeof(*vn), by_cost);
+	for (long i = 0; i < n && vn[i].cost < INFINITY; i++)
+		if (try_pair(e, v, vn[i].x, &keep, &gone, pos, &cost)) {
+			*x = vn[i].x;
+			*c = vn[i].cost;
+			return;
+		}
+}
+
+/*
  * Make v's queue entry its cheapest pair, or with valid_only its cheapest
  * pair that passes the validity tests now; with none, v leaves the queue.
  */
@@ -755,8 +790,6 @@ vertex_update(struct engine *e, uint32_t v, int valid_only)
 {
 	long n = vertex_pairs(e, v);
 	struct top2 t = {NONE, NONE, INFINITY, INFINITY};
-	uint32_t keep, gone;
-	double pos[3], c;
 
 	if (n < 0)
 		return -1;
@@ -766,13 +799,7 @@ vertex_update(struct engine *e, uint32_t v, int valid_only)
 				top2_add(&t, e->vn[i].x, e->vn[i].cost);
 		e->vflag[v] &= (uint8_t)~(V_CHECKED | V_STALE | V_NOALT);
 	} else {
-		qsort(e->vn, (size_t)n, sizeof(*e->vn), by_cost);
-		for (long i = 0; i < n && e->vn[i].cost < INFINITY; i++)
-			if (try_pair(e, v, e->vn[i].x, &keep, &gone, pos, &c)) {
-				t.c1 = e->vn[i].cost;
-				t.x1 = e->vn[i].x;
-				break;
-			}
+		cheapest_valid(e, v, e->vn, n, &t.x1, &t.c1);
 		e->vflag[v] = (uint8_t)((e->vflag[v] | V_CHECKED | V_NOALT) & ~V_STALE);
 	}
 	e->alt[v] = t.x2;
@@ -1090,18 +1117,11 @@ record(struct vdt_contract_result *res, size_t *cap, uint32_t keep, uint32_t gon
 static void
 pass_best_of(struct engine *e, uint32_t v, struct vcost *vn, long n)
 {
-	uint32_t bx = NONE, keep, gone;
+	uint32_t bx = NONE;
 	float bc = INFINITY;
-	double pos[3], c;
 
 	if (e->vflag[v] & V_REFUSED) {
-		qsort(vn, (size_t)n, sizeof(*vn), by_cost);
-		for (long i = 0; i < n && vn[i].cost < INFINITY; i++)
-			if (try_pair(e, v, vn[i].x, &keep, &gone, pos, &c)) {
-				bx = vn[i].x;
-				bc = vn[i].cost;
-				break;
-			}
+		cheapest_valid(e, v, vn, n, &bx, &bc);
 	} else {
 		for (long i = 0; i < n; i++)
 			if (cheaper(vn[i].cost, vn[i].x, bc, bx)) {
@@ -1155,35 +1175,14 @@ struct pjob {
 	int upper;         /* only the pairs with vertices above */
 };
 
-/* The distinct neighbours of each vertex of the job and their costs,
- * in fan order (as vertex_pairs gives them). Reads the engine only. */
+/* The pairs of each vertex of the job and their costs (fan_costs). */
 static void *
 pjob_run(void *arg)
 {
 	const struct pjob *j = arg;
-	struct engine *e = j->e;
-	double pos[3];
 
-	for (size_t i = j->begin; i < j->end; i++) {
-		uint32_t v = e->plist[i], n = 0;
-		struct vcost *o = e->pout + e->poff[i];
-		const struct list *l = &e->vt[v];
-		for (uint32_t f = 0; f < l->len; f++) {
-			const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + f];
-			for (int k = 0; k < 3; k++) {
-				uint32_t x = t[k], s = 0;
-				if (x == v || (j->upper && x < v))
-					continue;
-				while (s < n && o[s].x != x)
-					s++;
-				if (s < n)
-					continue;
-				o[n].x = x;
-				o[n++].cost = (float)(x < v ? eval_pair(e, x, v, pos) : eval_pair(e, v, x, pos));
-			}
-		}
-		e->pcount[i] = n;
-	}
+	for (size_t i = j->begin; i < j->end; i++)
+		j->e->pcount[i] = fan_costs(j->e, j->e->plist[i], j->upper, j->e->pout + j->e->poff[i]);
 	return NULL;
 }
 
