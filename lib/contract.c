@@ -1701,6 +1701,7 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 	e.rank = o->rank;
 	e.vq = !o->pair_queue && o->virtual_pair_count == 0;
 	e.passes = e.vq && o->passes;
+	res->passes = e.passes;
 	if (engine_init(&e, m, own_pos, own_tri, o) != 0)
 		goto nomem;
 	if (e.passes) {

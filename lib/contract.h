@@ -136,6 +136,8 @@ struct vdt_contract_result {
 	double max_cost;       /* largest cost contracted */
 	int reached_target;    /* 1 if the triangle/vertex target was met */
 	size_t rejected;       /* pops refused by a validity test */
+	int passes;            /* 1 if contracted in passes (asked for, and
+	                          no pair queue), 0 one pair at a time */
 };
 
 /*

@@ -1390,7 +1390,6 @@ simplify(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	co.progress = o->progress;
 	co.passes = o->order == VDT_QSLIM_ORDER_PASSES ||
 	            (o->order == VDT_QSLIM_ORDER_AUTO && nw >= VDT_QSLIM_PASSES_MIN);
-	stats->passes = co.passes && nvp == 0;
 	co.threads = o->threads;
 	/* The plain cost only reads the quadrics; the attribute cost works in
 	 * shared scratch. */
@@ -1399,6 +1398,7 @@ simplify(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	free(seam);
 	if (rc != 0)
 		goto fail;
+	stats->passes = r.passes;
 	stats->contractions = r.contractions;
 	stats->rejected = r.rejected;
 	stats->reached_target = r.reached_target;

@@ -704,7 +704,8 @@ passes_track_the_greedy_order(void **state)
 }
 
 /* A cost bound stops passes as it stops the queue: nothing dearer is
- * contracted, and the target is reported missed. */
+ * contracted, and the target is reported missed. The result says whether
+ * passes ran. */
 static void
 passes_stop_at_the_bound(void **state)
 {
@@ -723,6 +724,13 @@ passes_stop_at_the_bound(void **state)
 	assert_false(r.reached_target);
 	assert_true(r.contractions > 0);
 	assert_true(r.triangle_count > 4);
+	assert_true(max_record_cost(&r) <= 0.02);
+	assert_true(r.passes);
+	vdt_contract_result_free(&r);
+	/* a queue of every pair has no passes, and says so */
+	o.pair_queue = 1;
+	assert_int_equal(vdt_contract_run(&m, &length_ops, &o, &r, NULL), 0);
+	assert_false(r.passes);
 	assert_true(max_record_cost(&r) <= 0.02);
 	vdt_contract_result_free(&r);
 	vdt_mesh_free(&m);
