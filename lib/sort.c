@@ -8,20 +8,6 @@
 #define BUCKETS (1u << DIGIT)
 #define MAXD ((64 + DIGIT - 1) / DIGIT)
 
-static int
-cmp_u64(const void *a, const void *b)
-{
-	uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
-	return x < y ? -1 : x > y;
-}
-
-static int
-cmp_high(const void *a, const void *b, int low_bit)
-{
-	uint64_t x = *(const uint64_t *)a >> low_bit, y = *(const uint64_t *)b >> low_bit;
-	return x < y ? -1 : x > y;
-}
-
 /* Insertion sort on bits [low_bit, 64): stable, for short runs. */
 static void
 insertion(uint64_t *k, size_t n, int low_bit)
@@ -29,7 +15,7 @@ insertion(uint64_t *k, size_t n, int low_bit)
 	for (size_t i = 1; i < n; i++) {
 		uint64_t x = k[i];
 		size_t j = i;
-		while (j > 0 && cmp_high(&k[j - 1], &x, low_bit) > 0) {
+		while (j > 0 && k[j - 1] >> low_bit > x >> low_bit) {
 			k[j] = k[j - 1];
 			j--;
 		}
@@ -41,10 +27,7 @@ int
 vdt_sort_u64_from(uint64_t *k, size_t n, int low_bit)
 {
 	if (n < 64) {
-		if (low_bit == 0 && n > 1)
-			qsort(k, n, sizeof(*k), cmp_u64);
-		else
-			insertion(k, n, low_bit);
+		insertion(k, n, low_bit);
 		return 0;
 	}
 	uint64_t *tmp = malloc(n * sizeof(*tmp));

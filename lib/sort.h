@@ -11,7 +11,7 @@
 /*
  * Sort n keys ascending: LSD radix sort on 11-bit digits, every digit's
  * histogram counted in one pass and digits that are the same in every key
- * skipped; qsort below 64 keys. Returns 0, or -1 if the scratch buffer
+ * skipped; insertion sort below 64 keys. Returns 0, or -1 if the scratch buffer
  * cannot be allocated (k unchanged).
  */
 int vdt_sort_u64(uint64_t *k, size_t n);

@@ -264,6 +264,14 @@ load helpers
 	"$BIN/vdt-qslim" -q -r 0.1 --order passes -j 4 "$SAMPLES/torus.off" -o "$TMP/j4.off"
 	cmp "$TMP/j1.off" "$TMP/j4.off"
 	cmp "$TMP/j1.off" "$TMP/p.off"
+	# passes with the attribute cost (costed on one thread whatever -j)
+	"$BIN/vdt-qslim" -q -r 0.1 --order passes -j 1 "$SAMPLES/sphere-uv.obj" -o "$TMP/uv1.obj"
+	"$BIN/vdt-qslim" -q -r 0.1 --order passes -j 4 "$SAMPLES/sphere-uv.obj" -o "$TMP/uv4.obj"
+	"$BIN/vdt-qslim" -q -r 0.1 --order greedy "$SAMPLES/sphere-uv.obj" -o "$TMP/uvg.obj"
+	cmp "$TMP/uv1.obj" "$TMP/uv4.obj"
+	! cmp -s "$TMP/uv1.obj" "$TMP/uvg.obj"
+	[ "$(grep -c '^f ' "$TMP/uv1.obj")" -eq "$(grep -c '^f ' "$TMP/uvg.obj")" ]
+	[ "$(grep -c '^vt ' "$TMP/uv1.obj")" -gt 0 ]
 	# --ignore-quadrics on a stream without QUAD changes nothing
 	"$BIN/vdt-qslim" -q -r 0.3 --ignore-quadrics "$SAMPLES/torus.off" -o "$TMP/i.off"
 	"$BIN/vdt-qslim" -q -r 0.3 "$SAMPLES/torus.off" -o "$TMP/ni.off"
