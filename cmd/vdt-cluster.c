@@ -112,7 +112,7 @@ run(struct cmdline *cl)
 	struct vdt_err err = {0};
 	const struct vdt_progress *p = progress_start(cl->quiet);
 	double t0 = vdt_seconds(), t1, t2, t3, box_s;
-	int rc, remeasured;
+	int rc, remeasured, streamed;
 
 	rq.ch.size = cl->size;
 	rq.ch.max_cells = cl->memory_mb > 0 ? (size_t)(cl->memory_mb * 1048576 / VDT_CLUSTER_CELL_BYTES) : 0;
@@ -126,6 +126,11 @@ run(struct cmdline *cl)
 		fprintf(stderr, "%s: %s: vertices outside the header's bounding box: measured it\n",
 		        progname, cl->in);
 	t1 += box_s;
+	/* The input is read: its mapped pages go before the output is made,
+	 * so that they do not add to the peak. */
+	streamed = vdt_tsource_streamed(ts);
+	vdt_tsource_close(ts);
+	ts = NULL;
 	if (rc != 0 || (rc = vdt_cluster_finish(c, &out, cl->decoupled ? NULL : &q, &st, &err)) != 0) {
 		rc = err.code == VDT_ELIMIT ? (fail("cannot cluster", cl->in, &err), EXIT_USAGE)
 		                            : fail("cannot read", cl->in, &err);
@@ -151,7 +156,7 @@ run(struct cmdline *cl)
 		fprintf(stderr, "%s: in_triangles=%llu streamed=%d cells=%zu boundary_cells=%zu "
 		        "out_vertices=%zu out_triangles=%zu grid=%ux%ux%u cell_size=%.6g "
 		        "bbox_s=%.3f cluster_s=%.3f write_s=%.3f total_s=%.3f mtri_per_s=%.2f peak_mb=%.1f\n",
-		        progname, (unsigned long long)st.triangles_in, vdt_tsource_streamed(ts), st.cells,
+		        progname, (unsigned long long)st.triangles_in, streamed, st.cells,
 		        st.boundary_cells, st.vertices_out, st.triangles_out, g.dims[0], g.dims[1],
 		        g.dims[2], fmax(g.cell[0], fmax(g.cell[1], g.cell[2])), t1 - t0, t2 - t1,
 		        t3 - t2, t3 - t0, st.triangles_in / fmax(t2 - t0, 1e-9) / 1e6,
