@@ -678,6 +678,58 @@ vcost_reserve(struct vcost **d, size_t *cap, size_t n)
 }
 
 /*
+ * Prefetching. The costs and tests of a vertex's pairs read its face list,
+ * its faces, and its neighbours' positions and cost data (the ops'
+ * vertex_data), scattered over memory; with no lookahead each is a cache
+ * miss in turn. Loops that know which vertices come next ask for them in
+ * stages, each stage reading what the one before brought: the list, then
+ * its face numbers, then the faces, then the vertex's own data.
+ */
+static inline void
+prefetch_vertex(const struct engine *e, uint32_t v)
+{
+	const char *d = e->ops->vertex_data;
+
+	__builtin_prefetch(e->pos + 3 * (size_t)v);
+	if (d != NULL) {
+		__builtin_prefetch(d + v * e->ops->vertex_stride);
+		__builtin_prefetch(d + (v + 1) * e->ops->vertex_stride - 1);
+	}
+}
+
+static void
+prefetch_fan(const struct engine *e, uint32_t v, int stage)
+{
+	const struct list *l = &e->vt[v];
+
+	switch (stage) {
+	case 0:
+		__builtin_prefetch(l);
+		break;
+	case 1:
+		if (l->len > 0) {
+			__builtin_prefetch(e->tpool.data + l->off);
+			__builtin_prefetch(e->tpool.data + l->off + l->len - 1);
+		}
+		break;
+	default:
+		for (uint32_t f = 0; f < l->len; f++)
+			__builtin_prefetch(e->tri + 3 * (size_t)e->tpool.data[l->off + f]);
+		prefetch_vertex(e, v);
+		break;
+	}
+}
+
+/* Stage `stage` for the i-th of the n vertices of list, `ahead` places on. */
+static inline void
+prefetch_ahead(const struct engine *e, const uint32_t *list, size_t i, size_t n)
+{
+	for (int stage = 0; stage < 3; stage++)
+		if (i + 3 - stage < n)
+			prefetch_fan(e, list[i + 3 - stage], stage);
+}
+
+/*
  * The distinct neighbours of v (only those above it with upper) and the
  * costs of their pairs, into out in fan order; their number. Reads the
  * engine only, so threads may run it at once; out holds 2 * v's faces.
@@ -699,9 +751,14 @@ fan_costs(struct engine *e, uint32_t v, int upper, struct vcost *out)
 				s++;
 			if (s < n)
 				continue;
-			out[n].x = x;
-			out[n++].cost = (float)(x < v ? eval_pair(e, x, v, pos) : eval_pair(e, v, x, pos));
+			out[n++].x = x;
+			prefetch_vertex(e, x);
 		}
+	}
+	/* Costed once all are listed, so that their data is on its way. */
+	for (uint32_t s = 0; s < n; s++) {
+		uint32_t x = out[s].x;
+		out[s].cost = (float)(x < v ? eval_pair(e, x, v, pos) : eval_pair(e, v, x, pos));
 	}
 	return n;
 }
@@ -1181,8 +1238,10 @@ pjob_run(void *arg)
 {
 	const struct pjob *j = arg;
 
-	for (size_t i = j->begin; i < j->end; i++)
+	for (size_t i = j->begin; i < j->end; i++) {
+		prefetch_ahead(j->e, j->e->plist, i, j->end);
 		j->e->pcount[i] = fan_costs(j->e, j->e->plist[i], j->upper, j->e->pout + j->e->poff[i]);
+	}
 	return NULL;
 }
 
@@ -1391,6 +1450,13 @@ run_passes(struct engine *e, const struct vdt_contract_opts *o,
 		for (size_t i = 0; i < m && !done(e, o); i++) {
 			uint32_t v = (uint32_t)e->keys[i], keep, gone;
 			double c;
+			for (int stage = 0; stage < 3; stage++)
+				if (i + 3 - stage < m) {
+					uint32_t a = (uint32_t)e->keys[i + 3 - stage], b = e->best[a];
+					prefetch_fan(e, a, stage);
+					if (b != NONE)
+						prefetch_fan(e, b, stage);
+				}
 			if (!try_pair(e, v, e->best[v], &keep, &gone, pos, &c)) {
 				res->rejected++;
 				refused++;

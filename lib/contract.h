@@ -61,6 +61,11 @@ struct vdt_contract_ops {
 	/* Nonzero: cost may run on several threads at once (it only reads
 	 * ctx), which passes use to cost pairs in parallel. */
 	int concurrent;
+	/* Optional: the per-vertex data cost reads, v's at vertex_data + v *
+	 * vertex_stride bytes, which the engine then fetches ahead of costing
+	 * (a hint only). NULL: none. */
+	const void *vertex_data;
+	size_t vertex_stride;
 };
 
 struct vdt_contract_opts {

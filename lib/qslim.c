@@ -1248,7 +1248,7 @@ simplify(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	struct vdt_mesh w = {0};
 	struct ctx c = {0};
 	struct vdt_contract_opts co;
-	struct vdt_contract_ops ops = {cost_fn, merged_fn, valid_fn, &c, 0};
+	struct vdt_contract_ops ops = {cost_fn, merged_fn, valid_fn, &c, 0, NULL, 0};
 	struct vdt_contract_result r = {0};
 	struct vdt_bbox box;
 	uint32_t *canon = NULL, *first = NULL, *wstart = NULL, *wlist = NULL;
@@ -1394,6 +1394,10 @@ simplify(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	/* The plain cost only reads the quadrics; the attribute cost works in
 	 * shared scratch. */
 	ops.concurrent = c.at == NULL;
+	if (c.at == NULL) {
+		ops.vertex_data = c.q;
+		ops.vertex_stride = sizeof(*c.q);
+	}
 	rc = vdt_contract_run_in_place(&w, &ops, &co, &r, err);
 	free(seam);
 	if (rc != 0)

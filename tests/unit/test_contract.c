@@ -27,7 +27,7 @@ length_cost(void *ctx, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	return d;
 }
 
-static const struct vdt_contract_ops length_ops = {length_cost, NULL, NULL, NULL, 1};
+static const struct vdt_contract_ops length_ops = {length_cost, NULL, NULL, NULL, 1, NULL, 0};
 
 /*
  * A closed tetrahedron cannot lose a vertex: every edge contraction would
@@ -113,7 +113,7 @@ fold_over_is_refused(void **state)
 	static const float p[] = {-0.05f, 0, 0, 0.2f, 0, 0, 1, 0, 0, 0.1f, 1, 0, 0.1f, -1, 0};
 	static const uint32_t t[] = {0, 1, 3, 1, 2, 3, 1, 0, 4, 2, 1, 4};
 	struct vdt_mesh m = {5, (float *)p, NULL, NULL, NULL, 4, (uint32_t *)t};
-	struct vdt_contract_ops ops = {to_zero_cost, NULL, NULL, NULL, 0};
+	struct vdt_contract_ops ops = {to_zero_cost, NULL, NULL, NULL, 0, NULL, 0};
 	struct vdt_contract_opts o;
 	struct vdt_contract_result r;
 
@@ -503,7 +503,7 @@ nonmanifold_virtual_pair_is_opt_in(void **state)
 	static const float p[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 1, 0, 0.2f, 1, -1, 0.2f};
 	static const uint32_t t[] = {0, 1, 2, 0, 3, 4};
 	static const uint32_t pairs[] = {1, 3};
-	static const struct vdt_contract_ops ops = {pair13_cost, NULL, NULL, NULL, 0};
+	static const struct vdt_contract_ops ops = {pair13_cost, NULL, NULL, NULL, 0, NULL, 0};
 	struct vdt_mesh m = {5, (float *)p, NULL, NULL, NULL, 2, (uint32_t *)t};
 	struct vdt_contract_opts o;
 	struct vdt_contract_result r;
@@ -584,7 +584,7 @@ run_queue(const struct vdt_mesh *m, const uint8_t *locked, int mode,
           struct vdt_contract_result *r)
 {
 	struct qctx c = {face_quadrics(m)};
-	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1};
+	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0};
 	struct vdt_contract_opts o;
 
 	vdt_contract_defaults(&o);
@@ -762,7 +762,7 @@ passes_contract_only_edges(void **state)
 			memmove(m.triangles + 3 * nt++, m.triangles + 3 * t, 3 * sizeof(uint32_t));
 	m.triangle_count = nt;
 	struct qctx c = {face_quadrics(&m)};
-	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1};
+	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0};
 	vdt_contract_defaults(&o);
 	o.passes = 1;
 	o.record = 1;
