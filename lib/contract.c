@@ -20,6 +20,7 @@
 #include <unistd.h>
 
 #include "bytes.h"
+#include "mem.h"
 #include "sort.h"
 
 #define NONE UINT32_MAX
@@ -122,6 +123,7 @@ pool_reserve(struct pool *p, size_t extra)
 	uint32_t *d = realloc(p->data, cap * sizeof(*d));
 	if (d == NULL)
 		return -1;
+	vdt_hint_huge(d, cap * sizeof(*d));
 	p->data = d;
 	p->cap = cap;
 	return 0;
@@ -1564,6 +1566,13 @@ engine_init(struct engine *e, const struct vdt_mesh *m, float *own_pos,
 	e->stamp = calloc(nv + 1, sizeof(uint32_t));
 	e->slot = malloc((nv + 1) * sizeof(uint32_t));
 	e->vrej = calloc(nv + 1, sizeof(uint16_t));
+	vdt_hint_huge(e->tnormal, 3 * nt * sizeof(*e->tnormal));
+	vdt_hint_huge(e->vt, nv * sizeof(struct list));
+	vdt_hint_huge(e->vp, nv * sizeof(struct list));
+	vdt_hint_huge(e->parent, (nv + 1) * sizeof(uint32_t));
+	vdt_hint_huge(e->stamp, (nv + 1) * sizeof(uint32_t));
+	vdt_hint_huge(e->slot, (nv + 1) * sizeof(uint32_t));
+	vdt_hint_huge(e->vrej, (nv + 1) * sizeof(uint16_t));
 	keys = malloc((o->virtual_pair_count + 1) * sizeof(uint64_t));
 	if (!e->pos || !e->tri || !e->tnormal || !e->vflag || !e->vt || !e->vp || !e->parent || !e->stamp || !e->slot || !e->vrej || !keys)
 		goto nomem;
@@ -1620,6 +1629,11 @@ engine_init(struct engine *e, const struct vdt_mesh *m, float *own_pos,
 		e->hpos = malloc((nv + 1) * sizeof(uint32_t));
 		if (!e->best || !e->alt || !e->altc || !e->heap || !e->hpos)
 			goto nomem;
+		vdt_hint_huge(e->best, (nv + 1) * sizeof(*e->best));
+		vdt_hint_huge(e->alt, (nv + 1) * sizeof(*e->alt));
+		vdt_hint_huge(e->altc, (nv + 1) * sizeof(*e->altc));
+		vdt_hint_huge(e->heap, (nv + 1) * sizeof(struct hent));
+		vdt_hint_huge(e->hpos, (nv + 1) * sizeof(uint32_t));
 		goto flags;
 	}
 
@@ -1778,6 +1792,7 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 		if (!ops->concurrent)
 			e.threads = 1;
 		e.keys = malloc((e.nv + 1) * sizeof(*e.keys));
+		vdt_hint_huge(e.keys, (e.nv + 1) * sizeof(*e.keys));
 		e.plist = malloc(PASS_BATCH * sizeof(*e.plist));
 		e.poff = malloc(PASS_BATCH * sizeof(*e.poff));
 		e.pcount = malloc(PASS_BATCH * sizeof(*e.pcount));

@@ -1,4 +1,5 @@
 #include "mesh.h"
+#include "mem.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -18,6 +19,7 @@ alloc_array(size_t count, size_t size, int *failed)
 	p = malloc(count * size);
 	if (p == NULL)
 		*failed = 1;
+	vdt_hint_huge(p, count * size);
 	return p;
 }
 

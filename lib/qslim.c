@@ -19,6 +19,7 @@
  */
 #include "qslim.h"
 #include "hash.h"
+#include "mem.h"
 #include "topo.h"
 
 #include <math.h>
@@ -198,6 +199,8 @@ hash_init(struct hash *h, size_t n)
 	h->mask = cap - 1;
 	if (h->key == NULL || h->val == NULL)
 		return -1;
+	vdt_hint_huge(h->key, cap * sizeof(*h->key));
+	vdt_hint_huge(h->val, cap * sizeof(*h->val));
 	memset(h->key, 0xff, cap * sizeof(*h->key));
 	return 0;
 }
@@ -1288,6 +1291,8 @@ simplify(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 
 	canon = malloc((n + 1) * sizeof(*canon));
 	first = malloc((n + 1) * sizeof(*first));
+	vdt_hint_huge(canon, (n + 1) * sizeof(*canon));
+	vdt_hint_huge(first, (n + 1) * sizeof(*first));
 	if (!canon || !first || (nw = weld(in, canon, first)) == 0)
 		goto nomem;
 	stats->welded = n - nw;
@@ -1302,6 +1307,7 @@ simplify(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 
 	/* Input vertices by welded vertex (CSR). */
 	c.q = calloc(nw, sizeof(*c.q));
+	vdt_hint_huge(c.q, nw * sizeof(*c.q));
 	border = calloc(nw, 1);
 	locked = calloc(nw, 1);
 	if (!c.q || !border || !locked)
@@ -1313,6 +1319,8 @@ simplify(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	c.max_error = o->max_error < INFINITY ? o->max_error * o->max_error : INFINITY;
 	dead = calloc(T + 1, 1);
 	fsrc = malloc((T + 1) * sizeof(*fsrc));
+	vdt_hint_huge(dead, T + 1);
+	vdt_hint_huge(fsrc, (T + 1) * sizeof(*fsrc));
 	if (dead == NULL || fsrc == NULL || build_quadrics(&w, o, canon, n, &c, border, dead, &stats->nonmanifold) != 0)
 		goto nomem;
 	/* The engine sees the live faces only; fsrc maps back to the input. */
