@@ -1,5 +1,6 @@
 /* sort.c - LSD radix sort of 64-bit keys (see sort.h). */
 #include "sort.h"
+#include "mem.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -37,6 +38,7 @@ vdt_sort_u64_from(uint64_t *k, size_t n, int low_bit)
 		free(count);
 		return -1;
 	}
+	vdt_hint_huge(tmp, n * sizeof(*tmp));
 	/* Every digit's histogram in one pass over the keys. */
 	int nd = (64 - low_bit + DIGIT - 1) / DIGIT;
 	for (size_t i = 0; i < n; i++) {

@@ -1,5 +1,6 @@
 /* topo.c - fan tables and repeated faces (see topo.h). */
 #include "topo.h"
+#include "mem.h"
 
 #include <stdlib.h>
 
@@ -13,6 +14,8 @@ vdt_topo_fans(size_t nv, const uint32_t *tri, size_t nt, uint32_t **start, uint3
 		free(f);
 		return -1;
 	}
+	vdt_hint_huge(s, (nv + 2) * sizeof(*s));
+	vdt_hint_huge(f, (3 * nt + 1) * sizeof(*f));
 	/* Count into s[v + 2], sum into s[v + 1], fill through s[v + 1]: it
 	 * ends as the start of v + 1, that is, s[v] is v's start. */
 	for (size_t t = 0; t < 3 * nt; t++)
