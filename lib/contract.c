@@ -1737,6 +1737,15 @@ nomem:
 	return -1;
 }
 
+int
+vdt_contract_threads(int threads)
+{
+	long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+	int t = threads > 0 ? threads : cpus > 0 ? (int)cpus : 1;
+
+	return t > VDT_CONTRACT_MAX_THREADS ? VDT_CONTRACT_MAX_THREADS : t;
+}
+
 void
 vdt_contract_defaults(struct vdt_contract_opts *o)
 {
@@ -1785,10 +1794,7 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 	if (engine_init(&e, m, own_pos, own_tri, o) != 0)
 		goto nomem;
 	if (e.passes) {
-		long cpus = sysconf(_SC_NPROCESSORS_ONLN);
-		e.threads = o->threads > 0 ? o->threads : cpus > 0 ? (int)cpus : 1;
-		if (e.threads > VDT_CONTRACT_MAX_THREADS)
-			e.threads = VDT_CONTRACT_MAX_THREADS;
+		e.threads = vdt_contract_threads(o->threads);
 		if (!ops->concurrent)
 			e.threads = 1;
 		e.keys = malloc((e.nv + 1) * sizeof(*e.keys));

@@ -122,6 +122,10 @@ struct vdt_contract_opts {
 
 #define VDT_CONTRACT_MAX_THREADS 16
 
+/* The threads a `threads` option stands for: itself, or with 0 one per
+ * online processor; at most VDT_CONTRACT_MAX_THREADS. */
+int vdt_contract_threads(int threads);
+
 /* Fill opts with the defaults (target 0 triangles, no bound, 75 degrees). */
 void vdt_contract_defaults(struct vdt_contract_opts *opts);
 
