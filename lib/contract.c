@@ -1258,9 +1258,8 @@ static int
 pass_cost(struct engine *e, size_t n, int upper)
 {
 	struct pjob job[VDT_CONTRACT_MAX_THREADS];
-	pthread_t th[VDT_CONTRACT_MAX_THREADS];
 	size_t total = 0;
-	int t = e->threads, started = 0;
+	int t = e->threads;
 
 	for (size_t i = 0; i < n; i++) {
 		e->poff[i] = total;
@@ -1278,12 +1277,7 @@ pass_cost(struct engine *e, size_t n, int upper)
 	for (int k = 0; k < t; k++)
 		job[k] = (struct pjob){e, n * (size_t)k / (size_t)t, n * (size_t)(k + 1) / (size_t)t,
 		                       upper};
-	while (started + 1 < t && pthread_create(&th[started], NULL, pjob_run, &job[started]) == 0)
-		started++;
-	for (int k = started; k < t; k++)
-		pjob_run(&job[k]);
-	for (int k = 0; k < started; k++)
-		pthread_join(th[k], NULL);
+	vdt_run_jobs(pjob_run, job, sizeof(job[0]), t);
 	return 0;
 }
 
@@ -1735,6 +1729,21 @@ flags:
 nomem:
 	free(keys);
 	return -1;
+}
+
+void
+vdt_run_jobs(void *(*fn)(void *), void *jobs, size_t size, int t)
+{
+	pthread_t th[VDT_CONTRACT_MAX_THREADS];
+	int started = 0;
+
+	while (started + 1 < t &&
+	       pthread_create(&th[started], NULL, fn, (char *)jobs + (size_t)started * size) == 0)
+		started++;
+	for (int k = started; k < t; k++)
+		fn((char *)jobs + (size_t)k * size);
+	for (int k = 0; k < started; k++)
+		pthread_join(th[k], NULL);
 }
 
 int

@@ -23,7 +23,6 @@
 #include "topo.h"
 
 #include <math.h>
-#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -354,21 +353,15 @@ static void
 face_quadrics(const struct vdt_mesh *w, struct ctx *c, const uint8_t *dead, int threads)
 {
 	struct fq_job job[VDT_CONTRACT_MAX_THREADS];
-	pthread_t th[VDT_CONTRACT_MAX_THREADS];
 	size_t nv = w->vertex_count;
-	int t = vdt_contract_threads(threads), started = 0;
+	int t = vdt_contract_threads(threads);
 
 	if (nv < FQ_MIN_VERTICES)
 		t = 1;
 	for (int k = 0; k < t; k++)
 		job[k] = (struct fq_job){w, c, dead, (uint32_t)(nv * (size_t)k / (size_t)t),
 		                         (uint32_t)(nv * (size_t)(k + 1) / (size_t)t)};
-	while (started + 1 < t && pthread_create(&th[started], NULL, fq_run, &job[started]) == 0)
-		started++;
-	for (int k = started; k < t; k++)
-		fq_run(&job[k]);
-	for (int k = 0; k < started; k++)
-		pthread_join(th[k], NULL);
+	vdt_run_jobs(fq_run, job, sizeof(job[0]), t);
 }
 
 /*
