@@ -1258,8 +1258,9 @@ static int
 pass_cost(struct engine *e, size_t n, int upper)
 {
 	struct pjob job[VDT_CONTRACT_MAX_THREADS];
+	pthread_t th[VDT_CONTRACT_MAX_THREADS];
 	size_t total = 0;
-	int t = e->threads;
+	int t = e->threads, started = 0;
 
 	for (size_t i = 0; i < n; i++) {
 		e->poff[i] = total;
@@ -1277,7 +1278,12 @@ pass_cost(struct engine *e, size_t n, int upper)
 	for (int k = 0; k < t; k++)
 		job[k] = (struct pjob){e, n * (size_t)k / (size_t)t, n * (size_t)(k + 1) / (size_t)t,
 		                       upper};
-	vdt_run_jobs(pjob_run, job, sizeof(job[0]), t);
+	while (started + 1 < t && pthread_create(&th[started], NULL, pjob_run, &job[started]) == 0)
+		started++;
+	for (int k = started; k < t; k++)
+		pjob_run(&job[k]);
+	for (int k = 0; k < started; k++)
+		pthread_join(th[k], NULL);
 	return 0;
 }
 
@@ -1732,30 +1738,6 @@ nomem:
 }
 
 void
-vdt_run_jobs(void *(*fn)(void *), void *jobs, size_t size, int t)
-{
-	pthread_t th[VDT_CONTRACT_MAX_THREADS];
-	int started = 0;
-
-	while (started + 1 < t &&
-	       pthread_create(&th[started], NULL, fn, (char *)jobs + (size_t)started * size) == 0)
-		started++;
-	for (int k = started; k < t; k++)
-		fn((char *)jobs + (size_t)k * size);
-	for (int k = 0; k < started; k++)
-		pthread_join(th[k], NULL);
-}
-
-int
-vdt_contract_threads(int threads)
-{
-	long cpus = sysconf(_SC_NPROCESSORS_ONLN);
-	int t = threads > 0 ? threads : cpus > 0 ? (int)cpus : 1;
-
-	return t > VDT_CONTRACT_MAX_THREADS ? VDT_CONTRACT_MAX_THREADS : t;
-}
-
-void
 vdt_contract_defaults(struct vdt_contract_opts *o)
 {
 	memset(o, 0, sizeof(*o));
@@ -1803,7 +1785,10 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 	if (engine_init(&e, m, own_pos, own_tri, o) != 0)
 		goto nomem;
 	if (e.passes) {
-		e.threads = vdt_contract_threads(o->threads);
+		long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+		e.threads = o->threads > 0 ? o->threads : cpus > 0 ? (int)cpus : 1;
+		if (e.threads > VDT_CONTRACT_MAX_THREADS)
+			e.threads = VDT_CONTRACT_MAX_THREADS;
 		if (!ops->concurrent)
 			e.threads = 1;
 		e.keys = malloc((e.nv + 1) * sizeof(*e.keys));
