@@ -795,6 +795,44 @@ passes_contract_only_edges(void **state)
 
 /* --order auto: passes from VDT_QSLIM_PASSES_MIN welded vertices up,
  * greedy below; the explicit orders whatever the size. */
+/*
+ * vdt_qslim gives the same mesh on one thread as on three, on a bumpy grid
+ * big enough for the default order to be passes, whose pairs are costed
+ * on threads.
+ */
+static void
+qslim_threads_do_not_matter(void **state)
+{
+	struct vdt_mesh m, out[2];
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+	uint32_t seed = 4242;
+
+	(void)state;
+	shape_grid(&m, 256); /* 66049 vertices */
+	assert_true(m.vertex_count >= VDT_QSLIM_PASSES_MIN);
+	for (size_t i = 0; i < m.vertex_count; i++) {
+		seed = seed * 1664525u + 1013904223u;
+		m.positions[3 * i + 2] = 0.02f * (float)(seed >> 8) / (1u << 24);
+	}
+	vdt_qslim_defaults(&o);
+	o.target_ratio = 0.2;
+	for (int k = 0; k < 2; k++) {
+		o.threads = k ? 3 : 1;
+		assert_int_equal(vdt_qslim(&m, &o, &out[k], NULL, NULL, &st, NULL), 0);
+		assert_true(st.passes);
+	}
+	assert_int_equal(out[0].vertex_count, out[1].vertex_count);
+	assert_int_equal(out[0].triangle_count, out[1].triangle_count);
+	assert_memory_equal(out[0].positions, out[1].positions,
+	                    3 * out[0].vertex_count * sizeof(float));
+	assert_memory_equal(out[0].triangles, out[1].triangles,
+	                    3 * out[0].triangle_count * sizeof(uint32_t));
+	for (int k = 0; k < 2; k++)
+		vdt_mesh_free(&out[k]);
+	vdt_mesh_free(&m);
+}
+
 static void
 auto_order_follows_the_size(void **state)
 {
@@ -845,6 +883,7 @@ main(void)
 		cmocka_unit_test(passes_stop_at_the_bound),
 		cmocka_unit_test(passes_contract_only_edges),
 		cmocka_unit_test(auto_order_follows_the_size),
+		cmocka_unit_test(qslim_threads_do_not_matter),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
