@@ -722,13 +722,28 @@ prefetch_fan(const struct engine *e, uint32_t v, int stage)
 	}
 }
 
-/* Stage `stage` for the i-th of the n vertices of list, `ahead` places on. */
+/* Before the i-th of the n vertices of list: each stage for the vertex it
+ * is due for, the first three places on. */
 static inline void
 prefetch_ahead(const struct engine *e, const uint32_t *list, size_t i, size_t n)
 {
 	for (int stage = 0; stage < 3; stage++)
 		if (i + 3 - stage < n)
 			prefetch_fan(e, list[i + 3 - stage], stage);
+}
+
+/* The same for the pairs (v, best[v]) of a pass, v in the low bits of
+ * keys[0..n). */
+static inline void
+prefetch_pairs_ahead(const struct engine *e, const uint64_t *keys, size_t i, size_t n)
+{
+	for (int stage = 0; stage < 3; stage++)
+		if (i + 3 - stage < n) {
+			uint32_t a = (uint32_t)keys[i + 3 - stage], b = e->best[a];
+			prefetch_fan(e, a, stage);
+			if (b != NONE)
+				prefetch_fan(e, b, stage);
+		}
 }
 
 /*
@@ -1452,13 +1467,7 @@ run_passes(struct engine *e, const struct vdt_contract_opts *o,
 		for (size_t i = 0; i < m && !done(e, o); i++) {
 			uint32_t v = (uint32_t)e->keys[i], keep, gone;
 			double c;
-			for (int stage = 0; stage < 3; stage++)
-				if (i + 3 - stage < m) {
-					uint32_t a = (uint32_t)e->keys[i + 3 - stage], b = e->best[a];
-					prefetch_fan(e, a, stage);
-					if (b != NONE)
-						prefetch_fan(e, b, stage);
-				}
+			prefetch_pairs_ahead(e, e->keys, i, m);
 			if (!try_pair(e, v, e->best[v], &keep, &gone, pos, &c)) {
 				res->rejected++;
 				refused++;

@@ -105,13 +105,15 @@ struct vdt_contract_opts {
 	int pair_queue;
 	/*
 	 * Nonzero: contract in passes instead of one pair at a time. Each
-	 * pass sorts every vertex's cheapest pair by cost and contracts them
-	 * in that order, skipping a pair when the pass has already moved one
-	 * of its vertices (its cost would be stale) and stopping at 1.5 times
-	 * the cost of the pair the remaining target would reach; then the
+	 * pass sorts every vertex's cheapest pair by cost and claims pairs in
+	 * that order, a pair only if neither vertex is claimed yet, up to an
+	 * eighth of the live vertices and to 1.5 times the cost of the last
+	 * pair the target needs; the claimed pairs, which share no vertex,
+	 * are contracted in vertex order after the validity tests; then the
 	 * vertices around each contraction find their cheapest pair again.
-	 * No queue to maintain, so faster, at the price of a greedy order
-	 * that is only approximate. Ignored with pair_queue or virtual pairs.
+	 * No queue to maintain and memory walked in order, so faster, at the
+	 * price of a greedy order that is only approximate. Ignored with
+	 * pair_queue or virtual pairs.
 	 */
 	int passes;
 	/* Threads for the passes' costing, with a concurrent cost: 0 one per
