@@ -1567,21 +1567,14 @@ engine_init(struct engine *e, const struct vdt_mesh *m, float *own_pos,
 	e->nt = nt;
 	e->pos = own_pos ? own_pos : malloc(3 * nv * sizeof(float));
 	e->tri = own_tri ? own_tri : malloc(3 * nt * sizeof(uint32_t));
-	e->tnormal = malloc(3 * nt * sizeof(*e->tnormal));
+	e->tnormal = vdt_malloc_huge(3 * nt * sizeof(*e->tnormal));
 	e->vflag = calloc(nv, 1);
-	e->vt = calloc(nv, sizeof(struct list));
-	e->vp = calloc(nv, sizeof(struct list));
-	e->parent = malloc((nv + 1) * sizeof(uint32_t));
-	e->stamp = calloc(nv + 1, sizeof(uint32_t));
-	e->slot = malloc((nv + 1) * sizeof(uint32_t));
-	e->vrej = calloc(nv + 1, sizeof(uint16_t));
-	vdt_hint_huge(e->tnormal, 3 * nt * sizeof(*e->tnormal));
-	vdt_hint_huge(e->vt, nv * sizeof(struct list));
-	vdt_hint_huge(e->vp, nv * sizeof(struct list));
-	vdt_hint_huge(e->parent, (nv + 1) * sizeof(uint32_t));
-	vdt_hint_huge(e->stamp, (nv + 1) * sizeof(uint32_t));
-	vdt_hint_huge(e->slot, (nv + 1) * sizeof(uint32_t));
-	vdt_hint_huge(e->vrej, (nv + 1) * sizeof(uint16_t));
+	e->vt = vdt_calloc_huge(nv, sizeof(struct list));
+	e->vp = vdt_calloc_huge(nv, sizeof(struct list));
+	e->parent = vdt_malloc_huge((nv + 1) * sizeof(uint32_t));
+	e->stamp = vdt_calloc_huge(nv + 1, sizeof(uint32_t));
+	e->slot = vdt_malloc_huge((nv + 1) * sizeof(uint32_t));
+	e->vrej = vdt_calloc_huge(nv + 1, sizeof(uint16_t));
 	keys = malloc((o->virtual_pair_count + 1) * sizeof(uint64_t));
 	if (!e->pos || !e->tri || !e->tnormal || !e->vflag || !e->vt || !e->vp || !e->parent || !e->stamp || !e->slot || !e->vrej || !keys)
 		goto nomem;
@@ -1631,18 +1624,13 @@ engine_init(struct engine *e, const struct vdt_mesh *m, float *own_pos,
 	if (e->vq) {
 		free(keys);
 		keys = NULL;
-		e->best = malloc((nv + 1) * sizeof(*e->best));
-		e->alt = malloc((nv + 1) * sizeof(*e->alt));
-		e->altc = malloc((nv + 1) * sizeof(*e->altc));
-		e->heap = malloc((nv + 1) * sizeof(struct hent));
-		e->hpos = malloc((nv + 1) * sizeof(uint32_t));
+		e->best = vdt_malloc_huge((nv + 1) * sizeof(*e->best));
+		e->alt = vdt_malloc_huge((nv + 1) * sizeof(*e->alt));
+		e->altc = vdt_malloc_huge((nv + 1) * sizeof(*e->altc));
+		e->heap = vdt_malloc_huge((nv + 1) * sizeof(struct hent));
+		e->hpos = vdt_malloc_huge((nv + 1) * sizeof(uint32_t));
 		if (!e->best || !e->alt || !e->altc || !e->heap || !e->hpos)
 			goto nomem;
-		vdt_hint_huge(e->best, (nv + 1) * sizeof(*e->best));
-		vdt_hint_huge(e->alt, (nv + 1) * sizeof(*e->alt));
-		vdt_hint_huge(e->altc, (nv + 1) * sizeof(*e->altc));
-		vdt_hint_huge(e->heap, (nv + 1) * sizeof(struct hent));
-		vdt_hint_huge(e->hpos, (nv + 1) * sizeof(uint32_t));
 		goto flags;
 	}
 
@@ -1800,8 +1788,7 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 			e.threads = VDT_CONTRACT_MAX_THREADS;
 		if (!ops->concurrent)
 			e.threads = 1;
-		e.keys = malloc((e.nv + 1) * sizeof(*e.keys));
-		vdt_hint_huge(e.keys, (e.nv + 1) * sizeof(*e.keys));
+		e.keys = vdt_malloc_huge((e.nv + 1) * sizeof(*e.keys));
 		e.plist = malloc(PASS_BATCH * sizeof(*e.plist));
 		e.poff = malloc(PASS_BATCH * sizeof(*e.poff));
 		e.pcount = malloc(PASS_BATCH * sizeof(*e.pcount));

@@ -6,6 +6,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdlib.h>
 #include <sys/mman.h>
 
 /*
@@ -32,6 +33,28 @@ vdt_hint_huge(void *p, size_t bytes)
 	(void)p;
 	(void)bytes;
 #endif
+}
+
+/* malloc(bytes), with the hint on the block. */
+static inline void *
+vdt_malloc_huge(size_t bytes)
+{
+	void *p = malloc(bytes);
+
+	vdt_hint_huge(p, bytes);
+	return p;
+}
+
+/* calloc(n, size), with the hint on the block (untouched until written:
+ * a large calloc comes zeroed from mmap). */
+static inline void *
+vdt_calloc_huge(size_t n, size_t size)
+{
+	void *p = calloc(n, size);
+
+	if (p != NULL)
+		vdt_hint_huge(p, n * size);
+	return p;
 }
 
 #endif

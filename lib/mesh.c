@@ -16,10 +16,9 @@ alloc_array(size_t count, size_t size, int *failed)
 		*failed = 1;
 		return NULL;
 	}
-	p = malloc(count * size);
+	p = vdt_malloc_huge(count * size);
 	if (p == NULL)
 		*failed = 1;
-	vdt_hint_huge(p, count * size);
 	return p;
 }
 

@@ -194,13 +194,11 @@ hash_init(struct hash *h, size_t n)
 	size_t cap = 16;
 	while (cap < 2 * n)
 		cap *= 2;
-	h->key = malloc(cap * sizeof(*h->key));
-	h->val = malloc(cap * sizeof(*h->val));
+	h->key = vdt_malloc_huge(cap * sizeof(*h->key));
+	h->val = vdt_malloc_huge(cap * sizeof(*h->val));
 	h->mask = cap - 1;
 	if (h->key == NULL || h->val == NULL)
 		return -1;
-	vdt_hint_huge(h->key, cap * sizeof(*h->key));
-	vdt_hint_huge(h->val, cap * sizeof(*h->val));
 	memset(h->key, 0xff, cap * sizeof(*h->key));
 	return 0;
 }
@@ -1289,10 +1287,8 @@ simplify(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 		return vdt_mesh_copy(out, in, err);
 	}
 
-	canon = malloc((n + 1) * sizeof(*canon));
-	first = malloc((n + 1) * sizeof(*first));
-	vdt_hint_huge(canon, (n + 1) * sizeof(*canon));
-	vdt_hint_huge(first, (n + 1) * sizeof(*first));
+	canon = vdt_malloc_huge((n + 1) * sizeof(*canon));
+	first = vdt_malloc_huge((n + 1) * sizeof(*first));
 	if (!canon || !first || (nw = weld(in, canon, first)) == 0)
 		goto nomem;
 	stats->welded = n - nw;
@@ -1306,8 +1302,7 @@ simplify(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	first = NULL;
 
 	/* Input vertices by welded vertex (CSR). */
-	c.q = calloc(nw, sizeof(*c.q));
-	vdt_hint_huge(c.q, nw * sizeof(*c.q));
+	c.q = vdt_calloc_huge(nw, sizeof(*c.q));
 	border = calloc(nw, 1);
 	locked = calloc(nw, 1);
 	if (!c.q || !border || !locked)
@@ -1317,10 +1312,8 @@ simplify(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	for (int k = 0; k < 3; k++)
 		c.centre[k] = 0.5 * (box.min[k] + box.max[k]);
 	c.max_error = o->max_error < INFINITY ? o->max_error * o->max_error : INFINITY;
-	dead = calloc(T + 1, 1);
-	fsrc = malloc((T + 1) * sizeof(*fsrc));
-	vdt_hint_huge(dead, T + 1);
-	vdt_hint_huge(fsrc, (T + 1) * sizeof(*fsrc));
+	dead = vdt_calloc_huge(T + 1, 1);
+	fsrc = vdt_malloc_huge((T + 1) * sizeof(*fsrc));
 	if (dead == NULL || fsrc == NULL || build_quadrics(&w, o, canon, n, &c, border, dead, &stats->nonmanifold) != 0)
 		goto nomem;
 	/* The engine sees the live faces only; fsrc maps back to the input. */

@@ -31,14 +31,13 @@ vdt_sort_u64_from(uint64_t *k, size_t n, int low_bit)
 		insertion(k, n, low_bit);
 		return 0;
 	}
-	uint64_t *tmp = malloc(n * sizeof(*tmp));
+	uint64_t *tmp = vdt_malloc_huge(n * sizeof(*tmp));
 	size_t *count = calloc((size_t)MAXD * BUCKETS, sizeof(*count));
 	if (tmp == NULL || count == NULL) {
 		free(tmp);
 		free(count);
 		return -1;
 	}
-	vdt_hint_huge(tmp, n * sizeof(*tmp));
 	/* Every digit's histogram in one pass over the keys. */
 	int nd = (64 - low_bit + DIGIT - 1) / DIGIT;
 	for (size_t i = 0; i < n; i++) {

@@ -7,15 +7,14 @@
 int
 vdt_topo_fans(size_t nv, const uint32_t *tri, size_t nt, uint32_t **start, uint32_t **fan)
 {
-	uint32_t *s = calloc(nv + 2, sizeof(*s)), *f = malloc((3 * nt + 1) * sizeof(*f));
+	uint32_t *s = vdt_calloc_huge(nv + 2, sizeof(*s));
+	uint32_t *f = vdt_malloc_huge((3 * nt + 1) * sizeof(*f));
 
 	if (s == NULL || f == NULL) {
 		free(s);
 		free(f);
 		return -1;
 	}
-	vdt_hint_huge(s, (nv + 2) * sizeof(*s));
-	vdt_hint_huge(f, (3 * nt + 1) * sizeof(*f));
 	/* Count into s[v + 2], sum into s[v + 1], fill through s[v + 1]: it
 	 * ends as the start of v + 1, that is, s[v] is v's start. */
 	for (size_t t = 0; t < 3 * nt; t++)

@@ -504,10 +504,9 @@ read_faces(const struct header *h, const struct element *e,
 
 	if (tris > SIZE_MAX / (3 * sizeof(uint32_t)))
 		return vdt_err_set(err, VDT_ENOMEM, "too many triangles");
-	t = malloc((tris ? tris : 1) * 3 * sizeof(uint32_t));
+	t = vdt_malloc_huge((tris ? tris : 1) * 3 * sizeof(uint32_t));
 	if (t == NULL)
 		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu triangles", tris);
-	vdt_hint_huge(t, (tris ? tris : 1) * 3 * sizeof(uint32_t));
 
 	size_t nt = 0, nv = m->vertex_count;
 	int simple = li == 0 && e->prop_count == 1 && lp->count_type == T_U8 &&
