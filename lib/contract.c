@@ -56,6 +56,17 @@ struct vcost {
 	float cost;
 };
 
+/*
+ * What a contraction needs besides the engine: scratch, and the counts of
+ * what it removed, which the caller takes off live_tris and live_verts. The
+ * engine has one; a pass contracting on several threads gives each its own.
+ */
+struct work {
+	uint32_t *wing;        /* third corners of the faces a contraction removed */
+	size_t wing_len, wing_cap;
+	size_t dead_tris, dead_verts;
+};
+
 struct engine {
 	size_t nv, nt;
 	float *pos;
@@ -97,8 +108,7 @@ struct engine {
 	const uint8_t *rank;
 	struct vcost *vn, *vk; /* scratch: a vertex's pairs, keep's pairs */
 	size_t vn_cap, vk_cap;
-	uint32_t *wing;        /* third corners of the faces a contraction removed */
-	size_t wing_len, wing_cap;
+	struct work work;      /* the contractions made on the engine's thread */
 
 	int passes;            /* contract in passes (vdt_contract_opts.passes) */
 	uint64_t *keys;        /* passes: (cost bits, vertex) to sort */
@@ -460,6 +470,40 @@ neighbours(struct engine *e, uint32_t v, size_t base, uint32_t prev, long *commo
 	return (long)n;
 }
 
+/*
+ * The face lists link_ok takes without per-vertex stamps: up to this long,
+ * both ends' neighbours fit on the stack and are found by linear search,
+ * which any number of threads may do at once.
+ */
+#define LINK_LOCAL 24
+
+/* neighbours() for a list of at most LINK_LOCAL faces, into out. */
+static long
+fan_neighbours(const struct engine *e, uint32_t v, uint32_t *out)
+{
+	const struct list *l = &e->vt[v];
+	long n = 0;
+
+	for (uint32_t i = 0; i < l->len; i++) {
+		const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + i];
+		for (int k = 0; k < 3; k++) {
+			uint32_t x = t[k];
+			long j = 0;
+			if (x == v)
+				continue;
+			while (j < n && out[2 * j] != x)
+				j++;
+			if (j == n) {
+				out[2 * n] = x;
+				out[2 * n + 1] = 0;
+				n++;
+			}
+			out[2 * j + 1]++;
+		}
+	}
+	return n;
+}
+
 static int
 has_boundary(const uint32_t *nb, long n)
 {
@@ -480,15 +524,29 @@ has_boundary(const uint32_t *nb, long n)
 static int
 link_ok(struct engine *e, uint32_t a, uint32_t b)
 {
-	long common = 0, shared = 0;
-	long na = neighbours(e, a, 0, 0, &common);
-	if (na < 0)
-		return 0;
-	uint32_t sa = e->stamp_now;
-	long nb = neighbours(e, b, 2 * (size_t)na, sa, &common);
-	if (nb < 0)
-		return 0;
-	const uint32_t *A = e->nbr, *B = e->nbr + 2 * na;
+	uint32_t local[2 * 2 * 2 * LINK_LOCAL];
+	const uint32_t *A = local, *B;
+	long common = 0, shared = 0, na, nb;
+
+	if (e->vt[a].len <= LINK_LOCAL && e->vt[b].len <= LINK_LOCAL) {
+		na = fan_neighbours(e, a, local);
+		nb = fan_neighbours(e, b, local + 2 * na);
+		B = local + 2 * na;
+		for (long i = 0; i < nb; i++)
+			for (long j = 0; j < na; j++)
+				if (A[2 * j] == B[2 * i]) {
+					common++;
+					break;
+				}
+	} else {
+		if ((na = neighbours(e, a, 0, 0, &common)) < 0)
+			return 0;
+		uint32_t sa = e->stamp_now;
+		if ((nb = neighbours(e, b, 2 * (size_t)na, sa, &common)) < 0)
+			return 0;
+		A = e->nbr;
+		B = e->nbr + 2 * na;
+	}
 
 	for (long i = 0; i < na; i++)
 		if (A[2 * i] == b)
@@ -955,8 +1013,8 @@ vertex_merged(struct engine *e, uint32_t keep, uint32_t gone)
 	vertex_set(e, keep, t.x1, t.c1);
 
 	/* A corner of a removed face may have lost its edge to keep. */
-	for (size_t i = 0; i < e->wing_len; i++) {
-		uint32_t w = e->wing[i], adjacent = 0;
+	for (size_t i = 0; i < e->work.wing_len; i++) {
+		uint32_t w = e->work.wing[i], adjacent = 0;
 		int s_hit = e->alt[w] == keep || e->alt[w] == gone;
 		if ((e->vflag[w] & (V_DEAD | V_STALE)) ||
 		    (e->best[w] != keep && e->best[w] != gone && !s_hit))
@@ -1028,14 +1086,14 @@ vertex_queue_init(struct engine *e)
 /* ---- contraction ---- */
 
 static int
-contract(struct engine *e, uint32_t keep, uint32_t gone, const double dpos[3],
-         double cost)
+contract(struct engine *e, struct work *w, uint32_t keep, uint32_t gone,
+         const double dpos[3], double cost)
 {
 	struct list *lg = &e->vt[gone];
 
 	for (int k = 0; k < 3; k++)
 		e->pos[3 * (size_t)keep + k] = (float)dpos[k];
-	e->wing_len = 0;
+	w->wing_len = 0;
 
 	/* Triangles: those with both die, the rest move to keep (first
 	 * gathered at the front of gone's list). */
@@ -1048,20 +1106,20 @@ contract(struct engine *e, uint32_t keep, uint32_t gone, const double dpos[3],
 				if (c[k] != gone)
 					list_remove(&e->tpool, &e->vt[c[k]], t);
 			if (e->vq) {
-				if (e->wing_len == e->wing_cap) {
-					size_t cap = 2 * e->wing_cap + 8;
-					uint32_t *d = realloc(e->wing, cap * sizeof(*d));
+				if (w->wing_len == w->wing_cap) {
+					size_t cap = 2 * w->wing_cap + 8;
+					uint32_t *d = realloc(w->wing, cap * sizeof(*d));
 					if (d == NULL)
 						return -1;
-					e->wing = d;
-					e->wing_cap = cap;
+					w->wing = d;
+					w->wing_cap = cap;
 				}
 				for (int k = 0; k < 3; k++)
 					if (c[k] != gone && c[k] != keep)
-						e->wing[e->wing_len++] = c[k];
+						w->wing[w->wing_len++] = c[k];
 			}
 			c[0] = c[1] = c[2] = NONE;
-			e->live_tris--;
+			w->dead_tris++;
 			continue;
 		}
 		for (int k = 0; k < 3; k++)
@@ -1076,7 +1134,7 @@ contract(struct engine *e, uint32_t keep, uint32_t gone, const double dpos[3],
 	if (e->vq) {
 		e->vflag[gone] |= V_DEAD;
 		e->parent[gone] = keep;
-		e->live_verts--;
+		w->dead_verts++;
 		if (e->ops->merged)
 			e->ops->merged(e->ops->ctx, keep, gone, dpos, cost);
 		return e->passes ? 0 : vertex_merged(e, keep, gone);
@@ -1117,7 +1175,7 @@ contract(struct engine *e, uint32_t keep, uint32_t gone, const double dpos[3],
 	e->vp[gone].len = 0;
 	e->vflag[gone] |= V_DEAD;
 	e->parent[gone] = keep;
-	e->live_verts--;
+	w->dead_verts++;
 
 	if (e->ops->merged)
 		e->ops->merged(e->ops->ctx, keep, gone, dpos, cost);
@@ -1148,6 +1206,19 @@ contract(struct engine *e, uint32_t keep, uint32_t gone, const double dpos[3],
 		}
 	}
 	return 0;
+}
+
+/* contract() on the engine's own thread, its counts applied at once. */
+static int
+contract_now(struct engine *e, uint32_t keep, uint32_t gone, const double dpos[3],
+             double cost)
+{
+	int rc = contract(e, &e->work, keep, gone, dpos, cost);
+
+	e->live_tris -= e->work.dead_tris;
+	e->live_verts -= e->work.dead_verts;
+	e->work.dead_tris = e->work.dead_verts = 0;
+	return rc;
 }
 
 /* ---- what both loops share ---- */
@@ -1477,7 +1548,7 @@ run_passes(struct engine *e, const struct vdt_contract_opts *o,
 			float fpos[3] = {(float)pos[0], (float)pos[1], (float)pos[2]};
 			if (o->record && record(res, rec_cap, keep, gone, fpos, c) != 0)
 				return -1;
-			if (contract(e, keep, gone, pos, c) != 0)
+			if (contract_now(e, keep, gone, pos, c) != 0)
 				return -1;
 			res->contractions++;
 			if (c > res->max_cost)
@@ -1487,9 +1558,9 @@ run_passes(struct engine *e, const struct vdt_contract_opts *o,
 			/* A corner of a removed face may share no face with keep
 			 * any more: its pair with keep is then no edge, and
 			 * pass_kept will not come by. */
-			for (size_t j = 0; j < e->wing_len; j++)
-				if (e->best[e->wing[j]] == keep)
-					e->vflag[e->wing[j]] |= V_DIRTY;
+			for (size_t j = 0; j < e->work.wing_len; j++)
+				if (e->best[e->work.wing[j]] == keep)
+					e->vflag[e->work.wing[j]] |= V_DIRTY;
 			if ((++step & 4095) == 0 && start_tris > o->target_triangles)
 				vdt_progress_report(o->progress, "simplifying",
 				                    (double)(start_tris - e->live_tris) /
@@ -1513,7 +1584,7 @@ engine_shed(struct engine *e)
 	              (void **)&e->hpos, (void **)&e->nbr, (void **)&e->stamp,
 	              (void **)&e->slot, (void **)&e->vrej, (void **)&e->best,
 	              (void **)&e->alt, (void **)&e->altc,
-	              (void **)&e->vn, (void **)&e->vk, (void **)&e->wing,
+	              (void **)&e->vn, (void **)&e->vk, (void **)&e->work.wing,
 	              (void **)&e->keys, (void **)&e->plist, (void **)&e->poff,
 	              (void **)&e->pcount, (void **)&e->pout};
 	for (size_t i = 0; i < sizeof(p) / sizeof(p[0]); i++) {
@@ -1547,7 +1618,7 @@ engine_free(struct engine *e)
 	free(e->altc);
 	free(e->vn);
 	free(e->vk);
-	free(e->wing);
+	free(e->work.wing);
 	free(e->keys);
 	free(e->plist);
 	free(e->poff);
@@ -1847,7 +1918,7 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 			heap_remove(&e, p);
 			e.pflag[p] = P_DEAD;
 		}
-		if (contract(&e, keep, gone, pos, c) != 0)
+		if (contract_now(&e, keep, gone, pos, c) != 0)
 			goto nomem;
 		res->contractions++;
 		if (c > res->max_cost)
