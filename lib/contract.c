@@ -43,6 +43,7 @@ struct pool {
 	uint32_t *data;
 	size_t len, cap;
 	size_t holes; /* entries left behind by lists that moved */
+	int marks;    /* entries and list numbers are below 2^31 (pool_compact) */
 };
 
 struct hent {
@@ -139,18 +140,62 @@ pool_reserve(struct pool *p, size_t extra)
 	return 0;
 }
 
+/* The list at the start of a region during pool_compact (p->marks). */
+#define LIST_MARK 0x80000000u
+
+/* pool_compact's move of list l, whose region starts at pos, down to at. */
+static size_t
+list_slide(struct pool *p, struct list *l, size_t pos, size_t at)
+{
+	uint32_t cap = l->len + 2 < l->cap ? l->len + 2 : l->cap;
+
+	memmove(p->data + at, p->data + pos, l->len * sizeof(*p->data));
+	l->off = (uint32_t)at;
+	l->cap = cap;
+	return at + cap;
+}
+
 /*
  * Slide every list down over the holes left by lists that moved, in place
  * (lists in order of their offsets, so none is overwritten before it has
  * moved), keeping up to two entries of slack each. Runs when the pool is
  * full and an eighth of it is holes, so it costs O(1) per moved entry and
- * the pool stays near its live size.
+ * the pool stays near its live size. With p->marks the lists are found in
+ * order by a walk over the pool, each region's first entry standing in for
+ * its list's number meanwhile (the entry is kept in its offset's place),
+ * so nothing the size of the lists is allocated: the peak memory of a
+ * simplification may well fall here. Every entry below p->len is then
+ * written (list_grow clears the slack it gives).
  */
 static int
 pool_compact(struct pool *p, struct list *lists, size_t n)
 {
-	uint64_t *k = malloc((n + 1) * sizeof(*k));
 	size_t m = 0, at = 0;
+
+	if (p->marks) {
+		for (size_t i = 0; i < n; i++)
+			if (lists[i].cap > 0) {
+				uint32_t off = lists[i].off;
+				lists[i].off = p->data[off];
+				p->data[off] = LIST_MARK | (uint32_t)i;
+			}
+		for (size_t pos = 0; pos < p->len;) {
+			uint32_t x = p->data[pos];
+			if (!(x & LIST_MARK)) {
+				pos++;
+				continue;
+			}
+			struct list *l = &lists[x & ~LIST_MARK];
+			size_t cap = l->cap;
+			p->data[pos] = l->off;
+			at = list_slide(p, l, pos, at);
+			pos += cap;
+		}
+		p->len = at;
+		p->holes = 0;
+		return 0;
+	}
+	uint64_t *k = malloc((n + 1) * sizeof(*k));
 
 	if (k == NULL)
 		return -1;
@@ -163,11 +208,7 @@ pool_compact(struct pool *p, struct list *lists, size_t n)
 	}
 	for (size_t j = 0; j < m; j++) {
 		struct list *l = &lists[(uint32_t)k[j]];
-		uint32_t cap = l->len + 2 < l->cap ? l->len + 2 : l->cap;
-		memmove(p->data + at, p->data + l->off, l->len * sizeof(*p->data));
-		l->off = (uint32_t)at;
-		l->cap = cap;
-		at += cap;
+		at = list_slide(p, l, l->off, at);
 	}
 	free(k);
 	p->len = at;
@@ -192,6 +233,7 @@ list_grow(struct pool *p, struct list *lists, size_t n, uint32_t v, uint32_t nee
 		return -1;
 	p->holes += l->cap;
 	memcpy(p->data + p->len, p->data + l->off, l->len * sizeof(uint32_t));
+	memset(p->data + p->len + l->len, 0, (cap - l->len) * sizeof(uint32_t));
 	l->off = (uint32_t)p->len;
 	l->cap = cap;
 	p->len += cap;
@@ -1676,6 +1718,7 @@ engine_init(struct engine *e, const struct vdt_mesh *m, float *own_pos,
 		live++;
 	}
 	e->live_tris = live;
+	e->tpool.marks = nv < LIST_MARK; /* faces number fewer than NONE / 3 */
 	if (pool_reserve(&e->tpool, 3 * live + live / 4 + 64) != 0)
 		goto nomem;
 	for (size_t v = 0; v < nv; v++) {
