@@ -13,6 +13,7 @@
  */
 #include "contract.h"
 
+#include <assert.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdlib.h>
@@ -43,6 +44,7 @@ struct pool {
 	uint32_t *data;
 	size_t len, cap;
 	size_t holes; /* entries left behind by lists that moved */
+	int shared;   /* threads append to it, in room reserved for them */
 	int marks;    /* entries and list numbers are below 2^31 (pool_compact) */
 };
 
@@ -119,6 +121,10 @@ struct engine {
 	uint32_t *pcount;      /* how many pairs each has */
 	struct vcost *pout;
 	size_t pout_cap;
+	uint32_t parts;        /* passes on threads: vertex numbers cut in parts */
+	uint8_t *cut;          /* per vertex: shares a face with another part's */
+	uint8_t *aside;        /* per vertex: near a pair set aside this round */
+	double fit_per_pair;   /* the pool room the last round's pairs might take */
 };
 
 /* ---- pools of per-vertex lists ---- */
@@ -216,27 +222,50 @@ pool_compact(struct pool *p, struct list *lists, size_t n)
 	return 0;
 }
 
+/* The room a list of `need` entries is given when it must grow. */
+static uint32_t
+grown_cap(uint32_t need)
+{
+	return need < 6 ? 8 : need + need / 2 + 2;
+}
+
+static void
+pool_holes(struct pool *p, size_t n)
+{
+	if (p->shared)
+		__atomic_fetch_add(&p->holes, n, __ATOMIC_RELAXED);
+	else
+		p->holes += n;
+}
+
 /* Room for `need` entries in v's list: moved to the end of the pool if it must grow. */
 static int
 list_grow(struct pool *p, struct list *lists, size_t n, uint32_t v, uint32_t need)
 {
 	struct list *l = &lists[v];
+	size_t at;
 
 	if (need <= l->cap)
 		return 0;
-	uint32_t cap = need < 6 ? 8 : need + need / 2 + 2;
-	if (p->len + cap > p->cap && p->holes > p->cap / 8) {
-		if (pool_compact(p, lists, n) != 0)
+	uint32_t cap = grown_cap(need);
+	if (p->shared) {
+		at = __atomic_fetch_add(&p->len, cap, __ATOMIC_RELAXED);
+		assert(at + cap <= p->cap); /* pass_round reserved it */
+	} else {
+		if (p->len + cap > p->cap && p->holes > p->cap / 8) {
+			if (pool_compact(p, lists, n) != 0)
+				return -1;
+		}
+		if (pool_reserve(p, cap) != 0)
 			return -1;
+		at = p->len;
+		p->len += cap;
 	}
-	if (pool_reserve(p, cap) != 0)
-		return -1;
-	p->holes += l->cap;
-	memcpy(p->data + p->len, p->data + l->off, l->len * sizeof(uint32_t));
-	memset(p->data + p->len + l->len, 0, (cap - l->len) * sizeof(uint32_t));
-	l->off = (uint32_t)p->len;
+	pool_holes(p, l->cap);
+	memcpy(p->data + at, p->data + l->off, l->len * sizeof(uint32_t));
+	memset(p->data + at + l->len, 0, (cap - l->len) * sizeof(uint32_t));
+	l->off = (uint32_t)at;
 	l->cap = cap;
-	p->len += cap;
 	return 0;
 }
 
@@ -263,14 +292,14 @@ list_merge(struct pool *p, struct list *lists, size_t n, uint32_t keep, uint32_t
 
 	if (len > lk->cap && len <= lg->cap) {
 		memcpy(p->data + lg->off + lg->len, p->data + lk->off, lk->len * sizeof(uint32_t));
-		p->holes += lk->cap;
+		pool_holes(p, lk->cap);
 		lk->off = lg->off;
 		lk->cap = lg->cap;
 	} else {
 		if (list_grow(p, lists, n, keep, len) != 0)
 			return -1;
 		memcpy(p->data + lk->off + lk->len, p->data + lg->off, lg->len * sizeof(uint32_t));
-		p->holes += lg->cap;
+		pool_holes(p, lg->cap);
 	}
 	lk->len = len;
 	lg->off = lg->len = lg->cap = 0;
@@ -833,12 +862,13 @@ prefetch_ahead(const struct engine *e, const uint32_t *list, size_t i, size_t n)
 }
 
 /* The same for the pairs (v, best[v]) of a pass, v in the low bits of
- * keys[0..n). */
+ * keys[0..n), but those flagged in skip (if not NULL). */
 static inline void
-prefetch_pairs_ahead(const struct engine *e, const uint64_t *keys, size_t i, size_t n)
+prefetch_pairs_ahead(const struct engine *e, const uint64_t *keys, size_t i, size_t n,
+                     const uint8_t *skip)
 {
 	for (int stage = 0; stage < 3; stage++)
-		if (i + 3 - stage < n) {
+		if (i + 3 - stage < n && (skip == NULL || !skip[i + 3 - stage])) {
 			uint32_t a = (uint32_t)keys[i + 3 - stage], b = e->best[a];
 			prefetch_fan(e, a, stage);
 			if (b != NONE)
@@ -1511,6 +1541,423 @@ pass_init(struct engine *e)
 	return 0;
 }
 
+/* What contracting (part of) a pass did. */
+struct ptally {
+	size_t did, refused;
+	double max_cost;
+};
+
+/*
+ * Contract the pass's claimed pair at v if it passes the tests on the mesh
+ * as it now is: 1 with the contraction in *r and its cost in *cost, 0 if
+ * refused (v then finds its cheapest valid pair), -1 out of memory. Reads
+ * and writes nothing outside the pair's closed neighbourhood (the
+ * vertices that share a face with either end) and w.
+ */
+static int
+pass_pair(struct engine *e, struct work *w, uint32_t v, struct vdt_contraction *r,
+          double *cost)
+{
+	uint32_t keep, gone;
+	double pos[3];
+
+	if (!try_pair(e, v, e->best[v], &keep, &gone, pos, cost)) {
+		e->vflag[v] |= V_REFUSED;
+		return 0;
+	}
+	if (contract(e, w, keep, gone, pos, *cost) != 0)
+		return -1;
+	r->keep = keep;
+	r->gone = gone;
+	for (int k = 0; k < 3; k++)
+		r->pos[k] = (float)pos[k];
+	r->cost = (float)*cost;
+	e->vflag[keep] |= V_KEPT;
+	/* A corner of a removed face may share no face with keep any more:
+	 * its pair with keep is then no edge, and pass_kept will not come by. */
+	for (size_t j = 0; j < w->wing_len; j++)
+		if (e->best[w->wing[j]] == keep)
+			e->vflag[w->wing[j]] |= V_DIRTY;
+	return 1;
+}
+
+static void
+tally(struct ptally *t, int made, double cost)
+{
+	if (!made) {
+		t->refused++;
+		return;
+	}
+	t->did++;
+	if (cost > t->max_cost)
+		t->max_cost = cost;
+}
+
+/* ---- contracting a pass on several threads ----
+ *
+ * Contracting a pair reads and writes nothing outside its closed
+ * neighbourhood (the vertices that share a face with either end). The
+ * vertex numbers are cut into one part per thread; a vertex that shares a
+ * face with another part's is on the cut (e->cut, kept up to date by the
+ * contractions made on one thread, the only ones that can join parts).
+ * In a round, each thread takes the claimed pairs of its part, in vertex
+ * order, and contracts a pair only if every vertex of its neighbourhood,
+ * as it then is, is of its part, off the cut, and not set aside; else it
+ * sets the pair aside and marks what of that neighbourhood is its own
+ * (e->aside), so that no later pair of its part touching it is contracted
+ * before it. A thread thus changes only faces, lists and positions of its
+ * own part's vertices off the cut, which nothing else reads meanwhile, and
+ * reads only those and faces around vertices on the cut, which nothing
+ * changes meanwhile. The pairs set aside are then contracted on one thread
+ * in vertex order. Every pair meets the mesh that contracting all of them
+ * in vertex order would give it: the result does not depend on the number
+ * of threads.
+ */
+#define PASS_RUN_MIN 1024    /* claimed pairs per thread, at least */
+#define PASS_ROUND_MIN 16384 /* pairs in a round, at least (room permitting) */
+#define PASS_FIT_START 24    /* pool entries a pair's merged list may take */
+
+static uint32_t
+part_of(const struct engine *e, uint32_t v)
+{
+	return (uint32_t)((uint64_t)v * (uint64_t)e->parts / e->nv);
+}
+
+/* Mark the corners of each live face around v that mixes parts as on the cut. */
+static void
+cut_around(struct engine *e, uint32_t v)
+{
+	const struct list *l = &e->vt[v];
+
+	for (uint32_t f = 0; f < l->len; f++) {
+		const uint32_t *c = e->tri + 3 * (size_t)e->tpool.data[l->off + f];
+		uint32_t p0 = part_of(e, c[0]);
+		if (part_of(e, c[1]) != p0 || part_of(e, c[2]) != p0)
+			e->cut[c[0]] = e->cut[c[1]] = e->cut[c[2]] = 1;
+	}
+}
+
+static int
+cut_init(struct engine *e)
+{
+	if ((e->cut = calloc(e->nv, 1)) == NULL || (e->aside = calloc(e->nv, 1)) == NULL)
+		return -1;
+	for (size_t t = 0; t < e->nt; t++) {
+		const uint32_t *c = e->tri + 3 * t;
+		if (c[0] == NONE)
+			continue;
+		uint32_t p0 = part_of(e, c[0]);
+		if (part_of(e, c[1]) != p0 || part_of(e, c[2]) != p0)
+			e->cut[c[0]] = e->cut[c[1]] = e->cut[c[2]] = 1;
+	}
+	return 0;
+}
+
+struct prun {
+	struct engine *e;
+	const uint64_t *keys; /* the round's claimed pairs (vertex in the low bits) */
+	size_t begin, end;    /* this part's, in keys */
+	uint32_t part;
+	size_t grow, tris;    /* pool room its merged lists may take, faces
+	                         its pairs may remove */
+	uint32_t *aside;      /* the pairs set aside (indices into keys) */
+	size_t naside;
+	struct work w;
+	struct ptally t;
+	struct vdt_contraction *rec; /* per claimed pair, when recording */
+	uint8_t *made;
+	int failed;
+};
+
+/* Whether this part may read the faces around v now: its own, or on the cut. */
+static int
+readable(const struct engine *e, uint32_t v, uint32_t part)
+{
+	return part_of(e, v) == part || e->cut[v];
+}
+
+static int
+mine(const struct engine *e, uint32_t v, uint32_t part)
+{
+	return part_of(e, v) == part && !e->cut[v] && !e->aside[v];
+}
+
+/* Whether the pair (v, x) is the part's to contract now (see above; and,
+ * but in the first part, short enough for link_ok without stamps). */
+static int
+pair_mine(const struct engine *e, uint32_t v, uint32_t x, uint32_t part)
+{
+	uint32_t ends[2] = {v, x};
+
+	for (int i = 0; i < 2; i++) {
+		const struct list *l = &e->vt[ends[i]];
+		if (!mine(e, ends[i], part) || (part > 0 && l->len > LINK_LOCAL))
+			return 0;
+		for (uint32_t f = 0; f < l->len; f++) {
+			const uint32_t *c = e->tri + 3 * (size_t)e->tpool.data[l->off + f];
+			if (!mine(e, c[0], part) || !mine(e, c[1], part) || !mine(e, c[2], part))
+				return 0;
+		}
+	}
+	return 1;
+}
+
+static void
+set_aside(struct engine *e, uint32_t v, uint32_t x, uint32_t part)
+{
+	uint32_t ends[2] = {v, x};
+
+	for (int i = 0; i < 2; i++) {
+		if (!readable(e, ends[i], part))
+			continue; /* another part's, off the cut: no neighbour of ours */
+		const struct list *l = &e->vt[ends[i]];
+		for (uint32_t f = 0; f < l->len; f++) {
+			const uint32_t *c = e->tri + 3 * (size_t)e->tpool.data[l->off + f];
+			for (int k = 0; k < 3; k++)
+				if (part_of(e, c[k]) == part && !e->cut[c[k]])
+					e->aside[c[k]] = 1;
+		}
+	}
+}
+
+/* Before the threads contract: room for the merged lists of the part's
+ * pairs (list_merge), and the faces they may remove (those around both
+ * ends: at most the shorter list). */
+static void *
+prun_bound(void *arg)
+{
+	struct prun *r = arg;
+	const struct engine *e = r->e;
+
+	for (size_t i = r->begin; i < r->end; i++) {
+		uint32_t v = (uint32_t)r->keys[i];
+		uint32_t lv = e->vt[v].len, lx = e->vt[e->best[v]].len;
+		r->grow += grown_cap(lv + lx);
+		r->tris += lv < lx ? lv : lx;
+	}
+	return NULL;
+}
+
+static void
+prun_keep(struct prun *r, size_t i, int made, const struct vdt_contraction *c, double cost)
+{
+	tally(&r->t, made, cost);
+	if (r->made != NULL) {
+		r->made[i] = (uint8_t)made;
+		r->rec[i] = *c;
+	}
+}
+
+/* Contract the part's pairs that are its own, in order (see above). */
+static void *
+prun_contract(void *arg)
+{
+	struct prun *r = arg;
+	struct engine *e = r->e;
+
+	for (size_t i = r->begin; i < r->end && !r->failed; i++) {
+		uint32_t v = (uint32_t)r->keys[i], x = e->best[v];
+		struct vdt_contraction c;
+		double cost;
+		if (i + 2 < r->end) {
+			uint32_t a = (uint32_t)r->keys[i + 2], b = e->best[a];
+			prefetch_fan(e, a, 2);
+			if (readable(e, b, r->part))
+				prefetch_fan(e, b, 2);
+		}
+		if (!pair_mine(e, v, x, r->part)) {
+			set_aside(e, v, x, r->part);
+			r->aside[r->naside++] = (uint32_t)i;
+			continue;
+		}
+		int made = pass_pair(e, &r->w, v, &c, &cost);
+		if (made < 0)
+			r->failed = 1;
+		else
+			prun_keep(r, i, made, &c, cost);
+	}
+	return NULL;
+}
+
+/* fn on every run, runs 1.. on threads of their own. */
+static void
+prun_all(struct prun *run, int t, void *(*fn)(void *))
+{
+	pthread_t th[VDT_CONTRACT_MAX_THREADS];
+	int started = 0;
+
+	while (started + 1 < t && pthread_create(&th[started], NULL, fn, &run[started + 1]) == 0)
+		started++;
+	fn(&run[0]);
+	for (int k = started + 1; k < t; k++)
+		fn(&run[k]);
+	for (int k = 0; k < started; k++)
+		pthread_join(th[k], NULL);
+}
+
+/* The first i of keys[0..m) (vertex order) with vertex at least v. */
+static size_t
+keys_from(const uint64_t *keys, size_t m, uint64_t v)
+{
+	size_t lo = 0, hi = m;
+
+	while (lo < hi) {
+		size_t mid = lo + (hi - lo) / 2;
+		if ((uint32_t)keys[mid] < v)
+			lo = mid + 1;
+		else
+			hi = mid;
+	}
+	return lo;
+}
+
+/*
+ * Contract the first of the claimed pairs keys[0..m) (in vertex order) on
+ * e->threads threads, as one thread would in order: as many as the
+ * face-list pool has room for (a round), compacted first when an eighth is
+ * holes. Returns how many, or 0 without contracting any when that is not
+ * worth it or the round may reach the target (the caller then contracts
+ * the rest on one thread, checking after each pair), or -1 out of memory.
+ */
+static long
+pass_round(struct engine *e, const struct vdt_contract_opts *o,
+           struct vdt_contract_result *res, size_t *rec_cap, const uint64_t *keys,
+           size_t m, struct ptally *tally_out)
+{
+	struct prun run[VDT_CONTRACT_MAX_THREADS];
+	struct pool *p = &e->tpool;
+	size_t t = (size_t)e->threads, grow = 0, room;
+	uint32_t *aside = NULL;
+	struct vdt_contraction *rec = NULL;
+	uint8_t *made = NULL;
+	long rc = -1;
+
+	if (t < 2 || m < 2 * PASS_RUN_MIN)
+		return 0;
+	/* The round's merged lists must fit in the face-list pool as it is:
+	 * growing it here, for room that is only a bound, would take memory
+	 * the same contractions on one thread do not. The pool is compacted
+	 * when an eighth is holes, as list_grow would; a round too small to
+	 * share is left to one thread, whose list_grow compacts or grows as
+	 * it must. The room a pair takes is judged by the last round's. */
+	if (p->len + m * e->fit_per_pair > p->cap && p->holes > p->cap / 8 &&
+	    pool_compact(p, e->vt, e->nv) != 0)
+		return -1;
+	room = (size_t)((double)(p->cap - p->len) / e->fit_per_pair);
+	if (m > room)
+		m = room;
+	if (m < 2 * PASS_RUN_MIN)
+		return 0;
+	if (o->target_vertices && e->live_verts <= o->target_vertices + m)
+		return 0;
+	if (e->cut == NULL) {
+		e->parts = (uint32_t)t;
+		if (cut_init(e) != 0)
+			return -1;
+	}
+	memset(run, 0, sizeof(run));
+	aside = malloc(m * sizeof(*aside));
+	if (o->record) {
+		rec = malloc(m * sizeof(*rec));
+		made = calloc(m, 1);
+	}
+	if (aside == NULL || (o->record && (rec == NULL || made == NULL)))
+		goto out;
+	t = e->parts;
+	for (size_t k = 0; k < t; k++) {
+		size_t b = keys_from(keys, m, (uint64_t)e->nv * k / t + (((uint64_t)e->nv * k) % t != 0));
+		run[k] = (struct prun){.e = e, .keys = keys, .begin = b, .part = (uint32_t)k,
+		                       .aside = aside + b, .rec = rec, .made = made};
+		if (k > 0)
+			run[k - 1].end = b;
+	}
+	run[t - 1].end = m;
+	prun_all(run, (int)t, prun_bound);
+	size_t tris = 0;
+	for (size_t k = 0; k < t; k++) {
+		grow += run[k].grow;
+		tris += run[k].tris;
+	}
+	if (e->live_tris <= o->target_triangles + tris) {
+		rc = 0; /* may reach the target: one pair at a time */
+		goto out;
+	}
+	e->fit_per_pair = (double)grow / m;
+	/* (The order of faces in lists, which compaction changes, changes
+	 * no result.) */
+	if (p->len + grow > p->cap && p->holes > p->cap / 8 && pool_compact(p, e->vt, e->nv) != 0)
+		goto out;
+	if (p->len + grow > p->cap) {
+		rc = 0;
+		goto out;
+	}
+	p->shared = 1;
+	prun_all(run, (int)t, prun_contract);
+	/* The pairs set aside, in vertex order (part by part). */
+	for (size_t k = 0; k < t; k++) {
+		for (size_t j = 0; j < run[k].naside && !run[k].failed; j++) {
+			size_t i = run[k].aside[j];
+			struct vdt_contraction c;
+			double cost;
+			int mk = pass_pair(e, &run[k].w, (uint32_t)keys[i], &c, &cost);
+			if (mk < 0)
+				run[k].failed = 1;
+			else
+				prun_keep(&run[k], i, mk, &c, cost);
+			if (mk > 0)
+				cut_around(e, c.keep);
+		}
+	}
+	p->shared = 0;
+	rc = (long)m;
+	for (size_t k = 0; k < t; k++) {
+		e->live_tris -= run[k].w.dead_tris;
+		e->live_verts -= run[k].w.dead_verts;
+		tally_out->did += run[k].t.did;
+		tally_out->refused += run[k].t.refused;
+		if (run[k].t.max_cost > tally_out->max_cost)
+			tally_out->max_cost = run[k].t.max_cost;
+		if (run[k].failed)
+			rc = -1;
+	}
+	for (size_t i = 0; rc > 0 && made != NULL && i < m; i++)
+		if (made[i] && record(res, rec_cap, rec[i].keep, rec[i].gone, rec[i].pos,
+		                      rec[i].cost) != 0)
+			rc = -1;
+out:
+	if (e->aside != NULL)
+		memset(e->aside, 0, e->nv);
+	for (size_t k = 0; k < t; k++)
+		free(run[k].w.wing);
+	free(aside);
+	free(rec);
+	free(made);
+	return rc;
+}
+
+/* Claimed pairs keys[0..m) on this thread, in order, until done. */
+static int
+pass_serial(struct engine *e, const struct vdt_contract_opts *o,
+            struct vdt_contract_result *res, size_t *rec_cap, const uint64_t *keys,
+            size_t m, struct ptally *t)
+{
+	for (size_t i = 0; i < m && !done(e, o); i++) {
+		struct vdt_contraction r;
+		double c;
+		prefetch_pairs_ahead(e, keys, i, m, NULL);
+		int made = pass_pair(e, &e->work, (uint32_t)keys[i], &r, &c);
+		e->live_tris -= e->work.dead_tris;
+		e->live_verts -= e->work.dead_verts;
+		e->work.dead_tris = e->work.dead_verts = 0;
+		if (made < 0 || (made && o->record && record(res, rec_cap, r.keep, r.gone, r.pos, c) != 0))
+			return -1;
+		if (made && e->cut != NULL)
+			cut_around(e, r.keep);
+		tally(t, made, c);
+	}
+	return 0;
+}
+
 /*
  * Contraction in passes (vdt_contract_opts.passes). A pass lists every
  * vertex's cheapest pair by cost and claims pairs in that order, a pair
@@ -1529,12 +1976,12 @@ static int
 run_passes(struct engine *e, const struct vdt_contract_opts *o,
            struct vdt_contract_result *res, size_t *rec_cap)
 {
-	size_t start_tris = e->live_tris, step = 0;
+	size_t start_tris = e->live_tris;
 	uint32_t pass = 0;
-	double pos[3];
 
 	if (pass_init(e) != 0)
 		return -1;
+	e->fit_per_pair = PASS_FIT_START;
 	while (!done(e, o)) {
 		size_t n = 0, m = 0, did = 0, refused = 0;
 		int stop = 0;
@@ -1577,37 +2024,23 @@ run_passes(struct engine *e, const struct vdt_contract_opts *o,
 		}
 		if (vdt_sort_u64(e->keys, m) != 0)
 			return -1;
-		for (size_t i = 0; i < m && !done(e, o); i++) {
-			uint32_t v = (uint32_t)e->keys[i], keep, gone;
-			double c;
-			prefetch_pairs_ahead(e, e->keys, i, m);
-			if (!try_pair(e, v, e->best[v], &keep, &gone, pos, &c)) {
-				res->rejected++;
-				refused++;
-				e->vflag[v] |= V_REFUSED;
-				continue;
-			}
-			float fpos[3] = {(float)pos[0], (float)pos[1], (float)pos[2]};
-			if (o->record && record(res, rec_cap, keep, gone, fpos, c) != 0)
-				return -1;
-			if (contract_now(e, keep, gone, pos, c) != 0)
-				return -1;
-			res->contractions++;
-			if (c > res->max_cost)
-				res->max_cost = c;
-			did++;
-			e->vflag[keep] |= V_KEPT;
-			/* A corner of a removed face may share no face with keep
-			 * any more: its pair with keep is then no edge, and
-			 * pass_kept will not come by. */
-			for (size_t j = 0; j < e->work.wing_len; j++)
-				if (e->best[e->work.wing[j]] == keep)
-					e->vflag[e->work.wing[j]] |= V_DIRTY;
-			if ((++step & 4095) == 0 && start_tris > o->target_triangles)
-				vdt_progress_report(o->progress, "simplifying",
-				                    (double)(start_tris - e->live_tris) /
-				                            (start_tris - o->target_triangles));
-		}
+		struct ptally t = {0};
+		size_t i = 0;
+		long rc = 0;
+		while (i < m && (rc = pass_round(e, o, res, rec_cap, e->keys + i, m - i, &t)) > 0)
+			i += (size_t)rc;
+		if (rc < 0 || pass_serial(e, o, res, rec_cap, e->keys + i, m - i, &t) != 0)
+			return -1;
+		did = t.did;
+		refused = t.refused;
+		res->contractions += t.did;
+		res->rejected += t.refused;
+		if (t.max_cost > res->max_cost)
+			res->max_cost = t.max_cost;
+		if (start_tris > o->target_triangles)
+			vdt_progress_report(o->progress, "simplifying",
+			                    (double)(start_tris - e->live_tris) /
+			                            (start_tris - o->target_triangles));
 		if (stop || (did == 0 && refused == 0))
 			break;
 	}
@@ -1628,7 +2061,8 @@ engine_shed(struct engine *e)
 	              (void **)&e->alt, (void **)&e->altc,
 	              (void **)&e->vn, (void **)&e->vk, (void **)&e->work.wing,
 	              (void **)&e->keys, (void **)&e->plist, (void **)&e->poff,
-	              (void **)&e->pcount, (void **)&e->pout};
+	              (void **)&e->pcount, (void **)&e->pout, (void **)&e->cut,
+	              (void **)&e->aside};
 	for (size_t i = 0; i < sizeof(p) / sizeof(p[0]); i++) {
 		free(*p[i]);
 		*p[i] = NULL;
@@ -1666,6 +2100,8 @@ engine_free(struct engine *e)
 	free(e->poff);
 	free(e->pcount);
 	free(e->pout);
+	free(e->cut);
+	free(e->aside);
 }
 
 /* The engine works in m's arrays when they are handed over (own), else in copies. */

@@ -58,8 +58,13 @@ struct vdt_contract_ops {
 	/* Optional extra validity test; return 0 to refuse. May be NULL. */
 	int (*valid)(void *ctx, uint32_t keep, uint32_t gone, const double pos[3]);
 	void *ctx;
-	/* Nonzero: cost may run on several threads at once (it only reads
-	 * ctx), which passes use to cost pairs in parallel. */
+	/*
+	 * Nonzero: cost may run on several threads at once (it only reads
+	 * ctx), and so may valid and merged for pairs whose closed
+	 * neighbourhoods are disjoint (merged writing only keep's and gone's
+	 * data, or shared data atomically). Passes then cost pairs, and
+	 * contract them, in parallel.
+	 */
 	int concurrent;
 	/* Optional: the per-vertex data cost reads, v's at vertex_data + v *
 	 * vertex_stride bytes, which the engine then fetches ahead of costing
@@ -116,9 +121,10 @@ struct vdt_contract_opts {
 	 * pair_queue or virtual pairs.
 	 */
 	int passes;
-	/* Threads for the passes' costing, with a concurrent cost: 0 one per
-	 * online processor (at most VDT_CONTRACT_MAX_THREADS), 1 none. The
-	 * result does not depend on it. */
+	/* Threads for the passes' costing and contracting, with concurrent
+	 * callbacks: 0 one per online processor (at most
+	 * VDT_CONTRACT_MAX_THREADS), 1 none. The result does not depend on
+	 * it. */
 	int threads;
 };
 

@@ -152,6 +152,19 @@ cost_fn(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	return e;
 }
 
+/* *worst = max(*worst, x) from any number of threads at once: a pass
+ * contracts pairs on several (vdt_contract_ops.concurrent). */
+static void
+worst_max(double *worst, double x)
+{
+	double cur;
+
+	__atomic_load(worst, &cur, __ATOMIC_RELAXED);
+	while (x > cur &&
+	       !__atomic_compare_exchange(worst, &cur, &x, 1, __ATOMIC_RELAXED, __ATOMIC_RELAXED))
+		;
+}
+
 static void
 merged_fn(void *vc, uint32_t keep, uint32_t gone, const double pos[3], double cost)
 {
@@ -165,8 +178,8 @@ merged_fn(void *vc, uint32_t keep, uint32_t gone, const double pos[3], double co
 		c->scale[keep] = s;
 	}
 	vdt_quadric_add(&c->q[keep], &c->q[gone]);
-	if (c->q[keep].w > 0 && cost / c->q[keep].w > c->worst)
-		c->worst = cost / c->q[keep].w;
+	if (c->q[keep].w > 0)
+		worst_max(&c->worst, cost / c->q[keep].w);
 }
 
 /* A seam vertex may only merge into another seam vertex. */

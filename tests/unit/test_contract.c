@@ -793,6 +793,99 @@ passes_contract_only_edges(void **state)
 	vdt_mesh_free(&m);
 }
 
+/*
+ * A bumpy grid numbered at random (so that the threads' runs of pairs,
+ * which follow vertex numbers, are interleaved all over the surface) plus
+ * an umbrella whose handle vertex has 40 faces (longer than the link test
+ * takes without stamps), with the link test on: passes give the same
+ * contractions, in the same order, and the same faces, on one, two and
+ * three threads.
+ *
+ *      o---o---o        the umbrella: apex a joined to a ring of 40,
+ *      | \ | / |        each ring vertex to two of an outer ring of 40
+ *      o---a---o
+ *      | / | \ |
+ *      o---o---o
+ */
+static void
+passes_on_threads_match_one_thread(void **state)
+{
+	struct vdt_mesh g, m;
+	struct vdt_contract_result r[3];
+	uint32_t seed = 99, *perm;
+	const uint32_t ring = 40;
+
+	(void)state;
+	shape_grid(&g, 160); /* 25921 vertices */
+	size_t nv = g.vertex_count + 1 + 2 * ring, nt = g.triangle_count + 3 * ring;
+	assert_int_equal(vdt_mesh_alloc(&m, nv, nt, 0, NULL), 0);
+	perm = malloc(g.vertex_count * sizeof(*perm));
+	assert_non_null(perm);
+	for (uint32_t i = 0; i < g.vertex_count; i++)
+		perm[i] = i;
+	for (uint32_t i = (uint32_t)g.vertex_count - 1; i > 0; i--) {
+		seed = seed * 1664525u + 1013904223u;
+		uint32_t j = (seed >> 8) % (i + 1), x = perm[i];
+		perm[i] = perm[j];
+		perm[j] = x;
+	}
+	for (size_t i = 0; i < g.vertex_count; i++) {
+		seed = seed * 1664525u + 1013904223u;
+		memcpy(m.positions + 3 * (size_t)perm[i], g.positions + 3 * i, 2 * sizeof(float));
+		m.positions[3 * (size_t)perm[i] + 2] = 0.02f * (float)(seed >> 8) / (1u << 24);
+	}
+	for (size_t i = 0; i < 3 * g.triangle_count; i++)
+		m.triangles[i] = perm[g.triangles[i]];
+	uint32_t a = (uint32_t)g.vertex_count, *t = m.triangles + 3 * g.triangle_count;
+	float *p = m.positions + 3 * (size_t)a;
+	p[0] = 0.5f, p[1] = 0.5f, p[2] = 2;
+	for (uint32_t k = 0; k < ring; k++) {
+		double phi = 2 * M_PI * k / ring;
+		for (int s = 1; s <= 2; s++) {
+			float *q = m.positions + 3 * (size_t)(a + s * ring - ring + 1 + k);
+			q[0] = 0.5f + 0.1f * s * (float)cos(phi);
+			q[1] = 0.5f + 0.1f * s * (float)sin(phi);
+			q[2] = 2 - 0.05f * s + 0.01f * (float)(k % 3);
+		}
+		uint32_t r0 = a + 1 + k, r1 = a + 1 + (k + 1) % ring;
+		uint32_t o0 = r0 + ring, o1 = r1 + ring;
+		uint32_t f[9] = {a, r0, r1, r0, o0, o1, r0, o1, r1};
+		memcpy(t + 9 * k, f, sizeof(f));
+	}
+	struct qctx c = {face_quadrics(&m)};
+	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0};
+	struct vdt_contract_opts o;
+	for (int k = 0; k < 3; k++) {
+		struct qctx ck = {malloc(nv * sizeof(*ck.q))};
+		assert_non_null(ck.q);
+		memcpy(ck.q, c.q, nv * sizeof(*ck.q));
+		ops.ctx = &ck;
+		vdt_contract_defaults(&o);
+		o.passes = 1;
+		o.record = 1;
+		o.threads = k + 1;
+		o.target_triangles = nt / 20;
+		assert_int_equal(vdt_contract_run(&m, &ops, &o, &r[k], NULL), 0);
+		assert_true(r[k].reached_target);
+		free(ck.q);
+	}
+	for (int k = 1; k < 3; k++) {
+		assert_int_equal(r[k].record_count, r[0].record_count);
+		assert_memory_equal(r[k].records, r[0].records,
+		                    r[0].record_count * sizeof(*r[0].records));
+		assert_int_equal(r[k].triangle_count, r[0].triangle_count);
+		assert_memory_equal(r[k].triangles, r[0].triangles,
+		                    3 * r[0].triangle_count * sizeof(uint32_t));
+		assert_memory_equal(r[k].positions, r[0].positions, 3 * nv * sizeof(float));
+	}
+	for (int k = 0; k < 3; k++)
+		vdt_contract_result_free(&r[k]);
+	free(c.q);
+	free(perm);
+	vdt_mesh_free(&g);
+	vdt_mesh_free(&m);
+}
+
 /* --order auto: passes from VDT_QSLIM_PASSES_MIN welded vertices up,
  * greedy below; the explicit orders whatever the size. */
 /*
@@ -883,6 +976,7 @@ main(void)
 		cmocka_unit_test(passes_stop_at_the_bound),
 		cmocka_unit_test(passes_contract_only_edges),
 		cmocka_unit_test(auto_order_follows_the_size),
+		cmocka_unit_test(passes_on_threads_match_one_thread),
 		cmocka_unit_test(qslim_threads_do_not_matter),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
