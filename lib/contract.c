@@ -1416,9 +1416,8 @@ static int
 pass_cost(struct engine *e, size_t n, int upper)
 {
 	struct pjob job[VDT_CONTRACT_MAX_THREADS];
-	pthread_t th[VDT_CONTRACT_MAX_THREADS];
 	size_t total = 0;
-	int t = e->threads, started = 0;
+	int t = e->threads;
 
 	for (size_t i = 0; i < n; i++) {
 		e->poff[i] = total;
@@ -1436,12 +1435,7 @@ pass_cost(struct engine *e, size_t n, int upper)
 	for (int k = 0; k < t; k++)
 		job[k] = (struct pjob){e, n * (size_t)k / (size_t)t, n * (size_t)(k + 1) / (size_t)t,
 		                       upper};
-	while (started + 1 < t && pthread_create(&th[started], NULL, pjob_run, &job[started]) == 0)
-		started++;
-	for (int k = started; k < t; k++)
-		pjob_run(&job[k]);
-	for (int k = 0; k < started; k++)
-		pthread_join(th[k], NULL);
+	vdt_run_jobs(pjob_run, job, sizeof(job[0]), t);
 	return 0;
 }
 
@@ -1779,22 +1773,6 @@ prun_contract(void *arg)
 	return NULL;
 }
 
-/* fn on every run, runs 1.. on threads of their own. */
-static void
-prun_all(struct prun *run, int t, void *(*fn)(void *))
-{
-	pthread_t th[VDT_CONTRACT_MAX_THREADS];
-	int started = 0;
-
-	while (started + 1 < t && pthread_create(&th[started], NULL, fn, &run[started + 1]) == 0)
-		started++;
-	fn(&run[0]);
-	for (int k = started + 1; k < t; k++)
-		fn(&run[k]);
-	for (int k = 0; k < started; k++)
-		pthread_join(th[k], NULL);
-}
-
 /* The first i of keys[0..m) (vertex order) with vertex at least v. */
 static size_t
 keys_from(const uint64_t *keys, size_t m, uint64_t v)
@@ -1872,7 +1850,7 @@ pass_round(struct engine *e, const struct vdt_contract_opts *o,
 			run[k - 1].end = b;
 	}
 	run[t - 1].end = m;
-	prun_all(run, (int)t, prun_bound);
+	vdt_run_jobs(prun_bound, run, sizeof(run[0]), (int)t);
 	size_t tris = 0;
 	for (size_t k = 0; k < t; k++) {
 		grow += run[k].grow;
@@ -1892,7 +1870,7 @@ pass_round(struct engine *e, const struct vdt_contract_opts *o,
 		goto out;
 	}
 	p->shared = 1;
-	prun_all(run, (int)t, prun_contract);
+	vdt_run_jobs(prun_contract, run, sizeof(run[0]), (int)t);
 	/* The pairs set aside, in vertex order (part by part). */
 	for (size_t k = 0; k < t; k++) {
 		for (size_t j = 0; j < run[k].naside && !run[k].failed; j++) {
@@ -2285,6 +2263,30 @@ nomem:
 }
 
 void
+vdt_run_jobs(void *(*fn)(void *), void *jobs, size_t size, int t)
+{
+	pthread_t th[VDT_CONTRACT_MAX_THREADS];
+	int started = 0;
+
+	while (started + 1 < t &&
+	       pthread_create(&th[started], NULL, fn, (char *)jobs + (size_t)started * size) == 0)
+		started++;
+	for (int k = started; k < t; k++)
+		fn((char *)jobs + (size_t)k * size);
+	for (int k = 0; k < started; k++)
+		pthread_join(th[k], NULL);
+}
+
+int
+vdt_contract_threads(int threads)
+{
+	long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+	int t = threads > 0 ? threads : cpus > 0 ? (int)cpus : 1;
+
+	return t > VDT_CONTRACT_MAX_THREADS ? VDT_CONTRACT_MAX_THREADS : t;
+}
+
+void
 vdt_contract_defaults(struct vdt_contract_opts *o)
 {
 	memset(o, 0, sizeof(*o));
@@ -2332,10 +2334,7 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 	if (engine_init(&e, m, own_pos, own_tri, o) != 0)
 		goto nomem;
 	if (e.passes) {
-		long cpus = sysconf(_SC_NPROCESSORS_ONLN);
-		e.threads = o->threads > 0 ? o->threads : cpus > 0 ? (int)cpus : 1;
-		if (e.threads > VDT_CONTRACT_MAX_THREADS)
-			e.threads = VDT_CONTRACT_MAX_THREADS;
+		e.threads = vdt_contract_threads(o->threads);
 		if (!ops->concurrent)
 			e.threads = 1;
 		e.keys = vdt_malloc_huge((e.nv + 1) * sizeof(*e.keys));

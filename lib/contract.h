@@ -130,6 +130,16 @@ struct vdt_contract_opts {
 
 #define VDT_CONTRACT_MAX_THREADS 16
 
+/* The threads a `threads` option stands for: itself, or with 0 one per
+ * online processor; at most VDT_CONTRACT_MAX_THREADS. */
+int vdt_contract_threads(int threads);
+
+/* Run fn on each of t jobs (job k at (char *)jobs + k * size, t at most
+ * VDT_CONTRACT_MAX_THREADS): t - 1 on threads of their own, the last and
+ * any whose thread cannot start on the caller's; return when all are
+ * done. */
+void vdt_run_jobs(void *(*fn)(void *), void *jobs, size_t size, int t);
+
 /* Fill opts with the defaults (target 0 triangles, no bound, 75 degrees). */
 void vdt_contract_defaults(struct vdt_contract_opts *opts);
 

@@ -317,6 +317,65 @@ add_boundary(struct ctx *c, const struct vdt_mesh *w, const struct vdt_qslim_opt
 }
 
 /*
+ * The fundamental quadrics of the live faces, summed at their corners. A
+ * job takes the corners in one range of vertices and goes through the
+ * faces in order, so that every vertex adds the same terms in the same
+ * order however the ranges are cut: the sums do not depend on the threads.
+ */
+struct fq_job {
+	const struct vdt_mesh *w;
+	struct ctx *c;
+	const uint8_t *dead;
+	uint32_t lo, hi; /* the job's vertices */
+};
+
+static void *
+fq_run(void *arg)
+{
+	const struct fq_job *j = arg;
+	const struct vdt_mesh *w = j->w;
+
+	for (size_t t = 0; t < w->triangle_count; t++) {
+		const uint32_t *v = w->triangles + 3 * t;
+		double p[3][3];
+		struct vdt_quadric q;
+		int in[3], any = 0;
+		if (j->dead[t])
+			continue;
+		for (int i = 0; i < 3; i++)
+			any |= in[i] = v[i] >= j->lo && v[i] < j->hi;
+		if (!any)
+			continue;
+		for (int i = 0; i < 3; i++)
+			for (int k = 0; k < 3; k++)
+				p[i][k] = w->positions[3 * (size_t)v[i] + k] - j->c->centre[k];
+		if (vdt_quadric_triangle(&q, p[0], p[1], p[2]) == 0)
+			for (int i = 0; i < 3; i++)
+				if (in[i])
+					vdt_quadric_add(&j->c->q[v[i]], &q);
+	}
+	return NULL;
+}
+
+/* Meshes below this many vertices are not worth a thread. */
+#define FQ_MIN_VERTICES 65536
+
+static void
+face_quadrics(const struct vdt_mesh *w, struct ctx *c, const uint8_t *dead, int threads)
+{
+	struct fq_job job[VDT_CONTRACT_MAX_THREADS];
+	size_t nv = w->vertex_count;
+	int t = vdt_contract_threads(threads);
+
+	if (nv < FQ_MIN_VERTICES)
+		t = 1;
+	for (int k = 0; k < t; k++)
+		job[k] = (struct fq_job){w, c, dead, (uint32_t)(nv * (size_t)k / (size_t)t),
+		                         (uint32_t)(nv * (size_t)(k + 1) / (size_t)t)};
+	vdt_run_jobs(fq_run, job, sizeof(job[0]), t);
+}
+
+/*
  * Quadrics of the welded vertices: fundamental quadrics of the faces (or the
  * ones given), plus perpendicular planes along open edges. Built on a table
  * of the faces around each vertex, which also serves to
@@ -347,19 +406,7 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 			vdt_quadric_add(&c->q[canon[i]], &q);
 		}
 	} else {
-		for (size_t t = 0; t < nt; t++) {
-			const uint32_t *v = w->triangles + 3 * t;
-			double p[3][3];
-			struct vdt_quadric q;
-			if (dead[t])
-				continue;
-			for (int i = 0; i < 3; i++)
-				for (int k = 0; k < 3; k++)
-					p[i][k] = w->positions[3 * (size_t)v[i] + k] - c->centre[k];
-			if (vdt_quadric_triangle(&q, p[0], p[1], p[2]) == 0)
-				for (int i = 0; i < 3; i++)
-					vdt_quadric_add(&c->q[v[i]], &q);
-		}
+		face_quadrics(w, c, dead, o->threads);
 	}
 
 	uint32_t *open;

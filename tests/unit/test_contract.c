@@ -890,8 +890,8 @@ passes_on_threads_match_one_thread(void **state)
  * greedy below; the explicit orders whatever the size. */
 /*
  * vdt_qslim gives the same mesh on one thread as on three, on a bumpy grid
- * big enough for the default order to be passes, whose pairs are costed
- * on threads.
+ * big enough for its threaded set-up (face quadrics summed by vertex
+ * range) and for passes (pairs costed and contracted on threads).
  */
 static void
 qslim_threads_do_not_matter(void **state)
