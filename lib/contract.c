@@ -106,7 +106,8 @@ struct engine {
 	 * in passes altc[v] is the cost of best[v], and hpos[v] the last
 	 * pass that claimed v */
 	int vq;
-	uint32_t *best, *alt;
+	uint32_t *best, *alt;   /* in passes alt lists the live vertices (nlive) */
+	size_t nlive;
 	float *altc;
 	const uint8_t *rank;
 	struct vcost *vn, *vk; /* scratch: a vertex's pairs, keep's pairs */
@@ -1447,29 +1448,30 @@ pass_cost(struct engine *e, size_t n, int upper)
 static int
 pass_recost(struct engine *e, int kept)
 {
-	size_t v = 0;
+	size_t i = 0;
 
-	while (v < e->nv) {
+	while (i < e->nlive) {
 		size_t n = 0;
-		for (; v < e->nv && n < PASS_BATCH; v++) {
+		for (; i < e->nlive && n < PASS_BATCH; i++) {
+			uint32_t v = e->alt[i];
 			uint8_t f = e->vflag[v];
 			uint32_t b = e->best[v];
 			if (f & V_DEAD)
 				continue;
 			if (kept ? (f & V_KEPT) != 0
 			         : ((f & (V_DIRTY | V_REFUSED)) || (b != NONE && (e->vflag[b] & V_DEAD))))
-				e->plist[n++] = (uint32_t)v;
+				e->plist[n++] = v;
 		}
 		if (n == 0)
 			continue;
 		if (pass_cost(e, n, 0) != 0)
 			return -1;
-		for (size_t i = 0; i < n; i++) {
-			struct vcost *vn = e->pout + e->poff[i];
+		for (size_t j = 0; j < n; j++) {
+			struct vcost *vn = e->pout + e->poff[j];
 			if (kept)
-				pass_kept_of(e, e->plist[i], vn, e->pcount[i]);
+				pass_kept_of(e, e->plist[j], vn, e->pcount[j]);
 			else
-				pass_best_of(e, e->plist[i], vn, e->pcount[i]);
+				pass_best_of(e, e->plist[j], vn, e->pcount[j]);
 		}
 	}
 	return 0;
@@ -1960,10 +1962,21 @@ run_passes(struct engine *e, const struct vdt_contract_opts *o,
 	if (pass_init(e) != 0)
 		return -1;
 	e->fit_per_pair = PASS_FIT_START;
+	/* The vertices with faces, in order: the passes' scans walk these
+	 * alone, dropping the dead as they go (a vertex never gains its first
+	 * face). */
+	e->nlive = 0;
+	for (size_t v = 0; v < e->nv; v++)
+		if (e->vt[v].len > 0)
+			e->alt[e->nlive++] = (uint32_t)v;
 	while (!done(e, o)) {
-		size_t n = 0, m = 0, did = 0, refused = 0;
+		size_t n = 0, m = 0, did = 0, refused = 0, live = 0;
 		int stop = 0;
 		pass++;
+		for (size_t i = 0; i < e->nlive; i++)
+			if (!(e->vflag[e->alt[i]] & V_DEAD))
+				e->alt[live++] = e->alt[i];
+		e->nlive = live;
 		/* The last pass's survivors cost their pairs again, then the
 		 * vertices whose pair went with them, or whose partner vanished
 		 * from a face it no longer shares with them. */
@@ -1971,8 +1984,8 @@ run_passes(struct engine *e, const struct vdt_contract_opts *o,
 			return -1;
 		/* (cost, vertex) keys, listed by vertex so that sorting on the
 		 * cost alone orders ties by vertex */
-		for (size_t v = 0; v < e->nv; v++) {
-			uint32_t x = e->best[v], bits;
+		for (size_t i = 0; i < e->nlive; i++) {
+			uint32_t v = e->alt[i], x = e->best[v], bits;
 			if ((e->vflag[v] & V_DEAD) || x == NONE || !(e->altc[v] < INFINITY))
 				continue;
 			if (e->best[x] == v && x < v && e->altc[x] == e->altc[v])
