@@ -67,9 +67,11 @@ struct vdt_qslim_opts {
 	                             its allowed error (Mata et al., section
 	                             3.3; see vdt_qslim) */
 	int order;                /* enum vdt_qslim_order */
-	int threads;              /* for costing pairs in passes, without
+	int threads;              /* for summing face quadrics, and costing
+	                             and contracting pairs in passes, without
 	                             attributes; 0: one per processor (see
-	                             vdt_contract_opts.threads) */
+	                             vdt_contract_opts.threads); the result
+	                             does not depend on it */
 	int record;               /* keep the contraction record
 	                             (vdt_qslim_extra_run; vdt_qslim takes
 	                             its records argument instead) */
