@@ -1946,8 +1946,10 @@ pass_serial(struct engine *e, const struct vdt_contract_opts *o,
  * needs. The claimed pairs are disjoint, so contracting them leaves the
  * cost of each unclaimed one exact; they are contracted in vertex order,
  * which walks memory in order, each after the validity tests on the mesh
- * as it then is. Then only the pairs at the surviving vertices are costed
- * again (pass_kept), and the next pass begins.
+ * as it then is (on several threads with the same result: pass_round).
+ * Then only the pairs at the surviving vertices are costed again
+ * (pass_kept), and the next pass begins. The scans walk a list of the
+ * live vertices, in order.
  */
 #define PASS_SHARE 8
 #define PASS_SLACK 1.5
