@@ -863,13 +863,12 @@ prefetch_ahead(const struct engine *e, const uint32_t *list, size_t i, size_t n)
 }
 
 /* The same for the pairs (v, best[v]) of a pass, v in the low bits of
- * keys[0..n), but those flagged in skip (if not NULL). */
+ * keys[0..n). */
 static inline void
-prefetch_pairs_ahead(const struct engine *e, const uint64_t *keys, size_t i, size_t n,
-                     const uint8_t *skip)
+prefetch_pairs_ahead(const struct engine *e, const uint64_t *keys, size_t i, size_t n)
 {
 	for (int stage = 0; stage < 3; stage++)
-		if (i + 3 - stage < n && (skip == NULL || !skip[i + 3 - stage])) {
+		if (i + 3 - stage < n) {
 			uint32_t a = (uint32_t)keys[i + 3 - stage], b = e->best[a];
 			prefetch_fan(e, a, stage);
 			if (b != NONE)
@@ -1281,6 +1280,15 @@ contract(struct engine *e, struct work *w, uint32_t keep, uint32_t gone,
 	return 0;
 }
 
+/* Take what w's contractions removed off the engine's live counts. */
+static void
+work_apply(struct engine *e, struct work *w)
+{
+	e->live_tris -= w->dead_tris;
+	e->live_verts -= w->dead_verts;
+	w->dead_tris = w->dead_verts = 0;
+}
+
 /* contract() on the engine's own thread, its counts applied at once. */
 static int
 contract_now(struct engine *e, uint32_t keep, uint32_t gone, const double dpos[3],
@@ -1288,9 +1296,7 @@ contract_now(struct engine *e, uint32_t keep, uint32_t gone, const double dpos[3
 {
 	int rc = contract(e, &e->work, keep, gone, dpos, cost);
 
-	e->live_tris -= e->work.dead_tris;
-	e->live_verts -= e->work.dead_verts;
-	e->work.dead_tris = e->work.dead_verts = 0;
+	work_apply(e, &e->work);
 	return rc;
 }
 
@@ -1453,11 +1459,9 @@ pass_recost(struct engine *e, int kept)
 	while (i < e->nlive) {
 		size_t n = 0;
 		for (; i < e->nlive && n < PASS_BATCH; i++) {
-			uint32_t v = e->alt[i];
+			uint32_t v = e->alt[i]; /* live: see run_passes */
 			uint8_t f = e->vflag[v];
 			uint32_t b = e->best[v];
-			if (f & V_DEAD)
-				continue;
 			if (kept ? (f & V_KEPT) != 0
 			         : ((f & (V_DIRTY | V_REFUSED)) || (b != NONE && (e->vflag[b] & V_DEAD))))
 				e->plist[n++] = v;
@@ -1619,18 +1623,24 @@ part_of(const struct engine *e, uint32_t v)
 	return (uint32_t)((uint64_t)v * (uint64_t)e->parts / e->nv);
 }
 
-/* Mark the corners of each live face around v that mixes parts as on the cut. */
+/* A live face whose corners are of more than one part puts them on the cut. */
+static void
+cut_face(struct engine *e, const uint32_t *c)
+{
+	uint32_t p0 = part_of(e, c[0]);
+
+	if (part_of(e, c[1]) != p0 || part_of(e, c[2]) != p0)
+		e->cut[c[0]] = e->cut[c[1]] = e->cut[c[2]] = 1;
+}
+
+/* After a contraction on one thread: the faces around the survivor. */
 static void
 cut_around(struct engine *e, uint32_t v)
 {
 	const struct list *l = &e->vt[v];
 
-	for (uint32_t f = 0; f < l->len; f++) {
-		const uint32_t *c = e->tri + 3 * (size_t)e->tpool.data[l->off + f];
-		uint32_t p0 = part_of(e, c[0]);
-		if (part_of(e, c[1]) != p0 || part_of(e, c[2]) != p0)
-			e->cut[c[0]] = e->cut[c[1]] = e->cut[c[2]] = 1;
-	}
+	for (uint32_t f = 0; f < l->len; f++)
+		cut_face(e, e->tri + 3 * (size_t)e->tpool.data[l->off + f]);
 }
 
 static int
@@ -1638,14 +1648,9 @@ cut_init(struct engine *e)
 {
 	if ((e->cut = calloc(e->nv, 1)) == NULL || (e->aside = calloc(e->nv, 1)) == NULL)
 		return -1;
-	for (size_t t = 0; t < e->nt; t++) {
-		const uint32_t *c = e->tri + 3 * t;
-		if (c[0] == NONE)
-			continue;
-		uint32_t p0 = part_of(e, c[0]);
-		if (part_of(e, c[1]) != p0 || part_of(e, c[2]) != p0)
-			e->cut[c[0]] = e->cut[c[1]] = e->cut[c[2]] = 1;
-	}
+	for (size_t t = 0; t < e->nt; t++)
+		if (e->tri[3 * t] != NONE)
+			cut_face(e, e->tri + 3 * t);
 	return 0;
 }
 
@@ -1891,8 +1896,7 @@ pass_round(struct engine *e, const struct vdt_contract_opts *o,
 	p->shared = 0;
 	rc = (long)m;
 	for (size_t k = 0; k < t; k++) {
-		e->live_tris -= run[k].w.dead_tris;
-		e->live_verts -= run[k].w.dead_verts;
+		work_apply(e, &run[k].w);
 		tally_out->did += run[k].t.did;
 		tally_out->refused += run[k].t.refused;
 		if (run[k].t.max_cost > tally_out->max_cost)
@@ -1924,11 +1928,9 @@ pass_serial(struct engine *e, const struct vdt_contract_opts *o,
 	for (size_t i = 0; i < m && !done(e, o); i++) {
 		struct vdt_contraction r;
 		double c;
-		prefetch_pairs_ahead(e, keys, i, m, NULL);
+		prefetch_pairs_ahead(e, keys, i, m);
 		int made = pass_pair(e, &e->work, (uint32_t)keys[i], &r, &c);
-		e->live_tris -= e->work.dead_tris;
-		e->live_verts -= e->work.dead_verts;
-		e->work.dead_tris = e->work.dead_verts = 0;
+		work_apply(e, &e->work);
 		if (made < 0 || (made && o->record && record(res, rec_cap, r.keep, r.gone, r.pos, c) != 0))
 			return -1;
 		if (made && e->cut != NULL)
@@ -1965,8 +1967,8 @@ run_passes(struct engine *e, const struct vdt_contract_opts *o,
 		return -1;
 	e->fit_per_pair = PASS_FIT_START;
 	/* The vertices with faces, in order: the passes' scans walk these
-	 * alone, dropping the dead as they go (a vertex never gains its first
-	 * face). */
+	 * alone, the dead dropped at the start of each pass, before which
+	 * nothing dies (a vertex never gains its first face). */
 	e->nlive = 0;
 	for (size_t v = 0; v < e->nv; v++)
 		if (e->vt[v].len > 0)
@@ -1988,7 +1990,7 @@ run_passes(struct engine *e, const struct vdt_contract_opts *o,
 		 * cost alone orders ties by vertex */
 		for (size_t i = 0; i < e->nlive; i++) {
 			uint32_t v = e->alt[i], x = e->best[v], bits;
-			if ((e->vflag[v] & V_DEAD) || x == NONE || !(e->altc[v] < INFINITY))
+			if (x == NONE || !(e->altc[v] < INFINITY))
 				continue;
 			if (e->best[x] == v && x < v && e->altc[x] == e->altc[v])
 				continue; /* the same pair, listed at x */
