@@ -122,8 +122,9 @@ struct engine {
 	uint32_t *pcount;      /* how many pairs each has */
 	struct vcost *pout;
 	size_t pout_cap;
-	uint32_t parts;        /* passes on threads: vertex numbers cut in parts */
-	uint8_t *cut;          /* per vertex: shares a face with another part's */
+	uint8_t *cut;          /* passes on threads, the vertex numbers cut in
+	                          one part per thread: per vertex, shares a
+	                          face with another part's */
 	uint8_t *aside;        /* per vertex: near a pair set aside this round */
 	double fit_per_pair;   /* the pool room the last round's pairs might take */
 };
@@ -1620,7 +1621,7 @@ tally(struct ptally *t, int made, double cost)
 static uint32_t
 part_of(const struct engine *e, uint32_t v)
 {
-	return (uint32_t)((uint64_t)v * (uint64_t)e->parts / e->nv);
+	return (uint32_t)((uint64_t)v * (uint64_t)e->threads / e->nv);
 }
 
 /* A live face whose corners are of more than one part puts them on the cut. */
@@ -1835,11 +1836,8 @@ pass_round(struct engine *e, const struct vdt_contract_opts *o,
 		return 0;
 	if (o->target_vertices && e->live_verts <= o->target_vertices + m)
 		return 0;
-	if (e->cut == NULL) {
-		e->parts = (uint32_t)t;
-		if (cut_init(e) != 0)
-			return -1;
-	}
+	if (e->cut == NULL && cut_init(e) != 0)
+		return -1;
 	memset(run, 0, sizeof(run));
 	aside = malloc(m * sizeof(*aside));
 	if (o->record) {
@@ -1848,7 +1846,6 @@ pass_round(struct engine *e, const struct vdt_contract_opts *o,
 	}
 	if (aside == NULL || (o->record && (rec == NULL || made == NULL)))
 		goto out;
-	t = e->parts;
 	for (size_t k = 0; k < t; k++) {
 		size_t b = keys_from(keys, m, (uint64_t)e->nv * k / t + (((uint64_t)e->nv * k) % t != 0));
 		run[k] = (struct prun){.e = e, .keys = keys, .begin = b, .part = (uint32_t)k,
