@@ -607,16 +607,30 @@ max_record_cost(const struct vdt_contract_result *r)
 	return c;
 }
 
+/* The next number of a linear congruential sequence, in [0, 1). */
+static float
+next_unit(uint32_t *seed)
+{
+	*seed = *seed * 1664525u + 1013904223u;
+	return (float)(*seed >> 8) / (1u << 24);
+}
+
+/* Heights in [0, amp) over a flat mesh (a grid), so that no two costs tie. */
+static void
+bump(struct vdt_mesh *m, uint32_t seed, float amp)
+{
+	for (size_t i = 0; i < m->vertex_count; i++)
+		m->positions[3 * i + 2] = amp * next_unit(&seed);
+}
+
 /* A level-4 icosphere with every coordinate jittered by up to 1% (so that
  * no two costs tie), and every 37th vertex locked: the locks, to free. */
 static uint8_t *
 jittered_sphere(struct vdt_mesh *m, uint32_t seed)
 {
 	shape_icosphere(m, 4);
-	for (size_t i = 0; i < 3 * m->vertex_count; i++) {
-		seed = seed * 1664525u + 1013904223u;
-		m->positions[i] *= 1 + 0.02f * ((float)(seed >> 8) / (1u << 24) - 0.5f);
-	}
+	for (size_t i = 0; i < 3 * m->vertex_count; i++)
+		m->positions[i] *= 1 + 0.02f * (next_unit(&seed) - 0.5f);
 	uint8_t *locked = calloc(m->vertex_count, 1);
 	assert_non_null(locked);
 	for (size_t v = 0; v < m->vertex_count; v += 37)
@@ -752,10 +766,7 @@ passes_contract_only_edges(void **state)
 
 	(void)state;
 	shape_grid(&m, 24);
-	for (size_t i = 0; i < m.vertex_count; i++) {
-		seed = seed * 1664525u + 1013904223u;
-		m.positions[3 * i + 2] = 0.05f * (float)(seed >> 8) / (1u << 24);
-	}
+	bump(&m, seed, 0.05f);
 	size_t nt = 0; /* drop every seventh face: holes and fins of boundary */
 	for (size_t t = 0; t < m.triangle_count; t++)
 		if (t % 7 != 3)
@@ -824,16 +835,13 @@ passes_on_threads_match_one_thread(void **state)
 	for (uint32_t i = 0; i < g.vertex_count; i++)
 		perm[i] = i;
 	for (uint32_t i = (uint32_t)g.vertex_count - 1; i > 0; i--) {
-		seed = seed * 1664525u + 1013904223u;
-		uint32_t j = (seed >> 8) % (i + 1), x = perm[i];
-		perm[i] = perm[j];
-		perm[j] = x;
+		uint32_t j = (uint32_t)(next_unit(&seed) * (float)(i + 1)), x = perm[i];
+		perm[i] = perm[j < i ? j : i];
+		perm[j < i ? j : i] = x;
 	}
-	for (size_t i = 0; i < g.vertex_count; i++) {
-		seed = seed * 1664525u + 1013904223u;
-		memcpy(m.positions + 3 * (size_t)perm[i], g.positions + 3 * i, 2 * sizeof(float));
-		m.positions[3 * (size_t)perm[i] + 2] = 0.02f * (float)(seed >> 8) / (1u << 24);
-	}
+	bump(&g, seed, 0.02f);
+	for (size_t i = 0; i < g.vertex_count; i++)
+		memcpy(m.positions + 3 * (size_t)perm[i], g.positions + 3 * i, 3 * sizeof(float));
 	for (size_t i = 0; i < 3 * g.triangle_count; i++)
 		m.triangles[i] = perm[g.triangles[i]];
 	uint32_t a = (uint32_t)g.vertex_count, *t = m.triangles + 3 * g.triangle_count;
@@ -904,10 +912,7 @@ qslim_threads_do_not_matter(void **state)
 	(void)state;
 	shape_grid(&m, 256); /* 66049 vertices */
 	assert_true(m.vertex_count >= VDT_QSLIM_PASSES_MIN);
-	for (size_t i = 0; i < m.vertex_count; i++) {
-		seed = seed * 1664525u + 1013904223u;
-		m.positions[3 * i + 2] = 0.02f * (float)(seed >> 8) / (1u << 24);
-	}
+	bump(&m, seed, 0.02f);
 	vdt_qslim_defaults(&o);
 	o.target_ratio = 0.2;
 	for (int k = 0; k < 2; k++) {
