@@ -108,6 +108,7 @@ run(struct cmdline *cl)
 	struct vdt_cluster_stats st;
 	struct vdt_mesh out = {0};
 	struct vdt_quadric *q = NULL;
+	uint8_t *border = NULL;
 	struct vdt_chunks extra = {0};
 	struct vdt_err err = {0};
 	const struct vdt_progress *p = progress_start(cl->quiet);
@@ -131,7 +132,8 @@ run(struct cmdline *cl)
 	streamed = vdt_tsource_streamed(ts);
 	vdt_tsource_close(ts);
 	ts = NULL;
-	if (rc != 0 || (rc = vdt_cluster_finish(c, &out, cl->decoupled ? NULL : &q, &st, &err)) != 0) {
+	if (rc != 0 || (rc = vdt_cluster_finish(c, &out, cl->decoupled ? NULL : &q,
+	                                            cl->decoupled ? NULL : &border, &st, &err)) != 0) {
 		rc = err.code == VDT_ELIMIT ? (fail("cannot cluster", cl->in, &err), EXIT_USAGE)
 		                            : fail("cannot read", cl->in, &err);
 		goto out;
@@ -146,8 +148,19 @@ run(struct cmdline *cl)
 		    (rc = vdt_chunks_add(&extra, VDT_CHUNK_QUAD, data, len, &err)) != 0)
 			goto write_failed;
 	}
+	/* Which open edges of the intermediate are the input's boundary, and
+	 * not the rim of a thin part that clustering flattened. */
+	if (border != NULL) {
+		unsigned char *data;
+		uint64_t len;
+		if ((rc = vdt_bndy_encode(border, out.vertex_count, &data, &len, &err)) != 0 ||
+		    (rc = vdt_chunks_add(&extra, VDT_CHUNK_BNDY, data, len, &err)) != 0)
+			goto write_failed;
+	}
 	free(q);
 	q = NULL;
+	free(border);
+	border = NULL;
 	if ((rc = vdt_write(cl->out, &out, &extra, &cl->w, &err)) != 0)
 		goto write_failed;
 	t3 = vdt_seconds();
@@ -172,6 +185,7 @@ out:
 	vdt_mesh_free(&out);
 	vdt_chunks_free(&extra);
 	free(q);
+	free(border);
 	return rc;
 }
 

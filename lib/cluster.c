@@ -841,10 +841,11 @@ vdt_cluster_add(struct vdt_cluster *c, const double *tri, size_t n, struct vdt_e
 
 int
 vdt_cluster_finish(struct vdt_cluster *c, struct vdt_mesh *out, struct vdt_quadric **quads,
-                   struct vdt_cluster_stats *st, struct vdt_err *err)
+                   uint8_t **border, struct vdt_cluster_stats *st, struct vdt_err *err)
 {
 	uint32_t *remap = NULL;
 	struct vdt_quadric *q = NULL;
+	uint8_t *b = NULL;
 	size_t used = 0, bcells = 0;
 	double h = (c->g.cell[0] + c->g.cell[1] + c->g.cell[2]) / 3;
 	int rc;
@@ -852,6 +853,8 @@ vdt_cluster_finish(struct vdt_cluster *c, struct vdt_mesh *out, struct vdt_quadr
 	memset(out, 0, sizeof(*out));
 	if (quads)
 		*quads = NULL;
+	if (border)
+		*border = NULL;
 	if (st) {
 		memset(st, 0, sizeof(*st));
 		st->triangles_in = c->added;
@@ -875,7 +878,8 @@ vdt_cluster_finish(struct vdt_cluster *c, struct vdt_mesh *out, struct vdt_quadr
 			remap[i] = (uint32_t)used++;
 	if ((rc = vdt_mesh_alloc(out, used, c->ntris, 0, err)) != 0)
 		goto fail;
-	if (quads && (q = malloc(used * sizeof(*q))) == NULL) {
+	if ((quads && (q = malloc(used * sizeof(*q))) == NULL) ||
+	    (border && (b = calloc(used, 1)) == NULL)) {
 		rc = vdt_err_set(err, VDT_ENOMEM, "out of memory");
 		goto fail;
 	}
@@ -922,6 +926,8 @@ vdt_cluster_finish(struct vdt_cluster *c, struct vdt_mesh *out, struct vdt_quadr
 			vdt_quadric_plane(&bq, n, m[3] / ml, ml * ml);
 			vdt_quadric_add(&pq, &bq);
 			bcells++;
+			if (b)
+				b[remap[i]] = 1;
 		}
 		vdt_quadric_optimize_box(&pq, ref, lo, hi, v);
 		for (int k = 0; k < 3; k++)
@@ -934,6 +940,8 @@ vdt_cluster_finish(struct vdt_cluster *c, struct vdt_mesh *out, struct vdt_quadr
 	free(remap);
 	if (quads)
 		*quads = q;
+	if (border)
+		*border = b;
 	if (st) {
 		st->boundary_cells = bcells;
 		st->vertices_out = used;
@@ -943,6 +951,7 @@ vdt_cluster_finish(struct vdt_cluster *c, struct vdt_mesh *out, struct vdt_quadr
 fail:
 	free(remap);
 	free(q);
+	free(b);
 	vdt_mesh_free(out);
 	return rc;
 }

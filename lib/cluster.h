@@ -144,11 +144,15 @@ struct vdt_cluster_stats {
  * output triangles in order of first appearance; and, when quads is not
  * NULL, one quadric per output vertex, malloc'ed: exactly the cell's sum of
  * fundamental quadrics (the boundary plane is not included: phase II makes
- * its own). Can be called once. Returns 0 or VDT_ENOMEM; an empty result
- * (no triangle spans three cells) is VDT_ELIMIT.
+ * its own); and, when border is not NULL, one flag per output vertex,
+ * malloc'ed: 1 where the cell holds part of the input's open boundary (its
+ * boundary plane is in use), so that phase II can tell those open edges of
+ * the intermediate from the rims of thin parts flattened into one sheet.
+ * Can be called once. Returns 0 or VDT_ENOMEM; an empty result (no triangle
+ * spans three cells) is VDT_ELIMIT.
  */
 int vdt_cluster_finish(struct vdt_cluster *c, struct vdt_mesh *out,
-                       struct vdt_quadric **quads,
+                       struct vdt_quadric **quads, uint8_t **border,
                        struct vdt_cluster_stats *stats, struct vdt_err *err);
 
 /*

@@ -96,6 +96,19 @@ decode_quadrics(const struct vdt_chunks *c, size_t vertex_count, struct vdt_quad
 	return 0;
 }
 
+/* The BNDY chunk of c, if any, for a mesh of vertex_count vertices. */
+static int
+decode_border(const struct vdt_chunks *c, size_t vertex_count, uint8_t **flags,
+              struct vdt_err *err)
+{
+	const struct vdt_chunk *ch = vdt_chunks_find(c, VDT_CHUNK_BNDY);
+
+	*flags = NULL;
+	if (ch == NULL)
+		return 0;
+	return vdt_bndy_decode(ch->data, ch->length, vertex_count, flags, err);
+}
+
 /*
  * Mata, Pastor and Rodriguez, section 3.3: near the silhouette the allowed
  * error is e * f. Quadric errors are squared distances, so a pair costs its
@@ -409,10 +422,28 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 		face_quadrics(w, c, dead, o->threads);
 	}
 
+	/* Open edges of a clustered intermediate are mostly the rims of thin
+	 * parts flattened into one sheet, whose quadrics already hold both
+	 * sides: planes go only where phase I found the input's boundary, and
+	 * only there are vertices on a border (--lock-border). */
+	uint8_t *real = NULL;
+	if (o->quadrics && o->input_border) {
+		if ((real = calloc(nv, 1)) == NULL) {
+			free(start);
+			free(fan);
+			return -1;
+		}
+		for (size_t i = 0; i < nin; i++)
+			real[canon[i]] |= o->input_border[i] != 0;
+	}
 	uint32_t *open;
 	long nopen = vdt_topo_open_edges(nv, w->triangles, start, fan, dead, &open, nonmanifold);
-	for (long k = 0; k < nopen; k++)
-		add_boundary(c, w, o, open[3 * k], open[3 * k + 1], open[3 * k + 2], border);
+	for (long k = 0; k < nopen; k++) {
+		uint32_t a = open[3 * k + 1], b = open[3 * k + 2];
+		if (!real || real[a] || real[b])
+			add_boundary(c, w, o, open[3 * k], a, b, border);
+	}
+	free(real);
 	free(open);
 	if (nopen < 0) {
 		free(start);
@@ -1533,7 +1564,8 @@ vdt_qslim_extra_decode(struct vdt_qslim_extra *x, struct vdt_chunks *c, size_t v
 	int rc;
 
 	memset(x, 0, sizeof(*x));
-	if ((!ignore_quadrics && (rc = decode_quadrics(c, vertex_count, &x->quadrics, err)) != 0) ||
+	if ((!ignore_quadrics && ((rc = decode_quadrics(c, vertex_count, &x->quadrics, err)) != 0 ||
+	                          (rc = decode_border(c, vertex_count, &x->border, err)) != 0)) ||
 	    (rc = vdt_labl_decode_chunk(c, vertex_count, &x->labl, err)) != 0) {
 		vdt_qslim_extra_free(x);
 		return rc;
@@ -1556,6 +1588,7 @@ vdt_qslim_extra_run(struct vdt_qslim_extra *x, const struct vdt_mesh *in,
 	if ((rc = vdt_labl_scale(&x->labl, lo, &x->error_scale, err)) != 0)
 		return rc;
 	with.quadrics = x->quadrics;
+	with.input_border = x->border;
 	with.error_scale = x->error_scale;
 	free(x->records);
 	x->records = NULL;
@@ -1583,6 +1616,7 @@ void
 vdt_qslim_extra_free(struct vdt_qslim_extra *x)
 {
 	free(x->quadrics);
+	free(x->border);
 	vdt_labl_free(&x->labl);
 	free(x->error_scale);
 	free(x->records);

@@ -60,6 +60,11 @@ struct vdt_qslim_opts {
 	double max_normal_angle;  /* fold-over threshold, degrees */
 	double min_quality;       /* sliver threshold, 0: off */
 	const struct vdt_quadric *quadrics; /* one per input vertex, or NULL */
+	const uint8_t *input_border; /* with quadrics: per input vertex, 1 on
+	                             the open boundary of the surface they
+	                             came from; an open edge then gets its
+	                             planes only when one of its ends is; or
+	                             NULL: every open edge gets them */
 	double attribute_weight;  /* of attribute errors against distances
 	                             (see vdt_qslim); 0: attributes are copied,
 	                             never interpolated, and cost nothing */
@@ -149,6 +154,7 @@ int vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
  */
 struct vdt_qslim_extra {
 	struct vdt_quadric *quadrics;  /* one per input vertex, or NULL */
+	uint8_t *border;               /* BNDY, per input vertex, or NULL */
 	struct vdt_labl labl;          /* cams.count 0 when there are none */
 	double *error_scale;           /* of the labels, or NULL */
 	int record;                    /* 1: records are kept */
@@ -157,8 +163,9 @@ struct vdt_qslim_extra {
 };
 
 /*
- * Decode into *x the QUAD chunk of c (unless ignore_quadrics) and its LABL
- * chunk, each of which must describe vertex_count vertices; then remove
+ * Decode into *x the QUAD and BNDY chunks of c (unless ignore_quadrics:
+ * both are what phase I hands over) and its LABL chunk, each of which must
+ * describe vertex_count vertices; then remove
  * from c every chunk that describes the input's vertices
  * (vdt_chunks_drop_vertex_data), since the output's vertices differ.
  * Returns 0, a decoder's status, or VDT_EFORMAT for a count that differs

@@ -411,7 +411,7 @@ vdt_chunks_remove(struct vdt_chunks *c, uint32_t type)
 void
 vdt_chunks_drop_vertex_data(struct vdt_chunks *c)
 {
-	static const uint32_t types[] = {VDT_CHUNK_QUAD, VDT_CHUNK_LABL, VDT_CHUNK_VTRE,
+	static const uint32_t types[] = {VDT_CHUNK_QUAD, VDT_CHUNK_BNDY, VDT_CHUNK_LABL, VDT_CHUNK_VTRE,
 	                                 VDT_CHUNK_FRMS, VDT_CHUNK_SEQN};
 
 	for (size_t i = 0; i < sizeof(types) / sizeof(types[0]); i++)
@@ -657,6 +657,25 @@ vdt_mesh_decode(const unsigned char *data, uint64_t length, struct vdt_mesh *m,
 	return rc;
 }
 
+/* A payload of a u64 count n then n records of `size` bytes: n, or
+ * VDT_EFORMAT when the length says otherwise. */
+static int
+counted(const unsigned char *data, uint64_t length, unsigned size, const char *what,
+        uint64_t *n, struct vdt_err *err)
+{
+	if (length < 8)
+		return vdt_err_set(err, VDT_EFORMAT,
+		                   "payload of %" PRIu64 " bytes is shorter than its 8-byte count",
+		                   length);
+	*n = vdt_get_u64le(data);
+	if (*n > (length - 8) / size || *n * size != length - 8)
+		return vdt_err_set(err, VDT_EFORMAT,
+		                   "%" PRIu64 " %s of %u bytes do not fill a payload of %" PRIu64
+		                   " bytes",
+		                   *n, what, size, length);
+	return 0;
+}
+
 int
 vdt_quad_encode(const struct vdt_quadric *q, size_t count, unsigned char **data,
                 uint64_t *length, struct vdt_err *err)
@@ -692,16 +711,8 @@ vdt_quad_decode(const unsigned char *data, uint64_t length,
 
 	*q = NULL;
 	*count = 0;
-	if (length < 8)
-		return vdt_err_set(err, VDT_EFORMAT,
-		                   "payload of %" PRIu64 " bytes is shorter than its 8-byte count",
-		                   length);
-	n = vdt_get_u64le(data);
-	if (n > (length - 8) / QUAD_RECORD || n * QUAD_RECORD != length - 8)
-		return vdt_err_set(err, VDT_EFORMAT,
-		                   "%" PRIu64 " quadrics of %d bytes do not fill a payload of %" PRIu64
-		                   " bytes",
-		                   n, QUAD_RECORD, length);
+	if (counted(data, length, QUAD_RECORD, "quadrics", &n, err) != 0)
+		return VDT_EFORMAT;
 	if (n == 0)
 		return 0;
 	if ((a = malloc((size_t)n * sizeof(*a))) == NULL)
@@ -723,5 +734,66 @@ vdt_quad_decode(const unsigned char *data, uint64_t length,
 	}
 	*q = a;
 	*count = (size_t)n;
+	return 0;
+}
+
+int
+vdt_bndy_encode(const uint8_t *flags, size_t vertex_count, unsigned char **data,
+                uint64_t *length, struct vdt_err *err)
+{
+	size_t k = 0;
+	unsigned char *buf, *p;
+
+	*data = NULL;
+	*length = 0;
+	if (vertex_count > UINT32_MAX)
+		return vdt_err_set(err, VDT_EINVAL, "%zu vertices do not fit a BNDY chunk",
+		                   vertex_count);
+	for (size_t v = 0; v < vertex_count; v++)
+		k += flags[v] != 0;
+	if ((buf = malloc(8 + 4 * k)) == NULL)
+		return vdt_err_set(err, VDT_ENOMEM,
+		                   "cannot allocate a BNDY chunk for %zu vertices", k);
+	vdt_put_u64le(buf, k);
+	p = buf + 8;
+	for (size_t v = 0; v < vertex_count; v++)
+		if (flags[v]) {
+			vdt_put_u32le(p, (uint32_t)v);
+			p += 4;
+		}
+	*data = buf;
+	*length = 8 + 4 * (uint64_t)k;
+	return 0;
+}
+
+int
+vdt_bndy_decode(const unsigned char *data, uint64_t length, size_t vertex_count,
+                uint8_t **flags, struct vdt_err *err)
+{
+	uint8_t *f = NULL;
+	uint64_t k;
+
+	*flags = NULL;
+	if (counted(data, length, 4, "vertex indices", &k, err) != 0)
+		return VDT_EFORMAT;
+	if (k > vertex_count)
+		return vdt_err_set(err, VDT_EINVAL, "%" PRIu64 " boundary vertices for %zu vertices",
+		                   k, vertex_count);
+	if (vertex_count > 0 && (f = calloc(vertex_count, 1)) == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu boundary flags",
+		                   vertex_count);
+	for (uint64_t i = 0; i < k; i++) {
+		uint32_t v = vdt_get_u32le(data + 8 + 4 * i);
+		if (v >= vertex_count || (i > 0 && v <= vdt_get_u32le(data + 4 + 4 * i))) {
+			free(f);
+			return vdt_err_set(err, VDT_EINVAL,
+			                   v >= vertex_count
+			                           ? "boundary vertex %" PRIu32 " is out of range (%zu vertices)"
+			                           : "boundary vertex %" PRIu32 " is out of order",
+			                   v, vertex_count);
+		}
+		f[v] = 1;
+	}
+	*flags = f;
 	return 0;
 }

@@ -24,7 +24,7 @@
 #include "quadric.h"
 
 #define VDT_STREAM_MAJOR 1
-#define VDT_STREAM_MINOR 0
+#define VDT_STREAM_MINOR 1
 #define VDT_STREAM_SIGNATURE "\x89VDT\r\n\x1a\n"
 #define VDT_STREAM_SIGNATURE_LEN 8
 #define VDT_STREAM_HEADER_LEN 12 /* signature + version */
@@ -40,6 +40,7 @@
 #define VDT_CHUNK_VTRE VDT_FOURCC('V', 'T', 'R', 'E')
 #define VDT_CHUNK_FRMS VDT_FOURCC('F', 'R', 'M', 'S')
 #define VDT_CHUNK_SEQN VDT_FOURCC('S', 'E', 'Q', 'N')
+#define VDT_CHUNK_BNDY VDT_FOURCC('B', 'N', 'D', 'Y') /* since 1.1 */
 #define VDT_CHUNK_END VDT_FOURCC('E', 'N', 'D', ' ')
 
 /* One chunk held in memory; the payload is owned by whoever holds it. */
@@ -118,7 +119,7 @@ void vdt_chunks_remove(struct vdt_chunks *c, uint32_t type);
 
 /*
  * Remove every chunk that describes the vertices of the MESH chunk by index
- * (QUAD, LABL, VTRE, FRMS, SEQN): what a tool that changes the vertices
+ * (QUAD, BNDY, LABL, VTRE, FRMS, SEQN): what a tool that changes the vertices
  * must drop unless it writes it anew (vdt(5), Pass-through). Chunks of
  * unknown types are kept.
  */
@@ -193,5 +194,18 @@ int vdt_quad_encode(const struct vdt_quadric *q, size_t count,
 int vdt_quad_decode(const unsigned char *data, uint64_t length,
                     struct vdt_quadric **q, size_t *count,
                     struct vdt_err *err);
+
+/*
+ * BNDY chunk payload: u64 count K, then K u32 vertex indices in increasing
+ * order: the vertices of the MESH chunk that lie on an open boundary of the
+ * surface the mesh was made from. Encoding takes one flag per vertex
+ * (nonzero: listed). Decoding requires 4K == length - 8 (VDT_EFORMAT) and
+ * indices increasing and below vertex_count (VDT_EINVAL), and gives one flag
+ * per vertex in *flags (malloc'ed, 0 or 1; NULL when vertex_count is 0).
+ */
+int vdt_bndy_encode(const uint8_t *flags, size_t vertex_count, unsigned char **data,
+                    uint64_t *length, struct vdt_err *err);
+int vdt_bndy_decode(const unsigned char *data, uint64_t length, size_t vertex_count,
+                    uint8_t **flags, struct vdt_err *err);
 
 #endif

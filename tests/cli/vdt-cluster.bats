@@ -99,6 +99,18 @@ load helpers
 	cmp "$TMP/c.vdq" "$TMP/s.vdt"
 }
 
+@test "BNDY lists the input's boundary for vdt-qslim, which consumes it" {
+	"$BIN/vdt-cluster" -v -g 16 "$SAMPLES/open.off" -o "$TMP/c.vdq" 2>"$TMP/log"
+	grep -q "boundary_cells=92 " "$TMP/log"
+	grep -aq BNDY "$TMP/c.vdq"
+	"$BIN/vdt-cluster" -g 16 --decoupled "$SAMPLES/open.off" -o "$TMP/d.vdq"
+	! grep -aq BNDY "$TMP/d.vdq"
+	"$BIN/vdt-qslim" -r 0.5 "$TMP/c.vdq" -o "$TMP/q.vdt"
+	grep -aq MESH "$TMP/q.vdt"
+	! grep -aq BNDY "$TMP/q.vdt"
+	! grep -aq QUAD "$TMP/q.vdt"
+}
+
 @test "the coupled pipeline works and is deterministic" {
 	"$BIN/vdt-cluster" --target 1000 "$SAMPLES/fetched/bunny.ply" |
 		"$BIN/vdt-qslim" -t 1000 -o "$TMP/a.ply"

@@ -1,10 +1,11 @@
 /*
  * fuzz_stream.c - libFuzzer target for the vdt stream parser of vdt(5):
- * decodes the input as a whole stream, then every MESH and QUAD payload,
+ * decodes the input as a whole stream, then every MESH, QUAD and BNDY payload,
  * and, for a stream that decodes, writes it back and decodes it again to
  * check that nothing changed; the chunk reader must agree with the decoder.
- * Random bytes rarely pass a CRC, so the input is also given to the MESH
- * and QUAD decoders as a bare payload. Seeds: tests/fuzz/corpus/stream/.
+ * Random bytes rarely pass a CRC, so the input is also given to the MESH,
+ * QUAD and BNDY decoders as a bare payload (BNDY for a mesh of 4096
+ * vertices). Seeds: tests/fuzz/corpus/stream/.
  */
 #include <stdint.h>
 #include <stdio.h>
@@ -20,12 +21,15 @@ payloads(uint32_t type, const unsigned char *data, uint64_t length)
 {
 	struct vdt_mesh m;
 	struct vdt_quadric *q;
+	uint8_t *flags;
 	size_t n;
 
 	if (type == VDT_CHUNK_MESH && vdt_mesh_decode(data, length, &m, NULL) == 0)
 		vdt_mesh_free(&m);
 	if (type == VDT_CHUNK_QUAD && vdt_quad_decode(data, length, &q, &n, NULL) == 0)
 		free(q);
+	if (type == VDT_CHUNK_BNDY && vdt_bndy_decode(data, length, 4096, &flags, NULL) == 0)
+		free(flags);
 }
 
 /* The chunk reader over the same bytes must give the decoder's result. */
@@ -77,6 +81,7 @@ LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 	vdt_stream_sniff(data, size);
 	payloads(VDT_CHUNK_MESH, data, size);
 	payloads(VDT_CHUNK_QUAD, data, size);
+	payloads(VDT_CHUNK_BNDY, data, size);
 	rc = vdt_stream_decode(data, size, &c, &err);
 	reader(data, size, rc);
 	if (rc != 0)

@@ -78,7 +78,7 @@ two_cells_one_triangle(void **state)
 	assert_int_equal(vdt_cluster_new(&c, &g, 0, NULL), 0);
 	put_tri(t, p0, p1, p2);
 	assert_int_equal(vdt_cluster_add(c, t, 1, NULL), 0);
-	assert_int_equal(vdt_cluster_finish(c, &m, &q, NULL, &err), VDT_ELIMIT);
+	assert_int_equal(vdt_cluster_finish(c, &m, &q, NULL, NULL, &err), VDT_ELIMIT);
 	assert_non_null(strstr(err.msg, "finer grid"));
 	vdt_cluster_free(c);
 }
@@ -114,7 +114,7 @@ quadrics_are_exact_sums(void **state)
 	put_tri(t + 9, b, cc, d);
 	assert_int_equal(vdt_cluster_new(&c, &g, 0, NULL), 0);
 	assert_int_equal(vdt_cluster_add(c, t, 2, NULL), 0);
-	assert_int_equal(vdt_cluster_finish(c, &m, &q, &st, NULL), 0);
+	assert_int_equal(vdt_cluster_finish(c, &m, &q, NULL, &st, NULL), 0);
 	vdt_cluster_free(c);
 	assert_int_equal(m.vertex_count, 4);
 	assert_int_equal(m.triangle_count, 2);
@@ -186,7 +186,7 @@ quadrics_sum_every_corner(void **state)
 		}
 	assert_int_equal(vdt_cluster_new(&c, &g, 0, NULL), 0);
 	assert_int_equal(vdt_cluster_add(c, t, n, NULL), 0);
-	assert_int_equal(vdt_cluster_finish(c, &m, &q, NULL, NULL), 0);
+	assert_int_equal(vdt_cluster_finish(c, &m, &q, NULL, NULL, NULL), 0);
 	vdt_cluster_free(c);
 	/* Only the middle quad spans three cells: its two triangles, four cells. */
 	assert_int_equal(m.triangle_count, 2);
@@ -249,7 +249,7 @@ triangle_soup_welds(void **state)
 	grid22(&g);
 	assert_int_equal(vdt_cluster_new(&c, &g, 0, NULL), 0);
 	assert_int_equal(vdt_cluster_scan(c, ts, NULL, NULL), 0);
-	assert_int_equal(vdt_cluster_finish(c, &m, NULL, NULL, NULL), 0);
+	assert_int_equal(vdt_cluster_finish(c, &m, NULL, NULL, NULL, NULL), 0);
 	assert_int_equal(m.vertex_count, 4);
 	assert_memory_equal(m.triangles, want, sizeof(want));
 	vdt_mesh_free(&m);
@@ -279,10 +279,26 @@ output_triangles_are_unique(void **state)
 	put_tri(t + 18, b2, d, a);  /* rotated */
 	assert_int_equal(vdt_cluster_new(&c, &g, 0, NULL), 0);
 	assert_int_equal(vdt_cluster_add(c, t, 3, NULL), 0);
-	assert_int_equal(vdt_cluster_finish(c, &m, NULL, NULL, NULL), 0);
+	assert_int_equal(vdt_cluster_finish(c, &m, NULL, NULL, NULL, NULL), 0);
 	assert_int_equal(m.triangle_count, 1);
 	assert_memory_equal(m.triangles, want, sizeof(want));
 	vdt_mesh_free(&m);
+	vdt_cluster_free(c);
+}
+
+/* Cluster the n triangles of t on the d grid over box, with the border
+ * flags of the output. */
+static void
+cluster_on(const struct vdt_bbox *box, const uint32_t d[3], const double *t, size_t n,
+           struct vdt_mesh *m, uint8_t **border, struct vdt_cluster_stats *st)
+{
+	struct vdt_cluster_grid g;
+	struct vdt_cluster *c;
+
+	assert_int_equal(vdt_cluster_grid_dims(box, d, &g, NULL), 0);
+	assert_int_equal(vdt_cluster_new(&c, &g, 0, NULL), 0);
+	assert_int_equal(vdt_cluster_add(c, t, n, NULL), 0);
+	assert_int_equal(vdt_cluster_finish(c, m, NULL, border, st, NULL), 0);
 	vdt_cluster_free(c);
 }
 
@@ -301,12 +317,11 @@ boundary_edges_are_kept(void **state)
 {
 	struct vdt_bbox box = {{0, 0, 0}, {4, 4, 0}};
 	uint32_t d[3] = {4, 4, 1};
-	struct vdt_cluster_grid g;
 	struct vdt_cluster_stats st;
-	struct vdt_cluster *c;
 	struct vdt_mesh m;
 	double *t = malloc(512 * 9 * sizeof(double));
 	size_t n = 0, on_border = 0;
+	uint8_t *border;
 
 	(void)state;
 	for (int j = 0; j < 16; j++)
@@ -317,16 +332,14 @@ boundary_edges_are_kept(void **state)
 			put_tri(t + 9 * n++, p00, p10, p11);
 			put_tri(t + 9 * n++, p00, p11, p01);
 		}
-	assert_int_equal(vdt_cluster_grid_dims(&box, d, &g, NULL), 0);
-	assert_int_equal(vdt_cluster_new(&c, &g, 0, NULL), 0);
-	assert_int_equal(vdt_cluster_add(c, t, n, NULL), 0);
-	assert_int_equal(vdt_cluster_finish(c, &m, NULL, &st, NULL), 0);
+	cluster_on(&box, d, t, n, &m, &border, &st);
 	assert_int_equal(m.vertex_count, 16);
 	assert_int_equal(st.boundary_cells, 12);
 	for (size_t v = 0; v < m.vertex_count; v++) {
 		double x = m.positions[3 * v], y = m.positions[3 * v + 1];
 		int bx = x < 1 || x > 3, by = y < 1 || y > 3;
 
+		assert_int_equal(border[v], bx || by);
 		if (!(bx || by))
 			continue;
 		on_border++;
@@ -334,8 +347,70 @@ boundary_edges_are_kept(void **state)
 		            fabs(y - 4) < 1e-6);
 	}
 	assert_int_equal(on_border, 12);
+	free(border);
 	vdt_mesh_free(&m);
-	vdt_cluster_free(c);
+	free(t);
+}
+
+/*
+ * A closed slab, the square above at z = 0.1 and z = -0.1 joined by walls
+ * along its rim, on the same 4 x 4 grid, one cell thick: both sides fall
+ * in the same cells and come out as one sheet whose rim is open, but no
+ * cell holds a boundary of the input, so no vertex is flagged for phase II
+ * (which would otherwise hold the rim with boundary planes).
+ */
+static void
+thin_part_rim_is_no_boundary(void **state)
+{
+	struct vdt_bbox box = {{0, 0, -0.1}, {4, 4, 0.1}};
+	uint32_t d[3] = {4, 4, 1};
+	struct vdt_cluster_stats st;
+	struct vdt_mesh m;
+	double *t = malloc((1024 + 128) * 9 * sizeof(double));
+	size_t n = 0;
+	uint8_t *border;
+
+	(void)state;
+	for (int j = 0; j < 16; j++)
+		for (int i = 0; i < 16; i++)
+			for (int side = 0; side < 2; side++) {
+				double z = side ? -0.1 : 0.1;
+				double p00[3] = {i / 4.0, j / 4.0, z}, p10[3] = {(i + 1) / 4.0, j / 4.0, z},
+				       p01[3] = {i / 4.0, (j + 1) / 4.0, z},
+				       p11[3] = {(i + 1) / 4.0, (j + 1) / 4.0, z};
+				if (side == 0) {
+					put_tri(t + 9 * n++, p00, p10, p11);
+					put_tri(t + 9 * n++, p00, p11, p01);
+				} else {
+					put_tri(t + 9 * n++, p00, p11, p10);
+					put_tri(t + 9 * n++, p00, p01, p11);
+				}
+			}
+	/* The walls: 64 rim segments, outward faces, counter-clockwise seen
+	 * from above. */
+	for (int k = 0; k < 64; k++) {
+		int e = k / 16, i = k % 16;
+		double a[2], b[2];
+		const double s0 = i / 4.0, s1 = (i + 1) / 4.0;
+		switch (e) {
+		case 0: a[0] = s0; a[1] = 0; b[0] = s1; b[1] = 0; break;
+		case 1: a[0] = 4; a[1] = s0; b[0] = 4; b[1] = s1; break;
+		case 2: a[0] = 4 - s0; a[1] = 4; b[0] = 4 - s1; b[1] = 4; break;
+		default: a[0] = 0; a[1] = 4 - s0; b[0] = 0; b[1] = 4 - s1; break;
+		}
+		double al[3] = {a[0], a[1], -0.1}, bl[3] = {b[0], b[1], -0.1},
+		       ah[3] = {a[0], a[1], 0.1}, bh[3] = {b[0], b[1], 0.1};
+		put_tri(t + 9 * n++, al, bl, bh);
+		put_tri(t + 9 * n++, al, bh, ah);
+	}
+	cluster_on(&box, d, t, n, &m, &border, &st);
+	assert_int_equal(m.vertex_count, 16);
+	assert_int_equal(m.triangle_count, 18);
+	assert_int_equal(st.boundary_cells, 0);
+	for (size_t v = 0; v < m.vertex_count; v++)
+		assert_int_equal(border[v], 0);
+	free(border);
+	vdt_mesh_free(&m);
 	free(t);
 }
 
@@ -573,6 +648,7 @@ main(void)
 		cmocka_unit_test(triangle_soup_welds),
 		cmocka_unit_test(output_triangles_are_unique),
 		cmocka_unit_test(boundary_edges_are_kept),
+		cmocka_unit_test(thin_part_rim_is_no_boundary),
 		cmocka_unit_test(target_rule),
 		cmocka_unit_test(ply_any_layout),
 		cmocka_unit_test(memory_limit),

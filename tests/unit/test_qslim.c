@@ -1,7 +1,8 @@
 /*
  * Unit tests of lib/qslim as vdt-qslim drives it: topology names, bounds in
  * percent of the bounding-box diagonal, and a mesh's stream chunks (QUAD
- * quadrics, the contraction record as SEQN) through vdt_qslim_extra.
+ * quadrics, BNDY boundary vertices, the contraction record as SEQN) through
+ * vdt_qslim_extra.
  * The attribute-aware cost has its own file, test_qslim_attr.c.
  */
 #include <stdarg.h>
@@ -167,6 +168,97 @@ extra_runs_with_the_chunk_quadrics(void **state)
 	vdt_mesh_free(&m);
 }
 
+/* A BNDY chunk for the n vertices of m: flag[i] for vertex i. */
+static void
+add_bndy_chunk(struct vdt_chunks *c, const uint8_t *flag, size_t n)
+{
+	unsigned char *data;
+	uint64_t len;
+
+	assert_int_equal(vdt_bndy_encode(flag, n, &data, &len, NULL), 0);
+	assert_int_equal(vdt_chunks_add(c, VDT_CHUNK_BNDY, data, len, NULL), 0);
+}
+
+/*
+ * With quadrics from phase I, the BNDY chunk says which open edges get
+ * boundary planes: none of a flat grid's when no vertex is listed (as with
+ * --boundary-weight 0), all when every one is (as without the chunk), and
+ * all again when every other one is, since an edge gets them when one of
+ * its ends is listed. --ignore-quadrics ignores the chunk too; one for
+ * another vertex count is refused.
+ */
+static void
+extra_border_decides_the_boundary_planes(void **state)
+{
+	struct vdt_mesh m, none, all, plain, free_b, every2;
+	struct vdt_chunks c = {0};
+	struct vdt_qslim_extra x;
+	struct vdt_qslim_opts o;
+	struct vdt_labl_scale_opts lo;
+	struct vdt_qslim_stats st;
+	struct vdt_err err = {0};
+	uint8_t flag[17 * 17];
+
+	(void)state;
+	shape_grid(&m, 16);
+	for (size_t i = 0; i < m.vertex_count; i++)
+		m.positions[3 * i + 2] = 0.01f * (float)((i * 7919) % 13); /* bumps */
+	vdt_qslim_defaults(&o);
+	vdt_labl_scale_defaults(&lo);
+	o.target_ratio = 0.1;
+
+	/* Listed: none, then all, then every other one (a checkerboard). */
+	for (int k = 0; k < 3; k++) {
+		struct vdt_mesh *out = k == 0 ? &none : k == 1 ? &all : &every2;
+		for (size_t i = 0; i < m.vertex_count; i++)
+			flag[i] = k == 1 || (k == 2 && (i % 17 + i / 17) % 2 == 0);
+		add_quad_chunk(&c, &m, m.vertex_count);
+		add_bndy_chunk(&c, flag, m.vertex_count);
+		assert_int_equal(vdt_qslim_extra_decode(&x, &c, m.vertex_count, 0, NULL), 0);
+		assert_non_null(x.border);
+		assert_int_equal(c.count, 0);
+		assert_int_equal(vdt_qslim_extra_run(&x, &m, &o, &lo, out, &st, NULL), 0);
+		vdt_qslim_extra_free(&x);
+	}
+	/* The same quadrics without the chunk, with and without planes. */
+	add_quad_chunk(&c, &m, m.vertex_count);
+	assert_int_equal(vdt_qslim_extra_decode(&x, &c, m.vertex_count, 0, NULL), 0);
+	assert_null(x.border);
+	assert_int_equal(vdt_qslim_extra_run(&x, &m, &o, &lo, &plain, &st, NULL), 0);
+	o.boundary_weight = 0;
+	assert_int_equal(vdt_qslim_extra_run(&x, &m, &o, &lo, &free_b, &st, NULL), 0);
+	vdt_qslim_extra_free(&x);
+	assert_same_mesh(&all, &plain);
+	assert_same_mesh(&every2, &all);
+	assert_same_mesh(&none, &free_b);
+	/* The planes matter here. */
+	assert_true(all.vertex_count != none.vertex_count ||
+	            memcmp(all.positions, none.positions, 12 * all.vertex_count) != 0);
+
+	/* Ignored with the quadrics; refused for another vertex count. */
+	add_quad_chunk(&c, &m, m.vertex_count);
+	add_bndy_chunk(&c, flag, m.vertex_count);
+	assert_int_equal(vdt_qslim_extra_decode(&x, &c, m.vertex_count, 1, &err), 0);
+	assert_null(x.quadrics);
+	assert_null(x.border);
+	vdt_qslim_extra_free(&x);
+	flag[m.vertex_count - 1] = 1;
+	add_quad_chunk(&c, &m, m.vertex_count - 1);
+	add_bndy_chunk(&c, flag, m.vertex_count);
+	assert_int_equal(vdt_qslim_extra_decode(&x, &c, m.vertex_count - 1, 0, &err), VDT_EINVAL);
+	assert_string_equal(err.msg, "boundary vertex 288 is out of range (288 vertices)");
+	assert_null(x.quadrics);
+	assert_null(x.border);
+	assert_int_equal(c.count, 2);
+	vdt_chunks_free(&c);
+	vdt_mesh_free(&none);
+	vdt_mesh_free(&all);
+	vdt_mesh_free(&plain);
+	vdt_mesh_free(&free_b);
+	vdt_mesh_free(&every2);
+	vdt_mesh_free(&m);
+}
+
 /*
  * With o.record, a record is written even of no contraction (a ratio of
  * 1): a SEQN chunk of a u64 count of 0; without it, no chunk.
@@ -209,6 +301,7 @@ main(void)
 		cmocka_unit_test(percent_bounds_are_of_the_diagonal),
 		cmocka_unit_test(extra_refuses_quadrics_of_another_mesh),
 		cmocka_unit_test(extra_runs_with_the_chunk_quadrics),
+		cmocka_unit_test(extra_border_decides_the_boundary_planes),
 		cmocka_unit_test(extra_records_only_when_asked),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -1,7 +1,7 @@
 /*
  * test_stream.c - the vdt stream of vdt(5): round trips, pass-through, the
- * chunk reader on a pipe, the golden v1 fixture (which every later version
- * must still decode), and rejection of every kind of damage.
+ * chunk reader on a pipe, the golden v1.0 and v1.1 fixtures (which every
+ * later version must still decode), and rejection of every kind of damage.
  */
 #include <stdarg.h>
 #include <stddef.h>
@@ -47,17 +47,41 @@
  *   548     XTRA   5        05bcd1d3
  *   569     END    0        58f17d10
  */
-static const struct {
+struct golden_chunk {
 	uint32_t type;
 	uint64_t offset, length;
 	uint32_t crc;
-} golden_chunks[] = {
+};
+
+static const struct golden_chunk golden_chunks[] = {
 	{VDT_CHUNK_MESH, 12, 144, 0x97fb1809},
 	{VDT_CHUNK_QUAD, 172, 360, 0x62a2b0fe},
 	{XTRA, 548, 5, 0x05bcd1d3},
 	{VDT_CHUNK_END, 569, 0, 0x58f17d10},
 };
 #define GOLDEN_LEN 585
+
+/*
+ * tests/data/golden-v1.1.vdt (617 bytes): the same, version 1.1, with a
+ * BNDY chunk after the QUAD chunk listing vertices 1 and 3 (u64 2, u32 1,
+ * u32 3).
+ *
+ *   offset  chunk  payload  CRC-32
+ *   0       header: signature, version 1.1
+ *   12      MESH   144      97fb1809
+ *   172     QUAD   360      62a2b0fe
+ *   548     BNDY   16       eaade288
+ *   580     XTRA   5        05bcd1d3
+ *   601     END    0        58f17d10
+ */
+static const struct golden_chunk golden11_chunks[] = {
+	{VDT_CHUNK_MESH, 12, 144, 0x97fb1809},
+	{VDT_CHUNK_QUAD, 172, 360, 0x62a2b0fe},
+	{VDT_CHUNK_BNDY, 548, 16, 0xeaade288},
+	{XTRA, 580, 5, 0x05bcd1d3},
+	{VDT_CHUNK_END, 601, 0, 0x58f17d10},
+};
+#define GOLDEN11_LEN 617
 
 static const float golden_positions[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
 static const float golden_normals[] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
@@ -83,17 +107,23 @@ slurp(const char *path, size_t *len)
 }
 
 static unsigned char *
-golden(size_t *len)
+fixture(const char *name, size_t want, size_t *len)
 {
 	char path[4096];
 	const char *slash = strrchr(__FILE__, '/');
 
 	/* Beside this file: tests/unit/../data. */
-	snprintf(path, sizeof(path), "%.*s/../data/golden-v1.vdt",
-	         slash ? (int)(slash - __FILE__) : 1, slash ? __FILE__ : ".");
+	snprintf(path, sizeof(path), "%.*s/../data/%s", slash ? (int)(slash - __FILE__) : 1,
+	         slash ? __FILE__ : ".", name);
 	unsigned char *buf = slurp(path, len);
-	assert_int_equal(*len, GOLDEN_LEN);
+	assert_int_equal(*len, want);
 	return buf;
+}
+
+static unsigned char *
+golden(size_t *len)
+{
+	return fixture("golden-v1.vdt", GOLDEN_LEN, len);
 }
 
 /* Write chunks as a whole stream into memory. */
@@ -165,6 +195,27 @@ reader_rc(const unsigned char *buf, size_t len, struct vdt_err *err)
 	return rc;
 }
 
+/* A fixture's n chunks (the end chunk last) are where table t says, and
+ * decode to the same list in *c. */
+static void
+check_chunks(const unsigned char *buf, size_t len, const struct golden_chunk *t, size_t n,
+             struct vdt_chunks *c)
+{
+	for (size_t i = 0; i < n; i++) {
+		uint64_t at = t[i].offset;
+		assert_int_equal(vdt_get_u32le(buf + at), t[i].type);
+		assert_int_equal(vdt_get_u64le(buf + at + 4), t[i].length);
+		assert_int_equal(vdt_get_u32le(buf + at + 12 + t[i].length), t[i].crc);
+	}
+	assert_int_equal(vdt_stream_decode(buf, len, c, NULL), 0);
+	assert_int_equal(c->count, n - 1);
+	for (size_t i = 0; i + 1 < n; i++) {
+		assert_int_equal(c->items[i].type, t[i].type);
+		assert_int_equal(c->items[i].offset, t[i].offset);
+		assert_int_equal(c->items[i].length, t[i].length);
+	}
+}
+
 static void
 golden_decode(void **state)
 {
@@ -178,20 +229,7 @@ golden_decode(void **state)
 
 	(void)state;
 	assert_memory_equal(buf, "\x89VDT\r\n\x1a\n\x01\x00\x00\x00", 12);
-	for (size_t i = 0; i < 4; i++) {
-		uint64_t at = golden_chunks[i].offset;
-		assert_int_equal(vdt_get_u32le(buf + at), golden_chunks[i].type);
-		assert_int_equal(vdt_get_u64le(buf + at + 4), golden_chunks[i].length);
-		assert_int_equal(vdt_get_u32le(buf + at + 12 + golden_chunks[i].length),
-		                 golden_chunks[i].crc);
-	}
-	assert_int_equal(vdt_stream_decode(buf, len, &c, &err), 0);
-	assert_int_equal(c.count, 3);
-	for (size_t i = 0; i < 3; i++) {
-		assert_int_equal(c.items[i].type, golden_chunks[i].type);
-		assert_int_equal(c.items[i].offset, golden_chunks[i].offset);
-		assert_int_equal(c.items[i].length, golden_chunks[i].length);
-	}
+	check_chunks(buf, len, golden_chunks, 4, &c);
 
 	assert_int_equal(vdt_mesh_decode(c.items[0].data, c.items[0].length, &m, &err), 0);
 	assert_int_equal(m.vertex_count, 4);
@@ -220,16 +258,37 @@ golden_decode(void **state)
 	free(buf);
 }
 
+/* Version 1.1 adds the BNDY chunk; version 1.0 decodes as before. */
+static void
+golden11_decode(void **state)
+{
+	size_t len;
+	unsigned char *buf = fixture("golden-v1.1.vdt", GOLDEN11_LEN, &len);
+	struct vdt_chunks c;
+	struct vdt_err err = {0};
+	uint8_t *flags;
+
+	(void)state;
+	assert_memory_equal(buf, "\x89VDT\r\n\x1a\n\x01\x00\x01\x00", 12);
+	check_chunks(buf, len, golden11_chunks, 5, &c);
+	assert_int_equal(vdt_bndy_decode(c.items[2].data, c.items[2].length, 4, &flags, &err), 0);
+	assert_memory_equal(flags, "\0\1\0\1", 4);
+	free(flags);
+	vdt_chunks_free(&c);
+	free(buf);
+}
+
 /* Encoding the decoded values again must give the fixture byte for byte. */
 static void
 golden_reencode(void **state)
 {
 	size_t len, outlen;
-	unsigned char *buf = golden(&len), *out, *d;
+	unsigned char *buf = fixture("golden-v1.1.vdt", GOLDEN11_LEN, &len), *out, *d;
 	struct vdt_chunks c = {0};
 	struct vdt_quadric q[4];
 	struct vdt_err err = {0};
 	uint64_t n;
+	static const uint8_t border[4] = {0, 1, 0, 1};
 	struct vdt_mesh m = {
 		.vertex_count = 4, .positions = (float *)golden_positions,
 		.normals = (float *)golden_normals, .triangle_count = 2,
@@ -245,6 +304,8 @@ golden_reencode(void **state)
 	assert_int_equal(vdt_chunks_add(&c, VDT_CHUNK_MESH, d, n, &err), 0);
 	assert_int_equal(vdt_quad_encode(q, 4, &d, &n, &err), 0);
 	assert_int_equal(vdt_chunks_add(&c, VDT_CHUNK_QUAD, d, n, &err), 0);
+	assert_int_equal(vdt_bndy_encode(border, 4, &d, &n, &err), 0);
+	assert_int_equal(vdt_chunks_add(&c, VDT_CHUNK_BNDY, d, n, &err), 0);
 	d = malloc(5);
 	memcpy(d, "extra", 5);
 	assert_int_equal(vdt_chunks_add(&c, XTRA, d, 5, &err), 0);
@@ -259,6 +320,18 @@ golden_reencode(void **state)
 	out = encode_stream(&c, &outlen);
 	assert_int_equal(outlen, len);
 	assert_memory_equal(out, buf, len);
+	free(out);
+	vdt_chunks_free(&c);
+	free(buf);
+
+	/* A 1.0 stream comes out the same but for the version written. */
+	buf = golden(&len);
+	assert_int_equal(vdt_stream_decode(buf, len, &c, &err), 0);
+	out = encode_stream(&c, &outlen);
+	assert_int_equal(outlen, len);
+	assert_int_equal(vdt_get_u16le(out + 10), VDT_STREAM_MINOR);
+	assert_memory_equal(out, buf, 10);
+	assert_memory_equal(out + 12, buf + 12, len - 12);
 	free(out);
 	vdt_chunks_free(&c);
 	free(buf);
@@ -712,7 +785,7 @@ bad_version_and_crc(void **state)
 	(void)state;
 	vdt_put_u16le(buf + 8, 2);
 	assert_int_equal(decode_rc(buf, len, &err), VDT_EVERSION);
-	assert_string_equal(err.msg, "version 2.0 at byte 8 is newer than this reader (1.0)");
+	assert_string_equal(err.msg, "version 2.0 at byte 8 is newer than this reader (1.1)");
 	vdt_put_u16le(buf + 8, 0);
 	assert_int_equal(decode_rc(buf, len, &err), VDT_EFORMAT);
 	vdt_put_u16le(buf + 8, 1);
@@ -890,6 +963,50 @@ bad_quad(void **state)
 	free(d);
 }
 
+/* BNDY: flags to a list of vertices and back; every damage refused. */
+static void
+bndy_chunk(void **state)
+{
+	static const uint8_t flags[6] = {0, 1, 1, 0, 0, 7};
+	struct vdt_err err = {0};
+	unsigned char *d;
+	uint64_t n;
+	uint8_t *back;
+
+	(void)state;
+	assert_int_equal(vdt_bndy_encode(flags, 6, &d, &n, &err), 0);
+	assert_int_equal(n, 8 + 3 * 4);
+	assert_int_equal(vdt_get_u64le(d), 3);
+	assert_int_equal(vdt_get_u32le(d + 8), 1);
+	assert_int_equal(vdt_get_u32le(d + 16), 5);
+	assert_int_equal(vdt_bndy_decode(d, n, 6, &back, &err), 0);
+	assert_memory_equal(back, "\0\1\1\0\0\1", 6);
+	free(back);
+
+	for (uint64_t k = 0; k < n; k++)
+		assert_int_equal(vdt_bndy_decode(d, k, 6, &back, &err), VDT_EFORMAT);
+	assert_int_equal(vdt_bndy_decode(d, n, 5, &back, &err), VDT_EINVAL);
+	assert_string_equal(err.msg, "boundary vertex 5 is out of range (5 vertices)");
+	vdt_put_u32le(d + 12, 1);
+	assert_int_equal(vdt_bndy_decode(d, n, 6, &back, &err), VDT_EINVAL);
+	assert_string_equal(err.msg, "boundary vertex 1 is out of order");
+	vdt_put_u64le(d, 4);
+	assert_int_equal(vdt_bndy_decode(d, n, 6, &back, &err), VDT_EFORMAT);
+	assert_string_equal(err.msg, "4 vertex indices of 4 bytes do not fill a payload of 20 bytes");
+	vdt_put_u64le(d, UINT64_MAX / 4 + 4); /* wraps to a small product */
+	assert_int_equal(vdt_bndy_decode(d, n, 6, &back, &err), VDT_EFORMAT);
+	assert_null(back);
+	free(d);
+
+	/* No boundary at all is well formed. */
+	assert_int_equal(vdt_bndy_encode(flags, 1, &d, &n, &err), 0);
+	assert_int_equal(n, 8);
+	assert_int_equal(vdt_bndy_decode(d, n, 1, &back, &err), 0);
+	assert_memory_equal(back, "\0", 1);
+	free(back);
+	free(d);
+}
+
 static void
 reader_misuse(void **state)
 {
@@ -953,6 +1070,7 @@ main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(golden_decode),
+		cmocka_unit_test(golden11_decode),
 		cmocka_unit_test(golden_reencode),
 		cmocka_unit_test(mesh_round_trip),
 		cmocka_unit_test(quad_round_trip),
@@ -966,6 +1084,7 @@ main(void)
 		cmocka_unit_test(bad_framing),
 		cmocka_unit_test(bad_mesh),
 		cmocka_unit_test(bad_quad),
+		cmocka_unit_test(bndy_chunk),
 		cmocka_unit_test(reader_misuse),
 		cmocka_unit_test(writer_and_names),
 	};
