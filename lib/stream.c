@@ -411,8 +411,8 @@ vdt_chunks_remove(struct vdt_chunks *c, uint32_t type)
 void
 vdt_chunks_drop_vertex_data(struct vdt_chunks *c)
 {
-	static const uint32_t types[] = {VDT_CHUNK_QUAD, VDT_CHUNK_BNDY, VDT_CHUNK_LABL, VDT_CHUNK_VTRE,
-	                                 VDT_CHUNK_FRMS, VDT_CHUNK_SEQN};
+	static const uint32_t types[] = {VDT_CHUNK_QUAD, VDT_CHUNK_BNDY, VDT_CHUNK_LABL,
+	                                 VDT_CHUNK_VTRE, VDT_CHUNK_FRMS, VDT_CHUNK_SEQN};
 
 	for (size_t i = 0; i < sizeof(types) / sizeof(types[0]); i++)
 		vdt_chunks_remove(c, types[i]);

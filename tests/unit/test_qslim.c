@@ -179,13 +179,32 @@ add_bndy_chunk(struct vdt_chunks *c, const uint8_t *flag, size_t n)
 	assert_int_equal(vdt_chunks_add(c, VDT_CHUNK_BNDY, data, len, NULL), 0);
 }
 
+/* How many of the 17 x 17 grid m's border vertices are, exactly, in out. */
+static size_t
+kept_border(const struct vdt_mesh *m, const struct vdt_mesh *out)
+{
+	size_t kept = 0;
+
+	for (size_t i = 0; i < m->vertex_count; i++) {
+		if (i % 17 != 0 && i % 17 != 16 && i / 17 != 0 && i / 17 != 16)
+			continue;
+		for (size_t v = 0; v < out->vertex_count; v++)
+			if (memcmp(out->positions + 3 * v, m->positions + 3 * i, 12) == 0) {
+				kept++;
+				break;
+			}
+	}
+	return kept;
+}
+
 /*
  * With quadrics from phase I, the BNDY chunk says which open edges get
  * boundary planes: none of a flat grid's when no vertex is listed (as with
  * --boundary-weight 0), all when every one is (as without the chunk), and
  * all again when every other one is, since an edge gets them when one of
- * its ends is listed. --ignore-quadrics ignores the chunk too; one for
- * another vertex count is refused.
+ * its ends is listed; --lock-border locks only listed vertices.
+ * --ignore-quadrics ignores the chunk too; one for another vertex count is
+ * refused.
  */
 static void
 extra_border_decides_the_boundary_planes(void **state)
@@ -218,6 +237,20 @@ extra_border_decides_the_boundary_planes(void **state)
 		assert_non_null(x.border);
 		assert_int_equal(c.count, 0);
 		assert_int_equal(vdt_qslim_extra_run(&x, &m, &o, &lo, out, &st, NULL), 0);
+		/* --lock-border locks the listed boundary only. */
+		if (k < 2) {
+			struct vdt_mesh locked;
+			o.lock_border = 1;
+			assert_int_equal(vdt_qslim_extra_run(&x, &m, &o, &lo, &locked, &st, NULL), 0);
+			o.lock_border = 0;
+			if (k == 0) {
+				assert_same_mesh(&locked, out);
+				assert_true(kept_border(&m, out) < 64);
+			} else {
+				assert_int_equal(kept_border(&m, &locked), 64);
+			}
+			vdt_mesh_free(&locked);
+		}
 		vdt_qslim_extra_free(&x);
 	}
 	/* The same quadrics without the chunk, with and without planes. */
