@@ -30,7 +30,12 @@ one_line() {
 # splice_labl STREAM OTHER OUT: STREAM's chunks with OTHER's LABL chunk in
 # place of its own (CRCs recomputed), for label/mesh mismatch tests.
 splice_labl() {
-	python3 - "$1" "$2" "$3" <<'PY'
+	splice_chunk LABL "$@"
+}
+
+# splice_chunk TYPE STREAM OTHER OUT: the same for the chunk of type TYPE.
+splice_chunk() {
+	python3 - "$2" "$3" "$4" "$1" <<'PY'
 import struct, sys, zlib
 def chunks(b):
     o, out = 12, []
@@ -40,8 +45,9 @@ def chunks(b):
         if t == b'END ': return out
 s = chunks(open(sys.argv[1], 'rb').read()); t = chunks(open(sys.argv[2], 'rb').read())
 b = open(sys.argv[1], 'rb').read()[:12]
-keep = [c for c in s if c[0] not in (b'LABL', b'END ')]
-for ty, p in keep + [[c for c in t if c[0] == b'LABL'][0], (b'END ', b'')]:
+ty = sys.argv[4].encode()
+keep = [c for c in s if c[0] not in (ty, b'END ')]
+for ty, p in keep + [[c for c in t if c[0] == ty][0], (b'END ', b'')]:
     b += ty + struct.pack('<Q', len(p)) + p + struct.pack('<I', zlib.crc32(ty + p))
 open(sys.argv[3], 'wb').write(b)
 PY

@@ -230,6 +230,20 @@ load helpers
 	[ "$status" -eq 2 ]
 }
 
+@test "vdt-qslim rejects a BNDY chunk for another mesh with status 2" {
+	"$BIN/vdt-cluster" -g 4 "$SAMPLES/sphere.off" -o "$TMP/s.vdq"
+	"$BIN/vdt-cluster" -g 16 "$SAMPLES/open.off" -o "$TMP/o.vdq"
+	# splice: the open sheet's boundary list after the sphere's MESH
+	splice_chunk BNDY "$TMP/s.vdq" "$TMP/o.vdq" "$TMP/bad.vdq"
+	run "$BIN/vdt-qslim" -r 0.5 "$TMP/bad.vdq" -o "$TMP/x.off"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"bad.vdq"*"boundary vertices for"* ]]
+	[ ! -e "$TMP/x.off" ]
+	# --ignore-quadrics ignores it with the quadrics
+	"$BIN/vdt-qslim" -q -r 0.5 --ignore-quadrics "$TMP/bad.vdq" -o "$TMP/x.off"
+}
+
 @test "vdt-qslim options change what they say they change" {
 	# --boundary-weight: the planes along open edges hold the border
 	"$BIN/vdt-qslim" -q -r 0.1 --boundary-weight 0 "$SAMPLES/open.off" -o "$TMP/bw0.off"
