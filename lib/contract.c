@@ -1615,7 +1615,6 @@ tally(struct ptally *t, int made, double cost)
  * of threads.
  */
 #define PASS_RUN_MIN 1024    /* claimed pairs per thread, at least */
-#define PASS_ROUND_MIN 16384 /* pairs in a round, at least (room permitting) */
 #define PASS_FIT_START 24    /* pool entries a pair's merged list may take */
 
 static uint32_t
