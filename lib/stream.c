@@ -746,9 +746,6 @@ vdt_bndy_encode(const uint8_t *flags, size_t vertex_count, unsigned char **data,
 
 	*data = NULL;
 	*length = 0;
-	if (vertex_count > UINT32_MAX)
-		return vdt_err_set(err, VDT_EINVAL, "%zu vertices do not fit a BNDY chunk",
-		                   vertex_count);
 	for (size_t v = 0; v < vertex_count; v++)
 		k += flags[v] != 0;
 	if ((buf = malloc(8 + 4 * k)) == NULL)

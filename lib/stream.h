@@ -199,7 +199,8 @@ int vdt_quad_decode(const unsigned char *data, uint64_t length,
  * BNDY chunk payload: u64 count K, then K u32 vertex indices in increasing
  * order: the vertices of the MESH chunk that lie on an open boundary of the
  * surface the mesh was made from. Encoding takes one flag per vertex
- * (nonzero: listed). Decoding requires 4K == length - 8 (VDT_EFORMAT) and
+ * (nonzero: listed) of a mesh, whose vertex count is below 2^32
+ * (vdt_mesh_validate). Decoding requires 4K == length - 8 (VDT_EFORMAT) and
  * indices increasing and below vertex_count (VDT_EINVAL), and gives one flag
  * per vertex in *flags (malloc'ed, 0 or 1; NULL when vertex_count is 0).
  */

@@ -77,7 +77,9 @@ percent_bounds_are_of_the_diagonal(void **state)
 	vdt_mesh_free(&m);
 }
 
-/* A QUAD chunk of n tangent-plane quadrics for the sphere's n vertices. */
+/* A QUAD chunk of n quadrics, one per vertex of m (cycling): the plane
+ * whose normal is the vertex's position, at offset -1 (on the unit sphere,
+ * its tangent plane). */
 static void
 add_quad_chunk(struct vdt_chunks *c, const struct vdt_mesh *m, size_t n)
 {
