@@ -1158,6 +1158,30 @@ vertex_queue_init(struct engine *e)
 
 /* ---- contraction ---- */
 
+/*
+ * Vertices a contraction left without a face (vertex queue only): the third
+ * corners of its removed faces, and keep itself, on an open or
+ * non-manifold surface (a strip's end, a lone triangle). They are no longer
+ * in the mesh, so they leave the live count that target_vertices reads;
+ * with no face they have no pair, and so are never contracted again.
+ */
+static size_t
+orphans(const struct engine *e, const struct work *w, uint32_t keep)
+{
+	size_t n = e->vt[keep].len == 0;
+
+	for (size_t i = 0; i < w->wing_len; i++) {
+		uint32_t x = w->wing[i];
+		size_t j = 0;
+		if (e->vt[x].len != 0 || x == keep)
+			continue;
+		while (j < i && w->wing[j] != x)
+			j++;
+		n += j == i;
+	}
+	return n;
+}
+
 static int
 contract(struct engine *e, struct work *w, uint32_t keep, uint32_t gone,
          const double dpos[3], double cost)
@@ -1208,6 +1232,7 @@ contract(struct engine *e, struct work *w, uint32_t keep, uint32_t gone,
 		e->vflag[gone] |= V_DEAD;
 		e->parent[gone] = keep;
 		w->dead_verts++;
+		w->dead_verts += orphans(e, w, keep);
 		if (e->ops->merged)
 			e->ops->merged(e->ops->ctx, keep, gone, dpos, cost);
 		return e->passes ? 0 : vertex_merged(e, keep, gone);

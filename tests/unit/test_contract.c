@@ -51,6 +51,45 @@ tetrahedron_is_irreducible(void **state)
 	vdt_contract_result_free(&r);
 }
 
+/*
+ * A contraction can leave vertices without a face: the edge of a lone
+ * triangle takes all three. A vertex target counts the vertices still in
+ * the mesh, so four lone triangles taken to 9 vertices lose one triangle,
+ * not three.
+ */
+static void
+vertex_target_counts_orphans(void **state)
+{
+	float p[36];
+	uint32_t t[12];
+	struct vdt_mesh m = {12, p, NULL, NULL, NULL, 4, t};
+	struct vdt_contract_opts o;
+	struct vdt_contract_result r;
+	uint8_t used[12] = {0};
+	size_t live = 0;
+
+	(void)state;
+	for (uint32_t i = 0; i < 4; i++) {
+		float s = 1.0f + (float)i; /* the smallest goes first */
+		float q[9] = {10.0f * (float)i, 0, 0, 10.0f * (float)i + s, 0, 0, 10.0f * (float)i, s, 0};
+		memcpy(p + 9 * i, q, sizeof(q));
+		for (uint32_t k = 0; k < 3; k++)
+			t[3 * i + k] = 3 * i + k;
+	}
+	vdt_contract_defaults(&o);
+	o.target_triangles = SIZE_MAX;
+	o.target_vertices = 9;
+	assert_int_equal(vdt_contract_run(&m, &length_ops, &o, &r, NULL), 0);
+	assert_int_equal(r.contractions, 1);
+	assert_int_equal(r.triangle_count, 3);
+	for (size_t i = 0; i < 3 * r.triangle_count; i++)
+		live += !used[r.triangles[i]]++;
+	assert_int_equal(live, 9);
+	assert_int_equal(r.live_vertices, 9);
+	assert_true(r.reached_target);
+	vdt_contract_result_free(&r);
+}
+
 /* An icosphere contracted as far as it goes stays a closed oriented manifold
  * and ends at a tetrahedron. */
 static void
@@ -965,6 +1004,7 @@ main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(tetrahedron_is_irreducible),
+		cmocka_unit_test(vertex_target_counts_orphans),
 		cmocka_unit_test(sphere_stays_manifold),
 		cmocka_unit_test(fold_over_is_refused),
 		cmocka_unit_test(non_manifold_edge_is_kept),
