@@ -1,6 +1,7 @@
 /*
  * report.c - the report of a measurement: a table, key=value pairs or
- * JSON, the latter two the same fourteen keys in the same order.
+ * JSON, the latter two the same sixteen keys in the same order: fourteen
+ * numbers, then the two points where the Hausdorff distances are reached.
  */
 #include "report.h"
 
@@ -29,6 +30,11 @@ vdt_report_write(FILE *f, const struct vdt_measure_result *r, enum vdt_report_fo
 			        i ? (json ? ", " : " ") : (json ? "{" : ""), keys[i]);
 			fprintf(f, i >= 10 && i <= 12 ? "%.0f" : "%.6g", v[i]);
 		}
+		for (int i = 0; i < 2; i++) {
+			const double *p = i ? r->ba.max_at : r->ab.max_at;
+			fprintf(f, json ? ", \"%s\": [%.6g, %.6g, %.6g]" : " %s=%.6g,%.6g,%.6g",
+			        i ? "ba_hausdorff_at" : "ab_hausdorff_at", p[0], p[1], p[2]);
+		}
 		fputs(json ? "}\n" : "\n", f);
 		return;
 	}
@@ -39,4 +45,10 @@ vdt_report_write(FILE *f, const struct vdt_measure_result *r, enum vdt_report_fo
 		       rows[i]->rms, rows[i]->rms * pct);
 	fprintf(f, "diagonal of A %.6g, %.0f samples, %zu of %zu faces of B flipped\n", r->diag,
 	       v[10], r->normals.flipped, r->normals.faces);
+	fprintf(f, "farthest: A->B at (%.6g, %.6g, %.6g)", r->ab.max_at[0], r->ab.max_at[1],
+	        r->ab.max_at[2]);
+	if (!one_sided)
+		fprintf(f, ", B->A at (%.6g, %.6g, %.6g)", r->ba.max_at[0], r->ba.max_at[1],
+		        r->ba.max_at[2]);
+	fputc('\n', f);
 }

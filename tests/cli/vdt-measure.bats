@@ -71,10 +71,10 @@ near() {
 	[ "$status" -eq 0 ]
 	[ "$(printf '%s\n' "$output" | wc -l)" -eq 1 ]
 	for k in hausdorff hausdorff_pct mean mean_pct rms rms_pct ab_hausdorff ab_rms \
-		ba_hausdorff ba_rms samples flipped faces diag; do
+		ba_hausdorff ba_rms samples flipped faces diag ab_hausdorff_at ba_hausdorff_at; do
 		[ -n "$(kv $k)" ]
 	done
-	[ "$(printf '%s\n' "$output" | tr ' ' '\n' | wc -l)" -eq 14 ]
+	[ "$(printf '%s\n' "$output" | tr ' ' '\n' | wc -l)" -eq 16 ]
 }
 
 @test "vdt-measure json has the same keys" {
@@ -84,8 +84,25 @@ near() {
 import json, sys
 d = json.load(sys.stdin)
 assert list(d) == ["hausdorff", "hausdorff_pct", "mean", "mean_pct", "rms", "rms_pct",
-    "ab_hausdorff", "ab_rms", "ba_hausdorff", "ba_rms", "samples", "flipped", "faces", "diag"]
-assert abs(d["hausdorff"] - 0.25) < 1e-6 and d["samples"] == 4000'
+    "ab_hausdorff", "ab_rms", "ba_hausdorff", "ba_rms", "samples", "flipped", "faces", "diag",
+    "ab_hausdorff_at", "ba_hausdorff_at"]
+assert abs(d["hausdorff"] - 0.25) < 1e-6 and d["samples"] == 4000
+assert len(d["ab_hausdorff_at"]) == 3 and len(d["ba_hausdorff_at"]) == 3'
+}
+
+# The sphere with its first vertex pulled out to twice its radius: B is
+# farthest from A at the spike's tip, A farthest from B where the vertex was.
+@test "vdt-measure says where each Hausdorff distance is reached" {
+	sed '3s/.*/-1.051462174 1.701301574 0/' "$SAMPLES/sphere.off" > "$TMP/spike.off"
+	run "$BIN/vdt-measure" --format=kv -n 10000 "$SAMPLES/sphere.off" "$TMP/spike.off"
+	[ "$status" -eq 0 ]
+	[ "$(kv ab_hausdorff_at)" = "-0.525731,0.850651,0" ]
+	[ "$(kv ba_hausdorff_at)" = "-1.05146,1.7013,0" ]
+	run "$BIN/vdt-measure" -n 10000 "$SAMPLES/sphere.off" "$TMP/spike.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"farthest: A->B at (-0.525731, 0.850651, 0), B->A at (-1.05146, 1.7013, 0)" ]]
+	run "$BIN/vdt-measure" -1 -n 10000 "$SAMPLES/sphere.off" "$TMP/spike.off"
+	[[ "$output" == *"farthest: A->B at (-0.525731, 0.850651, 0)" ]]
 }
 
 @test "vdt-measure gives 0 for identical meshes" {

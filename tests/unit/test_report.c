@@ -21,11 +21,14 @@
  *   B->A       0.25        0.05   0.1    2 + 8
  *   symmetric  0.5         0.1    0.2
  *
- * and 1 of B's 4 faces flipped.
+ * and 1 of B's 4 faces flipped; A->B reaches its Hausdorff distance at
+ * (1, 2, 3) on A, B->A at (-0.5, 0, 4) on B.
  */
 static const struct vdt_measure_result result = {
-	.ab = {.max = 0.5, .mean = 0.1, .rms = 0.2, .vertex_samples = 3, .face_samples = 7},
-	.ba = {.max = 0.25, .mean = 0.05, .rms = 0.1, .vertex_samples = 2, .face_samples = 8},
+	.ab = {.max = 0.5, .mean = 0.1, .rms = 0.2, .max_at = {1, 2, 3}, .vertex_samples = 3,
+	       .face_samples = 7},
+	.ba = {.max = 0.25, .mean = 0.05, .rms = 0.1, .max_at = {-0.5, 0, 4}, .vertex_samples = 2,
+	       .face_samples = 8},
 	.max = 0.5,
 	.mean = 0.1,
 	.rms = 0.2,
@@ -59,11 +62,13 @@ text_table(void **state)
 	        "A->B                0.5 (5.0000%)          0.1 (1.0000%)          0.2 (2.0000%)\n"
 	        "B->A               0.25 (2.5000%)         0.05 (0.5000%)          0.1 (1.0000%)\n"
 	        "symmetric           0.5 (5.0000%)          0.1 (1.0000%)          0.2 (2.0000%)\n"
-	        "diagonal of A 10, 20 samples, 1 of 4 faces of B flipped\n");
+	        "diagonal of A 10, 20 samples, 1 of 4 faces of B flipped\n"
+	        "farthest: A->B at (1, 2, 3), B->A at (-0.5, 0, 4)\n");
 	free(s);
 }
 
-/* One-sided: the row A->B alone; the totals line is the same. */
+/* One-sided: the row A->B alone, and its farthest point alone; the totals
+ * line is the same. */
 static void
 one_sided_table(void **state)
 {
@@ -74,7 +79,8 @@ one_sided_table(void **state)
 	assert_string_equal(s,
 	        "                        hausdorff                   mean                    rms\n"
 	        "A->B                0.5 (5.0000%)          0.1 (1.0000%)          0.2 (2.0000%)\n"
-	        "diagonal of A 10, 20 samples, 1 of 4 faces of B flipped\n");
+	        "diagonal of A 10, 20 samples, 1 of 4 faces of B flipped\n"
+	        "farthest: A->B at (1, 2, 3)\n");
 	free(s);
 }
 
@@ -87,7 +93,8 @@ kv_line(void **state)
 	s = report(&result, VDT_REPORT_KV, 0);
 	assert_string_equal(s, "hausdorff=0.5 hausdorff_pct=5 mean=0.1 mean_pct=1 rms=0.2 "
 	                       "rms_pct=2 ab_hausdorff=0.5 ab_rms=0.2 ba_hausdorff=0.25 "
-	                       "ba_rms=0.1 samples=20 flipped=1 faces=4 diag=10\n");
+	                       "ba_rms=0.1 samples=20 flipped=1 faces=4 diag=10 "
+	                       "ab_hausdorff_at=1,2,3 ba_hausdorff_at=-0.5,0,4\n");
 	free(s);
 }
 
@@ -103,7 +110,8 @@ json_object(void **state)
 	                       "\"mean_pct\": 1, \"rms\": 0.2, \"rms_pct\": 2, "
 	                       "\"ab_hausdorff\": 0.5, \"ab_rms\": 0.2, \"ba_hausdorff\": 0.25, "
 	                       "\"ba_rms\": 0.1, \"samples\": 20, \"flipped\": 1, \"faces\": 4, "
-	                       "\"diag\": 10}\n");
+	                       "\"diag\": 10, \"ab_hausdorff_at\": [1, 2, 3], "
+	                       "\"ba_hausdorff_at\": [-0.5, 0, 4]}\n");
 	free(s);
 }
 
@@ -119,7 +127,8 @@ zero_diagonal(void **state)
 	s = report(&r, VDT_REPORT_KV, 0);
 	assert_string_equal(s, "hausdorff=0.5 hausdorff_pct=0 mean=0.1 mean_pct=0 rms=0.2 "
 	                       "rms_pct=0 ab_hausdorff=0.5 ab_rms=0.2 ba_hausdorff=0.25 "
-	                       "ba_rms=0.1 samples=20 flipped=1 faces=4 diag=0\n");
+	                       "ba_rms=0.1 samples=20 flipped=1 faces=4 diag=0 "
+	                       "ab_hausdorff_at=1,2,3 ba_hausdorff_at=-0.5,0,4\n");
 	free(s);
 }
 
