@@ -1027,7 +1027,8 @@ vertex_merged(struct engine *e, uint32_t keep, uint32_t gone)
 	long n = vertex_pairs(e, keep);
 	if (n < 0 || vcost_reserve(&e->vk, &e->vk_cap, (size_t)n) != 0)
 		return -1;
-	memcpy(e->vk, e->vn, (size_t)n * sizeof(*e->vk));
+	if (n > 0) /* none when keep lost its last face */
+		memcpy(e->vk, e->vn, (size_t)n * sizeof(*e->vk));
 
 	struct top2 t = {NONE, NONE, INFINITY, INFINITY};
 	for (long i = 0; i < n; i++) {
