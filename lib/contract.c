@@ -1174,7 +1174,7 @@ orphans(const struct engine *e, const struct work *w, uint32_t keep)
 	for (size_t i = 0; i < w->wing_len; i++) {
 		uint32_t x = w->wing[i];
 		size_t j = 0;
-		if (e->vt[x].len != 0 || x == keep)
+		if (e->vt[x].len != 0) /* (keep is never a third corner) */
 			continue;
 		while (j < i && w->wing[j] != x)
 			j++;
