@@ -137,6 +137,8 @@ run(struct cmdline *cl)
 		rc = fail("cannot read", cl->in, &err);
 		goto out;
 	}
+	/* The input is needed for nothing but its counts once simplified. */
+	x.take_input = 1;
 	cl->q.progress = progress_start(cl->quiet);
 	t1 = vdt_seconds();
 	rc = vdt_qslim_extra_run(&x, &in, &cl->q, &cl->l, &out, &st, &err);

@@ -1031,12 +1031,19 @@ seam_planes(struct ctx *c, const struct vdt_mesh *w, double weight)
 		}
 }
 
+/* The input face of live face t (fsrc NULL: no face was dropped). */
+static inline uint32_t
+src_face(const uint32_t *fsrc, size_t t)
+{
+	return fsrc ? fsrc[t] : (uint32_t)t;
+}
+
 /*
  * Wedges and attribute quadrics for the live faces of w (fsrc: their input
- * faces). Input vertices at one position with bit-identical attributes are
- * one wedge; seam[v] is set where a position has more than one. lambda
- * turns attribute units into squared distances. Returns NULL when out of
- * memory.
+ * faces, or NULL for the same numbers). Input vertices at one position
+ * with bit-identical attributes are one wedge; seam[v] is set where a
+ * position has more than one. lambda turns attribute units into squared
+ * distances. Returns NULL when out of memory.
  */
 static struct attr *
 attr_setup(struct ctx *c, const struct vdt_mesh *in, const struct vdt_mesh *w,
@@ -1123,12 +1130,12 @@ attr_setup(struct ctx *c, const struct vdt_mesh *in, const struct vdt_mesh *w,
 	for (size_t k = nc; k-- > 0;) {
 		uint32_t v = w->triangles[k];
 		at->cvert[k] = v;
-		at->cw[k] = wfind(at->wpar, in->triangles[3 * (size_t)fsrc[k / 3] + k % 3]);
+		at->cw[k] = wfind(at->wpar, in->triangles[3 * (size_t)src_face(fsrc, k / 3) + k % 3]);
 		at->cnext[k] = at->chead[v];
 		at->chead[v] = (uint32_t)k;
 	}
 	for (size_t t = 0; t < w->triangle_count; t++)
-		attr_face(c, in, w, t, fsrc[t], lambda);
+		attr_face(c, in, w, t, src_face(fsrc, t), lambda);
 	seam_planes(c, w, seam_weight);
 	for (size_t v = 0; v < nw; v++) {
 		at->qr[v] = at->qc[v];
@@ -1242,15 +1249,35 @@ attr_distance(const struct vdt_mesh *m, uint32_t a, uint32_t b)
 	return d;
 }
 
+/* The input vertex of corner c in dups (see build_output), or NONE. */
+static uint32_t
+dup_at(const uint64_t *dups, size_t n, size_t c)
+{
+	size_t lo = 0, hi = n;
+
+	while (lo < hi) {
+		size_t mid = lo + (hi - lo) / 2;
+		if (dups[mid] >> 32 < c)
+			lo = mid + 1;
+		else
+			hi = mid;
+	}
+	return lo < n && dups[lo] >> 32 == c ? (uint32_t)dups[lo] : NONE;
+}
+
 /*
  * The output mesh: each surviving corner takes, among the input vertices
  * welded into its final vertex, the one whose attributes are closest to
  * those of the input vertex it started from; so seams stay where they were
- * and smooth regions get one vertex per position.
+ * and smooth regions get one vertex per position. When in's triangles were
+ * taken (no attributes), dups lists the corners that started from a
+ * vertex other than the first at its position; any other corner takes the
+ * first.
  */
 static int
 build_output(const struct vdt_mesh *in, const uint32_t *canon,
              const uint32_t *wstart, const uint32_t *wlist,
+             const uint64_t *dups, size_t ndups,
              const struct vdt_contract_result *r, struct vdt_mesh *out,
              struct vdt_err *err)
 {
@@ -1268,9 +1295,12 @@ build_output(const struct vdt_mesh *in, const uint32_t *canon,
 	for (size_t t = 0; t < r->triangle_count; t++)
 		for (int k = 0; k < 3; k++) {
 			uint32_t v = r->triangles[3 * t + k];
-			uint32_t w0 = in->triangles[3 * (size_t)r->sources[t] + k];
 			uint32_t pick = wlist[wstart[v]];
-			if (wstart[v + 1] - wstart[v] > 1) {
+			size_t corner = 3 * (size_t)r->sources[t] + k;
+			uint32_t w0 = wstart[v + 1] - wstart[v] < 2 ? NONE
+			            : in->triangles ? in->triangles[corner]
+			            : dup_at(dups, ndups, corner);
+			if (w0 != NONE) {
 				double best = INFINITY;
 				for (uint32_t j = wstart[v]; j < wstart[v + 1]; j++) {
 					double d = wlist[j] == w0 ? -1 : attr_distance(in, wlist[j], w0);
@@ -1331,10 +1361,10 @@ input_lists(const uint32_t *canon, size_t n, size_t nw, uint32_t **start,
 
 /* vdt_qslim with every distance option in model units. */
 static int
-simplify(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
-         struct vdt_mesh *out, struct vdt_contraction **records,
-         size_t *record_count, struct vdt_qslim_stats *stats,
-         struct vdt_err *err)
+simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
+         const struct vdt_qslim_opts *o, struct vdt_mesh *out,
+         struct vdt_contraction **records, size_t *record_count,
+         struct vdt_qslim_stats *stats, struct vdt_err *err)
 {
 	size_t n = in->vertex_count, T = in->triangle_count, target = 0;
 	struct vdt_mesh w = {0};
@@ -1347,7 +1377,8 @@ simplify(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	uint32_t *vpairs = NULL;
 	uint8_t *border = NULL, *locked = NULL, *dead = NULL;
 	uint32_t *fsrc = NULL;
-	size_t nw, nvp = 0;
+	uint64_t *dups = NULL; /* corner << 32 | input vertex, by corner */
+	size_t nw, nvp = 0, ndups = 0;
 	int rc = VDT_ENOMEM;
 
 	memset(out, 0, sizeof(*out));
@@ -1383,12 +1414,40 @@ simplify(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	if (!canon || !first || (nw = weld(in, canon, first)) == 0)
 		goto nomem;
 	stats->welded = n - nw;
-	if (vdt_mesh_alloc(&w, nw, T, 0, err) != 0)
-		goto fail;
-	for (size_t i = 0; i < nw; i++)
-		memcpy(w.positions + 3 * i, in->positions + 3 * (size_t)first[i], 3 * sizeof(float));
-	for (size_t i = 0; i < 3 * T; i++)
-		w.triangles[i] = canon[in->triangles[i]];
+	/* The working mesh. Without attributes, build_output needs no input
+	 * position and of the input's triangles only which corners used a
+	 * later duplicate of a position (dups), so a caller's arrays that may
+	 * be taken are welded in place rather than held twice. */
+	w.vertex_count = nw;
+	w.triangle_count = T;
+	if (take != NULL && vdt_mesh_attrs(in) == 0) {
+		size_t nd = 0;
+		w.positions = take->positions;
+		w.triangles = take->triangles;
+		take->positions = NULL;
+		take->triangles = NULL;
+		for (size_t i = 0; i < nw; i++) /* first[i] >= i */
+			memmove(w.positions + 3 * i, w.positions + 3 * (size_t)first[i], 3 * sizeof(float));
+		for (size_t j = 0; j < 3 * T; j++)
+			nd += first[canon[w.triangles[j]]] != w.triangles[j];
+		if (nd > 0 && (dups = malloc(nd * sizeof(*dups))) == NULL)
+			goto nomem;
+		for (size_t j = 0; j < 3 * T; j++) {
+			uint32_t i = w.triangles[j];
+			if (first[canon[i]] != i)
+				dups[ndups++] = (uint64_t)j << 32 | i;
+			w.triangles[j] = canon[i];
+		}
+	} else {
+		w.positions = vdt_malloc_huge(3 * nw * sizeof(float) + 1);
+		w.triangles = vdt_malloc_huge(3 * T * sizeof(uint32_t) + 1);
+		if (w.positions == NULL || w.triangles == NULL)
+			goto nomem;
+		for (size_t i = 0; i < nw; i++)
+			memcpy(w.positions + 3 * i, in->positions + 3 * (size_t)first[i], 3 * sizeof(float));
+		for (size_t i = 0; i < 3 * T; i++)
+			w.triangles[i] = canon[in->triangles[i]];
+	}
 	free(first);
 	first = NULL;
 
@@ -1404,16 +1463,23 @@ simplify(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 		c.centre[k] = 0.5 * (box.min[k] + box.max[k]);
 	c.max_error = o->max_error < INFINITY ? o->max_error * o->max_error : INFINITY;
 	dead = vdt_calloc_huge(T + 1, 1);
-	fsrc = vdt_malloc_huge((T + 1) * sizeof(*fsrc));
-	if (dead == NULL || fsrc == NULL || build_quadrics(&w, o, canon, n, &c, border, dead, &stats->nonmanifold) != 0)
+	if (dead == NULL || build_quadrics(&w, o, canon, n, &c, border, dead, &stats->nonmanifold) != 0)
 		goto nomem;
-	/* The engine sees the live faces only; fsrc maps back to the input. */
+	/* The engine sees the live faces only; fsrc maps back to the input
+	 * (NULL while no face is dropped: the same numbers). */
 	size_t live = 0;
 	for (size_t t = 0; t < T; t++)
-		if (!dead[t]) {
-			memmove(w.triangles + 3 * live, w.triangles + 3 * t, 3 * sizeof(uint32_t));
-			fsrc[live++] = (uint32_t)t;
-		}
+		live += !dead[t];
+	if (live < T) {
+		if ((fsrc = vdt_malloc_huge((live + 1) * sizeof(*fsrc))) == NULL)
+			goto nomem;
+		live = 0;
+		for (size_t t = 0; t < T; t++)
+			if (!dead[t]) {
+				memmove(w.triangles + 3 * live, w.triangles + 3 * t, 3 * sizeof(uint32_t));
+				fsrc[live++] = (uint32_t)t;
+			}
+	}
 	w.triangle_count = live;
 	stats->dropped = T - live;
 	free(dead);
@@ -1499,12 +1565,12 @@ simplify(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 	stats->rejected = r.rejected;
 	stats->reached_target = r.reached_target;
 	stats->max_error = sqrt(c.worst);
-	for (size_t t = 0; t < r.triangle_count; t++)
+	for (size_t t = 0; fsrc && t < r.triangle_count; t++)
 		r.sources[t] = fsrc[r.sources[t]];
 	if (c.at == NULL && input_lists(canon, n, nw, &wstart, &wlist) != 0)
 		goto nomem;
 	rc = c.at ? build_output_attr(in, &c, &r, out, err)
-	          : build_output(in, canon, wstart, wlist, &r, out, err);
+	          : build_output(in, canon, wstart, wlist, dups, ndups, &r, out, err);
 	if (rc != 0)
 		goto fail;
 	if (records) {
@@ -1532,13 +1598,14 @@ done:
 	free(vpairs);
 	free(dead);
 	free(fsrc);
+	free(dups);
 	return rc;
 }
 
-int
-vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o, struct vdt_mesh *out,
-          struct vdt_contraction **records, size_t *record_count, struct vdt_qslim_stats *stats,
-          struct vdt_err *err)
+static int
+qslim_units(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_qslim_opts *o,
+            struct vdt_mesh *out, struct vdt_contraction **records, size_t *record_count,
+            struct vdt_qslim_stats *stats, struct vdt_err *err)
 {
 	struct vdt_qslim_opts units = *o;
 	struct vdt_bbox box;
@@ -1551,10 +1618,26 @@ vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o, struct vdt_
 		units.max_error = o->max_error * diag / 100;
 	if (o->aggregate_percent)
 		units.aggregate = o->aggregate * diag / 100;
-	rc = simplify(in, &units, out, records, record_count, stats, err);
+	rc = simplify(in, take, &units, out, records, record_count, stats, err);
 	if (rc == 0)
 		stats->error_pct = diag > 0 ? 100 * stats->max_error / diag : 0;
 	return rc;
+}
+
+int
+vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o, struct vdt_mesh *out,
+          struct vdt_contraction **records, size_t *record_count, struct vdt_qslim_stats *stats,
+          struct vdt_err *err)
+{
+	return qslim_units(in, NULL, o, out, records, record_count, stats, err);
+}
+
+int
+vdt_qslim_take(struct vdt_mesh *in, const struct vdt_qslim_opts *o, struct vdt_mesh *out,
+               struct vdt_contraction **records, size_t *record_count,
+               struct vdt_qslim_stats *stats, struct vdt_err *err)
+{
+	return qslim_units(in, in, o, out, records, record_count, stats, err);
 }
 
 int
@@ -1575,7 +1658,7 @@ vdt_qslim_extra_decode(struct vdt_qslim_extra *x, struct vdt_chunks *c, size_t v
 }
 
 int
-vdt_qslim_extra_run(struct vdt_qslim_extra *x, const struct vdt_mesh *in,
+vdt_qslim_extra_run(struct vdt_qslim_extra *x, struct vdt_mesh *in,
                     const struct vdt_qslim_opts *o, const struct vdt_labl_scale_opts *lo,
                     struct vdt_mesh *out, struct vdt_qslim_stats *stats, struct vdt_err *err)
 {
@@ -1594,8 +1677,8 @@ vdt_qslim_extra_run(struct vdt_qslim_extra *x, const struct vdt_mesh *in,
 	x->records = NULL;
 	x->record_count = 0;
 	x->record = o->record;
-	return vdt_qslim(in, &with, out, o->record ? &x->records : NULL, &x->record_count, stats,
-	                 err);
+	return qslim_units(in, x->take_input ? in : NULL, &with, out,
+	                   o->record ? &x->records : NULL, &x->record_count, stats, err);
 }
 
 int

@@ -146,6 +146,19 @@ int vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
               struct vdt_err *err);
 
 /*
+ * vdt_qslim for a caller that has no use for in's geometry afterwards:
+ * when no vertex is welded and in has no attributes, in's position and
+ * triangle arrays become the working mesh rather than being copied (the
+ * input is not held twice) and are freed here. On return, success or not,
+ * in keeps its counts but its positions and triangles may be NULL;
+ * vdt_mesh_free(in) is right either way. The result is vdt_qslim's.
+ */
+int vdt_qslim_take(struct vdt_mesh *in, const struct vdt_qslim_opts *o,
+                   struct vdt_mesh *out, struct vdt_contraction **records,
+                   size_t *record_count, struct vdt_qslim_stats *stats,
+                   struct vdt_err *err);
+
+/*
  * vdt_qslim on a mesh as a vdt stream carries it (what vdt-qslim does):
  * the other chunks of the stream may hold the quadrics of vdt-cluster's
  * phase I (QUAD, the multiphase coupling) and silhouette labels (LABL,
@@ -158,6 +171,8 @@ struct vdt_qslim_extra {
 	struct vdt_labl labl;          /* cams.count 0 when there are none */
 	double *error_scale;           /* of the labels, or NULL */
 	int record;                    /* 1: records are kept */
+	int take_input;                /* 1: vdt_qslim_extra_run may take
+	                                  over in's arrays (vdt_qslim_take) */
 	struct vdt_contraction *records; /* (vdt_qslim_extra_run) */
 	size_t record_count;
 };
@@ -179,10 +194,11 @@ int vdt_qslim_extra_decode(struct vdt_qslim_extra *x, struct vdt_chunks *c,
 /*
  * vdt_qslim on in, whose chunks x holds: the quadrics replace o's, the
  * labels give the error scale under lo (vdt_labl_scale), and with
- * o->record the contraction record is kept in x. Returns 0, VDT_ENOMEM
- * ("out of memory for labels") or vdt_qslim's status.
+ * o->record the contraction record is kept in x; with x->take_input it
+ * is vdt_qslim_take, which may take over in's arrays. Returns 0,
+ * VDT_ENOMEM ("out of memory for labels") or vdt_qslim's status.
  */
-int vdt_qslim_extra_run(struct vdt_qslim_extra *x, const struct vdt_mesh *in,
+int vdt_qslim_extra_run(struct vdt_qslim_extra *x, struct vdt_mesh *in,
                         const struct vdt_qslim_opts *o,
                         const struct vdt_labl_scale_opts *lo,
                         struct vdt_mesh *out, struct vdt_qslim_stats *stats,

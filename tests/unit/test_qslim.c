@@ -77,6 +77,65 @@ percent_bounds_are_of_the_diagonal(void **state)
 	vdt_mesh_free(&m);
 }
 
+/*
+ * vdt_qslim_take gives vdt_qslim's result, down to which duplicate vertex
+ * each output corner keeps, while taking over the input's arrays when it
+ * has no attributes (on a welded soup too); with attributes it takes
+ * nothing. The counts stay.
+ */
+static void
+take_gives_the_same_result(void **state)
+{
+	struct vdt_mesh base, m, a, b;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats sa, sb;
+
+	(void)state;
+	shape_icosphere(&base, 3);
+	vdt_qslim_defaults(&o);
+	o.target_ratio = 0.2;
+	for (int kind = 0; kind < 3; kind++) {
+		assert_int_equal(vdt_mesh_copy(&m, &base, NULL), 0);
+		if (kind == 1) {
+			/* a triangle soup: every corner its own vertex */
+			size_t nc = 3 * m.triangle_count;
+			float *p = malloc(3 * nc * sizeof(float));
+			assert_non_null(p);
+			for (size_t j = 0; j < nc; j++) {
+				memcpy(p + 3 * j, m.positions + 3 * (size_t)m.triangles[j], 3 * sizeof(float));
+				m.triangles[j] = (uint32_t)j;
+			}
+			free(m.positions);
+			m.positions = p;
+			m.vertex_count = nc;
+		} else if (kind == 2) {
+			m.uvs = malloc(2 * m.vertex_count * sizeof(float));
+			assert_non_null(m.uvs);
+			for (size_t i = 0; i < m.vertex_count; i++) {
+				m.uvs[2 * i] = m.positions[3 * i];
+				m.uvs[2 * i + 1] = m.positions[3 * i + 1];
+			}
+		}
+		size_t nv = m.vertex_count, nt = m.triangle_count;
+		assert_int_equal(vdt_qslim(&m, &o, &a, NULL, NULL, &sa, NULL), 0);
+		assert_int_equal(vdt_qslim_take(&m, &o, &b, NULL, NULL, &sb, NULL), 0);
+		assert_same_mesh(&a, &b);
+		if (kind == 1) /* unmoved corners keep their own vertex: more
+		                  than the T / 2 + 2 of a closed welded mesh */
+			assert_true(sa.welded == nv - base.vertex_count &&
+			            a.vertex_count > a.triangle_count / 2 + 2);
+		assert_true(sa.max_error == sb.max_error);
+		assert_int_equal(m.vertex_count, nv);
+		assert_int_equal(m.triangle_count, nt);
+		assert_true((m.positions == NULL) == (kind != 2));
+		assert_true((m.triangles == NULL) == (kind != 2));
+		vdt_mesh_free(&a);
+		vdt_mesh_free(&b);
+		vdt_mesh_free(&m);
+	}
+	vdt_mesh_free(&base);
+}
+
 /* A QUAD chunk of n quadrics, one per vertex of m (cycling): the plane
  * whose normal is the vertex's position, at offset -1 (on the unit sphere,
  * its tangent plane). */
@@ -334,6 +393,7 @@ main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(topology_names),
 		cmocka_unit_test(percent_bounds_are_of_the_diagonal),
+		cmocka_unit_test(take_gives_the_same_result),
 		cmocka_unit_test(extra_refuses_quadrics_of_another_mesh),
 		cmocka_unit_test(extra_runs_with_the_chunk_quadrics),
 		cmocka_unit_test(extra_border_decides_the_boundary_planes),
