@@ -66,6 +66,26 @@ vdt_mesh_attrs(const struct vdt_mesh *m)
 	       (m->colors ? VDT_ATTR_COLORS : 0);
 }
 
+/* 1 if some k-float record of a[n] differs from the first. */
+static int
+varies(const float *a, size_t n, size_t k)
+{
+	for (size_t i = 1; a != NULL && i < n; i++)
+		if (memcmp(a + k * i, a, k * sizeof(*a)) != 0)
+			return 1;
+	return 0;
+}
+
+unsigned
+vdt_mesh_varying_attrs(const struct vdt_mesh *m)
+{
+	size_t n = m->vertex_count;
+
+	return (varies(m->normals, n, 3) ? VDT_ATTR_NORMALS : 0) |
+	       (varies(m->uvs, n, 2) ? VDT_ATTR_UVS : 0) |
+	       (varies(m->colors, n, 4) ? VDT_ATTR_COLORS : 0);
+}
+
 static int
 finite_run(const float *a, size_t n, size_t *bad)
 {

@@ -50,6 +50,10 @@ void vdt_mesh_free(struct vdt_mesh *m);
 /* Mask of enum vdt_mesh_attr present in m. */
 unsigned vdt_mesh_attrs(const struct vdt_mesh *m);
 
+/* Mask of the attributes of m that differ between two of its vertices
+ * (bit for bit): the others carry no information. */
+unsigned vdt_mesh_varying_attrs(const struct vdt_mesh *m);
+
 /*
  * Check what every reader must guarantee: at least one triangle, every
  * coordinate and attribute finite, every index below vertex_count. The

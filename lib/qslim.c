@@ -1414,13 +1414,14 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
 	if (!canon || !first || (nw = weld(in, canon, first)) == 0)
 		goto nomem;
 	stats->welded = n - nw;
-	/* The working mesh. Without attributes, build_output needs no input
-	 * position and of the input's triangles only which corners used a
-	 * later duplicate of a position (dups), so a caller's arrays that may
-	 * be taken are welded in place rather than held twice. */
+	/* The working mesh. Without attributes that vary, build_output needs
+	 * no input position and of the input's triangles only which corners
+	 * used a later duplicate of a position (dups), so a caller's arrays
+	 * that may be taken are welded in place rather than held twice. */
+	unsigned varying = vdt_mesh_varying_attrs(in);
 	w.vertex_count = nw;
 	w.triangle_count = T;
-	if (take != NULL && vdt_mesh_attrs(in) == 0) {
+	if (take != NULL && varying == 0) {
 		size_t nd = 0;
 		w.positions = take->positions;
 		w.triangles = take->triangles;
@@ -1513,8 +1514,9 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
 		goto nomem;
 	for (size_t v = 0; v < nw; v++)
 		seam[v] = (border[v] & 2) != 0;
-	/* Attribute errors in bounding-box diagonals, like Hoppe's unit box. */
-	if (o->attribute_weight > 0 && vdt_mesh_attrs(in) != 0) {
+	/* Attribute errors in bounding-box diagonals, like Hoppe's unit box;
+	 * attributes the same everywhere have none. */
+	if (o->attribute_weight > 0 && varying != 0) {
 		double d = vdt_bbox_diagonal(&box);
 		if (input_lists(canon, n, nw, &wstart, &wlist) != 0) {
 			free(seam);

@@ -596,6 +596,35 @@ test_face_cross(void **state)
 	assert_true(n[0] == 0 && n[1] == 0 && n[2] == -6);
 }
 
+/* Attributes vary when two vertices differ in them, bit for bit (-0 is
+ * not 0); absent or equal everywhere, they do not. */
+static void
+test_varying_attrs(void **state)
+{
+	float pos[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+	float uv[] = {0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f};
+	float nrm[] = {0, 0, 1, 0, 0, 1, 0, 0, 1};
+	uint32_t tri[] = {0, 1, 2};
+	struct vdt_mesh m = {0};
+
+	(void)state;
+	m.positions = pos;
+	m.vertex_count = 3;
+	m.triangles = tri;
+	m.triangle_count = 1;
+	assert_int_equal(vdt_mesh_varying_attrs(&m), 0);
+	m.uvs = uv;
+	m.normals = nrm;
+	assert_int_equal(vdt_mesh_attrs(&m), VDT_ATTR_UVS | VDT_ATTR_NORMALS);
+	assert_int_equal(vdt_mesh_varying_attrs(&m), 0);
+	uv[5] = 0.25f;
+	assert_int_equal(vdt_mesh_varying_attrs(&m), VDT_ATTR_UVS);
+	nrm[2] = -0.0f;
+	nrm[0] = 0;
+	nrm[6] = -0.0f;
+	assert_int_equal(vdt_mesh_varying_attrs(&m), VDT_ATTR_UVS | VDT_ATTR_NORMALS);
+}
+
 int
 main(void)
 {
@@ -613,6 +642,7 @@ main(void)
 		cmocka_unit_test(test_atomic),
 		cmocka_unit_test(test_image),
 		cmocka_unit_test(test_face_cross),
+		cmocka_unit_test(test_varying_attrs),
 	};
 
 	return cmocka_run_group_tests(tests, setup, teardown);

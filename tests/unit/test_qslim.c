@@ -80,8 +80,8 @@ percent_bounds_are_of_the_diagonal(void **state)
 /*
  * vdt_qslim_take gives vdt_qslim's result, down to which duplicate vertex
  * each output corner keeps, while taking over the input's arrays when it
- * has no attributes (on a welded soup too); with attributes it takes
- * nothing. The counts stay.
+ * has no attributes or only ones equal everywhere (on a welded soup too);
+ * with attributes that vary it takes nothing. The counts stay.
  */
 static void
 take_gives_the_same_result(void **state)
@@ -94,7 +94,7 @@ take_gives_the_same_result(void **state)
 	shape_icosphere(&base, 3);
 	vdt_qslim_defaults(&o);
 	o.target_ratio = 0.2;
-	for (int kind = 0; kind < 3; kind++) {
+	for (int kind = 0; kind < 4; kind++) {
 		assert_int_equal(vdt_mesh_copy(&m, &base, NULL), 0);
 		if (kind == 1) {
 			/* a triangle soup: every corner its own vertex */
@@ -108,18 +108,21 @@ take_gives_the_same_result(void **state)
 			free(m.positions);
 			m.positions = p;
 			m.vertex_count = nc;
-		} else if (kind == 2) {
+		} else if (kind >= 2) {
+			/* 2: UVs that vary; 3: the same UVs everywhere */
 			m.uvs = malloc(2 * m.vertex_count * sizeof(float));
 			assert_non_null(m.uvs);
 			for (size_t i = 0; i < m.vertex_count; i++) {
-				m.uvs[2 * i] = m.positions[3 * i];
-				m.uvs[2 * i + 1] = m.positions[3 * i + 1];
+				m.uvs[2 * i] = kind == 2 ? m.positions[3 * i] : 0.5f;
+				m.uvs[2 * i + 1] = kind == 2 ? m.positions[3 * i + 1] : 0.5f;
 			}
 		}
 		size_t nv = m.vertex_count, nt = m.triangle_count;
 		assert_int_equal(vdt_qslim(&m, &o, &a, NULL, NULL, &sa, NULL), 0);
 		assert_int_equal(vdt_qslim_take(&m, &o, &b, NULL, NULL, &sb, NULL), 0);
 		assert_same_mesh(&a, &b);
+		if (kind >= 2)
+			assert_memory_equal(a.uvs, b.uvs, 2 * sizeof(float) * a.vertex_count);
 		if (kind == 1) /* unmoved corners keep their own vertex: more
 		                  than the T / 2 + 2 of a closed welded mesh */
 			assert_true(sa.welded == nv - base.vertex_count &&
