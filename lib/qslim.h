@@ -147,11 +147,12 @@ int vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 
 /*
  * vdt_qslim for a caller that has no use for in's geometry afterwards:
- * when no vertex is welded and in has no attributes, in's position and
- * triangle arrays become the working mesh rather than being copied (the
- * input is not held twice) and are freed here. On return, success or not,
- * in keeps its counts but its positions and triangles may be NULL;
- * vdt_mesh_free(in) is right either way. The result is vdt_qslim's.
+ * when none of in's attributes varies (vdt_mesh_varying_attrs), its
+ * position and triangle arrays are welded in place into the working mesh
+ * rather than copied (the input is not held twice) and are freed here.
+ * On return, success or not, in keeps its counts and attributes but its
+ * positions and triangles may be NULL; vdt_mesh_free(in) is right either
+ * way. The result is vdt_qslim's.
  */
 int vdt_qslim_take(struct vdt_mesh *in, const struct vdt_qslim_opts *o,
                    struct vdt_mesh *out, struct vdt_contraction **records,
