@@ -22,6 +22,7 @@
 #include "mem.h"
 #include "topo.h"
 
+#include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -604,8 +605,6 @@ struct attr {
 	uint32_t *chead, *cnext;  /* corners of live faces at each vertex;
 	                             stale ones are skipped, then pruned */
 	uint8_t *moved;           /* per welded vertex: took part in a merge */
-	uint32_t *sw, *sg;        /* scratch: a pair's wedges and groups */
-	uint8_t *sm;              /* scratch: leads a group of two or more */
 	int virtual_pairs;        /* pairs may share no face */
 };
 
@@ -748,24 +747,43 @@ attr_face(struct ctx *c, const struct vdt_mesh *in, const struct vdt_mesh *w,
 }
 
 /*
- * The wedges of a and b (a's first, in list order) into at->sw, and in
- * at->sg the index of the first wedge of each one's group: wedges whose
+ * A pair's wedges, on the stack of whichever thread costs or merges it (a
+ * pass does both on several). A pair with more wedges than this between
+ * its two vertices is not contracted.
+ */
+#define PAIR_WEDGES 1024
+
+struct wedges {
+	uint32_t sw[PAIR_WEDGES]; /* the wedges */
+	uint32_t sg[PAIR_WEDGES]; /* the first wedge of each one's group */
+	uint8_t sm[PAIR_WEDGES];  /* leads a group of two or more */
+};
+
+/*
+ * The wedges of a and b (a's first, in list order) into s->sw, and in
+ * s->sg the index of the first wedge of each one's group: wedges whose
  * corners meet in a face that a and b share become one, so that at a seam
  * each side pairs with the same side. A wedge in no shared face stays
- * apart. Returns the number of wedges.
+ * apart. Returns the number of wedges, or -1 if more than PAIR_WEDGES.
  */
-static size_t
-pair_wedges(const struct attr *at, uint32_t a, uint32_t b)
+static long
+pair_wedges(const struct attr *at, uint32_t a, uint32_t b, struct wedges *s)
 {
 	size_t n = 0, na;
 
-	for (uint32_t r = at->whead[a]; r != NONE; r = at->wnext[r])
-		at->sw[n++] = r;
+	for (uint32_t r = at->whead[a]; r != NONE; r = at->wnext[r]) {
+		if (n == PAIR_WEDGES)
+			return -1;
+		s->sw[n++] = r;
+	}
 	na = n;
-	for (uint32_t r = at->whead[b]; r != NONE; r = at->wnext[r])
-		at->sw[n++] = r;
+	for (uint32_t r = at->whead[b]; r != NONE; r = at->wnext[r]) {
+		if (n == PAIR_WEDGES)
+			return -1;
+		s->sw[n++] = r;
+	}
 	for (size_t i = 0; i < n; i++)
-		at->sg[i] = (uint32_t)i;
+		s->sg[i] = (uint32_t)i;
 	for (uint32_t k = at->chead[a]; k != NONE; k = at->cnext[k]) {
 		if (dead_face(at->cvert, k))
 			continue;
@@ -774,29 +792,29 @@ pair_wedges(const struct attr *at, uint32_t a, uint32_t b)
 				continue;
 			uint32_t ra = wfind(at->wpar, at->cw[k]), rb = wfind(at->wpar, at->cw[o]);
 			size_t x = 0, y = na;
-			while (x < na && at->sw[x] != ra)
+			while (x < na && s->sw[x] != ra)
 				x++;
-			while (y < n && at->sw[y] != rb)
+			while (y < n && s->sw[y] != rb)
 				y++;
 			if (x == na || y == n)
 				continue; /* cannot happen: corners follow their vertex */
-			while (at->sg[x] != x)
-				x = at->sg[x];
-			while (at->sg[y] != y)
-				y = at->sg[y];
+			while (s->sg[x] != x)
+				x = s->sg[x];
+			while (s->sg[y] != y)
+				y = s->sg[y];
 			/* The smaller index leads, so one pass resolves groups. */
 			if (x < y)
-				at->sg[y] = (uint32_t)x;
+				s->sg[y] = (uint32_t)x;
 			else if (y < x)
-				at->sg[x] = (uint32_t)y;
+				s->sg[x] = (uint32_t)y;
 		}
 	}
 	for (size_t i = 0; i < n; i++) {
-		at->sg[i] = at->sg[at->sg[i]];
-		at->sm[i] = 0;
-		at->sm[at->sg[i]] |= at->sg[i] != i;
+		s->sg[i] = s->sg[s->sg[i]];
+		s->sm[i] = 0;
+		s->sm[s->sg[i]] |= s->sg[i] != i;
 	}
-	return n;
+	return (long)n;
 }
 
 static void
@@ -812,11 +830,12 @@ wedge_add(double *x, const double *y, size_t stride)
  * (a pole of a UV sphere may hold hundreds of wedges) start from the
  * vertices' errors as they stand and correct only the groups that merge,
  * so that the work follows the shared faces, not the wedge count. Returns
- * the number of wedges grouped in at->sw and at->sg, or 0 for the former.
+ * the number of wedges grouped in s (pair_wedges), 0 for the former, or -1
+ * for too many wedges.
  */
-static size_t
+static long
 attr_pair_quadric(const struct attr *at, uint32_t a, uint32_t b, int general,
-                  struct vdt_quadric *q)
+                  struct vdt_quadric *q, struct wedges *s)
 {
 	double x[1 + 4 * ATTR_MAX];
 	size_t S = at->stride;
@@ -832,16 +851,16 @@ attr_pair_quadric(const struct attr *at, uint32_t a, uint32_t b, int general,
 	}
 	*q = at->qr[a];
 	vdt_quadric_add(q, &at->qr[b]);
-	size_t n = pair_wedges(at, a, b);
-	for (size_t i = 0; i < n; i++) {
-		if (!at->sm[i])
+	long n = pair_wedges(at, a, b, s);
+	for (long i = 0; i < n; i++) {
+		if (!s->sm[i])
 			continue;
-		memcpy(x, at->wd + S * at->sw[i], S * sizeof(double));
+		memcpy(x, at->wd + S * s->sw[i], S * sizeof(double));
 		attr_subtract(q, x, at->m, -1);
-		for (size_t j = i + 1; j < n; j++)
-			if (at->sg[j] == i) {
-				wedge_add(x, at->wd + S * at->sw[j], S);
-				attr_subtract(q, at->wd + S * at->sw[j], at->m, -1);
+		for (long j = i + 1; j < n; j++)
+			if (s->sg[j] == i) {
+				wedge_add(x, at->wd + S * s->sw[j], S);
+				attr_subtract(q, at->wd + S * s->sw[j], at->m, -1);
 			}
 		attr_subtract(q, x, at->m, 1);
 	}
@@ -854,9 +873,11 @@ cost_attr(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 {
 	struct ctx *c = vc;
 	struct vdt_quadric q;
+	struct wedges s;
 	double p0[3], p1[3], e;
 
-	attr_pair_quadric(c->at, a, b, 0, &q);
+	if (attr_pair_quadric(c->at, a, b, 0, &q, &s) < 0)
+		return INFINITY;
 	e = place(c, &q, fixed, pa, pb, p0, p1, pos);
 	if (fixed < 0) {
 		/* Attributes make the system well conditioned where geometry
@@ -899,24 +920,26 @@ merged_attr(void *vc, uint32_t keep, uint32_t gone, const double pos[3], double 
 	struct ctx *c = vc;
 	struct attr *at = c->at;
 	struct vdt_quadric qr;
-	size_t S = at->stride, n;
+	struct wedges s;
+	size_t S = at->stride;
 	uint32_t last = NONE;
 	double p[3];
 
 	(void)cost;
 	if (c->scale)
 		c->scale[keep] = fmin(c->scale[keep], c->scale[gone]);
-	n = attr_pair_quadric(at, keep, gone, 1, &qr);
-	for (size_t i = 0; i < n; i++) {
-		uint32_t r = at->sw[i];
-		if (at->sg[i] == i) {
+	long n = attr_pair_quadric(at, keep, gone, 1, &qr, &s);
+	assert(n >= 0); /* cost_attr refused the pair otherwise */
+	for (long i = 0; i < n; i++) {
+		uint32_t r = s.sw[i];
+		if (s.sg[i] == i) {
 			if (last == NONE)
 				at->whead[keep] = r;
 			else
 				at->wnext[last] = r;
 			last = r;
 		} else {
-			uint32_t l = at->sw[at->sg[i]];
+			uint32_t l = s.sw[s.sg[i]];
 			wedge_add(at->wd + S * l, at->wd + S * r, S);
 			at->wpar[r] = l;
 		}
@@ -951,8 +974,8 @@ merged_attr(void *vc, uint32_t keep, uint32_t gone, const double pos[3], double 
 	for (int k = 0; k < 3; k++)
 		p[k] = pos[k] - c->centre[k];
 	double e = vdt_quadric_eval(&c->q[keep], p);
-	if (c->q[keep].w > 0 && e / c->q[keep].w > c->worst)
-		c->worst = e / c->q[keep].w;
+	if (c->q[keep].w > 0)
+		worst_max(&c->worst, e / c->q[keep].w);
 }
 
 static void
@@ -971,9 +994,6 @@ attr_free(struct attr *at)
 	free(at->chead);
 	free(at->cnext);
 	free(at->moved);
-	free(at->sw);
-	free(at->sg);
-	free(at->sm);
 	free(at);
 }
 
@@ -1070,12 +1090,9 @@ attr_setup(struct ctx *c, const struct vdt_mesh *in, const struct vdt_mesh *w,
 	at->chead = malloc((nw + 1) * sizeof(uint32_t));
 	at->cnext = malloc((nc + 1) * sizeof(uint32_t));
 	at->moved = calloc(nw + 1, 1);
-	at->sw = malloc((n + 1) * sizeof(uint32_t));
-	at->sg = malloc((n + 1) * sizeof(uint32_t));
-	at->sm = malloc(n + 1);
-	if (!at->qc || !at->qr || !at->sm || !at->wd || !at->wpar || !at->whead ||
+	if (!at->qc || !at->qr || !at->wd || !at->wpar || !at->whead ||
 	    !at->wnext || !at->cvert || !at->cw || !at->chead || !at->cnext ||
-	    !at->moved || !at->sw || !at->sg) {
+	    !at->moved) {
 		attr_free(at);
 		c->at = NULL;
 		return NULL;
@@ -1551,13 +1568,13 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
 	co.passes = o->order == VDT_QSLIM_ORDER_PASSES ||
 	            (o->order == VDT_QSLIM_ORDER_AUTO && nw >= VDT_QSLIM_PASSES_MIN);
 	co.threads = o->threads;
-	/* The plain cost only reads the quadrics; the attribute cost works in
-	 * shared scratch. */
-	ops.concurrent = c.at == NULL;
-	if (c.at == NULL) {
-		ops.vertex_data = c.q;
-		ops.vertex_stride = sizeof(*c.q);
-	}
+	/* Either cost only reads the vertices' data (the attribute cost that
+	 * of their faces' corners too, which lie in the pass's part of the
+	 * mesh) and merging writes only keep's and gone's: passes may cost and
+	 * contract on several threads. */
+	ops.concurrent = 1;
+	ops.vertex_data = c.at ? c.at->qc : c.q;
+	ops.vertex_stride = sizeof(*c.q);
 	rc = vdt_contract_run_in_place(&w, &ops, &co, &r, err);
 	free(seam);
 	if (rc != 0)

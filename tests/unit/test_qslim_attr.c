@@ -518,6 +518,99 @@ hard_edges_keep_their_normals(void **state)
 	vdt_mesh_free(&m);
 }
 
+/*
+ * Passes cost and contract with the attribute cost on several threads: a
+ * bumpy seamed grid with every attribute gives the same output, attributes
+ * included, on one, two and three threads.
+ */
+static void
+attribute_passes_on_threads_match_one_thread(void **state)
+{
+	struct vdt_mesh m, out[3];
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+
+	(void)state;
+	seam_grid(&m, 48, VDT_ATTR_UVS | VDT_ATTR_NORMALS | VDT_ATTR_COLORS);
+	for (size_t i = 0; i < m.vertex_count; i++) {
+		float *p = m.positions + 3 * i;
+		p[2] = 0.05f * sinf(7 * p[0]) * cosf(5 * p[1]);
+		m.colors[4 * i] = p[0] * p[0];
+		m.colors[4 * i + 2] = 0.5f + 0.5f * sinf(9 * p[1]);
+	}
+	vdt_qslim_defaults(&o);
+	o.attribute_weight = 1;
+	o.target_ratio = 0.1;
+	o.order = VDT_QSLIM_ORDER_PASSES;
+	for (int k = 0; k < 3; k++) {
+		o.threads = k + 1;
+		assert_int_equal(vdt_qslim(&m, &o, &out[k], NULL, NULL, &st, NULL), 0);
+		assert_true(st.passes && st.welded == 49);
+		if (k == 0)
+			continue;
+		assert_int_equal(out[k].vertex_count, out[0].vertex_count);
+		assert_int_equal(out[k].triangle_count, out[0].triangle_count);
+		size_t nv = out[0].vertex_count;
+		assert_memory_equal(out[k].positions, out[0].positions, 12 * nv);
+		assert_memory_equal(out[k].uvs, out[0].uvs, 8 * nv);
+		assert_memory_equal(out[k].normals, out[0].normals, 12 * nv);
+		assert_memory_equal(out[k].colors, out[0].colors, 16 * nv);
+		assert_memory_equal(out[k].triangles, out[0].triangles, 12 * out[0].triangle_count);
+	}
+	for (int k = 0; k < 3; k++)
+		vdt_mesh_free(&out[k]);
+	vdt_mesh_free(&m);
+}
+
+/*
+ * A pair whose two vertices hold more wedges than a thread's stack has
+ * room for (1024) is not contracted: the apex of a fan of 1100 triangles,
+ * each with its own texture coordinate there, stays where it is while the
+ * rim is simplified.
+ */
+static void
+too_many_wedges_are_left_alone(void **state)
+{
+	enum { N = 1100 };
+	struct vdt_mesh m, out;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+
+	(void)state;
+	/* 0..N-1: apex copies; N..2N-1: the rim */
+	assert_int_equal(vdt_mesh_alloc(&m, 2 * N, N, VDT_ATTR_UVS, NULL), 0);
+	for (int i = 0; i < N; i++) {
+		double a = 2 * M_PI * i / N;
+		float *apex = m.positions + 3 * i, *rim = m.positions + 3 * (N + i);
+		apex[0] = apex[1] = 0;
+		apex[2] = 0.2f;
+		rim[0] = (float)cos(a);
+		rim[1] = (float)sin(a);
+		rim[2] = 0.02f * (float)sin(5 * a);
+		m.uvs[2 * i] = (float)i / N;
+		m.uvs[2 * i + 1] = 1;
+		m.uvs[2 * (N + i)] = (float)i / N;
+		m.uvs[2 * (N + i) + 1] = 0;
+		m.triangles[3 * i] = (uint32_t)i;
+		m.triangles[3 * i + 1] = (uint32_t)(N + i);
+		m.triangles[3 * i + 2] = (uint32_t)(N + (i + 1) % N);
+	}
+	vdt_qslim_defaults(&o);
+	o.attribute_weight = 1;
+	o.target_triangles = N / 4;
+	assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
+	assert_int_equal(st.welded, N - 1);
+	assert_true(out.triangle_count < N);
+	size_t apex = 0;
+	for (size_t v = 0; v < out.vertex_count; v++) {
+		const float *p = out.positions + 3 * v;
+		apex += p[0] == 0 && p[1] == 0 && p[2] == 0.2f;
+	}
+	assert_true(apex > 0);
+	vdt_mesh_free(&out);
+	vdt_mesh_free(&m);
+}
+
 int
 main(void)
 {
@@ -528,6 +621,8 @@ main(void)
 		cmocka_unit_test(uv_seam_stays_closed),
 		cmocka_unit_test(normals_stay_unit),
 		cmocka_unit_test(hard_edges_keep_their_normals),
+		cmocka_unit_test(attribute_passes_on_threads_match_one_thread),
+		cmocka_unit_test(too_many_wedges_are_left_alone),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
