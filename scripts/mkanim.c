@@ -91,6 +91,16 @@ main(int argc, char **argv)
 	}
 	if (optind + 1 != argc || out == NULL || nf < 1)
 		goto usage;
+	{
+		char names[256], *save = NULL;
+		snprintf(names, sizeof(names), "%s", list);
+		for (char *d = strtok_r(names, ",", &save); d; d = strtok_r(NULL, ",", &save))
+			if (strcmp(d, "bend") && strcmp(d, "twist") && strcmp(d, "wave") &&
+			    strcmp(d, "morph")) {
+				fprintf(stderr, "mkanim: unknown deformation '%s'\n", d);
+				goto usage;
+			}
+	}
 
 	struct vdt_mesh m = {0};
 	struct vdt_frames fr = {0};

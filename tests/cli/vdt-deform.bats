@@ -17,6 +17,13 @@ setup() {
 	mkdir "$TMP/in" "$TMP/out"
 }
 
+@test "mkanim refuses a deformation it does not know" {
+	run "$MKANIM" -d bend,swirl -n 3 "$SAMPLES/torus.off" -o "$TMP/in/anim.vdt"
+	[ "$status" -eq 2 ]
+	[[ "$output" == *"unknown deformation 'swirl'"* ]]
+	[ ! -e "$TMP/in/anim.vdt" ]
+}
+
 @test "vdt-deform --help prints usage and exits 0" {
 	run "$BIN/vdt-deform" --help
 	[ "$status" -eq 0 ]
