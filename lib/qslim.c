@@ -1431,21 +1431,28 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
 	if (!canon || !first || (nw = weld(in, canon, first)) == 0)
 		goto nomem;
 	stats->welded = n - nw;
-	/* The working mesh. Without attributes that vary, build_output needs
-	 * no input position and of the input's triangles only which corners
-	 * used a later duplicate of a position (dups), so a caller's arrays
-	 * that may be taken are welded in place rather than held twice. */
+	/* The working mesh. build_output needs no input position, and
+	 * without attributes that vary, of the input's triangles only which
+	 * corners used a later duplicate of a position (dups): what a caller
+	 * lets us take is welded in place rather than held twice. */
 	unsigned varying = vdt_mesh_varying_attrs(in);
 	w.vertex_count = nw;
 	w.triangle_count = T;
-	if (take != NULL && varying == 0) {
-		size_t nd = 0;
+	if (take != NULL) {
 		w.positions = take->positions;
-		w.triangles = take->triangles;
 		take->positions = NULL;
-		take->triangles = NULL;
 		for (size_t i = 0; i < nw; i++) /* first[i] >= i */
 			memmove(w.positions + 3 * i, w.positions + 3 * (size_t)first[i], 3 * sizeof(float));
+	} else if ((w.positions = vdt_malloc_huge(3 * nw * sizeof(float) + 1)) != NULL) {
+		for (size_t i = 0; i < nw; i++)
+			memcpy(w.positions + 3 * i, in->positions + 3 * (size_t)first[i], 3 * sizeof(float));
+	} else {
+		goto nomem;
+	}
+	if (take != NULL && varying == 0) {
+		size_t nd = 0;
+		w.triangles = take->triangles;
+		take->triangles = NULL;
 		for (size_t j = 0; j < 3 * T; j++)
 			nd += first[canon[w.triangles[j]]] != w.triangles[j];
 		if (nd > 0 && (dups = malloc(nd * sizeof(*dups))) == NULL)
@@ -1456,15 +1463,11 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
 				dups[ndups++] = (uint64_t)j << 32 | i;
 			w.triangles[j] = canon[i];
 		}
-	} else {
-		w.positions = vdt_malloc_huge(3 * nw * sizeof(float) + 1);
-		w.triangles = vdt_malloc_huge(3 * T * sizeof(uint32_t) + 1);
-		if (w.positions == NULL || w.triangles == NULL)
-			goto nomem;
-		for (size_t i = 0; i < nw; i++)
-			memcpy(w.positions + 3 * i, in->positions + 3 * (size_t)first[i], 3 * sizeof(float));
+	} else if ((w.triangles = vdt_malloc_huge(3 * T * sizeof(uint32_t) + 1)) != NULL) {
 		for (size_t i = 0; i < 3 * T; i++)
 			w.triangles[i] = canon[in->triangles[i]];
+	} else {
+		goto nomem;
 	}
 	free(first);
 	first = NULL;

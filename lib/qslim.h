@@ -147,8 +147,8 @@ int vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o,
 
 /*
  * vdt_qslim for a caller that has no use for in's geometry afterwards:
- * when none of in's attributes varies (vdt_mesh_varying_attrs), its
- * position and triangle arrays are welded in place into the working mesh
+ * in's positions, and its triangles when none of its attributes varies
+ * (vdt_mesh_varying_attrs), are welded in place into the working mesh
  * rather than copied (the input is not held twice) and are freed here.
  * On return, success or not, in keeps its counts and attributes but its
  * positions and triangles may be NULL; vdt_mesh_free(in) is right either
