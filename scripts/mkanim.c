@@ -91,15 +91,17 @@ main(int argc, char **argv)
 	}
 	if (optind + 1 != argc || out == NULL || nf < 1)
 		goto usage;
-	{
-		char names[256], *save = NULL;
-		snprintf(names, sizeof(names), "%s", list);
-		for (char *d = strtok_r(names, ",", &save); d; d = strtok_r(NULL, ",", &save))
-			if (strcmp(d, "bend") && strcmp(d, "twist") && strcmp(d, "wave") &&
-			    strcmp(d, "morph")) {
-				fprintf(stderr, "mkanim: unknown deformation '%s'\n", d);
-				goto usage;
-			}
+	/* The deformations, split and checked once. */
+	char names[256], *save = NULL, *defs[128]; /* a name per two chars */
+	size_t ndefs = 0;
+	snprintf(names, sizeof(names), "%s", list);
+	for (char *d = strtok_r(names, ",", &save); d; d = strtok_r(NULL, ",", &save)) {
+		if (strcmp(d, "bend") && strcmp(d, "twist") && strcmp(d, "wave") &&
+		    strcmp(d, "morph")) {
+			fprintf(stderr, "mkanim: unknown deformation '%s'\n", d);
+			goto usage;
+		}
+		defs[ndefs++] = d;
 	}
 
 	struct vdt_mesh m = {0};
@@ -134,10 +136,8 @@ main(int argc, char **argv)
 			double p[3];
 			for (int k = 0; k < 3; k++)
 				p[k] = m.positions[3 * v + k];
-			char names[256], *save = NULL;
-			snprintf(names, sizeof(names), "%s", list);
-			for (char *d = strtok_r(names, ",", &save); d; d = strtok_r(NULL, ",", &save))
-				deform(d, &ax, t, amp, p);
+			for (size_t i = 0; i < ndefs; i++)
+				deform(defs[i], &ax, t, amp, p);
 			for (int k = 0; k < 3; k++)
 				fr.positions[3 * (m.vertex_count * f + v) + k] = (float)p[k];
 		}
