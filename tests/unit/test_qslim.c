@@ -123,6 +123,8 @@ take_gives_the_same_result(void **state)
 		assert_same_mesh(&a, &b);
 		if (kind >= 2)
 			assert_memory_equal(a.uvs, b.uvs, 2 * sizeof(float) * a.vertex_count);
+		for (size_t i = 0; kind == 3 && i < 2 * b.vertex_count; i++)
+			assert_true(b.uvs[i] == 0.5f); /* the common values, kept */
 		if (kind == 1) /* unmoved corners keep their own vertex: more
 		                  than the T / 2 + 2 of a closed welded mesh */
 			assert_true(sa.welded == nv - base.vertex_count &&
