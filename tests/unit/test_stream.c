@@ -983,8 +983,11 @@ bndy_chunk(void **state)
 	assert_memory_equal(back, "\0\1\1\0\0\1", 6);
 	free(back);
 
-	for (uint64_t k = 0; k < n; k++)
+	for (uint64_t k = 0; k < n; k++) {
 		assert_int_equal(vdt_bndy_decode(d, k, 6, &back, &err), VDT_EFORMAT);
+		if (k == 5)
+			assert_string_equal(err.msg, "payload of 5 bytes is shorter than its 8-byte count");
+	}
 	assert_int_equal(vdt_bndy_decode(d, n, 5, &back, &err), VDT_EINVAL);
 	assert_string_equal(err.msg, "boundary vertex 5 is out of range (5 vertices)");
 	vdt_put_u32le(d + 12, 1);
