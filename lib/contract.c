@@ -122,9 +122,10 @@ struct engine {
 	uint32_t *pcount;      /* how many pairs each has */
 	struct vcost *pout;
 	size_t pout_cap;
-	uint8_t *cut;          /* passes on threads, the vertex numbers cut in
-	                          one part per thread: per vertex, shares a
-	                          face with another part's */
+	uint8_t *part;         /* passes on threads: per vertex, its part (one
+	                          per thread, a region of space) */
+	uint8_t *cut;          /* per vertex, shares a face with another
+	                          part's */
 	uint8_t *aside;        /* per vertex: near a pair set aside this round */
 	double fit_per_pair;   /* the pool room the last round's pairs might take */
 };
@@ -1624,9 +1625,10 @@ tally(struct ptally *t, int made, double cost)
  *
  * Contracting a pair reads and writes nothing outside its closed
  * neighbourhood (the vertices that share a face with either end). The
- * vertex numbers are cut into one part per thread; a vertex that shares a
- * face with another part's is on the cut (e->cut, kept up to date by the
- * contractions made on one thread, the only ones that can join parts).
+ * vertices are cut into one part per thread, each a region of space
+ * (parts_init); a vertex that shares a face with another part's is on the
+ * cut (e->cut, kept up to date by the contractions made on one thread, the
+ * only ones that can join parts).
  * In a round, each thread takes the claimed pairs of its part, in vertex
  * order, and contracts a pair only if every vertex of its neighbourhood,
  * as it then is, is of its part, off the cut, and not set aside; else it
@@ -1638,7 +1640,9 @@ tally(struct ptally *t, int made, double cost)
  * changes meanwhile. The pairs set aside are then contracted on one thread
  * in vertex order. Every pair meets the mesh that contracting all of them
  * in vertex order would give it: the result does not depend on the number
- * of threads.
+ * of threads, nor on how the vertices are cut. Parts that are regions keep
+ * the cut short, whatever the vertex numbering, and so the pairs set aside
+ * few.
  */
 #define PASS_RUN_MIN 1024    /* claimed pairs per thread, at least */
 #define PASS_FIT_START 24    /* pool entries a pair's merged list may take */
@@ -1646,7 +1650,112 @@ tally(struct ptally *t, int made, double cost)
 static uint32_t
 part_of(const struct engine *e, uint32_t v)
 {
-	return (uint32_t)((uint64_t)v * (uint64_t)e->threads / e->nv);
+	return e->part[v];
+}
+
+#define PART_BINS 1024 /* a part's extent along the axis it is cut across, in bins */
+
+/* The bin of v's position along axis k of the box lo..hi, in PART_BINS. */
+static int
+part_bin(const struct engine *e, uint32_t v, int k, double lo, double hi)
+{
+	double f = hi > lo ? (e->pos[3 * (size_t)v + k] - lo) * PART_BINS / (hi - lo) : 0;
+
+	return f < 1 ? 0 : f < PART_BINS - 1 ? (int)f : PART_BINS - 1;
+}
+
+/*
+ * One part per thread, by recursive bisection: a part that is to be split
+ * among n threads is cut across the axis along which its vertices spread
+ * most (variance, not extent: a few outlying vertices must not decide),
+ * where that leaves n/2 threads' share of them (to a bin) below the cut.
+ * Parts are thus compact regions, whose cut is short, however the input
+ * numbers its vertices (a range of vertex numbers can be scattered over
+ * the whole surface). A part is named by its first thread; nt[p] is the
+ * number of threads of part p, 0 where no part starts.
+ */
+static int
+parts_init(struct engine *e)
+{
+	const int t = e->threads;
+	int nt[VDT_CONTRACT_MAX_THREADS] = {0};
+	uint32_t *hist;
+
+	if ((e->part = calloc(e->nv, 1)) == NULL ||
+	    (hist = malloc((size_t)t * PART_BINS * sizeof(*hist))) == NULL)
+		return -1;
+	nt[0] = t;
+	for (;;) {
+		int more = 0;
+		for (int p = 0; p < t; p++)
+			more |= nt[p] > 1;
+		if (!more)
+			break;
+		double lo[VDT_CONTRACT_MAX_THREADS][3], hi[VDT_CONTRACT_MAX_THREADS][3];
+		/* sums of x - ref (a vertex of the part, so that far-off
+		 * coordinates lose no digits) and of its square */
+		double ref[VDT_CONTRACT_MAX_THREADS][3];
+		double sum[VDT_CONTRACT_MAX_THREADS][3] = {{0}}, sq[VDT_CONTRACT_MAX_THREADS][3] = {{0}};
+		int axis[VDT_CONTRACT_MAX_THREADS] = {0}, cut[VDT_CONTRACT_MAX_THREADS];
+		size_t count[VDT_CONTRACT_MAX_THREADS] = {0};
+
+		for (int p = 0; p < t; p++)
+			for (int k = 0; k < 3; k++) {
+				lo[p][k] = INFINITY;
+				hi[p][k] = -INFINITY;
+			}
+		for (size_t v = 0; v < e->nv; v++)
+			if (e->vt[v].len > 0) {
+				int p = e->part[v];
+				if (count[p]++ == 0)
+					for (int k = 0; k < 3; k++)
+						ref[p][k] = e->pos[3 * v + k];
+				for (int k = 0; k < 3; k++) {
+					double x = e->pos[3 * v + k];
+					lo[p][k] = fmin(lo[p][k], x);
+					hi[p][k] = fmax(hi[p][k], x);
+					sum[p][k] += x - ref[p][k];
+					sq[p][k] += (x - ref[p][k]) * (x - ref[p][k]);
+				}
+			}
+		for (int p = 0; p < t; p++) {
+			double best = -1;
+			for (int k = 0; k < 3 && count[p] > 0; k++) {
+				double var = sq[p][k] / (double)count[p] -
+				             sum[p][k] * sum[p][k] / ((double)count[p] * (double)count[p]);
+				if (var > best) {
+					best = var;
+					axis[p] = k;
+				}
+			}
+		}
+		memset(hist, 0, (size_t)t * PART_BINS * sizeof(*hist));
+		for (size_t v = 0; v < e->nv; v++)
+			if (e->vt[v].len > 0) {
+				int p = e->part[v], k = axis[p];
+				hist[(size_t)p * PART_BINS +
+				     (size_t)part_bin(e, (uint32_t)v, k, lo[p][k], hi[p][k])]++;
+			}
+		for (int p = 0; p < t; p++) {
+			size_t below = 0, want = nt[p] > 1 ? count[p] * (size_t)(nt[p] / 2) / (size_t)nt[p] : 0;
+			cut[p] = 0;
+			while (cut[p] < PART_BINS && below < want)
+				below += hist[(size_t)p * PART_BINS + (size_t)cut[p]++];
+		}
+		for (size_t v = 0; v < e->nv; v++)
+			if (e->vt[v].len > 0) {
+				int p = e->part[v], k = axis[p];
+				if (nt[p] > 1 && part_bin(e, (uint32_t)v, k, lo[p][k], hi[p][k]) >= cut[p])
+					e->part[v] = (uint8_t)(p + nt[p] / 2);
+			}
+		for (int p = t - 1; p >= 0; p--)
+			if (nt[p] > 1) {
+				nt[p + nt[p] / 2] = nt[p] - nt[p] / 2;
+				nt[p] /= 2;
+			}
+	}
+	free(hist);
+	return 0;
 }
 
 /* A live face whose corners are of more than one part puts them on the cut. */
@@ -1672,7 +1781,8 @@ cut_around(struct engine *e, uint32_t v)
 static int
 cut_init(struct engine *e)
 {
-	if ((e->cut = calloc(e->nv, 1)) == NULL || (e->aside = calloc(e->nv, 1)) == NULL)
+	if (parts_init(e) != 0 || (e->cut = calloc(e->nv, 1)) == NULL ||
+	    (e->aside = calloc(e->nv, 1)) == NULL)
 		return -1;
 	for (size_t t = 0; t < e->nt; t++)
 		if (e->tri[3 * t] != NONE)
@@ -1683,12 +1793,12 @@ cut_init(struct engine *e)
 struct prun {
 	struct engine *e;
 	const uint64_t *keys; /* the round's claimed pairs (vertex in the low bits) */
-	size_t begin, end;    /* this part's, in keys */
+	const uint32_t *order; /* indices into keys, part by part */
+	size_t begin, end;    /* this part's, in order */
 	uint32_t part;
 	size_t grow, tris;    /* pool room its merged lists may take, faces
 	                         its pairs may remove */
-	uint32_t *aside;      /* the pairs set aside (indices into keys) */
-	size_t naside;
+	uint8_t *aside;       /* per claimed pair: set aside */
 	struct work w;
 	struct ptally t;
 	struct vdt_contraction *rec; /* per claimed pair, when recording */
@@ -1757,7 +1867,7 @@ prun_bound(void *arg)
 	const struct engine *e = r->e;
 
 	for (size_t i = r->begin; i < r->end; i++) {
-		uint32_t v = (uint32_t)r->keys[i];
+		uint32_t v = (uint32_t)r->keys[r->order[i]];
 		uint32_t lv = e->vt[v].len, lx = e->vt[e->best[v]].len;
 		r->grow += grown_cap(lv + lx);
 		r->tris += lv < lx ? lv : lx;
@@ -1782,19 +1892,19 @@ prun_contract(void *arg)
 	struct prun *r = arg;
 	struct engine *e = r->e;
 
-	for (size_t i = r->begin; i < r->end && !r->failed; i++) {
-		uint32_t v = (uint32_t)r->keys[i], x = e->best[v];
+	for (size_t j = r->begin; j < r->end && !r->failed; j++) {
+		uint32_t i = r->order[j], v = (uint32_t)r->keys[i], x = e->best[v];
 		struct vdt_contraction c;
 		double cost;
-		if (i + 2 < r->end) {
-			uint32_t a = (uint32_t)r->keys[i + 2], b = e->best[a];
+		if (j + 2 < r->end) {
+			uint32_t a = (uint32_t)r->keys[r->order[j + 2]], b = e->best[a];
 			prefetch_fan(e, a, 2);
 			if (readable(e, b, r->part))
 				prefetch_fan(e, b, 2);
 		}
 		if (!pair_mine(e, v, x, r->part)) {
 			set_aside(e, v, x, r->part);
-			r->aside[r->naside++] = (uint32_t)i;
+			r->aside[i] = 1;
 			continue;
 		}
 		int made = pass_pair(e, &r->w, v, &c, &cost);
@@ -1804,22 +1914,6 @@ prun_contract(void *arg)
 			prun_keep(r, i, made, &c, cost);
 	}
 	return NULL;
-}
-
-/* The first i of keys[0..m) (vertex order) with vertex at least v. */
-static size_t
-keys_from(const uint64_t *keys, size_t m, uint64_t v)
-{
-	size_t lo = 0, hi = m;
-
-	while (lo < hi) {
-		size_t mid = lo + (hi - lo) / 2;
-		if ((uint32_t)keys[mid] < v)
-			lo = mid + 1;
-		else
-			hi = mid;
-	}
-	return lo;
 }
 
 /*
@@ -1837,8 +1931,9 @@ pass_round(struct engine *e, const struct vdt_contract_opts *o,
 {
 	struct prun run[VDT_CONTRACT_MAX_THREADS];
 	struct pool *p = &e->tpool;
-	size_t t = (size_t)e->threads, grow = 0, room;
-	uint32_t *aside = NULL;
+	size_t t = (size_t)e->threads, grow = 0, room, at[VDT_CONTRACT_MAX_THREADS + 1] = {0};
+	uint32_t *order = NULL;
+	uint8_t *aside = NULL;
 	struct vdt_contraction *rec = NULL;
 	uint8_t *made = NULL;
 	long rc = -1;
@@ -1864,21 +1959,25 @@ pass_round(struct engine *e, const struct vdt_contract_opts *o,
 	if (e->cut == NULL && cut_init(e) != 0)
 		return -1;
 	memset(run, 0, sizeof(run));
-	aside = malloc(m * sizeof(*aside));
+	order = malloc(m * sizeof(*order));
+	aside = calloc(m, 1);
 	if (o->record) {
 		rec = malloc(m * sizeof(*rec));
 		made = calloc(m, 1);
 	}
-	if (aside == NULL || (o->record && (rec == NULL || made == NULL)))
+	if (order == NULL || aside == NULL || (o->record && (rec == NULL || made == NULL)))
 		goto out;
+	/* Each part's pairs, in vertex order. */
+	for (size_t i = 0; i < m; i++)
+		at[part_of(e, (uint32_t)keys[i]) + 1]++;
 	for (size_t k = 0; k < t; k++) {
-		size_t b = keys_from(keys, m, (uint64_t)e->nv * k / t + (((uint64_t)e->nv * k) % t != 0));
-		run[k] = (struct prun){.e = e, .keys = keys, .begin = b, .part = (uint32_t)k,
-		                       .aside = aside + b, .rec = rec, .made = made};
-		if (k > 0)
-			run[k - 1].end = b;
+		at[k + 1] += at[k];
+		run[k] = (struct prun){.e = e, .keys = keys, .order = order, .begin = at[k],
+		                       .end = at[k + 1], .part = (uint32_t)k, .aside = aside,
+		                       .rec = rec, .made = made};
 	}
-	run[t - 1].end = m;
+	for (size_t i = 0; i < m; i++)
+		order[at[part_of(e, (uint32_t)keys[i])]++] = (uint32_t)i;
 	vdt_run_jobs(prun_bound, run, sizeof(run[0]), (int)t);
 	size_t tris = 0;
 	for (size_t k = 0; k < t; k++) {
@@ -1900,20 +1999,26 @@ pass_round(struct engine *e, const struct vdt_contract_opts *o,
 	}
 	p->shared = 1;
 	vdt_run_jobs(prun_contract, run, sizeof(run[0]), (int)t);
-	/* The pairs set aside, in vertex order (part by part). */
-	for (size_t k = 0; k < t; k++) {
-		for (size_t j = 0; j < run[k].naside && !run[k].failed; j++) {
-			size_t i = run[k].aside[j];
-			struct vdt_contraction c;
-			double cost;
-			int mk = pass_pair(e, &run[k].w, (uint32_t)keys[i], &c, &cost);
-			if (mk < 0)
-				run[k].failed = 1;
-			else
-				prun_keep(&run[k], i, mk, &c, cost);
-			if (mk > 0)
-				cut_around(e, c.keep);
-		}
+	/* The pairs set aside, in vertex order. */
+	res->shared += m;
+	for (size_t i = 0; i < m; i++)
+		res->set_aside += aside[i];
+	int failed = 0;
+	for (size_t k = 0; k < t; k++)
+		failed |= run[k].failed;
+	for (size_t i = 0; i < m && !failed; i++) {
+		if (!aside[i])
+			continue;
+		struct prun *r = &run[part_of(e, (uint32_t)keys[i])];
+		struct vdt_contraction c;
+		double cost;
+		int mk = pass_pair(e, &r->w, (uint32_t)keys[i], &c, &cost);
+		if (mk < 0)
+			failed = r->failed = 1;
+		else
+			prun_keep(r, i, mk, &c, cost);
+		if (mk > 0)
+			cut_around(e, c.keep);
 	}
 	p->shared = 0;
 	rc = (long)m;
@@ -1935,6 +2040,7 @@ out:
 		memset(e->aside, 0, e->nv);
 	for (size_t k = 0; k < t; k++)
 		free(run[k].w.wing);
+	free(order);
 	free(aside);
 	free(rec);
 	free(made);
@@ -2078,8 +2184,8 @@ engine_shed(struct engine *e)
 	              (void **)&e->alt, (void **)&e->altc,
 	              (void **)&e->vn, (void **)&e->vk, (void **)&e->work.wing,
 	              (void **)&e->keys, (void **)&e->plist, (void **)&e->poff,
-	              (void **)&e->pcount, (void **)&e->pout, (void **)&e->cut,
-	              (void **)&e->aside};
+	              (void **)&e->pcount, (void **)&e->pout, (void **)&e->part,
+	              (void **)&e->cut, (void **)&e->aside};
 	for (size_t i = 0; i < sizeof(p) / sizeof(p[0]); i++) {
 		free(*p[i]);
 		*p[i] = NULL;
@@ -2117,6 +2223,7 @@ engine_free(struct engine *e)
 	free(e->poff);
 	free(e->pcount);
 	free(e->pout);
+	free(e->part);
 	free(e->cut);
 	free(e->aside);
 }

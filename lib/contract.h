@@ -161,6 +161,10 @@ struct vdt_contract_result {
 	size_t rejected;       /* pops refused by a validity test */
 	int passes;            /* 1 if contracted in passes (asked for, and
 	                          no pair queue), 0 one pair at a time */
+	size_t shared;         /* passes: claimed pairs shared among threads */
+	size_t set_aside;      /* of those, left to one thread (their
+	                          neighbourhood crossed from one thread's part
+	                          of the mesh into another's) */
 };
 
 /*
