@@ -21,6 +21,7 @@
  */
 #include "meshio.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -983,7 +984,7 @@ static int
 flush_buf(FILE *f, unsigned char *b, size_t *n, struct vdt_err *err)
 {
 	if (*n && fwrite(b, 1, *n, f) != *n)
-		return vdt_err_set(err, VDT_EIO, "write error");
+		return vdt_err_set(err, VDT_EIO, "write error: %s", strerror(errno));
 	*n = 0;
 	return 0;
 }
@@ -1013,11 +1014,11 @@ vdt_ply_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err)
 	int rc = 0;
 
 	if (fputs("ply\nformat binary_little_endian 1.0\ncomment vdt\n", f) < 0)
-		return vdt_err_set(err, VDT_EIO, "write error");
+		return vdt_err_set(err, VDT_EIO, "write error: %s", strerror(errno));
 	vdt_ply_bbox_comment(f, m);
 	if (fprintf(f, "element vertex %zu\nproperty float x\nproperty float y\nproperty float z\n",
 	            m->vertex_count) < 0)
-		return vdt_err_set(err, VDT_EIO, "write error");
+		return vdt_err_set(err, VDT_EIO, "write error: %s", strerror(errno));
 	if (m->normals) {
 		fputs("property float nx\nproperty float ny\nproperty float nz\n", f);
 		rec += 12;
@@ -1032,7 +1033,7 @@ vdt_ply_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err)
 	}
 	if (fprintf(f, "element face %zu\nproperty list uchar int vertex_indices\nend_header\n",
 	            m->triangle_count) < 0)
-		return vdt_err_set(err, VDT_EIO, "write error");
+		return vdt_err_set(err, VDT_EIO, "write error: %s", strerror(errno));
 	b = malloc(BUF);
 	if (b == NULL)
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory");

@@ -8,6 +8,7 @@
  */
 #include "meshio.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -153,7 +154,7 @@ vdt_stl_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err)
 	memcpy(head, "binary STL written by vdt", 25);
 	vdt_put_u32le(head + 80, (uint32_t)m->triangle_count);
 	if (fwrite(head, 1, 84, f) != 84)
-		return vdt_err_set(err, VDT_EIO, "write error");
+		return vdt_err_set(err, VDT_EIO, "write error: %s", strerror(errno));
 	b = malloc(PER * 50);
 	if (b == NULL)
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
@@ -180,7 +181,7 @@ vdt_stl_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err)
 		}
 		if (fwrite(b, 50, n, f) != n) {
 			free(b);
-			return vdt_err_set(err, VDT_EIO, "write error");
+			return vdt_err_set(err, VDT_EIO, "write error: %s", strerror(errno));
 		}
 	}
 	free(b);
