@@ -130,18 +130,18 @@ run(struct cmdline *cl)
 	t1 = vdt_seconds();
 	if (cl->has_view) {
 		float *v = malloc(m.vertex_count * sizeof(*v));
-		FILE *f = strcmp(cl->out, "-") == 0 ? stdout : fopen(cl->out, "w");
-		if (v == NULL || f == NULL) {
-			vdt_err_set(&err, VDT_EIO, "cannot open the output");
+		struct vdt_output o;
+		if (v == NULL) {
+			vdt_err_set(&err, VDT_ENOMEM, "out of memory");
+			rc = fail("cannot write", cl->out, &err);
+		} else if (vdt_output_open(&o, cl->out, &err) != 0) {
 			rc = fail("cannot write", cl->out, &err);
 		} else {
 			vdt_labl_view(&l, cl->view, cl->nearest, v);
 			for (size_t i = 0; i < m.vertex_count; i++)
-				fprintf(f, "%g\n", v[i]);
-			if ((f != stdout ? fclose(f) : fflush(f)) != 0) {
-				vdt_err_set(&err, VDT_EIO, "write error");
+				fprintf(o.f, "%g\n", v[i]);
+			if (vdt_output_commit(&o, &err) != 0)
 				rc = fail("cannot write", cl->out, &err);
-			}
 		}
 		free(v);
 		goto out;

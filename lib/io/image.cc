@@ -2,7 +2,8 @@
  * image.cc - the extern "C" face of OpenImageIO: 8-bit images in and out,
  * the format from the file name's extension. Output is atomic: written to a
  * temporary name with the same extension (so that OpenImageIO picks the same
- * writer) and renamed over the target on success.
+ * writer) and renamed over the target on success; through a symbolic link
+ * to what it names, and in place to a device or FIFO (vdt_output_target).
  */
 #include <OpenImageIO/imageio.h>
 
@@ -34,7 +35,13 @@ write_image(const char *path, int w, int h, int c, const unsigned char *px, stru
 {
 	if (w <= 0 || h <= 0 || c <= 0 || c > 4)
 		return vdt_err_set(err, VDT_EINVAL, "bad image size %dx%d with %d channels", w, h, c);
-	std::string tmp = temp_name(path);
+	int special = 0;
+	char *target = vdt_output_target(path, &special);
+	if (target == nullptr)
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	std::string dst(target);
+	std::free(target);
+	std::string tmp = special ? dst : temp_name(dst);
 	auto out = OIIO::ImageOutput::create(path);
 	if (!out) {
 		std::string e = OIIO::geterror();
@@ -44,7 +51,8 @@ write_image(const char *path, int w, int h, int c, const unsigned char *px, stru
 	OIIO::ImageSpec spec(w, h, c, OIIO::TypeDesc::UINT8);
 	if (!out->open(tmp, spec)) {
 		std::string e = out->geterror();
-		std::remove(tmp.c_str());
+		if (!special)
+			std::remove(tmp.c_str());
 		return vdt_err_set(err, VDT_EIO, "%s", e.c_str());
 	}
 	bool ok = out->write_image(OIIO::TypeDesc::UINT8, px);
@@ -54,10 +62,11 @@ write_image(const char *path, int w, int h, int c, const unsigned char *px, stru
 		e = out->geterror();
 	}
 	if (!ok) {
-		std::remove(tmp.c_str());
+		if (!special)
+			std::remove(tmp.c_str());
 		return vdt_err_set(err, VDT_EIO, "%s", e.c_str());
 	}
-	if (std::rename(tmp.c_str(), path) != 0) {
+	if (!special && std::rename(tmp.c_str(), dst.c_str()) != 0) {
 		int en = errno;
 		std::remove(tmp.c_str());
 		return vdt_err_set(err, VDT_EIO, "cannot rename the temporary file: %s", std::strerror(en));

@@ -405,55 +405,113 @@ vdt_read(const char *path, struct vdt_mesh *m, struct vdt_chunks *extra,
 	return rc;
 }
 
+char *
+vdt_output_target(const char *path, int *special)
+{
+	struct stat st;
+	char *cur;
+
+	*special = 0;
+	if (stat(path, &st) == 0) {
+		/* A device, FIFO or socket (also through /dev/stdout and the
+		 * like, which the kernel follows) is written in place. */
+		if (!S_ISREG(st.st_mode)) {
+			*special = !S_ISDIR(st.st_mode);
+			return strdup(path);
+		}
+		if ((cur = realpath(path, NULL)) != NULL || errno == ENOMEM)
+			return cur;
+		return strdup(path);
+	}
+	/* Nothing there: a symbolic link's target to be created, followed by
+	 * hand (realpath cannot name what does not exist yet), or path. */
+	cur = strdup(path);
+	for (int hops = 0; cur != NULL && hops < 40; hops++) {
+		char buf[4096], *next;
+		ssize_t n;
+
+		if (lstat(cur, &st) != 0 || !S_ISLNK(st.st_mode) ||
+		    (n = readlink(cur, buf, sizeof(buf) - 1)) < 0)
+			break;
+		buf[n] = 0;
+		const char *slash = strrchr(cur, '/');
+		size_t dl = buf[0] == '/' || slash == NULL ? 0 : (size_t)(slash + 1 - cur);
+		if ((next = malloc(dl + (size_t)n + 1)) != NULL) {
+			memcpy(next, cur, dl);
+			memcpy(next + dl, buf, (size_t)n + 1);
+		}
+		free(cur);
+		cur = next;
+	}
+	return cur;
+}
+
+static int
+output_fail(struct vdt_output *o, int fd, struct vdt_err *err, int code, const char *what, int e)
+{
+	if (fd >= 0)
+		close(fd);
+	if (o->tmp != NULL)
+		unlink(o->tmp);
+	free(o->path);
+	free(o->tmp);
+	memset(o, 0, sizeof(*o));
+	return vdt_err_set(err, code, "%s%s%s", what, *what && e ? ": " : "", e ? strerror(e) : "");
+}
+
 int
 vdt_output_open(struct vdt_output *o, const char *path, struct vdt_err *err)
 {
 	const char *slash, *base;
+	struct stat st;
 	size_t dl;
-	mode_t mask;
-	int fd;
+	int fd, special;
 
 	memset(o, 0, sizeof(*o));
 	if (strcmp(path, "-") == 0) {
 		o->f = stdout;
 		return 0;
 	}
-	o->path = strdup(path);
-	slash = strrchr(path, '/');
-	base = slash ? slash + 1 : path;
-	dl = (size_t)(base - path);
-	o->tmp = malloc(dl + strlen(base) + 16);
-	if (o->path == NULL || o->tmp == NULL) {
-		free(o->path);
-		free(o->tmp);
-		memset(o, 0, sizeof(*o));
-		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	if ((o->path = vdt_output_target(path, &special)) == NULL)
+		return output_fail(o, -1, err, VDT_ENOMEM, "out of memory", 0);
+	if (special) {
+		/* A device, FIFO or socket: written in place, as there is no
+		 * file to replace (and replacing /dev/null would be a crime). */
+		if ((fd = open(o->path, O_WRONLY | O_CLOEXEC)) < 0 || (o->f = fdopen(fd, "wb")) == NULL)
+			return output_fail(o, fd, err, VDT_EIO, "", errno);
+		return 0;
 	}
-	/* A hidden name in the same directory, so that rename is atomic. */
-	memcpy(o->tmp, path, dl);
+	slash = strrchr(o->path, '/');
+	base = slash ? slash + 1 : o->path;
+	dl = (size_t)(base - o->path);
+	if ((o->tmp = malloc(dl + strlen(base) + 16)) == NULL)
+		return output_fail(o, -1, err, VDT_ENOMEM, "out of memory", 0);
+	/* A hidden name in the same directory, so that rename is atomic; a
+	 * symbolic link is written through (what it names is replaced). */
+	memcpy(o->tmp, o->path, dl);
 	sprintf(o->tmp + dl, ".%s.XXXXXX", base);
 	fd = mkstemp(o->tmp);
 	if (fd < 0) {
 		int e = errno;
-		free(o->path);
 		free(o->tmp);
-		memset(o, 0, sizeof(*o));
-		return vdt_err_set(err, VDT_EIO, "cannot create a temporary file: %s", strerror(e));
+		o->tmp = NULL;
+		return output_fail(o, -1, err, VDT_EIO, "cannot create a temporary file", e);
 	}
-	/* mkstemp makes 0600; give the result the usual 0666 & ~umask. */
-	mask = umask(0);
-	umask(mask);
-	fchmod(fd, 0666 & ~mask);
-	o->f = fdopen(fd, "wb");
-	if (o->f == NULL) {
-		int e = errno;
-		close(fd);
-		unlink(o->tmp);
-		free(o->path);
-		free(o->tmp);
-		memset(o, 0, sizeof(*o));
-		return vdt_err_set(err, VDT_EIO, "%s", strerror(e));
+	if (stat(o->path, &st) == 0 && S_ISREG(st.st_mode)) {
+		/* The file replaced keeps its permissions, and its owner where
+		 * we may give it. */
+		fchmod(fd, st.st_mode & 07777);
+		if (st.st_uid != geteuid() || st.st_gid != getegid())
+			if (fchown(fd, st.st_uid, st.st_gid) != 0)
+				fchmod(fd, st.st_mode & 0777); /* no set-id bits for another */
+	} else {
+		/* mkstemp makes 0600; give a new file the usual 0666 & ~umask. */
+		mode_t mask = umask(0);
+		umask(mask);
+		fchmod(fd, 0666 & ~mask);
 	}
+	if ((o->f = fdopen(fd, "wb")) == NULL)
+		return output_fail(o, fd, err, VDT_EIO, "", errno);
 	return 0;
 }
 
@@ -464,9 +522,12 @@ vdt_output_commit(struct vdt_output *o, struct vdt_err *err)
 
 	if (o->f == NULL)
 		return vdt_err_set(err, VDT_EINVAL, "output is not open");
-	if (o->tmp == NULL) {
+	if (o->tmp == NULL) { /* stdout, or a device or FIFO of ours */
 		if (fflush(o->f) != 0 || ferror(o->f))
 			rc = vdt_err_set(err, VDT_EIO, "write error: %s", strerror(errno));
+		if (o->path != NULL && fclose(o->f) != 0 && rc == 0)
+			rc = vdt_err_set(err, VDT_EIO, "write error: %s", strerror(errno));
+		free(o->path);
 		memset(o, 0, sizeof(*o));
 		return rc;
 	}
@@ -492,6 +553,8 @@ vdt_output_abort(struct vdt_output *o)
 	if (o->f != NULL && o->tmp != NULL) {
 		fclose(o->f);
 		unlink(o->tmp);
+	} else if (o->f != NULL && o->path != NULL) {
+		fclose(o->f);
 	} else if (o->f != NULL) {
 		fflush(o->f);
 	}

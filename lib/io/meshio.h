@@ -101,9 +101,20 @@ int vdt_write(const char *path, const struct vdt_mesh *m,
  */
 struct vdt_output {
 	FILE *f;
-	char *path;
-	char *tmp; /* NULL for stdout */
+	char *path; /* what is written: the file a symbolic link names, if
+	               one does; NULL for stdout */
+	char *tmp;  /* the hidden file renamed over path at commit; NULL for
+	               stdout, or when path is a device, FIFO or socket,
+	               written in place */
 };
+
+/*
+ * Where output to path lands: the file that path names through any
+ * symbolic links (which may not exist yet), or path itself; *special is
+ * set when that is a device, FIFO or socket, to be written in place
+ * rather than replaced. Returns a malloc'd name, NULL out of memory.
+ */
+char *vdt_output_target(const char *path, int *special);
 int vdt_output_open(struct vdt_output *o, const char *path, struct vdt_err *err);
 int vdt_output_commit(struct vdt_output *o, struct vdt_err *err);
 void vdt_output_abort(struct vdt_output *o);

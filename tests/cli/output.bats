@@ -1,0 +1,84 @@
+#!/usr/bin/env bats
+# Command-line tests of where -o writes: every tool replaces a regular file
+# whole (a hidden file beside it, renamed over it), writes through a
+# symbolic link to the file it names, and writes a FIFO or device in place
+# instead of replacing it.
+
+load helpers
+
+@test "-o through a symbolic link replaces the file it names and keeps the link" {
+	printf 'old\n' >"$TMP/real.off"
+	ln -s real.off "$TMP/link.off"
+	run "$BIN/vdt-qslim" -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/link.off"
+	[ "$status" -eq 0 ]
+	[ -L "$TMP/link.off" ]
+	[ "$(readlink "$TMP/link.off")" = real.off ]
+	[ "$(head -n 1 "$TMP/real.off")" = OFF ]
+	# an image too
+	"$BIN/vdt-build" "$SAMPLES/torus.off" -o "$TMP/torus.vdt"
+	ln -s real.png "$TMP/link.png"
+	run "$BIN/vdt-render" "$TMP/torus.vdt" -o "$TMP/link.png"
+	[ "$status" -eq 0 ]
+	[ -L "$TMP/link.png" ] && [ -s "$TMP/real.png" ]
+	# nothing left beside them
+	[ "$(ls -A "$TMP" | grep -c '^\.')" -eq 0 ]
+}
+
+@test "-o a symbolic link to a file not made yet creates that file" {
+	mkdir "$TMP/sub"
+	ln -s sub/new.off "$TMP/dangling.off"
+	run "$BIN/vdt-qslim" -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/dangling.off"
+	[ "$status" -eq 0 ]
+	[ -L "$TMP/dangling.off" ]
+	[ "$(head -n 1 "$TMP/sub/new.off")" = OFF ]
+}
+
+@test "-o a FIFO writes into it and leaves it a FIFO" {
+	mkfifo "$TMP/pipe.off"
+	timeout 20 cat "$TMP/pipe.off" >"$TMP/read.off" &
+	run timeout 20 "$BIN/vdt-qslim" -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/pipe.off"
+	wait
+	[ "$status" -eq 0 ]
+	[ -p "$TMP/pipe.off" ]
+	"$BIN/vdt-qslim" -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/file.off"
+	cmp "$TMP/read.off" "$TMP/file.off"
+	mkfifo "$TMP/labels"
+	timeout 20 cat "$TMP/labels" >"$TMP/labels.txt" &
+	run timeout 60 "$BIN/vdt-silhouette" -a 45 -r 32 --view 0,0,1 "$SAMPLES/sphere.off" -o "$TMP/labels"
+	wait
+	[ "$status" -eq 0 ]
+	[ -p "$TMP/labels" ]
+	[ "$(wc -l <"$TMP/labels.txt")" -eq "$(off_vertices "$SAMPLES/sphere.off")" ]
+}
+
+@test "-o a file that exists keeps its permissions" {
+	printf 'old\n' >"$TMP/private.off"
+	chmod 600 "$TMP/private.off"
+	run "$BIN/vdt-qslim" -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/private.off"
+	[ "$status" -eq 0 ]
+	[ "$(stat -c %a "$TMP/private.off")" = 600 ]
+	[ "$(head -n 1 "$TMP/private.off")" = OFF ]
+	umask 022
+	run "$BIN/vdt-qslim" -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/new.off"
+	[ "$(stat -c %a "$TMP/new.off")" = 644 ]
+}
+
+@test "a full disk is reported, with status 1" {
+	# (stdout, so that the test cannot harm /dev/full whatever -o does)
+	[ -c /dev/full ] || skip "no /dev/full"
+	run sh -c "'$BIN/vdt-qslim' -r 0.5 -F off '$SAMPLES/sphere.off' >/dev/full"
+	[ "$status" -eq 1 ]
+	one_line
+	[[ "$output" == *"cannot write '<stdout>'"*"No space left on device" ]]
+}
+
+@test "vdt-silhouette --view -o writes its file whole, and names a missing directory" {
+	run "$BIN/vdt-silhouette" -a 45 -r 32 --view 0,0,1 "$SAMPLES/sphere.off" -o "$TMP/labels.txt"
+	[ "$status" -eq 0 ]
+	[ "$(wc -l <"$TMP/labels.txt")" -eq "$(off_vertices "$SAMPLES/sphere.off")" ]
+	run "$BIN/vdt-silhouette" -a 45 -r 32 --view 0,0,1 "$SAMPLES/sphere.off" -o "$TMP/no/such/dir/labels.txt"
+	[ "$status" -eq 1 ]
+	one_line
+	[ ! -e "$TMP/no" ]
+	[ "$(ls -A "$TMP" | grep -c '^\.')" -eq 0 ]
+}
