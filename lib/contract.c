@@ -1799,6 +1799,7 @@ struct prun {
 	size_t grow, tris;    /* pool room its merged lists may take, faces
 	                         its pairs may remove */
 	uint8_t *aside;       /* per claimed pair: set aside */
+	size_t naside;        /* how many of this part's */
 	struct work w;
 	struct ptally t;
 	struct vdt_contraction *rec; /* per claimed pair, when recording */
@@ -1905,6 +1906,7 @@ prun_contract(void *arg)
 		if (!pair_mine(e, v, x, r->part)) {
 			set_aside(e, v, x, r->part);
 			r->aside[i] = 1;
+			r->naside++;
 			continue;
 		}
 		int made = pass_pair(e, &r->w, v, &c, &cost);
@@ -2000,12 +2002,12 @@ pass_round(struct engine *e, const struct vdt_contract_opts *o,
 	p->shared = 1;
 	vdt_run_jobs(prun_contract, run, sizeof(run[0]), (int)t);
 	/* The pairs set aside, in vertex order. */
-	res->shared += m;
-	for (size_t i = 0; i < m; i++)
-		res->set_aside += aside[i];
 	int failed = 0;
-	for (size_t k = 0; k < t; k++)
+	res->shared += m;
+	for (size_t k = 0; k < t; k++) {
 		failed |= run[k].failed;
+		res->set_aside += run[k].naside;
+	}
 	for (size_t i = 0; i < m && !failed; i++) {
 		if (!aside[i])
 			continue;
