@@ -63,6 +63,17 @@ load helpers
 	[ "$(stat -c %a "$TMP/new.off")" = 644 ]
 }
 
+@test "-o a file of another user's, run as root, keeps its owner" {
+	[ "$(id -u)" -eq 0 ] || skip "not root"
+	id nobody >/dev/null 2>&1 || skip "no user nobody"
+	printf 'old\n' >"$TMP/theirs.off"
+	chown nobody "$TMP/theirs.off"
+	run "$BIN/vdt-qslim" -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/theirs.off"
+	[ "$status" -eq 0 ]
+	[ "$(stat -c %U "$TMP/theirs.off")" = nobody ]
+	[ "$(head -n 1 "$TMP/theirs.off")" = OFF ]
+}
+
 @test "a full disk is reported, with status 1" {
 	# (stdout, so that the test cannot harm /dev/full whatever -o does)
 	[ -c /dev/full ] || skip "no /dev/full"
