@@ -39,6 +39,10 @@ struct ctx {
 	double worst;          /* largest contraction error so far (squared) */
 	struct attr *at;       /* attribute quadrics, or NULL */
 	double *scale;         /* per welded vertex error scale, or NULL */
+	double unit;           /* costs are in diagonal^4 (area times squared
+	                          distance): the engine keeps them as floats,
+	                          whose range model units of 1e12 or 1e-12
+	                          would leave */
 };
 
 void
@@ -163,7 +167,7 @@ cost_fn(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 		e = scaled(c, a, b, e);
 	if (c->max_error < INFINITY && q.w > 0 && e > c->max_error * q.w)
 		return INFINITY;
-	return e;
+	return e * c->unit;
 }
 
 /* *worst = max(*worst, x) from any number of threads at once: a pass
@@ -185,6 +189,7 @@ merged_fn(void *vc, uint32_t keep, uint32_t gone, const double pos[3], double co
 	struct ctx *c = vc;
 
 	(void)pos;
+	cost /= c->unit;
 	if (c->scale) {
 		double s = fmin(c->scale[keep], c->scale[gone]);
 		if (s > 0 && s != 1)
@@ -911,7 +916,7 @@ cost_attr(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	}
 	for (int k = 0; k < 3; k++)
 		pos[k] += c->centre[k];
-	return c->scale ? scaled(c, a, b, e) : e;
+	return (c->scale ? scaled(c, a, b, e) : e) * c->unit;
 }
 
 static void
@@ -1482,6 +1487,8 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
 	vdt_mesh_bbox(&w, &box);
 	for (int k = 0; k < 3; k++)
 		c.centre[k] = 0.5 * (box.min[k] + box.max[k]);
+	double diag = vdt_bbox_diagonal(&box);
+	c.unit = diag > 0 ? 1 / (diag * diag * diag * diag) : 1;
 	c.max_error = o->max_error < INFINITY ? o->max_error * o->max_error : INFINITY;
 	dead = vdt_calloc_huge(T + 1, 1);
 	if (dead == NULL || build_quadrics(&w, o, canon, n, &c, border, dead, &stats->nonmanifold) != 0)

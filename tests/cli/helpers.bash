@@ -12,6 +12,11 @@ teardown() {
 	rm -rf "$TMP"
 }
 
+# The value of KEY in the key=value line on stdin.
+kv() {
+	tr ' ' '\n' | sed -n "s/^$1=//p"
+}
+
 # Triangle count in the header of an OFF file.
 off_faces() {
 	sed -n '2p' "$1" | awk '{print $2}'

@@ -3,10 +3,6 @@
 
 load helpers
 
-kv() { # key, kv line on stdin
-	tr ' ' '\n' | sed -n "s/^$1=//p"
-}
-
 @test "multiphase: vdt-cluster | vdt-qslim reaches the target near vdt-qslim's error" {
 	"$BIN/vdt-cluster" -q --target 500 "$SAMPLES/sphere.off" | "$BIN/vdt-qslim" -q -t 500 -F off > "$TMP/mp.off"
 	[ "$(off_faces "$TMP/mp.off")" -eq 500 ]

@@ -310,3 +310,17 @@ load helpers
 	[[ "$output" != *OpenImageIO* ]]
 	[[ "$output" != *opencv* ]]
 }
+
+@test "vdt-qslim does not depend on the model's units" {
+	# Costs are area times squared distance: 1e12 units would overflow
+	# the engine's float keys (nothing contracted) and 1e-12 underflow
+	# them to ties (the order lost).
+	for s in 1e12 1e-12; do
+		awk -v s="$s" 'NR == 2 { n = $1 } NR > 2 && NR <= 2 + n { $1 *= s; $2 *= s; $3 *= s } { print }' \
+			"$SAMPLES/sphere.off" > "$TMP/s.off"
+		"$BIN/vdt-qslim" -r 0.1 "$TMP/s.off" -o "$TMP/out.off"
+		[ "$(off_faces "$TMP/out.off")" -eq 512 ]
+		h=$("$BIN/vdt-measure" --format=kv "$TMP/s.off" "$TMP/out.off" | kv hausdorff_pct)
+		awk -v h="$h" 'BEGIN { exit !(h < 1) }'
+	done
+}
