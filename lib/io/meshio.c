@@ -304,7 +304,10 @@ vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
 		/* Not OpenMesh: it aborts on an assertion with some faces, and is slow. */
 		rc = vdt_obj_read(buf, len, m, err);
 		break;
-	case VDT_FMT_STL_ASCII: rc = vdt_openmesh_read(buf, len, f, m, err); break;
+	case VDT_FMT_STL_ASCII:
+		if ((rc = vdt_stl_ascii_check(buf, len, err)) == 0)
+			rc = vdt_openmesh_read(buf, len, f, m, err);
+		break;
 	default: return vdt_err_set(err, VDT_EFORMAT, "unknown format");
 	}
 	if (rc == 0)

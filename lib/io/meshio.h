@@ -169,6 +169,9 @@ int vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 int vdt_stl_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err);
 int vdt_off_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
                  struct vdt_err *err);
+/* Whether buf is well-formed ASCII STL, every number finite (stl.c):
+ * 0, or VDT_EFORMAT with the line and the fault. */
+int vdt_stl_ascii_check(const unsigned char *buf, size_t len, struct vdt_err *err);
 int vdt_openmesh_read(const unsigned char *buf, size_t len,
                       enum vdt_format format, struct vdt_mesh *m,
                       struct vdt_err *err);

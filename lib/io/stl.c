@@ -5,6 +5,13 @@
  *
  *   80-byte header, u32 triangle count, then per triangle 50 bytes:
  *   f32 normal[3], f32 v0[3], v1[3], v2[3], u16 attribute byte count.
+ *
+ * ASCII STL is parsed by OpenMesh, which reads a bad number as 0 (or as
+ * the largest float) and takes a cut-off file for a whole one: it is
+ * checked here first, word by word against the grammar
+ *   solid NAME (facet normal N N N outer loop (vertex X Y Z)x3 endloop
+ *   endfacet)* endsolid NAME, any number of solids,
+ * with every number finite and the keywords in any case.
  */
 #include "meshio.h"
 
@@ -14,6 +21,7 @@
 #include <string.h>
 
 #include "../bytes.h"
+#include "text.h"
 
 static uint64_t
 hash_pos(const uint32_t b[3])
@@ -185,5 +193,137 @@ vdt_stl_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err)
 		}
 	}
 	free(b);
+	return 0;
+}
+
+/* ---- ASCII STL: checked here, parsed by OpenMesh ---- */
+
+struct stl_text {
+	const char *p, *end;
+	size_t line;
+};
+
+/* The next word (run of non-blank bytes) into *w, *wl; 0 at the end. */
+static int
+stl_word(struct stl_text *t, const char **w, size_t *wl)
+{
+	while (t->p < t->end && (*t->p == ' ' || *t->p == '\t' || *t->p == '\r' || *t->p == '\n' ||
+	                         *t->p == '\f' || *t->p == '\v')) {
+		if (*t->p == '\n')
+			t->line++;
+		t->p++;
+	}
+	*w = t->p;
+	while (t->p < t->end && !(*t->p == ' ' || *t->p == '\t' || *t->p == '\r' ||
+	                          *t->p == '\n' || *t->p == '\f' || *t->p == '\v'))
+		t->p++;
+	*wl = (size_t)(t->p - *w);
+	return *wl > 0;
+}
+
+static int
+stl_is(const char *w, size_t wl, const char *key)
+{
+	size_t n = strlen(key);
+
+	if (wl != n)
+		return 0;
+	for (size_t i = 0; i < n; i++)
+		if ((w[i] | 0x20) != key[i])
+			return 0;
+	return 1;
+}
+
+/* Skip the rest of the line (a solid's name). */
+static void
+stl_line_end(struct stl_text *t)
+{
+	while (t->p < t->end && *t->p != '\n')
+		t->p++;
+}
+
+static int
+stl_expect(struct stl_text *t, const char *key, struct vdt_err *err)
+{
+	const char *w;
+	size_t wl;
+
+	if (!stl_word(t, &w, &wl))
+		return vdt_err_set(err, VDT_EFORMAT, "line %zu: ends where '%s' was expected", t->line,
+		                   key);
+	if (!stl_is(w, wl, key))
+		return vdt_err_set(err, VDT_EFORMAT, "line %zu: '%.*s' where '%s' was expected", t->line,
+		                   (int)(wl > 32 ? 32 : wl), w, key);
+	return 0;
+}
+
+/* Three finite numbers, each a whole word. */
+static int
+stl_numbers(struct stl_text *t, const char *what, struct vdt_err *err)
+{
+	const char *w, *q;
+	size_t wl;
+	float x;
+
+	for (int k = 0; k < 3; k++) {
+		if (!stl_word(t, &w, &wl))
+			return vdt_err_set(err, VDT_EFORMAT, "line %zu: ends inside a %s", t->line, what);
+		q = vdt_text_parse_float(w, w + wl, &x);
+		if (q != w + wl)
+			return vdt_err_set(err, VDT_EFORMAT, "line %zu: '%.*s' is not a number (in a %s)",
+			                   t->line, (int)(wl > 32 ? 32 : wl), w, what);
+		if (!isfinite(x))
+			return vdt_err_set(err, VDT_EFORMAT, "line %zu: %s coordinate '%.*s' is not finite",
+			                   t->line, what, (int)(wl > 32 ? 32 : wl), w);
+	}
+	return 0;
+}
+
+int
+vdt_stl_ascii_check(const unsigned char *buf, size_t len, struct vdt_err *err)
+{
+	struct stl_text t = {(const char *)buf, (const char *)buf + len, 1};
+	const char *w;
+	size_t wl;
+	int rc;
+
+	while (stl_word(&t, &w, &wl)) {
+		if (!stl_is(w, wl, "solid"))
+			return vdt_err_set(err, VDT_EFORMAT, "line %zu: '%.*s' where 'solid' was expected",
+			                   t.line, (int)(wl > 32 ? 32 : wl), w);
+		stl_line_end(&t);
+		for (;;) {
+			if (!stl_word(&t, &w, &wl))
+				return vdt_err_set(err, VDT_EFORMAT, "line %zu: ends before 'endsolid'",
+				                   t.line);
+			if (stl_is(w, wl, "endsolid")) {
+				stl_line_end(&t);
+				break;
+			}
+			if (!stl_is(w, wl, "facet"))
+				return vdt_err_set(err, VDT_EFORMAT,
+				                   "line %zu: '%.*s' where 'facet' or 'endsolid' was expected",
+				                   t.line, (int)(wl > 32 ? 32 : wl), w);
+			if ((rc = stl_expect(&t, "normal", err)) != 0 ||
+			    (rc = stl_numbers(&t, "normal", err)) != 0 ||
+			    (rc = stl_expect(&t, "outer", err)) != 0 || (rc = stl_expect(&t, "loop", err)) != 0)
+				return rc;
+			for (int k = 0; k < 3; k++)
+				if ((rc = stl_expect(&t, "vertex", err)) != 0 ||
+				    (rc = stl_numbers(&t, "vertex", err)) != 0)
+					return rc;
+			if (!stl_word(&t, &w, &wl))
+				return vdt_err_set(err, VDT_EFORMAT, "line %zu: ends inside a facet", t.line);
+			if (stl_is(w, wl, "vertex"))
+				return vdt_err_set(err, VDT_EFORMAT,
+				                   "line %zu: a facet of more than 3 vertices", t.line);
+			if (!stl_is(w, wl, "endloop"))
+				return vdt_err_set(err, VDT_EFORMAT,
+				                   "line %zu: '%.*s' where 'endloop' was expected", t.line,
+				                   (int)(wl > 32 ? 32 : wl), w);
+			if ((rc = stl_expect(&t, "endfacet", err)) != 0)
+				return rc;
+		}
+	}
 	return 0;
 }

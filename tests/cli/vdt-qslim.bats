@@ -324,3 +324,28 @@ load helpers
 		awk -v h="$h" 'BEGIN { exit !(h < 1) }'
 	done
 }
+
+@test "vdt-qslim refuses a damaged ASCII STL with the line and the fault" {
+	facet() { # the third corner's z, or what stands there
+		printf 'solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 %s\n' "$1"
+	}
+	{ facet 0; printf 'endloop\nendfacet\nendsolid t\n'; } > "$TMP/good.stl"
+	"$BIN/vdt-qslim" -r 1 "$TMP/good.stl" -o "$TMP/good.off"
+	[ "$(off_faces "$TMP/good.off")" -eq 1 ]
+	{ facet nan; printf 'endloop\nendfacet\nendsolid t\n'; } > "$TMP/nan.stl"
+	{ facet 1e999; printf 'endloop\nendfacet\nendsolid t\n'; } > "$TMP/huge.stl"
+	{ facet 1x; printf 'endloop\nendfacet\nendsolid t\n'; } > "$TMP/junk.stl"
+	{ facet 0; printf 'vertex 1 1 0\nendloop\nendfacet\nendsolid t\n'; } > "$TMP/four.stl"
+	{ facet 0; printf 'endloop\nendfacet\n'; } > "$TMP/open.stl"
+	facet 0 | head -c -3 > "$TMP/cut.stl"
+	for f in nan huge junk four open cut; do
+		run "$BIN/vdt-qslim" -r 1 "$TMP/$f.stl" -o "$TMP/out.off"
+		[ "$status" -eq 2 ]
+		[[ "$output" == "vdt-qslim: cannot read '$TMP/$f.stl': line "* ]]
+		[ "${#lines[@]}" -eq 1 ]
+		[ ! -e "$TMP/out.off" ]
+	done
+	run "$BIN/vdt-cluster" -g 4 "$TMP/nan.stl" -o "$TMP/out.off"
+	[ "$status" -eq 2 ]
+	[[ "$output" == *"line 6: vertex coordinate 'nan' is not finite" ]]
+}
