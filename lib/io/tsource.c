@@ -1076,14 +1076,18 @@ vdt_triangles(struct vdt_tsource *s, double *tri, size_t max, size_t *n, struct 
 
 /* ---- the source ---------------------------------------------------------- */
 
+/* hint: the format the file's name gives, for text whose first bytes are
+ * all comment (as vdt_read takes it). */
 static int
-setup(struct vdt_tsource *s, struct vdt_err *err)
+setup(struct vdt_tsource *s, enum vdt_format hint, struct vdt_err *err)
 {
 	int rc;
 
 	if (s->len == 0)
 		return vdt_err_set(err, VDT_EFORMAT, "empty input");
-	s->format = vdt_format_detect(s->buf, s->len < 512 ? s->len : 512);
+	s->format = vdt_format_detect(s->buf, s->len);
+	if (s->format == VDT_FMT_AUTO && (hint == VDT_FMT_OBJ || hint == VDT_FMT_OFF))
+		s->format = hint;
 	if (vdt_stream_sniff(s->buf, s->len)) {
 		s->kind = K_VDT;
 		s->format = VDT_FMT_VDT;
@@ -1114,9 +1118,9 @@ setup(struct vdt_tsource *s, struct vdt_err *err)
 	return 0;
 }
 
-int
-vdt_tsource_open_memory(struct vdt_tsource **ts, const unsigned char *buf, size_t len,
-                        struct vdt_err *err)
+static int
+open_memory(struct vdt_tsource **ts, const unsigned char *buf, size_t len, enum vdt_format hint,
+            struct vdt_err *err)
 {
 	struct vdt_tsource *s = calloc(1, sizeof(*s));
 	int rc;
@@ -1126,7 +1130,7 @@ vdt_tsource_open_memory(struct vdt_tsource **ts, const unsigned char *buf, size_
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
 	s->buf = buf;
 	s->len = len;
-	if ((rc = setup(s, err)) != 0) {
+	if ((rc = setup(s, hint, err)) != 0) {
 		vdt_tsource_close(s);
 		return rc;
 	}
@@ -1135,10 +1139,18 @@ vdt_tsource_open_memory(struct vdt_tsource **ts, const unsigned char *buf, size_
 }
 
 int
+vdt_tsource_open_memory(struct vdt_tsource **ts, const unsigned char *buf, size_t len,
+                        struct vdt_err *err)
+{
+	return open_memory(ts, buf, len, VDT_FMT_AUTO, err);
+}
+
+int
 vdt_tsource_open(struct vdt_tsource **ts, const char *path, struct vdt_err *err)
 {
 	int is_stdin = strcmp(path, "-") == 0;
 	int fd = is_stdin ? 0 : open(path, O_RDONLY | O_CLOEXEC);
+	enum vdt_format hint = is_stdin ? VDT_FMT_AUTO : vdt_format_from_path(path);
 	struct vdt_tsource *s;
 	struct stat st;
 	size_t len;
@@ -1168,7 +1180,7 @@ vdt_tsource_open(struct vdt_tsource **ts, const char *path, struct vdt_err *err)
 	}
 	if (len > 0 && (rc = map_fd(fd, len, &map, err)) != 0)
 		goto done;
-	if ((rc = vdt_tsource_open_memory(&s, map, len, err)) != 0) {
+	if ((rc = open_memory(&s, map, len, hint, err)) != 0) {
 		if (map)
 			munmap(map, len);
 		goto done;

@@ -252,3 +252,15 @@ load helpers
 	cmp "$TMP/c.vdq" "$TMP/e.vdq"
 	! cmp -s "$TMP/a.vdq" "$TMP/c.vdq"
 }
+
+@test "vdt-cluster reads an OBJ whose first kilobytes are comment, as vdt-qslim does" {
+	{ for i in $(seq 40); do echo "# exported by some tool, line $i"; done
+	  cat "$SAMPLES/sphere-uv.obj"; } > "$TMP/c.obj"
+	"$BIN/vdt-cluster" -g 32 "$TMP/c.obj" -o "$TMP/a.ply"
+	"$BIN/vdt-cluster" -g 32 -F ply < "$TMP/c.obj" > "$TMP/b.ply"
+	cmp "$TMP/a.ply" "$TMP/b.ply"
+	{ for i in $(seq 400); do echo "# exported by some tool, line $i"; done
+	  cat "$SAMPLES/sphere-uv.obj"; } > "$TMP/long.obj"
+	"$BIN/vdt-cluster" -g 32 "$TMP/long.obj" -o "$TMP/c.ply"
+	cmp "$TMP/a.ply" "$TMP/c.ply"
+}
