@@ -5,6 +5,7 @@
 #include "meshio.h"
 
 #include <errno.h>
+#include <inttypes.h>
 #include <math.h>
 #include <fcntl.h>
 #include <stdlib.h>
@@ -13,6 +14,8 @@
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
+
+#include "../bytes.h"
 
 static const struct {
 	const char *name;
@@ -215,6 +218,29 @@ vdt_format_detect(const unsigned char *buf, size_t n)
 	return VDT_FMT_AUTO;
 }
 
+#define STL_SLACK 65536 /* bytes after a binary STL's triangles, at most */
+
+uint64_t
+vdt_input_limit(const unsigned char *head, enum vdt_format hint)
+{
+	enum vdt_format f = vdt_format_detect(head, VDT_DETECT_BYTES);
+
+	if (f == VDT_FMT_AUTO)
+		return hint == VDT_FMT_OBJ || hint == VDT_FMT_OFF ? UINT64_MAX : 0;
+	if (f == VDT_FMT_STL)
+		return 84 + 50 * (uint64_t)vdt_get_u32le(head + 80) + STL_SLACK;
+	return UINT64_MAX;
+}
+
+int
+vdt_input_limit_error(const unsigned char *head, struct vdt_err *err)
+{
+	if (vdt_format_detect(head, VDT_DETECT_BYTES) == VDT_FMT_STL)
+		return vdt_err_set(err, VDT_EFORMAT, "not a binary STL: it goes on past its %" PRIu32
+		                   " triangles", vdt_get_u32le(head + 80));
+	return vdt_err_set(err, VDT_EFORMAT, "unknown format");
+}
+
 static int
 read_stream(const unsigned char *buf, size_t len, struct vdt_mesh *m,
             struct vdt_chunks *extra, struct vdt_err *err)
@@ -320,12 +346,14 @@ vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
 	return rc;
 }
 
-/* Read all of fd into a malloc'ed buffer (pipes and terminals). */
+/* Read all of fd into a malloc'ed buffer (pipes and terminals), unless
+ * its first bytes are of no known format (hint: the name's). */
 static int
-slurp(int fd, unsigned char **out, size_t *len, struct vdt_err *err)
+slurp(int fd, enum vdt_format hint, unsigned char **out, size_t *len, struct vdt_err *err)
 {
 	size_t cap = 1 << 16, n = 0;
 	unsigned char *b = malloc(cap);
+	uint64_t limit = 0; /* vdt_input_limit, once known */
 
 	if (b == NULL)
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
@@ -352,6 +380,15 @@ slurp(int fd, unsigned char **out, size_t *len, struct vdt_err *err)
 		if (r == 0)
 			break;
 		n += (size_t)r;
+		if (n >= VDT_DETECT_BYTES) {
+			if (limit == 0)
+				limit = vdt_input_limit(b, hint);
+			if (n > limit) {
+				int rc = vdt_input_limit_error(b, err);
+				free(b);
+				return rc;
+			}
+		}
 	}
 	*out = b;
 	*len = n;
@@ -398,7 +435,7 @@ vdt_read(const char *path, struct vdt_mesh *m, struct vdt_chunks *extra,
 	unsigned char *buf = NULL;
 	size_t len = 0;
 
-	rc = slurp(fd, &buf, &len, err);
+	rc = slurp(fd, stdin_ ? VDT_FMT_AUTO : vdt_format_from_path(path), &buf, &len, err);
 	if (!stdin_)
 		close(fd);
 	if (rc != 0)

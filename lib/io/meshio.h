@@ -46,6 +46,19 @@ const char *vdt_format_name(enum vdt_format f);
 enum vdt_format vdt_format_from_path(const char *path);
 
 /*
+ * How many bytes an input whose first VDT_DETECT_BYTES bytes are head may
+ * hold and still be a mesh vdt reads, when its name gives the format hint
+ * (VDT_FMT_AUTO: none): 0 when it is of no known format already
+ * (vdt_format_detect looks no further for text), the size a binary STL's
+ * count allows (with some slack), or UINT64_MAX. Readers of pipes stop
+ * there rather than take in an endless stream, and say why with
+ * vdt_input_limit_error.
+ */
+#define VDT_DETECT_BYTES 4096
+uint64_t vdt_input_limit(const unsigned char *head, enum vdt_format hint);
+int vdt_input_limit_error(const unsigned char *head, struct vdt_err *err);
+
+/*
  * Detect the format of content from its first n bytes (n >= 0; 512 is
  * plenty). Returns VDT_FMT_AUTO if unrecognised. ASCII PLY and binary PLY,
  * ASCII and binary STL are told apart.

@@ -162,11 +162,13 @@ map_fd(int fd, size_t len, void **p, struct vdt_err *err)
 	return 0;
 }
 
-/* Copy a pipe into a scratch file and return that file's descriptor. */
+/* Copy a pipe into a scratch file and return that file's descriptor,
+ * unless its first bytes show it is no mesh (hint: the name's format). */
 static int
-spool(int in, size_t *len, struct vdt_err *err)
+spool(int in, enum vdt_format hint, size_t *len, struct vdt_err *err)
 {
-	unsigned char b[1 << 16];
+	unsigned char b[1 << 16], head[VDT_DETECT_BYTES];
+	uint64_t limit = UINT64_MAX; /* vdt_input_limit, once known */
 	size_t total = 0;
 	int fd = scratch_file(err);
 
@@ -184,6 +186,16 @@ spool(int in, size_t *len, struct vdt_err *err)
 		}
 		if (r == 0)
 			break;
+		if (total < VDT_DETECT_BYTES) {
+			size_t k = VDT_DETECT_BYTES - total < (size_t)r ? VDT_DETECT_BYTES - total : (size_t)r;
+			memcpy(head + total, b, k);
+			if (total + k == VDT_DETECT_BYTES)
+				limit = vdt_input_limit(head, hint);
+		}
+		if (total + (size_t)r > limit) {
+			close(fd);
+			return vdt_input_limit_error(head, err);
+		}
 		while (w < r) {
 			ssize_t k = write(fd, b + w, (size_t)(r - w));
 			if (k < 0 && errno == EINTR)
@@ -1168,7 +1180,7 @@ vdt_tsource_open(struct vdt_tsource **ts, const char *path, struct vdt_err *err)
 		len = (size_t)st.st_size;
 	} else {
 		/* A pipe cannot be mapped or read twice: keep a copy on disk. */
-		int sp = spool(fd, &len, err);
+		int sp = spool(fd, hint, &len, err);
 		if (sp < 0) {
 			rc = sp;
 			goto done;

@@ -349,3 +349,15 @@ load helpers
 	[ "$status" -eq 2 ]
 	[[ "$output" == *"line 6: vertex coordinate 'nan' is not finite" ]]
 }
+
+@test "vdt-qslim and vdt-cluster refuse an endless stream of no format at once" {
+	for tool in vdt-qslim vdt-cluster; do
+		run bash -c "yes | timeout 60 '$BIN/$tool' -o '$TMP/out.off'"
+		[ "$status" -eq 2 ]
+		[ "$output" = "$tool: cannot read '<stdin>': unknown format" ]
+		run bash -c "timeout 60 '$BIN/$tool' -o '$TMP/out.off' < /dev/zero"
+		[ "$status" -eq 2 ]
+		[[ "$output" == *"not a binary STL: it goes on past its 0 triangles" ]]
+	done
+	[ ! -e "$TMP/out.off" ]
+}
