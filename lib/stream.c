@@ -57,6 +57,16 @@ printable(uint32_t type)
 }
 
 int
+vdt_chunk_type_check(uint32_t type, uint64_t at, struct vdt_err *err)
+{
+	if (printable(type))
+		return 0;
+	return vdt_err_set(err, VDT_EFORMAT,
+	                   "chunk at byte %" PRIu64 ": type %02x %02x %02x %02x is not printable ASCII",
+	                   at, type & 0xff, type >> 8 & 0xff, type >> 16 & 0xff, type >> 24);
+}
+
+int
 vdt_stream_sniff(const unsigned char *buf, size_t n)
 {
 	return n >= 4 && (buf[0] & 0x7f) == 0x09 && memcmp(buf + 1, "VDT", 3) == 0;
@@ -153,22 +163,32 @@ bad_signature(const unsigned char *h, size_t n, size_t at, struct vdt_err *err)
 static int
 read_header(struct src *s, struct vdt_err *err)
 {
-	const unsigned char *sig = (const unsigned char *)VDT_STREAM_SIGNATURE;
 	unsigned char h[VDT_STREAM_HEADER_LEN];
-	unsigned major, minor;
-	size_t n, i = 0;
+	size_t n;
 	int rc;
 
 	if ((rc = pull(s, h, sizeof(h), &n, err)) != 0)
 		return rc;
+	return vdt_stream_header_check(h, n, err);
+}
+
+int
+vdt_stream_header_check(const unsigned char *h, size_t n, struct vdt_err *err)
+{
+	const unsigned char *sig = (const unsigned char *)VDT_STREAM_SIGNATURE;
+	unsigned major, minor;
+	size_t i = 0;
+
+	if (n > VDT_STREAM_HEADER_LEN)
+		n = VDT_STREAM_HEADER_LEN;
 	while (i < n && i < VDT_STREAM_SIGNATURE_LEN && h[i] == sig[i])
 		i++;
 	if (i < n && i < VDT_STREAM_SIGNATURE_LEN)
 		return bad_signature(h, n, i, err);
-	if (n < sizeof(h))
+	if (n < VDT_STREAM_HEADER_LEN)
 		return vdt_err_set(err, VDT_EFORMAT,
-		                   "header truncated at byte %zu: expected %zu bytes, found %zu",
-		                   n, sizeof(h), n);
+		                   "header truncated at byte %zu: expected %d bytes, found %zu",
+		                   n, VDT_STREAM_HEADER_LEN, n);
 	major = vdt_get_u16le(h + 8);
 	minor = vdt_get_u16le(h + 10);
 	if (major > VDT_STREAM_MAJOR)
@@ -288,12 +308,8 @@ next_chunk(struct src *s, struct vdt_chunk *c, struct vdt_err *err)
 		                 label(type, name), at, stored, computed);
 		goto fail;
 	}
-	if (!printable(type)) {
-		rc = vdt_err_set(err, VDT_EFORMAT,
-		                 "chunk at byte %" PRIu64 ": type %02x %02x %02x %02x is not printable ASCII",
-		                 at, h[0], h[1], h[2], h[3]);
+	if ((rc = vdt_chunk_type_check(type, at, err)) != 0)
 		goto fail;
-	}
 	if (type == VDT_CHUNK_END) {
 		if (left(s, &room) && room > 0)
 			return vdt_err_set(err, VDT_EFORMAT,

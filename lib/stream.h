@@ -73,6 +73,18 @@ void vdt_chunk_name(uint32_t type, char buf[5]);
 int vdt_stream_sniff(const unsigned char *buf, size_t n);
 
 /*
+ * Check the first n bytes of a stream (the header, if all there): the
+ * signature, saying what damaged it if it is (vdt(5)), and the version.
+ * 0, or VDT_EFORMAT / VDT_EVERSION with the reason. For readers that walk
+ * a stream in place rather than through vdt_stream_decode.
+ */
+int vdt_stream_header_check(const unsigned char *h, size_t n, struct vdt_err *err);
+
+/* 0 if type is four printable ASCII bytes, else VDT_EFORMAT naming the
+ * chunk at byte `at`. */
+int vdt_chunk_type_check(uint32_t type, uint64_t at, struct vdt_err *err);
+
+/*
  * Decode a whole stream held in memory (buf, len). On success *out holds
  * copies of every chunk's payload except the end chunk. Errors: bad
  * signature (VDT_EFORMAT), newer major version (VDT_EVERSION), CRC mismatch

@@ -183,7 +183,9 @@ vdt_format_detect(const unsigned char *buf, size_t n)
 {
 	if (buf == NULL || n == 0)
 		return VDT_FMT_AUTO;
-	if (has_prefix(buf, n, VDT_STREAM_SIGNATURE))
+	/* The first four bytes only: the stream reader says what damaged
+	 * the rest of a signature (vdt(5)). */
+	if (vdt_stream_sniff(buf, n))
 		return VDT_FMT_VDT;
 	if (has_prefix(buf, n, "DRACO"))
 		return VDT_FMT_DRC;

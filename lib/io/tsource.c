@@ -957,19 +957,12 @@ obj_triangles(struct vdt_tsource *s, double *tri, size_t max, size_t *n, struct 
 static int
 vdt_open(struct vdt_tsource *s, struct vdt_err *err)
 {
-	const unsigned char *sig = (const unsigned char *)VDT_STREAM_SIGNATURE;
 	const unsigned char *mesh = NULL;
 	uint64_t at = VDT_STREAM_HEADER_LEN, mesh_len = 0, mesh_at = 0;
-	unsigned major;
+	int rc;
 
-	if (s->len < VDT_STREAM_HEADER_LEN || memcmp(s->buf, sig, VDT_STREAM_SIGNATURE_LEN) != 0)
-		return vdt_err_set(err, VDT_EFORMAT, "bad signature at byte 0: damaged or truncated vdt stream");
-	major = vdt_get_u16le(s->buf + 8);
-	if (major > VDT_STREAM_MAJOR)
-		return vdt_err_set(err, VDT_EVERSION, "version %u.%u at byte 8 is newer than this reader (%d.%d)",
-		                   major, vdt_get_u16le(s->buf + 10), VDT_STREAM_MAJOR, VDT_STREAM_MINOR);
-	if (major < VDT_STREAM_MAJOR)
-		return vdt_err_set(err, VDT_EFORMAT, "version %u.0 at byte 8 does not exist", major);
+	if ((rc = vdt_stream_header_check(s->buf, s->len, err)) != 0)
+		return rc;
 	/* Walk the chunks, checking each CRC where it lies. */
 	for (;;) {
 		uint32_t type, crc;
@@ -1000,6 +993,8 @@ vdt_open(struct vdt_tsource *s, struct vdt_err *err)
 			return vdt_err_set(err, VDT_ECHECKSUM,
 			                   "chunk %s at byte %" PRIu64 ": checksum mismatch (stored %08" PRIx32
 			                   ", computed %08" PRIx32 ")", name, at, crc, (uint32_t)c);
+		if ((rc = vdt_chunk_type_check(type, at, err)) != 0)
+			return rc;
 		if (type == VDT_CHUNK_END) {
 			if (length != 0)
 				return vdt_err_set(err, VDT_EFORMAT, "chunk END at byte %" PRIu64 ": payload of %"
@@ -1009,7 +1004,9 @@ vdt_open(struct vdt_tsource *s, struct vdt_err *err)
 				                   PRIu64, (uint64_t)(s->len - at - 16), at + 16);
 			break;
 		}
-		if (type == VDT_CHUNK_MESH && mesh == NULL) {
+		if (type == VDT_CHUNK_MESH && mesh != NULL)
+			return vdt_err_set(err, VDT_EFORMAT, "second MESH chunk at offset %" PRIu64, at);
+		if (type == VDT_CHUNK_MESH) {
 			mesh = s->buf + at + 12;
 			mesh_len = length;
 			mesh_at = at;

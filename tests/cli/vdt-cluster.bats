@@ -264,3 +264,31 @@ load helpers
 	"$BIN/vdt-cluster" -g 32 "$TMP/long.obj" -o "$TMP/c.ply"
 	cmp "$TMP/a.ply" "$TMP/c.ply"
 }
+
+@test "vdt-cluster checks a stream as the other tools do" {
+	"$BIN/vdt-qslim" -r 1 "$SAMPLES/sphere.off" -o "$TMP/s.vdt"
+	python3 - "$TMP" <<'PY'
+import struct, sys, zlib
+d = sys.argv[1]
+b = open(d + "/s.vdt", "rb").read()
+open(d + "/lf.vdt", "wb").write(b[:4] + b[4:8].replace(b"\r\n", b"\n") + b[8:])
+open(d + "/7bit.vdt", "wb").write(bytes([b[0] & 0x7f]) + b[1:])
+ch = lambda t, p: t + struct.pack("<Q", len(p)) + p + struct.pack("<I", zlib.crc32(t + p))
+m = struct.pack("<IIQQ", 0, 0, 4, 4) + b"".join(struct.pack("<3f", *v) for v in
+    [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]) + b"".join(struct.pack("<3I", *f) for f in
+    [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)])
+h = b[:12]
+open(d + "/type.vdt", "wb").write(h + ch(b"MESH", m) + ch(b"\x01BCD", b"") + ch(b"END ", b""))
+open(d + "/two.vdt", "wb").write(h + ch(b"MESH", m) + ch(b"MESH", m) + ch(b"END ", b""))
+PY
+	for f in lf 7bit type two; do
+		run "$BIN/vdt-qslim" "$TMP/$f.vdt" -o "$TMP/q.off"
+		[ "$status" -eq 2 ]
+		want=${output#vdt-qslim: }
+		run "$BIN/vdt-cluster" -g 4 "$TMP/$f.vdt" -o "$TMP/c.off"
+		[ "$status" -eq 2 ]
+		[ "${output#vdt-cluster: }" = "$want" ]
+	done
+	[[ "$want" == *"second MESH chunk"* ]]
+	[ ! -e "$TMP/c.off" ]
+}
