@@ -1088,6 +1088,23 @@ vdt_cluster_choose(const struct vdt_cluster_choice *ch, struct vdt_tsource *ts,
 }
 
 
+/* 1 if the corners added so far leave some side of box, which the grid
+ * was made for, empty by more than rounding: a header's box too large,
+ * with which cell sizes in % of the diagonal, and -g, would be wrong. */
+static int
+box_loose(const struct vdt_cluster *c, const struct vdt_bbox *box)
+{
+	double tol = 1e-6 * vdt_bbox_diagonal(box);
+
+	for (int k = 0; k < 3; k++) {
+		double lo = c->g.origin[k] + c->lo[k] * c->g.cell[k];
+		double hi = c->g.origin[k] + c->hi[k] * c->g.cell[k];
+		if (c->added > 0 && (lo - box->min[k] > tol || box->max[k] - hi > tol))
+			return 1;
+	}
+	return 0;
+}
+
 int
 vdt_cluster_source(struct vdt_tsource *ts, const struct vdt_cluster_request *rq,
                    struct vdt_cluster **cp, struct vdt_cluster_grid *g, int *remeasured,
@@ -1114,7 +1131,7 @@ vdt_cluster_source(struct vdt_tsource *ts, const struct vdt_cluster_request *rq,
 		if ((rc = vdt_cluster_choose(&ch, ts, &box, g, p, err)) == 0 &&
 		    (rc = vdt_cluster_new(cp, g, ch.max_cells, err)) == 0)
 			rc = vdt_cluster_scan(*cp, ts, p, err);
-		if (!claimed || (rc == 0 && !vdt_cluster_outside(*cp)))
+		if (!claimed || (rc == 0 && !vdt_cluster_outside(*cp) && !box_loose(*cp, &box)))
 			break;
 		*remeasured = rc == 0;
 		vdt_cluster_free(*cp);
