@@ -815,7 +815,8 @@ obj_open(struct vdt_tsource *s, struct vdt_err *err)
 		line++;
 		while (j < e && is_blank(s->buf[j]))
 			j++;
-		if (e - j >= 2 && s->buf[j] == 'v' && is_blank(s->buf[j + 1])) {
+		if ((e - j >= 2 && s->buf[j] == 'v' && is_blank(s->buf[j + 1])) ||
+		    (e - j == 1 && s->buf[j] == 'v')) {
 			double p[3];
 			j++;
 			for (int a = 0; a < 3; a++) {
@@ -840,7 +841,8 @@ obj_open(struct vdt_tsource *s, struct vdt_err *err)
 				goto out;
 			}
 			nv++;
-		} else if (e - j >= 2 && s->buf[j] == 'f' && is_blank(s->buf[j + 1])) {
+		} else if ((e - j >= 2 && s->buf[j] == 'f' && is_blank(s->buf[j + 1])) ||
+		           (e - j == 1 && s->buf[j] == 'f')) {
 			size_t c = 0;
 			j++;
 			while (obj_word(s->buf, &j, e, w, sizeof(w)) != 0)

@@ -293,3 +293,15 @@ PY
 	[[ "$want" == *"second MESH chunk"* ]]
 	[ ! -e "$TMP/c.off" ]
 }
+
+@test "vdt-cluster refuses an OBJ face or vertex line with nothing on it" {
+	printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf\n' > "$TMP/f.obj"
+	printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv\nf 1 2 3\n' > "$TMP/v.obj"
+	run "$BIN/vdt-cluster" -g 4 "$TMP/f.obj" -o "$TMP/out.off"
+	[ "$status" -eq 2 ]
+	[[ "$output" == *"f.obj': line 7: face with 0 vertices" ]]
+	run "$BIN/vdt-cluster" -g 4 "$TMP/v.obj" -o "$TMP/out.off"
+	[ "$status" -eq 2 ]
+	[[ "$output" == *"v.obj': line 4: vertex has fewer than 3 coordinates" ]]
+	[ ! -e "$TMP/out.off" ]
+}
