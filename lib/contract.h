@@ -97,6 +97,14 @@ struct vdt_contract_opts {
 	 */
 	int allow_nonmanifold;
 	/*
+	 * Nonzero: never contract a pair whose faces are all the faces of
+	 * their connected part (an edge of a lone triangle, the middle edge
+	 * of a strip of two), so that no part of the mesh vanishes: a small
+	 * mesh stops at its last triangle, above the target
+	 * (reached_target = 0), instead of ending empty.
+	 */
+	int keep_parts;
+	/*
 	 * The queue holds one entry per vertex, its cheapest pair: the same
 	 * greedy order as a queue of every pair (ties aside, which go to the
 	 * lower vertex number), in a fraction of the memory, with no pair

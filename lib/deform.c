@@ -867,6 +867,7 @@ simplify_frame(const struct anim *a, size_t f, const struct vdt_contraction *rec
 		co.target_triangles = SIZE_MAX;
 		co.target_vertices = target;
 		co.max_normal_angle = o->max_normal_angle;
+		co.keep_parts = 1;
 		co.record = c.prefer != NULL;
 		if ((rc = vdt_contract_run(&m, &ops, &co, &r, err)) != 0)
 			return rc;
@@ -1073,6 +1074,7 @@ vdt_deform(const struct vdt_mesh *m, const struct vdt_frames *fr,
 		co.target_triangles = SIZE_MAX;
 		co.target_vertices = target;
 		co.max_normal_angle = o->max_normal_angle;
+		co.keep_parts = 1;
 		co.record = 1;
 		co.progress = o->progress;
 		if ((rc = vdt_contract_run(&um, &ops, &co, &ur, err)) != 0)

@@ -239,3 +239,27 @@ setup() {
 	"$BIN/vdt-deform" -t 200 --vertices 500 "$SAMPLES/sphere.off" -o "$TMP/v.off"
 	[ "$(off_vertices "$TMP/v.off")" -eq 500 ]
 }
+
+@test "vdt-deform keeps the last triangle of a small mesh, with a warning" {
+	printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' > "$TMP/tri.off"
+	printf 'OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 2 1 3\n' > "$TMP/quad.off"
+	run "$BIN/vdt-deform" -r 0.5 "$TMP/tri.off" -o "$TMP/out/t.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"stopped above the target"* ]]
+	[ "$(off_faces "$TMP/out/t.off")" -eq 1 ]
+	for m in ours dsd first-frame independent; do
+		run "$BIN/vdt-deform" --method "$m" --vertices 2 "$TMP/quad.off" -o "$TMP/out/q.off"
+		[ "$status" -eq 0 ]
+		[[ "$output" == *"stopped above the target"* ]]
+		[ "$(off_faces "$TMP/out/q.off")" -eq 1 ]
+	done
+	run "$BIN/vdt-deform" -r 0.5 "$TMP/quad.off" "$TMP/quad.off" -o "$TMP/out/%d.off"
+	[ "$status" -eq 0 ]
+	[ "$(off_faces "$TMP/out/0.off")" -ge 1 ]
+	[ "$(off_faces "$TMP/out/1.off")" -ge 1 ]
+	# no warning when the target is reached
+	run "$BIN/vdt-deform" -t 1 "$TMP/quad.off" -o "$TMP/out/q1.off"
+	[ "$status" -eq 0 ]
+	[ -z "$output" ]
+	[ "$(off_faces "$TMP/out/q1.off")" -eq 1 ]
+}
