@@ -3,6 +3,7 @@
  * list of frame files, or a printf pattern naming them. Every frame must
  * share frame 0's connectivity; what differs is said with the frame.
  */
+#include <dirent.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -247,6 +248,109 @@ exists(const char *p)
 	return stat(p, &st) == 0;
 }
 
+/* s[0..n) with %% as %: the literal text around a pattern's conversion. */
+static char *
+literal(const char *s, size_t n)
+{
+	char *out = malloc(n + 1), *o = out;
+
+	if (out == NULL)
+		return NULL;
+	for (size_t k = 0; k < n; k++) {
+		*o++ = s[k];
+		if (s[k] == '%' && k + 1 < n && s[k + 1] == '%')
+			k++;
+	}
+	*o = '\0';
+	return out;
+}
+
+/* How many following indices are probed when the directory cannot be
+ * listed (the conversion is in a directory name, or it is unreadable). */
+#define GAP_PROBE 1000
+
+/*
+ * The smallest index after `missing` whose file exists, or SIZE_MAX:
+ * what tells a gap from the end. The directory that holds the frames is
+ * listed and its names matched against the pattern, so a gap of any
+ * length is found; failing that, the next GAP_PROBE indices are tried.
+ * -1 when out of memory.
+ */
+static int
+next_existing(const char *pattern, size_t missing, size_t *found)
+{
+	size_t at, end;
+	char *pre = NULL, *suf = NULL;
+	int rc = -1;
+
+	*found = SIZE_MAX;
+	if (conversion(pattern, &at, &end) != 0)
+		return 0;
+	pre = literal(pattern, at);
+	suf = literal(pattern + end, strlen(pattern + end));
+	if (pre == NULL || suf == NULL)
+		goto out;
+	char *slash = strrchr(pre, '/');
+	DIR *d = NULL;
+	if (strchr(suf, '/') == NULL) {
+		const char *dir = ".";
+		if (slash == pre)
+			dir = "/";
+		else if (slash) {
+			*slash = '\0';
+			dir = pre;
+		}
+		d = opendir(dir);
+		if (slash)
+			*slash = '/';
+	}
+	if (d != NULL) {
+		const char *base = slash ? slash + 1 : pre;
+		size_t nb = strlen(base), ns = strlen(suf);
+		struct dirent *de;
+		while ((de = readdir(d)) != NULL) {
+			const char *nm = de->d_name;
+			size_t n = strlen(nm), i = nb;
+			if (n <= nb + ns || strncmp(nm, base, nb) != 0 || strcmp(nm + n - ns, suf) != 0)
+				continue;
+			while (i < n - ns && nm[i] == ' ')
+				i++;
+			if (i == n - ns || nm[i] < '0' || nm[i] > '9')
+				continue;
+			size_t idx = 0;
+			for (; i < n - ns && nm[i] >= '0' && nm[i] <= '9'; i++)
+				idx = idx > (SIZE_MAX - 9) / 10 ? SIZE_MAX : 10 * idx + (size_t)(nm[i] - '0');
+			if (i != n - ns || idx <= missing || idx >= *found)
+				continue;
+			/* the pattern must give this very name (zero padding, width) */
+			char *q = vdt_anim_format(pattern, idx);
+			if (q == NULL) {
+				closedir(d);
+				goto out;
+			}
+			const char *qb = strrchr(q, '/');
+			if (strcmp(qb ? qb + 1 : q, nm) == 0)
+				*found = idx;
+			free(q);
+		}
+		closedir(d);
+	} else {
+		for (size_t i = missing + 1; i <= missing + GAP_PROBE && *found == SIZE_MAX; i++) {
+			char *q = vdt_anim_format(pattern, i);
+			if (q == NULL)
+				goto out;
+			if (exists(q))
+				*found = i;
+			free(q);
+		}
+	}
+	rc = 0;
+out:
+	free(pre);
+	free(suf);
+	return rc;
+}
+
 int
 vdt_anim_pattern(const char *pattern, size_t start, size_t count, char ***paths,
                  size_t *n, struct vdt_err *err)
@@ -290,16 +394,18 @@ vdt_anim_pattern(const char *pattern, size_t start, size_t count, char ***paths,
 		goto fail;
 	}
 	/* A missing frame followed by more frames is a gap, not the end. */
-	{
-		char *q = vdt_anim_format(pattern, start + len + 1);
-		if (q == NULL)
+	if (count == 0) {
+		size_t next;
+		if (next_existing(pattern, start + len, &next) != 0)
 			goto nomem;
-		if (count == 0 && exists(q)) {
+		if (next != SIZE_MAX) {
+			char *q = vdt_anim_format(pattern, next);
+			if (q == NULL)
+				goto nomem;
 			rc = vdt_err_set(err, VDT_EIO, "frame %zu: no file '%s', but '%s' exists", len, p, q);
 			free(q);
 			goto fail;
 		}
-		free(q);
 	}
 	free(p);
 	*paths = list;

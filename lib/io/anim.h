@@ -58,8 +58,10 @@ int vdt_anim_read_files(const char *const *paths, size_t n, struct vdt_mesh *m,
  * %% for a literal percent) into the file names that exist, from index
  * start (or, when start is SIZE_MAX, from 0 if that file exists, else
  * from 1) until the first missing one; with count > 0 exactly count
- * frames are required. A missing file followed by an existing one is a
- * gap, not the end. *paths (each string and the array malloc'ed) has *n
+ * frames are required. A missing file followed by an existing one (any
+ * later index: the directory is listed and its names matched against the
+ * pattern, or, when the conversion is in a directory name, the next 1000
+ * indices are tried) is a gap, not the end. *paths (each string and the array malloc'ed) has *n
  * names. Errors (VDT_EINVAL for a bad pattern, VDT_EIO for missing files)
  * name the file.
  */

@@ -263,3 +263,34 @@ setup() {
 	[ -z "$output" ]
 	[ "$(off_faces "$TMP/out/q1.off")" -eq 1 ]
 }
+
+@test "vdt-deform names a gap of several missing frames in a pattern" {
+	"$MKANIM" -d bend,wave -n 4 "$SAMPLES/torus.off" -o "$TMP/anim.vdt"
+	"$BIN/vdt-deform" -q -r 1 --method independent "$TMP/anim.vdt" -o "$TMP/in/f%03d.off"
+	mkdir "$TMP/gap"
+	cp "$TMP/in/f000.off" "$TMP/in/f001.off" "$TMP/gap/"
+	cp "$TMP/in/f003.off" "$TMP/gap/f004.off"
+	run "$BIN/vdt-deform" -r 0.5 "$TMP/gap/f%03d.off" -o "$TMP/out/g.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"frame 2: no file '$TMP/gap/f002.off', but '$TMP/gap/f004.off' exists"* ]]
+	# far away, and beyond the pattern's width
+	mv "$TMP/gap/f004.off" "$TMP/gap/f1234.off"
+	run "$BIN/vdt-deform" -r 0.5 "$TMP/gap/f%03d.off" -o "$TMP/out/g.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"frame 2: no file '$TMP/gap/f002.off', but '$TMP/gap/f1234.off' exists"* ]]
+	# the conversion in a directory name
+	mkdir "$TMP/d0" "$TMP/d1" "$TMP/d7"
+	cp "$TMP/in/f000.off" "$TMP/d0/m.off"
+	cp "$TMP/in/f001.off" "$TMP/d1/m.off"
+	cp "$TMP/in/f002.off" "$TMP/d7/m.off"
+	run "$BIN/vdt-deform" -r 0.5 "$TMP/d%d/m.off" -o "$TMP/out/g.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"frame 2: no file '$TMP/d2/m.off', but '$TMP/d7/m.off' exists"* ]]
+	[ -z "$(ls "$TMP/out")" ]
+	# a name the pattern cannot give is not a frame
+	mv "$TMP/gap/f1234.off" "$TMP/gap/f04.off"
+	"$BIN/vdt-deform" -q -r 0.5 "$TMP/gap/f%03d.off" -o "$TMP/out/g.vdt"
+}
