@@ -146,6 +146,9 @@ vdt_anim_read_files(const char *const *paths, size_t n, struct vdt_mesh *m,
                     struct vdt_frames *fr, size_t *bad, struct vdt_err *err)
 {
 	struct vdt_mesh x = {0};
+	struct vdt_frames xf = {0};
+	float *pos = NULL;
+	size_t nf = 0, nv = 0;
 	int rc;
 
 	memset(m, 0, sizeof(*m));
@@ -153,25 +156,45 @@ vdt_anim_read_files(const char *const *paths, size_t n, struct vdt_mesh *m,
 	*bad = 0;
 	if (n == 0)
 		return vdt_err_set(err, VDT_EINVAL, "no frames");
-	if ((rc = vdt_read(paths[0], m, NULL, err)) != 0)
-		return rc;
-	if ((rc = vdt_frames_alloc(fr, n, m->vertex_count, err)) != 0)
-		goto fail;
-	memcpy(fr->positions, m->positions, 3 * m->vertex_count * sizeof(float));
-	for (size_t f = 1; f < n; f++) {
-		*bad = f;
-		if ((rc = vdt_read(paths[f], &x, NULL, err)) != 0) {
-			vdt_err_prefix(err, "frame %zu", f);
+	/* Each file gives all its frames (a stream its FRMS chunk, an MD2
+	 * model its keyframes, a mesh one), in order. */
+	for (size_t i = 0; i < n; i++) {
+		*bad = i;
+		if ((rc = vdt_anim_read(paths[i], i ? &x : m, &xf, NULL, err)) != 0) {
+			if (i)
+				vdt_err_prefix(err, "frame %zu", nf);
 			goto fail;
 		}
-		if ((rc = same_connectivity(m, f, x.vertex_count, x.triangle_count, x.triangles, err)) != 0)
+		if (i == 0)
+			nv = m->vertex_count;
+		else if ((rc = same_connectivity(m, nf, x.vertex_count, x.triangle_count, x.triangles,
+		                                 err)) != 0)
 			goto fail;
-		memcpy(fr->positions + 3 * m->vertex_count * f, x.positions,
-		       3 * m->vertex_count * sizeof(float));
+		size_t k = xf.frame_count;
+		if (k > SIZE_MAX / 12 / nv - nf) {
+			rc = vdt_err_set(err, VDT_EINVAL, "%zu frames of %zu vertices is not a valid size",
+			                 nf + k, nv);
+			goto fail;
+		}
+		float *t = realloc(pos, 3 * nv * (nf + k) * sizeof(float));
+		if (t == NULL) {
+			rc = vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu frames of %zu vertices",
+			                 nf + k, nv);
+			goto fail;
+		}
+		pos = t;
+		memcpy(pos + 3 * nv * nf, xf.positions, 3 * nv * k * sizeof(float));
+		nf += k;
+		vdt_frames_free(&xf);
 		vdt_mesh_free(&x);
 	}
+	fr->positions = pos;
+	fr->frame_count = nf;
+	fr->vertex_count = nv;
 	return 0;
 fail:
+	free(pos);
+	vdt_frames_free(&xf);
 	vdt_mesh_free(&x);
 	vdt_mesh_free(m);
 	vdt_frames_free(fr);

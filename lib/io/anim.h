@@ -44,10 +44,13 @@ int vdt_anim_read(const char *path, struct vdt_mesh *m, struct vdt_frames *fr,
                   struct vdt_chunks *extra, struct vdt_err *err);
 
 /*
- * Read frames from n mesh files (each as vdt_read does). Every frame
- * must have frame 0's vertex count, triangle count and triangles; *bad is
- * set to the index of the file an error is about (the message names the
- * frame and what differs: "frame 3 has 502 vertices, frame 0 has 500").
+ * Read frames from n files, each as vdt_anim_read does, one after the
+ * other: a mesh gives one frame, a stream with FRMS or an MD2 model all
+ * its frames; *m is the first file's mesh. Every frame must have frame
+ * 0's vertex count, triangle count and triangles; *bad is set to the
+ * index of the file an error is about (the message names the frame, a
+ * file by its first, and what differs: "frame 3 has 502 vertices, frame
+ * 0 has 500").
  * Returns 0 or a negative status; *m and *fr empty on failure.
  */
 int vdt_anim_read_files(const char *const *paths, size_t n, struct vdt_mesh *m,

@@ -294,3 +294,25 @@ setup() {
 	mv "$TMP/gap/f1234.off" "$TMP/gap/f04.off"
 	"$BIN/vdt-deform" -q -r 0.5 "$TMP/gap/f%03d.off" -o "$TMP/out/g.vdt"
 }
+
+@test "vdt-deform reads every frame of each stream given among several inputs" {
+	"$MKANIM" -d bend,wave -n 4 "$SAMPLES/torus.off" -o "$TMP/anim.vdt"
+	"$MKANIM" -d bend,wave -n 4 "$SAMPLES/torus.off" -o "$TMP/in/%d.off"
+	run "$BIN/vdt-deform" -v --samples 100 -r 0.5 "$TMP/anim.vdt" "$TMP/anim.vdt" -o "$TMP/out/aa.vdt"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *" frames=8 "* ]]
+	# in order: the frames of each input, one input after the other
+	"$BIN/vdt-deform" -q -r 1 --method independent "$TMP/in/3.off" "$TMP/anim.vdt" \
+		"$TMP/in/0.off" -o "$TMP/out/%d.off"
+	[ "$(ls "$TMP/out"/*.off | wc -l)" -eq 6 ]
+	cmp "$TMP/out/1.off" "$TMP/out/5.off"
+	cmp "$TMP/out/0.off" "$TMP/out/4.off"
+	! cmp -s "$TMP/out/0.off" "$TMP/out/1.off"
+	# a later stream is checked against frame 0, named by its first frame
+	"$MKANIM" -d bend -n 2 "$SAMPLES/sphere.off" -o "$TMP/sphere.vdt"
+	run "$BIN/vdt-deform" -r 0.5 "$TMP/anim.vdt" "$TMP/sphere.vdt" -o "$TMP/out/bad.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"'$TMP/sphere.vdt'"*"frame 4 has"*"vertices, frame 0 has"* ]]
+	[ ! -e "$TMP/out/bad.vdt" ]
+}
