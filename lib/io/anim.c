@@ -459,10 +459,23 @@ vdt_anim_read_operands(char *const *names, size_t n, size_t start, size_t count,
 		rc = vdt_anim_pattern(names[0], start, count, &list, &nl, err);
 		if (rc == 0)
 			rc = vdt_anim_read_files((const char *const *)list, nl, m, fr, &which, err);
-	} else if (n == 1) {
-		rc = vdt_anim_read(names[0], m, fr, extra, err);
 	} else {
-		rc = vdt_anim_read_files((const char *const *)names, n, m, fr, &which, err);
+		if (n == 1)
+			rc = vdt_anim_read(names[0], m, fr, extra, err);
+		else
+			rc = vdt_anim_read_files((const char *const *)names, n, m, fr, &which, err);
+		/* count as with a pattern: the first count frames, all there */
+		if (rc == 0 && count > fr->frame_count) {
+			rc = vdt_err_set(err, VDT_EINVAL, "%zu frames, not the %zu required",
+			                 fr->frame_count, count);
+			which = n - 1;
+			vdt_mesh_free(m);
+			vdt_frames_free(fr);
+			if (extra)
+				vdt_chunks_free(extra);
+		} else if (rc == 0 && count > 0) {
+			fr->frame_count = count;
+		}
 	}
 	if (rc != 0 && bad)
 		*bad = strdup(list && which < nl ? list[which] : names[n > 1 ? which : 0]);

@@ -75,6 +75,9 @@ int vdt_anim_pattern(const char *pattern, size_t start, size_t count,
  * Read an animation as a tool's operands give it: one printf pattern
  * (expanded as vdt_anim_pattern does with start and count), one file or
  * stream (vdt_anim_read), or several frame files (vdt_anim_read_files).
+ * With count > 0 the animation is its first count frames; fewer is an
+ * error (VDT_EINVAL, "4 frames, not the 8 required"). start applies to
+ * a pattern only.
  * On failure *bad (if non-NULL) is the malloc'ed name the error is about.
  */
 int vdt_anim_read_operands(char *const *names, size_t n, size_t start, size_t count,

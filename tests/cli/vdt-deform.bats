@@ -316,3 +316,28 @@ setup() {
 	[[ "$output" == *"'$TMP/sphere.vdt'"*"frame 4 has"*"vertices, frame 0 has"* ]]
 	[ ! -e "$TMP/out/bad.vdt" ]
 }
+
+@test "vdt-deform --frames takes the first frames of any input; --start wants a pattern" {
+	"$MKANIM" -d bend,wave -n 4 "$SAMPLES/torus.off" -o "$TMP/anim.vdt"
+	"$MKANIM" -d bend,wave -n 4 "$SAMPLES/torus.off" -o "$TMP/in/%d.off"
+	run "$BIN/vdt-deform" -r 0.5 --frames 8 "$TMP/anim.vdt" -o "$TMP/out/a.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"'$TMP/anim.vdt': 4 frames, not the 8 required"* ]]
+	run "$BIN/vdt-deform" -r 0.5 --frames 3 "$TMP/in/0.off" "$TMP/in/1.off" -o "$TMP/out/a.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"2 frames, not the 3 required"* ]]
+	for in in "$TMP/anim.vdt" "$TMP/in/0.off $TMP/in/1.off"; do
+		run "$BIN/vdt-deform" -r 0.5 --start 1 $in -o "$TMP/out/a.vdt"
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == *"--start"* ]]
+	done
+	[ -z "$(ls "$TMP/out")" ]
+	run "$BIN/vdt-deform" -v --samples 100 -r 0.5 --frames 2 "$TMP/anim.vdt" -o "$TMP/out/a.vdt"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *" frames=2 "* ]]
+	"$BIN/vdt-deform" -q -r 1 --method independent --frames 3 "$TMP"/in/[0-3].off -o "$TMP/out/%d.off"
+	[ "$(ls "$TMP/out"/*.off | wc -l)" -eq 3 ]
+}
