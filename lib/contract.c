@@ -2305,8 +2305,14 @@ engine_init(struct engine *e, const struct vdt_mesh *m, float *own_pos,
 		}
 		if (d != c)
 			memcpy(d, c, 3 * sizeof(*d));
-		tri_normal(e->pos + 3 * (size_t)d[0], e->pos + 3 * (size_t)d[1],
-		           e->pos + 3 * (size_t)d[2], n);
+		if (o->reference_positions && o->reference_triangles) {
+			const uint32_t *r = o->reference_triangles + 3 * t;
+			const float *rp = o->reference_positions;
+			tri_normal(rp + 3 * (size_t)r[0], rp + 3 * (size_t)r[1], rp + 3 * (size_t)r[2], n);
+		} else {
+			tri_normal(e->pos + 3 * (size_t)d[0], e->pos + 3 * (size_t)d[1],
+			           e->pos + 3 * (size_t)d[2], n);
+		}
 		double l = len3(n);
 		for (int k = 0; k < 3; k++)
 			e->tnormal[3 * t + k] = (int16_t)(l > 0 ? lrint(32767 * n[k] / l) : 0);

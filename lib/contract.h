@@ -105,6 +105,16 @@ struct vdt_contract_opts {
 	 */
 	int keep_parts;
 	/*
+	 * The input surface the fold-over test compares each face's normal
+	 * with: face t of m stands for the triangle reference_triangles[3t..]
+	 * of reference_positions (3 floats a vertex). A caller that restarts
+	 * the engine on a mesh it already simplified gives the original faces
+	 * here, so that the test is the one an unbroken run makes. NULL (both):
+	 * m's own faces.
+	 */
+	const float *reference_positions;
+	const uint32_t *reference_triangles;
+	/*
 	 * The queue holds one entry per vertex, its cheapest pair: the same
 	 * greedy order as a queue of every pair (ties aside, which go to the
 	 * lower vertex number), in a fraction of the memory, with no pair

@@ -341,3 +341,14 @@ setup() {
 	"$BIN/vdt-deform" -q -r 1 --method independent --frames 3 "$TMP"/in/[0-3].off -o "$TMP/out/%d.off"
 	[ "$(ls "$TMP/out"/*.off | wc -l)" -eq 3 ]
 }
+
+@test "vdt-deform on a single frame equals vdt-qslim --order greedy at any share" {
+	for P in 0 0.5 0.96 1; do
+		"$BIN/vdt-deform" -q --k2 0 -P "$P" -t 500 "$SAMPLES/torus.off" -o "$TMP/d.off"
+		"$BIN/vdt-qslim" -q --order greedy -t 500 "$SAMPLES/torus.off" -o "$TMP/q.off"
+		cmp "$TMP/d.off" "$TMP/q.off"
+		"$BIN/vdt-deform" -q -P "$P" --vertices 100 "$SAMPLES/sphere.off" -o "$TMP/d.off"
+		"$BIN/vdt-qslim" -q --order greedy -t "$(off_faces "$TMP/d.off")" "$SAMPLES/sphere.off" -o "$TMP/q.off"
+		cmp "$TMP/d.off" "$TMP/q.off"
+	done
+}
