@@ -96,6 +96,8 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	cl->nin = optind < argc ? (size_t)(argc - optind) : 1;
 	if (targets == 0)
 		cl->d.target_ratio = 0.1;
+	if (cl->start != SIZE_MAX && !(cl->nin == 1 && vdt_anim_is_pattern(cl->in[0])))
+		usage_error("--start needs one printf pattern operand (frames/%%03d.obj)");
 }
 
 /* -v: a line per frame, then one line of every statistic. */

@@ -90,7 +90,7 @@ struct engine {
 
 	size_t live_tris, live_verts;
 	double cos_max, min_quality;
-	int allow_nonmanifold;
+	int allow_nonmanifold, keep_parts;
 	const struct vdt_contract_ops *ops;
 
 	uint32_t *parent; /* the vertex each removed vertex merged into */
@@ -737,6 +737,41 @@ duplicates(struct engine *e, uint32_t keep, uint32_t gone)
 	return 0;
 }
 
+/*
+ * Whether contracting a and b would remove the whole of their part: every
+ * face at a, at b and at the third corners of their shared faces has both
+ * a and b. (A face with only one of them survives the contraction.)
+ */
+static int
+last_of_part(const struct engine *e, uint32_t a, uint32_t b)
+{
+	const struct list *la = &e->vt[a];
+
+	if (la->len == 0)
+		return 0;
+	for (int end = 0; end < 2; end++) {
+		const struct list *l = &e->vt[end ? b : a];
+		for (uint32_t i = 0; i < l->len; i++) {
+			const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + i];
+			if (!(t[0] == a || t[1] == a || t[2] == a) ||
+			    !(t[0] == b || t[1] == b || t[2] == b))
+				return 0;
+		}
+	}
+	for (uint32_t i = 0; i < la->len; i++) {
+		const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[la->off + i];
+		uint32_t c = t[0] != a && t[0] != b ? t[0] : t[1] != a && t[1] != b ? t[1] : t[2];
+		const struct list *lc = &e->vt[c];
+		for (uint32_t j = 0; j < lc->len; j++) {
+			const uint32_t *s = e->tri + 3 * (size_t)e->tpool.data[lc->off + j];
+			if (!(s[0] == a || s[1] == a || s[2] == a) ||
+			    !(s[0] == b || s[1] == b || s[2] == b))
+				return 0;
+		}
+	}
+	return 1;
+}
+
 /* ---- pairs, whichever queue holds them ---- */
 
 /* Of a < b, the vertex that survives: a locked one, else the higher rank. */
@@ -781,7 +816,7 @@ try_pair(struct engine *e, uint32_t u, uint32_t v, uint32_t *keep, uint32_t *gon
 	*cost = eval_pair(e, a, b, pos);
 	float fpos[3] = {(float)pos[0], (float)pos[1], (float)pos[2]};
 	return *cost < INFINITY && (e->allow_nonmanifold || link_ok(e, *keep, *gone)) &&
-	       !duplicates(e, *keep, *gone) && fan_ok(e, *keep, *gone, fpos) &&
+	       !(e->keep_parts && last_of_part(e, *keep, *gone)) && !duplicates(e, *keep, *gone) && fan_ok(e, *keep, *gone, fpos) &&
 	       fan_ok(e, *gone, *keep, fpos) &&
 	       (ops->valid == NULL || ops->valid(ops->ctx, *keep, *gone, pos));
 }
@@ -2270,8 +2305,14 @@ engine_init(struct engine *e, const struct vdt_mesh *m, float *own_pos,
 		}
 		if (d != c)
 			memcpy(d, c, 3 * sizeof(*d));
-		tri_normal(e->pos + 3 * (size_t)d[0], e->pos + 3 * (size_t)d[1],
-		           e->pos + 3 * (size_t)d[2], n);
+		if (o->reference_positions && o->reference_triangles) {
+			const uint32_t *r = o->reference_triangles + 3 * t;
+			const float *rp = o->reference_positions;
+			tri_normal(rp + 3 * (size_t)r[0], rp + 3 * (size_t)r[1], rp + 3 * (size_t)r[2], n);
+		} else {
+			tri_normal(e->pos + 3 * (size_t)d[0], e->pos + 3 * (size_t)d[1],
+			           e->pos + 3 * (size_t)d[2], n);
+		}
 		double l = len3(n);
 		for (int k = 0; k < 3; k++)
 			e->tnormal[3 * t + k] = (int16_t)(l > 0 ? lrint(32767 * n[k] / l) : 0);
@@ -2475,6 +2516,7 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 		e.cos_max = -2;
 	e.min_quality = o->min_quality;
 	e.allow_nonmanifold = o->allow_nonmanifold;
+	e.keep_parts = o->keep_parts;
 	e.rank = o->rank;
 	e.vq = !o->pair_queue && o->virtual_pair_count == 0;
 	e.passes = e.vq && o->passes;

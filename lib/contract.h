@@ -97,6 +97,24 @@ struct vdt_contract_opts {
 	 */
 	int allow_nonmanifold;
 	/*
+	 * Nonzero: never contract a pair whose faces are all the faces of
+	 * their connected part (an edge of a lone triangle, the middle edge
+	 * of a strip of two), so that no part of the mesh vanishes: a small
+	 * mesh stops at its last triangle, above the target
+	 * (reached_target = 0), instead of ending empty.
+	 */
+	int keep_parts;
+	/*
+	 * The input surface the fold-over test compares each face's normal
+	 * with: face t of m stands for the triangle reference_triangles[3t..]
+	 * of reference_positions (3 floats a vertex). A caller that restarts
+	 * the engine on a mesh it already simplified gives the original faces
+	 * here, so that the test is the one an unbroken run makes. NULL (both):
+	 * m's own faces.
+	 */
+	const float *reference_positions;
+	const uint32_t *reference_triangles;
+	/*
 	 * The queue holds one entry per vertex, its cheapest pair: the same
 	 * greedy order as a queue of every pair (ties aside, which go to the
 	 * lower vertex number), in a fraction of the memory, with no pair

@@ -789,6 +789,7 @@ struct scratch {
 	struct qd *q;
 	float *pos;
 	uint32_t *parent, *tri, *rep;
+	uint32_t *ref; /* per tail face, the input face it comes from */
 	struct pairset prefer; /* the pairs the next frame's tail prefers */
 };
 
@@ -847,6 +848,7 @@ simplify_frame(const struct anim *a, size_t f, const struct vdt_contraction *rec
 		s->tri[3 * nt] = x;
 		s->tri[3 * nt + 1] = y;
 		s->tri[3 * nt + 2] = z;
+		memcpy(s->ref + 3 * nt, a->tri + 3 * t, 3 * sizeof(uint32_t));
 		nt++;
 	}
 	float *out = res->positions + 3 * nv * f;
@@ -867,6 +869,10 @@ simplify_frame(const struct anim *a, size_t f, const struct vdt_contraction *rec
 		co.target_triangles = SIZE_MAX;
 		co.target_vertices = target;
 		co.max_normal_angle = o->max_normal_angle;
+		co.keep_parts = 1;
+		/* fold-overs against the frame's input, as one run would */
+		co.reference_positions = a->pos + 3 * nv * f;
+		co.reference_triangles = s->ref;
 		co.record = c.prefer != NULL;
 		if ((rc = vdt_contract_run(&m, &ops, &co, &r, err)) != 0)
 			return rc;
@@ -1073,6 +1079,7 @@ vdt_deform(const struct vdt_mesh *m, const struct vdt_frames *fr,
 		co.target_triangles = SIZE_MAX;
 		co.target_vertices = target;
 		co.max_normal_angle = o->max_normal_angle;
+		co.keep_parts = 1;
 		co.record = 1;
 		co.progress = o->progress;
 		if ((rc = vdt_contract_run(&um, &ops, &co, &ur, err)) != 0)
@@ -1094,13 +1101,14 @@ vdt_deform(const struct vdt_mesh *m, const struct vdt_frames *fr,
 	s.parent = malloc((nv + 1) * sizeof(uint32_t));
 	s.tri = malloc((3 * a.nt + 1) * sizeof(uint32_t));
 	s.rep = malloc((nv + 1) * sizeof(uint32_t));
+	s.ref = malloc((3 * a.nt + 1) * sizeof(uint32_t));
 	if (s.q == NULL)
 		s.q = malloc((nv + 1) * sizeof(*s.q));
 	s.prefer.cap = 16;
 	while (s.prefer.cap < 4 * nv)
 		s.prefer.cap *= 2;
 	s.prefer.key = malloc(s.prefer.cap * sizeof(*s.prefer.key));
-	if (!s.pos || !s.parent || !s.tri || !s.rep || !s.q || !s.prefer.key)
+	if (!s.pos || !s.parent || !s.tri || !s.rep || !s.ref || !s.q || !s.prefer.key)
 		goto nomem;
 	pairset_clear(&s.prefer);
 	int finish = o->method == VDT_DEFORM_INDEPENDENT || nrep < ur.record_count ||
@@ -1136,6 +1144,7 @@ done:
 	free(s.parent);
 	free(s.tri);
 	free(s.rep);
+	free(s.ref);
 	free(s.prefer.key);
 	return rc;
 }

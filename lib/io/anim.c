@@ -3,6 +3,7 @@
  * list of frame files, or a printf pattern naming them. Every frame must
  * share frame 0's connectivity; what differs is said with the frame.
  */
+#include <dirent.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -145,6 +146,9 @@ vdt_anim_read_files(const char *const *paths, size_t n, struct vdt_mesh *m,
                     struct vdt_frames *fr, size_t *bad, struct vdt_err *err)
 {
 	struct vdt_mesh x = {0};
+	struct vdt_frames xf = {0};
+	float *pos = NULL;
+	size_t nf = 0, nv = 0;
 	int rc;
 
 	memset(m, 0, sizeof(*m));
@@ -152,25 +156,45 @@ vdt_anim_read_files(const char *const *paths, size_t n, struct vdt_mesh *m,
 	*bad = 0;
 	if (n == 0)
 		return vdt_err_set(err, VDT_EINVAL, "no frames");
-	if ((rc = vdt_read(paths[0], m, NULL, err)) != 0)
-		return rc;
-	if ((rc = vdt_frames_alloc(fr, n, m->vertex_count, err)) != 0)
-		goto fail;
-	memcpy(fr->positions, m->positions, 3 * m->vertex_count * sizeof(float));
-	for (size_t f = 1; f < n; f++) {
-		*bad = f;
-		if ((rc = vdt_read(paths[f], &x, NULL, err)) != 0) {
-			vdt_err_prefix(err, "frame %zu", f);
+	/* Each file gives all its frames (a stream its FRMS chunk, an MD2
+	 * model its keyframes, a mesh one), in order. */
+	for (size_t i = 0; i < n; i++) {
+		*bad = i;
+		if ((rc = vdt_anim_read(paths[i], i ? &x : m, &xf, NULL, err)) != 0) {
+			if (i)
+				vdt_err_prefix(err, "frame %zu", nf);
 			goto fail;
 		}
-		if ((rc = same_connectivity(m, f, x.vertex_count, x.triangle_count, x.triangles, err)) != 0)
+		if (i == 0)
+			nv = m->vertex_count;
+		else if ((rc = same_connectivity(m, nf, x.vertex_count, x.triangle_count, x.triangles,
+		                                 err)) != 0)
 			goto fail;
-		memcpy(fr->positions + 3 * m->vertex_count * f, x.positions,
-		       3 * m->vertex_count * sizeof(float));
+		size_t k = xf.frame_count;
+		if (k > SIZE_MAX / 12 / nv - nf) {
+			rc = vdt_err_set(err, VDT_EINVAL, "%zu frames of %zu vertices is not a valid size",
+			                 nf + k, nv);
+			goto fail;
+		}
+		float *t = realloc(pos, 3 * nv * (nf + k) * sizeof(float));
+		if (t == NULL) {
+			rc = vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu frames of %zu vertices",
+			                 nf + k, nv);
+			goto fail;
+		}
+		pos = t;
+		memcpy(pos + 3 * nv * nf, xf.positions, 3 * nv * k * sizeof(float));
+		nf += k;
+		vdt_frames_free(&xf);
 		vdt_mesh_free(&x);
 	}
+	fr->positions = pos;
+	fr->frame_count = nf;
+	fr->vertex_count = nv;
 	return 0;
 fail:
+	free(pos);
+	vdt_frames_free(&xf);
 	vdt_mesh_free(&x);
 	vdt_mesh_free(m);
 	vdt_frames_free(fr);
@@ -247,6 +271,109 @@ exists(const char *p)
 	return stat(p, &st) == 0;
 }
 
+/* s[0..n) with %% as %: the literal text around a pattern's conversion. */
+static char *
+literal(const char *s, size_t n)
+{
+	char *out = malloc(n + 1), *o = out;
+
+	if (out == NULL)
+		return NULL;
+	for (size_t k = 0; k < n; k++) {
+		*o++ = s[k];
+		if (s[k] == '%' && k + 1 < n && s[k + 1] == '%')
+			k++;
+	}
+	*o = '\0';
+	return out;
+}
+
+/* How many following indices are probed when the directory cannot be
+ * listed (the conversion is in a directory name, or it is unreadable). */
+#define GAP_PROBE 1000
+
+/*
+ * The smallest index after `missing` whose file exists, or SIZE_MAX:
+ * what tells a gap from the end. The directory that holds the frames is
+ * listed and its names matched against the pattern, so a gap of any
+ * length is found; failing that, the next GAP_PROBE indices are tried.
+ * -1 when out of memory.
+ */
+static int
+next_existing(const char *pattern, size_t missing, size_t *found)
+{
+	size_t at, end;
+	char *pre = NULL, *suf = NULL;
+	int rc = -1;
+
+	*found = SIZE_MAX;
+	if (conversion(pattern, &at, &end) != 0)
+		return 0;
+	pre = literal(pattern, at);
+	suf = literal(pattern + end, strlen(pattern + end));
+	if (pre == NULL || suf == NULL)
+		goto out;
+	char *slash = strrchr(pre, '/');
+	DIR *d = NULL;
+	if (strchr(suf, '/') == NULL) {
+		const char *dir = ".";
+		if (slash == pre)
+			dir = "/";
+		else if (slash) {
+			*slash = '\0';
+			dir = pre;
+		}
+		d = opendir(dir);
+		if (slash)
+			*slash = '/';
+	}
+	if (d != NULL) {
+		const char *base = slash ? slash + 1 : pre;
+		size_t nb = strlen(base), ns = strlen(suf);
+		struct dirent *de;
+		while ((de = readdir(d)) != NULL) {
+			const char *nm = de->d_name;
+			size_t n = strlen(nm), i = nb;
+			if (n <= nb + ns || strncmp(nm, base, nb) != 0 || strcmp(nm + n - ns, suf) != 0)
+				continue;
+			while (i < n - ns && nm[i] == ' ')
+				i++;
+			if (i == n - ns || nm[i] < '0' || nm[i] > '9')
+				continue;
+			size_t idx = 0;
+			for (; i < n - ns && nm[i] >= '0' && nm[i] <= '9'; i++)
+				idx = idx > (SIZE_MAX - 9) / 10 ? SIZE_MAX : 10 * idx + (size_t)(nm[i] - '0');
+			if (i != n - ns || idx <= missing || idx >= *found)
+				continue;
+			/* the pattern must give this very name (zero padding, width) */
+			char *q = vdt_anim_format(pattern, idx);
+			if (q == NULL) {
+				closedir(d);
+				goto out;
+			}
+			const char *qb = strrchr(q, '/');
+			if (strcmp(qb ? qb + 1 : q, nm) == 0)
+				*found = idx;
+			free(q);
+		}
+		closedir(d);
+	} else {
+		for (size_t i = missing + 1; i <= missing + GAP_PROBE && *found == SIZE_MAX; i++) {
+			char *q = vdt_anim_format(pattern, i);
+			if (q == NULL)
+				goto out;
+			if (exists(q))
+				*found = i;
+			free(q);
+		}
+	}
+	rc = 0;
+out:
+	free(pre);
+	free(suf);
+	return rc;
+}
+
 int
 vdt_anim_pattern(const char *pattern, size_t start, size_t count, char ***paths,
                  size_t *n, struct vdt_err *err)
@@ -290,16 +417,18 @@ vdt_anim_pattern(const char *pattern, size_t start, size_t count, char ***paths,
 		goto fail;
 	}
 	/* A missing frame followed by more frames is a gap, not the end. */
-	{
-		char *q = vdt_anim_format(pattern, start + len + 1);
-		if (q == NULL)
+	if (count == 0) {
+		size_t next;
+		if (next_existing(pattern, start + len, &next) != 0)
 			goto nomem;
-		if (count == 0 && exists(q)) {
+		if (next != SIZE_MAX) {
+			char *q = vdt_anim_format(pattern, next);
+			if (q == NULL)
+				goto nomem;
 			rc = vdt_err_set(err, VDT_EIO, "frame %zu: no file '%s', but '%s' exists", len, p, q);
 			free(q);
 			goto fail;
 		}
-		free(q);
 	}
 	free(p);
 	*paths = list;
@@ -330,10 +459,23 @@ vdt_anim_read_operands(char *const *names, size_t n, size_t start, size_t count,
 		rc = vdt_anim_pattern(names[0], start, count, &list, &nl, err);
 		if (rc == 0)
 			rc = vdt_anim_read_files((const char *const *)list, nl, m, fr, &which, err);
-	} else if (n == 1) {
-		rc = vdt_anim_read(names[0], m, fr, extra, err);
 	} else {
-		rc = vdt_anim_read_files((const char *const *)names, n, m, fr, &which, err);
+		if (n == 1)
+			rc = vdt_anim_read(names[0], m, fr, extra, err);
+		else
+			rc = vdt_anim_read_files((const char *const *)names, n, m, fr, &which, err);
+		/* count as with a pattern: the first count frames, all there */
+		if (rc == 0 && count > fr->frame_count) {
+			rc = vdt_err_set(err, VDT_EINVAL, "%zu frames, not the %zu required",
+			                 fr->frame_count, count);
+			which = n - 1;
+			vdt_mesh_free(m);
+			vdt_frames_free(fr);
+			if (extra)
+				vdt_chunks_free(extra);
+		} else if (rc == 0 && count > 0) {
+			fr->frame_count = count;
+		}
 	}
 	if (rc != 0 && bad)
 		*bad = strdup(list && which < nl ? list[which] : names[n > 1 ? which : 0]);

@@ -44,10 +44,13 @@ int vdt_anim_read(const char *path, struct vdt_mesh *m, struct vdt_frames *fr,
                   struct vdt_chunks *extra, struct vdt_err *err);
 
 /*
- * Read frames from n mesh files (each as vdt_read does). Every frame
- * must have frame 0's vertex count, triangle count and triangles; *bad is
- * set to the index of the file an error is about (the message names the
- * frame and what differs: "frame 3 has 502 vertices, frame 0 has 500").
+ * Read frames from n files, each as vdt_anim_read does, one after the
+ * other: a mesh gives one frame, a stream with FRMS or an MD2 model all
+ * its frames; *m is the first file's mesh. Every frame must have frame
+ * 0's vertex count, triangle count and triangles; *bad is set to the
+ * index of the file an error is about (the message names the frame, a
+ * file by its first, and what differs: "frame 3 has 502 vertices, frame
+ * 0 has 500").
  * Returns 0 or a negative status; *m and *fr empty on failure.
  */
 int vdt_anim_read_files(const char *const *paths, size_t n, struct vdt_mesh *m,
@@ -58,8 +61,10 @@ int vdt_anim_read_files(const char *const *paths, size_t n, struct vdt_mesh *m,
  * %% for a literal percent) into the file names that exist, from index
  * start (or, when start is SIZE_MAX, from 0 if that file exists, else
  * from 1) until the first missing one; with count > 0 exactly count
- * frames are required. A missing file followed by an existing one is a
- * gap, not the end. *paths (each string and the array malloc'ed) has *n
+ * frames are required. A missing file followed by an existing one (any
+ * later index: the directory is listed and its names matched against the
+ * pattern, or, when the conversion is in a directory name, the next 1000
+ * indices are tried) is a gap, not the end. *paths (each string and the array malloc'ed) has *n
  * names. Errors (VDT_EINVAL for a bad pattern, VDT_EIO for missing files)
  * name the file.
  */
@@ -70,6 +75,9 @@ int vdt_anim_pattern(const char *pattern, size_t start, size_t count,
  * Read an animation as a tool's operands give it: one printf pattern
  * (expanded as vdt_anim_pattern does with start and count), one file or
  * stream (vdt_anim_read), or several frame files (vdt_anim_read_files).
+ * With count > 0 the animation is its first count frames; fewer is an
+ * error (VDT_EINVAL, "4 frames, not the 8 required"). start applies to
+ * a pattern only.
  * On failure *bad (if non-NULL) is the malloc'ed name the error is about.
  */
 int vdt_anim_read_operands(char *const *names, size_t n, size_t start, size_t count,

@@ -239,3 +239,116 @@ setup() {
 	"$BIN/vdt-deform" -t 200 --vertices 500 "$SAMPLES/sphere.off" -o "$TMP/v.off"
 	[ "$(off_vertices "$TMP/v.off")" -eq 500 ]
 }
+
+@test "vdt-deform keeps the last triangle of a small mesh, with a warning" {
+	printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' > "$TMP/tri.off"
+	printf 'OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 2 1 3\n' > "$TMP/quad.off"
+	run "$BIN/vdt-deform" -r 0.5 "$TMP/tri.off" -o "$TMP/out/t.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"stopped above the target"* ]]
+	[ "$(off_faces "$TMP/out/t.off")" -eq 1 ]
+	for m in ours dsd first-frame independent; do
+		run "$BIN/vdt-deform" --method "$m" --vertices 2 "$TMP/quad.off" -o "$TMP/out/q.off"
+		[ "$status" -eq 0 ]
+		[[ "$output" == *"stopped above the target"* ]]
+		[ "$(off_faces "$TMP/out/q.off")" -eq 1 ]
+	done
+	run "$BIN/vdt-deform" -r 0.5 "$TMP/quad.off" "$TMP/quad.off" -o "$TMP/out/%d.off"
+	[ "$status" -eq 0 ]
+	[ "$(off_faces "$TMP/out/0.off")" -ge 1 ]
+	[ "$(off_faces "$TMP/out/1.off")" -ge 1 ]
+	# no warning when the target is reached
+	run "$BIN/vdt-deform" -t 1 "$TMP/quad.off" -o "$TMP/out/q1.off"
+	[ "$status" -eq 0 ]
+	[ -z "$output" ]
+	[ "$(off_faces "$TMP/out/q1.off")" -eq 1 ]
+}
+
+@test "vdt-deform names a gap of several missing frames in a pattern" {
+	"$MKANIM" -d bend,wave -n 4 "$SAMPLES/torus.off" -o "$TMP/anim.vdt"
+	"$BIN/vdt-deform" -q -r 1 --method independent "$TMP/anim.vdt" -o "$TMP/in/f%03d.off"
+	mkdir "$TMP/gap"
+	cp "$TMP/in/f000.off" "$TMP/in/f001.off" "$TMP/gap/"
+	cp "$TMP/in/f003.off" "$TMP/gap/f004.off"
+	run "$BIN/vdt-deform" -r 0.5 "$TMP/gap/f%03d.off" -o "$TMP/out/g.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"frame 2: no file '$TMP/gap/f002.off', but '$TMP/gap/f004.off' exists"* ]]
+	# far away, and beyond the pattern's width
+	mv "$TMP/gap/f004.off" "$TMP/gap/f1234.off"
+	run "$BIN/vdt-deform" -r 0.5 "$TMP/gap/f%03d.off" -o "$TMP/out/g.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"frame 2: no file '$TMP/gap/f002.off', but '$TMP/gap/f1234.off' exists"* ]]
+	# the conversion in a directory name
+	mkdir "$TMP/d0" "$TMP/d1" "$TMP/d7"
+	cp "$TMP/in/f000.off" "$TMP/d0/m.off"
+	cp "$TMP/in/f001.off" "$TMP/d1/m.off"
+	cp "$TMP/in/f002.off" "$TMP/d7/m.off"
+	run "$BIN/vdt-deform" -r 0.5 "$TMP/d%d/m.off" -o "$TMP/out/g.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"frame 2: no file '$TMP/d2/m.off', but '$TMP/d7/m.off' exists"* ]]
+	[ -z "$(ls "$TMP/out")" ]
+	# a name the pattern cannot give is not a frame
+	mv "$TMP/gap/f1234.off" "$TMP/gap/f04.off"
+	"$BIN/vdt-deform" -q -r 0.5 "$TMP/gap/f%03d.off" -o "$TMP/out/g.vdt"
+}
+
+@test "vdt-deform reads every frame of each stream given among several inputs" {
+	"$MKANIM" -d bend,wave -n 4 "$SAMPLES/torus.off" -o "$TMP/anim.vdt"
+	"$MKANIM" -d bend,wave -n 4 "$SAMPLES/torus.off" -o "$TMP/in/%d.off"
+	run "$BIN/vdt-deform" -v --samples 100 -r 0.5 "$TMP/anim.vdt" "$TMP/anim.vdt" -o "$TMP/out/aa.vdt"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *" frames=8 "* ]]
+	# in order: the frames of each input, one input after the other
+	"$BIN/vdt-deform" -q -r 1 --method independent "$TMP/in/3.off" "$TMP/anim.vdt" \
+		"$TMP/in/0.off" -o "$TMP/out/%d.off"
+	[ "$(ls "$TMP/out"/*.off | wc -l)" -eq 6 ]
+	cmp "$TMP/out/1.off" "$TMP/out/5.off"
+	cmp "$TMP/out/0.off" "$TMP/out/4.off"
+	! cmp -s "$TMP/out/0.off" "$TMP/out/1.off"
+	# a later stream is checked against frame 0, named by its first frame
+	"$MKANIM" -d bend -n 2 "$SAMPLES/sphere.off" -o "$TMP/sphere.vdt"
+	run "$BIN/vdt-deform" -r 0.5 "$TMP/anim.vdt" "$TMP/sphere.vdt" -o "$TMP/out/bad.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"'$TMP/sphere.vdt'"*"frame 4 has"*"vertices, frame 0 has"* ]]
+	[ ! -e "$TMP/out/bad.vdt" ]
+}
+
+@test "vdt-deform --frames takes the first frames of any input; --start wants a pattern" {
+	"$MKANIM" -d bend,wave -n 4 "$SAMPLES/torus.off" -o "$TMP/anim.vdt"
+	"$MKANIM" -d bend,wave -n 4 "$SAMPLES/torus.off" -o "$TMP/in/%d.off"
+	run "$BIN/vdt-deform" -r 0.5 --frames 8 "$TMP/anim.vdt" -o "$TMP/out/a.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"'$TMP/anim.vdt': 4 frames, not the 8 required"* ]]
+	run "$BIN/vdt-deform" -r 0.5 --frames 3 "$TMP/in/0.off" "$TMP/in/1.off" -o "$TMP/out/a.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"2 frames, not the 3 required"* ]]
+	for in in "$TMP/anim.vdt" "$TMP/in/0.off $TMP/in/1.off"; do
+		run "$BIN/vdt-deform" -r 0.5 --start 1 $in -o "$TMP/out/a.vdt"
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == *"--start"* ]]
+	done
+	[ -z "$(ls "$TMP/out")" ]
+	run "$BIN/vdt-deform" -v --samples 100 -r 0.5 --frames 2 "$TMP/anim.vdt" -o "$TMP/out/a.vdt"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *" frames=2 "* ]]
+	"$BIN/vdt-deform" -q -r 1 --method independent --frames 3 "$TMP"/in/[0-3].off -o "$TMP/out/%d.off"
+	[ "$(ls "$TMP/out"/*.off | wc -l)" -eq 3 ]
+}
+
+@test "vdt-deform on a single frame equals vdt-qslim --order greedy at any share" {
+	for P in 0 0.5 0.96 1; do
+		"$BIN/vdt-deform" -q --k2 0 -P "$P" -t 500 "$SAMPLES/torus.off" -o "$TMP/d.off"
+		"$BIN/vdt-qslim" -q --order greedy -t 500 "$SAMPLES/torus.off" -o "$TMP/q.off"
+		cmp "$TMP/d.off" "$TMP/q.off"
+		"$BIN/vdt-deform" -q -P "$P" --vertices 100 "$SAMPLES/sphere.off" -o "$TMP/d.off"
+		"$BIN/vdt-qslim" -q --order greedy -t "$(off_faces "$TMP/d.off")" "$SAMPLES/sphere.off" -o "$TMP/q.off"
+		cmp "$TMP/d.off" "$TMP/q.off"
+	done
+}
