@@ -816,8 +816,8 @@ try_pair(struct engine *e, uint32_t u, uint32_t v, uint32_t *keep, uint32_t *gon
 	*cost = eval_pair(e, a, b, pos);
 	float fpos[3] = {(float)pos[0], (float)pos[1], (float)pos[2]};
 	return *cost < INFINITY && (e->allow_nonmanifold || link_ok(e, *keep, *gone)) &&
-	       !(e->keep_parts && last_of_part(e, *keep, *gone)) && !duplicates(e, *keep, *gone) && fan_ok(e, *keep, *gone, fpos) &&
-	       fan_ok(e, *gone, *keep, fpos) &&
+	       !(e->keep_parts && last_of_part(e, *keep, *gone)) && !duplicates(e, *keep, *gone) &&
+	       fan_ok(e, *keep, *gone, fpos) && fan_ok(e, *gone, *keep, fpos) &&
 	       (ops->valid == NULL || ops->valid(ops->ctx, *keep, *gone, pos));
 }
 
