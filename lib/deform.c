@@ -229,17 +229,24 @@ out:
 
 /* ---- per-frame quadrics, in vdt_qslim's order ---- */
 
-static void
+/* The centre of frame f's box, and the unit of its costs: diagonal^-4.
+ * A quadric error is an area times a squared distance; the engine keeps
+ * costs as floats, whose range models in units of 1e12 or 1e-12 would
+ * leave (every cost infinite, or every cost a tie). */
+static double
 frame_centre(const struct anim *a, size_t f, double c[3])
 {
 	struct vdt_mesh m = {0};
 	struct vdt_bbox box;
+	double d;
 
 	m.vertex_count = a->nv;
 	m.positions = a->pos + 3 * a->nv * f;
 	vdt_mesh_bbox(&m, &box);
 	for (int k = 0; k < 3; k++)
 		c[k] = 0.5 * (box.min[k] + box.max[k]);
+	d = vdt_bbox_diagonal(&box);
+	return d > 0 ? 1 / (d * d * d * d) : 1;
 }
 
 static void
@@ -529,6 +536,7 @@ struct uctx {
 	struct qd *q;        /* nv * nf, vertex-major */
 	float *cur;          /* 3 * nv * nf, vertex-major */
 	double *centre;      /* 3 per frame */
+	double unit;         /* of the costs: the first frame's (frame_centre) */
 	double *ec;          /* scratch, nf */
 	struct flist *fw;    /* per vertex, or NULL */
 	double k1, k2;
@@ -594,11 +602,12 @@ unified_cost(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	}
 	switch (c->method) {
 	case VDT_DEFORM_FIRST:
-		return c->ec[0];
+		return c->ec[0] * c->unit;
 	case VDT_DEFORM_DSD:
-		return vdt_deform_cost(c->ec, nf, 0, 0, 0);
+		return vdt_deform_cost(c->ec, nf, 0, 0, 0) * c->unit;
 	default:
-		return vdt_deform_cost(c->ec, nf, c->fw ? pair_fw(c, a, b) : 0, c->k1, c->k2);
+		return vdt_deform_cost(c->ec, nf, c->fw ? pair_fw(c, a, b) : 0, c->k1, c->k2) *
+		       c->unit;
 	}
 }
 
@@ -745,6 +754,7 @@ pairset_has(const struct pairset *s, uint32_t a, uint32_t b)
 struct fctx {
 	struct qd *q;
 	double centre[3];
+	double unit;                  /* of the costs (frame_centre) */
 	const struct pairset *prefer; /* or NULL */
 	double discount;              /* 1 / (1 + coherence) */
 };
@@ -759,7 +769,7 @@ frame_cost(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 		pos[k] += c->centre[k];
 	if (c->prefer && c->prefer->n && pairset_has(c->prefer, a, b))
 		e *= c->discount;
-	return e;
+	return e * c->unit;
 }
 
 static void
@@ -819,7 +829,7 @@ simplify_frame(const struct anim *a, size_t f, const struct vdt_contraction *rec
 	double v[3];
 	size_t nv = a->nv, nt = 0;
 
-	frame_centre(a, f, c.centre);
+	c.unit = frame_centre(a, f, c.centre);
 	c.q = s->q;
 	c.prefer = o->method == VDT_DEFORM_OURS && o->coherence > 0 ? &s->prefer : NULL;
 	c.discount = 1 / (1 + o->coherence);
@@ -1062,7 +1072,9 @@ vdt_deform(const struct vdt_mesh *m, const struct vdt_frames *fr,
 		if (!u.q || !u.cur || !u.centre || !u.ec || !s.q)
 			goto nomem;
 		for (size_t f = 0; f < u.nf; f++) {
-			frame_centre(&a, f, u.centre + 3 * f);
+			double unit = frame_centre(&a, f, u.centre + 3 * f);
+			if (f == 0)
+				u.unit = unit;
 			frame_quadrics(&a, f, u.centre + 3 * f, o->boundary_weight, u.q + f, u.nf);
 			for (size_t v = 0; v < nv; v++)
 				memcpy(u.cur + 3 * (v * u.nf + f), a.pos + 3 * (nv * f + v), 3 * sizeof(float));

@@ -352,3 +352,14 @@ setup() {
 		cmp "$TMP/d.off" "$TMP/q.off"
 	done
 }
+
+@test "vdt-deform does not depend on the model's units" {
+	for s in 1e12 1e-12; do
+		awk -v s="$s" 'NR == 2 { n = $1 } NR > 2 && NR <= 2 + n { $1 *= s; $2 *= s; $3 *= s } { print }' \
+			"$SAMPLES/sphere.off" > "$TMP/s.off"
+		"$BIN/vdt-deform" -r 0.1 "$TMP/s.off" "$TMP/s.off" -o "$TMP/out%d.off"
+		[ "$(off_faces "$TMP/out1.off")" -le 520 ]
+		h=$("$BIN/vdt-measure" --format=kv "$TMP/s.off" "$TMP/out1.off" | kv hausdorff_pct)
+		awk -v h="$h" 'BEGIN { exit !(h < 1) }'
+	done
+}
