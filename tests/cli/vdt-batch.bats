@@ -196,3 +196,19 @@ tree() { # a tree with a subdirectory and a corrupted model
 	cmp "$TMP/part" "$TMP/kept"
 	[ -z "$(find "$TMP/out" -name '.*' ! -name .vdt-batch ! -path '*/.vdt-batch/*')" ]
 }
+
+@test "vdt-batch: a usage error is one line with a hint; -h prints the whole usage" {
+	for a in --bogus "-j x" "--recipe nope" "--ratios 0" "-F gif" "-o"; do
+		run "$BATCH" $a "$SAMPLES"
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == "vdt-batch: "*" (try vdt-batch -h)" ]]
+	done
+	run "$BATCH"
+	[ "$status" -eq 2 ]
+	one_line
+	run "$BATCH" -h
+	[ "$status" -eq 0 ]
+	[[ "$output" == "usage: vdt-batch "* ]]
+	[ "$(printf '%s\n' "$output" | wc -l)" -gt 3 ]
+}
