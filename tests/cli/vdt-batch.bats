@@ -212,3 +212,36 @@ tree() { # a tree with a subdirectory and a corrupted model
 	[[ "$output" == "usage: vdt-batch "* ]]
 	[ "$(printf '%s\n' "$output" | wc -l)" -gt 3 ]
 }
+
+@test "vdt-batch: a job or sample count out of range is a usage error, in one line, before make runs" {
+	mkdir -p "$TMP/in"
+	cp "$SAMPLES/torus.off" "$TMP/in/"
+	for j in 99999999999999999999 2147483648 4097 0; do
+		run "$BATCH" -q --samples 1000 -o "$TMP/out" -j "$j" "$TMP/in"
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == "vdt-batch: -j must be between 1 and 4096, not $j"* ]]
+	done
+	run "$BATCH" -q --samples 99999999999999999999 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == "vdt-batch: --samples must be between 1 and 1099511627776, not "* ]]
+	[ ! -e "$TMP/out" ]
+}
+
+@test "vdt-batch: make failing by itself is reported with make's message, not as failed models" {
+	mkdir -p "$TMP/in" "$TMP/fake"
+	cp "$SAMPLES/torus.off" "$TMP/in/"
+	cat > "$TMP/fake/make" <<'SH'
+#!/bin/sh
+echo "make: the '-j' option requires a positive integer argument" >&2
+echo "Usage: make [options] [target] ..." >&2
+exit 2
+SH
+	chmod +x "$TMP/fake/make"
+	PATH="$TMP/fake:$PATH" run "$BATCH" -q -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 1 ]
+	one_line
+	[[ "$output" == "vdt-batch: make: the '-j' option requires a positive integer argument"* ]]
+	[[ "$output" != *"not finished"* ]]
+}
