@@ -245,3 +245,21 @@ SH
 	[[ "$output" == "vdt-batch: make: the '-j' option requires a positive integer argument"* ]]
 	[[ "$output" != *"not finished"* ]]
 }
+
+@test "vdt-batch: -o naming the input directory, by any path, is refused before anything is written" {
+	mkdir -p "$TMP/same/sub"
+	cp "$SAMPLES/torus.off" "$TMP/same/"
+	ln -s same "$TMP/link"
+	for o in "$TMP/same" "$TMP/same/" "$TMP/same/sub/.." "$TMP/link"; do
+		run "$BATCH" -q --ratios 50 -o "$o" "$TMP/same"
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == "vdt-batch: "*"is the input directory"* ]]
+	done
+	(cd "$TMP/same" && run "$BATCH" -q --ratios 50 -o . "$TMP/link" && [ "$status" -eq 2 ])
+	[ "$(ls -A "$TMP/same" | tr '\n' ' ')" = "sub torus.off " ]
+	# an output tree inside the input, reached through a link, is still skipped
+	"$BATCH" -q --ratios 50 -o "$TMP/link/out" "$TMP/same"
+	"$BATCH" -q --ratios 50 -o "$TMP/link/out" "$TMP/same"
+	[ "$(ls "$TMP/same/out" | tr '\n' ' ')" = "torus.lod1.ply " ]
+}
