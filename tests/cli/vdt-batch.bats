@@ -263,3 +263,43 @@ SH
 	"$BATCH" -q --ratios 50 -o "$TMP/link/out" "$TMP/same"
 	[ "$(ls "$TMP/same/out" | tr '\n' ' ')" = "torus.lod1.ply " ]
 }
+
+@test "vdt-batch: no mesh files is status 2 and leaves nothing behind" {
+	mkdir -p "$TMP/empty/sub"
+	echo text > "$TMP/empty/sub/notes.txt"
+	run "$BATCH" -q -o "$TMP/out" "$TMP/empty"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == "vdt-batch: no mesh files under '$TMP/empty'" ]]
+	[ ! -e "$TMP/out" ]
+	# an existing output tree is left as it was
+	mkdir -p "$TMP/out2/.vdt-batch"
+	echo keep > "$TMP/out2/.vdt-batch/models"
+	run "$BATCH" -q -o "$TMP/out2" "$TMP/empty"
+	[ "$status" -eq 2 ]
+	[ "$(ls -A "$TMP/out2/.vdt-batch")" = models ]
+	[ "$(cat "$TMP/out2/.vdt-batch/models")" = keep ]
+	[ ! -e "$TMP/empty/.vdt-batch" ] && [ ! -e "$TMP/empty/out" ]
+}
+
+@test "vdt-batch: -o naming a file is status 2 in one line; a directory it cannot make, status 1 in one line" {
+	mkdir -p "$TMP/in"
+	cp "$SAMPLES/torus.off" "$TMP/in/"
+	echo data > "$TMP/file"
+	for o in "$TMP/file" "$TMP/file/sub"; do
+		run "$BATCH" -q -o "$o" "$TMP/in"
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == "vdt-batch: cannot use '$o' as the output directory: "* ]]
+	done
+	[ "$(cat "$TMP/file")" = data ]
+	if [ "$(id -u)" -ne 0 ]; then
+		mkdir "$TMP/ro"
+		chmod 555 "$TMP/ro"
+		run "$BATCH" -q -o "$TMP/ro/out" "$TMP/in"
+		chmod 755 "$TMP/ro"
+		[ "$status" -eq 1 ]
+		one_line
+		[[ "$output" == "vdt-batch: cannot create directory '$TMP/ro/out': Permission denied" ]]
+	fi
+}
