@@ -303,3 +303,12 @@ SH
 		[[ "$output" == "vdt-batch: cannot create directory '$TMP/ro/out': Permission denied" ]]
 	fi
 }
+
+@test "vdt-batch -V: the version and the stream format version, as the tools print them" {
+	q=$("$BIN/vdt-qslim" -V)
+	for v in -V --version; do
+		run "$BATCH" "$v"
+		[ "$status" -eq 0 ]
+		[ "$output" = "vdt-batch ${q#vdt-qslim }" ]
+	done
+}
