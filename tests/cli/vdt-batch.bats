@@ -196,3 +196,119 @@ tree() { # a tree with a subdirectory and a corrupted model
 	cmp "$TMP/part" "$TMP/kept"
 	[ -z "$(find "$TMP/out" -name '.*' ! -name .vdt-batch ! -path '*/.vdt-batch/*')" ]
 }
+
+@test "vdt-batch: a usage error is one line with a hint; -h prints the whole usage" {
+	for a in --bogus "-j x" "--recipe nope" "--ratios 0" "-F gif" "-o"; do
+		run "$BATCH" $a "$SAMPLES"
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == "vdt-batch: "*" (try vdt-batch -h)" ]]
+	done
+	run "$BATCH"
+	[ "$status" -eq 2 ]
+	one_line
+	run "$BATCH" -h
+	[ "$status" -eq 0 ]
+	[[ "$output" == "usage: vdt-batch "* ]]
+	[ "$(printf '%s\n' "$output" | wc -l)" -gt 3 ]
+}
+
+@test "vdt-batch: a job or sample count out of range is a usage error, in one line, before make runs" {
+	mkdir -p "$TMP/in"
+	cp "$SAMPLES/torus.off" "$TMP/in/"
+	for j in 99999999999999999999 2147483648 4097 0; do
+		run "$BATCH" -q --samples 1000 -o "$TMP/out" -j "$j" "$TMP/in"
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == "vdt-batch: -j must be between 1 and 4096, not $j"* ]]
+	done
+	run "$BATCH" -q --samples 99999999999999999999 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == "vdt-batch: --samples must be between 1 and 1099511627776, not "* ]]
+	[ ! -e "$TMP/out" ]
+}
+
+@test "vdt-batch: make failing by itself is reported with make's message, not as failed models" {
+	mkdir -p "$TMP/in" "$TMP/fake"
+	cp "$SAMPLES/torus.off" "$TMP/in/"
+	cat > "$TMP/fake/make" <<'SH'
+#!/bin/sh
+echo "make: the '-j' option requires a positive integer argument" >&2
+echo "Usage: make [options] [target] ..." >&2
+exit 2
+SH
+	chmod +x "$TMP/fake/make"
+	PATH="$TMP/fake:$PATH" run "$BATCH" -q -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 1 ]
+	one_line
+	[[ "$output" == "vdt-batch: make: the '-j' option requires a positive integer argument"* ]]
+	[[ "$output" != *"not finished"* ]]
+}
+
+@test "vdt-batch: -o naming the input directory, by any path, is refused before anything is written" {
+	mkdir -p "$TMP/same/sub"
+	cp "$SAMPLES/torus.off" "$TMP/same/"
+	ln -s same "$TMP/link"
+	for o in "$TMP/same" "$TMP/same/" "$TMP/same/sub/.." "$TMP/link"; do
+		run "$BATCH" -q --ratios 50 -o "$o" "$TMP/same"
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == "vdt-batch: "*"is the input directory"* ]]
+	done
+	(cd "$TMP/same" && run "$BATCH" -q --ratios 50 -o . "$TMP/link" && [ "$status" -eq 2 ])
+	[ "$(ls -A "$TMP/same" | tr '\n' ' ')" = "sub torus.off " ]
+	# an output tree inside the input, reached through a link, is still skipped
+	"$BATCH" -q --ratios 50 -o "$TMP/link/out" "$TMP/same"
+	"$BATCH" -q --ratios 50 -o "$TMP/link/out" "$TMP/same"
+	[ "$(ls "$TMP/same/out" | tr '\n' ' ')" = "torus.lod1.ply " ]
+}
+
+@test "vdt-batch: no mesh files is status 2 and leaves nothing behind" {
+	mkdir -p "$TMP/empty/sub"
+	echo text > "$TMP/empty/sub/notes.txt"
+	run "$BATCH" -q -o "$TMP/out" "$TMP/empty"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == "vdt-batch: no mesh files under '$TMP/empty'" ]]
+	[ ! -e "$TMP/out" ]
+	# an existing output tree is left as it was
+	mkdir -p "$TMP/out2/.vdt-batch"
+	echo keep > "$TMP/out2/.vdt-batch/models"
+	run "$BATCH" -q -o "$TMP/out2" "$TMP/empty"
+	[ "$status" -eq 2 ]
+	[ "$(ls -A "$TMP/out2/.vdt-batch")" = models ]
+	[ "$(cat "$TMP/out2/.vdt-batch/models")" = keep ]
+	[ ! -e "$TMP/empty/.vdt-batch" ] && [ ! -e "$TMP/empty/out" ]
+}
+
+@test "vdt-batch: -o naming a file is status 2 in one line; a directory it cannot make, status 1 in one line" {
+	mkdir -p "$TMP/in"
+	cp "$SAMPLES/torus.off" "$TMP/in/"
+	echo data > "$TMP/file"
+	for o in "$TMP/file" "$TMP/file/sub"; do
+		run "$BATCH" -q -o "$o" "$TMP/in"
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == "vdt-batch: cannot use '$o' as the output directory: "* ]]
+	done
+	[ "$(cat "$TMP/file")" = data ]
+	if [ "$(id -u)" -ne 0 ]; then
+		mkdir "$TMP/ro"
+		chmod 555 "$TMP/ro"
+		run "$BATCH" -q -o "$TMP/ro/out" "$TMP/in"
+		chmod 755 "$TMP/ro"
+		[ "$status" -eq 1 ]
+		one_line
+		[[ "$output" == "vdt-batch: cannot create directory '$TMP/ro/out': Permission denied" ]]
+	fi
+}
+
+@test "vdt-batch -V: the version and the stream format version, as the tools print them" {
+	q=$("$BIN/vdt-qslim" -V)
+	for v in -V --version; do
+		run "$BATCH" "$v"
+		[ "$status" -eq 0 ]
+		[ "$output" = "vdt-batch ${q#vdt-qslim }" ]
+	done
+}
