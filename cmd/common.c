@@ -13,12 +13,14 @@
 const char *progname = "vdt";
 
 void
-cmd_init(const char *argv0)
+cmd_init(char **argv)
 {
-	const char *slash = argv0 ? strrchr(argv0, '/') : NULL;
+	char *slash = argv[0] ? strrchr(argv[0], '/') : NULL;
 
-	if (argv0 != NULL)
-		progname = slash ? slash + 1 : argv0;
+	/* getopt names the program by argv[0] in its messages: the same
+	 * name as ours. */
+	if (argv[0] != NULL)
+		progname = argv[0] = slash ? slash + 1 : argv[0];
 }
 
 void
@@ -198,7 +200,7 @@ other_option(int c, void (*usage)(FILE *))
 		print_version();
 		exit(EXIT_OK);
 	}
-	usage(stderr);
+	/* getopt has said which option, in one line: that is the message. */
 	exit(EXIT_USAGE);
 }
 

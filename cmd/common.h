@@ -18,7 +18,7 @@ enum { EXIT_OK = 0, EXIT_WORK = 1, EXIT_USAGE = 2 };
 /* Set once from argv[0]'s basename by cmd_init(). */
 extern const char *progname;
 
-void cmd_init(const char *argv0);
+void cmd_init(char **argv);
 
 /* Print "progname: message" on stderr and exit 2 (bad usage). */
 void usage_error(const char *fmt, ...) __attribute__((format(printf, 1, 2), noreturn));
@@ -29,8 +29,8 @@ void print_version(void);
 /*
  * The options every tool treats alike, for the default: of its getopt
  * switch: -h/--help prints usage on stdout and exits 0, -V/--version
- * prints the version and exits 0, anything else prints usage on stderr
- * and exits 2. Does not return.
+ * prints the version and exits 0, anything else (an option getopt has
+ * already named, in one line on stderr) exits 2. Does not return.
  */
 void other_option(int c, void (*usage)(FILE *)) __attribute__((noreturn));
 

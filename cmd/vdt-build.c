@@ -174,7 +174,7 @@ main(int argc, char **argv)
 {
 	struct cmdline cl;
 
-	cmd_init(argv[0]);
+	cmd_init(argv);
 	parse_cmdline(argc, argv, &cl);
 	return cl.check ? check(&cl) : run(&cl);
 }

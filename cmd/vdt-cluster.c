@@ -194,7 +194,7 @@ main(int argc, char **argv)
 {
 	struct cmdline cl;
 
-	cmd_init(argv[0]);
+	cmd_init(argv);
 	parse_cmdline(argc, argv, &cl);
 	return run(&cl);
 }
