@@ -5,11 +5,13 @@
  * view's silhouette when the stream has distance labels (Mata et al. 3.3),
  * and draw it with the software rasteriser.
  */
+#include <errno.h>
 #include <getopt.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "../lib/io/meshio.h"
 #include "../lib/render.h"
@@ -114,6 +116,45 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		usage_error("nothing to write: give -o IMAGE or --mesh-out PATTERN");
 }
 
+/* Frame i's name under a pattern with at most one %d (vdt_render_pattern_ok). */
+static const char *
+frame_name(char name[4096], const char *pattern, size_t i)
+{
+	snprintf(name, 4096, pattern, (int)i);
+	return name;
+}
+
+/*
+ * Refuse before anything is written what would fail or lose frames later:
+ * several views into one file, an output of no known format, a reference
+ * image that is not there. Returns the exit status.
+ */
+static int
+check_outputs(const struct cmdline *cl, size_t nviews)
+{
+	const char *pat[2] = {cl->out, cl->mesh_out}, *opt[2] = {"-o", "--mesh-out"};
+	struct vdt_err err = {0};
+	char a[4096], b[4096];
+
+	for (int k = 0; k < 2; k++)
+		if (pat[k] && nviews > 1 && strcmp(frame_name(a, pat[k], 0), frame_name(b, pat[k], 1)) == 0)
+			usage_error("%zu views need one file each: give %s a %%d, not '%s'", nviews,
+			            opt[k], pat[k]);
+	if (cl->out && vdt_image_writable(frame_name(a, cl->out, 0), &err) != 0)
+		return fail("cannot write", a, &err);
+	if (cl->mesh_out && strcmp(cl->mesh_out, "-") != 0 &&
+	    vdt_format_from_path(frame_name(a, cl->mesh_out, 0)) == VDT_FMT_AUTO) {
+		vdt_err_set(&err, VDT_EINVAL, "unknown output format (give a known extension)");
+		return fail("cannot write", a, &err);
+	}
+	for (size_t i = 0; cl->compare && i < nviews; i++)
+		if (access(frame_name(a, cl->compare, i), R_OK) != 0) {
+			vdt_err_set(&err, VDT_EINVAL, "%s", strerror(errno));
+			return fail("cannot compare with", a, &err);
+		}
+	return EXIT_OK;
+}
+
 static int
 run(struct cmdline *cl)
 {
@@ -124,6 +165,7 @@ run(struct cmdline *cl)
 	struct vdt_camera cam;
 	struct vdt_err err = {0};
 	struct vdt_bbox box;
+	struct vdt_written done = {0};
 	struct vdt_write_opts wo = {VDT_FMT_AUTO, 0, 0};
 	static const unsigned char bg[3] = {40, 44, 52};
 	size_t nviews = 1;
@@ -146,6 +188,8 @@ run(struct cmdline *cl)
 		rc = EXIT_USAGE;
 		goto out;
 	}
+	if ((rc = check_outputs(cl, nviews)) != EXIT_OK)
+		goto out;
 	for (size_t i = 0; i < nviews && rc == EXIT_OK; i++) {
 		double t0 = vdt_seconds(), t1, t2, rmse;
 		vdt_camera_setup(&cam, &views[i], &box, NULL);
@@ -154,14 +198,17 @@ run(struct cmdline *cl)
 		if (vdt_render_draw(&R, &cam, bg, &err) != 0)
 			rc = fail("cannot render", cl->in, &err);
 		t2 = vdt_seconds();
-		if (rc == EXIT_OK && cl->out && (snprintf(name, sizeof(name), cl->out, (int)i),
-		    vdt_image_write(name, R.r.width, R.r.height, 3, R.r.rgb, &err) != 0))
+		/* A failed write takes back the frames written before it. */
+		if (rc == EXIT_OK && cl->out &&
+		    (vdt_image_write(frame_name(name, cl->out, i), R.r.width, R.r.height, 3, R.r.rgb,
+		                     &err) != 0 || vdt_written_add(&done, name, &err) != 0))
 			rc = fail("cannot write", name, &err) ? EXIT_USAGE : 0;
-		if (rc == EXIT_OK && cl->mesh_out && (snprintf(name, sizeof(name), cl->mesh_out, (int)i),
-		    vdt_write(name, R.drawn, NULL, &wo, &err) != 0))
+		if (rc == EXIT_OK && cl->mesh_out &&
+		    (vdt_write(frame_name(name, cl->mesh_out, i), R.drawn, NULL, &wo, &err) != 0 ||
+		     vdt_written_add(&done, name, &err) != 0))
 			rc = fail("cannot write", name, &err) ? EXIT_USAGE : 0;
-		if (rc == EXIT_OK && cl->compare && (snprintf(name, sizeof(name), cl->compare, (int)i),
-		    vdt_render_compare(&R, name, &rmse, &err) != 0))
+		if (rc == EXIT_OK && cl->compare &&
+		    vdt_render_compare(&R, frame_name(name, cl->compare, i), &rmse, &err) != 0)
 			rc = fail("cannot compare with", name, &err) ? EXIT_USAGE : 0;
 		else if (rc == EXIT_OK && cl->compare)
 			printf("frame=%zu rmse=%.4f psnr=%.2f\n", i, rmse, rmse > 0 ? 20 * log10(255 / rmse) : INFINITY);
@@ -173,6 +220,9 @@ run(struct cmdline *cl)
 			        R.F.stats.collapses, R.F.stats.forced, R.F.stats.refused, R.F.stats.updated, R.tau,
 			        vdt_render_has_labels(&R), 1e3 * (t1 - t0), 1e3 * (t2 - t1), 100 * (t1 - t0) / (t2 - t0));
 	}
+	if (rc != EXIT_OK)
+		vdt_written_remove(&done); /* leave nothing behind */
+	vdt_written_free(&done);
 out:
 	if (views != &cl->v)
 		free(views);

@@ -1279,6 +1279,7 @@ int
 vdt_deform_write_pattern(const struct vdt_deform_result *res, const char *pattern,
                          const struct vdt_write_opts *w, char **failed, struct vdt_err *err)
 {
+	struct vdt_written done = {0};
 	struct vdt_mesh m = {0};
 	int rc = 0;
 
@@ -1288,24 +1289,21 @@ vdt_deform_write_pattern(const struct vdt_deform_result *res, const char *patter
 		char *p = vdt_anim_format(pattern, f);
 		if (p == NULL)
 			rc = vdt_err_set(err, VDT_ENOMEM, "cannot expand the pattern");
-		else if ((rc = vdt_deform_frame_mesh(res, f, &m, err)) == 0)
-			rc = vdt_write(p, &m, NULL, w, err);
+		else if ((rc = vdt_deform_frame_mesh(res, f, &m, err)) == 0 &&
+		         (rc = vdt_write(p, &m, NULL, w, err)) == 0)
+			rc = vdt_written_add(&done, p, err);
 		vdt_mesh_free(&m);
 		if (rc == 0) {
 			free(p);
 			continue;
 		}
-		for (size_t g = 0; g < f; g++) { /* leave nothing behind */
-			char *q = vdt_anim_format(pattern, g);
-			if (q)
-				remove(q);
-			free(q);
-		}
+		vdt_written_remove(&done); /* leave nothing behind */
 		if (failed)
 			*failed = p ? p : strdup(pattern);
 		else
 			free(p);
 	}
+	vdt_written_free(&done);
 	return rc;
 }
 

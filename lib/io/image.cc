@@ -1,9 +1,11 @@
 /*
  * image.cc - the extern "C" face of OpenImageIO: 8-bit images in and out,
- * the format from the file name's extension. Output is atomic: written to a
- * temporary name with the same extension (so that OpenImageIO picks the same
- * writer) and renamed over the target on success; through a symbolic link
- * to what it names, and in place to a device or FIFO (vdt_output_target).
+ * the format from the file name's extension. Output is atomic, as for
+ * meshes (vdt_output_open): written to a hidden temporary file beside the
+ * target, .NAME.XXXXXX from mkstemp with the target's permissions, and
+ * renamed over the target on success; through a symbolic link to what it
+ * names, and in place to a device or FIFO (vdt_output_target). The writer
+ * is picked by the target's extension, so the temporary name needs none.
  */
 #include <OpenImageIO/imageio.h>
 
@@ -19,15 +21,38 @@ extern "C" {
 
 namespace {
 
+/*
+ * Create the hidden temporary file for dst, .NAME.XXXXXX beside it, with
+ * the permissions (and owner) of the file it replaces. Returns its name,
+ * or an empty string with errno set.
+ */
 std::string
-temp_name(const std::string &path)
+make_temp(const std::string &dst)
 {
-	size_t slash = path.rfind('/');
-	std::string dir = slash == std::string::npos ? "" : path.substr(0, slash + 1);
-	std::string base = slash == std::string::npos ? path : path.substr(slash + 1);
-	size_t dot = base.rfind('.');
-	std::string ext = dot == std::string::npos ? "" : base.substr(dot);
-	return dir + "." + base + "." + std::to_string(long(getpid())) + ".tmp" + ext;
+	size_t slash = dst.rfind('/');
+	std::string dir = slash == std::string::npos ? "" : dst.substr(0, slash + 1);
+	std::string base = slash == std::string::npos ? dst : dst.substr(slash + 1);
+	std::string tmp = dir + "." + base + ".XXXXXX";
+	int fd = mkstemp(&tmp[0]);
+	if (fd < 0)
+		return "";
+	vdt_output_keep_mode(fd, dst.c_str());
+	close(fd);
+	return tmp;
+}
+
+/*
+ * TIFF and OpenEXR writers stamp the image with the time of writing
+ * (DateTime, capDate) unless the spec has one: give them a fixed one so
+ * that the same input makes the same bytes. Other formats would add a
+ * date they do not write now (a PNG tIME chunk), so they get none.
+ */
+void
+fix_date(OIIO::ImageOutput &out, OIIO::ImageSpec &spec)
+{
+	std::string f = out.format_name();
+	if (f == "tiff" || f == "openexr")
+		spec.attribute("DateTime", "1970:01:01 00:00:00");
 }
 
 int
@@ -41,14 +66,18 @@ write_image(const char *path, int w, int h, int c, const unsigned char *px, stru
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
 	std::string dst(target);
 	std::free(target);
-	std::string tmp = special ? dst : temp_name(dst);
 	auto out = OIIO::ImageOutput::create(path);
 	if (!out) {
 		std::string e = OIIO::geterror();
 		return vdt_err_set(err, VDT_EINVAL, "no image writer for this file name%s%s",
 		                   e.empty() ? "" : ": ", e.c_str());
 	}
+	std::string tmp = special ? dst : make_temp(dst);
+	if (tmp.empty())
+		return vdt_err_set(err, VDT_EIO, "cannot create a temporary file: %s",
+		                   std::strerror(errno));
 	OIIO::ImageSpec spec(w, h, c, OIIO::TypeDesc::UINT8);
+	fix_date(*out, spec);
 	if (!out->open(tmp, spec)) {
 		std::string e = out->geterror();
 		if (!special)
@@ -106,6 +135,23 @@ read_image(const char *path, int *w, int *h, int *c, unsigned char **px, struct 
 }
 
 } // namespace
+
+extern "C" int
+vdt_image_writable(const char *path, struct vdt_err *err)
+{
+	try {
+		auto out = OIIO::ImageOutput::create(path);
+		if (out)
+			return 0;
+		std::string e = OIIO::geterror();
+		return vdt_err_set(err, VDT_EINVAL, "no image writer for this file name%s%s",
+		                   e.empty() ? "" : ": ", e.c_str());
+	} catch (const std::bad_alloc &) {
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	} catch (...) {
+		return vdt_err_set(err, VDT_EIO, "cannot write the image");
+	}
+}
 
 extern "C" int
 vdt_image_write(const char *path, int width, int height, int channels,

@@ -488,6 +488,75 @@ vdt_output_target(const char *path, int *special)
 	return cur;
 }
 
+void
+vdt_output_keep_mode(int fd, const char *path)
+{
+	struct stat st;
+
+	if (stat(path, &st) == 0 && S_ISREG(st.st_mode)) {
+		/* The file replaced keeps its permissions, and its owner where
+		 * we may give it. */
+		fchmod(fd, st.st_mode & 07777);
+		if (st.st_uid != geteuid() || st.st_gid != getegid())
+			if (fchown(fd, st.st_uid, st.st_gid) != 0)
+				fchmod(fd, st.st_mode & 0777); /* no set-id bits for another */
+	} else {
+		/* mkstemp makes 0600; give a new file the usual 0666 & ~umask. */
+		mode_t mask = umask(0);
+		umask(mask);
+		fchmod(fd, 0666 & ~mask);
+	}
+}
+
+int
+vdt_written_add(struct vdt_written *w, const char *path, struct vdt_err *err)
+{
+	char *target, **grown;
+	int special;
+
+	if (strcmp(path, "-") == 0)
+		return 0;
+	if ((target = vdt_output_target(path, &special)) == NULL) {
+		struct stat st;
+		if (lstat(path, &st) == 0 && S_ISREG(st.st_mode))
+			remove(path);
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	}
+	if (special) {
+		free(target);
+		return 0;
+	}
+	if (w->count == w->cap) {
+		size_t cap = w->cap ? 2 * w->cap : 16;
+		if ((grown = realloc(w->names, cap * sizeof(*grown))) == NULL) {
+			remove(target);
+			free(target);
+			return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+		}
+		w->names = grown;
+		w->cap = cap;
+	}
+	w->names[w->count++] = target;
+	return 0;
+}
+
+void
+vdt_written_remove(struct vdt_written *w)
+{
+	for (size_t i = 0; i < w->count; i++)
+		remove(w->names[i]);
+	vdt_written_free(w);
+}
+
+void
+vdt_written_free(struct vdt_written *w)
+{
+	for (size_t i = 0; i < w->count; i++)
+		free(w->names[i]);
+	free(w->names);
+	memset(w, 0, sizeof(*w));
+}
+
 static int
 output_fail(struct vdt_output *o, int fd, struct vdt_err *err, int code, const char *what, int e)
 {
@@ -505,7 +574,6 @@ int
 vdt_output_open(struct vdt_output *o, const char *path, struct vdt_err *err)
 {
 	const char *slash, *base;
-	struct stat st;
 	size_t dl;
 	int fd, special;
 
@@ -539,19 +607,7 @@ vdt_output_open(struct vdt_output *o, const char *path, struct vdt_err *err)
 		o->tmp = NULL;
 		return output_fail(o, -1, err, VDT_EIO, "cannot create a temporary file", e);
 	}
-	if (stat(o->path, &st) == 0 && S_ISREG(st.st_mode)) {
-		/* The file replaced keeps its permissions, and its owner where
-		 * we may give it. */
-		fchmod(fd, st.st_mode & 07777);
-		if (st.st_uid != geteuid() || st.st_gid != getegid())
-			if (fchown(fd, st.st_uid, st.st_gid) != 0)
-				fchmod(fd, st.st_mode & 0777); /* no set-id bits for another */
-	} else {
-		/* mkstemp makes 0600; give a new file the usual 0666 & ~umask. */
-		mode_t mask = umask(0);
-		umask(mask);
-		fchmod(fd, 0666 & ~mask);
-	}
+	vdt_output_keep_mode(fd, o->path);
 	if ((o->f = fdopen(fd, "wb")) == NULL)
 		return output_fail(o, fd, err, VDT_EIO, "", errno);
 	return 0;

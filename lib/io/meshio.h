@@ -128,6 +128,39 @@ struct vdt_output {
  * rather than replaced. Returns a malloc'd name, NULL out of memory.
  */
 char *vdt_output_target(const char *path, int *special);
+
+/*
+ * The files a run has written so far, for a tool that writes several (one
+ * per frame) to take them all back when a later one fails: a failed run
+ * leaves no output behind (vdt(7)). Start from {0}.
+ */
+struct vdt_written {
+	char **names; /* what was written, through symbolic links */
+	size_t count, cap;
+};
+
+/*
+ * Note that path was written. Standard output, devices and FIFOs are not
+ * noted: there is nothing to take back. Out of memory, path is removed at
+ * once and VDT_ENOMEM returned; else 0.
+ */
+int vdt_written_add(struct vdt_written *w, const char *path, struct vdt_err *err);
+
+/* Remove every file noted in w, then empty w. */
+void vdt_written_remove(struct vdt_written *w);
+
+/* Forget w's files, keeping them (the run succeeded). */
+void vdt_written_free(struct vdt_written *w);
+
+/*
+ * Give fd, a temporary file to be renamed over path (the target, as
+ * vdt_output_target names it), the permissions of the regular file at path
+ * and its owner where this process may give it, or those of a new file
+ * (0666 less the umask) when there is none. Used by vdt_output_open and by
+ * the image writer; failures leave mkstemp's 0600.
+ */
+void vdt_output_keep_mode(int fd, const char *path);
+
 int vdt_output_open(struct vdt_output *o, const char *path, struct vdt_err *err);
 int vdt_output_commit(struct vdt_output *o, struct vdt_err *err);
 void vdt_output_abort(struct vdt_output *o);
@@ -207,6 +240,11 @@ int vdt_draco_write(FILE *f, const struct vdt_mesh *m, int position_bits,
  */
 int vdt_image_write(const char *path, int width, int height, int channels,
                     const unsigned char *pixels, struct vdt_err *err);
+/*
+ * Whether vdt_image_write has a writer for path's extension: 0, or
+ * VDT_EINVAL naming the problem. Writes nothing.
+ */
+int vdt_image_writable(const char *path, struct vdt_err *err);
 /* Reads an image, converting to 8-bit; *pixels is malloc'ed. */
 int vdt_image_read(const char *path, int *width, int *height, int *channels,
                    unsigned char **pixels, struct vdt_err *err);

@@ -204,3 +204,90 @@ labelled_sphere() {
 		[ ! -e "$TMP/x.png" ]
 	done
 }
+
+path3() {
+	printf '0 0 3 0 0 0 0 1 0\n0 3 0 0 0 0 0 0 1\n3 0 0 0 0 0 0 1 0\n' > "$TMP/p3.txt"
+}
+
+@test "vdt-render refuses what it can before writing anything, and takes back what it wrote on failure" {
+	tree
+	path3
+	mkdir "$TMP/o" "$TMP/r"
+	run "$BIN/vdt-render" --compare "$TMP/none.png" "$TMP/t.vdt" -o "$TMP/o/e.png"
+	[ "$status" -eq 2 ]
+	one_line
+	run "$BIN/vdt-render" --mesh-out "$TMP/o/x.xyz" "$TMP/t.vdt" -o "$TMP/o/e.png"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"x.xyz"* ]]
+	"$BIN/vdt-render" -q --size 48x32 --full --path "$TMP/p3.txt" "$TMP/t.vdt" -o "$TMP/r/full-%03d.png"
+	mv "$TMP/r/full-002.png" "$TMP/r/keep.png"
+	run "$BIN/vdt-render" --size 48x32 --path "$TMP/p3.txt" --compare "$TMP/r/full-%03d.png" \
+		"$TMP/t.vdt" -o "$TMP/o/c%03d.png"
+	[ "$status" -eq 2 ]
+	[[ "$output" == *"full-002.png"* ]]
+	# A failure found only while writing: the frames before it go too.
+	run "$BIN/vdt-render" --size 48x32 --path "$TMP/p3.txt" --mesh-out "$TMP/o/nodir/m%d.ply" \
+		"$TMP/t.vdt" -o "$TMP/o/e%03d.png"
+	[ "$status" -eq 2 ]
+	one_line
+	"$BIN/vdt-render" -q --size 16x16 --full "$TMP/t.vdt" -o "$TMP/r/full-002.png"
+	run "$BIN/vdt-render" --size 48x32 --path "$TMP/p3.txt" --compare "$TMP/r/full-%03d.png" \
+		"$TMP/t.vdt" -o "$TMP/o/s%03d.png" --mesh-out "$TMP/o/s%d.off"
+	[ "$status" -eq 2 ]
+	[ -z "$(ls -A "$TMP/o")" ]
+}
+
+@test "vdt-render names its temporary image as mesh outputs are named, .NAME.XXXXXX" {
+	tree
+	mkdir "$TMP/k"
+	"$BIN/vdt-render" --size 4096x4096 "$TMP/t.vdt" -o "$TMP/k/big.png" &
+	pid=$!
+	for i in $(seq 600); do
+		[ -n "$(ls -A "$TMP/k")" ] && break
+		sleep 0.05
+	done
+	kill -9 $pid
+	wait $pid || :
+	tmp=$(ls -A "$TMP/k")
+	[[ "$tmp" == .big.png.?????? ]]
+}
+
+@test "vdt-render keeps the permissions of the image it replaces" {
+	tree
+	"$BIN/vdt-render" --size 16x16 "$TMP/t.vdt" -o "$TMP/img.png"
+	chmod 600 "$TMP/img.png"
+	"$BIN/vdt-render" --size 16x16 "$TMP/t.vdt" -o "$TMP/img.png"
+	[ "$(stat -c %a "$TMP/img.png")" = 600 ]
+	chmod 640 "$TMP/img.png"
+	"$BIN/vdt-render" --size 16x16 "$TMP/t.vdt" -o "$TMP/img.png"
+	[ "$(stat -c %a "$TMP/img.png")" = 640 ]
+	(umask 022 && "$BIN/vdt-render" --size 16x16 "$TMP/t.vdt" -o "$TMP/new.png")
+	[ "$(stat -c %a "$TMP/new.png")" = 644 ]
+}
+
+@test "vdt-render writes the same TIFF and EXR bytes from run to run" {
+	tree
+	for ext in tif exr; do
+		"$BIN/vdt-render" --size 16x16 "$TMP/t.vdt" -o "$TMP/a.$ext"
+		sleep 1.1
+		"$BIN/vdt-render" --size 16x16 "$TMP/t.vdt" -o "$TMP/b.$ext"
+		cmp "$TMP/a.$ext" "$TMP/b.$ext"
+	done
+}
+
+@test "vdt-render refuses several views into one file" {
+	tree
+	path3
+	for opt in "-o $TMP/one.png" "--mesh-out $TMP/one.off"; do
+		run "$BIN/vdt-render" --size 16x16 --path "$TMP/p3.txt" "$TMP/t.vdt" $opt
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == *"%d"* ]]
+		[ ! -e "$TMP/one.png" ] && [ ! -e "$TMP/one.off" ]
+	done
+	head -1 "$TMP/p3.txt" > "$TMP/p1.txt"
+	run "$BIN/vdt-render" --size 16x16 --path "$TMP/p1.txt" "$TMP/t.vdt" -o "$TMP/one.png"
+	[ "$status" -eq 0 ]
+	[ -s "$TMP/one.png" ]
+}
