@@ -104,6 +104,7 @@ run(struct cmdline *cl)
 	unsigned char *data;
 	uint64_t len;
 	double t0 = vdt_seconds(), t1;
+	struct vdt_sil_images im = {0};
 	int rc = EXIT_OK;
 
 	if (cl->cameras) {
@@ -117,8 +118,9 @@ run(struct cmdline *cl)
 		goto out;
 	}
 	if (cl->images) {
+		im.dir = cl->images;
 		cl->s.on_camera = vdt_sil_write_images;
-		cl->s.ctx = (void *)cl->images;
+		cl->s.ctx = &im;
 	}
 	cl->s.progress = progress_start(cl->quiet);
 	rc = vdt_labl_compute(&m, &cams, &cl->s, &l, &err);
@@ -161,6 +163,9 @@ run(struct cmdline *cl)
 		        (unsigned long long)len, t1 - t0, 100 * vdt_labl_min_share(&l, 1),
 		        100 * vdt_labl_min_share(&l, 2));
 out:
+	if (rc != EXIT_OK) /* the images of a failed run go with it */
+		vdt_written_remove(&im.written);
+	vdt_written_free(&im.written);
 	vdt_mesh_free(&m);
 	vdt_chunks_free(&extra);
 	vdt_cameras_free(&cams);

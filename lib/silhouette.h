@@ -23,6 +23,7 @@
 #include "mesh.h"
 #include "progress.h"
 #include "stream.h"
+#include "io/meshio.h"
 
 #define VDT_SIL_RES_MIN 4
 #define VDT_SIL_RES_MAX 4096 /* squared distances stay exact in float */
@@ -182,11 +183,18 @@ void vdt_labl_free(struct vdt_labl *l);
  */
 int vdt_cameras_read(struct vdt_cameras *c, const char *path, struct vdt_err *err);
 
+/* Where vdt_sil_write_images writes, and what it has written. */
+struct vdt_sil_images {
+	const char *dir;
+	struct vdt_written written; /* for the caller to take back on failure */
+};
+
 /*
  * An on_camera callback for struct vdt_sil_opts that writes, into the
- * directory ctx (a const char *), camNNN-binary.png (object cells white)
- * and camNNN-distance.png (grey proportional to the distance, brightest
- * at the image's largest). Returns 0 or the image writer's status.
+ * directory of ctx (a struct vdt_sil_images), camNNN-binary.png (object
+ * cells white) and camNNN-distance.png (grey proportional to the
+ * distance, brightest at the image's largest), noting each in
+ * ctx->written. Returns 0 or the image writer's status.
  */
 int vdt_sil_write_images(void *ctx, size_t camera, const struct vdt_sil_work *w,
                          struct vdt_err *err);

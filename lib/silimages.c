@@ -14,7 +14,7 @@
 int
 vdt_sil_write_images(void *ctx, size_t camera, const struct vdt_sil_work *w, struct vdt_err *err)
 {
-	const char *dir = ctx;
+	struct vdt_sil_images *im = ctx;
 	size_t rr = (size_t)w->res * w->res;
 	unsigned char *px = malloc(rr);
 	char path[4096];
@@ -28,13 +28,15 @@ vdt_sil_write_images(void *ctx, size_t camera, const struct vdt_sil_work *w, str
 		if (w->dist[i] > top && w->dist[i] < 1e30f)
 			top = w->dist[i];
 	}
-	snprintf(path, sizeof(path), "%s/cam%03zu-binary.png", dir, camera);
-	rc = vdt_image_write(path, w->res, w->res, 1, px, err);
+	snprintf(path, sizeof(path), "%s/cam%03zu-binary.png", im->dir, camera);
+	if ((rc = vdt_image_write(path, w->res, w->res, 1, px, err)) == 0)
+		rc = vdt_written_add(&im->written, path, err);
 	for (size_t i = 0; rc == 0 && i < rr; i++)
 		px[i] = top > 0 ? (unsigned char)(255 * (w->dist[i] < top ? w->dist[i] : top) / top) : 0;
 	if (rc == 0) {
-		snprintf(path, sizeof(path), "%s/cam%03zu-distance.png", dir, camera);
-		rc = vdt_image_write(path, w->res, w->res, 1, px, err);
+		snprintf(path, sizeof(path), "%s/cam%03zu-distance.png", im->dir, camera);
+		if ((rc = vdt_image_write(path, w->res, w->res, 1, px, err)) == 0)
+			rc = vdt_written_add(&im->written, path, err);
 	}
 	free(px);
 	return rc;

@@ -89,3 +89,14 @@ load helpers
 	"$BIN/vdt-silhouette" -a 45 -r 64 --nearest 2 --view 0.3,0.2,1 "$SAMPLES/torus.off" > "$TMP/n2"
 	cmp "$TMP/n1" "$TMP/n2"
 }
+
+@test "vdt-silhouette --images takes its images back when the run fails" {
+	mkdir -p "$TMP/img/cam003-binary.png" "$TMP/img2"
+	run "$BIN/vdt-silhouette" -a 90 -r 32 --images "$TMP/img" "$SAMPLES/torus.off" -o "$TMP/t.vdl"
+	[ "$status" -ne 0 ]
+	[ "$(ls "$TMP/img")" = cam003-binary.png ]
+	[ ! -e "$TMP/t.vdl" ]
+	run "$BIN/vdt-silhouette" -a 90 -r 32 --images "$TMP/img2" "$SAMPLES/torus.off" -o "$TMP/no/t.vdl"
+	[ "$status" -ne 0 ]
+	[ -z "$(ls "$TMP/img2")" ]
+}
