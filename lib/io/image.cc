@@ -21,24 +21,13 @@ extern "C" {
 
 namespace {
 
-/*
- * Create the hidden temporary file for dst, .NAME.XXXXXX beside it, with
- * the permissions (and owner) of the file it replaces. Returns its name,
- * or an empty string with errno set.
- */
-std::string
-make_temp(const std::string &dst)
+/* The error when OpenImageIO has no writer for a file name. */
+int
+no_writer(struct vdt_err *err)
 {
-	size_t slash = dst.rfind('/');
-	std::string dir = slash == std::string::npos ? "" : dst.substr(0, slash + 1);
-	std::string base = slash == std::string::npos ? dst : dst.substr(slash + 1);
-	std::string tmp = dir + "." + base + ".XXXXXX";
-	int fd = mkstemp(&tmp[0]);
-	if (fd < 0)
-		return "";
-	vdt_output_keep_mode(fd, dst.c_str());
-	close(fd);
-	return tmp;
+	std::string e = OIIO::geterror();
+	return vdt_err_set(err, VDT_EINVAL, "no image writer for this file name%s%s",
+	                   e.empty() ? "" : ": ", e.c_str());
 }
 
 /*
@@ -67,15 +56,21 @@ write_image(const char *path, int w, int h, int c, const unsigned char *px, stru
 	std::string dst(target);
 	std::free(target);
 	auto out = OIIO::ImageOutput::create(path);
-	if (!out) {
-		std::string e = OIIO::geterror();
-		return vdt_err_set(err, VDT_EINVAL, "no image writer for this file name%s%s",
-		                   e.empty() ? "" : ": ", e.c_str());
+	if (!out)
+		return no_writer(err);
+	std::string tmp = dst;
+	if (!special) {
+		char *t = nullptr;
+		int fd = vdt_output_temp(dst.c_str(), &t);
+		if (fd == -2)
+			return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+		if (fd < 0)
+			return vdt_err_set(err, VDT_EIO, "cannot create a temporary file: %s",
+			                   std::strerror(errno));
+		close(fd); /* OpenImageIO opens it again by name */
+		tmp = t;
+		std::free(t);
 	}
-	std::string tmp = special ? dst : make_temp(dst);
-	if (tmp.empty())
-		return vdt_err_set(err, VDT_EIO, "cannot create a temporary file: %s",
-		                   std::strerror(errno));
 	OIIO::ImageSpec spec(w, h, c, OIIO::TypeDesc::UINT8);
 	fix_date(*out, spec);
 	if (!out->open(tmp, spec)) {
@@ -141,11 +136,7 @@ vdt_image_writable(const char *path, struct vdt_err *err)
 {
 	try {
 		auto out = OIIO::ImageOutput::create(path);
-		if (out)
-			return 0;
-		std::string e = OIIO::geterror();
-		return vdt_err_set(err, VDT_EINVAL, "no image writer for this file name%s%s",
-		                   e.empty() ? "" : ": ", e.c_str());
+		return out ? 0 : no_writer(err);
 	} catch (const std::bad_alloc &) {
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
 	} catch (...) {

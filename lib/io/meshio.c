@@ -488,8 +488,10 @@ vdt_output_target(const char *path, int *special)
 	return cur;
 }
 
-void
-vdt_output_keep_mode(int fd, const char *path)
+/* Give fd the permissions (and owner) of the regular file at path, or
+ * those of a new file, 0666 less the umask, when there is none. */
+static void
+keep_mode(int fd, const char *path)
 {
 	struct stat st;
 
@@ -506,6 +508,29 @@ vdt_output_keep_mode(int fd, const char *path)
 		umask(mask);
 		fchmod(fd, 0666 & ~mask);
 	}
+}
+
+int
+vdt_output_temp(const char *target, char **tmp)
+{
+	const char *slash = strrchr(target, '/'), *base = slash ? slash + 1 : target;
+	size_t dl = (size_t)(base - target);
+	int fd;
+
+	/* A hidden name in the same directory, so that rename is atomic. */
+	if ((*tmp = malloc(dl + strlen(base) + 16)) == NULL)
+		return -2;
+	memcpy(*tmp, target, dl);
+	sprintf(*tmp + dl, ".%s.XXXXXX", base);
+	if ((fd = mkstemp(*tmp)) < 0) {
+		int e = errno;
+		free(*tmp);
+		*tmp = NULL;
+		errno = e;
+		return -1;
+	}
+	keep_mode(fd, target);
+	return fd;
 }
 
 int
@@ -573,8 +598,6 @@ output_fail(struct vdt_output *o, int fd, struct vdt_err *err, int code, const c
 int
 vdt_output_open(struct vdt_output *o, const char *path, struct vdt_err *err)
 {
-	const char *slash, *base;
-	size_t dl;
 	int fd, special;
 
 	memset(o, 0, sizeof(*o));
@@ -591,23 +614,10 @@ vdt_output_open(struct vdt_output *o, const char *path, struct vdt_err *err)
 			return output_fail(o, fd, err, VDT_EIO, "", errno);
 		return 0;
 	}
-	slash = strrchr(o->path, '/');
-	base = slash ? slash + 1 : o->path;
-	dl = (size_t)(base - o->path);
-	if ((o->tmp = malloc(dl + strlen(base) + 16)) == NULL)
-		return output_fail(o, -1, err, VDT_ENOMEM, "out of memory", 0);
-	/* A hidden name in the same directory, so that rename is atomic; a
-	 * symbolic link is written through (what it names is replaced). */
-	memcpy(o->tmp, o->path, dl);
-	sprintf(o->tmp + dl, ".%s.XXXXXX", base);
-	fd = mkstemp(o->tmp);
-	if (fd < 0) {
-		int e = errno;
-		free(o->tmp);
-		o->tmp = NULL;
-		return output_fail(o, -1, err, VDT_EIO, "cannot create a temporary file", e);
-	}
-	vdt_output_keep_mode(fd, o->path);
+	if ((fd = vdt_output_temp(o->path, &o->tmp)) < 0)
+		return output_fail(o, -1, err, fd == -2 ? VDT_ENOMEM : VDT_EIO,
+		                   fd == -2 ? "out of memory" : "cannot create a temporary file",
+		                   fd == -2 ? 0 : errno);
 	if ((o->f = fdopen(fd, "wb")) == NULL)
 		return output_fail(o, fd, err, VDT_EIO, "", errno);
 	return 0;

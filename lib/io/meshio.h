@@ -153,13 +153,15 @@ void vdt_written_remove(struct vdt_written *w);
 void vdt_written_free(struct vdt_written *w);
 
 /*
- * Give fd, a temporary file to be renamed over path (the target, as
- * vdt_output_target names it), the permissions of the regular file at path
- * and its owner where this process may give it, or those of a new file
- * (0666 less the umask) when there is none. Used by vdt_output_open and by
- * the image writer; failures leave mkstemp's 0600.
+ * Create the hidden temporary file to be renamed over target (a regular
+ * file's name, as vdt_output_target gives it): .NAME.XXXXXX beside it
+ * (mkstemp), with the permissions of the file it replaces and its owner
+ * where this process may give it, or 0666 less the umask for a new file.
+ * Returns its descriptor with the malloc'ed name in *tmp; -1 (errno set)
+ * or -2 (out of memory) with *tmp NULL. Used by vdt_output_open and by
+ * the image writer.
  */
-void vdt_output_keep_mode(int fd, const char *path);
+int vdt_output_temp(const char *target, char **tmp);
 
 int vdt_output_open(struct vdt_output *o, const char *path, struct vdt_err *err);
 int vdt_output_commit(struct vdt_output *o, struct vdt_err *err);
