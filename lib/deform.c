@@ -229,24 +229,20 @@ out:
 
 /* ---- per-frame quadrics, in vdt_qslim's order ---- */
 
-/* The centre of frame f's box, and the unit of its costs: diagonal^-4.
- * A quadric error is an area times a squared distance; the engine keeps
- * costs as floats, whose range models in units of 1e12 or 1e-12 would
- * leave (every cost infinite, or every cost a tie). */
+/* The centre of frame f's box; returns the unit of its costs
+ * (vdt_quadric_unit). */
 static double
 frame_centre(const struct anim *a, size_t f, double c[3])
 {
 	struct vdt_mesh m = {0};
 	struct vdt_bbox box;
-	double d;
 
 	m.vertex_count = a->nv;
 	m.positions = a->pos + 3 * a->nv * f;
 	vdt_mesh_bbox(&m, &box);
 	for (int k = 0; k < 3; k++)
 		c[k] = 0.5 * (box.min[k] + box.max[k]);
-	d = vdt_bbox_diagonal(&box);
-	return d > 0 ? 1 / (d * d * d * d) : 1;
+	return vdt_quadric_unit(vdt_bbox_diagonal(&box));
 }
 
 static void

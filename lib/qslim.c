@@ -39,10 +39,7 @@ struct ctx {
 	double worst;          /* largest contraction error so far (squared) */
 	struct attr *at;       /* attribute quadrics, or NULL */
 	double *scale;         /* per welded vertex error scale, or NULL */
-	double unit;           /* costs are in diagonal^4 (area times squared
-	                          distance): the engine keeps them as floats,
-	                          whose range model units of 1e12 or 1e-12
-	                          would leave */
+	double unit;           /* of the costs (vdt_quadric_unit) */
 };
 
 void
@@ -1487,8 +1484,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
 	vdt_mesh_bbox(&w, &box);
 	for (int k = 0; k < 3; k++)
 		c.centre[k] = 0.5 * (box.min[k] + box.max[k]);
-	double diag = vdt_bbox_diagonal(&box);
-	c.unit = diag > 0 ? 1 / (diag * diag * diag * diag) : 1;
+	c.unit = vdt_quadric_unit(vdt_bbox_diagonal(&box));
 	c.max_error = o->max_error < INFINITY ? o->max_error * o->max_error : INFINITY;
 	dead = vdt_calloc_huge(T + 1, 1);
 	if (dead == NULL || build_quadrics(&w, o, canon, n, &c, border, dead, &stats->nonmanifold) != 0)

@@ -50,6 +50,19 @@ int vdt_quadric_triangle(struct vdt_quadric *q, const double p0[3],
 int vdt_quadric_boundary(struct vdt_quadric *q, const double p0[3],
                          const double p1[3], const double n[3], double weight);
 
+/*
+ * The unit a simplifier gives the contraction engine its quadric costs
+ * in, for a model of bounding-box diagonal diag: diag^-4. A quadric error
+ * is an area times a squared distance; the engine keeps costs as floats,
+ * whose range models in units of 1e12 or 1e-12 would leave (every cost
+ * infinite, or every cost a tie).
+ */
+static inline double
+vdt_quadric_unit(double diag)
+{
+	return diag > 0 ? 1 / (diag * diag * diag * diag) : 1;
+}
+
 /* q += r. Inline: the inner loop of every simplifier. */
 static inline void
 vdt_quadric_add(struct vdt_quadric *q, const struct vdt_quadric *r)
