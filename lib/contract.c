@@ -737,6 +737,20 @@ duplicates(struct engine *e, uint32_t keep, uint32_t gone)
 	return 0;
 }
 
+/* Whether every face at v has both a and b as corners. */
+static int
+faces_hold(const struct engine *e, uint32_t v, uint32_t a, uint32_t b)
+{
+	const struct list *l = &e->vt[v];
+
+	for (uint32_t i = 0; i < l->len; i++) {
+		const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + i];
+		if (!(t[0] == a || t[1] == a || t[2] == a) || !(t[0] == b || t[1] == b || t[2] == b))
+			return 0;
+	}
+	return 1;
+}
+
 /*
  * Whether contracting a and b would remove the whole of their part: every
  * face at a, at b and at the third corners of their shared faces has both
@@ -747,27 +761,13 @@ last_of_part(const struct engine *e, uint32_t a, uint32_t b)
 {
 	const struct list *la = &e->vt[a];
 
-	if (la->len == 0)
+	if (la->len == 0 || !faces_hold(e, a, a, b) || !faces_hold(e, b, a, b))
 		return 0;
-	for (int end = 0; end < 2; end++) {
-		const struct list *l = &e->vt[end ? b : a];
-		for (uint32_t i = 0; i < l->len; i++) {
-			const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + i];
-			if (!(t[0] == a || t[1] == a || t[2] == a) ||
-			    !(t[0] == b || t[1] == b || t[2] == b))
-				return 0;
-		}
-	}
 	for (uint32_t i = 0; i < la->len; i++) {
 		const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[la->off + i];
 		uint32_t c = t[0] != a && t[0] != b ? t[0] : t[1] != a && t[1] != b ? t[1] : t[2];
-		const struct list *lc = &e->vt[c];
-		for (uint32_t j = 0; j < lc->len; j++) {
-			const uint32_t *s = e->tri + 3 * (size_t)e->tpool.data[lc->off + j];
-			if (!(s[0] == a || s[1] == a || s[2] == a) ||
-			    !(s[0] == b || s[1] == b || s[2] == b))
-				return 0;
-		}
+		if (!faces_hold(e, c, a, b))
+			return 0;
 	}
 	return 1;
 }
