@@ -293,17 +293,53 @@ literal(const char *s, size_t n)
 #define GAP_PROBE 1000
 
 /*
- * The smallest index after `missing` whose file exists, or SIZE_MAX:
- * what tells a gap from the end. The directory that holds the frames is
- * listed and its names matched against the pattern, so a gap of any
- * length is found; failing that, the next GAP_PROBE indices are tried.
- * -1 when out of memory.
+ * The index that name, an entry of the frames' directory, has under the
+ * pattern whose file names are base INDEX suf, or SIZE_MAX: the pattern
+ * must give this very name (zero padding, width). -1 out of memory.
+ */
+static int
+name_index(const char *pattern, const char *base, const char *suf, const char *name,
+           size_t *idx)
+{
+	size_t n = strlen(name), nb = strlen(base), ns = strlen(suf), i = nb, x = 0;
+	const char *q;
+	char *want;
+
+	*idx = SIZE_MAX;
+	if (n <= nb + ns || strncmp(name, base, nb) != 0 || strcmp(name + n - ns, suf) != 0)
+		return 0;
+	while (i < n - ns && name[i] == ' ')
+		i++;
+	if (i == n - ns)
+		return 0;
+	for (; i < n - ns && name[i] >= '0' && name[i] <= '9'; i++)
+		x = x > (SIZE_MAX - 9) / 10 ? SIZE_MAX : 10 * x + (size_t)(name[i] - '0');
+	if (i != n - ns || x == SIZE_MAX)
+		return 0;
+	if ((want = vdt_anim_format(pattern, x)) == NULL)
+		return -1;
+	q = strrchr(want, '/');
+	if (strcmp(q ? q + 1 : want, name) == 0)
+		*idx = x;
+	free(want);
+	return 0;
+}
+
+/*
+ * The smallest index after `missing` whose file exists, into *found
+ * (SIZE_MAX: none): what tells a gap from the end. The directory that
+ * holds the frames is listed and its names matched against the pattern,
+ * so a gap of any length is found; when it cannot be (the conversion is
+ * in a directory name), the next GAP_PROBE indices are tried. -1 out of
+ * memory.
  */
 static int
 next_existing(const char *pattern, size_t missing, size_t *found)
 {
-	size_t at, end;
-	char *pre = NULL, *suf = NULL;
+	size_t at, end, idx;
+	char *pre = NULL, *suf = NULL, *slash;
+	DIR *d = NULL;
+	struct dirent *de;
 	int rc = -1;
 
 	*found = SIZE_MAX;
@@ -313,51 +349,13 @@ next_existing(const char *pattern, size_t missing, size_t *found)
 	suf = literal(pattern + end, strlen(pattern + end));
 	if (pre == NULL || suf == NULL)
 		goto out;
-	char *slash = strrchr(pre, '/');
-	DIR *d = NULL;
+	slash = strrchr(pre, '/');
 	if (strchr(suf, '/') == NULL) {
-		const char *dir = ".";
-		if (slash == pre)
-			dir = "/";
-		else if (slash) {
-			*slash = '\0';
-			dir = pre;
-		}
-		d = opendir(dir);
 		if (slash)
-			*slash = '/';
+			*slash = '\0';
+		d = opendir(!slash ? "." : slash == pre ? "/" : pre);
 	}
-	if (d != NULL) {
-		const char *base = slash ? slash + 1 : pre;
-		size_t nb = strlen(base), ns = strlen(suf);
-		struct dirent *de;
-		while ((de = readdir(d)) != NULL) {
-			const char *nm = de->d_name;
-			size_t n = strlen(nm), i = nb;
-			if (n <= nb + ns || strncmp(nm, base, nb) != 0 || strcmp(nm + n - ns, suf) != 0)
-				continue;
-			while (i < n - ns && nm[i] == ' ')
-				i++;
-			if (i == n - ns || nm[i] < '0' || nm[i] > '9')
-				continue;
-			size_t idx = 0;
-			for (; i < n - ns && nm[i] >= '0' && nm[i] <= '9'; i++)
-				idx = idx > (SIZE_MAX - 9) / 10 ? SIZE_MAX : 10 * idx + (size_t)(nm[i] - '0');
-			if (i != n - ns || idx <= missing || idx >= *found)
-				continue;
-			/* the pattern must give this very name (zero padding, width) */
-			char *q = vdt_anim_format(pattern, idx);
-			if (q == NULL) {
-				closedir(d);
-				goto out;
-			}
-			const char *qb = strrchr(q, '/');
-			if (strcmp(qb ? qb + 1 : q, nm) == 0)
-				*found = idx;
-			free(q);
-		}
-		closedir(d);
-	} else {
+	if (d == NULL) {
 		for (size_t i = missing + 1; i <= missing + GAP_PROBE && *found == SIZE_MAX; i++) {
 			char *q = vdt_anim_format(pattern, i);
 			if (q == NULL)
@@ -366,9 +364,19 @@ next_existing(const char *pattern, size_t missing, size_t *found)
 				*found = i;
 			free(q);
 		}
+		rc = 0;
+		goto out;
+	}
+	while ((de = readdir(d)) != NULL) {
+		if (name_index(pattern, slash ? slash + 1 : pre, suf, de->d_name, &idx) != 0)
+			goto out;
+		if (idx != SIZE_MAX && idx > missing && idx < *found)
+			*found = idx;
 	}
 	rc = 0;
 out:
+	if (d)
+		closedir(d);
 	free(pre);
 	free(suf);
 	return rc;
