@@ -322,7 +322,23 @@ load helpers
 		[ "$(off_faces "$TMP/out.off")" -eq 512 ]
 		h=$("$BIN/vdt-measure" --format=kv "$TMP/s.off" "$TMP/out.off" | kv hausdorff_pct)
 		awk -v h="$h" 'BEGIN { exit !(h < 1) }'
+		"$BIN/vdt-qslim" -r 0.1 --record "$TMP/s.off" -o "$TMP/rec-$s.vdt"
 	done
+	"$BIN/vdt-qslim" -r 0.1 --record "$SAMPLES/sphere.off" -o "$TMP/rec-1.vdt"
+	# and so are the costs SEQN records (vdt(5)): about the same at any
+	# scale (ties go other ways on rounded coordinates), not 1e48 apart
+	python3 - "$TMP"/rec-1.vdt "$TMP"/rec-1e12.vdt "$TMP"/rec-1e-12.vdt <<'PY'
+import struct, sys
+def costs(path):
+    b = open(path, "rb").read()
+    at = b.index(b"SEQN") + 12
+    n = struct.unpack_from("<Q", b, at)[0]
+    return sum(struct.unpack_from("<f", b, at + 8 + 24 * i + 20)[0] for i in range(n))
+ref = costs(sys.argv[1])
+assert ref > 0
+for p in sys.argv[2:]:
+    assert 0.5 < costs(p) / ref < 2, (p, costs(p), ref)
+PY
 }
 
 @test "vdt-qslim refuses a damaged ASCII STL with the line and the fault" {
@@ -338,13 +354,31 @@ load helpers
 	{ facet 0; printf 'vertex 1 1 0\nendloop\nendfacet\nendsolid t\n'; } > "$TMP/four.stl"
 	{ facet 0; printf 'endloop\nendfacet\n'; } > "$TMP/open.stl"
 	facet 0 | head -c -3 > "$TMP/cut.stl"
-	for f in nan huge junk four open cut; do
+	{ facet 0; printf 'endloop\nendfacet\nendsolid t\ngarbage\n'; } > "$TMP/tail.stl"
+	{ facet 0; printf 'endfacet\nendsolid t\n'; } > "$TMP/noloop.stl"
+	sed 's/^outer loop$/loop/' "$TMP/good.stl" > "$TMP/noouter.stl"
+	facet 0 > "$TMP/infacet.stl"
+	printf 'solid t\nfacet normal 0 0 1\n' > "$TMP/bare.stl"
+	sed 's/^facet normal 0 0 1$/facet normal 0 inf 1/' "$TMP/good.stl" > "$TMP/normal.stl"
+	for f in nan huge junk four open cut tail noloop noouter normal infacet bare; do
 		run "$BIN/vdt-qslim" -r 1 "$TMP/$f.stl" -o "$TMP/out.off"
 		[ "$status" -eq 2 ]
 		[[ "$output" == "vdt-qslim: cannot read '$TMP/$f.stl': line "* ]]
 		[ "${#lines[@]}" -eq 1 ]
 		[ ! -e "$TMP/out.off" ]
 	done
+	run "$BIN/vdt-qslim" -r 1 "$TMP/tail.stl" -o "$TMP/out.off"
+	[[ "$output" == *"line 10: 'garbage' where 'solid' was expected" ]]
+	run "$BIN/vdt-qslim" -r 1 "$TMP/noloop.stl" -o "$TMP/out.off"
+	[[ "$output" == *"line 7: 'endfacet' where 'endloop' was expected" ]]
+	run "$BIN/vdt-qslim" -r 1 "$TMP/noouter.stl" -o "$TMP/out.off"
+	[[ "$output" == *"line 3: 'loop' where 'outer' was expected" ]]
+	run "$BIN/vdt-qslim" -r 1 "$TMP/normal.stl" -o "$TMP/out.off"
+	[[ "$output" == *"line 2: normal coordinate 'inf' is not finite" ]]
+	run "$BIN/vdt-qslim" -r 1 "$TMP/infacet.stl" -o "$TMP/out.off"
+	[[ "$output" == *"line 7: ends inside a facet" ]]
+	run "$BIN/vdt-qslim" -r 1 "$TMP/bare.stl" -o "$TMP/out.off"
+	[[ "$output" == *"line 3: ends where 'outer' was expected" ]]
 	run "$BIN/vdt-cluster" -g 4 "$TMP/nan.stl" -o "$TMP/out.off"
 	[ "$status" -eq 2 ]
 	[[ "$output" == *"line 6: vertex coordinate 'nan' is not finite" ]]
