@@ -242,6 +242,15 @@ stl_line_end(struct stl_text *t)
 		t->p++;
 }
 
+/* The word w[0..wl) where want was expected. */
+static int
+stl_unexpected(const struct stl_text *t, const char *w, size_t wl, const char *want,
+               struct vdt_err *err)
+{
+	return vdt_err_set(err, VDT_EFORMAT, "line %zu: '%.*s' where %s was expected", t->line,
+	                   (int)(wl > 32 ? 32 : wl), w, want);
+}
+
 static int
 stl_expect(struct stl_text *t, const char *key, struct vdt_err *err)
 {
@@ -251,9 +260,11 @@ stl_expect(struct stl_text *t, const char *key, struct vdt_err *err)
 	if (!stl_word(t, &w, &wl))
 		return vdt_err_set(err, VDT_EFORMAT, "line %zu: ends where '%s' was expected", t->line,
 		                   key);
-	if (!stl_is(w, wl, key))
-		return vdt_err_set(err, VDT_EFORMAT, "line %zu: '%.*s' where '%s' was expected", t->line,
-		                   (int)(wl > 32 ? 32 : wl), w, key);
+	if (!stl_is(w, wl, key)) {
+		char want[16];
+		snprintf(want, sizeof(want), "'%s'", key);
+		return stl_unexpected(t, w, wl, want, err);
+	}
 	return 0;
 }
 
@@ -289,8 +300,7 @@ vdt_stl_ascii_check(const unsigned char *buf, size_t len, struct vdt_err *err)
 
 	while (stl_word(&t, &w, &wl)) {
 		if (!stl_is(w, wl, "solid"))
-			return vdt_err_set(err, VDT_EFORMAT, "line %zu: '%.*s' where 'solid' was expected",
-			                   t.line, (int)(wl > 32 ? 32 : wl), w);
+			return stl_unexpected(&t, w, wl, "'solid'", err);
 		stl_line_end(&t);
 		for (;;) {
 			if (!stl_word(&t, &w, &wl))
@@ -301,9 +311,7 @@ vdt_stl_ascii_check(const unsigned char *buf, size_t len, struct vdt_err *err)
 				break;
 			}
 			if (!stl_is(w, wl, "facet"))
-				return vdt_err_set(err, VDT_EFORMAT,
-				                   "line %zu: '%.*s' where 'facet' or 'endsolid' was expected",
-				                   t.line, (int)(wl > 32 ? 32 : wl), w);
+				return stl_unexpected(&t, w, wl, "'facet' or 'endsolid'", err);
 			if ((rc = stl_expect(&t, "normal", err)) != 0 ||
 			    (rc = stl_numbers(&t, "normal", err)) != 0 ||
 			    (rc = stl_expect(&t, "outer", err)) != 0 || (rc = stl_expect(&t, "loop", err)) != 0)
@@ -318,9 +326,7 @@ vdt_stl_ascii_check(const unsigned char *buf, size_t len, struct vdt_err *err)
 				return vdt_err_set(err, VDT_EFORMAT,
 				                   "line %zu: a facet of more than 3 vertices", t.line);
 			if (!stl_is(w, wl, "endloop"))
-				return vdt_err_set(err, VDT_EFORMAT,
-				                   "line %zu: '%.*s' where 'endloop' was expected", t.line,
-				                   (int)(wl > 32 ? 32 : wl), w);
+				return stl_unexpected(&t, w, wl, "'endloop'", err);
 			if ((rc = stl_expect(&t, "endfacet", err)) != 0)
 				return rc;
 		}

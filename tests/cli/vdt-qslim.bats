@@ -359,8 +359,9 @@ PY
 	sed 's/^outer loop$/loop/' "$TMP/good.stl" > "$TMP/noouter.stl"
 	facet 0 > "$TMP/infacet.stl"
 	printf 'solid t\nfacet normal 0 0 1\n' > "$TMP/bare.stl"
+	printf 'solid t\nfaucet\n' > "$TMP/faucet.stl"
 	sed 's/^facet normal 0 0 1$/facet normal 0 inf 1/' "$TMP/good.stl" > "$TMP/normal.stl"
-	for f in nan huge junk four open cut tail noloop noouter normal infacet bare; do
+	for f in nan huge junk four open cut tail noloop noouter normal infacet bare faucet; do
 		run "$BIN/vdt-qslim" -r 1 "$TMP/$f.stl" -o "$TMP/out.off"
 		[ "$status" -eq 2 ]
 		[[ "$output" == "vdt-qslim: cannot read '$TMP/$f.stl': line "* ]]
@@ -379,6 +380,8 @@ PY
 	[[ "$output" == *"line 7: ends inside a facet" ]]
 	run "$BIN/vdt-qslim" -r 1 "$TMP/bare.stl" -o "$TMP/out.off"
 	[[ "$output" == *"line 3: ends where 'outer' was expected" ]]
+	run "$BIN/vdt-qslim" -r 1 "$TMP/faucet.stl" -o "$TMP/out.off"
+	[[ "$output" == *"line 2: 'faucet' where 'facet' or 'endsolid' was expected" ]]
 	run "$BIN/vdt-cluster" -g 4 "$TMP/nan.stl" -o "$TMP/out.off"
 	[ "$status" -eq 2 ]
 	[[ "$output" == *"line 6: vertex coordinate 'nan' is not finite" ]]
