@@ -127,6 +127,8 @@ struct engine {
 	uint8_t *cut;          /* per vertex, shares a face with another
 	                          part's */
 	uint8_t *aside;        /* per vertex: near a pair set aside this round */
+	float *ecost;          /* passes: per face, the cost of the pair of each
+	                          of its edges, corner k to k + 1 (fan_costs) */
 	double fit_per_pair;   /* the pool room the last round's pairs might take */
 };
 
@@ -882,8 +884,12 @@ prefetch_fan(const struct engine *e, uint32_t v, int stage)
 		}
 		break;
 	default:
-		for (uint32_t f = 0; f < l->len; f++)
-			__builtin_prefetch(e->tri + 3 * (size_t)e->tpool.data[l->off + f]);
+		for (uint32_t f = 0; f < l->len; f++) {
+			size_t face = e->tpool.data[l->off + f];
+			__builtin_prefetch(e->tri + 3 * face);
+			if (e->ecost != NULL)
+				__builtin_prefetch(e->ecost + 3 * face);
+		}
 		prefetch_vertex(e, v);
 		break;
 	}
@@ -914,35 +920,128 @@ prefetch_pairs_ahead(const struct engine *e, const uint64_t *keys, size_t i, siz
 }
 
 /*
+ * How fan_costs finds the cost of a pair: by the caller's cost function
+ * (FAN_EVAL); the same, noting it on the pair's faces in e->ecost
+ * (FAN_NOTE); or from those notes (FAN_NOTED).
+ *
+ * In passes a cost depends only on the two vertices' data, which changes
+ * only where a vertex survives a contraction (V_KEPT); the pass then
+ * costs its pairs again before anything reads them. So a pair whose ends
+ * are both untouched keeps its noted cost exactly, and a vertex that has
+ * to find its cheapest pair again (V_DIRTY, V_REFUSED) reads its fan's
+ * notes instead of costing each pair anew: half of all the costing.
+ */
+enum { FAN_EVAL, FAN_NOTE, FAN_NOTED };
+
+/*
+ * Fans of up to FAN_LOCAL faces find a neighbour listed already through a
+ * small hash on the stack, of FAN_HASH entries (a power of two, at least
+ * twice the neighbours, 2 per face); longer ones search the list.
+ */
+#define FAN_LOCAL 32
+#define FAN_HASH 128
+
+/*
+ * Where x is in out[0..*n), appended (with its note at `slot` for
+ * FAN_NOTED) if it is not yet: its index.
+ */
+static inline uint32_t
+fan_add(const struct engine *e, uint8_t *hash, struct vcost *out, uint32_t *n, uint32_t x,
+        size_t slot, int how)
+{
+	uint32_t s;
+
+	if (hash != NULL) {
+		uint32_t h = (x * 2654435761u) >> (32 - 7); /* log2 FAN_HASH */
+		while (hash[h] != 0 && out[hash[h] - 1].x != x)
+			h = (h + 1) & (FAN_HASH - 1);
+		if (hash[h] != 0)
+			return hash[h] - 1u;
+		hash[h] = (uint8_t)(*n + 1);
+		s = *n;
+	} else {
+		for (s = 0; s < *n; s++)
+			if (out[s].x == x)
+				return s;
+	}
+	out[s].x = x;
+	if (how == FAN_NOTED)
+		out[s].cost = e->ecost[slot];
+	else
+		prefetch_vertex(e, x);
+	(*n)++;
+	return s;
+}
+
+/*
  * The distinct neighbours of v (only those above it with upper) and the
  * costs of their pairs, into out in fan order; their number. Reads the
  * engine only, so threads may run it at once; out holds 2 * v's faces.
+ * With FAN_NOTE it writes the notes of v's pairs but of those with a
+ * vertex below it that is also being costed (V_KEPT), which that vertex
+ * writes: each note has one writer.
  */
 static uint32_t
-fan_costs(struct engine *e, uint32_t v, int upper, struct vcost *out)
+fan_costs(struct engine *e, uint32_t v, int upper, int how, struct vcost *out)
 {
+	static const int next[3] = {1, 2, 0}, prev[3] = {2, 0, 1};
 	const struct list *l = &e->vt[v];
+	const uint32_t *faces = e->tpool.data + l->off;
+	uint8_t hash[FAN_HASH], at[2 * FAN_LOCAL];
+	uint32_t slot[2 * FAN_LOCAL]; /* the note of each, with FAN_NOTE */
+	int local = l->len <= FAN_LOCAL;
 	double pos[3];
 	uint32_t n = 0;
 
+	if (local)
+		memset(hash, 0, sizeof(hash));
+	/* The edges of v in face t: to its next corner, noted in v's slot,
+	 * and from its previous corner, noted in that corner's. */
 	for (uint32_t f = 0; f < l->len; f++) {
-		const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + f];
-		for (int k = 0; k < 3; k++) {
-			uint32_t x = t[k], s = 0;
-			if (x == v || (upper && x < v))
-				continue;
-			while (s < n && out[s].x != x)
-				s++;
-			if (s < n)
-				continue;
-			out[n++].x = x;
-			prefetch_vertex(e, x);
+		size_t face = faces[f];
+		const uint32_t *t = e->tri + 3 * face;
+		int kv = t[0] == v ? 0 : t[1] == v ? 1 : 2;
+		uint32_t x1 = t[next[kv]], x2 = t[prev[kv]], s1 = NONE, s2 = NONE;
+		if (!upper || x1 > v)
+			s1 = fan_add(e, local ? hash : NULL, out, &n, x1, 3 * face + kv, how);
+		if (!upper || x2 > v)
+			s2 = fan_add(e, local ? hash : NULL, out, &n, x2, 3 * face + prev[kv], how);
+		if (local) {
+			at[2 * f] = (uint8_t)s1;
+			at[2 * f + 1] = (uint8_t)s2;
+			slot[2 * f] = (uint32_t)(3 * face + kv);
+			slot[2 * f + 1] = (uint32_t)(3 * face + prev[kv]);
 		}
 	}
+	if (how == FAN_NOTED)
+		return n;
 	/* Costed once all are listed, so that their data is on its way. */
 	for (uint32_t s = 0; s < n; s++) {
 		uint32_t x = out[s].x;
 		out[s].cost = (float)(x < v ? eval_pair(e, x, v, pos) : eval_pair(e, v, x, pos));
+	}
+	if (how == FAN_EVAL)
+		return n;
+	for (uint32_t i = 0; local && i < 2 * l->len; i++) {
+		if (at[i] >= n) /* not listed: below v, with upper */
+			continue;
+		uint32_t x = out[at[i]].x;
+		if (!(x < v && (upper || (e->vflag[x] & V_KEPT))))
+			e->ecost[slot[i]] = out[at[i]].cost;
+	}
+	for (uint32_t f = 0; !local && f < l->len; f++) {
+		size_t face = faces[f];
+		const uint32_t *t = e->tri + 3 * face;
+		int kv = t[0] == v ? 0 : t[1] == v ? 1 : 2;
+		for (int j = 0; j < 2; j++) {
+			int kx = j == 0 ? next[kv] : prev[kv];
+			uint32_t x = t[kx], s = 0;
+			if (x < v && (upper || (e->vflag[x] & V_KEPT)))
+				continue;
+			while (out[s].x != x)
+				s++;
+			e->ecost[3 * face + (j == 0 ? kv : kx)] = out[s].cost;
+		}
 	}
 	return n;
 }
@@ -953,7 +1052,7 @@ vertex_pairs(struct engine *e, uint32_t v)
 {
 	if (vcost_reserve(&e->vn, &e->vn_cap, 2 * (size_t)e->vt[v].len) != 0)
 		return -1;
-	return fan_costs(e, v, 0, e->vn);
+	return fan_costs(e, v, 0, FAN_EVAL, e->vn);
 }
 
 /* Pair (., x) at cost c before pair (., bx) at bc; a refused pair never is. */
@@ -1460,6 +1559,7 @@ struct pjob {
 	struct engine *e;
 	size_t begin, end; /* of e->plist */
 	int upper;         /* only the pairs with vertices above */
+	int how;           /* FAN_NOTE or FAN_NOTED */
 };
 
 /* The pairs of each vertex of the job and their costs (fan_costs). */
@@ -1470,7 +1570,8 @@ pjob_run(void *arg)
 
 	for (size_t i = j->begin; i < j->end; i++) {
 		prefetch_ahead(j->e, j->e->plist, i, j->end);
-		j->e->pcount[i] = fan_costs(j->e, j->e->plist[i], j->upper, j->e->pout + j->e->poff[i]);
+		j->e->pcount[i] =
+		        fan_costs(j->e, j->e->plist[i], j->upper, j->how, j->e->pout + j->e->poff[i]);
 	}
 	return NULL;
 }
@@ -1483,7 +1584,7 @@ pjob_run(void *arg)
  * same however they are split).
  */
 static int
-pass_cost(struct engine *e, size_t n, int upper)
+pass_cost(struct engine *e, size_t n, int upper, int how)
 {
 	struct pjob job[VDT_CONTRACT_MAX_THREADS];
 	size_t total = 0;
@@ -1504,7 +1605,7 @@ pass_cost(struct engine *e, size_t n, int upper)
 		t = (int)(n / 64 + 1);
 	for (int k = 0; k < t; k++)
 		job[k] = (struct pjob){e, n * (size_t)k / (size_t)t, n * (size_t)(k + 1) / (size_t)t,
-		                       upper};
+		                       upper, how};
 	vdt_run_jobs(pjob_run, job, sizeof(job[0]), t);
 	return 0;
 }
@@ -1531,7 +1632,7 @@ pass_recost(struct engine *e, int kept)
 		}
 		if (n == 0)
 			continue;
-		if (pass_cost(e, n, 0) != 0)
+		if (pass_cost(e, n, 0, kept ? FAN_NOTE : FAN_NOTED) != 0)
 			return -1;
 		for (size_t j = 0; j < n; j++) {
 			struct vcost *vn = e->pout + e->poff[j];
@@ -1582,7 +1683,7 @@ pass_init(struct engine *e)
 		for (; v < e->nv && n < PASS_BATCH; v++)
 			if (e->vt[v].len > 0)
 				e->plist[n++] = (uint32_t)v;
-		if (pass_cost(e, n, 1) != 0)
+		if (pass_cost(e, n, 1, FAN_NOTE) != 0)
 			return -1;
 		for (size_t i = 0; i < n; i++) {
 			uint32_t a = e->plist[i];
@@ -2121,6 +2222,58 @@ pass_serial(struct engine *e, const struct vdt_contract_opts *o,
 #define PASS_SHARE 8
 #define PASS_SLACK 1.5
 
+/*
+ * The keys a pass may claim. It claims in order of cost up to PASS_SLACK
+ * times the cost of the need-th cheapest pair, and rarely further, so it
+ * sorts only the keys up to about that cost: those whose top bits (the
+ * cost's sign, exponent and first mantissa bits) are at most those of
+ * PASS_SLACK times the largest cost the need-th key's bits allow. They are
+ * moved to the front of keys[0..n), in order, the rest after them, also in
+ * order (so that a stable sort of each, as of the whole, orders ties by
+ * vertex); the front's length, at least need. Sorted front and sorted rest
+ * together are the whole sorted, as every front key is below every other.
+ * Returns n when that is not worth it, or -1 out of memory.
+ */
+#define SELECT_MIN 65536 /* keys, below which all are sorted */
+#define SELECT_BITS 12
+#define SELECT_SHIFT (64 - SELECT_BITS)
+
+static long
+pass_select(uint64_t *keys, size_t n, size_t need)
+{
+	uint32_t count[1u << SELECT_BITS] = {0};
+	size_t sum = 0, front = 0, rest = 0;
+	uint32_t b = 0, top;
+	uint64_t *tmp;
+
+	if (n < SELECT_MIN || need >= n / 2)
+		return (long)n;
+	for (size_t i = 0; i < n; i++)
+		count[keys[i] >> SELECT_SHIFT]++;
+	while (sum + count[b] < need)
+		sum += count[b++];
+	/* The largest cost of bucket b, times the slack, and its bucket. */
+	uint32_t bits = ((b + 1) << (32 - SELECT_BITS)) - 1;
+	float c;
+	memcpy(&c, &bits, sizeof(c));
+	c = (float)(PASS_SLACK * c);
+	memcpy(&bits, &c, sizeof(bits));
+	top = bits >> (32 - SELECT_BITS);
+	if (!(c < INFINITY) || top < b)
+		return (long)n;
+	if ((tmp = malloc(n * sizeof(*tmp))) == NULL)
+		return -1;
+	for (size_t i = 0; i < n; i++) {
+		if (keys[i] >> SELECT_SHIFT <= top)
+			keys[front++] = keys[i];
+		else
+			tmp[rest++] = keys[i];
+	}
+	memcpy(keys + front, tmp, rest * sizeof(*tmp));
+	free(tmp);
+	return (long)front;
+}
+
 static int
 run_passes(struct engine *e, const struct vdt_contract_opts *o,
            struct vdt_contract_result *res, size_t *rec_cap)
@@ -2162,13 +2315,21 @@ run_passes(struct engine *e, const struct vdt_contract_opts *o,
 			memcpy(&bits, &e->altc[v], sizeof(bits));
 			e->keys[n++] = (uint64_t)bits << 32 | v;
 		}
-		if (n == 0 || vdt_sort_u64_from(e->keys, n, 32) != 0)
+		if (n == 0)
 			break;
 		size_t need = pass_need(e, o), share = e->live_verts / PASS_SHARE;
 		if (need > share && share > 0)
 			need = share;
+		long front = pass_select(e->keys, n, need < n ? need : n);
+		if (front < 0 || vdt_sort_u64_from(e->keys, (size_t)front, 32) != 0)
+			return -1;
 		double limit = PASS_SLACK * key_cost(e->keys[(need < n ? need : n) - 1]);
 		for (size_t i = 0; i < n && m < need; i++) {
+			if (i == (size_t)front) { /* rarely: past the keys sorted */
+				if (vdt_sort_u64_from(e->keys + i, n - i, 32) != 0)
+					return -1;
+				front = (long)n;
+			}
 			uint32_t v = (uint32_t)e->keys[i], x = e->best[v];
 			float c = key_cost(e->keys[i]);
 			if (!(c <= o->max_cost)) {
@@ -2222,7 +2383,7 @@ engine_shed(struct engine *e)
 	              (void **)&e->vn, (void **)&e->vk, (void **)&e->work.wing,
 	              (void **)&e->keys, (void **)&e->plist, (void **)&e->poff,
 	              (void **)&e->pcount, (void **)&e->pout, (void **)&e->part,
-	              (void **)&e->cut, (void **)&e->aside};
+	              (void **)&e->cut, (void **)&e->aside, (void **)&e->ecost};
 	for (size_t i = 0; i < sizeof(p) / sizeof(p[0]); i++) {
 		free(*p[i]);
 		*p[i] = NULL;
@@ -2263,6 +2424,7 @@ engine_free(struct engine *e)
 	free(e->part);
 	free(e->cut);
 	free(e->aside);
+	free(e->ecost);
 }
 
 /* The engine works in m's arrays when they are handed over (own), else in copies. */
@@ -2531,7 +2693,9 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 		e.plist = malloc(PASS_BATCH * sizeof(*e.plist));
 		e.poff = malloc(PASS_BATCH * sizeof(*e.poff));
 		e.pcount = malloc(PASS_BATCH * sizeof(*e.pcount));
+		e.ecost = vdt_malloc_huge((3 * e.nt + 1) * sizeof(*e.ecost));
 		if (e.keys == NULL || e.plist == NULL || e.poff == NULL || e.pcount == NULL ||
+		    e.ecost == NULL ||
 		    run_passes(&e, o, res, &rec_cap) != 0)
 			goto nomem;
 		goto finish;
