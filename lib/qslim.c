@@ -20,6 +20,7 @@
 #include "qslim.h"
 #include "hash.h"
 #include "mem.h"
+#include "sort.h"
 #include "topo.h"
 
 #include <assert.h>
@@ -1354,6 +1355,126 @@ build_output(const struct vdt_mesh *in, const uint32_t *canon,
 	return rc;
 }
 
+/* ---- locality ---- */
+
+/* The bits of x (below 1024) spread to every third place. */
+static uint32_t
+spread3(uint32_t x)
+{
+	x &= 0x3ff;
+	x = (x | x << 16) & 0x030000ff;
+	x = (x | x << 8) & 0x0300f00f;
+	x = (x | x << 4) & 0x030c30c3;
+	x = (x | x << 2) & 0x09249249;
+	return x;
+}
+
+/*
+ * From VDT_QSLIM_PASSES_MIN welded vertices up, the working mesh w is
+ * renumbered for locality before anything is built on it: its vertices in
+ * Morton order of the cells of a 32^3 grid over box that hold them (in
+ * the order they had within a cell), its faces in
+ * order of their lowest vertex. A contraction, and the costing around it,
+ * read the data of neighbouring vertices and faces, which then lie near
+ * each other in memory; a scan comes in the order of its scanner, whose
+ * neighbours lie a slice apart (the Stanford dragon's: a median of 979
+ * vertex numbers). Ties keep the order they had, so the result depends on
+ * the input alone. w's arrays are replaced. Fills to[i], the new number
+ * of welded vertex i, and from[t], the face that face t was. Returns 0,
+ * or -1 out of memory (w unchanged).
+ */
+static int
+locality_order(struct vdt_mesh *w, const struct vdt_bbox *box, uint32_t **to, uint32_t **from)
+{
+	size_t nv = w->vertex_count, nt = w->triangle_count;
+	uint64_t *key = vdt_malloc_huge((nv > nt ? nv : nt) * sizeof(*key) + 1);
+	float *pos = vdt_malloc_huge(3 * nv * sizeof(*pos) + 1);
+	uint32_t *tri = vdt_malloc_huge(3 * nt * sizeof(*tri) + 1);
+	double scale[3];
+
+	*to = malloc(nv * sizeof(**to) + 1);
+	*from = vdt_malloc_huge(nt * sizeof(**from) + 1);
+	if (key == NULL || pos == NULL || tri == NULL || *to == NULL || *from == NULL)
+		goto nomem;
+	for (int k = 0; k < 3; k++) {
+		double d = box->max[k] - box->min[k];
+		scale[k] = d > 0 ? 31.0 / d : 0;
+	}
+	for (size_t v = 0; v < nv; v++) {
+		uint32_t m = 0;
+		for (int k = 0; k < 3; k++) {
+			double c = (w->positions[3 * v + k] - box->min[k]) * scale[k];
+			m |= spread3(c > 0 ? (uint32_t)c : 0) << k;
+		}
+		key[v] = (uint64_t)m << 32 | v;
+	}
+	if (vdt_sort_u64_from(key, nv, 32) != 0)
+		goto nomem;
+	for (size_t i = 0; i < nv; i++) {
+		uint32_t v = (uint32_t)key[i];
+		(*to)[v] = (uint32_t)i;
+		memcpy(pos + 3 * i, w->positions + 3 * (size_t)v, 3 * sizeof(float));
+	}
+	for (size_t t = 0; t < nt; t++) {
+		const uint32_t *c = w->triangles + 3 * t;
+		uint32_t a = (*to)[c[0]], b = (*to)[c[1]], d = (*to)[c[2]];
+		uint32_t lo = a < b ? a : b;
+		key[t] = (uint64_t)(lo < d ? lo : d) << 32 | t;
+	}
+	if (vdt_sort_u64_from(key, nt, 32) != 0)
+		goto nomem;
+	for (size_t i = 0; i < nt; i++) {
+		uint32_t t = (uint32_t)key[i];
+		(*from)[i] = t;
+		for (int k = 0; k < 3; k++)
+			tri[3 * i + k] = (*to)[w->triangles[3 * (size_t)t + k]];
+	}
+	free(key);
+	free(w->positions);
+	free(w->triangles);
+	w->positions = pos;
+	w->triangles = tri;
+	return 0;
+nomem:
+	free(key);
+	free(pos);
+	free(tri);
+	free(*to);
+	free(*from);
+	*to = *from = NULL;
+	return -1;
+}
+
+/* The surviving faces of r in the order of their input faces, as they
+ * are without locality_order. */
+static int
+by_source(struct vdt_contract_result *r)
+{
+	size_t n = r->triangle_count;
+	uint64_t *key = malloc(n * sizeof(*key) + 1);
+	uint32_t *tri = malloc(3 * n * sizeof(*tri) + 1);
+	int rc = -1;
+
+	if (key != NULL && tri != NULL) {
+		for (size_t t = 0; t < n; t++)
+			key[t] = (uint64_t)r->sources[t] << 32 | t;
+		if (vdt_sort_u64_from(key, n, 32) == 0) {
+			for (size_t i = 0; i < n; i++) {
+				uint32_t t = (uint32_t)key[i];
+				memcpy(tri + 3 * i, r->triangles + 3 * (size_t)t, 3 * sizeof(*tri));
+				r->sources[i] = (uint32_t)(key[i] >> 32);
+			}
+			free(r->triangles);
+			r->triangles = tri;
+			tri = NULL;
+			rc = 0;
+		}
+	}
+	free(key);
+	free(tri);
+	return rc;
+}
+
 /* The input vertices of each welded vertex (CSR), built only when needed:
  * they are not, during contraction, unless attributes are. */
 static int
@@ -1395,7 +1516,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
 	uint32_t *canon = NULL, *first = NULL, *wstart = NULL, *wlist = NULL;
 	uint32_t *vpairs = NULL;
 	uint8_t *border = NULL, *locked = NULL, *dead = NULL;
-	uint32_t *fsrc = NULL;
+	uint32_t *fsrc = NULL, *vto = NULL, *forder = NULL;
 	uint64_t *dups = NULL; /* corner << 32 | input vertex, by corner */
 	size_t nw, nvp = 0, ndups = 0;
 	int rc = VDT_ENOMEM;
@@ -1473,15 +1594,24 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
 	}
 	free(first);
 	first = NULL;
+	vdt_mesh_bbox(&w, &box);
+	if (nw >= VDT_QSLIM_PASSES_MIN) {
+		if (locality_order(&w, &box, &vto, &forder) != 0)
+			goto nomem;
+		for (size_t i = 0; i < n; i++)
+			canon[i] = vto[canon[i]];
+		if (records == NULL) {
+			free(vto);
+			vto = NULL;
+		}
+	}
 
-	/* Input vertices by welded vertex (CSR). */
 	c.q = vdt_calloc_huge(nw, sizeof(*c.q));
 	border = calloc(nw, 1);
 	locked = calloc(nw, 1);
 	if (!c.q || !border || !locked)
 		goto nomem;
 
-	vdt_mesh_bbox(&w, &box);
 	for (int k = 0; k < 3; k++)
 		c.centre[k] = 0.5 * (box.min[k] + box.max[k]);
 	c.unit = vdt_quadric_unit(vdt_bbox_diagonal(&box));
@@ -1490,7 +1620,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
 	if (dead == NULL || build_quadrics(&w, o, canon, n, &c, border, dead, &stats->nonmanifold) != 0)
 		goto nomem;
 	/* The engine sees the live faces only; fsrc maps back to the input
-	 * (NULL while no face is dropped: the same numbers). */
+	 * (NULL while no face is dropped or moved: the same numbers). */
 	size_t live = 0;
 	for (size_t t = 0; t < T; t++)
 		live += !dead[t];
@@ -1501,9 +1631,13 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
 		for (size_t t = 0; t < T; t++)
 			if (!dead[t]) {
 				memmove(w.triangles + 3 * live, w.triangles + 3 * t, 3 * sizeof(uint32_t));
-				fsrc[live++] = (uint32_t)t;
+				fsrc[live++] = forder ? forder[t] : (uint32_t)t;
 			}
+		free(forder);
+	} else {
+		fsrc = forder;
 	}
+	forder = NULL;
 	w.triangle_count = live;
 	stats->dropped = T - live;
 	free(dead);
@@ -1592,6 +1726,20 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
 	stats->max_error = sqrt(c.worst);
 	for (size_t t = 0; fsrc && t < r.triangle_count; t++)
 		r.sources[t] = fsrc[r.sources[t]];
+	if (nw >= VDT_QSLIM_PASSES_MIN && by_source(&r) != 0)
+		goto nomem;
+	if (vto != NULL) { /* records in welded numbers (vdt(5), SEQN) */
+		uint32_t *old = malloc(nw * sizeof(*old));
+		if (old == NULL)
+			goto nomem;
+		for (size_t i = 0; i < nw; i++)
+			old[vto[i]] = (uint32_t)i;
+		for (size_t i = 0; i < r.record_count; i++) {
+			r.records[i].keep = old[r.records[i].keep];
+			r.records[i].gone = old[r.records[i].gone];
+		}
+		free(old);
+	}
 	if (c.at == NULL && input_lists(canon, n, nw, &wstart, &wlist) != 0)
 		goto nomem;
 	rc = c.at ? build_output_attr(in, &c, &r, out, err)
@@ -1623,6 +1771,8 @@ done:
 	free(vpairs);
 	free(dead);
 	free(fsrc);
+	free(vto);
+	free(forder);
 	free(dups);
 	return rc;
 }

@@ -392,6 +392,86 @@ extra_records_only_when_asked(void **state)
 	vdt_mesh_free(&m);
 }
 
+/*
+ * From VDT_QSLIM_PASSES_MIN vertices up the working mesh is renumbered for
+ * locality, which nothing outside may see: the record's vertex numbers are
+ * the input's (welded: here the same), and the output's faces come in the
+ * order of the input faces they are. So replaying the record on the input
+ * - each survivor moved, each vanished vertex following its survivor -
+ * gives the output face for face. The grid's vertices are numbered at
+ * random, far from any order by position.
+ */
+static void
+large_meshes_keep_their_numbers(void **state)
+{
+	struct vdt_mesh m, out;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+	struct vdt_contraction *rec;
+	size_t nrec, f = 0;
+	uint32_t seed = 99;
+
+	(void)state;
+	shape_grid(&m, 256); /* 66049 vertices */
+	size_t nv = m.vertex_count;
+	assert_true(nv >= VDT_QSLIM_PASSES_MIN);
+	uint32_t *to = malloc(nv * sizeof(*to)), *up = malloc(nv * sizeof(*up));
+	float *p = malloc(3 * nv * sizeof(*p));
+	assert_true(to && up && p);
+	for (size_t i = 0; i < nv; i++)
+		to[i] = (uint32_t)i;
+	for (size_t i = nv - 1; i > 0; i--) { /* Fisher-Yates */
+		seed = seed * 1664525u + 1013904223u;
+		size_t j = seed % (i + 1);
+		uint32_t t = to[i];
+		to[i] = to[j];
+		to[j] = t;
+	}
+	for (size_t i = 0; i < nv; i++) {
+		memcpy(p + 3 * (size_t)to[i], m.positions + 3 * i, 3 * sizeof(float));
+		p[3 * (size_t)to[i] + 2] = 0.05f * sinf(20 * m.positions[3 * i]) *
+		                           cosf(13 * m.positions[3 * i + 1]);
+	}
+	for (size_t j = 0; j < 3 * m.triangle_count; j++)
+		m.triangles[j] = to[m.triangles[j]];
+	memcpy(m.positions, p, 3 * nv * sizeof(float));
+	vdt_qslim_defaults(&o);
+	o.target_ratio = 0.1;
+	assert_int_equal(vdt_qslim(&m, &o, &out, &rec, &nrec, &st, NULL), 0);
+	assert_true(st.passes && nrec > 0 && nrec == st.contractions);
+
+	for (size_t i = 0; i < nv; i++)
+		up[i] = (uint32_t)i;
+	for (size_t i = 0; i < nrec; i++) {
+		uint32_t k = rec[i].keep, g = rec[i].gone;
+		assert_true(k < nv && g < nv && up[k] == k && up[g] == g && k != g);
+		up[g] = k;
+		memcpy(p + 3 * (size_t)k, rec[i].pos, 3 * sizeof(float));
+	}
+	for (size_t t = 0; t < m.triangle_count; t++) {
+		uint32_t c[3];
+		for (int k = 0; k < 3; k++) {
+			c[k] = m.triangles[3 * t + k];
+			while (up[c[k]] != c[k])
+				c[k] = up[c[k]];
+		}
+		if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2])
+			continue;
+		assert_true(f < out.triangle_count);
+		for (int k = 0; k < 3; k++)
+			assert_memory_equal(out.positions + 3 * (size_t)out.triangles[3 * f + k],
+			                    p + 3 * (size_t)c[k], 3 * sizeof(float));
+		f++;
+	}
+	assert_int_equal(f, out.triangle_count);
+	free(rec);
+	free(to);
+	free(up);
+	free(p);
+	vdt_mesh_free(&out);
+	vdt_mesh_free(&m);
+}
+
 int
 main(void)
 {
@@ -403,6 +483,7 @@ main(void)
 		cmocka_unit_test(extra_runs_with_the_chunk_quadrics),
 		cmocka_unit_test(extra_border_decides_the_boundary_planes),
 		cmocka_unit_test(extra_records_only_when_asked),
+		cmocka_unit_test(large_meshes_keep_their_numbers),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
