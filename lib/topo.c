@@ -48,12 +48,17 @@ vdt_topo_drop_repeats(const uint32_t *tri, size_t nt, const uint32_t *start,
 	size_t n = 0;
 
 	/* A repeat shares its smallest vertex with the earlier face: look
-	 * only in that vertex's fan, at faces before this one. */
+	 * only in that vertex's fan, at faces before this one, and only at
+	 * those whose corners sum to the same. */
 	for (size_t t = 0; t < nt; t++) {
 		const uint32_t *v = tri + 3 * t;
 		uint32_t m = v[0] < v[1] ? (v[0] < v[2] ? v[0] : v[2]) : (v[1] < v[2] ? v[1] : v[2]);
+		uint64_t sum = (uint64_t)v[0] + v[1] + v[2];
 		for (uint32_t i = start[m]; i < start[m + 1] && fan[i] < t; i++) {
-			int same = dead[fan[i]] ? 0 : vdt_topo_same_face(v, tri + 3 * (size_t)fan[i]);
+			const uint32_t *u = tri + 3 * (size_t)fan[i];
+			if ((uint64_t)u[0] + u[1] + u[2] != sum)
+				continue;
+			int same = dead[fan[i]] ? 0 : vdt_topo_same_face(v, u);
 			if (same != 0) {
 				dead[t] = 1;
 				n++;
