@@ -45,9 +45,14 @@ vdt_md2_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 	for (int i = 0; i < 17; i++)
 		h[i] = get_i32(buf + 4 * i);
 	int32_t version = h[1], fsize = h[4], nv = h[6], nt = h[8], nf = h[10];
-	int32_t ofs_tris = h[13], ofs_frames = h[14];
+	int32_t ofs_tris = h[13], ofs_frames = h[14], ofs_end = h[16];
 	if (version != 8)
 		return vdt_err_set(err, VDT_EFORMAT, "MD2 version %d, expected 8", (int)version);
+	/* Bytes after the end the header gives are left alone; fewer are a
+	 * file cut short, whatever part of it was lost. */
+	if (ofs_end < 0 || (uint64_t)ofs_end > len)
+		return vdt_err_set(err, VDT_EFORMAT, "MD2 file is truncated: %zu bytes of the %d "
+		                   "its header gives", len, (int)ofs_end);
 	if (nv < 1 || nt < 1 || nf < 1 || fsize < 40 || ofs_tris < 0 || ofs_frames < 0)
 		return vdt_err_set(err, VDT_EFORMAT, "MD2 header with %d vertices, %d triangles, "
 		                   "%d frames of %d bytes", (int)nv, (int)nt, (int)nf, (int)fsize);

@@ -180,6 +180,21 @@ setup() {
 	[ -z "$(ls "$TMP/out")" ]
 }
 
+@test "vdt-deform rejects an MD2 model cut by one byte, keeps one with more" {
+	[ -r "$MD2" ] || skip "assimp-testmodels is not installed"
+	size=$(wc -c < "$MD2")
+	head -c $((size - 1)) "$MD2" > "$TMP/cut.md2"
+	run "$BIN/vdt-deform" --vertices 100 "$TMP/cut.md2" -o "$TMP/out/%03d.obj"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"'$TMP/cut.md2': MD2 file is truncated: $((size - 1)) bytes of the $size its header gives"* ]]
+	[ -z "$(ls "$TMP/out")" ]
+	{ cat "$MD2"; printf 'x'; } > "$TMP/long.md2"
+	run "$BIN/vdt-deform" -q --vertices 100 "$TMP/long.md2" -o "$TMP/out/%03d.obj"
+	[ "$status" -eq 0 ]
+	[ -n "$(ls "$TMP/out")" ]
+}
+
 @test "vdt-deform wants a pattern or a stream for several frames" {
 	frames
 	run "$BIN/vdt-deform" --vertices 100 "$TMP/in/%03d.off" -o "$TMP/out.off"
