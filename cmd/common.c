@@ -32,6 +32,19 @@ cmd_init(char **argv)
 #endif
 }
 
+enum vdt_format
+output_format(const char *path, enum vdt_format given)
+{
+	enum vdt_format f = given;
+
+	if (f == VDT_FMT_AUTO)
+		f = strcmp(path, "-") == 0 ? VDT_FMT_VDT : vdt_format_from_path(path);
+	if (f == VDT_FMT_AUTO)
+		usage_error("cannot tell the output format from '%s': give a known extension or -F",
+		            path);
+	return f;
+}
+
 void
 usage_error(const char *fmt, ...)
 {

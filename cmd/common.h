@@ -9,6 +9,7 @@
 #include <stdio.h>
 
 #include "../lib/err.h"
+#include "../lib/io/meshio.h"
 #include "../lib/progress.h"
 
 #define VDT_VERSION "0.1.0"
@@ -49,6 +50,14 @@ int fail(const char *what, const char *file, const struct vdt_err *err);
 
 /* Exit status that matches a library status: 2 for input problems, else 1. */
 int exit_status(int code);
+
+/*
+ * The format an output goes out in: `given` (from -F) unless
+ * VDT_FMT_AUTO, else the one its name's extension gives (a printf
+ * pattern's too), else the vdt stream for stdout. A name that gives none
+ * is a usage error, found before any work is done.
+ */
+enum vdt_format output_format(const char *path, enum vdt_format given);
 
 /*
  * Checked parsers for option arguments; each calls usage_error naming the

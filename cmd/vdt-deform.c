@@ -94,6 +94,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	static char *std_in[] = {"-", NULL};
 	cl->in = optind < argc ? argv + optind : std_in;
 	cl->nin = optind < argc ? (size_t)(argc - optind) : 1;
+	output_format(cl->out, cl->w.format);
 	if (targets == 0)
 		cl->d.target_ratio = 0.1;
 	if (cl->start != SIZE_MAX && !(cl->nin == 1 && vdt_anim_is_pattern(cl->in[0])))

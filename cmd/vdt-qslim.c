@@ -116,6 +116,10 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		}
 	}
 	cl->in = input_operand(argc, argv, cl->in);
+	cl->w.format = output_format(cl->out, cl->w.format);
+	if (cl->q.record && cl->w.format != VDT_FMT_VDT)
+		usage_error("--record writes a SEQN chunk, which only a vdt stream holds, not %s: "
+		            "give -F vdt or a .vdt name", vdt_format_name(cl->w.format));
 	if (cl->q.target_triangles == 0 && cl->q.target_ratio == 0 && !(cl->q.max_error < INFINITY))
 		cl->q.target_ratio = 0.5;
 }

@@ -397,3 +397,27 @@ END
 	done
 	[ ! -e "$TMP/out.off" ]
 }
+
+@test "vdt-qslim, vdt-cluster and vdt-deform name an output of no known format before any work" {
+	# The input does not exist: the name of the output is judged first.
+	for tool in "vdt-qslim -r 0.5" "vdt-cluster -g 8" "vdt-deform -r 0.5"; do
+		run $BIN/$tool "$TMP/missing.off" -o "$TMP/out.xyz"
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == *"cannot tell the output format from '$TMP/out.xyz': give a known extension or -F"* ]]
+		[ ! -e "$TMP/out.xyz" ]
+	done
+	run "$BIN/vdt-qslim" -r 0.5 -F off "$SAMPLES/sphere.off" -o "$TMP/out.xyz"
+	[ "$status" -eq 0 ]
+	[ "$(off_faces "$TMP/out.xyz")" -gt 0 ]
+}
+
+@test "vdt-qslim --record wants a stream output, which alone holds the record" {
+	run "$BIN/vdt-qslim" --record -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/out.ply"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"--record writes a SEQN chunk, which only a vdt stream holds, not ply"* ]]
+	[ ! -e "$TMP/out.ply" ]
+	run "$BIN/vdt-qslim" --record -r 0.5 -F vdt "$SAMPLES/sphere.off" -o "$TMP/out.ply"
+	[ "$status" -eq 0 ]
+}
