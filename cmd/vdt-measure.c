@@ -71,6 +71,8 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		default: other_option(c, usage);
 		}
 	}
+	if (cl->m.samples > 0 && cl->m.density > 0)
+		usage_error("-n and -d each choose the sampling: give one");
 	if (argc - optind != 2)
 		usage_error("expected two meshes, A and B; try --help");
 	cl->a = argv[optind];

@@ -49,6 +49,10 @@ near() {
 	run "$BIN/vdt-measure" - -
 	[ "$status" -eq 2 ]
 	one_line
+	run "$BIN/vdt-measure" -n 1000 -d 10 "$SQ" "$UP"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"-n and -d each choose the sampling: give one"* ]]
 }
 
 @test "vdt-measure names a missing file on one line, status 2" {
