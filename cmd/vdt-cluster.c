@@ -110,7 +110,7 @@ run(struct cmdline *cl)
 	struct vdt_mesh out = {0};
 	struct vdt_quadric *q = NULL;
 	uint8_t *border = NULL;
-	struct vdt_chunks extra = {0};
+	struct vdt_chunks extra = {0}, passed = {0};
 	struct vdt_err err = {0};
 	const struct vdt_progress *p = progress_start(cl->quiet);
 	double t0 = vdt_seconds(), t1, t2, t3, box_s;
@@ -131,6 +131,8 @@ run(struct cmdline *cl)
 	/* The input is read: its mapped pages go before the output is made,
 	 * so that they do not add to the peak. */
 	streamed = vdt_tsource_streamed(ts);
+	if (rc == 0)
+		rc = vdt_tsource_pass_on(ts, &passed, &err);
 	vdt_tsource_close(ts);
 	ts = NULL;
 	if (rc != 0 || (rc = vdt_cluster_finish(c, &out, cl->decoupled ? NULL : &q,
@@ -162,6 +164,14 @@ run(struct cmdline *cl)
 	q = NULL;
 	free(border);
 	border = NULL;
+	/* The input's chunks of other kinds, after ours (vdt(5)). */
+	for (size_t i = 0; i < passed.count; i++) {
+		rc = vdt_chunks_add(&extra, passed.items[i].type, passed.items[i].data,
+		                    passed.items[i].length, &err);
+		passed.items[i].data = NULL;
+		if (rc != 0)
+			goto write_failed;
+	}
 	if ((rc = vdt_write(cl->out, &out, &extra, &cl->w, &err)) != 0)
 		goto write_failed;
 	t3 = vdt_seconds();
@@ -185,6 +195,7 @@ out:
 	vdt_tsource_close(ts);
 	vdt_mesh_free(&out);
 	vdt_chunks_free(&extra);
+	vdt_chunks_free(&passed);
 	free(q);
 	free(border);
 	return rc;

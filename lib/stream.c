@@ -424,14 +424,24 @@ vdt_chunks_remove(struct vdt_chunks *c, uint32_t type)
 	c->count = n;
 }
 
+/* The chunk types that describe the MESH chunk's vertices by index. */
+static const uint32_t vertex_types[] = {VDT_CHUNK_QUAD, VDT_CHUNK_BNDY, VDT_CHUNK_LABL,
+                                        VDT_CHUNK_VTRE, VDT_CHUNK_FRMS, VDT_CHUNK_SEQN};
+
 void
 vdt_chunks_drop_vertex_data(struct vdt_chunks *c)
 {
-	static const uint32_t types[] = {VDT_CHUNK_QUAD, VDT_CHUNK_BNDY, VDT_CHUNK_LABL,
-	                                 VDT_CHUNK_VTRE, VDT_CHUNK_FRMS, VDT_CHUNK_SEQN};
+	for (size_t i = 0; i < sizeof(vertex_types) / sizeof(vertex_types[0]); i++)
+		vdt_chunks_remove(c, vertex_types[i]);
+}
 
-	for (size_t i = 0; i < sizeof(types) / sizeof(types[0]); i++)
-		vdt_chunks_remove(c, types[i]);
+int
+vdt_chunk_type_of_vertices(uint32_t type)
+{
+	for (size_t i = 0; i < sizeof(vertex_types) / sizeof(vertex_types[0]); i++)
+		if (vertex_types[i] == type)
+			return 1;
+	return 0;
 }
 
 static int

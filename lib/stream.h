@@ -137,6 +137,10 @@ void vdt_chunks_remove(struct vdt_chunks *c, uint32_t type);
  */
 void vdt_chunks_drop_vertex_data(struct vdt_chunks *c);
 
+/* Whether chunks of `type` describe the MESH chunk's vertices by index
+ * (the types vdt_chunks_drop_vertex_data drops). */
+int vdt_chunk_type_of_vertices(uint32_t type);
+
 /*
  * Chunk-at-a-time writing: vdt_stream_write_header once, then
  * vdt_stream_write_chunk per chunk, then vdt_stream_write_end (which also

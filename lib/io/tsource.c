@@ -85,6 +85,10 @@ struct vdt_tsource {
 	uint64_t oa, ob;
 	int in_face;
 
+	/* vdt: where the chunks to pass on start (their headers) */
+	uint64_t *pass;
+	size_t npass;
+
 	/* formats read whole */
 	struct vdt_mesh mesh;
 
@@ -956,6 +960,23 @@ obj_triangles(struct vdt_tsource *s, double *tri, size_t max, size_t *n, struct 
 
 /* ---- vdt stream ---------------------------------------------------------- */
 
+int
+vdt_tsource_pass_on(const struct vdt_tsource *ts, struct vdt_chunks *c, struct vdt_err *err)
+{
+	for (size_t i = 0; i < ts->npass; i++) {
+		const unsigned char *h = ts->buf + ts->pass[i];
+		uint64_t length = vdt_get_u64le(h + 4);
+		unsigned char *data = malloc(length ? length : 1);
+		int rc;
+		if (data == NULL)
+			return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+		memcpy(data, h + 12, length);
+		if ((rc = vdt_chunks_add(c, vdt_get_u32le(h), data, length, err)) != 0)
+			return rc;
+	}
+	return 0;
+}
+
 static int
 vdt_open(struct vdt_tsource *s, struct vdt_err *err)
 {
@@ -1008,6 +1029,13 @@ vdt_open(struct vdt_tsource *s, struct vdt_err *err)
 		}
 		if (type == VDT_CHUNK_MESH && mesh != NULL)
 			return vdt_err_set(err, VDT_EFORMAT, "second MESH chunk at offset %" PRIu64, at);
+		if (type != VDT_CHUNK_MESH && !vdt_chunk_type_of_vertices(type)) {
+			uint64_t *p = realloc(s->pass, (s->npass + 1) * sizeof(*p));
+			if (p == NULL)
+				return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+			s->pass = p;
+			s->pass[s->npass++] = at;
+		}
 		if (type == VDT_CHUNK_MESH) {
 			mesh = s->buf + at + 12;
 			mesh_len = length;
@@ -1210,6 +1238,7 @@ vdt_tsource_close(struct vdt_tsource *ts)
 {
 	if (ts == NULL)
 		return;
+	free(ts->pass);
 	if (ts->map)
 		munmap(ts->map, ts->map_len);
 	if (ts->pos_map)

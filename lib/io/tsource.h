@@ -98,6 +98,15 @@ int vdt_tsource_vertices(struct vdt_tsource *ts, double *xyz, size_t max,
 int vdt_tsource_triangles(struct vdt_tsource *ts, double *tri, size_t max,
                           size_t *n, struct vdt_err *err);
 
+/*
+ * Append to c a copy of every chunk of a vdt stream input that a tool
+ * making new vertices passes on (vdt(5), Pass-through): all but the MESH
+ * chunk and those describing its vertices, in the order read. Nothing for
+ * other formats. Returns 0 or VDT_ENOMEM.
+ */
+int vdt_tsource_pass_on(const struct vdt_tsource *ts, struct vdt_chunks *c,
+                        struct vdt_err *err);
+
 /* Fraction of the current pass done, in [0, 1]. */
 double vdt_tsource_fraction(const struct vdt_tsource *ts);
 

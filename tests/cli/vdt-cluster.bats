@@ -305,3 +305,24 @@ PY
 	[[ "$output" == *"v.obj': line 4: vertex has fewer than 3 coordinates" ]]
 	[ ! -e "$TMP/out.off" ]
 }
+
+@test "vdt-cluster passes on unknown chunks after its own, drops those of the old vertices" {
+	# the golden stream carries a QUAD chunk and an unknown XTRA chunk
+	"$BIN/vdt-cluster" -q -g 16 "$DATA/golden-v1.vdt" -o "$TMP/out.vdt"
+	python3 - "$DATA/golden-v1.vdt" "$TMP/out.vdt" <<'PY'
+import struct, sys
+def chunks(path):
+    b, o, out = open(path, 'rb').read(), 12, []
+    while True:
+        t = b[o:o+4]; n = struct.unpack('<Q', b[o+4:o+12])[0]
+        out.append((t, b[o+12:o+12+n])); o += 16 + n
+        if t == b'END ': return out
+a, b = chunks(sys.argv[1]), chunks(sys.argv[2])
+assert [t for t, _ in b] == [b'MESH', b'QUAD', b'BNDY', b'XTRA', b'END '], [t for t, _ in b]
+assert dict(a)[b'XTRA'] == dict(b)[b'XTRA']
+assert dict(a)[b'QUAD'] != dict(b)[b'QUAD']
+PY
+	"$BIN/vdt-silhouette" -q -a 60 "$SAMPLES/sphere.off" -o "$TMP/l.vdl"
+	"$BIN/vdt-cluster" -q -g 8 "$TMP/l.vdl" -o "$TMP/c.vdt"
+	! grep -aq LABL "$TMP/c.vdt"
+}
