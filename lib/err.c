@@ -55,6 +55,7 @@ vdt_strstatus(int code)
 	case VDT_ENOMEM: return "out of memory";
 	case VDT_EINVAL: return "invalid argument";
 	case VDT_ELIMIT: return "limit cannot be met";
+	case VDT_ESYSTEM: return "system error";
 	}
 	return "unknown error";
 }

@@ -18,6 +18,8 @@ enum vdt_status {
 	VDT_ENOMEM = -5,    /* allocation failed */
 	VDT_EINVAL = -6,    /* invalid argument or invalid geometry */
 	VDT_ELIMIT = -7,    /* a target or bound that cannot be met */
+	VDT_ESYSTEM = -8,   /* the system refused what the work needs (temporary
+	                       space, a mapping): not the input's fault */
 };
 
 #define VDT_ERR_MSG_MAX 512

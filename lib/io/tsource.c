@@ -145,9 +145,9 @@ scratch_file(struct vdt_err *err)
 	if (dir == NULL || *dir == '\0')
 		dir = "/tmp";
 	if ((size_t)snprintf(path, sizeof(path), "%s/vdt-cluster.XXXXXX", dir) >= sizeof(path))
-		return vdt_err_set(err, VDT_EIO, "TMPDIR is too long");
+		return vdt_err_set(err, VDT_ESYSTEM, "TMPDIR is too long");
 	if ((fd = mkstemp(path)) < 0)
-		return vdt_err_set(err, VDT_EIO, "cannot create a temporary file in '%s': %s",
+		return vdt_err_set(err, VDT_ESYSTEM, "cannot create a temporary file in '%s': %s",
 		                   dir, strerror(errno));
 	unlink(path);
 	return fd;
@@ -207,7 +207,7 @@ spool(int in, enum vdt_format hint, size_t *len, struct vdt_err *err)
 			if (k < 0) {
 				int e = errno;
 				close(fd);
-				return vdt_err_set(err, VDT_EIO, "cannot spool standard input: %s",
+				return vdt_err_set(err, VDT_ESYSTEM, "cannot spool standard input: %s",
 				                   strerror(e));
 			}
 			w += k;
@@ -810,7 +810,7 @@ obj_open(struct vdt_tsource *s, struct vdt_err *err)
 		return fd;
 	if ((f = fdopen(fd, "w+")) == NULL) {
 		close(fd);
-		return vdt_err_set(err, VDT_EIO, "%s", strerror(errno));
+		return vdt_err_set(err, VDT_ESYSTEM, "%s", strerror(errno));
 	}
 	while (i < s->len) {
 		size_t e = line_end(s->buf, i, s->len), j = i;
@@ -841,7 +841,7 @@ obj_open(struct vdt_tsource *s, struct vdt_err *err)
 			}
 			/* A private scratch file of this process: host byte order. */
 			if (fwrite(p, sizeof(p), 1, f) != 1) {
-				rc = vdt_err_set(err, VDT_EIO, "cannot write a temporary file: %s", strerror(errno));
+				rc = vdt_err_set(err, VDT_ESYSTEM, "cannot write a temporary file: %s", strerror(errno));
 				goto out;
 			}
 			nv++;
@@ -860,7 +860,7 @@ obj_open(struct vdt_tsource *s, struct vdt_err *err)
 		i = e + 1;
 	}
 	if (fflush(f) != 0 || fstat(fd, &st) != 0) {
-		rc = vdt_err_set(err, VDT_EIO, "cannot write a temporary file: %s", strerror(errno));
+		rc = vdt_err_set(err, VDT_ESYSTEM, "cannot write a temporary file: %s", strerror(errno));
 		goto out;
 	}
 	s->vcount = nv;

@@ -326,3 +326,14 @@ PY
 	"$BIN/vdt-cluster" -q -g 8 "$TMP/l.vdl" -o "$TMP/c.vdt"
 	! grep -aq LABL "$TMP/c.vdt"
 }
+
+@test "vdt-cluster: a TMPDIR it cannot spool to is a failure of the work (1), not of the input" {
+	run sh -c "TMPDIR='$TMP/none' '$BIN/vdt-cluster' -g 8 -o '$TMP/out.vdq' < '$SAMPLES/sphere.off'"
+	[ "$status" -eq 1 ]
+	one_line
+	[[ "$output" == *"cannot create a temporary file in '$TMP/none'"* ]]
+	[ ! -e "$TMP/out.vdq" ]
+	run env TMPDIR="$TMP/none" "$BIN/vdt-cluster" -g 8 "$SAMPLES/fetched/bunny.obj" -o "$TMP/out.vdq"
+	[ "$status" -eq 1 ]
+	[ ! -e "$TMP/out.vdq" ]
+}
