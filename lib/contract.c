@@ -115,6 +115,7 @@ struct engine {
 	struct work work;      /* the contractions made on the engine's thread */
 
 	int passes;            /* contract in passes (vdt_contract_opts.passes) */
+	int fresh;             /* passes: never read the noted costs (fresh_costs) */
 	uint64_t *keys;        /* passes: (cost bits, vertex) to sort */
 	int threads;           /* passes: threads that cost pairs */
 	uint32_t *plist;       /* passes: a batch of vertices to cost */
@@ -1559,7 +1560,7 @@ struct pjob {
 	struct engine *e;
 	size_t begin, end; /* of e->plist */
 	int upper;         /* only the pairs with vertices above */
-	int how;           /* FAN_NOTE or FAN_NOTED */
+	int how;           /* FAN_NOTE, FAN_NOTED or FAN_EVAL */
 };
 
 /* The pairs of each vertex of the job and their costs (fan_costs). */
@@ -1632,7 +1633,7 @@ pass_recost(struct engine *e, int kept)
 		}
 		if (n == 0)
 			continue;
-		if (pass_cost(e, n, 0, kept ? FAN_NOTE : FAN_NOTED) != 0)
+		if (pass_cost(e, n, 0, kept ? FAN_NOTE : e->fresh ? FAN_EVAL : FAN_NOTED) != 0)
 			return -1;
 		for (size_t j = 0; j < n; j++) {
 			struct vcost *vn = e->pout + e->poff[j];
@@ -2682,6 +2683,7 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 	e.rank = o->rank;
 	e.vq = !o->pair_queue && o->virtual_pair_count == 0;
 	e.passes = e.vq && o->passes;
+	e.fresh = o->fresh_costs;
 	res->passes = e.passes;
 	if (engine_init(&e, m, own_pos, own_tri, o) != 0)
 		goto nomem;

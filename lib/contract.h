@@ -144,6 +144,13 @@ struct vdt_contract_opts {
 	 * VDT_CONTRACT_MAX_THREADS), 1 none. The result does not depend on
 	 * it. */
 	int threads;
+	/*
+	 * Passes: a pair's cost depends only on its two vertices, so a
+	 * vertex that must find its cheapest pair again reads the costs
+	 * noted on its faces when last computed. Nonzero: cost those pairs
+	 * afresh instead. Slower, and the same result, which the tests check.
+	 */
+	int fresh_costs;
 };
 
 #define VDT_CONTRACT_MAX_THREADS 16
