@@ -117,6 +117,8 @@ struct engine {
 	int passes;            /* contract in passes (vdt_contract_opts.passes) */
 	int fresh;             /* passes: never read the noted costs (fresh_costs) */
 	uint64_t *keys;        /* passes: (cost bits, vertex) to sort */
+	uint64_t *kscratch;    /* passes: as many, the sorts' scratch (kept: fresh
+	                          pages each pass would be cleared each pass) */
 	int threads;           /* passes: threads that cost pairs */
 	uint32_t *plist;       /* passes: a batch of vertices to cost */
 	size_t *poff;          /* where each one's pairs start in pout */
@@ -2233,22 +2235,21 @@ pass_serial(struct engine *e, const struct vdt_contract_opts *o,
  * order (so that a stable sort of each, as of the whole, orders ties by
  * vertex); the front's length, at least need. Sorted front and sorted rest
  * together are the whole sorted, as every front key is below every other.
- * Returns n when that is not worth it, or -1 out of memory.
+ * n when that is not worth it. tmp: scratch of n keys.
  */
 #define SELECT_MIN 65536 /* keys, below which all are sorted */
 #define SELECT_BITS 12
 #define SELECT_SHIFT (64 - SELECT_BITS)
 
-static long
-pass_select(uint64_t *keys, size_t n, size_t need)
+static size_t
+pass_select(uint64_t *keys, size_t n, size_t need, uint64_t *tmp)
 {
 	uint32_t count[1u << SELECT_BITS] = {0};
 	size_t sum = 0, front = 0, rest = 0;
 	uint32_t b = 0, top;
-	uint64_t *tmp;
 
 	if (n < SELECT_MIN || need >= n / 2)
-		return (long)n;
+		return n;
 	for (size_t i = 0; i < n; i++)
 		count[keys[i] >> SELECT_SHIFT]++;
 	while (sum + count[b] < need)
@@ -2261,9 +2262,7 @@ pass_select(uint64_t *keys, size_t n, size_t need)
 	memcpy(&bits, &c, sizeof(bits));
 	top = bits >> (32 - SELECT_BITS);
 	if (!(c < INFINITY) || top < b)
-		return (long)n;
-	if ((tmp = malloc(n * sizeof(*tmp))) == NULL)
-		return -1;
+		return n;
 	for (size_t i = 0; i < n; i++) {
 		if (keys[i] >> SELECT_SHIFT <= top)
 			keys[front++] = keys[i];
@@ -2271,8 +2270,7 @@ pass_select(uint64_t *keys, size_t n, size_t need)
 			tmp[rest++] = keys[i];
 	}
 	memcpy(keys + front, tmp, rest * sizeof(*tmp));
-	free(tmp);
-	return (long)front;
+	return front;
 }
 
 static int
@@ -2321,15 +2319,15 @@ run_passes(struct engine *e, const struct vdt_contract_opts *o,
 		size_t need = pass_need(e, o), share = e->live_verts / PASS_SHARE;
 		if (need > share && share > 0)
 			need = share;
-		long front = pass_select(e->keys, n, need < n ? need : n);
-		if (front < 0 || vdt_sort_u64_from(e->keys, (size_t)front, 32) != 0)
+		size_t front = pass_select(e->keys, n, need < n ? need : n, e->kscratch);
+		if (vdt_sort_u64_in(e->keys, front, 32, e->kscratch) != 0)
 			return -1;
 		double limit = PASS_SLACK * key_cost(e->keys[(need < n ? need : n) - 1]);
 		for (size_t i = 0; i < n && m < need; i++) {
-			if (i == (size_t)front) { /* rarely: past the keys sorted */
-				if (vdt_sort_u64_from(e->keys + i, n - i, 32) != 0)
+			if (i == front) { /* rarely: past the keys sorted */
+				if (vdt_sort_u64_in(e->keys + i, n - i, 32, e->kscratch) != 0)
 					return -1;
-				front = (long)n;
+				front = n;
 			}
 			uint32_t v = (uint32_t)e->keys[i], x = e->best[v];
 			float c = key_cost(e->keys[i]);
@@ -2344,7 +2342,7 @@ run_passes(struct engine *e, const struct vdt_contract_opts *o,
 			e->hpos[v] = e->hpos[x] = pass;
 			e->keys[m++] = v;
 		}
-		if (vdt_sort_u64(e->keys, m) != 0)
+		if (vdt_sort_u64_in(e->keys, m, 0, e->kscratch) != 0)
 			return -1;
 		struct ptally t = {0};
 		size_t i = 0;
@@ -2382,7 +2380,7 @@ engine_shed(struct engine *e)
 	              (void **)&e->slot, (void **)&e->vrej, (void **)&e->best,
 	              (void **)&e->alt, (void **)&e->altc,
 	              (void **)&e->vn, (void **)&e->vk, (void **)&e->work.wing,
-	              (void **)&e->keys, (void **)&e->plist, (void **)&e->poff,
+	              (void **)&e->keys, (void **)&e->kscratch, (void **)&e->plist, (void **)&e->poff,
 	              (void **)&e->pcount, (void **)&e->pout, (void **)&e->part,
 	              (void **)&e->cut, (void **)&e->aside, (void **)&e->ecost};
 	for (size_t i = 0; i < sizeof(p) / sizeof(p[0]); i++) {
@@ -2418,6 +2416,7 @@ engine_free(struct engine *e)
 	free(e->vk);
 	free(e->work.wing);
 	free(e->keys);
+	free(e->kscratch);
 	free(e->plist);
 	free(e->poff);
 	free(e->pcount);
@@ -2692,12 +2691,13 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 		if (!ops->concurrent)
 			e.threads = 1;
 		e.keys = vdt_malloc_huge((e.nv + 1) * sizeof(*e.keys));
+		e.kscratch = vdt_malloc_huge((e.nv + 1) * sizeof(*e.kscratch));
 		e.plist = malloc(PASS_BATCH * sizeof(*e.plist));
 		e.poff = malloc(PASS_BATCH * sizeof(*e.poff));
 		e.pcount = malloc(PASS_BATCH * sizeof(*e.pcount));
 		e.ecost = vdt_malloc_huge((3 * e.nt + 1) * sizeof(*e.ecost));
-		if (e.keys == NULL || e.plist == NULL || e.poff == NULL || e.pcount == NULL ||
-		    e.ecost == NULL ||
+		if (e.keys == NULL || e.kscratch == NULL || e.plist == NULL || e.poff == NULL ||
+		    e.pcount == NULL || e.ecost == NULL ||
 		    run_passes(&e, o, res, &rec_cap) != 0)
 			goto nomem;
 		goto finish;

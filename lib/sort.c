@@ -27,17 +27,30 @@ insertion(uint64_t *k, size_t n, int low_bit)
 int
 vdt_sort_u64_from(uint64_t *k, size_t n, int low_bit)
 {
+	uint64_t *tmp;
+	int rc;
+
 	if (n < 64) {
 		insertion(k, n, low_bit);
 		return 0;
 	}
-	uint64_t *tmp = vdt_malloc_huge(n * sizeof(*tmp));
-	size_t *count = calloc((size_t)MAXD * BUCKETS, sizeof(*count));
-	if (tmp == NULL || count == NULL) {
-		free(tmp);
-		free(count);
+	if ((tmp = vdt_malloc_huge(n * sizeof(*tmp))) == NULL)
 		return -1;
+	rc = vdt_sort_u64_in(k, n, low_bit, tmp);
+	free(tmp);
+	return rc;
+}
+
+int
+vdt_sort_u64_in(uint64_t *k, size_t n, int low_bit, uint64_t *tmp)
+{
+	if (n < 64) {
+		insertion(k, n, low_bit);
+		return 0;
 	}
+	size_t *count = calloc((size_t)MAXD * BUCKETS, sizeof(*count));
+	if (count == NULL)
+		return -1;
 	/* Every digit's histogram in one pass over the keys. */
 	int nd = (64 - low_bit + DIGIT - 1) / DIGIT;
 	for (size_t i = 0; i < n; i++) {
@@ -65,7 +78,6 @@ vdt_sort_u64_from(uint64_t *k, size_t n, int low_bit)
 	}
 	if (src != k)
 		memcpy(k, src, n * sizeof(*k));
-	free(tmp);
 	free(count);
 	return 0;
 }

@@ -24,4 +24,11 @@ int vdt_sort_u64(uint64_t *k, size_t n);
  */
 int vdt_sort_u64_from(uint64_t *k, size_t n, int low_bit);
 
+/*
+ * vdt_sort_u64_from with the caller's scratch of n keys (tmp, not NULL),
+ * for callers that sort again and again: a fresh buffer each time is
+ * fresh pages, which the kernel must clear.
+ */
+int vdt_sort_u64_in(uint64_t *k, size_t n, int low_bit, uint64_t *tmp);
+
 #endif
