@@ -1563,6 +1563,9 @@ struct pjob {
 	size_t begin, end; /* of e->plist */
 	int upper;         /* only the pairs with vertices above */
 	int how;           /* FAN_NOTE, FAN_NOTED or FAN_EVAL */
+	int best;          /* and each vertex not V_REFUSED takes its cheapest
+	                      (pass_best_of, which writes only the vertex's own
+	                      entries; refused ones test validity, on one thread) */
 };
 
 /* The pairs of each vertex of the job and their costs (fan_costs). */
@@ -1572,9 +1575,12 @@ pjob_run(void *arg)
 	const struct pjob *j = arg;
 
 	for (size_t i = j->begin; i < j->end; i++) {
+		uint32_t v = j->e->plist[i];
+		struct vcost *vn = j->e->pout + j->e->poff[i];
 		prefetch_ahead(j->e, j->e->plist, i, j->end);
-		j->e->pcount[i] =
-		        fan_costs(j->e, j->e->plist[i], j->upper, j->how, j->e->pout + j->e->poff[i]);
+		j->e->pcount[i] = fan_costs(j->e, v, j->upper, j->how, vn);
+		if (j->best && !(j->e->vflag[v] & V_REFUSED))
+			pass_best_of(j->e, v, vn, j->e->pcount[i]);
 	}
 	return NULL;
 }
@@ -1587,7 +1593,7 @@ pjob_run(void *arg)
  * same however they are split).
  */
 static int
-pass_cost(struct engine *e, size_t n, int upper, int how)
+pass_cost(struct engine *e, size_t n, int upper, int how, int best)
 {
 	struct pjob job[VDT_CONTRACT_MAX_THREADS];
 	size_t total = 0;
@@ -1608,7 +1614,7 @@ pass_cost(struct engine *e, size_t n, int upper, int how)
 		t = (int)(n / 64 + 1);
 	for (int k = 0; k < t; k++)
 		job[k] = (struct pjob){e, n * (size_t)k / (size_t)t, n * (size_t)(k + 1) / (size_t)t,
-		                       upper, how};
+		                       upper, how, best};
 	vdt_run_jobs(pjob_run, job, sizeof(job[0]), t);
 	return 0;
 }
@@ -1635,13 +1641,16 @@ pass_recost(struct engine *e, int kept)
 		}
 		if (n == 0)
 			continue;
-		if (pass_cost(e, n, 0, kept ? FAN_NOTE : e->fresh ? FAN_EVAL : FAN_NOTED) != 0)
+		/* The cheapest pairs in the jobs but with fresh costs, whose
+		 * cost function reads the flags the jobs would write. */
+		int in_jobs = !kept && !e->fresh;
+		if (pass_cost(e, n, 0, kept ? FAN_NOTE : e->fresh ? FAN_EVAL : FAN_NOTED, in_jobs) != 0)
 			return -1;
 		for (size_t j = 0; j < n; j++) {
 			struct vcost *vn = e->pout + e->poff[j];
 			if (kept)
 				pass_kept_of(e, e->plist[j], vn, e->pcount[j]);
-			else
+			else if (!in_jobs || (e->vflag[e->plist[j]] & V_REFUSED))
 				pass_best_of(e, e->plist[j], vn, e->pcount[j]);
 		}
 	}
@@ -1686,7 +1695,7 @@ pass_init(struct engine *e)
 		for (; v < e->nv && n < PASS_BATCH; v++)
 			if (e->vt[v].len > 0)
 				e->plist[n++] = (uint32_t)v;
-		if (pass_cost(e, n, 1, FAN_NOTE) != 0)
+		if (pass_cost(e, n, 1, FAN_NOTE, 0) != 0)
 			return -1;
 		for (size_t i = 0; i < n; i++) {
 			uint32_t a = e->plist[i];
