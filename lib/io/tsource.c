@@ -239,6 +239,12 @@ ply_type(const char *s)
 	return T_NONE;
 }
 
+static uint16_t
+ld16(const unsigned char *p, int be)
+{
+	return be ? (uint16_t)(p[1] | p[0] << 8) : vdt_get_u16le(p);
+}
+
 static uint32_t
 ld32(const unsigned char *p, int be)
 {
@@ -250,13 +256,12 @@ ld32(const unsigned char *p, int be)
 static double
 ld_scalar(const unsigned char *p, enum ptype t, int be)
 {
-	uint16_t h = be ? (uint16_t)(p[1] | p[0] << 8) : vdt_get_u16le(p);
-
+	/* Only the type's own bytes: a one-byte value may end the input. */
 	switch (t) {
 	case T_I8: return (int8_t)p[0];
 	case T_U8: return p[0];
-	case T_I16: return (int16_t)h;
-	case T_U16: return h;
+	case T_I16: return (int16_t)ld16(p, be);
+	case T_U16: return ld16(p, be);
 	case T_I32: return (int32_t)ld32(p, be);
 	case T_U32: return ld32(p, be);
 	case T_F32: {

@@ -638,6 +638,35 @@ header_box(void **state)
 	}
 }
 
+/*
+ * A binary PLY that ends on the one-byte count of a list in an element
+ * walked over (before the vertices): the count is read from its own byte
+ * only, and the record named truncated. The input is an exact-size heap
+ * block, so that a read past it shows under ASan.
+ */
+static void
+ply_ends_on_a_list_count(void **state)
+{
+	static const char hdr[] = "ply\nformat binary_little_endian 1.0\n"
+	                          "element junk 1\nproperty list uchar int v\n"
+	                          "element vertex 3\nproperty float x\nproperty float y\n"
+	                          "property float z\nelement face 1\n"
+	                          "property list uchar int vertex_indices\nend_header\n";
+	size_t len = sizeof(hdr); /* the header and one byte: the count */
+	unsigned char *buf = malloc(len);
+	struct vdt_tsource *ts = NULL;
+	struct vdt_err err = {0};
+
+	(void)state;
+	assert_non_null(buf);
+	memcpy(buf, hdr, len - 1);
+	buf[len - 1] = 2;
+	assert_int_equal(vdt_tsource_open_memory(&ts, buf, len, &err), VDT_EFORMAT);
+	assert_null(ts);
+	assert_string_equal(err.msg, "PLY element 'junk': record 0 is truncated");
+	free(buf);
+}
+
 int
 main(void)
 {
@@ -655,6 +684,7 @@ main(void)
 		cmocka_unit_test(non_finite_corners),
 		cmocka_unit_test(outside_the_grid),
 		cmocka_unit_test(header_box),
+		cmocka_unit_test(ply_ends_on_a_list_count),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
