@@ -97,8 +97,16 @@ vdt_md2_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 		}
 		float *out = fr->positions + 3 * (size_t)nv * (size_t)f;
 		for (int32_t v = 0; v < nv; v++)
-			for (int k = 0; k < 3; k++)
+			for (int k = 0; k < 3; k++) {
 				out[3 * v + k] = s[k] * p[40 + 4 * (size_t)v + k] + o[k];
+				/* finite factors, but a product past FLT_MAX */
+				if (!isfinite(out[3 * v + k])) {
+					rc = vdt_err_set(err, VDT_EINVAL,
+					                 "frame %d: vertex %d has a non-finite coordinate",
+					                 (int)f, (int)v);
+					goto fail;
+				}
+			}
 	}
 	memcpy(m->positions, fr->positions, 3 * (size_t)nv * sizeof(float));
 	if ((rc = vdt_mesh_validate(m, err)) != 0)

@@ -378,3 +378,24 @@ setup() {
 		awk -v h="$h" 'BEGIN { exit !(h < 1) }'
 	done
 }
+
+@test "vdt-deform rejects an MD2 frame whose scale takes a vertex past the float range" {
+	python3 - "$TMP/big.md2" <<'PY'
+import struct, sys
+nv, nt, nf, fsize = 4, 2, 2, 56
+hdr = struct.pack('<4s16i', b'IDP2', 8, 8, 8, fsize, 0, nv, 0, nt, 0, nf,
+                  68, 68, 68, 92, 92 + fsize * nf, 92 + fsize * nf)
+tris = struct.pack('<12H', 0, 1, 2, 0, 0, 0, 0, 2, 3, 0, 0, 0)
+frames = b''
+for f, scale in enumerate((0.1, 3e38)):
+    frames += struct.pack('<6f16s', scale, 0.1, 0.1, 0, 0, 0, b'f')
+    for x, y, z in ((0, 0, 0), (255, 0, 0), (0, 255, 0), (0, 0, 255)):
+        frames += struct.pack('<4B', x, y, z, 0)
+open(sys.argv[1], 'wb').write(hdr + tris + frames)
+PY
+	run "$BIN/vdt-deform" --vertices 3 "$TMP/big.md2" -o "$TMP/out.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"'$TMP/big.md2': frame 1: vertex 1 has a non-finite coordinate"* ]]
+	[ ! -e "$TMP/out.vdt" ]
+}
