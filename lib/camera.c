@@ -184,8 +184,8 @@ vdt_camera_read_path(const char *path, const struct vdt_view *base, struct vdt_v
                      size_t *count, struct vdt_err *err)
 {
 	FILE *f = fopen(path, "r");
-	char line[1024];
-	size_t n = 0, cap = 0, lineno = 0;
+	char *line = NULL; /* whole lines, however long (a comment may be) */
+	size_t n = 0, cap = 0, lineno = 0, linecap = 0;
 	struct vdt_view *v = NULL;
 	int rc = 0;
 
@@ -193,7 +193,7 @@ vdt_camera_read_path(const char *path, const struct vdt_view *base, struct vdt_v
 	*count = 0;
 	if (f == NULL)
 		return vdt_err_set(err, VDT_EIO, "%s", strerror(errno));
-	while (fgets(line, sizeof(line), f) != NULL) {
+	while (getline(&line, &linecap, f) != -1) {
 		double x[9];
 		char *p = line, *end;
 		lineno++;
@@ -231,6 +231,7 @@ vdt_camera_read_path(const char *path, const struct vdt_view *base, struct vdt_v
 	else if (n == 0)
 		rc = vdt_err_set(err, VDT_EFORMAT, "no views in the path");
 out:
+	free(line);
 	fclose(f);
 	if (rc != 0) {
 		free(v);

@@ -291,3 +291,15 @@ path3() {
 	[ "$status" -eq 0 ]
 	[ -s "$TMP/one.png" ]
 }
+
+@test "vdt-render --path takes lines of any length, a long comment too" {
+	tree
+	{ printf '# %02000d\n' 0; printf '0 0 3 0 0 0 0 1 0\n'; printf '%01500s0 3 0 0 0 0 0 0 1\n' ''; } > "$TMP/long.txt"
+	run "$BIN/vdt-render" -q --size 40x30 --path "$TMP/long.txt" "$TMP/t.vdt" -o "$TMP/l%d.png"
+	[ "$status" -eq 0 ]
+	[ -s "$TMP/l0.png" ] && [ -s "$TMP/l1.png" ] && [ ! -e "$TMP/l2.png" ]
+	{ printf '0 0 3 0 0 0 0 1 0\n'; printf '# %02000d\n' 0; printf '0 3 0 0 0 0\n'; } > "$TMP/bad.txt"
+	run "$BIN/vdt-render" -q --size 40x30 --path "$TMP/bad.txt" "$TMP/t.vdt" -o "$TMP/b%d.png"
+	[ "$status" -eq 2 ]
+	[[ "$output" == *"line 3: want nine numbers"* ]]
+}
