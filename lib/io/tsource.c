@@ -383,10 +383,14 @@ ply_header(struct vdt_tsource *s, struct pelem *el, size_t *nel, size_t *data,
 			return vdt_err_set(err, VDT_EFORMAT, "PLY header has no end_header line");
 		ll = (size_t)(nl - (s->buf + pos));
 		lineno++;
-		if (ll >= sizeof(line))
+		/* Comments may be of any length; a bounding box too long for
+		 * the line buffer is no box. */
+		int remark = (ll >= 7 && memcmp(s->buf + pos, "comment", 7) == 0) ||
+		             (ll >= 8 && memcmp(s->buf + pos, "obj_info", 8) == 0);
+		if (ll >= sizeof(line) && !remark)
 			return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu is too long", lineno);
-		memcpy(line, s->buf + pos, ll);
-		line[ll] = '\0';
+		memcpy(line, s->buf + pos, ll < sizeof(line) ? ll : 0);
+		line[ll < sizeof(line) ? ll : 0] = '\0';
 		pos += ll + 1;
 		if (lineno == 1)
 			continue; /* "ply", checked by format detection */
@@ -394,7 +398,7 @@ ply_header(struct vdt_tsource *s, struct pelem *el, size_t *nel, size_t *data,
 			header_box(s, line + 13);
 			continue;
 		}
-		if (strncmp(line, "comment", 7) == 0 || strncmp(line, "obj_info", 8) == 0)
+		if (remark)
 			continue;
 		n = sscanf(line, "%63s %63s %63s %63s %63s %63s", w[0], w[1], w[2], w[3], w[4], w[5]);
 		if (n <= 0)

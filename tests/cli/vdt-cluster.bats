@@ -337,3 +337,23 @@ PY
 	[ "$status" -eq 1 ]
 	[ ! -e "$TMP/out.vdq" ]
 }
+
+@test "vdt-cluster reads a PLY header with comments of any length, as the other tools do" {
+	python3 - "$TMP/long.ply" "$TMP/short.ply" <<'PY'
+import struct, sys
+body = ("element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n")
+data = struct.pack('<9f', 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack('<B3i', 3, 0, 1, 2)
+head = "ply\nformat binary_little_endian 1.0\n"
+long = head + "comment " + "x" * 400 + "\nobj_info " + "y" * 300 + "\n"
+open(sys.argv[1], 'wb').write((long + body).encode() + data)
+open(sys.argv[2], 'wb').write((head + body).encode() + data)
+PY
+	"$BIN/vdt-cluster" -q -g 4 "$TMP/long.ply" -o "$TMP/long.vdq"
+	"$BIN/vdt-cluster" -q -g 4 "$TMP/short.ply" -o "$TMP/short.vdq"
+	cmp "$TMP/long.vdq" "$TMP/short.vdq"
+	printf 'ply\nformat binary_little_endian 1.0\nelement %0300d 3\nend_header\n' 0 > "$TMP/bad.ply"
+	run "$BIN/vdt-cluster" -g 4 "$TMP/bad.ply" -o "$TMP/bad.vdq"
+	[ "$status" -eq 2 ]
+	[[ "$output" == *"PLY header line 3 is too long"* ]]
+}
