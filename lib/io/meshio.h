@@ -204,6 +204,23 @@ int vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
                  struct vdt_err *err);
 int vdt_obj_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
                  struct vdt_err *err);
+
+/*
+ * OBJ text parsed as vdt_obj_read parses it (the same statements, numbers,
+ * line continuations, index checks and messages), storing nothing: each
+ * vertex position goes to vertex() in file order, each triangle of each
+ * face's fan (as 0-based file vertex numbers) to triangle(). Either
+ * returns 0 to go on, or a status, with its message set, to stop with.
+ * For readers that keep the mesh elsewhere (vdt-cluster's spool). Returns
+ * 0 or the first error.
+ */
+struct vdt_obj_visit {
+	int (*vertex)(void *ctx, const float p[3], struct vdt_err *err);
+	int (*triangle)(void *ctx, const uint32_t v[3], struct vdt_err *err);
+	void *ctx;
+};
+int vdt_obj_scan(const unsigned char *buf, size_t len, const struct vdt_obj_visit *visit,
+                 struct vdt_err *err);
 int vdt_ply_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err);
 
 /*

@@ -213,6 +213,7 @@ struct obj {
 	int any_t, any_n;          /* some corner uses a vt, a vn */
 	int miss_t, miss_n;        /* some corner lacks one */
 	int lockstep;              /* every vt and vn used so far equals its v */
+	const struct vdt_obj_visit *visit; /* vdt_obj_scan: hand out, store nothing */
 };
 
 static void
@@ -293,6 +294,10 @@ read_v(struct reader *r, struct obj *o, struct vdt_err *err)
 	if (n == 5)
 		return vdt_err_set(err, VDT_EFORMAT,
 		                   "line %zu: vertex has 5 values (x y z [w] [r g b] expected)", r->line);
+	if (o->visit != NULL) {
+		o->have_v++;
+		return o->visit->vertex(o->visit->ctx, v, err);
+	}
 	memcpy(o->pos + 3 * i, v, 3 * sizeof(float));
 	if (n >= 6 && o->col == NULL) {
 		/* The first colour: every vertex before it is white. */
@@ -327,8 +332,10 @@ read_vt(struct reader *r, struct obj *o, struct vdt_err *err)
 		return rc;
 	if (n < 1)
 		return vdt_err_set(err, VDT_EFORMAT, "line %zu: texture coordinate has no value", r->line);
-	o->uv[2 * o->have_t] = v[0];
-	o->uv[2 * o->have_t + 1] = n >= 2 ? v[1] : 0;
+	if (o->uv != NULL) {
+		o->uv[2 * o->have_t] = v[0];
+		o->uv[2 * o->have_t + 1] = n >= 2 ? v[1] : 0;
+	}
 	o->have_t++;
 	return 0;
 }
@@ -346,7 +353,8 @@ read_vn(struct reader *r, struct obj *o, struct vdt_err *err)
 	if (n < 3)
 		return vdt_err_set(err, VDT_EFORMAT, "line %zu: normal has too few values (%zu of 3)",
 		                   r->line, n);
-	memcpy(o->nrm + 3 * o->have_n, v, 3 * sizeof(float));
+	if (o->nrm != NULL)
+		memcpy(o->nrm + 3 * o->have_n, v, 3 * sizeof(float));
 	o->have_n++;
 	return 0;
 }
@@ -460,6 +468,10 @@ read_f(struct reader *r, struct obj *o, size_t face, struct vdt_err *err)
 		o->lockstep &= (c[1] == NONE || c[1] == c[0]) && (c[2] == NONE || c[2] == c[0]);
 		if (k == 0) {
 			memcpy(first, c, sizeof(c));
+		} else if (k >= 2 && o->visit != NULL) {
+			uint32_t tri[3] = {first[0], prev[0], c[0]};
+			if ((rc = o->visit->triangle(o->visit->ctx, tri, err)) != 0)
+				return rc;
 		} else if (k >= 2) {
 			size_t t = 3 * o->tri_count;
 
@@ -702,6 +714,19 @@ build_split(struct obj *o, struct vdt_mesh *m, struct vdt_err *err)
 	free(t);
 	free(n);
 	return rc;
+}
+
+int
+vdt_obj_scan(const unsigned char *buf, size_t len, const struct vdt_obj_visit *visit,
+             struct vdt_err *err)
+{
+	struct obj o = {0};
+	int rc;
+
+	o.visit = visit;
+	if ((rc = count((const char *)buf, len, &o, err)) != 0)
+		return rc;
+	return parse((const char *)buf, len, &o, err);
 }
 
 int

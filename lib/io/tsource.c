@@ -78,12 +78,9 @@ struct vdt_tsource {
 	const unsigned char *tbase; /* vdt: u32 triangles */
 
 	/* OBJ: the text, a cursor, and the fan in progress */
-	void *pos_map;
-	size_t pos_len;
-	size_t ocur, line, vseen;
-	size_t ofan, oend; /* cursor inside a face line, its end */
-	uint64_t oa, ob;
-	int in_face;
+	/* OBJ: the spooled positions and triangles (obj_open) */
+	void *pos_map, *tri_map;
+	size_t pos_len, tri_len;
 
 	/* vdt: where the chunks to pass on start (their headers) */
 	uint64_t *pass;
@@ -771,200 +768,111 @@ stl_triangles(struct vdt_tsource *s, double *tri, size_t max, size_t *n, int cor
 
 /* ---- OBJ ----------------------------------------------------------------- */
 
+/*
+ * OBJ is parsed once, at open, by vdt_read's own parser (vdt_obj_scan):
+ * the same statements, numbers and messages for every tool. Its vertex
+ * positions and the triangles of its faces' fans go to two scratch files
+ * in the vdt stream's layout (3 f32, 3 u32, little-endian), which the
+ * passes then read as they read a stream's MESH chunk.
+ */
+struct obj_spool {
+	FILE *pos, *tri;
+	uint64_t nv, nt;
+};
+
 static int
-is_blank(unsigned char c)
+spool_put(FILE *f, const unsigned char *b, struct vdt_err *err)
 {
-	return c == ' ' || c == '\t' || c == '\r';
+	if (fwrite(b, 12, 1, f) != 1)
+		return vdt_err_set(err, VDT_ESYSTEM, "cannot write a temporary file: %s", strerror(errno));
+	return 0;
 }
 
-/* The next word in [*i, end) into w (NUL-terminated, bounded); 0 if none. */
-static size_t
-obj_word(const unsigned char *b, size_t *i, size_t end, char *w, size_t wmax)
-{
-	size_t j, n;
-
-	while (*i < end && is_blank(b[*i]))
-		(*i)++;
-	j = *i;
-	while (*i < end && !is_blank(b[*i]))
-		(*i)++;
-	n = *i - j;
-	if (n == 0)
-		return 0;
-	if (n >= wmax)
-		n = wmax - 1;
-	memcpy(w, b + j, n);
-	w[n] = '\0';
-	return *i - j;
-}
-
-static size_t
-line_end(const unsigned char *b, size_t i, size_t len)
-{
-	const unsigned char *nl = memchr(b + i, '\n', len - i);
-	return nl ? (size_t)(nl - b) : len;
-}
-
-/* Pass at open: positions to a scratch file, faces counted. */
 static int
-obj_open(struct vdt_tsource *s, struct vdt_err *err)
+spool_vertex(void *ctx, const float p[3], struct vdt_err *err)
 {
-	size_t i = 0, line = 0;
-	uint64_t nv = 0, nt = 0;
-	FILE *f = NULL;
-	int fd, rc = 0;
+	struct obj_spool *o = ctx;
+	unsigned char b[12];
+
+	if (!(isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2])))
+		return vdt_err_set(err, VDT_EINVAL, "vertex %" PRIu64 " has a non-finite coordinate",
+		                   o->nv);
+	for (int k = 0; k < 3; k++)
+		vdt_put_f32le(b + 4 * k, p[k]);
+	o->nv++;
+	return spool_put(o->pos, b, err);
+}
+
+static int
+spool_triangle(void *ctx, const uint32_t v[3], struct vdt_err *err)
+{
+	struct obj_spool *o = ctx;
+	unsigned char b[12];
+
+	for (int k = 0; k < 3; k++)
+		vdt_put_u32le(b + 4 * k, v[k]);
+	o->nt++;
+	return spool_put(o->tri, b, err);
+}
+
+/* A spool file written, mapped in place of the FILE (closed). */
+static int
+spool_map(FILE *f, void **map, size_t *len, struct vdt_err *err)
+{
 	struct stat st;
+	int rc = 0;
 
-	if ((fd = scratch_file(err)) < 0)
-		return fd;
-	if ((f = fdopen(fd, "w+")) == NULL) {
-		close(fd);
-		return vdt_err_set(err, VDT_ESYSTEM, "%s", strerror(errno));
-	}
-	while (i < s->len) {
-		size_t e = line_end(s->buf, i, s->len), j = i;
-		char w[80];
-
-		line++;
-		while (j < e && is_blank(s->buf[j]))
-			j++;
-		if ((e - j >= 2 && s->buf[j] == 'v' && is_blank(s->buf[j + 1])) ||
-		    (e - j == 1 && s->buf[j] == 'v')) {
-			double p[3];
-			j++;
-			for (int a = 0; a < 3; a++) {
-				char *end;
-				if (obj_word(s->buf, &j, e, w, sizeof(w)) == 0) {
-					rc = vdt_err_set(err, VDT_EFORMAT, "line %zu: vertex has fewer than 3 coordinates", line);
-					goto out;
-				}
-				p[a] = strtod(w, &end);
-				if (*end != '\0') {
-					rc = vdt_err_set(err, VDT_EFORMAT, "line %zu: bad coordinate '%.20s'", line, w);
-					goto out;
-				}
-				if (!isfinite(p[a])) {
-					rc = vdt_err_set(err, VDT_EINVAL, "line %zu: non-finite coordinate", line);
-					goto out;
-				}
-			}
-			/* A private scratch file of this process: host byte order. */
-			if (fwrite(p, sizeof(p), 1, f) != 1) {
-				rc = vdt_err_set(err, VDT_ESYSTEM, "cannot write a temporary file: %s", strerror(errno));
-				goto out;
-			}
-			nv++;
-		} else if ((e - j >= 2 && s->buf[j] == 'f' && is_blank(s->buf[j + 1])) ||
-		           (e - j == 1 && s->buf[j] == 'f')) {
-			size_t c = 0;
-			j++;
-			while (obj_word(s->buf, &j, e, w, sizeof(w)) != 0)
-				c++;
-			if (c < 3) {
-				rc = vdt_err_set(err, VDT_EFORMAT, "line %zu: face with %zu vertices", line, c);
-				goto out;
-			}
-			nt += c - 2;
-		}
-		i = e + 1;
-	}
-	if (fflush(f) != 0 || fstat(fd, &st) != 0) {
+	if (fflush(f) != 0 || fstat(fileno(f), &st) != 0)
 		rc = vdt_err_set(err, VDT_ESYSTEM, "cannot write a temporary file: %s", strerror(errno));
-		goto out;
-	}
-	s->vcount = nv;
-	s->vstride = 3 * sizeof(double);
-	s->tri_hint = nt;
-	if (nv > 0) {
-		if ((rc = map_fd(fd, (size_t)st.st_size, &s->pos_map, err)) != 0)
-			goto out;
-		s->pos_len = (size_t)st.st_size;
-		s->vbase = s->pos_map;
-	}
-out:
+	else if (st.st_size > 0 && (rc = map_fd(fileno(f), (size_t)st.st_size, map, err)) == 0)
+		*len = (size_t)st.st_size;
 	fclose(f);
 	return rc;
 }
 
-static void
-obj_corner(const struct vdt_tsource *s, uint64_t v, double *p)
-{
-	memcpy(p, s->vbase + v * s->vstride, 3 * sizeof(double));
-}
-
-/* Parse one face corner "i", "i/j", "i//k" or "i/j/k" into a 0-based index. */
 static int
-obj_index(struct vdt_tsource *s, const char *w, uint64_t *v, struct vdt_err *err)
+obj_open(struct vdt_tsource *s, struct vdt_err *err)
 {
-	char *end;
-	long long i;
+	struct obj_spool o = {NULL, NULL, 0, 0};
+	struct vdt_obj_visit visit = {spool_vertex, spool_triangle, &o};
+	int fd[2] = {-1, -1}, rc;
 
-	errno = 0;
-	i = strtoll(w, &end, 10);
-	if (end == w || (*end != '\0' && *end != '/') || errno != 0)
-		return vdt_err_set(err, VDT_EFORMAT, "line %zu: bad face vertex '%.20s'", s->line, w);
-	if (i < 0)
-		i += (long long)s->vseen + 1;
-	if (i <= 0 || (uint64_t)i > s->vcount)
-		return vdt_err_set(err, VDT_EFORMAT, "line %zu: face uses vertex %.20s of %" PRIu64,
-		                   s->line, w, s->vcount);
-	*v = (uint64_t)i - 1;
-	return 0;
-}
-
-static int
-obj_triangles(struct vdt_tsource *s, double *tri, size_t max, size_t *n, struct vdt_err *err)
-{
-	size_t k = 0;
-	char w[80];
-	int rc;
-
-	while (k < max) {
-		if (!s->in_face) {
-			size_t e, j;
-
-			if (s->ocur >= s->len)
-				break;
-			e = line_end(s->buf, s->ocur, s->len);
-			j = s->ocur;
-			s->line++;
-			s->ocur = e + 1;
-			while (j < e && is_blank(s->buf[j]))
-				j++;
-			if (e - j >= 2 && s->buf[j] == 'v' && is_blank(s->buf[j + 1])) {
-				s->vseen++;
-				continue;
-			}
-			if (!(e - j >= 2 && s->buf[j] == 'f' && is_blank(s->buf[j + 1])))
-				continue;
-			j++;
-			obj_word(s->buf, &j, e, w, sizeof(w));
-			if ((rc = obj_index(s, w, &s->oa, err)) != 0)
-				return rc;
-			obj_word(s->buf, &j, e, w, sizeof(w));
-			if ((rc = obj_index(s, w, &s->ob, err)) != 0)
-				return rc;
-			s->ofan = j;
-			s->oend = e;
-			s->in_face = 1;
+	for (int i = 0; i < 2; i++)
+		if ((fd[i] = scratch_file(err)) < 0) {
+			rc = fd[i];
+			goto fail;
 		}
-		uint64_t c;
-		if (obj_word(s->buf, &s->ofan, s->oend, w, sizeof(w)) == 0) {
-			s->in_face = 0;
-			continue;
-		}
-		if ((rc = obj_index(s, w, &c, err)) != 0)
-			return rc;
-		obj_corner(s, s->oa, tri + 9 * k);
-		obj_corner(s, s->ob, tri + 9 * k + 3);
-		obj_corner(s, c, tri + 9 * k + 6);
-		s->ob = c;
-		k++;
+	if ((o.pos = fdopen(fd[0], "w+")) == NULL || (o.tri = fdopen(fd[1], "w+")) == NULL) {
+		rc = vdt_err_set(err, VDT_ESYSTEM, "%s", strerror(errno));
+		goto fail;
 	}
-	*n = k;
-	if (s->map)
-		drop_behind(s, s->buf + (s->ocur < s->len ? s->ocur : s->len), s->buf);
+	fd[0] = fd[1] = -1;
+	if ((rc = vdt_obj_scan(s->buf, s->len, &visit, err)) != 0)
+		goto fail;
+	if (s->map) /* the text is read: its pages need not stay */
+		drop_range(s->buf, s->buf + s->len);
+	rc = spool_map(o.pos, &s->pos_map, &s->pos_len, err);
+	o.pos = NULL;
+	if (rc == 0)
+		rc = spool_map(o.tri, &s->tri_map, &s->tri_len, err);
+	o.tri = NULL;
+	if (rc != 0)
+		goto fail;
+	s->vbase = s->pos_map;
+	s->vstride = 12;
+	s->vcount = o.nv;
+	s->tbase = s->tri_map;
+	s->tri_hint = o.nt;
 	return 0;
+fail:
+	for (int i = 0; i < 2; i++)
+		if (fd[i] >= 0)
+			close(fd[i]);
+	if (o.pos != NULL)
+		fclose(o.pos);
+	if (o.tri != NULL)
+		fclose(o.tri);
+	return rc;
 }
 
 /* ---- vdt stream ---------------------------------------------------------- */
@@ -1252,6 +1160,8 @@ vdt_tsource_close(struct vdt_tsource *ts)
 		munmap(ts->map, ts->map_len);
 	if (ts->pos_map)
 		munmap(ts->pos_map, ts->pos_len);
+	if (ts->tri_map)
+		munmap(ts->tri_map, ts->tri_len);
 	vdt_mesh_free(&ts->mesh);
 	free(ts);
 }
@@ -1294,8 +1204,6 @@ vdt_tsource_rewind(struct vdt_tsource *ts)
 	ts->vcur = ts->tcur = ts->fidx = 0;
 	ts->fcur = NULL;
 	ts->poly = NULL;
-	ts->ocur = ts->line = ts->vseen = 0;
-	ts->in_face = 0;
 	ts->drop_mark = NULL;
 }
 
@@ -1309,15 +1217,8 @@ vdt_tsource_vertices(struct vdt_tsource *ts, double *xyz, size_t max, size_t *n,
 	switch (ts->kind) {
 	case K_PLY: return ply_vertices(ts, xyz, max, n, err);
 	case K_STL: return stl_triangles(ts, xyz, max, n, 1, err);
+	case K_OBJ: /* spooled as a stream's MESH chunk is laid out */
 	case K_VDT: return vdt_vertices(ts, xyz, max, n, err);
-	case K_OBJ:
-		/* Already checked finite while parsing. */
-		for (; k < max && ts->vcur < ts->vcount; k++, ts->vcur++)
-			obj_corner(ts, ts->vcur, xyz + 3 * k);
-		*n = k;
-		if (ts->map)
-			drop_behind(ts, ts->vbase + ts->vcur * ts->vstride, ts->vbase);
-		return 0;
 	case K_MESH:
 		/* Validated by vdt_read_memory. */
 		for (; k < max && ts->vcur < ts->vcount; k++, ts->vcur++)
@@ -1339,7 +1240,7 @@ vdt_tsource_triangles(struct vdt_tsource *ts, double *tri, size_t max, size_t *n
 	switch (ts->kind) {
 	case K_PLY: return ply_triangles(ts, tri, max, n, err);
 	case K_STL: return stl_triangles(ts, tri, max, n, 0, err);
-	case K_OBJ: return obj_triangles(ts, tri, max, n, err);
+	case K_OBJ:
 	case K_VDT: return vdt_triangles(ts, tri, max, n, err);
 	case K_MESH:
 		for (; k < max && ts->tcur < ts->mesh.triangle_count; k++, ts->tcur++)
@@ -1361,7 +1262,6 @@ vdt_tsource_fraction(const struct vdt_tsource *ts)
 
 	switch (ts->kind) {
 	case K_PLY: f = ts->fcount ? (double)ts->fidx / ts->fcount : 1; break;
-	case K_OBJ: f = ts->len ? (double)ts->ocur / ts->len : 1; break;
 	default: f = ts->tri_hint ? (double)ts->tcur / ts->tri_hint : 1; break;
 	}
 	if (ts->vcur > 0 && ts->vcount > 0 && f == 0)
