@@ -40,6 +40,7 @@
  */
 #include "meshio.h"
 
+#include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -294,6 +295,10 @@ read_v(struct reader *r, struct obj *o, struct vdt_err *err)
 	if (n == 5)
 		return vdt_err_set(err, VDT_EFORMAT,
 		                   "line %zu: vertex has 5 values (x y z [w] [r g b] expected)", r->line);
+	/* Used or not: a vertex that is no point means a damaged file. */
+	if (!(isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2])))
+		return vdt_err_set(err, VDT_EINVAL, "line %zu: vertex has a non-finite coordinate",
+		                   r->line);
 	if (o->visit != NULL) {
 		o->have_v++;
 		return o->visit->vertex(o->visit->ctx, v, err);

@@ -30,315 +30,7 @@
 #include "../mem.h"
 #include "text.h"
 
-#define MAX_ELEMENTS 64
-#define MAX_PROPS 128
-#define MAX_NAME 64
-
-enum ptype { T_NONE, T_I8, T_U8, T_I16, T_U16, T_I32, T_U32, T_F32, T_F64 };
-
-static const struct {
-	const char *name;
-	enum ptype type;
-	unsigned size;
-} type_names[] = {
-	{"char", T_I8, 1},    {"int8", T_I8, 1},     {"uchar", T_U8, 1},
-	{"uint8", T_U8, 1},   {"short", T_I16, 2},   {"int16", T_I16, 2},
-	{"ushort", T_U16, 2}, {"uint16", T_U16, 2},  {"int", T_I32, 4},
-	{"int32", T_I32, 4},  {"uint", T_U32, 4},    {"uint32", T_U32, 4},
-	{"float", T_F32, 4},  {"float32", T_F32, 4}, {"double", T_F64, 8},
-	{"float64", T_F64, 8},
-};
-
-static const unsigned type_size[] = {0, 1, 1, 2, 2, 4, 4, 4, 8};
-
-struct prop {
-	char name[MAX_NAME];
-	enum ptype type;       /* scalar type, or the item type of a list */
-	enum ptype count_type; /* T_NONE for a scalar */
-};
-
-struct element {
-	char name[MAX_NAME];
-	uint64_t count;
-	size_t prop_count;
-	struct prop props[MAX_PROPS];
-};
-
-struct header {
-	int big_endian;
-	int ascii;
-	size_t element_count;
-	struct element elements[MAX_ELEMENTS];
-	size_t data_offset;
-};
-
-static enum ptype
-parse_type(const char *s, size_t n)
-{
-	for (size_t i = 0; i < sizeof(type_names) / sizeof(type_names[0]); i++)
-		if (strlen(type_names[i].name) == n && memcmp(type_names[i].name, s, n) == 0)
-			return type_names[i].type;
-	return T_NONE;
-}
-
-/* Split one header line into at most 6 words. */
-static size_t
-split_words(const char *line, size_t len, const char **w, size_t *wl, size_t max)
-{
-	size_t n = 0, i = 0;
-
-	while (i < len) {
-		while (i < len && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r'))
-			i++;
-		if (i >= len)
-			break;
-		if (n == max)
-			return max + 1;
-		w[n] = line + i;
-		while (i < len && line[i] != ' ' && line[i] != '\t' && line[i] != '\r')
-			i++;
-		wl[n] = (size_t)(line + i - w[n]);
-		n++;
-	}
-	return n;
-}
-
-static int
-word_is(const char *w, size_t wl, const char *s)
-{
-	return strlen(s) == wl && memcmp(w, s, wl) == 0;
-}
-
-static int
-parse_header(const unsigned char *buf, size_t len, struct header *h,
-             struct vdt_err *err)
-{
-	const char *p = (const char *)buf;
-	size_t pos = 0, lineno = 0;
-	int have_format = 0;
-
-	memset(h, 0, sizeof(*h));
-	for (;;) {
-		const char *line = p + pos, *nl, *w[6];
-		size_t ll, wl[6], n;
-
-		if (pos >= len)
-			return vdt_err_set(err, VDT_EFORMAT, "PLY header has no end_header line");
-		nl = memchr(line, '\n', len - pos);
-		if (nl == NULL)
-			return vdt_err_set(err, VDT_EFORMAT, "PLY header has no end_header line");
-		ll = (size_t)(nl - line);
-		pos += ll + 1;
-		lineno++;
-		if (lineno == 1) {
-			if (!(ll >= 3 && memcmp(line, "ply", 3) == 0 &&
-			      (ll == 3 || (ll == 4 && line[3] == '\r'))))
-				return vdt_err_set(err, VDT_EFORMAT, "not a PLY file");
-			continue;
-		}
-		if ((ll >= 7 && memcmp(line, "comment", 7) == 0) ||
-		    (ll >= 8 && memcmp(line, "obj_info", 8) == 0))
-			continue;
-		n = split_words(line, ll, w, wl, 6);
-		if (n == 0)
-			continue;
-		if (n > 6)
-			return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu has too many words", lineno);
-		if (word_is(w[0], wl[0], "end_header")) {
-			if (!have_format)
-				return vdt_err_set(err, VDT_EFORMAT, "PLY header has no format line");
-			h->data_offset = pos;
-			return 0;
-		}
-		if (word_is(w[0], wl[0], "format")) {
-			if (n != 3)
-				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: bad format line", lineno);
-			if (have_format)
-				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: second format line", lineno);
-			if (word_is(w[1], wl[1], "binary_little_endian"))
-				h->big_endian = 0;
-			else if (word_is(w[1], wl[1], "binary_big_endian"))
-				h->big_endian = 1;
-			else if (word_is(w[1], wl[1], "ascii"))
-				h->ascii = 1;
-			else
-				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: unknown format '%.*s'",
-				                   lineno, (int)(wl[1] > 32 ? 32 : wl[1]), w[1]);
-			have_format = 1;
-		} else if (word_is(w[0], wl[0], "element")) {
-			struct element *e;
-			char num[32], *end;
-			unsigned long long c;
-
-			if (n != 3 || wl[1] >= MAX_NAME || wl[2] >= sizeof(num))
-				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: bad element line", lineno);
-			if (h->element_count == MAX_ELEMENTS)
-				return vdt_err_set(err, VDT_EFORMAT, "PLY header has more than %d elements", MAX_ELEMENTS);
-			memcpy(num, w[2], wl[2]);
-			num[wl[2]] = '\0';
-			if (num[0] < '0' || num[0] > '9')
-				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: bad element count", lineno);
-			c = strtoull(num, &end, 10);
-			if (*end != '\0')
-				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: bad element count", lineno);
-			e = &h->elements[h->element_count++];
-			memcpy(e->name, w[1], wl[1]);
-			e->name[wl[1]] = '\0';
-			e->count = c;
-		} else if (word_is(w[0], wl[0], "property")) {
-			struct element *e;
-			struct prop *pr;
-			size_t namei;
-
-			if (h->element_count == 0)
-				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: property before any element", lineno);
-			e = &h->elements[h->element_count - 1];
-			if (e->prop_count == MAX_PROPS)
-				return vdt_err_set(err, VDT_EFORMAT, "PLY element '%s' has more than %d properties",
-				                   e->name, MAX_PROPS);
-			pr = &e->props[e->prop_count];
-			if (n == 3) {
-				pr->count_type = T_NONE;
-				pr->type = parse_type(w[1], wl[1]);
-				namei = 2;
-			} else if (n == 5 && word_is(w[1], wl[1], "list")) {
-				pr->count_type = parse_type(w[2], wl[2]);
-				pr->type = parse_type(w[3], wl[3]);
-				namei = 4;
-				if (pr->count_type == T_F32 || pr->count_type == T_F64)
-					return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: list count must be an integer", lineno);
-			} else {
-				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: bad property line", lineno);
-			}
-			if (pr->type == T_NONE || (namei == 4 && pr->count_type == T_NONE))
-				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: unknown property type", lineno);
-			if (wl[namei] >= MAX_NAME)
-				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: property name too long", lineno);
-			memcpy(pr->name, w[namei], wl[namei]);
-			pr->name[wl[namei]] = '\0';
-			e->prop_count++;
-		} else {
-			return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: unknown keyword '%.*s'",
-			                   lineno, (int)(wl[0] > 32 ? 32 : wl[0]), w[0]);
-		}
-	}
-}
-
-static uint32_t
-get_u32(const unsigned char *p, int be)
-{
-	return be ? (uint32_t)p[3] | (uint32_t)p[2] << 8 | (uint32_t)p[1] << 16 |
-	                    (uint32_t)p[0] << 24
-	          : vdt_get_u32le(p);
-}
-
-static uint16_t
-get_u16(const unsigned char *p, int be)
-{
-	return be ? (uint16_t)(p[1] | p[0] << 8) : vdt_get_u16le(p);
-}
-
-static uint64_t
-get_u64(const unsigned char *p, int be)
-{
-	return be ? (uint64_t)get_u32(p, 1) << 32 | get_u32(p + 4, 1)
-	          : vdt_get_u64le(p);
-}
-
-static double
-get_scalar(const unsigned char *p, enum ptype t, int be)
-{
-	switch (t) {
-	case T_I8: return (int8_t)p[0];
-	case T_U8: return p[0];
-	case T_I16: return (int16_t)get_u16(p, be);
-	case T_U16: return get_u16(p, be);
-	case T_I32: return (int32_t)get_u32(p, be);
-	case T_U32: return get_u32(p, be);
-	case T_F32: {
-		uint32_t v = get_u32(p, be);
-		float f;
-		memcpy(&f, &v, 4);
-		return f;
-	}
-	case T_F64: {
-		uint64_t v = get_u64(p, be);
-		double d;
-		memcpy(&d, &v, 8);
-		return d;
-	}
-	default: return 0;
-	}
-}
-
-/*
- * An integer list count or index. Signed values are returned sign-extended
- * in an int64_t so that a negative index is reported as such.
- */
-static int64_t
-get_int(const unsigned char *p, enum ptype t, int be)
-{
-	switch (t) {
-	case T_I8: return (int8_t)p[0];
-	case T_U8: return p[0];
-	case T_I16: return (int16_t)get_u16(p, be);
-	case T_U16: return get_u16(p, be);
-	case T_I32: return (int32_t)get_u32(p, be);
-	case T_U32: return get_u32(p, be);
-	case T_F32:
-	case T_F64: {
-		double d = get_scalar(p, t, be);
-		return isfinite(d) && d >= -1e18 && d <= 1e18 ? (int64_t)d : -1;
-	}
-	default: return -1;
-	}
-}
-
-/*
- * Size of one record of e starting at p (at most `avail` bytes), or 0 if the
- * record does not fit.
- */
-static size_t
-record_size(const struct element *e, const unsigned char *p, size_t avail, int be)
-{
-	size_t off = 0;
-
-	for (size_t i = 0; i < e->prop_count; i++) {
-		const struct prop *pr = &e->props[i];
-
-		if (pr->count_type == T_NONE) {
-			off += type_size[pr->type];
-			if (off > avail)
-				return 0;
-		} else {
-			size_t cs = type_size[pr->count_type];
-			int64_t c;
-
-			if (off + cs > avail)
-				return 0;
-			c = get_int(p + off, pr->count_type, be);
-			off += cs;
-			if (c < 0 || (uint64_t)c > (avail - off) / type_size[pr->type])
-				return 0;
-			off += (size_t)c * type_size[pr->type];
-		}
-	}
-	return off;
-}
-
-static int
-fixed_size(const struct element *e, size_t *size)
-{
-	size_t s = 0;
-
-	for (size_t i = 0; i < e->prop_count; i++) {
-		if (e->props[i].count_type != T_NONE)
-			return 0;
-		s += type_size[e->props[i].type];
-	}
-	*size = s;
-	return 1;
-}
+#include "plyhead.h"
 
 enum { A_X, A_Y, A_Z, A_NX, A_NY, A_NZ, A_U, A_V, A_R, A_G, A_B, A_A, A_COUNT };
 
@@ -365,24 +57,24 @@ attr_of(const char *name)
 }
 
 static double
-color_value(double v, enum ptype t)
+color_value(double v, enum vdt_ply_type t)
 {
 	switch (t) {
-	case T_U8: return v / 255.0;
-	case T_U16: return v / 65535.0;
-	case T_F32:
-	case T_F64: return v;
+	case VDT_PLY_U8: return v / 255.0;
+	case VDT_PLY_U16: return v / 65535.0;
+	case VDT_PLY_F32:
+	case VDT_PLY_F64: return v;
 	default: return v / 255.0;
 	}
 }
 
 static int
-read_vertices(const struct header *h, const struct element *e,
+read_vertices(const struct vdt_plyhead *h, const struct vdt_ply_element *e,
               const unsigned char *p, size_t recsize, struct vdt_mesh *m,
               struct vdt_err *err)
 {
 	size_t off[A_COUNT];
-	enum ptype type[A_COUNT];
+	enum vdt_ply_type type[A_COUNT];
 	int have[A_COUNT] = {0};
 	unsigned attrs = 0;
 	size_t o = 0;
@@ -397,7 +89,7 @@ read_vertices(const struct header *h, const struct element *e,
 			off[a] = o;
 			type[a] = e->props[i].type;
 		}
-		o += type_size[e->props[i].type];
+		o += vdt_ply_type_size[e->props[i].type];
 	}
 	if (!have[A_X] || !have[A_Y] || !have[A_Z])
 		return vdt_err_set(err, VDT_EFORMAT, "PLY vertex element has no x, y and z");
@@ -413,7 +105,7 @@ read_vertices(const struct header *h, const struct element *e,
 
 	size_t n = m->vertex_count;
 	float *pos = m->positions;
-	if (!be && type[A_X] == T_F32 && type[A_Y] == T_F32 && type[A_Z] == T_F32 &&
+	if (!be && type[A_X] == VDT_PLY_F32 && type[A_Y] == VDT_PLY_F32 && type[A_Z] == VDT_PLY_F32 &&
 	    off[A_Y] == off[A_X] + 4 && off[A_Z] == off[A_X] + 8) {
 		/* The common case: three consecutive little-endian floats. */
 		const unsigned char *q = p + off[A_X];
@@ -425,25 +117,25 @@ read_vertices(const struct header *h, const struct element *e,
 	} else {
 		for (size_t i = 0; i < n; i++)
 			for (int k = 0; k < 3; k++)
-				pos[3 * i + k] = (float)get_scalar(p + i * recsize + off[A_X + k],
+				pos[3 * i + k] = (float)vdt_plyhead_scalar(p + i * recsize + off[A_X + k],
 				                                   type[A_X + k], be);
 	}
 	if (m->normals)
 		for (size_t i = 0; i < n; i++)
 			for (int k = 0; k < 3; k++)
-				m->normals[3 * i + k] = (float)get_scalar(
+				m->normals[3 * i + k] = (float)vdt_plyhead_scalar(
 					p + i * recsize + off[A_NX + k], type[A_NX + k], be);
 	if (m->uvs)
 		for (size_t i = 0; i < n; i++)
 			for (int k = 0; k < 2; k++)
-				m->uvs[2 * i + k] = (float)get_scalar(
+				m->uvs[2 * i + k] = (float)vdt_plyhead_scalar(
 					p + i * recsize + off[A_U + k], type[A_U + k], be);
 	if (m->colors)
 		for (size_t i = 0; i < n; i++)
 			for (int k = 0; k < 4; k++) {
 				double c = 1.0;
 				if (k < 3 || have[A_A])
-					c = color_value(get_scalar(p + i * recsize + off[A_R + k],
+					c = color_value(vdt_plyhead_scalar(p + i * recsize + off[A_R + k],
 					                           type[A_R + k], be),
 					                type[A_R + k]);
 				m->colors[4 * i + k] = (float)c;
@@ -455,8 +147,23 @@ read_vertices(const struct header *h, const struct element *e,
  * Walk the face records twice: once to count triangles and check every
  * record fits, once to fan-triangulate into m->triangles.
  */
+/* Where property li starts in the record at p, whose size was checked. */
+static size_t
+list_offset(const struct vdt_ply_element *e, size_t li, const unsigned char *p, int be)
+{
+	size_t lo = 0;
+
+	for (size_t i = 0; i < li; i++)
+		lo += e->props[i].count_type == VDT_PLY_NONE
+		          ? vdt_ply_type_size[e->props[i].type]
+		          : vdt_ply_type_size[e->props[i].count_type] +
+		                (size_t)vdt_plyhead_int(p + lo, e->props[i].count_type, be) *
+		                    vdt_ply_type_size[e->props[i].type];
+	return lo;
+}
+
 static int
-read_faces(const struct header *h, const struct element *e,
+read_faces(const struct vdt_plyhead *h, const struct vdt_ply_element *e,
            const unsigned char *p, size_t avail, size_t *used,
            struct vdt_mesh *m, struct vdt_err *err)
 {
@@ -465,7 +172,7 @@ read_faces(const struct header *h, const struct element *e,
 	uint32_t *t;
 
 	for (size_t i = 0; i < e->prop_count; i++)
-		if (e->props[i].count_type != T_NONE &&
+		if (e->props[i].count_type != VDT_PLY_NONE &&
 		    (strcmp(e->props[i].name, "vertex_indices") == 0 ||
 		     strcmp(e->props[i].name, "vertex_index") == 0)) {
 			li = i;
@@ -477,24 +184,19 @@ read_faces(const struct header *h, const struct element *e,
 		return vdt_err_set(err, VDT_EFORMAT, "PLY file is truncated: %llu faces cannot fit in %zu bytes",
 		                   (unsigned long long)e->count, avail);
 
-	const struct prop *lp = &e->props[li];
-	size_t cs = type_size[lp->count_type], is = type_size[lp->type];
+	const struct vdt_ply_prop *lp = &e->props[li];
+	size_t cs = vdt_ply_type_size[lp->count_type], is = vdt_ply_type_size[lp->type];
 
 	for (uint64_t f = 0; f < e->count; f++) {
-		size_t rs = record_size(e, p + o, avail - o, be);
+		size_t rs = vdt_plyhead_record_size(e, p + o, avail - o, be);
 		size_t lo = 0;
 		int64_t c;
 
 		if (rs == 0)
 			return vdt_err_set(err, VDT_EFORMAT, "PLY file is truncated in face %llu of %llu",
 			                   (unsigned long long)f, (unsigned long long)e->count);
-		for (size_t i = 0; i < li; i++)
-			lo += e->props[i].count_type == T_NONE
-			          ? type_size[e->props[i].type]
-			          : type_size[e->props[i].count_type] +
-			                (size_t)get_int(p + o + lo, e->props[i].count_type, be) *
-			                    type_size[e->props[i].type];
-		c = get_int(p + o + lo, lp->count_type, be);
+		lo = list_offset(e, li, p + o, be);
+		c = vdt_plyhead_int(p + o + lo, lp->count_type, be);
 		if (c < 3)
 			return vdt_err_set(err, VDT_EFORMAT, "face %llu has %lld vertices",
 			                   (unsigned long long)f, (long long)c);
@@ -510,8 +212,8 @@ read_faces(const struct header *h, const struct element *e,
 		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu triangles", tris);
 
 	size_t nt = 0, nv = m->vertex_count;
-	int simple = li == 0 && e->prop_count == 1 && lp->count_type == T_U8 &&
-	             (lp->type == T_I32 || lp->type == T_U32) && !be;
+	int simple = li == 0 && e->prop_count == 1 && lp->count_type == VDT_PLY_U8 &&
+	             (lp->type == VDT_PLY_I32 || lp->type == VDT_PLY_U32) && !be;
 	o = 0;
 	for (uint64_t f = 0; f < e->count; f++) {
 		size_t lo = 0;
@@ -524,7 +226,7 @@ read_faces(const struct header *h, const struct element *e,
 			if (c == 3) {
 				/* Fast path: a triangle as uchar 3 + three 32-bit indices. */
 				for (int k = 0; k < 3; k++) {
-					int64_t v = lp->type == T_I32 ? (int32_t)vdt_get_u32le(q + 4 * k)
+					int64_t v = lp->type == VDT_PLY_I32 ? (int32_t)vdt_get_u32le(q + 4 * k)
 					                              : (int64_t)vdt_get_u32le(q + 4 * k);
 					if (v < 0 || (uint64_t)v >= nv) {
 						free(t);
@@ -538,18 +240,13 @@ read_faces(const struct header *h, const struct element *e,
 				continue;
 			}
 		} else {
-			for (size_t i = 0; i < li; i++)
-				lo += e->props[i].count_type == T_NONE
-				          ? type_size[e->props[i].type]
-				          : type_size[e->props[i].count_type] +
-				                (size_t)get_int(p + o + lo, e->props[i].count_type, be) *
-				                    type_size[e->props[i].type];
-			c = get_int(p + o + lo, lp->count_type, be);
+			lo = list_offset(e, li, p + o, be);
+			c = vdt_plyhead_int(p + o + lo, lp->count_type, be);
 			q = p + o + lo + cs;
 		}
 		first = prev = -1;
 		for (int64_t k = 0; k < c; k++) {
-			int64_t v = get_int(q + (size_t)k * is, lp->type, be);
+			int64_t v = vdt_plyhead_int(q + (size_t)k * is, lp->type, be);
 
 			if (v < 0 || (uint64_t)v >= nv) {
 				free(t);
@@ -566,7 +263,7 @@ read_faces(const struct header *h, const struct element *e,
 			}
 			prev = v;
 		}
-		o += record_size(e, p + o, *used - o, be);
+		o += vdt_plyhead_record_size(e, p + o, *used - o, be);
 	}
 	m->triangles = t;
 	m->triangle_count = nt;
@@ -585,18 +282,9 @@ is_space(char c)
 	return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v';
 }
 
-static const char *
-type_name(enum ptype t)
-{
-	for (size_t i = 0; i < sizeof(type_names) / sizeof(type_names[0]); i++)
-		if (type_names[i].type == t)
-			return type_names[i].name;
-	return "?";
-}
-
 /* Where element e's record r is read, for messages: "vertex 12". */
 struct where {
-	const struct element *e;
+	const struct vdt_ply_element *e;
 	uint64_t r;
 };
 
@@ -605,7 +293,7 @@ struct where {
  * written as integers within their range; float types may be any number.
  */
 static int
-text_value(struct text *t, enum ptype type, const struct where *w, double *out,
+text_value(struct text *t, enum vdt_ply_type type, const struct where *w, double *out,
            struct vdt_err *err)
 {
 	const char *q;
@@ -618,7 +306,7 @@ text_value(struct text *t, enum ptype type, const struct where *w, double *out,
 		return vdt_err_set(err, VDT_EFORMAT, "PLY file is truncated in %s %llu of %llu",
 		                   w->e->name, (unsigned long long)w->r,
 		                   (unsigned long long)w->e->count);
-	if (type == T_F32 || type == T_F64) {
+	if (type == VDT_PLY_F32 || type == VDT_PLY_F64) {
 		float f;
 
 		q = vdt_text_parse_float(t->p, t->end, &f);
@@ -632,7 +320,7 @@ text_value(struct text *t, enum ptype type, const struct where *w, double *out,
 		if (q != NULL && (q == t->end || is_space(*q)) && (i < lo[type] || i > hi[type]))
 			return vdt_err_set(err, VDT_EFORMAT, "PLY line %zu: %s %llu has %lld, out of range for %s",
 			                   t->line, w->e->name, (unsigned long long)w->r, i,
-			                   type_name(type));
+			                   vdt_ply_type_name(type));
 		*out = (double)i;
 	}
 	if (q == NULL || (q < t->end && !is_space(*q))) {
@@ -673,7 +361,7 @@ as_int(double d)
 
 /* Every record of e read and dropped, lists included. */
 static int
-text_skip(struct text *t, const struct element *e, struct vdt_err *err)
+text_skip(struct text *t, const struct vdt_ply_element *e, struct vdt_err *err)
 {
 	struct where w = {e, 0};
 	double d;
@@ -681,10 +369,10 @@ text_skip(struct text *t, const struct element *e, struct vdt_err *err)
 
 	for (; w.r < e->count; w.r++) {
 		for (size_t i = 0; i < e->prop_count; i++) {
-			const struct prop *pr = &e->props[i];
+			const struct vdt_ply_prop *pr = &e->props[i];
 			int64_t c = 1;
 
-			if (pr->count_type != T_NONE) {
+			if (pr->count_type != VDT_PLY_NONE) {
 				if ((rc = text_value(t, pr->count_type, &w, &d, err)) != 0)
 					return rc;
 				c = as_int(d);
@@ -701,12 +389,12 @@ text_skip(struct text *t, const struct element *e, struct vdt_err *err)
 }
 
 static int
-text_vertices(struct text *t, const struct element *e, struct vdt_mesh *m,
+text_vertices(struct text *t, const struct vdt_ply_element *e, struct vdt_mesh *m,
               struct vdt_err *err)
 {
-	int slot[MAX_PROPS];
+	int slot[VDT_PLY_MAX_PROPS];
 	int have[A_COUNT] = {0};
-	enum ptype type[A_COUNT];
+	enum vdt_ply_type type[A_COUNT];
 	unsigned attrs = 0;
 	struct where w = {e, 0};
 	int rc;
@@ -714,7 +402,7 @@ text_vertices(struct text *t, const struct element *e, struct vdt_mesh *m,
 	for (size_t i = 0; i < e->prop_count; i++) {
 		int a = attr_of(e->props[i].name);
 
-		if (e->props[i].count_type != T_NONE)
+		if (e->props[i].count_type != VDT_PLY_NONE)
 			return vdt_err_set(err, VDT_EFORMAT, "PLY vertex element has a list property");
 		slot[i] = a >= 0 && !have[a] ? a : -1;
 		if (slot[i] >= 0) {
@@ -763,7 +451,7 @@ text_vertices(struct text *t, const struct element *e, struct vdt_mesh *m,
 }
 
 static int
-text_faces(struct text *t, const struct element *e, struct vdt_mesh *m, struct vdt_err *err)
+text_faces(struct text *t, const struct vdt_ply_element *e, struct vdt_mesh *m, struct vdt_err *err)
 {
 	size_t li = SIZE_MAX, nt = 0, cap = e->count > 0 ? (size_t)e->count : 1, nv = m->vertex_count;
 	struct where w = {e, 0};
@@ -772,7 +460,7 @@ text_faces(struct text *t, const struct element *e, struct vdt_mesh *m, struct v
 	int rc;
 
 	for (size_t i = 0; i < e->prop_count && li == SIZE_MAX; i++)
-		if (e->props[i].count_type != T_NONE &&
+		if (e->props[i].count_type != VDT_PLY_NONE &&
 		    (strcmp(e->props[i].name, "vertex_indices") == 0 ||
 		     strcmp(e->props[i].name, "vertex_index") == 0))
 			li = i;
@@ -783,10 +471,10 @@ text_faces(struct text *t, const struct element *e, struct vdt_mesh *m, struct v
 		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu triangles", cap);
 	for (; w.r < e->count; w.r++) {
 		for (size_t i = 0; i < e->prop_count; i++) {
-			const struct prop *pr = &e->props[i];
+			const struct vdt_ply_prop *pr = &e->props[i];
 			int64_t c = 1, first = 0, prev = 0;
 
-			if (pr->count_type != T_NONE) {
+			if (pr->count_type != VDT_PLY_NONE) {
 				if ((rc = text_value(t, pr->count_type, &w, &d, err)) != 0)
 					goto fail;
 				c = as_int(d);
@@ -845,7 +533,7 @@ fail:
 }
 
 static int
-read_ascii(const struct header *h, const struct element *ve, const struct element *fe,
+read_ascii(const struct vdt_plyhead *h, const struct vdt_ply_element *ve, const struct vdt_ply_element *fe,
            const unsigned char *buf, size_t len, struct vdt_mesh *m, struct vdt_err *err)
 {
 	struct text t = {(const char *)buf + h->data_offset, (const char *)buf + len, 0};
@@ -856,7 +544,7 @@ read_ascii(const struct header *h, const struct element *ve, const struct elemen
 		t.line += *p == '\n';
 	t.line++;
 	for (size_t i = 0; i < h->element_count && rc == 0; i++) {
-		const struct element *e = &h->elements[i];
+		const struct vdt_ply_element *e = &h->elements[i];
 		size_t left = (size_t)(t.end - t.p);
 
 		if (e->prop_count == 0)
@@ -884,8 +572,8 @@ int
 vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
              struct vdt_err *err)
 {
-	struct header *h;
-	const struct element *ve = NULL, *fe = NULL;
+	struct vdt_plyhead *h;
+	const struct vdt_ply_element *ve = NULL, *fe = NULL;
 	size_t pos;
 	int rc = 0;
 
@@ -893,7 +581,7 @@ vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 	h = malloc(sizeof(*h));
 	if (h == NULL)
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
-	rc = parse_header(buf, len, h, err);
+	rc = vdt_plyhead_parse(buf, len, h, err);
 	if (rc != 0)
 		goto out;
 	for (size_t i = 0; i < h->element_count; i++) {
@@ -917,11 +605,11 @@ vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 	}
 	pos = h->data_offset;
 	for (size_t i = 0; i < h->element_count; i++) {
-		const struct element *e = &h->elements[i];
+		const struct vdt_ply_element *e = &h->elements[i];
 		size_t avail = len - pos, rs;
 
 		if (e == ve) {
-			if (!fixed_size(e, &rs)) {
+			if (!vdt_plyhead_fixed_size(e, &rs)) {
 				rc = vdt_err_set(err, VDT_EFORMAT, "PLY vertex element has a list property");
 				goto out;
 			}
@@ -950,7 +638,7 @@ vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 			free(m->triangles);
 			*m = tm;
 			pos += used;
-		} else if (fixed_size(e, &rs)) {
+		} else if (vdt_plyhead_fixed_size(e, &rs)) {
 			if (rs != 0 && e->count > avail / rs) {
 				rc = vdt_err_set(err, VDT_EFORMAT, "PLY file is truncated in element '%s'", e->name);
 				goto out;
@@ -962,7 +650,7 @@ vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 				goto out;
 			}
 			for (uint64_t r = 0; r < e->count; r++) {
-				rs = record_size(e, buf + pos, len - pos, h->big_endian);
+				rs = vdt_plyhead_record_size(e, buf + pos, len - pos, h->big_endian);
 				if (rs == 0) {
 					rc = vdt_err_set(err, VDT_EFORMAT, "PLY file is truncated in element '%s'", e->name);
 					goto out;

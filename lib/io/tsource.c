@@ -25,26 +25,9 @@
 
 #include "../bytes.h"
 #include "../stream.h"
+#include "plyhead.h"
 
 enum kind { K_PLY, K_STL, K_OBJ, K_VDT, K_MESH };
-
-enum ptype { T_NONE, T_I8, T_U8, T_I16, T_U16, T_I32, T_U32, T_F32, T_F64 };
-static const unsigned type_size[] = {0, 1, 1, 2, 2, 4, 4, 4, 8};
-
-#define MAX_ELEMENTS 64
-#define MAX_PROPS 128
-
-struct pprop {
-	char name[64];
-	enum ptype type, count_type; /* count_type T_NONE: a scalar */
-};
-
-struct pelem {
-	char name[64];
-	uint64_t count;
-	size_t nprops;
-	struct pprop props[MAX_PROPS];
-};
 
 struct vdt_tsource {
 	enum kind kind;
@@ -63,15 +46,15 @@ struct vdt_tsource {
 
 	/* PLY */
 	int be, fast_vertex, fast_face;
-	enum ptype xyz_type[3];
+	enum vdt_ply_type xyz_type[3];
 	size_t xyz_off[3];
 	const unsigned char *fbase, *fcur, *fend;
 	uint64_t fcount, fidx;
-	struct pelem face;
+	struct vdt_ply_element face;
 	size_t list_prop; /* index of vertex_indices in face */
 	const unsigned char *poly; /* polygon being fanned */
 	uint64_t poly_n, poly_k;
-	enum ptype poly_type;
+	enum vdt_ply_type poly_type;
 
 	/* STL and vdt: triangle cursor */
 	uint64_t tcur;
@@ -217,266 +200,21 @@ spool(int in, enum vdt_format hint, size_t *len, struct vdt_err *err)
 
 /* ---- PLY ----------------------------------------------------------------- */
 
-static enum ptype
-ply_type(const char *s)
-{
-	static const struct {
-		const char *name;
-		enum ptype t;
-	} names[] = {
-		{"char", T_I8},    {"int8", T_I8},     {"uchar", T_U8},   {"uint8", T_U8},
-		{"short", T_I16},  {"int16", T_I16},   {"ushort", T_U16}, {"uint16", T_U16},
-		{"int", T_I32},    {"int32", T_I32},   {"uint", T_U32},   {"uint32", T_U32},
-		{"float", T_F32},  {"float32", T_F32}, {"double", T_F64}, {"float64", T_F64},
-	};
-
-	for (size_t i = 0; i < sizeof(names) / sizeof(names[0]); i++)
-		if (strcmp(names[i].name, s) == 0)
-			return names[i].t;
-	return T_NONE;
-}
-
-static uint16_t
-ld16(const unsigned char *p, int be)
-{
-	return be ? (uint16_t)(p[1] | p[0] << 8) : vdt_get_u16le(p);
-}
-
-static uint32_t
-ld32(const unsigned char *p, int be)
-{
-	return be ? (uint32_t)p[3] | (uint32_t)p[2] << 8 | (uint32_t)p[1] << 16 |
-	                    (uint32_t)p[0] << 24
-	          : vdt_get_u32le(p);
-}
-
-static double
-ld_scalar(const unsigned char *p, enum ptype t, int be)
-{
-	/* Only the type's own bytes: a one-byte value may end the input. */
-	switch (t) {
-	case T_I8: return (int8_t)p[0];
-	case T_U8: return p[0];
-	case T_I16: return (int16_t)ld16(p, be);
-	case T_U16: return ld16(p, be);
-	case T_I32: return (int32_t)ld32(p, be);
-	case T_U32: return ld32(p, be);
-	case T_F32: {
-		uint32_t v = ld32(p, be);
-		float f;
-		memcpy(&f, &v, 4);
-		return f;
-	}
-	case T_F64: {
-		uint64_t v = be ? (uint64_t)ld32(p, 1) << 32 | ld32(p + 4, 1) : vdt_get_u64le(p);
-		double d;
-		memcpy(&d, &v, 8);
-		return d;
-	}
-	default: return 0;
-	}
-}
-
-/* An integer count or index; negative values stay negative. */
-static int64_t
-ld_int(const unsigned char *p, enum ptype t, int be)
-{
-	double d;
-
-	switch (t) {
-	case T_U32: return ld32(p, be);
-	case T_I32: return (int32_t)ld32(p, be);
-	case T_F32:
-	case T_F64:
-		d = ld_scalar(p, t, be);
-		return isfinite(d) && fabs(d) < 1e18 ? (int64_t)d : -1;
-	default: return (int64_t)ld_scalar(p, t, be);
-	}
-}
-
-/* Bytes of the record of e at p (at most avail), or 0 if it does not fit. */
-static size_t
-ply_record(const struct pelem *e, const unsigned char *p, size_t avail, int be)
-{
-	size_t off = 0;
-
-	for (size_t i = 0; i < e->nprops; i++) {
-		const struct pprop *pr = &e->props[i];
-
-		if (pr->count_type == T_NONE) {
-			off += type_size[pr->type];
-			if (off > avail)
-				return 0;
-			continue;
-		}
-		if (off + type_size[pr->count_type] > avail)
-			return 0;
-		int64_t c = ld_int(p + off, pr->count_type, be);
-		off += type_size[pr->count_type];
-		if (c < 0 || (uint64_t)c > (avail - off) / type_size[pr->type])
-			return 0;
-		off += (size_t)c * type_size[pr->type];
-	}
-	return off;
-}
-
 static int
-ply_fixed(const struct pelem *e, size_t *size)
-{
-	*size = 0;
-	for (size_t i = 0; i < e->nprops; i++) {
-		if (e->props[i].count_type != T_NONE)
-			return 0;
-		*size += type_size[e->props[i].type];
-	}
-	return 1;
-}
-
-/*
- * "comment bbox XMIN YMIN ZMIN XMAX YMAX ZMAX", as vdt's PLY writer puts
- * it: the box of the vertices, which spares vdt-cluster a pass. Anything
- * else after "comment bbox" is an ordinary comment. The box is only a
- * claim: vdt-cluster measures it anyway if a vertex falls outside.
- */
-static void
-header_box(struct vdt_tsource *s, const char *text)
-{
-	double v[6];
-	char *end;
-
-	for (int i = 0; i < 6; i++) {
-		/* As floats: the nine digits of a float's text give it back. */
-		v[i] = strtof(text, &end);
-		if (end == text || !isfinite(v[i]))
-			return;
-		text = end;
-	}
-	while (*text == ' ' || *text == '\t' || *text == '\r')
-		text++;
-	if (*text != '\0' || !(v[0] <= v[3] && v[1] <= v[4] && v[2] <= v[5]))
-		return;
-	for (int k = 0; k < 3; k++) {
-		s->hbox.min[k] = v[k];
-		s->hbox.max[k] = v[3 + k];
-	}
-	s->has_hbox = 1;
-}
-
-static int
-ply_header(struct vdt_tsource *s, struct pelem *el, size_t *nel, size_t *data,
-           int *ascii, struct vdt_err *err)
-{
-	size_t pos = 0, lineno = 0;
-	int have_format = 0;
-
-	*nel = 0;
-	for (;;) {
-		char line[256], w[6][64];
-		const unsigned char *nl;
-		size_t ll;
-		int n;
-
-		if (pos >= s->len || (nl = memchr(s->buf + pos, '\n', s->len - pos)) == NULL)
-			return vdt_err_set(err, VDT_EFORMAT, "PLY header has no end_header line");
-		ll = (size_t)(nl - (s->buf + pos));
-		lineno++;
-		/* Comments may be of any length; a bounding box too long for
-		 * the line buffer is no box. */
-		int remark = (ll >= 7 && memcmp(s->buf + pos, "comment", 7) == 0) ||
-		             (ll >= 8 && memcmp(s->buf + pos, "obj_info", 8) == 0);
-		if (ll >= sizeof(line) && !remark)
-			return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu is too long", lineno);
-		memcpy(line, s->buf + pos, ll < sizeof(line) ? ll : 0);
-		line[ll < sizeof(line) ? ll : 0] = '\0';
-		pos += ll + 1;
-		if (lineno == 1)
-			continue; /* "ply", checked by format detection */
-		if (strncmp(line, "comment bbox ", 13) == 0) {
-			header_box(s, line + 13);
-			continue;
-		}
-		if (remark)
-			continue;
-		n = sscanf(line, "%63s %63s %63s %63s %63s %63s", w[0], w[1], w[2], w[3], w[4], w[5]);
-		if (n <= 0)
-			continue;
-		if (strcmp(w[0], "end_header") == 0) {
-			if (!have_format)
-				return vdt_err_set(err, VDT_EFORMAT, "PLY header has no format line");
-			*data = pos;
-			return 0;
-		} else if (strcmp(w[0], "format") == 0 && n == 3) {
-			*ascii = strcmp(w[1], "ascii") == 0;
-			s->be = strcmp(w[1], "binary_big_endian") == 0;
-			if (!*ascii && !s->be && strcmp(w[1], "binary_little_endian") != 0)
-				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: unknown format", lineno);
-			have_format = 1;
-		} else if (strcmp(w[0], "element") == 0 && n == 3) {
-			char *end;
-			struct pelem *e;
-
-			if (*nel == MAX_ELEMENTS)
-				return vdt_err_set(err, VDT_EFORMAT, "PLY header has more than %d elements",
-				                   MAX_ELEMENTS);
-			e = &el[(*nel)++];
-			memset(e, 0, sizeof(*e));
-			snprintf(e->name, sizeof(e->name), "%s", w[1]);
-			errno = 0;
-			e->count = strtoull(w[2], &end, 10);
-			if (w[2][0] < '0' || w[2][0] > '9' || *end != '\0' || errno != 0)
-				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: bad element count",
-				                   lineno);
-		} else if (strcmp(w[0], "property") == 0 && *nel > 0) {
-			struct pelem *e = &el[*nel - 1];
-			struct pprop *pr = &e->props[e->nprops];
-
-			if (e->nprops == MAX_PROPS)
-				return vdt_err_set(err, VDT_EFORMAT, "PLY element '%s' has too many properties",
-				                   e->name);
-			if (n == 3) {
-				pr->count_type = T_NONE;
-				pr->type = ply_type(w[1]);
-				snprintf(pr->name, sizeof(pr->name), "%s", w[2]);
-			} else if (n == 5 && strcmp(w[1], "list") == 0) {
-				pr->count_type = ply_type(w[2]);
-				pr->type = ply_type(w[3]);
-				snprintf(pr->name, sizeof(pr->name), "%s", w[4]);
-				if (pr->count_type == T_NONE || pr->count_type >= T_F32)
-					return vdt_err_set(err, VDT_EFORMAT,
-					                   "PLY header line %zu: bad list count type", lineno);
-			} else {
-				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: bad property line",
-				                   lineno);
-			}
-			if (pr->type == T_NONE)
-				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: unknown property type",
-				                   lineno);
-			e->nprops++;
-		} else {
-			return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: cannot parse '%.40s'",
-			                   lineno, line);
-		}
-	}
-}
-
-static int
-ply_skip(const struct vdt_tsource *s, const struct pelem *e, size_t *at, struct vdt_err *err)
+ply_skip(const struct vdt_tsource *s, const struct vdt_ply_element *e, size_t *at, struct vdt_err *err)
 {
 	size_t fixed;
 
-	if (ply_fixed(e, &fixed)) {
+	if (vdt_plyhead_fixed_size(e, &fixed)) {
 		if (fixed != 0 && e->count > (s->len - *at) / fixed)
-			return vdt_err_set(err, VDT_EFORMAT,
-			                   "PLY element '%s': %" PRIu64 " records of %zu bytes do not fit in the file",
-			                   e->name, e->count, fixed);
+			return vdt_err_set(err, VDT_EFORMAT, "PLY file is truncated in element '%s'", e->name);
 		*at += (size_t)e->count * fixed;
 		return 0;
 	}
 	for (uint64_t r = 0; r < e->count; r++) {
-		size_t k = ply_record(e, s->buf + *at, s->len - *at, s->be);
+		size_t k = vdt_plyhead_record_size(e, s->buf + *at, s->len - *at, s->be);
 		if (k == 0)
-			return vdt_err_set(err, VDT_EFORMAT, "PLY element '%s': record %" PRIu64 " is truncated",
-			                   e->name, r);
+			return vdt_err_set(err, VDT_EFORMAT, "PLY file is truncated in element '%s'", e->name);
 		*at += k;
 	}
 	return 0;
@@ -485,21 +223,30 @@ ply_skip(const struct vdt_tsource *s, const struct pelem *e, size_t *at, struct 
 static int
 ply_open(struct vdt_tsource *s, struct vdt_err *err)
 {
-	struct pelem *el = calloc(MAX_ELEMENTS, sizeof(*el)), *ve = NULL, *fe = NULL;
-	size_t nel, data, at;
-	int ascii = 0, rc;
+	struct vdt_plyhead *h = malloc(sizeof(*h));
+	struct vdt_ply_element *ve = NULL, *fe = NULL;
+	size_t at;
+	int rc;
 	const char *axes[3] = {"x", "y", "z"};
 
-	if (el == NULL)
+	if (h == NULL)
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
-	if ((rc = ply_header(s, el, &nel, &data, &ascii, err)) != 0 || ascii) {
-		free(el);
+	if ((rc = vdt_plyhead_parse(s->buf, s->len, h, err)) != 0 || h->ascii) {
+		free(h);
 		return rc != 0 ? rc : 1; /* ASCII: read whole */
 	}
+	s->be = h->big_endian;
+	if (h->has_box) {
+		for (int k = 0; k < 3; k++) {
+			s->hbox.min[k] = h->box[k];
+			s->hbox.max[k] = h->box[3 + k];
+		}
+		s->has_hbox = 1;
+	}
 	/* Find where our two elements start, walking over those before them. */
-	at = data;
-	for (size_t i = 0; i < nel && !(ve && fe); i++) {
-		struct pelem *e = &el[i];
+	at = h->data_offset;
+	for (size_t i = 0; i < h->element_count && !(ve && fe); i++) {
+		struct vdt_ply_element *e = &h->elements[i];
 
 		if (strcmp(e->name, "vertex") == 0 && ve == NULL) {
 			ve = e;
@@ -516,8 +263,8 @@ ply_open(struct vdt_tsource *s, struct vdt_err *err)
 		vdt_err_set(err, rc, "PLY file has no %s element", ve ? "face" : "vertex");
 		goto out;
 	}
-	if (!ply_fixed(ve, &s->vstride)) {
-		vdt_err_set(err, rc, "PLY vertex records have lists: cannot be read in place");
+	if (!vdt_plyhead_fixed_size(ve, &s->vstride)) {
+		vdt_err_set(err, rc, "PLY vertex element has a list property");
 		goto out;
 	}
 	if (s->vstride != 0 && ve->count > (size_t)(s->buf + s->len - s->vbase) / s->vstride) {
@@ -527,38 +274,38 @@ ply_open(struct vdt_tsource *s, struct vdt_err *err)
 	}
 	for (int k = 0; k < 3; k++) {
 		size_t off = 0, i;
-		for (i = 0; i < ve->nprops && strcmp(ve->props[i].name, axes[k]) != 0; i++)
-			off += type_size[ve->props[i].type];
-		if (i == ve->nprops) {
-			vdt_err_set(err, rc, "PLY vertex has no '%s' property", axes[k]);
+		for (i = 0; i < ve->prop_count && strcmp(ve->props[i].name, axes[k]) != 0; i++)
+			off += vdt_ply_type_size[ve->props[i].type];
+		if (i == ve->prop_count) {
+			vdt_err_set(err, rc, "PLY vertex element has no x, y and z");
 			goto out;
 		}
 		s->xyz_off[k] = off;
 		s->xyz_type[k] = ve->props[i].type;
 	}
 	s->vcount = ve->count;
-	s->fast_vertex = !s->be && s->xyz_type[0] == T_F32 && s->xyz_type[1] == T_F32 &&
-	                 s->xyz_type[2] == T_F32;
+	s->fast_vertex = !s->be && s->xyz_type[0] == VDT_PLY_F32 && s->xyz_type[1] == VDT_PLY_F32 &&
+	                 s->xyz_type[2] == VDT_PLY_F32;
 	s->face = *fe;
-	s->list_prop = fe->nprops;
-	for (size_t i = 0; i < fe->nprops; i++)
-		if (fe->props[i].count_type != T_NONE &&
+	s->list_prop = fe->prop_count;
+	for (size_t i = 0; i < fe->prop_count; i++)
+		if (fe->props[i].count_type != VDT_PLY_NONE &&
 		    (strcmp(fe->props[i].name, "vertex_indices") == 0 ||
 		     strcmp(fe->props[i].name, "vertex_index") == 0))
 			s->list_prop = i;
-	if (s->list_prop == fe->nprops || fe->props[s->list_prop].type >= T_F32) {
-		vdt_err_set(err, rc, "PLY face has no integer vertex_indices list");
+	if (s->list_prop == fe->prop_count) {
+		vdt_err_set(err, rc, "PLY face element has no vertex_indices list");
 		goto out;
 	}
-	s->fast_face = !s->be && fe->nprops == 1 && fe->props[0].count_type == T_U8 &&
-	               (fe->props[0].type == T_I32 || fe->props[0].type == T_U32);
+	s->fast_face = !s->be && fe->prop_count == 1 && fe->props[0].count_type == VDT_PLY_U8 &&
+	               (fe->props[0].type == VDT_PLY_I32 || fe->props[0].type == VDT_PLY_U32);
 	s->fcount = fe->count;
 	/* Faces end at the vertices when they come first. */
 	s->fend = s->fbase < s->vbase ? s->vbase : s->buf + s->len;
 	s->tri_hint = fe->count;
 	rc = 0;
 out:
-	free(el);
+	free(h);
 	return rc;
 }
 
@@ -577,7 +324,7 @@ ply_corner(const struct vdt_tsource *s, uint64_t v, double *p)
 		p[2] = f[2];
 	} else {
 		for (int a = 0; a < 3; a++)
-			p[a] = ld_scalar(r + s->xyz_off[a], s->xyz_type[a], s->be);
+			p[a] = vdt_plyhead_scalar(r + s->xyz_off[a], s->xyz_type[a], s->be);
 	}
 }
 
@@ -611,32 +358,32 @@ bad_index(struct vdt_tsource *s, int64_t v, struct vdt_err *err)
 static int
 ply_next_face(struct vdt_tsource *s, struct vdt_err *err)
 {
-	const struct pelem *e = &s->face;
+	const struct vdt_ply_element *e = &s->face;
 	const unsigned char *p = s->fcur;
 	size_t avail = (size_t)(s->fend - p), off = 0;
 
-	for (size_t i = 0; i < e->nprops; i++) {
-		const struct pprop *pr = &e->props[i];
+	for (size_t i = 0; i < e->prop_count; i++) {
+		const struct vdt_ply_prop *pr = &e->props[i];
 		int64_t c;
 
-		if (pr->count_type == T_NONE) {
-			off += type_size[pr->type];
+		if (pr->count_type == VDT_PLY_NONE) {
+			off += vdt_ply_type_size[pr->type];
 			if (off > avail)
 				goto truncated;
 			continue;
 		}
-		if (off + type_size[pr->count_type] > avail)
+		if (off + vdt_ply_type_size[pr->count_type] > avail)
 			goto truncated;
-		c = ld_int(p + off, pr->count_type, s->be);
-		off += type_size[pr->count_type];
-		if (c < 0 || (uint64_t)c > (avail - off) / type_size[pr->type])
+		c = vdt_plyhead_int(p + off, pr->count_type, s->be);
+		off += vdt_ply_type_size[pr->count_type];
+		if (c < 0 || (uint64_t)c > (avail - off) / vdt_ply_type_size[pr->type])
 			goto truncated;
 		if (i == s->list_prop) {
 			s->poly = p + off;
 			s->poly_n = (uint64_t)c;
 			s->poly_type = pr->type;
 		}
-		off += (size_t)c * type_size[pr->type];
+		off += (size_t)c * vdt_ply_type_size[pr->type];
 	}
 	if (s->poly_n < 3)
 		return vdt_err_set(err, VDT_EFORMAT, "face %" PRIu64 " has %" PRIu64 " vertices",
@@ -665,7 +412,7 @@ ply_triangles(struct vdt_tsource *s, double *tri, size_t max, size_t *n, struct 
 			         c = vdt_get_u32le(s->fcur + 9);
 			if (a >= s->vcount || b >= s->vcount || c >= s->vcount) {
 				uint32_t bad = a >= s->vcount ? a : b >= s->vcount ? b : c;
-				return bad_index(s, s->face.props[0].type == T_I32 ? (int64_t)(int32_t)bad : (int64_t)bad, err);
+				return bad_index(s, s->face.props[0].type == VDT_PLY_I32 ? (int64_t)(int32_t)bad : (int64_t)bad, err);
 			}
 			ply_corner(s, a, tri + 9 * k);
 			ply_corner(s, b, tri + 9 * k + 3);
@@ -683,11 +430,11 @@ ply_triangles(struct vdt_tsource *s, double *tri, size_t max, size_t *n, struct 
 		}
 		/* Fan: (0, k-1, k). */
 		{
-			unsigned isz = type_size[s->poly_type];
+			unsigned isz = vdt_ply_type_size[s->poly_type];
 			int64_t v[3] = {
-				ld_int(s->poly, s->poly_type, s->be),
-				ld_int(s->poly + (s->poly_k - 1) * isz, s->poly_type, s->be),
-				ld_int(s->poly + s->poly_k * isz, s->poly_type, s->be),
+				vdt_plyhead_int(s->poly, s->poly_type, s->be),
+				vdt_plyhead_int(s->poly + (s->poly_k - 1) * isz, s->poly_type, s->be),
+				vdt_plyhead_int(s->poly + s->poly_k * isz, s->poly_type, s->be),
 			};
 			for (int j = 0; j < 3; j++) {
 				if (v[j] < 0 || (uint64_t)v[j] >= s->vcount)
@@ -794,9 +541,6 @@ spool_vertex(void *ctx, const float p[3], struct vdt_err *err)
 	struct obj_spool *o = ctx;
 	unsigned char b[12];
 
-	if (!(isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2])))
-		return vdt_err_set(err, VDT_EINVAL, "vertex %" PRIu64 " has a non-finite coordinate",
-		                   o->nv);
 	for (int k = 0; k < 3; k++)
 		vdt_put_f32le(b + 4 * k, p[k]);
 	o->nv++;

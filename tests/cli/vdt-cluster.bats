@@ -219,7 +219,7 @@ same_refusal() {
 		[ ! -e "$TMP/out.ply" ]
 	done
 	run "$BIN/vdt-cluster" -g 8 "$TMP/nan.obj" -o "$TMP/out.ply"
-	[[ "$output" == *"nan.obj': vertex 2 has a non-finite coordinate" ]]
+	[[ "$output" == *"nan.obj': line 3: vertex has a non-finite coordinate" ]]
 	run "$BIN/vdt-cluster" -g 8 "$TMP/point.obj" -o "$TMP/out.ply"
 	[[ "$output" == *"flat bounding box"* ]]
 	[ -z "$(ls -A "$TMP" | grep '^\.')" ]
@@ -377,7 +377,30 @@ PY
 	"$BIN/vdt-cluster" -q -g 4 "$TMP/short.ply" -o "$TMP/short.vdq"
 	cmp "$TMP/long.vdq" "$TMP/short.vdq"
 	printf 'ply\nformat binary_little_endian 1.0\nelement %0300d 3\nend_header\n' 0 > "$TMP/bad.ply"
-	run "$BIN/vdt-cluster" -g 4 "$TMP/bad.ply" -o "$TMP/bad.vdq"
-	[ "$status" -eq 2 ]
-	[[ "$output" == *"PLY header line 3 is too long"* ]]
+	same_refusal "$TMP/bad.ply"
+	[[ "$want" == *"PLY header line 3: bad element line"* ]]
+}
+
+@test "vdt-cluster reads the PLY header with vdt-qslim's parser: the same words for what it refuses" {
+	python3 - "$TMP" <<'PY'
+import sys
+d = sys.argv[1]
+head = "ply\nformat binary_little_endian 1.0\n"
+tail = "element face 0\nproperty list uchar int vertex_indices\nend_header\n"
+bad = {
+    # a NUL inside a property name; a float list count; a second format;
+    # six words; an element count that is no number; no format at all
+    "nul": head + "element vertex 0\nproperty float x\0yz\n" + tail,
+    "count": head + "element vertex 0\nproperty float x\nelement face 0\nproperty list float int vertex_indices\nend_header\n",
+    "format": head + "format ascii 1.0\nelement vertex 0\n" + tail,
+    "words": head + "element vertex 0 a b c d\n" + tail,
+    "number": head + "element vertex x\n" + tail,
+    "noformat": "ply\nelement vertex 0\n" + tail,
+}
+for name, text in bad.items():
+    open("%s/%s.ply" % (d, name), "wb").write(text.encode())
+PY
+	for f in nul count format words number noformat; do
+		same_refusal "$TMP/$f.ply"
+	done
 }

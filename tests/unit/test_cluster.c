@@ -641,7 +641,7 @@ header_box(void **state)
 /*
  * A binary PLY that ends on the one-byte count of a list in an element
  * walked over (before the vertices): the count is read from its own byte
- * only, and the record named truncated. The input is an exact-size heap
+ * only, and the element named truncated. The input is an exact-size heap
  * block, so that a read past it shows under ASan.
  */
 static void
@@ -663,7 +663,7 @@ ply_ends_on_a_list_count(void **state)
 	buf[len - 1] = 2;
 	assert_int_equal(vdt_tsource_open_memory(&ts, buf, len, &err), VDT_EFORMAT);
 	assert_null(ts);
-	assert_string_equal(err.msg, "PLY element 'junk': record 0 is truncated");
+	assert_string_equal(err.msg, "PLY file is truncated in element 'junk'");
 	free(buf);
 }
 

@@ -1,0 +1,87 @@
+/*
+ * plyhead.h - the layout of a PLY file (Greg Turk, "The PLY Polygon File
+ * Format", 1994): its header of elements and typed properties, and the
+ * reading of binary values and records. One parser for every reader of
+ * vdt (ply.c's, which loads a file whole, and vdt-cluster's streaming
+ * source), so that they take and refuse the same headers with the same
+ * words.
+ */
+#ifndef VDT_PLYHEAD_H
+#define VDT_PLYHEAD_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "../err.h"
+
+#define VDT_PLY_MAX_ELEMENTS 64
+#define VDT_PLY_MAX_PROPS 128
+#define VDT_PLY_MAX_NAME 64
+
+enum vdt_ply_type {
+	VDT_PLY_NONE, VDT_PLY_I8, VDT_PLY_U8, VDT_PLY_I16, VDT_PLY_U16,
+	VDT_PLY_I32, VDT_PLY_U32, VDT_PLY_F32, VDT_PLY_F64
+};
+
+/* Bytes of a value of each type (0 for VDT_PLY_NONE). */
+extern const unsigned vdt_ply_type_size[];
+
+/* The type's name in a header ("uchar"), "?" for none. */
+const char *vdt_ply_type_name(enum vdt_ply_type t);
+
+struct vdt_ply_prop {
+	char name[VDT_PLY_MAX_NAME];
+	enum vdt_ply_type type;       /* scalar type, or the item type of a list */
+	enum vdt_ply_type count_type; /* VDT_PLY_NONE for a scalar */
+};
+
+struct vdt_ply_element {
+	char name[VDT_PLY_MAX_NAME];
+	uint64_t count;
+	size_t prop_count;
+	struct vdt_ply_prop props[VDT_PLY_MAX_PROPS];
+};
+
+struct vdt_plyhead {
+	int big_endian;
+	int ascii;
+	size_t element_count;
+	struct vdt_ply_element elements[VDT_PLY_MAX_ELEMENTS];
+	size_t data_offset; /* of the first record, after end_header */
+	/* A "comment bbox XMIN YMIN ZMIN XMAX YMAX ZMAX" line (vdt's writers
+	 * put one), a claim nothing checks: has_box 1 and box filled. */
+	int has_box;
+	double box[6];
+};
+
+/*
+ * Parse the header at the start of buf[0..len) into *h (about 600 KB:
+ * the caller's, typically malloc'ed): lines of any length for comments,
+ * words bounded, counts and names checked. Returns 0, or VDT_EFORMAT with
+ * a message naming the line.
+ */
+int vdt_plyhead_parse(const unsigned char *buf, size_t len, struct vdt_plyhead *h,
+                      struct vdt_err *err);
+
+/* Values of a binary record, of either byte order (be), from their own
+ * bytes only. */
+uint16_t vdt_plyhead_u16(const unsigned char *p, int be);
+uint32_t vdt_plyhead_u32(const unsigned char *p, int be);
+uint64_t vdt_plyhead_u64(const unsigned char *p, int be);
+double vdt_plyhead_scalar(const unsigned char *p, enum vdt_ply_type t, int be);
+
+/*
+ * An integer list count or index. Signed values are returned sign-extended
+ * so that a negative index is reported as such; a float, when it is a
+ * whole number in range, else -1.
+ */
+int64_t vdt_plyhead_int(const unsigned char *p, enum vdt_ply_type t, int be);
+
+/* Bytes of one record of e at p (at most avail), or 0 if it does not fit. */
+size_t vdt_plyhead_record_size(const struct vdt_ply_element *e, const unsigned char *p,
+                               size_t avail, int be);
+
+/* Whether e's records all have one size (no lists): 1 and *size, else 0. */
+int vdt_plyhead_fixed_size(const struct vdt_ply_element *e, size_t *size);
+
+#endif
