@@ -1372,10 +1372,9 @@ spread3(uint32_t x)
 /*
  * From VDT_QSLIM_PASSES_MIN welded vertices up, when its numbering is
  * scattered, the working mesh w is renumbered for locality before anything
- * is built on it: its vertices in
- * Morton order of the cells of a 32^3 grid over box that hold them (in
- * the order they had within a cell), its faces in
- * order of their lowest vertex. A contraction, and the costing around it,
+ * is built on it: its vertices in Morton order of the cells of a 32^3 grid
+ * over box that hold them (in the order they had within a cell), its faces
+ * in order of their lowest vertex. A contraction, and the costing around it,
  * read the data of neighbouring vertices and faces, which then lie near
  * each other in memory; a scan comes in the order of its scanner, whose
  * neighbours lie a slice apart (the Stanford dragon's: a median of 979
