@@ -147,21 +147,6 @@ read_vertices(const struct vdt_plyhead *h, const struct vdt_ply_element *e,
  * Walk the face records twice: once to count triangles and check every
  * record fits, once to fan-triangulate into m->triangles.
  */
-/* Where property li starts in the record at p, whose size was checked. */
-static size_t
-list_offset(const struct vdt_ply_element *e, size_t li, const unsigned char *p, int be)
-{
-	size_t lo = 0;
-
-	for (size_t i = 0; i < li; i++)
-		lo += e->props[i].count_type == VDT_PLY_NONE
-		          ? vdt_ply_type_size[e->props[i].type]
-		          : vdt_ply_type_size[e->props[i].count_type] +
-		                (size_t)vdt_plyhead_int(p + lo, e->props[i].count_type, be) *
-		                    vdt_ply_type_size[e->props[i].type];
-	return lo;
-}
-
 static int
 read_faces(const struct vdt_plyhead *h, const struct vdt_ply_element *e,
            const unsigned char *p, size_t avail, size_t *used,
@@ -195,7 +180,7 @@ read_faces(const struct vdt_plyhead *h, const struct vdt_ply_element *e,
 		if (rs == 0)
 			return vdt_err_set(err, VDT_EFORMAT, "PLY file is truncated in face %llu of %llu",
 			                   (unsigned long long)f, (unsigned long long)e->count);
-		lo = list_offset(e, li, p + o, be);
+		lo = vdt_plyhead_list_offset(e, li, p + o, be);
 		c = vdt_plyhead_int(p + o + lo, lp->count_type, be);
 		if (c < 3)
 			return vdt_err_set(err, VDT_EFORMAT, "face %llu has %lld vertices",
@@ -240,7 +225,7 @@ read_faces(const struct vdt_plyhead *h, const struct vdt_ply_element *e,
 				continue;
 			}
 		} else {
-			lo = list_offset(e, li, p + o, be);
+			lo = vdt_plyhead_list_offset(e, li, p + o, be);
 			c = vdt_plyhead_int(p + o + lo, lp->count_type, be);
 			q = p + o + lo + cs;
 		}

@@ -321,3 +321,17 @@ vdt_plyhead_fixed_size(const struct vdt_ply_element *e, size_t *size)
 	return 1;
 }
 
+size_t
+vdt_plyhead_list_offset(const struct vdt_ply_element *e, size_t li, const unsigned char *p,
+                        int be)
+{
+	size_t lo = 0;
+
+	for (size_t i = 0; i < li; i++)
+		lo += e->props[i].count_type == VDT_PLY_NONE
+		          ? vdt_ply_type_size[e->props[i].type]
+		          : vdt_ply_type_size[e->props[i].count_type] +
+		                (size_t)vdt_plyhead_int(p + lo, e->props[i].count_type, be) *
+		                    vdt_ply_type_size[e->props[i].type];
+	return lo;
+}

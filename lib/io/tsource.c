@@ -359,41 +359,23 @@ static int
 ply_next_face(struct vdt_tsource *s, struct vdt_err *err)
 {
 	const struct vdt_ply_element *e = &s->face;
+	const struct vdt_ply_prop *lp = &e->props[s->list_prop];
 	const unsigned char *p = s->fcur;
-	size_t avail = (size_t)(s->fend - p), off = 0;
+	size_t size = vdt_plyhead_record_size(e, p, (size_t)(s->fend - p), s->be), lo;
 
-	for (size_t i = 0; i < e->prop_count; i++) {
-		const struct vdt_ply_prop *pr = &e->props[i];
-		int64_t c;
-
-		if (pr->count_type == VDT_PLY_NONE) {
-			off += vdt_ply_type_size[pr->type];
-			if (off > avail)
-				goto truncated;
-			continue;
-		}
-		if (off + vdt_ply_type_size[pr->count_type] > avail)
-			goto truncated;
-		c = vdt_plyhead_int(p + off, pr->count_type, s->be);
-		off += vdt_ply_type_size[pr->count_type];
-		if (c < 0 || (uint64_t)c > (avail - off) / vdt_ply_type_size[pr->type])
-			goto truncated;
-		if (i == s->list_prop) {
-			s->poly = p + off;
-			s->poly_n = (uint64_t)c;
-			s->poly_type = pr->type;
-		}
-		off += (size_t)c * vdt_ply_type_size[pr->type];
-	}
+	if (size == 0)
+		return vdt_err_set(err, VDT_EFORMAT, "PLY file is truncated in face %" PRIu64
+		                   " of %" PRIu64, s->fidx, s->fcount);
+	lo = vdt_plyhead_list_offset(e, s->list_prop, p, s->be);
+	s->poly_n = (uint64_t)vdt_plyhead_int(p + lo, lp->count_type, s->be);
+	s->poly = p + lo + vdt_ply_type_size[lp->count_type];
+	s->poly_type = lp->type;
 	if (s->poly_n < 3)
 		return vdt_err_set(err, VDT_EFORMAT, "face %" PRIu64 " has %" PRIu64 " vertices",
 		                   s->fidx, s->poly_n);
 	s->poly_k = 2;
-	s->fcur = p + off;
+	s->fcur = p + size;
 	return 0;
-truncated:
-	return vdt_err_set(err, VDT_EFORMAT, "face %" PRIu64 " of %" PRIu64 " is truncated",
-	                   s->fidx, s->fcount);
 }
 
 static int
@@ -584,15 +566,15 @@ obj_open(struct vdt_tsource *s, struct vdt_err *err)
 	for (int i = 0; i < 2; i++)
 		if ((fd[i] = scratch_file(err)) < 0) {
 			rc = fd[i];
-			goto fail;
+			goto out;
 		}
 	if ((o.pos = fdopen(fd[0], "w+")) == NULL || (o.tri = fdopen(fd[1], "w+")) == NULL) {
 		rc = vdt_err_set(err, VDT_ESYSTEM, "%s", strerror(errno));
-		goto fail;
+		goto out;
 	}
 	fd[0] = fd[1] = -1;
 	if ((rc = vdt_obj_scan(s->buf, s->len, &visit, err)) != 0)
-		goto fail;
+		goto out;
 	if (s->map) /* the text is read: its pages need not stay */
 		drop_range(s->buf, s->buf + s->len);
 	rc = spool_map(o.pos, &s->pos_map, &s->pos_len, err);
@@ -601,14 +583,14 @@ obj_open(struct vdt_tsource *s, struct vdt_err *err)
 		rc = spool_map(o.tri, &s->tri_map, &s->tri_len, err);
 	o.tri = NULL;
 	if (rc != 0)
-		goto fail;
+		goto out;
 	s->vbase = s->pos_map;
 	s->vstride = 12;
 	s->vcount = o.nv;
 	s->tbase = s->tri_map;
 	s->tri_hint = o.nt;
 	return 0;
-fail:
+out:
 	for (int i = 0; i < 2; i++)
 		if (fd[i] >= 0)
 			close(fd[i]);
