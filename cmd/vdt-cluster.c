@@ -165,13 +165,8 @@ run(struct cmdline *cl)
 	free(border);
 	border = NULL;
 	/* The input's chunks of other kinds, after ours (vdt(5)). */
-	for (size_t i = 0; i < passed.count; i++) {
-		rc = vdt_chunks_add(&extra, passed.items[i].type, passed.items[i].data,
-		                    passed.items[i].length, &err);
-		passed.items[i].data = NULL;
-		if (rc != 0)
-			goto write_failed;
-	}
+	if ((rc = vdt_chunks_move(&extra, &passed, &err)) != 0)
+		goto write_failed;
 	if ((rc = vdt_write(cl->out, &out, &extra, &cl->w, &err)) != 0)
 		goto write_failed;
 	t3 = vdt_seconds();

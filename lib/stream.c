@@ -410,6 +410,25 @@ vdt_chunks_find(const struct vdt_chunks *c, uint32_t type)
 	return NULL;
 }
 
+int
+vdt_chunks_move(struct vdt_chunks *c, struct vdt_chunks *src, struct vdt_err *err)
+{
+	size_t i = 0;
+
+	for (; i < src->count; i++) {
+		struct vdt_chunk *ch = &src->items[i];
+		int rc = vdt_chunks_add(c, ch->type, ch->data, ch->length, err);
+		ch->data = NULL; /* freed by vdt_chunks_add on failure */
+		if (rc != 0) {
+			memmove(src->items, src->items + i + 1, (src->count - i - 1) * sizeof(*ch));
+			src->count -= i + 1;
+			return rc;
+		}
+	}
+	src->count = 0;
+	return 0;
+}
+
 void
 vdt_chunks_remove(struct vdt_chunks *c, uint32_t type)
 {

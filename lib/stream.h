@@ -122,6 +122,12 @@ void vdt_chunks_free(struct vdt_chunks *c);
 int vdt_chunks_add(struct vdt_chunks *c, uint32_t type, unsigned char *data,
                    uint64_t length, struct vdt_err *err);
 
+/*
+ * Append every chunk of src to c, in order, leaving src empty. Returns 0,
+ * or VDT_ENOMEM (the chunks not moved stay in src).
+ */
+int vdt_chunks_move(struct vdt_chunks *c, struct vdt_chunks *src, struct vdt_err *err);
+
 /* First chunk of the given type, or NULL. */
 const struct vdt_chunk *vdt_chunks_find(const struct vdt_chunks *c,
                                         uint32_t type);

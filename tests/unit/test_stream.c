@@ -1068,6 +1068,30 @@ writer_and_names(void **state)
 	fclose(f);
 }
 
+/* vdt_chunks_move appends src's chunks in order, owning their data, and
+ * leaves src empty. */
+static void
+chunks_move(void **state)
+{
+	struct vdt_chunks a = {0}, b = {0};
+	const char *names[3] = {"one", "two", "three"};
+
+	(void)state;
+	assert_int_equal(vdt_chunks_add(&a, VDT_CHUNK_QUAD, (unsigned char *)strdup(names[0]), 4, NULL), 0);
+	for (int i = 1; i < 3; i++)
+		assert_int_equal(vdt_chunks_add(&b, VDT_FOURCC('X', 'T', 'R', (char)('0' + i)),
+		                                (unsigned char *)strdup(names[i]), strlen(names[i]) + 1, NULL),
+		                 0);
+	assert_int_equal(vdt_chunks_move(&a, &b, NULL), 0);
+	assert_int_equal(b.count, 0);
+	assert_int_equal(a.count, 3);
+	for (int i = 0; i < 3; i++)
+		assert_string_equal((const char *)a.items[i].data, names[i]);
+	assert_int_equal(a.items[2].type, VDT_FOURCC('X', 'T', 'R', '2'));
+	vdt_chunks_free(&a);
+	vdt_chunks_free(&b);
+}
+
 int
 main(void)
 {
@@ -1090,6 +1114,7 @@ main(void)
 		cmocka_unit_test(bndy_chunk),
 		cmocka_unit_test(reader_misuse),
 		cmocka_unit_test(writer_and_names),
+		cmocka_unit_test(chunks_move),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
