@@ -115,7 +115,7 @@ struct engine {
 	struct work work;      /* the contractions made on the engine's thread */
 
 	int passes;            /* contract in passes (vdt_contract_opts.passes) */
-	int fresh;             /* passes: never read the noted costs (fresh_costs) */
+	int exhaustive;        /* passes: no shortcuts (vdt_contract_opts) */
 	uint64_t *keys;        /* passes: (cost bits, vertex) to sort */
 	uint64_t *kscratch;    /* passes: as many, the sorts' scratch (kept: fresh
 	                          pages each pass would be cleared each pass) */
@@ -1643,8 +1643,8 @@ pass_recost(struct engine *e, int kept)
 			continue;
 		/* The cheapest pairs in the jobs but with fresh costs, whose
 		 * cost function reads the flags the jobs would write. */
-		int in_jobs = !kept && !e->fresh;
-		if (pass_cost(e, n, 0, kept ? FAN_NOTE : e->fresh ? FAN_EVAL : FAN_NOTED, in_jobs) != 0)
+		int in_jobs = !kept && !e->exhaustive;
+		if (pass_cost(e, n, 0, kept ? FAN_NOTE : e->exhaustive ? FAN_EVAL : FAN_NOTED, in_jobs) != 0)
 			return -1;
 		for (size_t j = 0; j < n; j++) {
 			struct vcost *vn = e->pout + e->poff[j];
@@ -2328,7 +2328,7 @@ run_passes(struct engine *e, const struct vdt_contract_opts *o,
 		size_t need = pass_need(e, o), share = e->live_verts / PASS_SHARE;
 		if (need > share && share > 0)
 			need = share;
-		size_t front = pass_select(e->keys, n, need < n ? need : n, e->kscratch);
+		size_t front = e->exhaustive ? n : pass_select(e->keys, n, need < n ? need : n, e->kscratch);
 		if (vdt_sort_u64_in(e->keys, front, 32, e->kscratch) != 0)
 			return -1;
 		double limit = PASS_SLACK * key_cost(e->keys[(need < n ? need : n) - 1]);
@@ -2691,7 +2691,7 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 	e.rank = o->rank;
 	e.vq = !o->pair_queue && o->virtual_pair_count == 0;
 	e.passes = e.vq && o->passes;
-	e.fresh = o->fresh_costs;
+	e.exhaustive = o->exhaustive;
 	res->passes = e.passes;
 	if (engine_init(&e, m, own_pos, own_tri, o) != 0)
 		goto nomem;

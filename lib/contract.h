@@ -145,12 +145,14 @@ struct vdt_contract_opts {
 	 * it. */
 	int threads;
 	/*
-	 * Passes: a pair's cost depends only on its two vertices, so a
-	 * vertex that must find its cheapest pair again reads the costs
-	 * noted on its faces when last computed. Nonzero: cost those pairs
-	 * afresh instead. Slower, and the same result, which the tests check.
+	 * Passes take two shortcuts: a vertex that must find its cheapest
+	 * pair again reads the costs noted on its faces when last computed (a
+	 * pair's cost depends only on its two vertices), and a pass sorts
+	 * only the keys it may claim. Nonzero: neither, costing those pairs
+	 * afresh and sorting every key. Slower, and the same result, which
+	 * the tests check.
 	 */
-	int fresh_costs;
+	int exhaustive;
 };
 
 #define VDT_CONTRACT_MAX_THREADS 16

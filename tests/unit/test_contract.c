@@ -914,7 +914,7 @@ passes_on_threads_match_one_thread(void **state)
 		o.passes = 1;
 		o.record = 1;
 		o.threads = k < 3 ? k + 1 : 1;
-		o.fresh_costs = k == 3;
+		o.exhaustive = k == 3;
 		o.target_triangles = nt / 20;
 		assert_int_equal(vdt_contract_run(&m, &ops, &o, &r[k], NULL), 0);
 		assert_true(r[k].reached_target);
@@ -1011,6 +1011,93 @@ auto_order_follows_the_size(void **state)
 	assert_int_equal(vdt_qslim_order_parse("fast"), -1);
 }
 
+/* Pairs with a hub (a vertex numbered 0 mod HUB_STRIDE, below
+ * HUB_VERTICES) cost 1, other pairs 10 and up, varying with the vertices;
+ * the merged vertex stays where the survivor is. */
+#define HUB_SPOKES 40
+#define HUB_STRIDE (1 + HUB_SPOKES)
+#define HUB_COUNT 800
+#define HUB_VERTICES (HUB_COUNT * HUB_STRIDE)
+
+static int
+is_hub(uint32_t v)
+{
+	return v < HUB_VERTICES && v % HUB_STRIDE == 0;
+}
+
+static double
+hub_cost(void *ctx, uint32_t a, uint32_t b, int fixed, const float pa[3], const float pb[3],
+         double pos[3])
+{
+	(void)ctx;
+	for (int k = 0; k < 3; k++)
+		pos[k] = fixed == 1 || is_hub(b) ? pb[k] : pa[k];
+	return is_hub(a) || is_hub(b) ? 1 : 10 + (double)((a * 2654435761u + b) % 53);
+}
+
+/*
+ * A pass sorts only the keys it may claim (those up to 1.5 times the
+ * cost of the need-th) and sorts the rest only if its claims run past
+ * them. Here they must: 800 fans of 40 triangles, whose spokes are the
+ * cheapest pairs but share their hubs, so that a pass can claim only one
+ * per fan, beside a grid of dearer pairs. The result must be that of
+ * sorting every key (exhaustive).
+ *
+ *     r2                      o---o---o
+ *   /    \                    | / | / |   the grid, 250 x 250, apart
+ * r3 -hub- r1   x 800         o---o---o
+ *   \    /
+ *     r40
+ */
+static void
+passes_sort_past_the_claimable_keys(void **state)
+{
+	struct vdt_mesh g, m;
+	struct vdt_contract_ops ops = {hub_cost, NULL, NULL, NULL, 0, NULL, 0};
+	struct vdt_contract_result r[2];
+
+	(void)state;
+	shape_grid(&g, 250);
+	size_t nv = HUB_VERTICES + g.vertex_count, nt = HUB_COUNT * HUB_SPOKES + g.triangle_count;
+	assert_int_equal(vdt_mesh_alloc(&m, nv, nt, 0, NULL), 0);
+	uint32_t *t = m.triangles;
+	for (uint32_t h = 0; h < HUB_COUNT; h++) {
+		uint32_t c = h * HUB_STRIDE;
+		float *p = m.positions + 3 * (size_t)c;
+		p[0] = (float)(3 * h), p[1] = 0, p[2] = 0;
+		for (uint32_t i = 0; i < HUB_SPOKES; i++) {
+			double phi = 2 * M_PI * i / HUB_SPOKES;
+			float *q = m.positions + 3 * (size_t)(c + 1 + i);
+			q[0] = p[0] + (float)cos(phi), q[1] = (float)sin(phi), q[2] = 0;
+			*t++ = c, *t++ = c + 1 + i, *t++ = c + 1 + (i + 1) % HUB_SPOKES;
+		}
+	}
+	for (size_t i = 0; i < g.vertex_count; i++) {
+		float *p = m.positions + 3 * (HUB_VERTICES + i);
+		p[0] = g.positions[3 * i], p[1] = 3 + g.positions[3 * i + 1], p[2] = 0;
+	}
+	for (size_t i = 0; i < 3 * g.triangle_count; i++)
+		*t++ = HUB_VERTICES + g.triangles[i];
+	for (int k = 0; k < 2; k++) {
+		struct vdt_contract_opts o;
+		vdt_contract_defaults(&o);
+		o.passes = 1;
+		o.record = 1;
+		o.threads = 1;
+		o.allow_nonmanifold = 1;
+		o.exhaustive = k;
+		o.target_triangles = nt / 2;
+		assert_int_equal(vdt_contract_run(&m, &ops, &o, &r[k], NULL), 0);
+		assert_true(r[k].reached_target);
+	}
+	assert_int_equal(r[1].record_count, r[0].record_count);
+	assert_memory_equal(r[1].records, r[0].records, r[0].record_count * sizeof(*r[0].records));
+	for (int k = 0; k < 2; k++)
+		vdt_contract_result_free(&r[k]);
+	vdt_mesh_free(&g);
+	vdt_mesh_free(&m);
+}
+
 int
 main(void)
 {
@@ -1035,6 +1122,7 @@ main(void)
 		cmocka_unit_test(auto_order_follows_the_size),
 		cmocka_unit_test(passes_on_threads_match_one_thread),
 		cmocka_unit_test(qslim_threads_do_not_matter),
+		cmocka_unit_test(passes_sort_past_the_claimable_keys),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
