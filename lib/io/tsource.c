@@ -251,6 +251,10 @@ ply_open(struct vdt_tsource *s, struct vdt_err *err)
 		if (strcmp(e->name, "vertex") == 0 && ve == NULL) {
 			ve = e;
 			s->vbase = s->buf + at;
+			if (!vdt_plyhead_fixed_size(ve, &s->vstride)) {
+				rc = vdt_err_set(err, VDT_EFORMAT, "PLY vertex element has a list property");
+				goto out;
+			}
 		} else if (strcmp(e->name, "face") == 0 && fe == NULL) {
 			fe = e;
 			s->fbase = s->buf + at;
@@ -258,13 +262,9 @@ ply_open(struct vdt_tsource *s, struct vdt_err *err)
 		if (!(ve && fe) && (rc = ply_skip(s, e, &at, err)) != 0)
 			goto out;
 	}
-		rc = VDT_EFORMAT;
+	rc = VDT_EFORMAT;
 	if (ve == NULL || fe == NULL) {
 		vdt_err_set(err, rc, "PLY file has no %s element", ve ? "face" : "vertex");
-		goto out;
-	}
-	if (!vdt_plyhead_fixed_size(ve, &s->vstride)) {
-		vdt_err_set(err, rc, "PLY vertex element has a list property");
 		goto out;
 	}
 	if (s->vstride != 0 && ve->count > (size_t)(s->buf + s->len - s->vbase) / s->vstride) {

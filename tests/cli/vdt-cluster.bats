@@ -403,4 +403,20 @@ PY
 	for f in nul count format words number noformat; do
 		same_refusal "$TMP/$f.ply"
 	done
+	# past the header: a face cut short; a list among the vertex properties
+	python3 - "$TMP" <<'PY'
+import struct, sys
+d = sys.argv[1]
+head = ("ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\n"
+        "property float y\nproperty float z\n")
+tail = "element face 3\nproperty list uchar int vertex_indices\nend_header\n"
+v = struct.pack('<12f', 0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0)
+f = b"".join(struct.pack('<B3i', 3, *t) for t in ((0, 1, 2), (1, 3, 2), (0, 1, 3)))
+open(d + "/cutface.ply", "wb").write((head + tail).encode() + v + f[:-6])
+open(d + "/vlist.ply", "wb").write((head + "property list uchar float w\n" + tail).encode())
+PY
+	same_refusal "$TMP/cutface.ply"
+	[[ "$want" == *"PLY file is truncated in face 2 of 3" ]]
+	same_refusal "$TMP/vlist.ply"
+	[[ "$want" == *"PLY vertex element has a list property" ]]
 }
