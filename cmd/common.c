@@ -35,10 +35,8 @@ cmd_init(char **argv)
 enum vdt_format
 output_format(const char *path, enum vdt_format given)
 {
-	enum vdt_format f = given;
+	enum vdt_format f = vdt_output_format(path, given);
 
-	if (f == VDT_FMT_AUTO)
-		f = strcmp(path, "-") == 0 ? VDT_FMT_VDT : vdt_format_from_path(path);
 	if (f == VDT_FMT_AUTO)
 		usage_error("cannot tell the output format from '%s': give a known extension or -F",
 		            path);

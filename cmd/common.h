@@ -52,10 +52,8 @@ int fail(const char *what, const char *file, const struct vdt_err *err);
 int exit_status(int code);
 
 /*
- * The format an output goes out in: `given` (from -F) unless
- * VDT_FMT_AUTO, else the one its name's extension gives (a printf
- * pattern's too), else the vdt stream for stdout. A name that gives none
- * is a usage error, found before any work is done.
+ * vdt_output_format of path and -F's format; a name that gives none is a
+ * usage error, found before any work is done.
  */
 enum vdt_format output_format(const char *path, enum vdt_format given);
 

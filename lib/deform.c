@@ -1339,9 +1339,7 @@ vdt_deform_writes_frames(const char *path, const struct vdt_write_opts *w)
 {
 	if (vdt_anim_is_pattern(path))
 		return 1;
-	if (w->format != VDT_FMT_AUTO)
-		return w->format == VDT_FMT_VDT;
-	return strcmp(path, "-") == 0 || vdt_format_from_path(path) == VDT_FMT_VDT;
+	return vdt_output_format(path, w->format) == VDT_FMT_VDT;
 }
 
 int

@@ -843,6 +843,14 @@ write_stream(FILE *f, const struct vdt_mesh *m, const struct vdt_chunks *extra,
 	return rc;
 }
 
+enum vdt_format
+vdt_output_format(const char *path, enum vdt_format given)
+{
+	if (given != VDT_FMT_AUTO)
+		return given;
+	return strcmp(path, "-") == 0 ? VDT_FMT_VDT : vdt_format_from_path(path);
+}
+
 int
 vdt_write(const char *path, const struct vdt_mesh *m,
           const struct vdt_chunks *extra, const struct vdt_write_opts *opts,
@@ -853,9 +861,7 @@ vdt_write(const char *path, const struct vdt_mesh *m,
 	struct vdt_output o;
 	int rc;
 
-	if (f == VDT_FMT_AUTO)
-		f = to_stdout ? VDT_FMT_VDT : vdt_format_from_path(path);
-	if (f == VDT_FMT_AUTO)
+	if ((f = vdt_output_format(path, f)) == VDT_FMT_AUTO)
 		return vdt_err_set(err, VDT_EINVAL, "unknown output format (give a known extension)");
 	if (to_stdout && is_binary_format(f) && isatty(STDOUT_FILENO))
 		return vdt_err_set(err, VDT_EINVAL, "refusing to write binary %s to a terminal",

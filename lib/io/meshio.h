@@ -46,6 +46,13 @@ const char *vdt_format_name(enum vdt_format f);
 enum vdt_format vdt_format_from_path(const char *path);
 
 /*
+ * The format an output goes out in: `given` unless VDT_FMT_AUTO, else the
+ * one path's extension gives, else the vdt stream for "-" (stdout);
+ * VDT_FMT_AUTO when none is known. vdt_write decides by it.
+ */
+enum vdt_format vdt_output_format(const char *path, enum vdt_format given);
+
+/*
  * How many bytes an input whose first VDT_DETECT_BYTES bytes are head may
  * hold and still be a mesh vdt reads, when its name gives the format hint
  * (VDT_FMT_AUTO: none): 0 when it is of no known format already
