@@ -26,8 +26,9 @@ usage(FILE *f)
 	fprintf(f,
 	        "usage: vdt-qslim [-t TRIANGLES] [-r RATIO] [-e ERROR[%%]] [-o OUTPUT] [-F FORMAT]\n"
 	        "                 [-a DISTANCE[%%]] [--lock-border] [--boundary-weight W]\n"
-	        "                 [--max-angle DEGREES] [--min-quality Q] [--ignore-quadrics]\n"
-	        "                 [--attribute-weight W] [--topology auto|keep|free]\n"
+	        "                 [--area-floor F] [--max-angle DEGREES] [--min-quality Q]\n"
+	        "                 [--ignore-quadrics]"
+	        " [--attribute-weight W] [--topology auto|keep|free]\n"
 	        "                 [--order auto|greedy|passes] [-j THREADS] [--record]\n"
 	        "                 [--contour-distance PIXELS] [--error-factor F]\n"
 	        "                 [--view X,Y,Z [--nearest N]] [--draco-bits N] [-q] [-v] [INPUT]\n"
@@ -39,7 +40,7 @@ usage(FILE *f)
 static void
 parse_cmdline(int argc, char **argv, struct cmdline *cl)
 {
-	enum { O_LOCK = 256, O_BW, O_ANGLE, O_QUALITY, O_IGNORE, O_RECORD, O_DRACO, O_AW, O_TOPO, O_CD, O_EF, O_VIEW, O_NEAR, O_ORDER };
+	enum { O_LOCK = 256, O_BW, O_ANGLE, O_QUALITY, O_IGNORE, O_RECORD, O_DRACO, O_AW, O_TOPO, O_CD, O_EF, O_VIEW, O_NEAR, O_ORDER, O_FLOOR };
 	static const struct option longopts[] = {
 		{"triangles", required_argument, NULL, 't'},
 		{"ratio", required_argument, NULL, 'r'},
@@ -49,6 +50,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		{"aggregate", required_argument, NULL, 'a'},
 		{"lock-border", no_argument, NULL, O_LOCK},
 		{"boundary-weight", required_argument, NULL, O_BW},
+		{"area-floor", required_argument, NULL, O_FLOOR},
 		{"max-angle", required_argument, NULL, O_ANGLE},
 		{"min-quality", required_argument, NULL, O_QUALITY},
 		{"ignore-quadrics", no_argument, NULL, O_IGNORE},
@@ -89,6 +91,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		case 'j': cl->q.threads = (int)parse_count("-j", optarg, 1, VDT_CONTRACT_MAX_THREADS); break;
 		case O_LOCK: cl->q.lock_border = 1; break;
 		case O_BW: cl->q.boundary_weight = parse_real("--boundary-weight", optarg, 0, 1e12); break;
+		case O_FLOOR: cl->q.area_floor = parse_real("--area-floor", optarg, 0, 1); break;
 		case O_ANGLE: cl->q.max_normal_angle = parse_real("--max-angle", optarg, 1, 180); break;
 		case O_QUALITY: cl->q.min_quality = parse_real("--min-quality", optarg, 0, 1); break;
 		case O_IGNORE: cl->ignore_quadrics = 1; break;

@@ -29,6 +29,7 @@
 #include <string.h>
 
 #include "contract.h"
+#include "qslim.h"
 #include "quadric.h"
 
 #define NONE UINT32_MAX
@@ -74,6 +75,7 @@ vdt_deform_defaults(struct vdt_deform_opts *o)
 	o->p = 0.96;
 	o->coherence = VDT_DEFORM_COHERENCE;
 	o->boundary_weight = 100;
+	o->area_floor = VDT_QSLIM_AREA_FLOOR;
 	o->max_normal_angle = 75;
 }
 
@@ -281,10 +283,13 @@ add_boundary(struct qd *q, size_t stride, const float *pos, const double *c,
  * vertex in fan order, as vdt_qslim adds them.
  */
 static void
-frame_quadrics(const struct anim *a, size_t f, const double c[3], double bw,
+frame_quadrics(const struct anim *a, size_t f, const double c[3], double bw, double floor,
                struct qd *q, size_t stride)
 {
 	const float *pos = a->pos + 3 * a->nv * f;
+	const struct vdt_mesh frame = {.vertex_count = a->nv, .positions = (float *)pos,
+	                               .triangle_count = a->nt, .triangles = a->tri};
+	double min_area = floor > 0 ? floor * vdt_mesh_mean_area(&frame, NULL) : 0;
 
 	for (size_t v = 0; v < a->nv; v++)
 		memset(&q[v * stride], 0, sizeof(*q));
@@ -295,7 +300,7 @@ frame_quadrics(const struct anim *a, size_t f, const double c[3], double bw,
 		for (int i = 0; i < 3; i++)
 			for (int k = 0; k < 3; k++)
 				p[i][k] = pos[3 * (size_t)v[i] + k] - c[k];
-		if (vdt_quadric_triangle(&tq, p[0], p[1], p[2]) == 0)
+		if (vdt_quadric_triangle_floor(&tq, p[0], p[1], p[2], min_area) == 0)
 			for (int i = 0; i < 3; i++)
 				qd_add(&q[v[i] * stride], &tq);
 	}
@@ -829,7 +834,7 @@ simplify_frame(const struct anim *a, size_t f, const struct vdt_contraction *rec
 	c.q = s->q;
 	c.prefer = o->method == VDT_DEFORM_OURS && o->coherence > 0 ? &s->prefer : NULL;
 	c.discount = 1 / (1 + o->coherence);
-	frame_quadrics(a, f, c.centre, o->boundary_weight, s->q, 1);
+	frame_quadrics(a, f, c.centre, o->boundary_weight, o->area_floor, s->q, 1);
 	memcpy(s->pos, a->pos + 3 * nv * f, 3 * nv * sizeof(float));
 	for (size_t v0 = 0; v0 < nv; v0++)
 		s->parent[v0] = (uint32_t)v0;
@@ -1001,7 +1006,8 @@ vdt_deform(const struct vdt_mesh *m, const struct vdt_frames *fr,
 	if (!(o->k1 >= 0 && o->k1 < INFINITY) || !(o->k2 >= 0 && o->k2 <= 1) ||
 	    !(o->p >= 0 && o->p <= 1) || !(o->coherence >= 0 && o->coherence < INFINITY) ||
 	    !(o->sharp_angle >= 0 && o->sharp_angle <= 180) ||
-	    !(o->boundary_weight >= 0) || !(o->target_ratio >= 0 && o->target_ratio <= 1) ||
+	    !(o->boundary_weight >= 0) || !(o->area_floor >= 0 && o->area_floor <= 1) ||
+	    !(o->target_ratio >= 0 && o->target_ratio <= 1) ||
 	    o->method > VDT_DEFORM_INDEPENDENT)
 		return vdt_err_set(err, VDT_EINVAL, "invalid simplification options");
 	if (o->target_vertices == 0 && o->target_ratio == 0)
@@ -1071,7 +1077,8 @@ vdt_deform(const struct vdt_mesh *m, const struct vdt_frames *fr,
 			double unit = frame_centre(&a, f, u.centre + 3 * f);
 			if (f == 0)
 				u.unit = unit;
-			frame_quadrics(&a, f, u.centre + 3 * f, o->boundary_weight, u.q + f, u.nf);
+			frame_quadrics(&a, f, u.centre + 3 * f, o->boundary_weight, o->area_floor,
+			               u.q + f, u.nf);
 			for (size_t v = 0; v < nv; v++)
 				memcpy(u.cur + 3 * (v * u.nf + f), a.pos + 3 * (nv * f + v), 3 * sizeof(float));
 			vdt_progress_report(o->progress, "quadrics", (double)(f + 1) / (double)u.nf);

@@ -51,12 +51,15 @@ struct vdt_deform_opts {
 	                            its own cost / (1 + coherence), >= 0 (0: the
 	                            paper's tail, each frame on its own) */
 	double boundary_weight;  /* perpendicular boundary planes, as vdt-qslim */
+	double area_floor;       /* as vdt_qslim_opts.area_floor, in [0, 1],
+	                            of each frame's mean face area */
 	double max_normal_angle; /* fold-over threshold, degrees */
 	const struct vdt_progress *progress;
 };
 
 /* Defaults: ours, k1 1, k2 VDT_DEFORM_K2, 60 degrees, P 0.96, coherence
- * VDT_DEFORM_COHERENCE, boundary weight 100, 75 degrees; no target. */
+ * VDT_DEFORM_COHERENCE, boundary weight 100, area floor VDT_QSLIM_AREA_FLOOR,
+ * 75 degrees; no target. */
 #define VDT_DEFORM_K2 0.5
 #define VDT_DEFORM_COHERENCE 0.5
 void vdt_deform_defaults(struct vdt_deform_opts *o);

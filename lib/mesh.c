@@ -140,6 +140,22 @@ vdt_mesh_face_cross(const struct vdt_mesh *m, size_t t, double n[3])
 	n[2] = e1[0] * e2[1] - e1[1] * e2[0];
 }
 
+double
+vdt_mesh_mean_area(const struct vdt_mesh *m, const uint8_t *skip)
+{
+	double sum = 0, n[3];
+	size_t count = 0;
+
+	for (size_t t = 0; t < m->triangle_count; t++) {
+		if (skip != NULL && skip[t])
+			continue;
+		vdt_mesh_face_cross(m, t, n);
+		sum += sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+		count++;
+	}
+	return count ? sum / 2 / (double)count : 0;
+}
+
 void
 vdt_mesh_bbox(const struct vdt_mesh *m, struct vdt_bbox *box)
 {

@@ -68,6 +68,12 @@ int vdt_mesh_validate(const struct vdt_mesh *m, struct vdt_err *err);
  */
 void vdt_mesh_face_cross(const struct vdt_mesh *m, size_t t, double n[3]);
 
+/*
+ * The mean area of the triangles (of those with skip[t] == 0, when skip is
+ * given); 0 for none.
+ */
+double vdt_mesh_mean_area(const struct vdt_mesh *m, const uint8_t *skip);
+
 /* Axis-aligned bounding box of the positions (of every vertex). */
 void vdt_mesh_bbox(const struct vdt_mesh *m, struct vdt_bbox *box);
 

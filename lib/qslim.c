@@ -50,6 +50,7 @@ vdt_qslim_defaults(struct vdt_qslim_opts *o)
 	o->max_error = INFINITY;
 	o->boundary_weight = 100;
 	o->max_normal_angle = 75;
+	o->area_floor = VDT_QSLIM_AREA_FLOOR;
 }
 
 /* The index of name among three, or -1. */
@@ -343,6 +344,7 @@ struct fq_job {
 	const struct vdt_mesh *w;
 	struct ctx *c;
 	const uint8_t *dead;
+	double min_area; /* the area floor */
 	uint32_t lo, hi; /* the job's vertices */
 };
 
@@ -366,7 +368,7 @@ fq_run(void *arg)
 		for (int i = 0; i < 3; i++)
 			for (int k = 0; k < 3; k++)
 				p[i][k] = w->positions[3 * (size_t)v[i] + k] - j->c->centre[k];
-		if (vdt_quadric_triangle(&q, p[0], p[1], p[2]) == 0)
+		if (vdt_quadric_triangle_floor(&q, p[0], p[1], p[2], j->min_area) == 0)
 			for (int i = 0; i < 3; i++)
 				if (in[i])
 					vdt_quadric_add(&j->c->q[v[i]], &q);
@@ -378,16 +380,18 @@ fq_run(void *arg)
 #define FQ_MIN_VERTICES 65536
 
 static void
-face_quadrics(const struct vdt_mesh *w, struct ctx *c, const uint8_t *dead, int threads)
+face_quadrics(const struct vdt_mesh *w, struct ctx *c, const uint8_t *dead, double floor,
+              int threads)
 {
 	struct fq_job job[VDT_CONTRACT_MAX_THREADS];
 	size_t nv = w->vertex_count;
 	int t = vdt_contract_threads(threads);
+	double min_area = floor > 0 ? floor * vdt_mesh_mean_area(w, dead) : 0;
 
 	if (nv < FQ_MIN_VERTICES)
 		t = 1;
 	for (int k = 0; k < t; k++)
-		job[k] = (struct fq_job){w, c, dead, (uint32_t)(nv * (size_t)k / (size_t)t),
+		job[k] = (struct fq_job){w, c, dead, min_area, (uint32_t)(nv * (size_t)k / (size_t)t),
 		                         (uint32_t)(nv * (size_t)(k + 1) / (size_t)t)};
 	vdt_run_jobs(fq_run, job, sizeof(job[0]), t);
 }
@@ -423,7 +427,7 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 			vdt_quadric_add(&c->q[canon[i]], &q);
 		}
 	} else {
-		face_quadrics(w, c, dead, o->threads);
+		face_quadrics(w, c, dead, o->area_floor, o->threads);
 	}
 
 	/* Open edges of a clustered intermediate are mostly the rims of thin

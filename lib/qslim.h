@@ -65,6 +65,11 @@ struct vdt_qslim_opts {
 	                             came from; an open edge then gets its
 	                             planes only when one of its ends is; or
 	                             NULL: every open edge gets them */
+	double area_floor;        /* a face smaller than this fraction of
+	                             the mean face area weighs as one of
+	                             that size in the fundamental quadrics
+	                             (0: each face its own area; not used
+	                             with quadrics given) */
 	double attribute_weight;  /* of attribute errors against distances
 	                             (see vdt_qslim); 0: attributes are copied,
 	                             never interpolated, and cost nothing */
@@ -84,10 +89,18 @@ struct vdt_qslim_opts {
 };
 
 /*
- * Defaults: no target, no bound, boundary weight 100, 75 degrees, attribute
- * weight 0 (attributes copied, as before the weight existed).
- * VDT_QSLIM_ATTRIBUTE_WEIGHT is the weight vdt-qslim uses by default.
+ * Defaults: no target, no bound, boundary weight 100, 75 degrees, area floor
+ * VDT_QSLIM_AREA_FLOOR, attribute weight 0 (attributes copied, as before the
+ * weight existed). VDT_QSLIM_ATTRIBUTE_WEIGHT is the weight vdt-qslim uses
+ * by default.
+ *
+ * The area floor: weighed by area alone, a part tessellated much finer
+ * than the rest (a scanner's close-up, a thin ridge, a spike of small
+ * faces) costs next to nothing to flatten, however far it stands out. With
+ * the floor its faces weigh at least a quarter of a mean face; meshes whose
+ * faces are all about one size are not touched.
  */
+#define VDT_QSLIM_AREA_FLOOR 0.25
 #define VDT_QSLIM_ATTRIBUTE_WEIGHT 1.0
 
 void vdt_qslim_defaults(struct vdt_qslim_opts *o);

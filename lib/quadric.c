@@ -42,6 +42,13 @@ int
 vdt_quadric_triangle(struct vdt_quadric *q, const double p0[3],
                      const double p1[3], const double p2[3])
 {
+	return vdt_quadric_triangle_floor(q, p0, p1, p2, 0);
+}
+
+int
+vdt_quadric_triangle_floor(struct vdt_quadric *q, const double p0[3],
+                           const double p1[3], const double p2[3], double min_area)
+{
 	double e1[3], e2[3], n[3], len;
 
 	for (int k = 0; k < 3; k++) {
@@ -57,6 +64,8 @@ vdt_quadric_triangle(struct vdt_quadric *q, const double p0[3],
 	for (int k = 0; k < 3; k++)
 		n[k] /= len;
 	/* len is twice the area; the weight is a third of the area. */
+	if (len < 2 * min_area)
+		len = 2 * min_area;
 	vdt_quadric_plane(q, n, -(n[0] * p0[0] + n[1] * p0[1] + n[2] * p0[2]),
 	                  len / 6);
 	return 0;

@@ -42,6 +42,13 @@ int vdt_quadric_triangle(struct vdt_quadric *q, const double p0[3],
                          const double p1[3], const double p2[3]);
 
 /*
+ * The same with an area floor: a triangle smaller than min_area weighs a
+ * third of min_area (a degenerate one still none).
+ */
+int vdt_quadric_triangle_floor(struct vdt_quadric *q, const double p0[3],
+                               const double p1[3], const double p2[3], double min_area);
+
+/*
  * The boundary constraint quadric of the open edge (p0, p1) of a face with
  * unit normal n: the plane through the edge perpendicular to the face,
  * weighted by weight * |p1 - p0|^2 (so that it scales like the face

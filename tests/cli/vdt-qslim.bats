@@ -18,7 +18,7 @@ load helpers
 @test "vdt-qslim rejects bad options with status 2" {
 	run "$BIN/vdt-qslim" --bogus "$SAMPLES/sphere.off"
 	[ "$status" -eq 2 ]
-	for bad in "-t 12x" "-t -1" "-t 0" "-r 2" "-r -0.5" "-r x" "-e -1" "-e 200%" "-F nope" "--max-angle 0" "--min-quality 2" "--order fast" "-j 0" "-j 17"; do
+	for bad in "-t 12x" "-t -1" "-t 0" "-r 2" "-r -0.5" "-r x" "-e -1" "-e 200%" "-F nope" "--max-angle 0" "--min-quality 2" "--area-floor 1.5" "--area-floor -0.1" "--area-floor nan" "--order fast" "-j 0" "-j 17"; do
 		run "$BIN/vdt-qslim" $bad "$SAMPLES/sphere.off" -o "$TMP/x.off"
 		[ "$status" -eq 2 ]
 		[ ! -e "$TMP/x.off" ]
@@ -249,6 +249,14 @@ load helpers
 	"$BIN/vdt-qslim" -q -r 0.1 --boundary-weight 0 "$SAMPLES/open.off" -o "$TMP/bw0.off"
 	"$BIN/vdt-qslim" -q -r 0.1 --boundary-weight 100 "$SAMPLES/open.off" -o "$TMP/bw100.off"
 	! cmp -s "$TMP/bw0.off" "$TMP/bw100.off"
+	# --area-floor: a face below that share of the mean area weighs as one
+	# of it; on the UV sphere none is below the default's share, and with
+	# 1 every face below the mean weighs as a mean one
+	"$BIN/vdt-qslim" -q -r 0.1 --area-floor 0 "$SAMPLES/sphere-uv.obj" -o "$TMP/f0.off"
+	"$BIN/vdt-qslim" -q -r 0.1 "$SAMPLES/sphere-uv.obj" -o "$TMP/fd.off"
+	"$BIN/vdt-qslim" -q -r 0.1 --area-floor 1 "$SAMPLES/sphere-uv.obj" -o "$TMP/f1.off"
+	cmp "$TMP/f0.off" "$TMP/fd.off"
+	! cmp -s "$TMP/f0.off" "$TMP/f1.off"
 	# --max-angle: a tighter fold-over bound refuses more contractions
 	"$BIN/vdt-qslim" -q -r 0.05 --max-angle 10 "$SAMPLES/torus.off" -o "$TMP/a10.off"
 	"$BIN/vdt-qslim" -q -r 0.05 "$SAMPLES/torus.off" -o "$TMP/a75.off"

@@ -472,6 +472,104 @@ large_meshes_keep_their_numbers(void **state)
 	vdt_mesh_free(&m);
 }
 
+/* A grid dense at its centre: u -> 0.5 + 4 (u - 0.5)^3, so that the cells
+ * there are a thousand times finer than the mean. */
+static double
+dense_at_centre(double u)
+{
+	double s = u - 0.5;
+	return 0.5 + 4 * s * s * s;
+}
+
+static double
+bowl(double x, double y)
+{
+	return 0.3 * ((x - 0.5) * (x - 0.5) + (y - 0.5) * (y - 0.5));
+}
+
+/* How far the highest vertex of m stands above the bowl. */
+static double
+above_bowl(const struct vdt_mesh *m)
+{
+	double top = 0;
+
+	for (size_t v = 0; v < m->vertex_count; v++) {
+		const float *p = m->positions + 3 * v;
+		double d = p[2] - bowl(p[0], p[1]);
+		top = d > top ? d : top;
+	}
+	return top;
+}
+
+/*
+ * A spike of tiny faces on a coarse bowl: weighed by their areas alone,
+ * flattening it costs next to nothing, and it goes before any of the bowl's
+ * curvature; with the area floor (the default) it stays. Fails if the floor
+ * is not applied, or applied to the faces at or above it.
+ */
+static void
+area_floor_keeps_finely_tessellated_features(void **state)
+{
+	const double h = 0.01, rho = 0.01;
+	struct vdt_mesh m, a, b;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+
+	(void)state;
+	shape_grid(&m, 40);
+	for (size_t v = 0; v < m.vertex_count; v++) {
+		float *p = m.positions + 3 * v;
+		double x = dense_at_centre(p[0]), y = dense_at_centre(p[1]);
+		double r = hypot(x - 0.5, y - 0.5);
+		p[0] = (float)x;
+		p[1] = (float)y;
+		p[2] = (float)(bowl(x, y) + (r < rho ? h * (1 - r / rho) : 0));
+	}
+	vdt_qslim_defaults(&o);
+	assert_true(o.area_floor == VDT_QSLIM_AREA_FLOOR && o.area_floor > 0);
+	o.target_triangles = 100;
+	assert_int_equal(vdt_qslim(&m, &o, &a, NULL, NULL, &st, NULL), 0);
+	o.area_floor = 0;
+	assert_int_equal(vdt_qslim(&m, &o, &b, NULL, NULL, &st, NULL), 0);
+	assert_int_equal(a.triangle_count, 100);
+	assert_int_equal(b.triangle_count, 100);
+	assert_true(above_bowl(&a) > 0.9 * h);
+	assert_true(above_bowl(&b) < 0.1 * h);
+	vdt_mesh_free(&a);
+	vdt_mesh_free(&b);
+	vdt_mesh_free(&m);
+}
+
+/* On the icosphere, whose faces are all near the mean, the floor changes
+ * nothing, to the bit. */
+static void
+area_floor_leaves_even_meshes_alone(void **state)
+{
+	struct vdt_mesh m, a, b;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+
+	(void)state;
+	shape_icosphere(&m, 4);
+	vdt_qslim_defaults(&o);
+	o.target_triangles = 300;
+	assert_int_equal(vdt_qslim(&m, &o, &a, NULL, NULL, &st, NULL), 0);
+	o.area_floor = 0;
+	assert_int_equal(vdt_qslim(&m, &o, &b, NULL, NULL, &st, NULL), 0);
+	assert_same_mesh(&a, &b);
+	/* and the floor does reach faces below it: one of a quarter of the
+	 * mean area, floored at the mean, weighs as four times its own */
+	double p[3][3] = {{0, 0, 0}, {1, 0, 0}, {0, 0.5, 0}};
+	struct vdt_quadric q;
+	assert_int_equal(vdt_quadric_triangle_floor(&q, p[0], p[1], p[2], 1), 0);
+	assert_true(fabs(q.w - 1.0 / 3) < 1e-15);
+	assert_int_equal(vdt_quadric_triangle_floor(&q, p[0], p[1], p[2], 0.1), 0);
+	assert_true(fabs(q.w - 0.25 / 3) < 1e-15);
+	vdt_mesh_free(&a);
+	vdt_mesh_free(&b);
+	vdt_mesh_free(&m);
+}
+
 int
 main(void)
 {
@@ -484,6 +582,8 @@ main(void)
 		cmocka_unit_test(extra_border_decides_the_boundary_planes),
 		cmocka_unit_test(extra_records_only_when_asked),
 		cmocka_unit_test(large_meshes_keep_their_numbers),
+		cmocka_unit_test(area_floor_keeps_finely_tessellated_features),
+		cmocka_unit_test(area_floor_leaves_even_meshes_alone),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
