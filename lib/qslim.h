@@ -97,10 +97,10 @@ struct vdt_qslim_opts {
  * The area floor: weighed by area alone, a part tessellated much finer
  * than the rest (a scanner's close-up, a thin ridge, a spike of small
  * faces) costs next to nothing to flatten, however far it stands out. With
- * the floor its faces weigh at least a quarter of a mean face; meshes whose
+ * the floor its faces weigh at least a tenth of a mean face; meshes whose
  * faces are all about one size are not touched.
  */
-#define VDT_QSLIM_AREA_FLOOR 0.25
+#define VDT_QSLIM_AREA_FLOOR 0.1
 #define VDT_QSLIM_ATTRIBUTE_WEIGHT 1.0
 
 void vdt_qslim_defaults(struct vdt_qslim_opts *o);
