@@ -141,19 +141,35 @@ vdt_mesh_face_cross(const struct vdt_mesh *m, size_t t, double n[3])
 }
 
 double
-vdt_mesh_mean_area(const struct vdt_mesh *m, const uint8_t *skip)
+vdt_mesh_area_block(const struct vdt_mesh *m, const uint8_t *skip, size_t b, size_t *count)
 {
+	size_t end = (b + 1) * VDT_AREA_BLOCK;
 	double sum = 0, n[3];
-	size_t count = 0;
 
-	for (size_t t = 0; t < m->triangle_count; t++) {
+	*count = 0;
+	if (end > m->triangle_count)
+		end = m->triangle_count;
+	for (size_t t = b * VDT_AREA_BLOCK; t < end; t++) {
 		if (skip != NULL && skip[t])
 			continue;
 		vdt_mesh_face_cross(m, t, n);
 		sum += sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-		count++;
+		++*count;
 	}
-	return count ? sum / 2 / (double)count : 0;
+	return sum / 2;
+}
+
+double
+vdt_mesh_mean_area(const struct vdt_mesh *m, const uint8_t *skip)
+{
+	size_t count = 0, c;
+	double sum = 0;
+
+	for (size_t b = 0; b * VDT_AREA_BLOCK < m->triangle_count; b++) {
+		sum += vdt_mesh_area_block(m, skip, b, &c);
+		count += c;
+	}
+	return count ? sum / (double)count : 0;
 }
 
 void

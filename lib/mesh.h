@@ -70,9 +70,17 @@ void vdt_mesh_face_cross(const struct vdt_mesh *m, size_t t, double n[3]);
 
 /*
  * The mean area of the triangles (of those with skip[t] == 0, when skip is
- * given); 0 for none.
+ * given); 0 for none. Summed block by block (VDT_AREA_BLOCK triangles
+ * each, vdt_mesh_area_block), then the blocks in order, so that the
+ * blocks may be summed on several threads with the same result.
  */
+#define VDT_AREA_BLOCK 65536
 double vdt_mesh_mean_area(const struct vdt_mesh *m, const uint8_t *skip);
+
+/* The summed area of the triangles of block b (those not skipped), and
+ * their number in *count. */
+double vdt_mesh_area_block(const struct vdt_mesh *m, const uint8_t *skip, size_t b,
+                           size_t *count);
 
 /* Axis-aligned bounding box of the positions (of every vertex). */
 void vdt_mesh_bbox(const struct vdt_mesh *m, struct vdt_bbox *box);

@@ -379,6 +379,57 @@ fq_run(void *arg)
 /* Meshes below this many vertices are not worth a thread. */
 #define FQ_MIN_VERTICES 65536
 
+/* A thread's blocks of faces for the mean area: every step-th from first. */
+struct area_job {
+	const struct vdt_mesh *w;
+	const uint8_t *dead;
+	double *sum;
+	size_t *count;
+	size_t first, step;
+};
+
+static void *
+area_run(void *arg)
+{
+	const struct area_job *j = arg;
+	size_t blocks = (j->w->triangle_count + VDT_AREA_BLOCK - 1) / VDT_AREA_BLOCK;
+
+	for (size_t b = j->first; b < blocks; b += j->step)
+		j->sum[b] = vdt_mesh_area_block(j->w, j->dead, b, &j->count[b]);
+	return NULL;
+}
+
+/* vdt_mesh_mean_area(w, dead) on t threads, to the bit: the same blocks,
+ * summed in the same order. */
+static double
+mean_area(const struct vdt_mesh *w, const uint8_t *dead, int t)
+{
+	struct area_job job[VDT_CONTRACT_MAX_THREADS];
+	size_t blocks = (w->triangle_count + VDT_AREA_BLOCK - 1) / VDT_AREA_BLOCK, count = 0;
+	double *sum, total = 0;
+	size_t *n;
+
+	if (t < 2 || blocks < 2)
+		return vdt_mesh_mean_area(w, dead);
+	sum = malloc(blocks * sizeof(*sum));
+	n = malloc(blocks * sizeof(*n));
+	if (sum == NULL || n == NULL) {
+		free(sum);
+		free(n);
+		return vdt_mesh_mean_area(w, dead);
+	}
+	for (int k = 0; k < t; k++)
+		job[k] = (struct area_job){w, dead, sum, n, (size_t)k, (size_t)t};
+	vdt_run_jobs(area_run, job, sizeof(job[0]), t);
+	for (size_t b = 0; b < blocks; b++) {
+		total += sum[b];
+		count += n[b];
+	}
+	free(sum);
+	free(n);
+	return count ? total / (double)count : 0;
+}
+
 static void
 face_quadrics(const struct vdt_mesh *w, struct ctx *c, const uint8_t *dead, double floor,
               int threads)
@@ -386,10 +437,11 @@ face_quadrics(const struct vdt_mesh *w, struct ctx *c, const uint8_t *dead, doub
 	struct fq_job job[VDT_CONTRACT_MAX_THREADS];
 	size_t nv = w->vertex_count;
 	int t = vdt_contract_threads(threads);
-	double min_area = floor > 0 ? floor * vdt_mesh_mean_area(w, dead) : 0;
+	double min_area;
 
 	if (nv < FQ_MIN_VERTICES)
 		t = 1;
+	min_area = floor > 0 ? floor * mean_area(w, dead, t) : 0;
 	for (int k = 0; k < t; k++)
 		job[k] = (struct fq_job){w, c, dead, min_area, (uint32_t)(nv * (size_t)k / (size_t)t),
 		                         (uint32_t)(nv * (size_t)(k + 1) / (size_t)t)};
