@@ -1585,7 +1585,7 @@ pjob_run(void *arg)
 	return NULL;
 }
 
-#define PASS_BATCH 4096
+#define PASS_BATCH 16384
 
 /*
  * Cost the pairs of plist[0..n) into pout, split over e->threads threads
