@@ -237,13 +237,28 @@ grown_cap(uint32_t need)
 	return need < 6 ? 8 : need + need / 2 + 2;
 }
 
+/*
+ * The holes a thread leaves in a shared pool, added to the pool's count once
+ * (pool_holes_flush) rather than at each merge: an atomic add there takes
+ * the line that holds p->data, which every list access reads, away from
+ * the other threads every time.
+ */
+static _Thread_local size_t thread_holes;
+
 static void
 pool_holes(struct pool *p, size_t n)
 {
 	if (p->shared)
-		__atomic_fetch_add(&p->holes, n, __ATOMIC_RELAXED);
+		thread_holes += n;
 	else
 		p->holes += n;
+}
+
+static void
+pool_holes_flush(struct pool *p)
+{
+	__atomic_fetch_add(&p->holes, thread_holes, __ATOMIC_RELAXED);
+	thread_holes = 0;
 }
 
 /* Room for `need` entries in v's list: moved to the end of the pool if it must grow. */
@@ -2063,6 +2078,7 @@ prun_contract(void *arg)
 		else
 			prun_keep(r, i, made, &c, cost);
 	}
+	pool_holes_flush(&e->tpool);
 	return NULL;
 }
 
@@ -2170,6 +2186,7 @@ pass_round(struct engine *e, const struct vdt_contract_opts *o,
 		if (mk > 0)
 			cut_around(e, c.keep);
 	}
+	pool_holes_flush(p); /* the pairs set aside, on this thread */
 	p->shared = 0;
 	rc = (long)m;
 	for (size_t k = 0; k < t; k++) {
