@@ -143,10 +143,9 @@ vdt_mesh_face_cross(const struct vdt_mesh *m, size_t t, double n[3])
 double
 vdt_mesh_area_block(const struct vdt_mesh *m, const uint8_t *skip, size_t b, size_t *count)
 {
-	size_t end = (b + 1) * VDT_AREA_BLOCK;
+	size_t end = (b + 1) * VDT_AREA_BLOCK, k = 0;
 	double sum = 0, n[3];
 
-	*count = 0;
 	if (end > m->triangle_count)
 		end = m->triangle_count;
 	for (size_t t = b * VDT_AREA_BLOCK; t < end; t++) {
@@ -154,8 +153,9 @@ vdt_mesh_area_block(const struct vdt_mesh *m, const uint8_t *skip, size_t b, siz
 			continue;
 		vdt_mesh_face_cross(m, t, n);
 		sum += sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-		++*count;
+		k++;
 	}
+	*count = k; /* once: threads write the counts of neighbouring blocks */
 	return sum / 2;
 }
 
