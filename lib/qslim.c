@@ -448,6 +448,61 @@ face_quadrics(const struct vdt_mesh *w, struct ctx *c, const uint8_t *dead, doub
 	vdt_run_jobs(fq_run, job, sizeof(job[0]), t);
 }
 
+/* The open edges of a range of vertices (vdt_topo_open_edges_in). */
+struct oe_job {
+	const struct vdt_mesh *w;
+	const uint32_t *start, *fan;
+	const uint8_t *dead;
+	size_t lo, hi;
+	uint32_t *edges;
+	long n;
+	size_t nonmanifold;
+};
+
+static void *
+oe_run(void *arg)
+{
+	struct oe_job *j = arg;
+
+	j->n = vdt_topo_open_edges_in(j->lo, j->hi, j->w->triangles, j->start, j->fan, j->dead,
+	                              &j->edges, &j->nonmanifold);
+	return NULL;
+}
+
+/* vdt_topo_open_edges on t threads, a range of vertices each, joined in
+ * order: the same edges in the same order. */
+static long
+open_edges(const struct vdt_mesh *w, const uint32_t *start, const uint32_t *fan,
+           const uint8_t *dead, int t, uint32_t **edges, size_t *nonmanifold)
+{
+	struct oe_job job[VDT_CONTRACT_MAX_THREADS];
+	size_t nv = w->vertex_count, at = 0;
+	long total = 0;
+
+	if (t < 2)
+		return vdt_topo_open_edges(nv, w->triangles, start, fan, dead, edges, nonmanifold);
+	for (int k = 0; k < t; k++)
+		job[k] = (struct oe_job){w, start, fan, dead, nv * (size_t)k / (size_t)t,
+		                         nv * (size_t)(k + 1) / (size_t)t, NULL, 0, 0};
+	vdt_run_jobs(oe_run, job, sizeof(job[0]), t);
+	*edges = NULL;
+	*nonmanifold = 0;
+	for (int k = 0; k < t; k++) {
+		total = job[k].n < 0 || total < 0 ? -1 : total + job[k].n;
+		*nonmanifold += job[k].nonmanifold;
+	}
+	if (total > 0 && (*edges = malloc(3 * (size_t)total * sizeof(**edges))) == NULL)
+		total = -1;
+	for (int k = 0; k < t; k++) {
+		if (total > 0 && job[k].n > 0) {
+			memcpy(*edges + 3 * at, job[k].edges, 3 * (size_t)job[k].n * sizeof(**edges));
+			at += (size_t)job[k].n;
+		}
+		free(job[k].edges);
+	}
+	return total;
+}
+
 /*
  * Quadrics of the welded vertices: fundamental quadrics of the faces (or the
  * ones given), plus perpendicular planes along open edges. Built on a table
@@ -497,7 +552,8 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 			real[canon[i]] |= o->input_border[i] != 0;
 	}
 	uint32_t *open;
-	long nopen = vdt_topo_open_edges(nv, w->triangles, start, fan, dead, &open, nonmanifold);
+	int threads = nv < FQ_MIN_VERTICES ? 1 : vdt_contract_threads(o->threads);
+	long nopen = open_edges(w, start, fan, dead, threads, &open, nonmanifold);
 	for (long k = 0; k < nopen; k++) {
 		uint32_t a = open[3 * k + 1], b = open[3 * k + 2];
 		if (!real || real[a] || real[b])

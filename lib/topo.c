@@ -105,12 +105,21 @@ vdt_topo_open_edges(size_t nv, const uint32_t *tri, const uint32_t *start,
                     const uint32_t *fan, const uint8_t *dead, uint32_t **edges,
                     size_t *nonmanifold)
 {
+	return vdt_topo_open_edges_in(0, nv, tri, start, fan, dead, edges, nonmanifold);
+}
+
+long
+vdt_topo_open_edges_in(size_t lo, size_t hi, const uint32_t *tri, const uint32_t *start,
+                       const uint32_t *fan, const uint8_t *dead, uint32_t **edges,
+                       size_t *nonmanifold)
+{
 	struct open_list l = {NULL, 0, 0};
 	uint32_t seen[64 * 2];
+	size_t nm = 0; /* stored once: threads' counts may share a line */
 
 	*edges = NULL;
 	*nonmanifold = 0;
-	for (size_t v = 0; v < nv; v++) {
+	for (size_t v = lo; v < hi; v++) {
 		uint32_t n = 0, b = start[v], e = start[v + 1];
 		for (uint32_t i = b; i < e; i++) {
 			const uint32_t *tv = tri + 3 * (size_t)fan[i];
@@ -144,7 +153,7 @@ vdt_topo_open_edges(size_t nv, const uint32_t *tri, const uint32_t *start,
 				if (uses == 1 && open_push(&l, fan[i], (uint32_t)v, x) != 0)
 					goto nomem;
 				if (uses > 2 && first)
-					(*nonmanifold)++;
+					nm++;
 			}
 		}
 		for (uint32_t j = 0; j < n; j++) {
@@ -152,10 +161,11 @@ vdt_topo_open_edges(size_t nv, const uint32_t *tri, const uint32_t *start,
 			    open_push(&l, seen[2 * j + 1] >> 2, (uint32_t)v, seen[2 * j]) != 0)
 				goto nomem;
 			if ((seen[2 * j + 1] & 3) == 3)
-				(*nonmanifold)++;
+				nm++;
 		}
 	}
 	*edges = l.e;
+	*nonmanifold = nm;
 	return (long)l.n;
 nomem:
 	free(l.e);

@@ -43,4 +43,13 @@ long vdt_topo_open_edges(size_t nv, const uint32_t *tri, const uint32_t *start,
                          const uint32_t *fan, const uint8_t *dead, uint32_t **edges,
                          size_t *nonmanifold);
 
+/*
+ * The same for the vertices lo..hi-1 only (those of their edges with a
+ * vertex above them): the open edges of [0, nv) are those of consecutive
+ * ranges, in order, so that threads may take one range each.
+ */
+long vdt_topo_open_edges_in(size_t lo, size_t hi, const uint32_t *tri,
+                            const uint32_t *start, const uint32_t *fan, const uint8_t *dead,
+                            uint32_t **edges, size_t *nonmanifold);
+
 #endif

@@ -76,12 +76,63 @@ fin_and_dead_faces(void **state)
 	free(e);
 }
 
+/* The open edges of consecutive vertex ranges, joined, are those of the
+ * whole, in the same order, and so are the non-manifold counts: a grid with
+ * a fin, cut at every pair of places. */
+static void
+ranges_join_to_the_whole(void **state)
+{
+	struct vdt_mesh m, f;
+	uint32_t *start, *fan, *all, *part;
+	size_t nm_all, nm;
+
+	(void)state;
+	shape_grid(&m, 6);
+	/* a fin on the first cell's diagonal (0,8): a third face, to a new
+	 * vertex */
+	assert_int_equal(vdt_mesh_alloc(&f, m.vertex_count + 1, m.triangle_count + 1, 0, NULL), 0);
+	memcpy(f.positions, m.positions, 3 * sizeof(float) * m.vertex_count);
+	f.positions[3 * m.vertex_count] = 0.1f;
+	f.positions[3 * m.vertex_count + 1] = 0.1f;
+	f.positions[3 * m.vertex_count + 2] = 1;
+	memcpy(f.triangles, m.triangles, 3 * sizeof(uint32_t) * m.triangle_count);
+	uint32_t *t = f.triangles + 3 * m.triangle_count;
+	t[0] = 0, t[1] = 8, t[2] = (uint32_t)m.vertex_count;
+	size_t nv = f.vertex_count;
+	assert_int_equal(vdt_topo_fans(nv, f.triangles, f.triangle_count, &start, &fan), 0);
+	long n = vdt_topo_open_edges(nv, f.triangles, start, fan, NULL, &all, &nm_all);
+	assert_true(n > 0);
+	assert_int_equal(nm_all, 1);
+	for (size_t a = 0; a <= nv; a += 7)
+		for (size_t b = a; b <= nv; b += 5) {
+			size_t cut[4] = {0, a, b, nv}, at = 0, nm_sum = 0;
+			for (int k = 0; k < 3; k++) {
+				long c = vdt_topo_open_edges_in(cut[k], cut[k + 1], f.triangles, start, fan,
+				                                NULL, &part, &nm);
+				assert_true(c >= 0 && at + (size_t)c <= (size_t)n);
+				if (c > 0)
+					assert_memory_equal(part, all + 3 * at, 3 * sizeof(uint32_t) * (size_t)c);
+				at += (size_t)c;
+				nm_sum += nm;
+				free(part);
+			}
+			assert_int_equal(at, n);
+			assert_int_equal(nm_sum, nm_all);
+		}
+	free(all);
+	free(start);
+	free(fan);
+	vdt_mesh_free(&f);
+	vdt_mesh_free(&m);
+}
+
 int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(grid_and_sphere),
 		cmocka_unit_test(fin_and_dead_faces),
+		cmocka_unit_test(ranges_join_to_the_whole),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
