@@ -2395,6 +2395,51 @@ run_passes(struct engine *e, const struct vdt_contract_opts *o,
 
 /* ---- set-up ---- */
 
+/*
+ * The engine's faces lo..hi-1: NONE for one with a repeated vertex, else
+ * the mesh's, with its input normal. Writes nothing but those faces'.
+ */
+struct face_job {
+	struct engine *e;
+	const struct vdt_mesh *m;
+	const struct vdt_contract_opts *o;
+	size_t lo, hi;
+};
+
+#define FACE_JOB_MIN 131072 /* faces, below which one thread does them */
+
+static void *
+face_run(void *arg)
+{
+	const struct face_job *j = arg;
+	struct engine *e = j->e;
+	const struct vdt_contract_opts *o = j->o;
+
+	for (size_t t = j->lo; t < j->hi; t++) {
+		const uint32_t *c = j->m->triangles + 3 * t;
+		uint32_t *d = e->tri + 3 * t;
+		double n[3];
+		if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2]) {
+			d[0] = d[1] = d[2] = NONE;
+			continue;
+		}
+		if (d != c)
+			memcpy(d, c, 3 * sizeof(*d));
+		if (o->reference_positions && o->reference_triangles) {
+			const uint32_t *r = o->reference_triangles + 3 * t;
+			const float *rp = o->reference_positions;
+			tri_normal(rp + 3 * (size_t)r[0], rp + 3 * (size_t)r[1], rp + 3 * (size_t)r[2], n);
+		} else {
+			tri_normal(e->pos + 3 * (size_t)d[0], e->pos + 3 * (size_t)d[1],
+			           e->pos + 3 * (size_t)d[2], n);
+		}
+		double l = len3(n);
+		for (int k = 0; k < 3; k++)
+			e->tnormal[3 * t + k] = (int16_t)(l > 0 ? lrint(32767 * n[k] / l) : 0);
+	}
+	return NULL;
+}
+
 /* Free what the results do not need (all but positions, faces, parents). */
 static void
 engine_shed(struct engine *e)
@@ -2482,28 +2527,17 @@ engine_init(struct engine *e, const struct vdt_mesh *m, float *own_pos,
 		e->parent[v] = (uint32_t)v;
 
 	/* Triangle lists (CSR), dropping faces with a repeated vertex. */
+	struct face_job job[VDT_CONTRACT_MAX_THREADS];
+	int t = nt < FACE_JOB_MIN ? 1 : vdt_contract_threads(o->threads);
+	for (int k = 0; k < t; k++)
+		job[k] = (struct face_job){e, m, o, nt * (size_t)k / (size_t)t,
+		                           nt * (size_t)(k + 1) / (size_t)t};
+	vdt_run_jobs(face_run, job, sizeof(job[0]), t);
 	size_t live = 0;
-	for (size_t t = 0; t < nt; t++) {
-		const uint32_t *c = m->triangles + 3 * t;
-		uint32_t *d = e->tri + 3 * t;
-		double n[3];
-		if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2]) {
-			d[0] = d[1] = d[2] = NONE;
+	for (size_t f = 0; f < nt; f++) {
+		const uint32_t *c = e->tri + 3 * f;
+		if (c[0] == NONE)
 			continue;
-		}
-		if (d != c)
-			memcpy(d, c, 3 * sizeof(*d));
-		if (o->reference_positions && o->reference_triangles) {
-			const uint32_t *r = o->reference_triangles + 3 * t;
-			const float *rp = o->reference_positions;
-			tri_normal(rp + 3 * (size_t)r[0], rp + 3 * (size_t)r[1], rp + 3 * (size_t)r[2], n);
-		} else {
-			tri_normal(e->pos + 3 * (size_t)d[0], e->pos + 3 * (size_t)d[1],
-			           e->pos + 3 * (size_t)d[2], n);
-		}
-		double l = len3(n);
-		for (int k = 0; k < 3; k++)
-			e->tnormal[3 * t + k] = (int16_t)(l > 0 ? lrint(32767 * n[k] / l) : 0);
 		for (int k = 0; k < 3; k++)
 			e->vt[c[k]].cap++;
 		live++;
