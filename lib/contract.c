@@ -2299,6 +2299,55 @@ pass_select(uint64_t *keys, size_t n, size_t need, uint64_t *tmp)
 	return front;
 }
 
+/* The keys of the live vertices alt[lo..hi), into keys[lo..): their number. */
+struct key_job {
+	struct engine *e;
+	size_t lo, hi, n;
+};
+
+static void *
+key_run(void *arg)
+{
+	struct key_job *j = arg;
+	struct engine *e = j->e;
+	size_t n = j->lo;
+
+	for (size_t i = j->lo; i < j->hi; i++) {
+		uint32_t v = e->alt[i], x = e->best[v], bits;
+		if (x == NONE || !(e->altc[v] < INFINITY))
+			continue;
+		if (e->best[x] == v && x < v && e->altc[x] == e->altc[v])
+			continue; /* the same pair, listed at x */
+		memcpy(&bits, &e->altc[v], sizeof(bits));
+		e->keys[n++] = (uint64_t)bits << 32 | v;
+	}
+	j->n = n - j->lo;
+	return NULL;
+}
+
+#define KEYS_MIN 65536 /* live vertices, below which one thread lists them */
+
+/* Every live vertex's key, in vertex order, on the engine's threads (a
+ * range of alt each, joined in order): their number. */
+static size_t
+pass_keys(struct engine *e)
+{
+	struct key_job job[VDT_CONTRACT_MAX_THREADS];
+	int t = e->nlive < KEYS_MIN ? 1 : e->threads;
+	size_t n;
+
+	for (int k = 0; k < t; k++)
+		job[k] = (struct key_job){e, e->nlive * (size_t)k / (size_t)t,
+		                          e->nlive * (size_t)(k + 1) / (size_t)t, 0};
+	vdt_run_jobs(key_run, job, sizeof(job[0]), t);
+	n = job[0].n;
+	for (int k = 1; k < t; k++) {
+		memmove(e->keys + n, e->keys + job[k].lo, job[k].n * sizeof(*e->keys));
+		n += job[k].n;
+	}
+	return n;
+}
+
 static int
 run_passes(struct engine *e, const struct vdt_contract_opts *o,
            struct vdt_contract_result *res, size_t *rec_cap)
@@ -2331,15 +2380,7 @@ run_passes(struct engine *e, const struct vdt_contract_opts *o,
 			return -1;
 		/* (cost, vertex) keys, listed by vertex so that sorting on the
 		 * cost alone orders ties by vertex */
-		for (size_t i = 0; i < e->nlive; i++) {
-			uint32_t v = e->alt[i], x = e->best[v], bits;
-			if (x == NONE || !(e->altc[v] < INFINITY))
-				continue;
-			if (e->best[x] == v && x < v && e->altc[x] == e->altc[v])
-				continue; /* the same pair, listed at x */
-			memcpy(&bits, &e->altc[v], sizeof(bits));
-			e->keys[n++] = (uint64_t)bits << 32 | v;
-		}
+		n = pass_keys(e);
 		if (n == 0)
 			break;
 		size_t need = pass_need(e, o), share = e->live_verts / PASS_SHARE;
