@@ -1543,20 +1543,27 @@ locality_order(struct vdt_mesh *w, const struct vdt_bbox *box, uint32_t **to, ui
 		(*to)[v] = (uint32_t)i;
 		memcpy(pos + 3 * i, w->positions + 3 * (size_t)v, 3 * sizeof(float));
 	}
-	for (size_t t = 0; t < nt; t++) {
-		const uint32_t *c = w->triangles + 3 * t;
-		uint32_t a = (*to)[c[0]], b = (*to)[c[1]], d = (*to)[c[2]];
-		uint32_t lo = a < b ? a : b;
-		key[t] = (uint64_t)(lo < d ? lo : d) << 32 | t;
-	}
-	if (vdt_sort_u64_from(key, nt, 32) != 0)
+	/* Faces renumbered in place, then in order of their lowest vertex,
+	 * in input order among equals: a counting sort, lowest vertices in
+	 * key's space. */
+	uint32_t *lowest = (uint32_t *)key, *at = calloc(nv + 1, sizeof(*at));
+	if (at == NULL)
 		goto nomem;
-	for (size_t i = 0; i < nt; i++) {
-		uint32_t t = (uint32_t)key[i];
-		(*from)[i] = t;
+	for (size_t t = 0; t < nt; t++) {
+		uint32_t *c = w->triangles + 3 * t;
 		for (int k = 0; k < 3; k++)
-			tri[3 * i + k] = (*to)[w->triangles[3 * (size_t)t + k]];
+			c[k] = (*to)[c[k]];
+		uint32_t lo = c[0] < c[1] ? c[0] : c[1];
+		lowest[t] = lo < c[2] ? lo : c[2];
+		at[lowest[t] + 1]++;
 	}
+	for (size_t v = 1; v < nv; v++)
+		at[v] += at[v - 1];
+	for (size_t t = 0; t < nt; t++)
+		(*from)[at[lowest[t]]++] = (uint32_t)t;
+	free(at);
+	for (size_t i = 0; i < nt; i++)
+		memcpy(tri + 3 * i, w->triangles + 3 * (size_t)(*from)[i], 3 * sizeof(uint32_t));
 	free(key);
 	free(w->positions);
 	free(w->triangles);
