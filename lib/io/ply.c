@@ -153,17 +153,10 @@ read_faces(const struct vdt_plyhead *h, const struct vdt_ply_element *e,
            struct vdt_mesh *m, struct vdt_err *err)
 {
 	int be = h->big_endian;
-	size_t li = SIZE_MAX, tris = 0, o = 0;
+	size_t li = vdt_plyhead_face_list(e), tris = 0, o = 0;
 	uint32_t *t;
 
-	for (size_t i = 0; i < e->prop_count; i++)
-		if (e->props[i].count_type != VDT_PLY_NONE &&
-		    (strcmp(e->props[i].name, "vertex_indices") == 0 ||
-		     strcmp(e->props[i].name, "vertex_index") == 0)) {
-			li = i;
-			break;
-		}
-	if (li == SIZE_MAX)
+	if (li == e->prop_count)
 		return vdt_err_set(err, VDT_EFORMAT, "PLY face element has no vertex_indices list");
 	if (e->count > avail)
 		return vdt_err_set(err, VDT_EFORMAT, "PLY file is truncated: %llu faces cannot fit in %zu bytes",
@@ -438,18 +431,14 @@ text_vertices(struct text *t, const struct vdt_ply_element *e, struct vdt_mesh *
 static int
 text_faces(struct text *t, const struct vdt_ply_element *e, struct vdt_mesh *m, struct vdt_err *err)
 {
-	size_t li = SIZE_MAX, nt = 0, cap = e->count > 0 ? (size_t)e->count : 1, nv = m->vertex_count;
+	size_t li = vdt_plyhead_face_list(e), nt = 0, cap = e->count > 0 ? (size_t)e->count : 1;
+	size_t nv = m->vertex_count;
 	struct where w = {e, 0};
 	uint32_t *tri;
 	double d;
 	int rc;
 
-	for (size_t i = 0; i < e->prop_count && li == SIZE_MAX; i++)
-		if (e->props[i].count_type != VDT_PLY_NONE &&
-		    (strcmp(e->props[i].name, "vertex_indices") == 0 ||
-		     strcmp(e->props[i].name, "vertex_index") == 0))
-			li = i;
-	if (li == SIZE_MAX)
+	if (li == e->prop_count)
 		return vdt_err_set(err, VDT_EFORMAT, "PLY face element has no vertex_indices list");
 	if (cap > SIZE_MAX / (3 * sizeof(uint32_t)) ||
 	    (tri = malloc(cap * 3 * sizeof(uint32_t))) == NULL)

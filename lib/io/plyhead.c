@@ -322,6 +322,17 @@ vdt_plyhead_fixed_size(const struct vdt_ply_element *e, size_t *size)
 }
 
 size_t
+vdt_plyhead_face_list(const struct vdt_ply_element *e)
+{
+	for (size_t i = 0; i < e->prop_count; i++)
+		if (e->props[i].count_type != VDT_PLY_NONE &&
+		    (strcmp(e->props[i].name, "vertex_indices") == 0 ||
+		     strcmp(e->props[i].name, "vertex_index") == 0))
+			return i;
+	return e->prop_count;
+}
+
+size_t
 vdt_plyhead_list_offset(const struct vdt_ply_element *e, size_t li, const unsigned char *p,
                         int be)
 {

@@ -84,6 +84,10 @@ size_t vdt_plyhead_record_size(const struct vdt_ply_element *e, const unsigned c
 /* Whether e's records all have one size (no lists): 1 and *size, else 0. */
 int vdt_plyhead_fixed_size(const struct vdt_ply_element *e, size_t *size);
 
+/* The face element's index list: its first list property named
+ * vertex_indices or vertex_index, or e->prop_count if it has none. */
+size_t vdt_plyhead_face_list(const struct vdt_ply_element *e);
+
 /* Where property li starts in the record of e at p, whose size
  * vdt_plyhead_record_size has checked. */
 size_t vdt_plyhead_list_offset(const struct vdt_ply_element *e, size_t li, const unsigned char *p,

@@ -287,12 +287,7 @@ ply_open(struct vdt_tsource *s, struct vdt_err *err)
 	s->fast_vertex = !s->be && s->xyz_type[0] == VDT_PLY_F32 && s->xyz_type[1] == VDT_PLY_F32 &&
 	                 s->xyz_type[2] == VDT_PLY_F32;
 	s->face = *fe;
-	s->list_prop = fe->prop_count;
-	for (size_t i = 0; i < fe->prop_count; i++)
-		if (fe->props[i].count_type != VDT_PLY_NONE &&
-		    (strcmp(fe->props[i].name, "vertex_indices") == 0 ||
-		     strcmp(fe->props[i].name, "vertex_index") == 0))
-			s->list_prop = i;
+	s->list_prop = vdt_plyhead_face_list(fe);
 	if (s->list_prop == fe->prop_count) {
 		vdt_err_set(err, rc, "PLY face element has no vertex_indices list");
 		goto out;

@@ -420,3 +420,21 @@ PY
 	same_refusal "$TMP/vlist.ply"
 	[[ "$want" == *"PLY vertex element has a list property" ]]
 }
+
+@test "vdt-cluster takes a face's first vertex list, as vdt-qslim does" {
+	# two index lists in the face element: the first is the mesh, the
+	# second points past the vertices; both readers must take the first
+	python3 - "$TMP/two.ply" <<'PY'
+import struct, sys
+head = ("ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+        "property float y\nproperty float z\nelement face 1\n"
+        "property list uchar int vertex_indices\nproperty list uchar int vertex_index\nend_header\n")
+data = struct.pack('<9f', 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack('<B3iB3i', 3, 0, 1, 2, 3, 7, 8, 9)
+open(sys.argv[1], 'wb').write(head.encode() + data)
+PY
+	"$BIN/vdt-qslim" -q -r 1 "$TMP/two.ply" -o "$TMP/q.off"
+	[ "$(off_faces "$TMP/q.off")" -eq 1 ]
+	run "$BIN/vdt-cluster" -q -g 4 -F off "$TMP/two.ply" -o "$TMP/c.off"
+	[ "$status" -eq 0 ]
+	[ "$(off_faces "$TMP/c.off")" -eq 1 ]
+}
