@@ -447,17 +447,12 @@ mean_area(const struct vdt_mesh *w, const uint8_t *dead, int t)
 }
 
 static void
-face_quadrics(const struct vdt_mesh *w, struct ctx *c, const uint8_t *dead, double floor,
-              int threads)
+face_quadrics(const struct vdt_mesh *w, struct ctx *c, const uint8_t *dead, double floor, int t)
 {
 	struct fq_job job[VDT_CONTRACT_MAX_THREADS];
 	size_t nv = w->vertex_count;
-	int t = vdt_contract_threads(threads);
-	double min_area;
+	double min_area = floor > 0 ? floor * mean_area(w, dead, t) : 0;
 
-	if (nv < FQ_MIN_VERTICES)
-		t = 1;
-	min_area = floor > 0 ? floor * mean_area(w, dead, t) : 0;
 	for (int k = 0; k < t; k++)
 		job[k] = (struct fq_job){w, c, dead, min_area, (uint32_t)(nv * (size_t)k / (size_t)t),
 		                         (uint32_t)(nv * (size_t)(k + 1) / (size_t)t)};
@@ -537,6 +532,7 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
                uint8_t *dead, size_t *nonmanifold)
 {
 	size_t nt = w->triangle_count, nv = w->vertex_count;
+	int threads = nv < FQ_MIN_VERTICES ? 1 : vdt_contract_threads(o->threads);
 	uint32_t *start, *fan;
 
 	if (vdt_topo_fans(nv, w->triangles, nt, &start, &fan) != 0)
@@ -550,7 +546,7 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 			vdt_quadric_add(&c->q[canon[i]], &q);
 		}
 	} else {
-		face_quadrics(w, c, dead, o->area_floor, o->threads);
+		face_quadrics(w, c, dead, o->area_floor, threads);
 	}
 
 	/* Open edges of a clustered intermediate are mostly the rims of thin
@@ -568,7 +564,6 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 			real[canon[i]] |= o->input_border[i] != 0;
 	}
 	uint32_t *open;
-	int threads = nv < FQ_MIN_VERTICES ? 1 : vdt_contract_threads(o->threads);
 	long nopen = open_edges(w, start, fan, dead, threads, &open, nonmanifold);
 	for (long k = 0; k < nopen; k++) {
 		uint32_t a = open[3 * k + 1], b = open[3 * k + 2];
