@@ -399,3 +399,26 @@ PY
 	[[ "$output" == *"'$TMP/big.md2': frame 1: vertex 1 has a non-finite coordinate"* ]]
 	[ ! -e "$TMP/out.vdt" ]
 }
+
+@test "vdt-deform weighs small faces with vdt-qslim's area floor" {
+	# a bowl whose grid is a thousand times finer at its centre, where a
+	# spike stands: the floor changes vdt-qslim's result there, and a
+	# single frame must still equal it
+	awk 'BEGIN {
+		n = 30; print "OFF"; print (n + 1) * (n + 1), 2 * n * n, 0
+		for (j = 0; j <= n; j++) for (i = 0; i <= n; i++) {
+			s = i / n - 0.5; x = 0.5 + 4 * s * s * s; s = j / n - 0.5; y = 0.5 + 4 * s * s * s
+			r = sqrt((x - 0.5) ^ 2 + (y - 0.5) ^ 2)
+			printf "%.9g %.9g %.9g\n", x, y, 0.3 * r * r + (r < 0.01 ? 0.01 - r : 0)
+		}
+		for (j = 0; j < n; j++) for (i = 0; i < n; i++) {
+			a = j * (n + 1) + i; b = a + 1; c = a + n + 1; d = c + 1
+			print 3, a, b, d; print 3, a, d, c
+		}
+	}' > "$TMP/bowl.off"
+	"$BIN/vdt-deform" -q --vertices 60 "$TMP/bowl.off" -o "$TMP/d.off"
+	"$BIN/vdt-qslim" -q -t "$(off_faces "$TMP/d.off")" "$TMP/bowl.off" -o "$TMP/q.off"
+	"$BIN/vdt-qslim" -q --area-floor 0 -t "$(off_faces "$TMP/d.off")" "$TMP/bowl.off" -o "$TMP/q0.off"
+	cmp "$TMP/d.off" "$TMP/q.off"
+	! cmp -s "$TMP/q.off" "$TMP/q0.off"
+}
