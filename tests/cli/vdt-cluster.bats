@@ -414,11 +414,19 @@ v = struct.pack('<12f', 0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0)
 f = b"".join(struct.pack('<B3i', 3, *t) for t in ((0, 1, 2), (1, 3, 2), (0, 1, 3)))
 open(d + "/cutface.ply", "wb").write((head + tail).encode() + v + f[:-6])
 open(d + "/vlist.ply", "wb").write((head + "property list uchar float w\n" + tail).encode())
+noz = head.replace("property float z\n", "")
+open(d + "/noz.ply", "wb").write((noz + tail).encode() + v[:32] + f)
+nolist = "element face 3\nproperty list uchar int corners\nend_header\n"
+open(d + "/nolist.ply", "wb").write((head + nolist).encode() + v + f)
 PY
 	same_refusal "$TMP/cutface.ply"
 	[[ "$want" == *"PLY file is truncated in face 2 of 3" ]]
 	same_refusal "$TMP/vlist.ply"
 	[[ "$want" == *"PLY vertex element has a list property" ]]
+	same_refusal "$TMP/noz.ply"
+	[[ "$want" == *"PLY vertex element has no x, y and z" ]]
+	same_refusal "$TMP/nolist.ply"
+	[[ "$want" == *"PLY face element has no vertex_indices list" ]]
 }
 
 @test "vdt-cluster takes a face's first vertex list, as vdt-qslim does" {
