@@ -22,7 +22,7 @@ override CPPFLAGS += -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
 override CFLAGS += -std=c11 -Wall -Wextra -Werror -MMD -MP
 override CXXFLAGS += -std=c++17 -Wall -Wextra -Werror -MMD -MP \
 	-Wno-deprecated-declarations -Wno-deprecated-copy
-LDLIBS_VDT = -Wl,--as-needed -lOpenMeshCore -ldraco -lOpenImageIO -lOpenImageIO_Util -lz -lm -lpthread
+LDLIBS_VDT = -Wl,--as-needed -lOpenMeshCore -ldraco -lassimp -lOpenImageIO -lOpenImageIO_Util -lz -lm -lpthread
 
 ifeq ($(SANITIZE),1)
 VARIANT := san

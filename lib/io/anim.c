@@ -90,6 +90,8 @@ vdt_anim_read(const char *path, struct vdt_mesh *m, struct vdt_frames *fr,
 	memset(fr, 0, sizeof(*fr));
 	if (extra)
 		memset(extra, 0, sizeof(*extra));
+	if (strcmp(path, "-") != 0 && vdt_assimp_handles(path))
+		return vdt_assimp_read(path, m, fr, err);
 	if ((rc = slurp(path, &buf, &len, err)) != 0)
 		return rc;
 	if (vdt_md2_sniff(buf, len)) {

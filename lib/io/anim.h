@@ -1,7 +1,9 @@
 /*
  * anim.h - reading animations whose frames share one connectivity: Quake
- * II MD2 keyframe models (native), a vdt stream with MESH and FRMS
- * chunks, a list of mesh files, or a printf pattern naming them.
+ * II MD2 keyframe models (native), skinned models of the formats Assimp
+ * reads (.x, .fbx, .gltf, .glb, .dae, .smd, .iqm, .ms3d, .b3d; assimp.cc),
+ * a vdt stream with MESH and FRMS chunks, a list of mesh files, or a
+ * printf pattern naming them.
  */
 #ifndef VDT_ANIM_H
 #define VDT_ANIM_H
@@ -30,9 +32,28 @@ int vdt_md2_sniff(const unsigned char *buf, size_t n);
 int vdt_md2_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
                  struct vdt_frames *fr, struct vdt_err *err);
 
+/* Whether path names a file read through Assimp (by its extension). */
+int vdt_assimp_handles(const char *path);
+
+/*
+ * Bake the first animation of a skinned model (any format Assimp reads)
+ * into frames by linear blend skinning, one frame at each key time of the
+ * animation, every channel's together (see assimp.cc); a model without
+ * an animation is one frame. The meshes of all
+ * its nodes are joined into *m (frame 0's positions) in node order; their
+ * vertices are as the file has them, split at texture and normal seams.
+ * Returns 0, VDT_EIO (cannot open), VDT_EFORMAT (Assimp's own words),
+ * VDT_EINVAL (no triangles, an animation of nodes not there, a bad index,
+ * a non-finite position: the message names the frame and vertex) or
+ * VDT_ENOMEM; on failure *m and *fr are empty.
+ */
+int vdt_assimp_read(const char *path, struct vdt_mesh *m, struct vdt_frames *fr,
+                    struct vdt_err *err);
+
 /*
  * Read one file ("-": stdin) that holds an animation or a single mesh:
- * MD2, or any mesh format vdt_read_memory knows. For a vdt stream, an
+ * MD2, a skinned model named by an extension vdt_assimp_handles takes
+ * (not from stdin), or any mesh format vdt_read_memory knows. For a vdt stream, an
  * FRMS chunk gives the frames (its vertex count must match the MESH
  * chunk; per-frame triangles, if present, must equal the MESH chunk's:
  * "frame 3 differs in connectivity from frame 0 at triangle 17"), and

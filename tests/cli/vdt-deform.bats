@@ -6,6 +6,8 @@ load helpers
 MKANIM="$BATS_TEST_DIRNAME/../../build/rel/scripts/mkanim"
 [ -x "$MKANIM" ] || MKANIM="$BATS_TEST_DIRNAME/../../build/san/scripts/mkanim"
 MD2=/usr/share/assimp/models/MD2/sydney.md2
+DANCE=/usr/share/assimp/models/X/BCN_Epileptic.X
+WALK=/usr/share/assimp/models/FBX/animation_with_skeleton.fbx
 
 # Frames of the torus, bent and waved, as OFF files and as a stream.
 frames() {
@@ -114,6 +116,35 @@ setup() {
 	[ "$status" -eq 0 ]
 	[ "$(ls "$TMP/out" | wc -l)" -eq 198 ]
 	[[ "$output" == *"in_vertices=342"* ]]
+}
+
+@test "vdt-deform bakes a skinned animation (DirectX .x, FBX) through Assimp" {
+	[ -r "$DANCE" ] || skip "assimp-testmodels is not installed"
+	run "$BIN/vdt-deform" -v --samples 1000 -r 0.5 "$DANCE" -o "$TMP/out/%03d.obj"
+	[ "$status" -eq 0 ]
+	# 100 key times; 5126 triangles of 3 corners each, welded to 2632
+	[ "$(ls "$TMP/out" | wc -l)" -eq 100 ]
+	[[ "$output" == *"frames=100 in_vertices=15378 in_triangles=5126 welded=12746 out_vertices=1316"* ]]
+	# the frames move: the dancer's first and middle poses differ
+	! cmp -s "$TMP/out/000.obj" "$TMP/out/050.obj"
+	rm "$TMP"/out/*
+	run "$BIN/vdt-deform" -q --frames 3 --vertices 300 "$WALK" -o "$TMP/out/walk-%d.ply"
+	[ "$status" -eq 0 ]
+	[ -z "$output" ]
+	[ "$(ls "$TMP/out")" = "$(printf 'walk-0.ply\nwalk-1.ply\nwalk-2.ply')" ]
+}
+
+@test "vdt-deform on a model Assimp cannot read: one line, status 2, nothing written" {
+	printf 'xof 0302txt 0032\nMesh {\n' > "$TMP/cut.x"
+	run "$BIN/vdt-deform" --vertices 100 "$TMP/cut.x" -o "$TMP/out/%03d.obj"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == "vdt-deform: cannot read '$TMP/cut.x': "* ]]
+	run "$BIN/vdt-deform" --vertices 100 "$TMP/none.fbx" -o "$TMP/out/%03d.obj"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == "vdt-deform: cannot read '$TMP/none.fbx': No such file or directory" ]]
+	[ -z "$(ls "$TMP/out")" ]
 }
 
 @test "vdt-deform names the frame with a different vertex count" {

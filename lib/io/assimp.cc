@@ -1,0 +1,319 @@
+/*
+ * assimp.cc - the extern "C" face of Assimp for skeletal animations:
+ * DirectX .x, FBX, glTF 2 (.gltf, .glb), COLLADA, Valve SMD, IQM,
+ * MilkShape 3D and Blitz3D files whose meshes are skinned to bones that
+ * an animation moves. Each frame is baked here, in the way every engine
+ * draws such a model (linear blend skinning):
+ *
+ *   p_t = sum over the vertex's bones b of  w_b * G_t(b) * O_b * p
+ *
+ * with G_t(b) the bone node's global transform at the frame's time (the
+ * animation's channels, interpolated: positions and scalings linearly,
+ * rotations by slerp; a node without a channel keeps its own transform)
+ * and O_b the bone's offset matrix (mesh space to bone space at bind
+ * time). A mesh without bones moves with its node. The frames are the
+ * key times of the file's first animation, every channel's together, in
+ * order (a model without one is one frame, as posed); the meshes of every
+ * node are joined into one, so that all frames share one connectivity.
+ * Morph-target (blend shape) animation is not read.
+ *
+ * Assimp is reached through its C interface (cimport.h); what it cannot
+ * read it says in aiGetErrorString, which becomes the message.
+ */
+#include <assimp/cimport.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <new>
+#include <string>
+#include <vector>
+
+extern "C" {
+#include "anim.h"
+}
+
+namespace {
+
+/* The file extensions read through Assimp, lower case. */
+const char *const exts[] = {".x", ".fbx", ".gltf", ".glb", ".dae", ".smd", ".iqm", ".md5mesh", ".mdl",
+                            ".ms3d", ".b3d"};
+
+struct Instance {
+	const aiMesh *mesh;
+	const aiNode *node;
+};
+
+void
+collect(const aiScene *s, const aiNode *n, std::vector<Instance> &out)
+{
+	for (unsigned i = 0; i < n->mNumMeshes; i++)
+		if (n->mMeshes[i] < s->mNumMeshes)
+			out.push_back({s->mMeshes[n->mMeshes[i]], n});
+	for (unsigned i = 0; i < n->mNumChildren; i++)
+		collect(s, n->mChildren[i], out);
+}
+
+template <class K>
+unsigned
+key_before(const K *keys, unsigned n, double t)
+{
+	/* the last key at or before t (0 if none) */
+	unsigned lo = 0, hi = n;
+	while (hi - lo > 1) {
+		unsigned mid = (lo + hi) / 2;
+		if (keys[mid].mTime <= t)
+			lo = mid;
+		else
+			hi = mid;
+	}
+	return lo;
+}
+
+aiVector3D
+vector_at(const aiVectorKey *k, unsigned n, double t, const aiVector3D &dflt)
+{
+	if (n == 0)
+		return dflt;
+	unsigned i = key_before(k, n, t);
+	if (i + 1 >= n || t <= k[i].mTime)
+		return k[i].mValue;
+	double f = (t - k[i].mTime) / (k[i + 1].mTime - k[i].mTime);
+	return k[i].mValue + (k[i + 1].mValue - k[i].mValue) * (ai_real)f;
+}
+
+aiQuaternion
+rotation_at(const aiQuatKey *k, unsigned n, double t, const aiQuaternion &dflt)
+{
+	if (n == 0)
+		return dflt;
+	unsigned i = key_before(k, n, t);
+	if (i + 1 >= n || t <= k[i].mTime)
+		return k[i].mValue;
+	double f = (t - k[i].mTime) / (k[i + 1].mTime - k[i].mTime);
+	aiQuaternion q;
+	aiQuaternion::Interpolate(q, k[i].mValue, k[i + 1].mValue, (ai_real)f);
+	return q.Normalize();
+}
+
+/* Every node's global transform at time t of animation a (or at bind
+ * time with a == NULL), by node. */
+void
+globals(const aiNode *n, const aiMatrix4x4 &parent, const aiAnimation *a,
+        const std::map<const aiNode *, const aiNodeAnim *> &chan, double t,
+        std::map<const aiNode *, aiMatrix4x4> &out)
+{
+	aiMatrix4x4 local = n->mTransformation;
+	auto it = a ? chan.find(n) : chan.end();
+	if (it != chan.end()) {
+		const aiNodeAnim *c = it->second;
+		aiVector3D s0, p0;
+		aiQuaternion r0;
+		n->mTransformation.Decompose(s0, r0, p0);
+		aiVector3D p = vector_at(c->mPositionKeys, c->mNumPositionKeys, t, p0);
+		aiQuaternion r = rotation_at(c->mRotationKeys, c->mNumRotationKeys, t, r0);
+		aiVector3D s = vector_at(c->mScalingKeys, c->mNumScalingKeys, t, s0);
+		aiMatrix4x4 ms, mt;
+		aiMatrix4x4::Scaling(s, ms);
+		aiMatrix4x4::Translation(p, mt);
+		local = mt * aiMatrix4x4(r.GetMatrix()) * ms;
+	}
+	aiMatrix4x4 g = parent * local;
+	out[n] = g;
+	for (unsigned i = 0; i < n->mNumChildren; i++)
+		globals(n->mChildren[i], g, a, chan, t, out);
+}
+
+/* Frames of s's first animation with channels into *m and *fr (see the
+ * top of this file); 0 or a status, with *m and *fr maybe half filled. */
+int
+bake(const aiScene *s, struct vdt_mesh *m, struct vdt_frames *fr, struct vdt_err *err)
+{
+	/* Assimp stands a skeleton without a mesh in for the mesh. */
+	if (s->mFlags & AI_SCENE_FLAGS_INCOMPLETE)
+		return vdt_err_set(err, VDT_EINVAL, "has no mesh");
+	std::vector<Instance> inst;
+	if (s->mRootNode)
+		collect(s, s->mRootNode, inst);
+	size_t nv = 0, nt = 0;
+	for (const Instance &i : inst) {
+		if (!(i.mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
+			continue;
+		nv += i.mesh->mNumVertices;
+		for (unsigned f = 0; f < i.mesh->mNumFaces; f++)
+			nt += i.mesh->mFaces[f].mNumIndices == 3;
+	}
+	if (nt == 0)
+		return vdt_err_set(err, VDT_EINVAL, "has no triangles");
+	if (nv > UINT32_MAX)
+		return vdt_err_set(err, VDT_EINVAL, "has %zu vertices, more than 2^32", nv);
+	const aiAnimation *a = nullptr;
+	for (unsigned i = 0; i < s->mNumAnimations && !a; i++)
+		if (s->mAnimations[i]->mNumChannels > 0)
+			a = s->mAnimations[i];
+	std::map<const aiNode *, const aiNodeAnim *> chan;
+	std::vector<double> times;
+	if (a == nullptr) /* a still model: one frame, as the file poses it */
+		times.push_back(0);
+	for (unsigned c = 0; a != nullptr && c < a->mNumChannels; c++) {
+		const aiNodeAnim *na = a->mChannels[c];
+		const aiNode *node = s->mRootNode->FindNode(na->mNodeName);
+		if (node == nullptr)
+			continue;
+		chan[node] = na;
+		for (unsigned k = 0; k < na->mNumPositionKeys; k++)
+			times.push_back(na->mPositionKeys[k].mTime);
+		for (unsigned k = 0; k < na->mNumRotationKeys; k++)
+			times.push_back(na->mRotationKeys[k].mTime);
+		for (unsigned k = 0; k < na->mNumScalingKeys; k++)
+			times.push_back(na->mScalingKeys[k].mTime);
+	}
+	for (double t : times)
+		if (!std::isfinite(t))
+			return vdt_err_set(err, VDT_EINVAL, "animation '%s' has a key at a non-finite time",
+			                   a->mName.C_Str());
+	std::sort(times.begin(), times.end());
+	times.erase(std::unique(times.begin(), times.end()), times.end());
+	if (times.empty()) /* channels of nodes that are not there */
+		return vdt_err_set(err, VDT_EINVAL, "animation '%s' moves no node of the model",
+		                   a->mName.C_Str());
+	int rc;
+	if ((rc = vdt_mesh_alloc(m, nv, nt, 0, err)) != 0 ||
+	    (rc = vdt_frames_alloc(fr, times.size(), nv, err)) != 0)
+		return rc;
+	/* The joined mesh's triangles. */
+	size_t v0 = 0, t = 0;
+	for (const Instance &i : inst) {
+		if (!(i.mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
+			continue;
+		for (unsigned f = 0; f < i.mesh->mNumFaces; f++) {
+			const aiFace &face = i.mesh->mFaces[f];
+			if (face.mNumIndices != 3)
+				continue;
+			for (int k = 0; k < 3; k++) {
+				if (face.mIndices[k] >= i.mesh->mNumVertices)
+					return vdt_err_set(err, VDT_EINVAL, "mesh '%s': face %u uses vertex %u of %u",
+					                   i.mesh->mName.C_Str(), f, face.mIndices[k],
+					                   i.mesh->mNumVertices);
+				m->triangles[3 * t + k] = uint32_t(v0 + face.mIndices[k]);
+			}
+			t++;
+		}
+		v0 += i.mesh->mNumVertices;
+	}
+	/* Each frame's positions. */
+	std::vector<double> acc, sum;
+	for (size_t f = 0; f < times.size(); f++) {
+		std::map<const aiNode *, aiMatrix4x4> g;
+		globals(s->mRootNode, aiMatrix4x4(), a, chan, times[f], g);
+		float *out = fr->positions + 3 * nv * f;
+		v0 = 0;
+		for (const Instance &i : inst) {
+			const aiMesh *me = i.mesh;
+			if (!(me->mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
+				continue;
+			acc.assign(3 * (size_t)me->mNumVertices, 0.0);
+			sum.assign(me->mNumVertices, 0.0);
+			for (unsigned b = 0; b < me->mNumBones; b++) {
+				const aiBone *bone = me->mBones[b];
+				const aiNode *bn = s->mRootNode->FindNode(bone->mName);
+				aiMatrix4x4 mb = (bn ? g[bn] : g[i.node]) * bone->mOffsetMatrix;
+				for (unsigned w = 0; w < bone->mNumWeights; w++) {
+					const aiVertexWeight &vw = bone->mWeights[w];
+					if (vw.mVertexId >= me->mNumVertices || !(vw.mWeight > 0))
+						continue;
+					aiVector3D p = mb * me->mVertices[vw.mVertexId];
+					for (int k = 0; k < 3; k++)
+						acc[3 * (size_t)vw.mVertexId + k] += (double)vw.mWeight * p[k];
+					sum[vw.mVertexId] += vw.mWeight;
+				}
+			}
+			const aiMatrix4x4 &gn = g[i.node];
+			for (unsigned v = 0; v < me->mNumVertices; v++) {
+				double p[3];
+				if (sum[v] > 0) {
+					for (int k = 0; k < 3; k++)
+						p[k] = acc[3 * (size_t)v + k] / sum[v];
+				} else {
+					aiVector3D q = gn * me->mVertices[v];
+					for (int k = 0; k < 3; k++)
+						p[k] = q[k];
+				}
+				for (int k = 0; k < 3; k++) {
+					float x = (float)p[k];
+					if (!std::isfinite(x))
+						return vdt_err_set(err, VDT_EINVAL,
+						                   "frame %zu: vertex %zu has a non-finite coordinate", f,
+						                   v0 + v);
+					out[3 * (v0 + v) + k] = x;
+				}
+			}
+			v0 += me->mNumVertices;
+		}
+	}
+	memcpy(m->positions, fr->positions, 3 * nv * sizeof(float));
+	return 0;
+}
+
+} // namespace
+
+extern "C" int
+vdt_assimp_handles(const char *path)
+{
+	size_t n = strlen(path);
+
+	for (const char *e : exts) {
+		size_t k = strlen(e);
+		if (n > k) {
+			bool same = true;
+			for (size_t i = 0; i < k && same; i++)
+				same = (char)std::tolower((unsigned char)path[n - k + i]) == e[i];
+			if (same)
+				return 1;
+		}
+	}
+	return 0;
+}
+
+
+extern "C" int
+vdt_assimp_read(const char *path, struct vdt_mesh *m, struct vdt_frames *fr,
+                struct vdt_err *err)
+{
+	int rc;
+
+	memset(m, 0, sizeof(*m));
+	memset(fr, 0, sizeof(*fr));
+	/* No step that merges or drops vertices: the bones' weights are per
+	 * vertex, and welding the seams is the caller's. */
+	/* Assimp's own word for a file it cannot open is vaguer than errno's. */
+	FILE *f = fopen(path, "rb");
+	if (f == nullptr)
+		return vdt_err_set(err, VDT_EIO, "%s", strerror(errno));
+	fclose(f);
+	const aiScene *s = aiImportFile(path, aiProcess_ValidateDataStructure | aiProcess_Triangulate |
+	                                          aiProcess_SortByPType);
+	if (s == nullptr) {
+		std::string why = aiGetErrorString();
+		while (!why.empty() && (why.back() == '\n' || why.back() == '.' || why.back() == ' '))
+			why.pop_back();
+		return vdt_err_set(err, VDT_EFORMAT, "%s",
+		                   why.empty() ? "not a model Assimp reads" : why.c_str());
+	}
+	try {
+		rc = bake(s, m, fr, err);
+	} catch (const std::bad_alloc &) {
+		rc = vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	}
+	aiReleaseImport(s);
+	if (rc != 0) {
+		vdt_mesh_free(m);
+		vdt_frames_free(fr);
+	}
+	return rc;
+}

@@ -1,0 +1,218 @@
+/*
+ * test_assimp.c - skinned animations baked into frames (lib/io/assimp.cc),
+ * on Valve SMD files written here: a text format whose bones, key poses
+ * and bone weights can be set by hand, so that every baked position is
+ * known exactly.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "../../lib/io/anim.h"
+
+/*
+ * An arm: bone "arm" sits at (1,0,0) on the root and turns by 90 degrees
+ * about z from key time 0 to key time 2; at time 1 only the root has a
+ * key, so the arm is halfway there (45 degrees, by slerp).
+ *
+ *        y
+ *        |
+ *        2          5            triangle A (0,1,2) on the root
+ *        | \        | \          triangle B (3,4,5) on the arm
+ *        0--1       3--4 .  8    triangle C (6,7,8): 6 half on each
+ *                      6--7      bone, 7 and 8 on the arm
+ *   ------------------------ x
+ *        0  1       1  2  2  3
+ *
+ * (C is drawn below B: its corners are (2,0,0), (3,0,0) and (2,-1,0).)
+ * At time 2 a point p on the arm goes to (1,0,0) + R90 (p - (1,0,0)):
+ * (2,0,0) -> (1,1,0), (1,1,0) -> (0,0,0), (3,0,0) -> (1,2,0),
+ * (2,-1,0) -> (2,1,0); vertex 6 is the mean of (2,0,0) and (1,1,0).
+ */
+static const char arm_smd[] =
+	"version 1\n"
+	"nodes\n"
+	"0 \"root\" -1\n"
+	"1 \"arm\" 0\n"
+	"end\n"
+	"skeleton\n"
+	"time 0\n"
+	"0 0 0 0 0 0 0\n"
+	"1 1 0 0 0 0 0\n"
+	"time 1\n"
+	"0 0 0 0 0 0 0\n"
+	"time 2\n"
+	"0 0 0 0 0 0 0\n"
+	"1 1 0 0 0 0 1.5707963267948966\n"
+	"end\n"
+	"triangles\n"
+	"mat\n"
+	"0 0 0 0 0 0 1 0 0\n"
+	"0 1 0 0 0 0 1 0 0\n"
+	"0 0 1 0 0 0 1 0 0\n"
+	"mat\n"
+	"1 1 0 0 0 0 1 0 0\n"
+	"1 2 0 0 0 0 1 0 0\n"
+	"1 1 1 0 0 0 1 0 0\n"
+	"mat\n"
+	"1 2 0 0 0 0 1 0 0 2 0 0.5 1 0.5\n"
+	"1 3 0 0 0 0 1 0 0\n"
+	"1 2 -1 0 0 0 1 0 0\n"
+	"end\n";
+
+static const float arm_frames[3][9][3] = {
+	{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 0, 0}, {2, 0, 0}, {1, 1, 0},
+	 {2, 0, 0}, {3, 0, 0}, {2, -1, 0}},
+	{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 0, 0}, {1.70710678f, 0.70710678f, 0},
+	 {0.29289322f, 0.70710678f, 0}, {1.85355339f, 0.35355339f, 0},
+	 {2.41421356f, 1.41421356f, 0}, {2.41421356f, 0, 0}},
+	{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 0, 0}, {1, 1, 0}, {0, 0, 0},
+	 {1.5f, 0.5f, 0}, {1, 2, 0}, {2, 1, 0}},
+};
+
+/* text into a new file named like "/tmp/vdt-assimp-XXXXXX.smd"; the name */
+static char *
+write_temp(const char *text)
+{
+	static char name[64];
+	strcpy(name, "/tmp/vdt-assimp-XXXXXX.smd");
+	int fd = mkstemps(name, 4);
+	assert_true(fd >= 0);
+	size_t n = strlen(text);
+	assert_int_equal(write(fd, text, n), (ssize_t)n);
+	close(fd);
+	return name;
+}
+
+static void
+arm_bends_at_its_joint(void **state)
+{
+	(void)state;
+	struct vdt_mesh m;
+	struct vdt_frames fr;
+	struct vdt_err err = {0};
+	char *path = write_temp(arm_smd);
+
+	assert_int_equal(vdt_assimp_read(path, &m, &fr, &err), 0);
+	unlink(path);
+	assert_int_equal(m.vertex_count, 9);
+	assert_int_equal(m.triangle_count, 3);
+	for (uint32_t i = 0; i < 9; i++)
+		assert_int_equal(m.triangles[i], i);
+	assert_int_equal(fr.frame_count, 3);
+	assert_int_equal(fr.vertex_count, 9);
+	for (size_t f = 0; f < 3; f++)
+		for (size_t v = 0; v < 9; v++)
+			for (int k = 0; k < 3; k++) {
+				float got = fr.positions[3 * (9 * f + v) + k];
+				if (fabsf(got - arm_frames[f][v][k]) > 1e-5f)
+					fail_msg("frame %zu vertex %zu axis %d: %g, not %g", f, v, k,
+					         got, arm_frames[f][v][k]);
+			}
+	/* the mesh is frame 0 */
+	assert_memory_equal(m.positions, fr.positions, 27 * sizeof(float));
+	vdt_mesh_free(&m);
+	vdt_frames_free(&fr);
+}
+
+/* A model with one key pose is one frame. */
+static void
+one_key_is_one_frame(void **state)
+{
+	(void)state;
+	static const char smd[] = "version 1\nnodes\n0 \"root\" -1\nend\n"
+	                          "skeleton\ntime 0\n0 0 0 5 0 0 0\nend\n"
+	                          "triangles\nmat\n0 0 0 0 0 0 1 0 0\n0 1 0 0 0 0 1 0 0\n"
+	                          "0 0 1 0 0 0 1 0 0\nend\n";
+	struct vdt_mesh m;
+	struct vdt_frames fr;
+	char *path = write_temp(smd);
+
+	assert_int_equal(vdt_assimp_read(path, &m, &fr, NULL), 0);
+	unlink(path);
+	assert_int_equal(fr.frame_count, 1);
+	assert_int_equal(m.vertex_count, 3);
+	assert_true(fabsf(fr.positions[3 * 1 + 0] - 1) < 1e-6f);
+	assert_true(fabsf(fr.positions[3 * 2 + 1] - 1) < 1e-6f);
+	vdt_mesh_free(&m);
+	vdt_frames_free(&fr);
+}
+
+static void
+expect_error(const char *text, int code, const char *message)
+{
+	struct vdt_mesh m;
+	struct vdt_frames fr;
+	struct vdt_err err = {0};
+	char *path = write_temp(text);
+
+	assert_int_equal(vdt_assimp_read(path, &m, &fr, &err), code);
+	unlink(path);
+	assert_string_equal(err.msg, message);
+	assert_null(m.positions);
+	assert_null(fr.positions);
+}
+
+static void
+refuses_what_is_no_animated_mesh(void **state)
+{
+	(void)state;
+	char nan_smd[sizeof(arm_smd) + 8];
+	const char *at = strstr(arm_smd, "1 2 0 0 0 0 1 0 0\n1 1 1");
+
+	/* vertex 4 at x = nan */
+	assert_non_null(at);
+	memcpy(nan_smd, arm_smd, (size_t)(at - arm_smd));
+	strcpy(nan_smd + (at - arm_smd), "1 nan");
+	strcat(nan_smd, at + 3);
+	expect_error(nan_smd, VDT_EINVAL, "frame 0: vertex 4 has a non-finite coordinate");
+	/* a skeleton alone, which Assimp would draw as a mesh of its own */
+	expect_error("version 1\nnodes\n0 \"root\" -1\nend\nskeleton\ntime 0\n0 0 0 0 0 0 0\nend\n",
+	             VDT_EINVAL, "has no mesh");
+}
+
+static void
+missing_file_is_an_io_error(void **state)
+{
+	(void)state;
+	struct vdt_mesh m;
+	struct vdt_frames fr;
+	struct vdt_err err = {0};
+
+	assert_int_equal(vdt_assimp_read("/nonexistent/walk.fbx", &m, &fr, &err), VDT_EIO);
+	assert_string_equal(err.msg, "No such file or directory");
+}
+
+static void
+formats_by_extension(void **state)
+{
+	(void)state;
+	assert_true(vdt_assimp_handles("walk.fbx"));
+	assert_true(vdt_assimp_handles("dir.obj/Walk.GLB"));
+	assert_true(vdt_assimp_handles("a.x"));
+	assert_false(vdt_assimp_handles(".x"));
+	assert_false(vdt_assimp_handles("bunny.obj"));
+	assert_false(vdt_assimp_handles("frames.vdt"));
+	assert_false(vdt_assimp_handles("sydney.md2"));
+}
+
+int
+main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(arm_bends_at_its_joint),
+		cmocka_unit_test(one_key_is_one_frame),
+		cmocka_unit_test(refuses_what_is_no_animated_mesh),
+		cmocka_unit_test(missing_file_is_an_io_error),
+		cmocka_unit_test(formats_by_extension),
+	};
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
