@@ -32,8 +32,9 @@ usage(FILE *f)
 	        "                  [--start N] [--frames N] [--samples N] [-o OUTPUT] [-F FORMAT]\n"
 	        "                  [-q] [-v] [INPUT...]\n"
 	        "Simplify an animation: frame files, a printf pattern (frames/%%03d.obj),\n"
-	        "an MD2 model or a vdt stream with FRMS. METHOD is ours (default), dsd,\n"
-	        "first-frame or independent. OUTPUT is a pattern or a vdt stream.\n");
+	        "an MD2 model, a skinned model (.x, .fbx, .gltf, .glb, .dae, .smd, ...)\n"
+	        "or a vdt stream with FRMS. METHOD is ours (default), dsd, first-frame\n"
+	        "or independent. OUTPUT is a pattern or a vdt stream.\n");
 }
 
 static void
