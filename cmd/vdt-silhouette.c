@@ -150,7 +150,7 @@ run(struct cmdline *cl)
 	}
 	vdt_chunks_remove(&extra, VDT_CHUNK_LABL);
 	if (vdt_labl_encode(&l, &data, &len, &err) != 0 ||
-	    vdt_chunks_add(&extra, VDT_CHUNK_LABL, data, len, &err) != 0 ||
+	    vdt_chunks_prepend(&extra, VDT_CHUNK_LABL, data, len, &err) != 0 ||
 	    vdt_write(cl->out, &m, &extra, &(struct vdt_write_opts){VDT_FMT_VDT, 0, 0}, &err) != 0) {
 		rc = fail("cannot write", cl->out, &err);
 		goto out;

@@ -1332,7 +1332,7 @@ vdt_deform_write(const struct vdt_deform_result *res, const char *path, struct v
 			rc = vdt_write(path, &m, extra, w, err);
 	} else if ((rc = vdt_deform_to_frames(res, &m, &fr, err)) == 0 &&
 	           (rc = vdt_frms_encode(&fr, &data, &len, err)) == 0 &&
-	           (rc = vdt_chunks_add(extra, VDT_CHUNK_FRMS, data, len, err)) == 0) {
+	           (rc = vdt_chunks_prepend(extra, VDT_CHUNK_FRMS, data, len, err)) == 0) {
 		rc = vdt_write(path, &m, extra, w, err);
 	}
 	vdt_mesh_free(&m);

@@ -2038,7 +2038,7 @@ vdt_qslim_extra_encode(const struct vdt_qslim_extra *x, struct vdt_chunks *c, st
 		return 0;
 	if ((rc = vdt_seqn_encode(x->records, x->record_count, &data, &len, err)) != 0)
 		return rc;
-	return vdt_chunks_add(c, VDT_CHUNK_SEQN, data, len, err);
+	return vdt_chunks_prepend(c, VDT_CHUNK_SEQN, data, len, err);
 }
 
 void

@@ -401,6 +401,20 @@ vdt_chunks_add(struct vdt_chunks *c, uint32_t type, unsigned char *data,
 	return 0;
 }
 
+int
+vdt_chunks_prepend(struct vdt_chunks *c, uint32_t type, unsigned char *data,
+                   uint64_t length, struct vdt_err *err)
+{
+	int rc = vdt_chunks_add(c, type, data, length, err);
+
+	if (rc == 0) {
+		struct vdt_chunk last = c->items[c->count - 1];
+		memmove(c->items + 1, c->items, (c->count - 1) * sizeof(*c->items));
+		c->items[0] = last;
+	}
+	return rc;
+}
+
 const struct vdt_chunk *
 vdt_chunks_find(const struct vdt_chunks *c, uint32_t type)
 {

@@ -123,6 +123,14 @@ int vdt_chunks_add(struct vdt_chunks *c, uint32_t type, unsigned char *data,
                    uint64_t length, struct vdt_err *err);
 
 /*
+ * Insert a chunk before every chunk of c: a tool's own chunk goes before
+ * those it passes on (vdt(5), Pass-through). Takes ownership of data as
+ * vdt_chunks_add does. Returns 0 or VDT_ENOMEM (data freed on failure).
+ */
+int vdt_chunks_prepend(struct vdt_chunks *c, uint32_t type, unsigned char *data,
+                       uint64_t length, struct vdt_err *err);
+
+/*
  * Append every chunk of src to c, in order, leaving src empty. Returns 0,
  * or VDT_ENOMEM (the chunks not moved stay in src).
  */

@@ -923,7 +923,7 @@ vdt_vtree_encode_chunk(struct vdt_chunks *c, const struct vdt_vtree *t, uint64_t
 
 	vdt_chunks_remove(c, VDT_CHUNK_VTRE);
 	if ((rc = vdt_vtree_encode(t, &data, &len, err)) != 0 ||
-	    (rc = vdt_chunks_add(c, VDT_CHUNK_VTRE, data, len, err)) != 0)
+	    (rc = vdt_chunks_prepend(c, VDT_CHUNK_VTRE, data, len, err)) != 0)
 		return rc;
 	if (length)
 		*length = len;

@@ -57,3 +57,16 @@ for ty, p in keep + [[c for c in t if c[0] == ty][0], (b'END ', b'')]:
 open(sys.argv[3], 'wb').write(b)
 PY
 }
+
+# chunk_types STREAM: the types of its chunks, in order, on one line.
+chunk_types() {
+	python3 - "$1" <<'PY'
+import struct, sys
+b, o, out = open(sys.argv[1], 'rb').read(), 12, []
+while o + 12 <= len(b):
+    t = b[o:o+4]; n = struct.unpack('<Q', b[o+4:o+12])[0]
+    out.append(t.decode('latin-1')); o += 16 + n
+    if t == b'END ': break
+print(' '.join(out))
+PY
+}

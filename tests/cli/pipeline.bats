@@ -61,3 +61,34 @@ load helpers
 		[[ "$output" == *"unexpected argument"* ]]
 	done
 }
+
+@test "every tool writes its own chunks first, then those it passes on, as read" {
+	# the golden stream: MESH, QUAD and an unknown XTRA chunk
+	g="$DATA/golden-v1.vdt"
+	"$BIN/vdt-build" -q "$g" -o "$TMP/b.vdt"
+	[ "$(chunk_types "$TMP/b.vdt")" = "MESH VTRE QUAD XTRA END " ]
+	"$BIN/vdt-silhouette" -q -a 60 "$g" | "$BIN/vdt-build" -q -o "$TMP/sb.vdt"
+	[ "$(chunk_types "$TMP/sb.vdt")" = "MESH VTRE LABL QUAD XTRA END " ]
+	"$BIN/vdt-qslim" -q --record -r 0.5 "$g" -o "$TMP/q.vdt"
+	[ "$(chunk_types "$TMP/q.vdt")" = "MESH SEQN XTRA END " ]
+	# an animation of the golden mesh, its XTRA chunk after FRMS
+	python3 - "$g" "$TMP/anim.vdt" <<'PY'
+import struct, sys, zlib
+b = open(sys.argv[1], 'rb').read()
+o, ch = 12, []
+while True:
+    t = b[o:o+4]; n = struct.unpack('<Q', b[o+4:o+12])[0]
+    ch.append((t, b[o+12:o+12+n])); o += 16 + n
+    if t == b'END ': break
+mesh = dict(ch)[b'MESH']
+nv = struct.unpack('<Q', mesh[8:16])[0]
+pos = mesh[24:24 + 12 * nv]
+frms = struct.pack('<IIQ', 2, 0, nv) + pos + pos
+out = b[:12]
+for t, p in [(b'MESH', mesh), (b'FRMS', frms), (b'XTRA', dict(ch)[b'XTRA']), (b'END ', b'')]:
+    out += t + struct.pack('<Q', len(p)) + p + struct.pack('<I', zlib.crc32(t + p))
+open(sys.argv[2], 'wb').write(out)
+PY
+	"$BIN/vdt-deform" -q -r 0.5 "$TMP/anim.vdt" -o "$TMP/d.vdt"
+	[ "$(chunk_types "$TMP/d.vdt")" = "MESH FRMS XTRA END " ]
+}

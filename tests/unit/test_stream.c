@@ -1092,6 +1092,30 @@ chunks_move(void **state)
 	vdt_chunks_free(&b);
 }
 
+/* vdt_chunks_prepend puts its chunk first, the others after it in order,
+ * through the growth of the list (1, 2, 4, 8 ... items). */
+static void
+chunks_prepend(void **state)
+{
+	struct vdt_chunks c = {0};
+
+	(void)state;
+	for (int i = 0; i < 9; i++) {
+		unsigned char *d = malloc(1);
+		assert_non_null(d);
+		d[0] = (unsigned char)i;
+		assert_int_equal(vdt_chunks_prepend(&c, VDT_FOURCC('X', 'T', 'R', (char)('0' + i)), d, 1,
+		                                    NULL),
+		                 0);
+	}
+	assert_int_equal(c.count, 9);
+	for (int i = 0; i < 9; i++) {
+		assert_int_equal(c.items[i].data[0], 8 - i);
+		assert_int_equal(c.items[i].type, VDT_FOURCC('X', 'T', 'R', (char)('0' + 8 - i)));
+	}
+	vdt_chunks_free(&c);
+}
+
 int
 main(void)
 {
@@ -1103,6 +1127,7 @@ main(void)
 		cmocka_unit_test(quad_round_trip),
 		cmocka_unit_test(pass_through),
 		cmocka_unit_test(chunks_grow),
+		cmocka_unit_test(chunks_prepend),
 		cmocka_unit_test(reader_on_pipe),
 		cmocka_unit_test(truncated_everywhere),
 		cmocka_unit_test(bit_flips),
