@@ -92,3 +92,37 @@ PY
 	"$BIN/vdt-deform" -q -r 0.5 "$TMP/anim.vdt" -o "$TMP/d.vdt"
 	[ "$(chunk_types "$TMP/d.vdt")" = "MESH FRMS XTRA END " ]
 }
+
+@test "a chunk of the vertices before MESH, or a second one, is refused by every reader" {
+	g="$DATA/golden-v1.vdt"
+	# golden: MESH, QUAD, XTRA; make QUAD, MESH, XTRA and MESH, QUAD, QUAD, XTRA
+	python3 - "$g" "$TMP/before.vdt" "$TMP/twice.vdt" <<'PY'
+import struct, sys, zlib
+b = open(sys.argv[1], 'rb').read()
+o, ch = 12, []
+while True:
+    t = b[o:o+4]; n = struct.unpack('<Q', b[o+4:o+12])[0]
+    ch.append((t, b[o+12:o+12+n])); o += 16 + n
+    if t == b'END ': break
+def write(path, order):
+    out = b[:12]
+    for t, p in order:
+        out += t + struct.pack('<Q', len(p)) + p + struct.pack('<I', zlib.crc32(t + p))
+    open(path, 'wb').write(out)
+write(sys.argv[2], [ch[1], ch[0]] + ch[2:])
+write(sys.argv[3], [ch[0], ch[1], ch[1]] + ch[2:])
+PY
+	for tool in vdt-qslim vdt-build vdt-cluster; do
+		run "$BIN/$tool" "$TMP/before.vdt" -o "$TMP/out.vdt"
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == "$tool: cannot read '$TMP/before.vdt': chunk QUAD at offset 12 comes before the MESH chunk" ]]
+		run "$BIN/$tool" "$TMP/twice.vdt" -o "$TMP/out.vdt"
+		[ "$status" -eq 2 ]
+		[[ "$output" == "$tool: cannot read '$TMP/twice.vdt': second QUAD chunk at offset "* ]]
+		[ ! -e "$TMP/out.vdt" ]
+	done
+	run "$BIN/vdt-deform" -r 0.5 "$TMP/twice.vdt" -o "$TMP/out.vdt"
+	[ "$status" -eq 2 ]
+	[[ "$output" == *"second QUAD chunk"* ]]
+}
