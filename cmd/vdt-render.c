@@ -202,11 +202,11 @@ run(struct cmdline *cl)
 		if (rc == EXIT_OK && cl->out &&
 		    (vdt_image_write(frame_name(name, cl->out, i), R.r.width, R.r.height, 3, R.r.rgb,
 		                     &err) != 0 || vdt_written_add(&done, name, &err) != 0))
-			rc = fail("cannot write", name, &err) ? EXIT_USAGE : 0;
+			rc = fail("cannot write", name, &err);
 		if (rc == EXIT_OK && cl->mesh_out &&
 		    (vdt_write(frame_name(name, cl->mesh_out, i), R.drawn, NULL, &wo, &err) != 0 ||
 		     vdt_written_add(&done, name, &err) != 0))
-			rc = fail("cannot write", name, &err) ? EXIT_USAGE : 0;
+			rc = fail("cannot write", name, &err);
 		if (rc == EXIT_OK && cl->compare &&
 		    vdt_render_compare(&R, frame_name(name, cl->compare, i), &rmse, &err) != 0)
 			rc = fail("cannot compare with", name, &err) ? EXIT_USAGE : 0;

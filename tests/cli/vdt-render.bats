@@ -65,11 +65,15 @@ tree() {
 	[ ! -e "$TMP/x0.png" ]
 }
 
-@test "vdt-render reports an unwritable output with status 2" {
+@test "vdt-render: an unwritable output is status 1, as in every tool; a missing reference 2" {
 	tree
 	run "$BIN/vdt-render" "$TMP/t.vdt" -o "$TMP/no/such/dir/x.png"
-	[ "$status" -eq 2 ]
+	[ "$status" -eq 1 ]
 	one_line
+	run "$BIN/vdt-render" "$TMP/t.vdt" --mesh-out "$TMP/no/such/dir/x.ply" -o "$TMP/x.png"
+	[ "$status" -eq 1 ]
+	one_line
+	[ ! -e "$TMP/x.png" ]
 	run "$BIN/vdt-render" "$TMP/t.vdt" --compare "$TMP/none.png" -o "$TMP/x.png"
 	[ "$status" -eq 2 ]
 }
@@ -229,7 +233,7 @@ path3() {
 	# A failure found only while writing: the frames before it go too.
 	run "$BIN/vdt-render" --size 48x32 --path "$TMP/p3.txt" --mesh-out "$TMP/o/nodir/m%d.ply" \
 		"$TMP/t.vdt" -o "$TMP/o/e%03d.png"
-	[ "$status" -eq 2 ]
+	[ "$status" -eq 1 ]
 	one_line
 	"$BIN/vdt-render" -q --size 16x16 --full "$TMP/t.vdt" -o "$TMP/r/full-002.png"
 	run "$BIN/vdt-render" --size 48x32 --path "$TMP/p3.txt" --compare "$TMP/r/full-%03d.png" \
