@@ -90,7 +90,7 @@ struct engine {
 
 	size_t live_tris, live_verts;
 	double cos_max, min_quality;
-	int allow_nonmanifold, keep_parts;
+	int allow_nonmanifold, keep_parts, keep_a_face;
 	const struct vdt_contract_ops *ops;
 
 	uint32_t *parent; /* the vertex each removed vertex merged into */
@@ -792,6 +792,25 @@ last_of_part(const struct engine *e, uint32_t a, uint32_t b)
 	return 1;
 }
 
+/* Whether contracting a and b would remove every live face: those they
+ * share. (Counted only when there are few left: in a round of a pass on
+ * several threads there are more, so that live_tris, read there without
+ * the round's contractions, is never near.) */
+static int
+last_faces(const struct engine *e, uint32_t a, uint32_t b)
+{
+	const struct list *la = &e->vt[a];
+	size_t shared = 0;
+
+	if (e->live_tris > la->len)
+		return 0;
+	for (uint32_t i = 0; i < la->len; i++) {
+		const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[la->off + i];
+		shared += t[0] == b || t[1] == b || t[2] == b;
+	}
+	return shared >= e->live_tris;
+}
+
 /* ---- pairs, whichever queue holds them ---- */
 
 /* Of a < b, the vertex that survives: a locked one, else the higher rank. */
@@ -836,7 +855,8 @@ try_pair(struct engine *e, uint32_t u, uint32_t v, uint32_t *keep, uint32_t *gon
 	*cost = eval_pair(e, a, b, pos);
 	float fpos[3] = {(float)pos[0], (float)pos[1], (float)pos[2]};
 	return *cost < INFINITY && (e->allow_nonmanifold || link_ok(e, *keep, *gone)) &&
-	       !(e->keep_parts && last_of_part(e, *keep, *gone)) && !duplicates(e, *keep, *gone) &&
+	       !(e->keep_parts && last_of_part(e, *keep, *gone)) &&
+	       !(e->keep_a_face && last_faces(e, *keep, *gone)) && !duplicates(e, *keep, *gone) &&
 	       fan_ok(e, *keep, *gone, fpos) && fan_ok(e, *gone, *keep, fpos) &&
 	       (ops->valid == NULL || ops->valid(ops->ctx, *keep, *gone, pos));
 }
@@ -2780,6 +2800,7 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 	e.min_quality = o->min_quality;
 	e.allow_nonmanifold = o->allow_nonmanifold;
 	e.keep_parts = o->keep_parts;
+	e.keep_a_face = o->keep_a_face;
 	e.rank = o->rank;
 	e.vq = !o->pair_queue && o->virtual_pair_count == 0;
 	e.passes = e.vq && o->passes;

@@ -105,6 +105,12 @@ struct vdt_contract_opts {
 	 */
 	int keep_parts;
 	/*
+	 * Nonzero: never contract a pair whose faces are the last faces of
+	 * the mesh, so that a bound on the cost alone (max_cost) cannot leave
+	 * it empty. Parts may still vanish.
+	 */
+	int keep_a_face;
+	/*
 	 * The input surface the fold-over test compares each face's normal
 	 * with: face t of m stands for the triangle reference_triangles[3t..]
 	 * of reference_positions (3 floats a vertex). A caller that restarts

@@ -1813,6 +1813,11 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
 	stats->dropped = T - live;
 	free(dead);
 	dead = NULL;
+	if (live == 0 && T > 0) { /* not an empty output, later: the input's fault */
+		rc = vdt_err_set(err, VDT_EINVAL,
+		                 "no face is left once repeated and degenerate ones are dropped");
+		goto fail;
+	}
 	/* Seam vertices (2): more than one input vertex at the position; 4
 	 * marks one seen. Boundary vertices are 1. */
 	for (size_t i = 0; i < n; i++)
@@ -1862,6 +1867,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
 	c.seam = seam;
 	vdt_contract_defaults(&co);
 	co.target_triangles = target;
+	co.keep_a_face = 1; /* -e alone must not empty the mesh */
 	co.max_normal_angle = o->max_normal_angle;
 	co.min_quality = o->min_quality;
 	co.locked = locked;

@@ -429,3 +429,20 @@ END
 	run "$BIN/vdt-qslim" --record -r 0.5 -F vdt "$SAMPLES/sphere.off" -o "$TMP/out.ply"
 	[ "$status" -eq 0 ]
 }
+
+@test "vdt-qslim -e alone never empties the mesh; a mesh of only repeated faces is bad input" {
+	printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' > "$TMP/tri.obj"
+	printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 4 3\n' > "$TMP/quad.obj"
+	for m in tri quad; do
+		run "$BIN/vdt-qslim" -e 1000 "$TMP/$m.obj" -o "$TMP/$m-e.obj"
+		[ "$status" -eq 0 ]
+		[ "$(grep -c '^f ' "$TMP/$m-e.obj")" -eq 1 ]
+	done
+	# the same face twice, once each way round
+	printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 3 2\n' > "$TMP/fin.obj"
+	run "$BIN/vdt-qslim" "$TMP/fin.obj" -o "$TMP/fin-out.obj"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == "vdt-qslim: cannot simplify '$TMP/fin.obj': no face is left once repeated and degenerate ones are dropped" ]]
+	[ ! -e "$TMP/fin-out.obj" ]
+}
