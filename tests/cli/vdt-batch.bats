@@ -312,3 +312,105 @@ SH
 		[ "$output" = "vdt-batch ${q#vdt-qslim }" ]
 	done
 }
+
+@test "vdt-batch: other ratios remake the levels with the new counts; the same options again remake nothing" {
+	mkdir -p "$TMP/in"
+	cp "$SAMPLES/torus.off" "$TMP/in/"
+	"$BATCH" -q --ratios 50 -o "$TMP/out" "$TMP/in"
+	grep -aq '^element face 1152$' "$TMP/out/torus.lod1.ply"
+	run "$BATCH" -v --ratios 10,5 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+	printf '%s\n' "$output" | grep -q 'torus.lod1.ply done ('
+	grep -aq '^element face 230$' "$TMP/out/torus.lod1.ply"
+	printf '%s\n' "$output" | grep -q '^  torus.lod1.ply  *230 '
+	printf '%s\n' "$output" | grep -q 'lod1_ply_triangles=230 lod1_ply_bytes=.* lod2_ply_triangles=114 '
+	# the same options: nothing is made, not even a stamp is rewritten
+	(cd "$TMP/out" && ls -l --time-style=full-iso . .vdt-batch/*.cmd .vdt-batch/*.rec) > "$TMP/before"
+	run "$BATCH" -v --ratios 10,5 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+	! printf '%s\n' "$output" | grep -q ' done ('
+	printf '%s\n' "$output" | grep -q '^  torus.lod1.ply  *230 '
+	(cd "$TMP/out" && ls -l --time-style=full-iso . .vdt-batch/*.cmd .vdt-batch/*.rec) > "$TMP/after"
+	cmp "$TMP/before" "$TMP/after"
+	# a level whose ratio is unchanged is kept when another one changes
+	run "$BATCH" -v --ratios 10,20 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+	[ "$(printf '%s\n' "$output" | grep -c ' done (')" -eq 1 ]
+	printf '%s\n' "$output" | grep -q 'torus.lod2.ply done ('
+	grep -aq '^element face 460$' "$TMP/out/torus.lod2.ply"
+	[ "$(cd "$TMP/out" && ls -l --time-style=full-iso torus.lod1.ply)" = "$(grep ' torus.lod1.ply$' "$TMP/before")" ]
+	# no stamp, record or temporary file among the outputs
+	[ "$(ls -A "$TMP/out" | tr '\n' ' ')" = ".vdt-batch torus.lod1.ply torus.lod2.ply " ]
+}
+
+@test "vdt-batch: a recipe, format or sample count that changes an output remakes it, and only it" {
+	mkdir -p "$TMP/in"
+	cp "$SAMPLES/torus.off" "$TMP/in/"
+	"$BATCH" -q --ratios 20 --samples 1000 -o "$TMP/out" "$TMP/in"
+	cp "$TMP/out/torus.lod1.ply" "$TMP/plain.ply"
+	# with labels the level is made from the labelled stream, then
+	# without them from the input again
+	run "$BATCH" -v --recipe lod,labels --ratios 20 --samples 1000 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+	printf '%s\n' "$output" | grep -q 'torus.lod1.ply done ('
+	"$BIN/vdt-silhouette" -q "$SAMPLES/torus.off" | "$BIN/vdt-cluster" -q -t 461 |
+		"$BIN/vdt-qslim" -q -t 461 -o "$TMP/labelled.ply"
+	cmp "$TMP/labelled.ply" "$TMP/out/torus.lod1.ply"
+	! cmp -s "$TMP/labelled.ply" "$TMP/plain.ply"
+	run "$BATCH" -v --ratios 20 --samples 1000 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+	printf '%s\n' "$output" | grep -q 'torus.lod1.ply done ('
+	cmp "$TMP/plain.ply" "$TMP/out/torus.lod1.ply"
+	# another sample count measures again without making the level again
+	ls -l --time-style=full-iso "$TMP/out/torus.lod1.ply" > "$TMP/before"
+	run "$BATCH" -v --ratios 20 --samples 2000 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+	grep -q ' 2000$' "$TMP/out/.vdt-batch/torus.lod1.ply.rec.cmd"
+	ls -l --time-style=full-iso "$TMP/out/torus.lod1.ply" | cmp - "$TMP/before"
+	# the format: the level in the new format, alone
+	run "$BATCH" -v -F off --ratios 20 --samples 2000 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+	[ "$(off_faces "$TMP/out/torus.lod1.off")" -eq 460 ]
+	ls -l --time-style=full-iso "$TMP/out/torus.lod1.ply" | cmp - "$TMP/before"
+}
+
+@test "vdt-batch: a model whose input went bad fails, and its old outputs and records do not stay behind" {
+	mkdir -p "$TMP/in"
+	cp "$SAMPLES/torus.off" "$SAMPLES/plate.off" "$TMP/in/"
+	"$BATCH" -q --recipe lod,tree --ratios 50 -o "$TMP/out" "$TMP/in"
+	[ -s "$TMP/out/torus.lod1.ply" ] && [ -s "$TMP/out/torus.vdt" ]
+	sleep 1
+	head -c 300 "$SAMPLES/sphere.off" > "$TMP/in/torus.off"
+	run "$BATCH" -v --recipe lod,tree --ratios 50 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 1 ]
+	[[ "$output" == *"vdt-batch: torus.off failed: vdt-cluster: cannot read '$TMP/in/torus.off'"* ]]
+	printf '%s\n' "$output" | grep -q 'model=torus.off in_triangles=- .*status=failed$'
+	printf '%s\n' "$output" | grep -q 'model=plate.off .*status=ok$'
+	[ "$(ls "$TMP/out" | tr '\n' ' ')" = "plate.lod1.ply plate.vdt " ]
+	[ -z "$(find "$TMP/out/.vdt-batch" -name 'torus.*.rec')" ]
+	# mended, it is made again
+	cp "$SAMPLES/torus.off" "$TMP/in/"
+	run "$BATCH" -q --recipe lod,tree --ratios 50 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+	grep -aq '^element face 1152$' "$TMP/out/torus.lod1.ply"
+}
+
+@test "vdt-batch: an empty item in --ratios or --recipe is a usage error, in one line, before anything is written" {
+	mkdir -p "$TMP/in"
+	cp "$SAMPLES/torus.off" "$TMP/in/"
+	for r in 50,,20 50, ,50 ''; do
+		run "$BATCH" -q --ratios "$r" -o "$TMP/out" "$TMP/in"
+		[ "$status" -eq 2 ]
+		one_line
+		[ "$output" = "vdt-batch: empty item in --ratios '$r' (try vdt-batch -h)" ]
+	done
+	run "$BATCH" -q --recipe lod,,tree -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 2 ]
+	one_line
+	[ "$output" = "vdt-batch: empty item in --recipe 'lod,,tree' (try vdt-batch -h)" ]
+	# a ratio is never taken for a file name
+	touch "$TMP/in/50"
+	(cd "$TMP/in" && run "$BATCH" -q --ratios '*' -o "$TMP/out" . &&
+		[ "$status" -eq 2 ] && [[ "$output" == "vdt-batch: bad ratio '*' "* ]])
+	[ ! -e "$TMP/out" ]
+}
