@@ -54,7 +54,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	cl->out = "-";
 	while ((c = getopt_long(argc, argv, "n:d:1j:c:F:o:qvhV", longopts, NULL)) != -1) {
 		switch (c) {
-		case 'n': cl->m.samples = parse_count("-n", optarg, 1, 1UL << 40); break;
+		case 'n': cl->m.samples = parse_count("-n", optarg, 1, 1UL << 32); break;
 		case 'd': cl->m.density = parse_real("-d", optarg, 1e-300, 1e300); break;
 		case '1': cl->m.one_sided = 1; break;
 		case 'j': cl->m.threads = (int)parse_count("-j", optarg, 1, 64); break;
@@ -123,7 +123,11 @@ run(const struct cmdline *cl)
 		rc = vdt_err_set(&err, VDT_ENOMEM, "out of memory");
 	t1 = vdt_seconds();
 	if (rc != 0 || vdt_measure(&a, &b, &cl->m, &r, verr, progress_start(cl->quiet), &err) != 0) {
-		rc = fail("cannot measure", cl->b, &err);
+		/* the message may be about either mesh: both are named */
+		char what[4096];
+		snprintf(what, sizeof(what), "cannot measure '%s' against",
+		         strcmp(cl->a, "-") == 0 ? "<stdin>" : cl->a);
+		rc = fail(what, cl->b, &err);
 		goto out;
 	}
 	progress_done();

@@ -39,7 +39,9 @@ enum {
 	MAX_THREADS = 64,
 };
 
-#define MAX_SAMPLES ((size_t)1 << 40)
+/* Samples per mesh, at most: 2^32 already take about an hour here, so a
+ * larger count is a mistake, not a wish. */
+#define MAX_SAMPLES ((size_t)1 << 32)
 
 /* ---- deterministic sampling ---- */
 
@@ -145,9 +147,9 @@ vdt_sampler_init(struct vdt_sampler *s, const struct vdt_mesh *m, size_t samples
 			free(mark);
 			free(cum);
 			vdt_sampler_free(s);
-			return vdt_err_set(err, VDT_ELIMIT,
-			                   "density %g over area %g gives too many samples",
-			                   density, area);
+			return vdt_err_set(err, VDT_EINVAL,
+			                   "density %g over its area %g asks for %.3g samples, more than %zu",
+			                   density, area, density * area, MAX_SAMPLES);
 		}
 		faces = (size_t)llround(density * area);
 	} else {
@@ -612,6 +614,9 @@ vdt_measure(const struct vdt_mesh *a, const struct vdt_mesh *b,
 		                   a->triangle_count == 0 ? "first" : "second");
 	vdt_mesh_bbox(a, &box);
 	res->diag = vdt_bbox_diagonal(&box);
+	if (!(res->diag > 0)) /* every distance would be 0% or infinite */
+		return vdt_err_set(err, VDT_EINVAL,
+		                   "first mesh is a single point: no diagonal to give distances against");
 
 	/*
 	 * a -> b needs only the tree of b. The tree of a, usually the large

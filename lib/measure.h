@@ -45,7 +45,8 @@ struct vdt_sampler {
  * face samples; otherwise samples is the total count, vertices included
  * (when the vertices alone reach it, there are no face samples). The sampler
  * borrows m, which must outlive it. Returns 0, VDT_EINVAL (no triangles),
- * VDT_ELIMIT (more than 2^40 samples) or VDT_ENOMEM; on failure s is left
+ * VDT_EINVAL (no triangles, or a density that asks for more than 2^32
+ * samples) or VDT_ENOMEM; on failure s is left
  * empty.
  */
 int vdt_sampler_init(struct vdt_sampler *s, const struct vdt_mesh *m,
@@ -124,7 +125,8 @@ struct vdt_measure_result {
  * The whole measurement of b (the approximation) against a (the original).
  * opts may be NULL for the defaults. vertex_error, if non-NULL, holds
  * a->vertex_count floats and receives each vertex's distance to b.
- * Returns 0, VDT_EINVAL (a mesh without triangles), VDT_ELIMIT or
+ * Returns 0, VDT_EINVAL (a mesh without triangles, a first mesh whose
+ * bounding box is a point, more than 2^32 samples asked of a mesh) or
  * VDT_ENOMEM.
  */
 int vdt_measure(const struct vdt_mesh *a, const struct vdt_mesh *b,

@@ -225,7 +225,7 @@ tree() { # a tree with a subdirectory and a corrupted model
 	run "$BATCH" -q --samples 99999999999999999999 -o "$TMP/out" "$TMP/in"
 	[ "$status" -eq 2 ]
 	one_line
-	[[ "$output" == "vdt-batch: --samples must be between 1 and 1099511627776, not "* ]]
+	[[ "$output" == "vdt-batch: --samples must be between 1 and 4294967296, not "* ]]
 	[ ! -e "$TMP/out" ]
 }
 

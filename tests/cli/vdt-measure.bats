@@ -224,3 +224,19 @@ assert len(d["ab_hausdorff_at"]) == 3 and len(d["ba_hausdorff_at"]) == 3'
 	[ "$status" -eq 2 ]
 	[ ! -e "$TMP/r3.txt" ]
 }
+
+@test "vdt-measure refuses a first mesh that is one point, and a density past 2^32 samples" {
+	printf 'v 0 0 0\nv 0 0 0\nv 0 0 0\nf 1 2 3\n' > "$TMP/pt.obj"
+	printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 4 3\n' > "$TMP/sq.obj"
+	run "$BIN/vdt-measure" "$TMP/pt.obj" "$TMP/sq.obj"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == "vdt-measure: cannot measure '$TMP/pt.obj' against '$TMP/sq.obj': first mesh is a single point"* ]]
+	run "$BIN/vdt-measure" -d 1e12 "$TMP/sq.obj" "$TMP/sq.obj"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"asks for 1e+12 samples, more than 4294967296" ]]
+	run "$BIN/vdt-measure" -n 4294967297 "$TMP/sq.obj" "$TMP/sq.obj"
+	[ "$status" -eq 2 ]
+	one_line
+}
