@@ -70,7 +70,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		{"version", no_argument, NULL, 'V'},
 		{NULL, 0, NULL, 0},
 	};
-	int c;
+	int c, nearest = 0;
 
 	memset(cl, 0, sizeof(*cl));
 	vdt_qslim_defaults(&cl->q);
@@ -108,7 +108,10 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		case O_DRACO: cl->w.draco_position_bits = (int)parse_count("--draco-bits", optarg, 1, 30); break;
 		case O_CD: cl->l.contour_distance = parse_real("--contour-distance", optarg, 0, 1e6); break;
 		case O_EF: cl->l.factor = parse_real("--error-factor", optarg, 0, 1); break;
-		case O_NEAR: cl->l.nearest = parse_count("--nearest", optarg, 1, VDT_SIL_NEAREST_MAX); break;
+		case O_NEAR:
+			cl->l.nearest = parse_count("--nearest", optarg, 1, VDT_SIL_NEAREST_MAX);
+			nearest = 1;
+			break;
 		case O_VIEW:
 			parse_vec3("--view", optarg, 1, cl->l.view);
 			cl->l.has_view = 1;
@@ -118,6 +121,8 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		default: other_option(c, usage);
 		}
 	}
+	if (nearest && !cl->l.has_view)
+		usage_error("--nearest weighs the cameras nearest to a --view: give one");
 	cl->in = input_operand(argc, argv, cl->in);
 	cl->w.format = output_format(cl->out, cl->w.format);
 	if (cl->q.record && cl->w.format != VDT_FMT_VDT)

@@ -53,7 +53,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		{"version", no_argument, NULL, 'V'},
 		{NULL, 0, NULL, 0},
 	};
-	int c;
+	int c, angle = 0, nearest = 0;
 
 	memset(cl, 0, sizeof(*cl));
 	cl->in = cl->out = "-";
@@ -62,7 +62,10 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	cl->nearest = 4;
 	while ((c = getopt_long(argc, argv, "a:c:r:d:n:o:F:qvhV", longopts, NULL)) != -1) {
 		switch (c) {
-		case 'a': cl->step = parse_real("-a", optarg, 1, 90); break;
+		case 'a':
+			cl->step = parse_real("-a", optarg, 1, 90);
+			angle = 1;
+			break;
 		case 'c': cl->cameras = optarg; break;
 		case 'r': cl->s.res = (int)parse_count("-r", optarg, VDT_SIL_RES_MIN, VDT_SIL_RES_MAX); break;
 		case 'd':
@@ -72,6 +75,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 			break;
 		case 'n': /* -n: an old spelling, kept quiet */
 			cl->nearest = parse_count("--nearest", optarg, 1, VDT_SIL_NEAREST_MAX);
+			nearest = 1;
 			break;
 		case O_EXTERNAL: cl->s.external = 1; break;
 		case 'o': cl->out = optarg; break;
@@ -90,6 +94,10 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		default: other_option(c, usage);
 		}
 	}
+	if (angle && cl->cameras)
+		usage_error("-a and -c are two ways to give the cameras: give one");
+	if (nearest && !cl->has_view)
+		usage_error("--nearest weighs the cameras nearest to a --view: give one");
 	cl->in = input_operand(argc, argv, cl->in);
 }
 

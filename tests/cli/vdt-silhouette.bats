@@ -100,3 +100,19 @@ load helpers
 	[ "$status" -ne 0 ]
 	[ -z "$(ls "$TMP/img2")" ]
 }
+
+@test "vdt-silhouette: -a with -c, or --nearest without --view, is a usage error" {
+	printf '0 0 1\n' > "$TMP/cams.txt"
+	run "$BIN/vdt-silhouette" -a 30 -c "$TMP/cams.txt" "$SAMPLES/sphere.off" -o "$TMP/l.vdl"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == "vdt-silhouette: -a and -c are two ways to give the cameras: give one"* ]]
+	run "$BIN/vdt-silhouette" --nearest 3 "$SAMPLES/sphere.off" -o "$TMP/l.vdl"
+	[ "$status" -eq 2 ]
+	one_line
+	run "$BIN/vdt-qslim" --nearest 3 "$SAMPLES/sphere.off" -o "$TMP/q.off"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == "vdt-qslim: --nearest weighs the cameras nearest to a --view: give one"* ]]
+	[ ! -e "$TMP/l.vdl" ] && [ ! -e "$TMP/q.off" ]
+}
