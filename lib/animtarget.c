@@ -72,15 +72,22 @@ vdt_anim_vertices_again(size_t vertices, size_t triangles, size_t want, size_t c
  * caller's (`user`, 0 if none), reached first, stays.
  */
 static size_t
-retarget(const struct vdt_deform_result *r, size_t triangles, size_t current, size_t user)
+retarget(const struct vdt_deform_result *r, size_t triangles, size_t current, size_t user,
+         int last)
 {
 	size_t w = 0, v;
 
 	for (size_t f = 1; f < r->frame_count; f++)
 		if (r->tri_start[f + 1] - r->tri_start[f] > r->tri_start[w + 1] - r->tri_start[w])
 			w = f;
-	v = vdt_anim_vertices_again(r->live_vertices[w], r->tri_start[w + 1] - r->tri_start[w],
-	                            triangles, current);
+	size_t t = r->tri_start[w + 1] - r->tri_start[w];
+	v = vdt_anim_vertices_again(r->live_vertices[w], t, triangles, current);
+	/* The last try: a contraction removes at least one face, so one more
+	 * contraction per face too many gets there (a few under, at worst). */
+	if (last && v != 0 && t - triangles < r->live_vertices[w]) {
+		size_t sure = r->live_vertices[w] - (t - triangles);
+		v = sure < v ? (sure > 1 ? sure : 1) : v;
+	}
 	if (v != 0 && v < user)
 		v = user < current ? user : 0;
 	return v;
@@ -104,8 +111,8 @@ vdt_anim_deform_triangles(const struct vdt_mesh *m, const struct vdt_frames *fr,
 		d.target_vertices = v > o->target_vertices ? v : o->target_vertices;
 	}
 	rc = vdt_deform(m, fr, &d, res, err);
-	for (int again = 2; rc == 0 && triangles > 0 && again > 0; again--) {
-		if ((v = retarget(res, triangles, d.target_vertices, o->target_vertices)) == 0)
+	for (int again = 3; rc == 0 && triangles > 0 && again > 0; again--) {
+		if ((v = retarget(res, triangles, d.target_vertices, o->target_vertices, again == 1)) == 0)
 			break;
 		d.target_vertices = v;
 		vdt_deform_result_free(res);

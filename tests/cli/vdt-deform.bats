@@ -453,3 +453,13 @@ PY
 	cmp "$TMP/d.off" "$TMP/q.off"
 	! cmp -s "$TMP/q.off" "$TMP/q0.off"
 }
+
+@test "vdt-deform -t on an open mesh keeps at most that many triangles, vdt-qslim's mesh at that count" {
+	for t in 200 300 500; do
+		"$BIN/vdt-deform" -q --method independent -t $t "$SAMPLES/open.off" -o "$TMP/d.off"
+		n=$(off_faces "$TMP/d.off")
+		[ "$n" -le $t ]
+		"$BIN/vdt-qslim" -q --order greedy -t "$n" "$SAMPLES/open.off" -o "$TMP/q.off"
+		cmp "$TMP/d.off" "$TMP/q.off"
+	done
+}
