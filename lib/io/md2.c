@@ -40,8 +40,11 @@ vdt_md2_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 
 	memset(m, 0, sizeof(*m));
 	memset(fr, 0, sizeof(*fr));
-	if (len < MD2_HEADER || !vdt_md2_sniff(buf, len))
+	if (!vdt_md2_sniff(buf, len))
 		return vdt_err_set(err, VDT_EFORMAT, "not an MD2 model");
+	if (len < MD2_HEADER)
+		return vdt_err_set(err, VDT_EFORMAT, "MD2 file is truncated: %zu bytes, less than its %d-byte header",
+		                   len, MD2_HEADER);
 	for (int i = 0; i < 17; i++)
 		h[i] = get_i32(buf + 4 * i);
 	int32_t version = h[1], fsize = h[4], nv = h[6], nt = h[8], nf = h[10];

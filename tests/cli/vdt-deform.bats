@@ -211,6 +211,15 @@ setup() {
 	[ -z "$(ls "$TMP/out")" ]
 }
 
+@test "vdt-deform calls an MD2 model cut inside its header truncated" {
+	[ -r "$MD2" ] || skip "assimp-testmodels is not installed"
+	head -c 30 "$MD2" > "$TMP/head.md2"
+	run "$BIN/vdt-deform" --vertices 100 "$TMP/head.md2" -o "$TMP/out/%03d.obj"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"'$TMP/head.md2': MD2 file is truncated: 30 bytes, less than its 68-byte header" ]]
+}
+
 @test "vdt-deform rejects an MD2 model cut by one byte, keeps one with more" {
 	[ -r "$MD2" ] || skip "assimp-testmodels is not installed"
 	size=$(wc -c < "$MD2")
