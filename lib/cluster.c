@@ -17,6 +17,20 @@
  * about twice the boundary's length in the cell, which keeps the
  * representative point on the boundary. Triangle soups work the same way,
  * since only positions are used.
+ *
+ * But the m cancel only on flat ground: creases and corners leave as much
+ * as a boundary does, so m cannot say which cells hold one (a closed cube
+ * would have six). Which cells hold an open edge, one used by a single
+ * face, is told by parity instead: each cell keeps the xor of a 64-bit
+ * hash of every edge with an end in it (the edge known by its ends'
+ * positions, either way round), once per face using it. The two faces of
+ * an interior edge cancel exactly, in any order and orientation; what is
+ * left is not 0 just when some edge of the cell is used an odd number of
+ * times (but for a hash collision, 2^-64). That is exact for open edges
+ * against manifold ones, and counts a non-manifold edge of three faces as
+ * open: telling one use from three needs a count per edge, memory that
+ * grows with the input, which a cell's eight bytes of parity do not. Only
+ * those cells take the boundary plane and are flagged for phase II.
  */
 #include "cluster.h"
 
@@ -42,6 +56,7 @@ struct cell {
 	double edge[4]; /* boundary plane (m, d), see above */
 	double nsum[3]; /* area-weighted normals of the corners */
 	uint64_t corners;
+	uint64_t odd;   /* xor of its edges' hashes, once per face: see above */
 };
 
 struct vdt_cluster {
@@ -682,6 +697,46 @@ cell_id_cached(struct vdt_cluster *c, uint64_t key, struct vdt_err *err)
 	return id;
 }
 
+/* A 64-bit finaliser (splitmix64's): every bit of x moves every bit out. */
+static inline uint64_t
+mix64(uint64_t x)
+{
+	x ^= x >> 30;
+	x *= 0xBF58476D1CE4E5B9ull;
+	x ^= x >> 27;
+	x *= 0x94D049BB133111EBull;
+	x ^= x >> 31;
+	return x;
+}
+
+/*
+ * A position's hash, from its bits (-0 taken as 0: the same point). The
+ * low bits of a double made from a float are 0: each coordinate is folded
+ * onto them before the three are weighed together and mixed.
+ */
+static inline uint64_t
+point_hash(const double *p)
+{
+	static const uint64_t w[3] = {0x9E3779B97F4A7C15ull, 0xC2B2AE3D27D4EB4Full,
+	                              0x165667B19E3779F9ull};
+	uint64_t h = 0;
+
+	for (int k = 0; k < 3; k++) {
+		double x = p[k] + 0.0;
+		uint64_t b;
+		memcpy(&b, &x, sizeof(b));
+		h += (b ^ b >> 29) * w[k];
+	}
+	return mix64(h);
+}
+
+/* An edge's hash from its ends', whichever way the face runs along it. */
+static inline uint64_t
+edge_hash(uint64_t a, uint64_t b)
+{
+	return mix64(a + b);
+}
+
 /* The corner v of (u, v, w): its edge normal m = (w - u) x n, see the top. */
 static inline void
 add_edge_normal(struct cell *cl, const double *u, const double *v, const double *w,
@@ -714,6 +769,7 @@ add_batch(struct vdt_cluster *c, const double *tri, size_t n, double *lo, double
 	for (size_t t = 0; t < n; t++, c->added++) {
 		const double *p[3] = {tri + 9 * t, tri + 9 * t + 3, tri + 9 * t + 6};
 		double e1[3], e2[3], nn[3], len;
+		uint64_t ph[3], eh[3];
 		struct vdt_quadric fq;
 		uint64_t key[3];
 		long id[3];
@@ -744,6 +800,13 @@ add_batch(struct vdt_cluster *c, const double *tri, size_t n, double *lo, double
 					return vdt_err_set(err, VDT_EINVAL, "triangle %llu: non-finite coordinate",
 					                   (unsigned long long)c->added);
 		flat = !(len > 0);
+		/* The face's edges, for the parity of each cell's (see the top);
+		 * an edge of length 0 is no edge. Flat faces count: they use
+		 * their edges as much as any. */
+		for (int j = 0; j < 3; j++)
+			ph[j] = point_hash(p[j]);
+		for (int j = 0; j < 3; j++)
+			eh[j] = ph[j] == ph[(j + 1) % 3] ? 0 : edge_hash(ph[j], ph[(j + 1) % 3]);
 
 		if (key[0] == key[1] && key[1] == key[2]) {
 			/*
@@ -754,6 +817,7 @@ add_batch(struct vdt_cluster *c, const double *tri, size_t n, double *lo, double
 			if ((id[0] = cell_id_cached(c, key[0], err)) < 0)
 				return err ? err->code : VDT_ENOMEM;
 			cl = &c->cells[id[0]];
+			cl->odd ^= eh[0] ^ eh[1] ^ eh[2];
 			for (int k = 0; k < 3; k++) {
 				cl->sum[k] += p[0][k] + p[1][k] + p[2][k];
 				cl->nsum[k] += 3 * nn[k];
@@ -795,6 +859,12 @@ add_batch(struct vdt_cluster *c, const double *tri, size_t n, double *lo, double
 			        : j > 1 && key[j] == key[1] ? id[1] : cell_id_cached(c, key[j], err);
 			if (id[j] < 0)
 				return err ? err->code : VDT_ENOMEM;
+		}
+		/* Edge j, from corner j to j + 1, is held by the cells of both. */
+		for (int j = 0; j < 3; j++) {
+			c->cells[id[j]].odd ^= eh[j];
+			if (id[(j + 1) % 3] != id[j])
+				c->cells[id[(j + 1) % 3]].odd ^= eh[j];
 		}
 		for (int j = 0; j < 3; j++) {
 			struct cell *cl = &c->cells[id[j]];
@@ -847,7 +917,6 @@ vdt_cluster_finish(struct vdt_cluster *c, struct vdt_mesh *out, struct vdt_quadr
 	struct vdt_quadric *q = NULL;
 	uint8_t *b = NULL;
 	size_t used = 0, bcells = 0;
-	double h = (c->g.cell[0] + c->g.cell[1] + c->g.cell[2]) / 3;
 	int rc;
 
 	memset(out, 0, sizeof(*out));
@@ -903,8 +972,9 @@ vdt_cluster_finish(struct vdt_cluster *c, struct vdt_mesh *out, struct vdt_quadr
 		 * the mean, sum m_i.(x - v_i) = m.(x - ref) + D with D = d + m.ref,
 		 * and D is kept, so the plane still passes where the boundary is.
 		 * What is left of m is the boundary's, about twice its length in the
-		 * cell: a quarter of a cell side tells a boundary crossing the cell
-		 * from noise.
+		 * cell, but also what creases and corners leave, which no size tells
+		 * from a boundary: only a cell holding an open edge (odd != 0) takes
+		 * the plane.
 		 */
 		memcpy(m, cl->edge, sizeof(m));
 		{
@@ -920,11 +990,13 @@ vdt_cluster_finish(struct vdt_cluster *c, struct vdt_mesh *out, struct vdt_quadr
 			m[3] = big_d - (m[0] * ref[0] + m[1] * ref[1] + m[2] * ref[2]);
 			ml = sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
 		}
-		if (ml > 0.25 * h) {
-			struct vdt_quadric bq;
-			double n[3] = {m[0] / ml, m[1] / ml, m[2] / ml};
-			vdt_quadric_plane(&bq, n, m[3] / ml, ml * ml);
-			vdt_quadric_add(&pq, &bq);
+		if (cl->odd != 0) {
+			if (ml > 0) {
+				struct vdt_quadric bq;
+				double n[3] = {m[0] / ml, m[1] / ml, m[2] / ml};
+				vdt_quadric_plane(&bq, n, m[3] / ml, ml * ml);
+				vdt_quadric_add(&pq, &bq);
+			}
 			bcells++;
 			if (b)
 				b[remap[i]] = 1;
@@ -1088,37 +1160,40 @@ vdt_cluster_choose(const struct vdt_cluster_choice *ch, struct vdt_tsource *ts,
 }
 
 
-/* 1 if the corners added so far leave some side of box, which the grid
- * was made for, empty by more than rounding: a header's box too large,
- * with which cell sizes in % of the diagonal, and -g, would be wrong. */
 static int
-box_loose(const struct vdt_cluster *c, const struct vdt_bbox *box)
+same_box(const struct vdt_bbox *a, const struct vdt_bbox *b)
 {
-	double tol = 1e-6 * vdt_bbox_diagonal(box);
-
-	for (int k = 0; k < 3; k++) {
-		double lo = c->g.origin[k] + c->lo[k] * c->g.cell[k];
-		double hi = c->g.origin[k] + c->hi[k] * c->g.cell[k];
-		if (c->added > 0 && (lo - box->min[k] > tol || box->max[k] - hi > tol))
-			return 1;
-	}
-	return 0;
+	for (int k = 0; k < 3; k++)
+		if (a->min[k] != b->min[k] || a->max[k] != b->max[k])
+			return 0;
+	return 1;
 }
 
+/*
+ * A declared box is taken only if it is exactly the measured one: the
+ * triangle pass sweeps the vertex records as it goes
+ * (vdt_tsource_swept_box), so the check costs no pass of its own. Any
+ * other box, even one a rounding away (a vertex just outside, or a side
+ * holding none), gives another grid and so another output: then the
+ * clustering starts again on the swept box, which is the one a measuring
+ * pass would have found, bit for bit. With or without the line, the
+ * result is the same.
+ */
 int
 vdt_cluster_source(struct vdt_tsource *ts, const struct vdt_cluster_request *rq,
                    struct vdt_cluster **cp, struct vdt_cluster_grid *g, int *remeasured,
                    double *box_seconds, const struct vdt_progress *p, struct vdt_err *err)
 {
-	struct vdt_bbox box;
+	struct vdt_bbox box, swept;
+	int claimed = vdt_tsource_header_box(ts, &box), known = claimed;
 	int rc;
 
 	*cp = NULL;
 	*remeasured = 0;
 	*box_seconds = 0;
-	for (int claimed = vdt_tsource_header_box(ts, &box);; claimed = 0) {
+	for (;;) {
 		struct vdt_cluster_choice ch = rq->ch;
-		if (!claimed) {
+		if (!known) {
 			double t0 = vdt_seconds();
 			if ((rc = vdt_cluster_scan_bbox(ts, &box, NULL, p, err)) != 0)
 				return rc;
@@ -1131,9 +1206,17 @@ vdt_cluster_source(struct vdt_tsource *ts, const struct vdt_cluster_request *rq,
 		if ((rc = vdt_cluster_choose(&ch, ts, &box, g, p, err)) == 0 &&
 		    (rc = vdt_cluster_new(cp, g, ch.max_cells, err)) == 0)
 			rc = vdt_cluster_scan(*cp, ts, p, err);
-		if (!claimed || (rc == 0 && !vdt_cluster_outside(*cp) && !box_loose(*cp, &box)))
+		if (!claimed)
 			break;
-		*remeasured = rc == 0;
+		claimed = 0;
+		/* A failure under the claim may be the claim's: measure, retry. */
+		known = rc == 0 && vdt_tsource_swept_box(ts, &swept);
+		if (known && same_box(&swept, &box))
+			break;
+		if (known) {
+			box = swept;
+			*remeasured = 1;
+		}
 		vdt_cluster_free(*cp);
 		*cp = NULL;
 	}

@@ -8,10 +8,11 @@
  * Vis 2001).
  *
  * Triangles are fed in batches in any order; each occupied cell keeps a
- * cumulative quadric, the sum of its corner positions and an edge-normal
- * plane. Memory is that of the occupied cells and the output triangles,
- * never of the input. Cells are numbered by first appearance in the input,
- * so the output depends only on the input's order, not on hashing.
+ * cumulative quadric, the sum of its corner positions, an edge-normal
+ * plane and the parity of its edges (which tells an open edge). Memory is
+ * that of the occupied cells and the output triangles, never of the input.
+ * Cells are numbered by first appearance in the input, so the output
+ * depends only on the input's order, not on hashing.
  */
 #ifndef VDT_CLUSTER_H
 #define VDT_CLUSTER_H
@@ -132,7 +133,7 @@ int vdt_cluster_add(struct vdt_cluster *c, const double *tri, size_t n,
 struct vdt_cluster_stats {
 	uint64_t triangles_in;
 	size_t cells;          /* occupied cells */
-	size_t boundary_cells; /* cells whose point felt an open boundary */
+	size_t boundary_cells; /* cells holding an open edge of the input */
 	size_t vertices_out, triangles_out;
 };
 
@@ -140,13 +141,15 @@ struct vdt_cluster_stats {
  * The intermediate mesh: one vertex per occupied cell that some output
  * triangle uses, numbered in order of first appearance, at the cell's
  * representative point (vdt_quadric_optimize_box of the cell's quadric plus
- * its boundary plane, from the mean of its corners, inside the cell); the
+ * its boundary plane if it holds an open edge of the input, from the mean
+ * of its corners, inside the cell); the
  * output triangles in order of first appearance; and, when quads is not
  * NULL, one quadric per output vertex, malloc'ed: exactly the cell's sum of
  * fundamental quadrics (the boundary plane is not included: phase II makes
  * its own); and, when border is not NULL, one flag per output vertex,
- * malloc'ed: 1 where the cell holds part of the input's open boundary (its
- * boundary plane is in use), so that phase II can tell those open edges of
+ * malloc'ed: 1 where the cell holds an edge that an odd number of input
+ * faces use (an open edge, or a non-manifold one of three faces: see
+ * cluster.c), so that phase II can tell those open edges of
  * the intermediate from the rims of thin parts flattened into one sheet.
  * Can be called once. Returns 0 or VDT_ENOMEM; an empty result (no triangle
  * spans three cells) is VDT_ELIMIT.
@@ -215,12 +218,13 @@ int vdt_cluster_choose(const struct vdt_cluster_choice *ch, struct vdt_tsource *
  * (vdt_cluster_choose with ch, whose size is first turned from a percent
  * of the box's diagonal if size_pct, and whose target is set to ratio
  * times the source's triangle hint if ratio > 0), then the clustering into
- * a new *cp (which the caller frees). A claimed box that proves wrong (a
- * corner outside the grid, or any failure under it) is dropped: the box is
- * measured and everything starts again, with *remeasured set to 1 if it
- * failed by the corners. *box_seconds gets the time of the measuring
- * pass (0 if none ran). On failure *cp is NULL; errors are those of the
- * passes.
+ * a new *cp (which the caller frees). A claimed box is checked against
+ * the box the clustering pass sweeps (vdt_tsource_swept_box) and kept only
+ * if it is exactly that one, so that the claim never changes the result;
+ * otherwise everything starts again on the swept box, with *remeasured
+ * set to 1 (or, if the pass failed under the claim, on a measured box,
+ * silently). *box_seconds gets the time of the measuring pass (0 if none
+ * ran). On failure *cp is NULL; errors are those of the passes.
  */
 struct vdt_cluster_request {
 	struct vdt_cluster_choice ch;

@@ -75,6 +75,11 @@ struct vdt_tsource {
 	/* a PLY header's "comment bbox" line, if well formed */
 	struct vdt_bbox hbox;
 	int has_hbox;
+	/* The box of every vertex record, swept alongside the triangle pass
+	 * (PLY): records [0, scur) are in sbox; sbad if one was not finite. */
+	uint64_t scur;
+	struct vdt_bbox sbox;
+	int sbad;
 
 	const unsigned char *drop_mark; /* mapped pages before it are released */
 };
@@ -342,6 +347,32 @@ ply_vertices(struct vdt_tsource *s, double *xyz, size_t max, size_t *n, struct v
 	return 0;
 }
 
+/*
+ * Take the vertex records up to `to` into the swept box, as the vertex
+ * pass and vdt_cluster_scan_bbox would: the same values, the same
+ * comparisons, in the same order. Called as the triangle pass goes, at
+ * its pace, so that the records read are mostly those the faces just
+ * used: still in the page cache, and in the CPU's for a mesh stored in
+ * the usual order.
+ */
+static void
+ply_sweep(struct vdt_tsource *s, uint64_t to)
+{
+	for (; s->scur < to; s->scur++) {
+		double p[3];
+
+		ply_corner(s, s->scur, p);
+		if (!(isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]))) {
+			s->sbad = 1;
+			continue;
+		}
+		for (int k = 0; k < 3; k++) {
+			s->sbox.min[k] = p[k] < s->sbox.min[k] ? p[k] : s->sbox.min[k];
+			s->sbox.max[k] = p[k] > s->sbox.max[k] ? p[k] : s->sbox.max[k];
+		}
+	}
+}
+
 static int
 bad_index(struct vdt_tsource *s, int64_t v, struct vdt_err *err)
 {
@@ -426,6 +457,10 @@ ply_triangles(struct vdt_tsource *s, double *tri, size_t max, size_t *n, struct 
 		}
 	}
 	*n = k;
+	if (s->fidx == s->fcount)
+		ply_sweep(s, s->vcount);
+	else
+		ply_sweep(s, (uint64_t)((double)s->fidx / (double)s->fcount * (double)s->vcount));
 	if (s->map)
 		drop_behind(s, s->fcur, s->fbase);
 	return 0;
@@ -824,6 +859,7 @@ open_memory(struct vdt_tsource **ts, const unsigned char *buf, size_t len, enum 
 		vdt_tsource_close(s);
 		return rc;
 	}
+	vdt_tsource_rewind(s);
 	*ts = s;
 	return 0;
 }
@@ -932,9 +968,25 @@ vdt_tsource_bytes(const struct vdt_tsource *ts)
 	return ts->len;
 }
 
+int
+vdt_tsource_swept_box(const struct vdt_tsource *ts, struct vdt_bbox *box)
+{
+	if (ts->kind != K_PLY || ts->fcur == NULL || ts->fidx != ts->fcount ||
+	    ts->scur != ts->vcount || ts->vcount == 0 || ts->sbad)
+		return 0;
+	*box = ts->sbox;
+	return 1;
+}
+
 void
 vdt_tsource_rewind(struct vdt_tsource *ts)
 {
+	ts->scur = 0;
+	ts->sbad = 0;
+	for (int k = 0; k < 3; k++) {
+		ts->sbox.min[k] = INFINITY;
+		ts->sbox.max[k] = -INFINITY;
+	}
 	ts->vcur = ts->tcur = ts->fidx = 0;
 	ts->fcur = NULL;
 	ts->poly = NULL;

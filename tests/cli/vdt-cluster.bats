@@ -184,6 +184,52 @@ same_refusal() {
 	cmp "$TMP/measured.off" "$TMP/flat.off"
 }
 
+@test "a header's box a rounding away is never taken: the same bytes as without it" {
+	# the bunny's own line, and the same with one side moved by about a
+	# float's step: in, so that a vertex lies outside the box, or out, so
+	# that one side of the box holds no vertex
+	ply="$SAMPLES/fetched/bunny.ply"
+	line='comment bbox -1 -0.991232991 -0.775047004 1 0.991232991 0.775047004'
+	LC_ALL=C grep -a -q -x -- "$line" "$ply"
+	LC_ALL=C sed "/^$line\$/d" "$ply" > "$TMP/none.ply"
+	LC_ALL=C sed "s/^$line\$/${line% *} 0.7750469/" "$ply" > "$TMP/inside.ply"
+	LC_ALL=C sed "s/^$line\$/${line/bbox -1 /bbox -1.0000001 }/" "$ply" > "$TMP/loose.ply"
+	! cmp -s "$ply" "$TMP/inside.ply"
+	! cmp -s "$ply" "$TMP/loose.ply"
+	for grid in "-s 1%" "-g 50"; do
+		"$BIN/vdt-cluster" $grid "$TMP/none.ply" -o "$TMP/none.vdq"
+		"$BIN/vdt-cluster" -q $grid "$ply" -o "$TMP/right.vdq"
+		cmp "$TMP/none.vdq" "$TMP/right.vdq"
+		for f in inside loose; do
+			run "$BIN/vdt-cluster" $grid "$TMP/$f.ply" -o "$TMP/$f.vdq"
+			[ "$status" -eq 0 ]
+			[ "$output" = "vdt-cluster: $TMP/$f.ply: the header's bounding box does not fit the vertices: measured it" ]
+			cmp "$TMP/none.vdq" "$TMP/$f.vdq"
+		done
+	done
+}
+
+@test "a header's box that leaves out a vertex no face uses is not taken either" {
+	"$BIN/vdt-qslim" -r 1 "$SAMPLES/torus.off" -o "$TMP/t.ply"
+	# one more vertex, far outside the declared box, that no face uses
+	python3 - "$TMP/t.ply" "$TMP/extra.ply" <<'PY'
+import re, struct, sys
+b = open(sys.argv[1], 'rb').read()
+head, data = b.split(b'end_header\n', 1)
+n = int(re.search(rb'element vertex (\d+)', head).group(1))
+assert b'comment bbox ' in head and b'property float z\nelement face' in head
+head = head.replace(b'element vertex %d' % n, b'element vertex %d' % (n + 1))
+data = data[:12 * n] + struct.pack('<3f', 3, 0, 0) + data[12 * n:]
+open(sys.argv[2], 'wb').write(head + b'end_header\n' + data)
+PY
+	LC_ALL=C sed '/^comment bbox /d' "$TMP/extra.ply" > "$TMP/none.ply"
+	"$BIN/vdt-cluster" -g 20 "$TMP/none.ply" -o "$TMP/none.off"
+	run "$BIN/vdt-cluster" -g 20 "$TMP/extra.ply" -o "$TMP/extra.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"the header's bounding box does not fit the vertices: measured it" ]]
+	cmp "$TMP/none.off" "$TMP/extra.off"
+}
+
 @test "a triangle soup with duplicated vertices clusters like the mesh" {
 	"$BIN/vdt-qslim" -r 1 "$SAMPLES/sphere.off" -o "$TMP/s.stl"
 	"$BIN/vdt-cluster" -g 12 "$TMP/s.stl" -o "$TMP/soup.off"
@@ -198,6 +244,40 @@ same_refusal() {
 	[ "$b" -gt 20 ]
 	run "$BIN/vdt-cluster" -v -g 20 "$SAMPLES/sphere.off" -o "$TMP/s.off"
 	[[ "$output" == *"boundary_cells=0 "* ]]
+}
+
+# bndy_count STREAM: the number of vertices its BNDY chunk lists.
+bndy_count() {
+	python3 - "$1" <<'PY'
+import struct, sys
+b = open(sys.argv[1], 'rb').read()
+o = 12
+while b[o:o+4] != b'END ':
+    n = struct.unpack('<Q', b[o+4:o+12])[0]
+    if b[o:o+4] == b'BNDY':
+        print(struct.unpack('<Q', b[o+12:o+20])[0])
+    o += 16 + n
+PY
+}
+
+@test "a closed mesh has no boundary cells, however sharp its edges" {
+	printf 'OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 3 2\n3 0 1 3\n3 1 2 3\n' > "$TMP/tet.off"
+	printf 'OFF\n8 12 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n' > "$TMP/cube.off"
+	printf '%s\n' '3 0 2 1' '3 0 3 2' '3 4 5 6' '3 4 6 7' '3 0 1 5' '3 0 5 4' '3 1 2 6' '3 1 6 5' \
+		'3 2 3 7' '3 2 7 6' '3 3 0 4' '3 3 4 7' >> "$TMP/cube.off"
+	for a in "-g 100 $TMP/tet.off" "-g 3 $TMP/tet.off" "-g 10 $TMP/cube.off" "-g 2 $TMP/cube.off" \
+		"-g 16 $SAMPLES/fetched/fandisk.off" "-g 16 $SAMPLES/plate.off"; do
+		run "$BIN/vdt-cluster" -v $a -o "$TMP/c.vdq"
+		[ "$status" -eq 0 ]
+		[[ "$output" == *" boundary_cells=0 "* ]]
+		[ "$(bndy_count "$TMP/c.vdq")" = 0 ]
+	done
+	# the cube without its top: the four cells of its rim, and only those
+	sed -e '2s/12/10/' -e '/^3 4 [56] /d' "$TMP/cube.off" > "$TMP/box.off"
+	run "$BIN/vdt-cluster" -v -g 10 "$TMP/box.off" -o "$TMP/c.vdq"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *" boundary_cells=4 "* ]]
+	[ "$(bndy_count "$TMP/c.vdq")" = 4 ]
 }
 
 @test "bad input: status 2, one line naming the file, nothing left behind" {

@@ -415,6 +415,77 @@ thin_part_rim_is_no_boundary(void **state)
 }
 
 /*
+ * The unit cube, 12 triangles, on a 2 x 2 x 2 grid: each corner in its
+ * own cell. Its edges are as sharp as edges get, so the edge normals of no
+ * cell cancel, but every edge is used by two faces: no cell holds an open
+ * edge, whichever way each face runs and in whatever order they come.
+ * Without its top (the two faces on z = 1), the four cells of the rim
+ * hold one and only those are flagged:
+ *
+ *      7-------6        top removed: 4-5-6-7 is the rim
+ *     /|      /|        cells of 4, 5, 6, 7: boundary
+ *    4-------5 |        cells of 0, 1, 2, 3: not
+ *    | 3-----|-2
+ *    |/      |/
+ *    0-------1
+ */
+static void
+closed_meshes_have_no_boundary(void **state)
+{
+	static const double v[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+	                               {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+	static const int f[12][3] = {{0, 2, 1}, {0, 3, 2}, {0, 1, 5}, {0, 5, 4},
+	                             {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6},
+	                             {3, 0, 4}, {3, 4, 7}, {4, 5, 6}, {4, 6, 7}};
+	static const int tet[4][3] = {{0, 2, 1}, {0, 3, 2}, {0, 1, 3}, {1, 2, 3}};
+	struct vdt_bbox box = {{0, 0, 0}, {1, 1, 1}};
+	uint32_t d2[3] = {2, 2, 2}, d9[3] = {9, 9, 9};
+	struct vdt_cluster_stats st;
+	struct vdt_mesh m;
+	double t[12 * 9];
+	uint8_t *border;
+
+	(void)state;
+	/* The cube; then with faces flipped and in reverse order. */
+	for (int pass = 0; pass < 2; pass++) {
+		for (int i = 0; i < 12; i++) {
+			const int *fi = f[pass ? 11 - i : i];
+			if (pass && i % 3 == 0)
+				put_tri(t + 9 * i, v[fi[0]], v[fi[2]], v[fi[1]]);
+			else
+				put_tri(t + 9 * i, v[fi[0]], v[fi[1]], v[fi[2]]);
+		}
+		cluster_on(&box, d2, t, 12, &m, &border, &st);
+		assert_int_equal(m.vertex_count, 8);
+		assert_int_equal(st.boundary_cells, 0);
+		for (size_t i = 0; i < m.vertex_count; i++)
+			assert_int_equal(border[i], 0);
+		free(border);
+		vdt_mesh_free(&m);
+	}
+	/* The tetrahedron (0, 1, 3, 4 of the cube), on a fine grid. */
+	for (int i = 0; i < 4; i++) {
+		static const int map[4] = {0, 1, 3, 4};
+		put_tri(t + 9 * i, v[map[tet[i][0]]], v[map[tet[i][1]]], v[map[tet[i][2]]]);
+	}
+	cluster_on(&box, d9, t, 4, &m, &border, &st);
+	assert_int_equal(m.vertex_count, 4);
+	assert_int_equal(st.boundary_cells, 0);
+	free(border);
+	vdt_mesh_free(&m);
+	/* The open box. */
+	for (int i = 0; i < 10; i++)
+		put_tri(t + 9 * i, v[f[i][0]], v[f[i][1]], v[f[i][2]]);
+	cluster_on(&box, d2, t, 10, &m, &border, &st);
+	assert_int_equal(m.vertex_count, 8);
+	assert_int_equal(st.boundary_cells, 4);
+	for (size_t i = 0; i < m.vertex_count; i++)
+		assert_int_equal(border[i], m.positions[3 * i + 2] > 0.5);
+	free(border);
+	vdt_mesh_free(&m);
+}
+
+/*
  * --target N aims for 6 N intermediate vertices, inside the 4-8 N window.
  * A surface's occupancy grows as the square of the resolution: sampled as
  * 4^l cells at 2^l (l = 0..6), the grid for N = 1000 is extrapolated
@@ -639,6 +710,145 @@ header_box(void **state)
 }
 
 /*
+ * A binary PLY of two triangles and a vertex no face uses, with a header
+ * box: `line` (NULL: none). *len gets its size; the caller frees it.
+ *
+ *   y
+ *   1 2---3          vertex 4 at (-0.5, 0.5, 0.25) is used by no face
+ *     | \ |
+ *   0 0---1 x
+ *     0   1
+ */
+static unsigned char *
+ply_with_box(const char *line, size_t *len)
+{
+	static const float v[5][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0.5f}, {-0.5f, 0.5f, 0.25f}};
+	static const uint32_t f[2][3] = {{0, 1, 2}, {1, 3, 2}};
+	char head[512];
+	unsigned char *buf, *p;
+	int n = snprintf(head, sizeof(head),
+	                 "ply\nformat binary_little_endian 1.0\n%s%s"
+	                 "element vertex 5\nproperty float x\nproperty float y\nproperty float z\n"
+	                 "element face 2\nproperty list uchar int vertex_indices\nend_header\n",
+	                 line ? line : "", line ? "\n" : "");
+
+	*len = (size_t)n + sizeof(v) + 2 * 13;
+	assert_non_null(buf = malloc(*len));
+	memcpy(buf, head, (size_t)n);
+	p = buf + n;
+	for (int i = 0; i < 5; i++)
+		for (int k = 0; k < 3; k++, p += 4) {
+			uint32_t u;
+			memcpy(&u, &v[i][k], 4);
+			vdt_put_u32le(p, u);
+		}
+	for (int i = 0; i < 2; i++) {
+		*p++ = 3;
+		for (int k = 0; k < 3; k++, p += 4)
+			vdt_put_u32le(p, f[i][k]);
+	}
+	return buf;
+}
+
+/*
+ * The triangle pass sweeps the vertex records for their box: once it has
+ * ended, the box a vertex pass measures, the unused vertex included;
+ * before, none.
+ */
+static void
+swept_box(void **state)
+{
+	size_t len;
+	unsigned char *buf = ply_with_box(NULL, &len);
+	struct vdt_tsource *ts;
+	struct vdt_bbox want, got;
+	double tri[9 * 4];
+	size_t n;
+
+	(void)state;
+	assert_int_equal(vdt_tsource_open_memory(&ts, buf, len, NULL), 0);
+	assert_int_equal(vdt_tsource_swept_box(ts, &got), 0);
+	assert_int_equal(vdt_cluster_scan_bbox(ts, &want, NULL, NULL, NULL), 0);
+	assert_true(want.min[0] == -0.5 && want.max[2] == 0.5);
+	assert_int_equal(vdt_tsource_swept_box(ts, &got), 0);
+	vdt_tsource_rewind(ts);
+	assert_int_equal(vdt_tsource_triangles(ts, tri, 1, &n, NULL), 0);
+	assert_int_equal(n, 1);
+	assert_int_equal(vdt_tsource_swept_box(ts, &got), 0);
+	assert_int_equal(vdt_tsource_triangles(ts, tri, 4, &n, NULL), 0);
+	assert_int_equal(n, 1);
+	assert_int_equal(vdt_tsource_swept_box(ts, &got), 1);
+	assert_memory_equal(&got, &want, sizeof(got));
+	vdt_tsource_rewind(ts);
+	assert_int_equal(vdt_tsource_swept_box(ts, &got), 0);
+	vdt_tsource_close(ts);
+	free(buf);
+}
+
+/*
+ * A header box is taken only when it is the vertices' box exactly: one a
+ * float's step away on any side, in or out, or one that leaves out the
+ * vertex no face uses, gives the clustering of the box measured, and says
+ * so (remeasured). The right one spares the measuring pass.
+ */
+static void
+header_box_never_changes_the_result(void **state)
+{
+	static const struct {
+		const char *line;
+		int remeasured;
+	} cases[] = {
+		{"comment bbox -0.5 0 0 1 1 0.5", 0},
+		{"comment bbox -0.5 0 0 1 1 0.49999997", 1},   /* a vertex outside */
+		{"comment bbox -0.5 0 0 1 1 0.50000006", 1},   /* a side holds none */
+		{"comment bbox -0.50000006 0 0 1 1 0.5", 1},
+		{"comment bbox -0.49999997 0 0 1 1 0.5", 1},
+		{"comment bbox 0 0 0 1 1 0.5", 1},             /* the unused vertex out */
+		{"comment bbox -0.5 -1e-45 0 1 1 0.5", 1},
+	};
+	struct vdt_cluster_request rq = {{0}, 0, 0};
+	struct vdt_mesh want, got;
+	size_t len;
+	unsigned char *buf = ply_with_box(NULL, &len);
+	struct vdt_tsource *ts;
+	struct vdt_cluster *c;
+	struct vdt_cluster_grid g, want_g;
+	double secs;
+	int re;
+
+	(void)state;
+	rq.ch.dims[0] = 3;
+	assert_int_equal(vdt_tsource_open_memory(&ts, buf, len, NULL), 0);
+	assert_int_equal(vdt_cluster_source(ts, &rq, &c, &want_g, &re, &secs, NULL, NULL), 0);
+	assert_int_equal(re, 0);
+	assert_int_equal(vdt_cluster_finish(c, &want, NULL, NULL, NULL, NULL), 0);
+	vdt_cluster_free(c);
+	vdt_tsource_close(ts);
+	free(buf);
+	for (size_t i = 0; i < sizeof(cases) / sizeof(cases[0]); i++) {
+		struct vdt_bbox hb;
+		buf = ply_with_box(cases[i].line, &len);
+		assert_int_equal(vdt_tsource_open_memory(&ts, buf, len, NULL), 0);
+		assert_int_equal(vdt_tsource_header_box(ts, &hb), 1);
+		assert_int_equal(vdt_cluster_source(ts, &rq, &c, &g, &re, &secs, NULL, NULL), 0);
+		/* The grid of the measured box, to the bit, so the same output. */
+		assert_memory_equal(&g, &want_g, sizeof(g));
+		assert_int_equal(re, cases[i].remeasured);
+		assert_true(secs == 0);
+		assert_int_equal(vdt_cluster_finish(c, &got, NULL, NULL, NULL, NULL), 0);
+		assert_int_equal(got.vertex_count, want.vertex_count);
+		assert_int_equal(got.triangle_count, want.triangle_count);
+		assert_memory_equal(got.positions, want.positions, 3 * want.vertex_count * sizeof(float));
+		assert_memory_equal(got.triangles, want.triangles, 3 * want.triangle_count * sizeof(uint32_t));
+		vdt_mesh_free(&got);
+		vdt_cluster_free(c);
+		vdt_tsource_close(ts);
+		free(buf);
+	}
+	vdt_mesh_free(&want);
+}
+
+/*
  * A binary PLY that ends on the one-byte count of a list in an element
  * walked over (before the vertices): the count is read from its own byte
  * only, and the element named truncated. The input is an exact-size heap
@@ -678,12 +888,15 @@ main(void)
 		cmocka_unit_test(output_triangles_are_unique),
 		cmocka_unit_test(boundary_edges_are_kept),
 		cmocka_unit_test(thin_part_rim_is_no_boundary),
+		cmocka_unit_test(closed_meshes_have_no_boundary),
 		cmocka_unit_test(target_rule),
 		cmocka_unit_test(ply_any_layout),
 		cmocka_unit_test(memory_limit),
 		cmocka_unit_test(non_finite_corners),
 		cmocka_unit_test(outside_the_grid),
 		cmocka_unit_test(header_box),
+		cmocka_unit_test(swept_box),
+		cmocka_unit_test(header_box_never_changes_the_result),
 		cmocka_unit_test(ply_ends_on_a_list_count),
 	};
 
