@@ -25,6 +25,7 @@
 #include <assimp/scene.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -41,8 +42,8 @@ extern "C" {
 namespace {
 
 /* The file extensions read through Assimp, lower case. */
-const char *const exts[] = {".x", ".fbx", ".gltf", ".glb", ".dae", ".smd", ".iqm", ".md5mesh", ".mdl",
-                            ".ms3d", ".b3d"};
+const char *const exts[] = {".x",   ".fbx",     ".gltf", ".glb",  ".dae", ".smd",
+                            ".iqm", ".md5mesh", ".mdl",  ".ms3d", ".b3d"};
 
 struct Instance {
 	const aiMesh *mesh;
