@@ -33,6 +33,7 @@
  * those cells take the boundary plane and are flagged for phase II.
  */
 #include "cluster.h"
+#include "hash.h"
 
 #include "io/tsource.h"
 
@@ -697,18 +698,6 @@ cell_id_cached(struct vdt_cluster *c, uint64_t key, struct vdt_err *err)
 	return id;
 }
 
-/* A 64-bit finaliser (splitmix64's): every bit of x moves every bit out. */
-static inline uint64_t
-mix64(uint64_t x)
-{
-	x ^= x >> 30;
-	x *= 0xBF58476D1CE4E5B9ull;
-	x ^= x >> 27;
-	x *= 0x94D049BB133111EBull;
-	x ^= x >> 31;
-	return x;
-}
-
 /*
  * A position's hash, from its bits (-0 taken as 0: the same point). The
  * low bits of a double made from a float are 0: each coordinate is folded
@@ -727,14 +716,14 @@ point_hash(const double *p)
 		memcpy(&b, &x, sizeof(b));
 		h += (b ^ b >> 29) * w[k];
 	}
-	return mix64(h);
+	return vdt_hash_mix(h);
 }
 
 /* An edge's hash from its ends', whichever way the face runs along it. */
 static inline uint64_t
 edge_hash(uint64_t a, uint64_t b)
 {
-	return mix64(a + b);
+	return vdt_hash_mix(a + b);
 }
 
 /* The corner v of (u, v, w): its edge normal m = (w - u) x n, see the top. */
