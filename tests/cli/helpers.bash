@@ -70,3 +70,21 @@ while o + 12 <= len(b):
 print(' '.join(out))
 PY
 }
+
+# restream IN OUT EXPR: the stream IN written again as OUT, each chunk with
+# its CRC, its chunks those of the Python expression EXPR over ch, IN's
+# chunks as (type, payload) pairs without the end chunk (end added).
+restream() {
+	python3 - "$1" "$2" "$3" <<'PY'
+import struct, sys, zlib
+b, o, ch = open(sys.argv[1], 'rb').read(), 12, []
+while True:
+    t = b[o:o+4]; n = struct.unpack('<Q', b[o+4:o+12])[0]; o += 16 + n
+    if t == b'END ': break
+    ch.append((t, b[o-4-n:o-4]))
+out = b[:12]
+for t, p in eval(sys.argv[3]) + [(b'END ', b'')]:
+    out += t + struct.pack('<Q', len(p)) + p + struct.pack('<I', zlib.crc32(t + p))
+open(sys.argv[2], 'wb').write(out)
+PY
+}

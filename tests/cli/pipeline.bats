@@ -71,24 +71,10 @@ load helpers
 	[ "$(chunk_types "$TMP/sb.vdt")" = "MESH VTRE LABL QUAD XTRA END " ]
 	"$BIN/vdt-qslim" -q --record -r 0.5 "$g" -o "$TMP/q.vdt"
 	[ "$(chunk_types "$TMP/q.vdt")" = "MESH SEQN XTRA END " ]
-	# an animation of the golden mesh, its XTRA chunk after FRMS
-	python3 - "$g" "$TMP/anim.vdt" <<'PY'
-import struct, sys, zlib
-b = open(sys.argv[1], 'rb').read()
-o, ch = 12, []
-while True:
-    t = b[o:o+4]; n = struct.unpack('<Q', b[o+4:o+12])[0]
-    ch.append((t, b[o+12:o+12+n])); o += 16 + n
-    if t == b'END ': break
-mesh = dict(ch)[b'MESH']
-nv = struct.unpack('<Q', mesh[8:16])[0]
-pos = mesh[24:24 + 12 * nv]
-frms = struct.pack('<IIQ', 2, 0, nv) + pos + pos
-out = b[:12]
-for t, p in [(b'MESH', mesh), (b'FRMS', frms), (b'XTRA', dict(ch)[b'XTRA']), (b'END ', b'')]:
-    out += t + struct.pack('<Q', len(p)) + p + struct.pack('<I', zlib.crc32(t + p))
-open(sys.argv[2], 'wb').write(out)
-PY
+	# an animation of the golden mesh (two frames, both its own
+	# positions: V at byte 8 of MESH, positions from 24), XTRA after FRMS
+	restream "$g" "$TMP/anim.vdt" "[ch[0], (b'FRMS', struct.pack('<II', 2, 0) + ch[0][1][8:16]
+		+ 2 * ch[0][1][24:24 + 12 * struct.unpack('<Q', ch[0][1][8:16])[0]]), ch[2]]"
 	"$BIN/vdt-deform" -q -r 0.5 "$TMP/anim.vdt" -o "$TMP/d.vdt"
 	[ "$(chunk_types "$TMP/d.vdt")" = "MESH FRMS XTRA END " ]
 }
@@ -96,22 +82,8 @@ PY
 @test "a chunk of the vertices before MESH, or a second one, is refused by every reader" {
 	g="$DATA/golden-v1.vdt"
 	# golden: MESH, QUAD, XTRA; make QUAD, MESH, XTRA and MESH, QUAD, QUAD, XTRA
-	python3 - "$g" "$TMP/before.vdt" "$TMP/twice.vdt" <<'PY'
-import struct, sys, zlib
-b = open(sys.argv[1], 'rb').read()
-o, ch = 12, []
-while True:
-    t = b[o:o+4]; n = struct.unpack('<Q', b[o+4:o+12])[0]
-    ch.append((t, b[o+12:o+12+n])); o += 16 + n
-    if t == b'END ': break
-def write(path, order):
-    out = b[:12]
-    for t, p in order:
-        out += t + struct.pack('<Q', len(p)) + p + struct.pack('<I', zlib.crc32(t + p))
-    open(path, 'wb').write(out)
-write(sys.argv[2], [ch[1], ch[0]] + ch[2:])
-write(sys.argv[3], [ch[0], ch[1], ch[1]] + ch[2:])
-PY
+	restream "$g" "$TMP/before.vdt" "[ch[1], ch[0], ch[2]]"
+	restream "$g" "$TMP/twice.vdt" "[ch[0], ch[1], ch[1], ch[2]]"
 	for tool in vdt-qslim vdt-build vdt-cluster; do
 		run "$BIN/$tool" "$TMP/before.vdt" -o "$TMP/out.vdt"
 		[ "$status" -eq 2 ]
