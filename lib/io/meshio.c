@@ -78,6 +78,18 @@ has_prefix(const unsigned char *buf, size_t n, const char *s)
 	return n >= l && memcmp(buf, s, l) == 0;
 }
 
+/* has_prefix in any case of s's letters (s in lower case). */
+static int
+has_prefix_ci(const unsigned char *buf, size_t n, const char *s)
+{
+	size_t l = strlen(s);
+
+	for (size_t i = 0; i < l; i++)
+		if (i >= n || (buf[i] | 0x20) != (unsigned char)s[i])
+			return 0;
+	return 1;
+}
+
 static int
 is_text(const unsigned char *buf, size_t n)
 {
@@ -204,7 +216,7 @@ vdt_format_detect(const unsigned char *buf, size_t n)
 		if (c > 0 && (uint64_t)c * 50 + 84 == n)
 			return VDT_FMT_STL;
 	}
-	if (has_prefix(buf, n, "solid")) {
+	if (has_prefix_ci(buf, n, "solid")) { /* its keywords in any case, as the reader takes them */
 		size_t l = n < 512 ? n : 512;
 		if (!is_text(buf, l))
 			return VDT_FMT_STL; /* binary with a "solid" header */

@@ -446,3 +446,12 @@ END
 	[[ "$output" == "vdt-qslim: cannot simplify '$TMP/fin.obj': no face is left once repeated and degenerate ones are dropped" ]]
 	[ ! -e "$TMP/fin-out.obj" ]
 }
+
+@test "vdt-qslim and vdt-cluster read an ASCII STL written in capitals" {
+	printf 'SOLID x\nFACET NORMAL 0 0 1\nOUTER LOOP\nVERTEX 0 0 0\nVERTEX 1 0 0\nVERTEX 0 1 0\nENDLOOP\nENDFACET\nENDSOLID x\n' > "$TMP/up.stl"
+	run "$BIN/vdt-qslim" -r 1 "$TMP/up.stl" -o "$TMP/up.off"
+	[ "$status" -eq 0 ]
+	[ "$(off_faces "$TMP/up.off")" -eq 1 ]
+	run "$BIN/vdt-cluster" -q -g 4 "$TMP/up.stl" -o "$TMP/up.vdq"
+	[ "$status" -eq 0 ]
+}
