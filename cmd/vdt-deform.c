@@ -20,6 +20,7 @@ struct cmdline {
 	const char *out;
 	struct vdt_deform_opts d;
 	struct vdt_write_opts w;
+	struct vdt_bake_opts b;
 	int quiet, verbose;
 };
 
@@ -29,8 +30,8 @@ usage(FILE *f)
 	fprintf(f,
 	        "usage: vdt-deform [-t TRIANGLES] [--vertices N] [-r RATIO] [--method METHOD]\n"
 	        "                  [--k1 K] [--k2 K] [--sharp-angle DEGREES] [-P SHARE]\n"
-	        "                  [--start N] [--frames N] [--samples N] [-o OUTPUT] [-F FORMAT]\n"
-	        "                  [-q] [-v] [INPUT...]\n"
+	        "                  [--start N] [--frames N] [--animation NAME|N] [--fps F]\n"
+	        "                  [--samples N] [-o OUTPUT] [-F FORMAT] [-q] [-v] [INPUT...]\n"
 	        "Simplify an animation: frame files, a printf pattern (frames/%%03d.obj),\n"
 	        "an MD2 model, a skinned model (.x, .fbx, .gltf, .glb, .dae, .smd, ...)\n"
 	        "or a vdt stream with FRMS. METHOD is ours (default), dsd, first-frame\n"
@@ -40,7 +41,8 @@ usage(FILE *f)
 static void
 parse_cmdline(int argc, char **argv, struct cmdline *cl)
 {
-	enum { O_VERTICES = 256, O_METHOD, O_K1, O_K2, O_SHARP, O_START, O_FRAMES, O_SAMPLES };
+	enum { O_VERTICES = 256, O_METHOD, O_K1, O_K2, O_SHARP, O_START, O_FRAMES, O_SAMPLES,
+	       O_ANIMATION, O_FPS };
 	static const struct option longopts[] = {
 		{"triangles", required_argument, NULL, 't'}, {"ratio", required_argument, NULL, 'r'},
 		{"vertices", required_argument, NULL, O_VERTICES},
@@ -48,6 +50,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		{"k2", required_argument, NULL, O_K2}, {"sharp-angle", required_argument, NULL, O_SHARP},
 		{"share", required_argument, NULL, 'P'}, {"start", required_argument, NULL, O_START},
 		{"frames", required_argument, NULL, O_FRAMES}, {"samples", required_argument, NULL, O_SAMPLES},
+		{"animation", required_argument, NULL, O_ANIMATION}, {"fps", required_argument, NULL, O_FPS},
 		{"output", required_argument, NULL, 'o'}, {"format", required_argument, NULL, 'F'},
 		{"quiet", no_argument, NULL, 'q'}, {"verbose", no_argument, NULL, 'v'},
 		{"help", no_argument, NULL, 'h'}, {"version", no_argument, NULL, 'V'},
@@ -82,6 +85,12 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		case O_START: cl->start = parse_count("--start", optarg, 0, 1000000000); break;
 		case O_FRAMES: cl->count = parse_count("--frames", optarg, 1, 1000000000); break;
 		case O_SAMPLES: cl->samples = parse_count("--samples", optarg, 100, 100000000); break;
+		case O_ANIMATION:
+			if (*optarg == '\0')
+				usage_error("--animation wants a name or a number");
+			cl->b.animation = optarg;
+			break;
+		case O_FPS: cl->b.fps = parse_real("--fps", optarg, 1e-3, 1e4); break;
 		case 'o': cl->out = optarg; break;
 		case 'F':
 			if ((cl->w.format = vdt_format_parse(optarg)) == VDT_FMT_AUTO)
@@ -100,6 +109,12 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		cl->d.target_ratio = 0.1;
 	if (cl->start != SIZE_MAX && !(cl->nin == 1 && vdt_anim_is_pattern(cl->in[0])))
 		usage_error("--start needs one printf pattern operand (frames/%%03d.obj)");
+	int skinned = 0;
+	for (size_t i = 0; i < cl->nin; i++)
+		skinned |= vdt_assimp_handles(cl->in[i]);
+	if ((cl->b.animation || cl->b.fps > 0) && !skinned)
+		usage_error("%s chooses how a skinned model (.x, .fbx, .gltf, ...) is baked: give one",
+		            cl->b.animation ? "--animation" : "--fps");
 }
 
 /* -v: a line per frame, then one line of every statistic. */
@@ -141,7 +156,7 @@ run(struct cmdline *cl)
 	double t0 = vdt_seconds(), t1, t2;
 	int rc;
 
-	if ((rc = vdt_anim_read_operands(cl->in, cl->nin, cl->start, cl->count, &in, &fr,
+	if ((rc = vdt_anim_read_operands(cl->in, cl->nin, cl->start, cl->count, &cl->b, &in, &fr,
 	                                 &extra, &bad, &err)) != 0) {
 		rc = fail("cannot read", bad ? bad : cl->in[0], &err);
 		goto out;

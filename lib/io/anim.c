@@ -78,8 +78,8 @@ same_connectivity(const struct vdt_mesh *m0, size_t f, size_t nv, size_t nt,
 }
 
 int
-vdt_anim_read(const char *path, struct vdt_mesh *m, struct vdt_frames *fr,
-              struct vdt_chunks *extra, struct vdt_err *err)
+vdt_anim_read(const char *path, const struct vdt_bake_opts *bo, struct vdt_mesh *m,
+              struct vdt_frames *fr, struct vdt_chunks *extra, struct vdt_err *err)
 {
 	unsigned char *buf;
 	size_t len;
@@ -91,7 +91,7 @@ vdt_anim_read(const char *path, struct vdt_mesh *m, struct vdt_frames *fr,
 	if (extra)
 		memset(extra, 0, sizeof(*extra));
 	if (strcmp(path, "-") != 0 && vdt_assimp_handles(path))
-		return vdt_assimp_read(path, m, fr, err);
+		return vdt_assimp_read(path, bo, m, fr, err);
 	if ((rc = slurp(path, &buf, &len, err)) != 0)
 		return rc;
 	if (vdt_md2_sniff(buf, len)) {
@@ -144,8 +144,8 @@ fail:
 }
 
 int
-vdt_anim_read_files(const char *const *paths, size_t n, struct vdt_mesh *m,
-                    struct vdt_frames *fr, size_t *bad, struct vdt_err *err)
+vdt_anim_read_files(const char *const *paths, size_t n, const struct vdt_bake_opts *bo,
+                    struct vdt_mesh *m, struct vdt_frames *fr, size_t *bad, struct vdt_err *err)
 {
 	struct vdt_mesh x = {0};
 	struct vdt_frames xf = {0};
@@ -162,7 +162,7 @@ vdt_anim_read_files(const char *const *paths, size_t n, struct vdt_mesh *m,
 	 * model its keyframes, a mesh one), in order. */
 	for (size_t i = 0; i < n; i++) {
 		*bad = i;
-		if ((rc = vdt_anim_read(paths[i], i ? &x : m, &xf, NULL, err)) != 0) {
+		if ((rc = vdt_anim_read(paths[i], bo, i ? &x : m, &xf, NULL, err)) != 0) {
 			if (i)
 				vdt_err_prefix(err, "frame %zu", nf);
 			goto fail;
@@ -456,8 +456,9 @@ fail:
 
 int
 vdt_anim_read_operands(char *const *names, size_t n, size_t start, size_t count,
-                       struct vdt_mesh *m, struct vdt_frames *fr,
-                       struct vdt_chunks *extra, char **bad, struct vdt_err *err)
+                       const struct vdt_bake_opts *bo, struct vdt_mesh *m,
+                       struct vdt_frames *fr, struct vdt_chunks *extra, char **bad,
+                       struct vdt_err *err)
 {
 	char **list = NULL;
 	size_t nl = 0, which = 0;
@@ -468,12 +469,12 @@ vdt_anim_read_operands(char *const *names, size_t n, size_t start, size_t count,
 	if (n == 1 && vdt_anim_is_pattern(names[0])) {
 		rc = vdt_anim_pattern(names[0], start, count, &list, &nl, err);
 		if (rc == 0)
-			rc = vdt_anim_read_files((const char *const *)list, nl, m, fr, &which, err);
+			rc = vdt_anim_read_files((const char *const *)list, nl, bo, m, fr, &which, err);
 	} else {
 		if (n == 1)
-			rc = vdt_anim_read(names[0], m, fr, extra, err);
+			rc = vdt_anim_read(names[0], bo, m, fr, extra, err);
 		else
-			rc = vdt_anim_read_files((const char *const *)names, n, m, fr, &which, err);
+			rc = vdt_anim_read_files((const char *const *)names, n, bo, m, fr, &which, err);
 		/* count as with a pattern: the first count frames, all there */
 		if (rc == 0 && count > fr->frame_count) {
 			rc = vdt_err_set(err, VDT_EINVAL, "%zu frames, not the %zu required",

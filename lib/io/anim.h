@@ -35,11 +35,22 @@ int vdt_md2_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 /* Whether path names a file read through Assimp (by its extension). */
 int vdt_assimp_handles(const char *path);
 
+/* How a skinned model becomes frames (vdt_assimp_read). Zeroed: the
+ * first animation that moves a node of the model, a frame at each key. */
+struct vdt_bake_opts {
+	const char *animation; /* its name, or its number from 0; NULL: the first */
+	double fps;            /* > 0: this many frames a second of the animation,
+	                          from its first key time to its last; 0: one at
+	                          each key time */
+};
+
 /*
- * Bake the first animation of a skinned model (any format Assimp reads)
- * into frames by linear blend skinning, one frame at each key time of the
- * animation, every channel's together (see assimp.cc); a model without
- * an animation is one frame. The meshes of all
+ * Bake an animation of a skinned model (any format Assimp reads) into
+ * frames by linear blend skinning: the one bo names, or the first that
+ * moves a node; one frame at each key time of the animation, every
+ * channel's together, or bo->fps frames a second (see assimp.cc). bo may
+ * be NULL. A model without an animation is one frame (an animation asked
+ * for by name or number is then an error). The meshes of all
  * its nodes are joined into *m (frame 0's positions) in node order; their
  * vertices are as the file has them, split at texture and normal seams.
  * Returns 0, VDT_EIO (cannot open), VDT_EFORMAT (Assimp's own words),
@@ -47,13 +58,14 @@ int vdt_assimp_handles(const char *path);
  * a non-finite position: the message names the frame and vertex) or
  * VDT_ENOMEM; on failure *m and *fr are empty.
  */
-int vdt_assimp_read(const char *path, struct vdt_mesh *m, struct vdt_frames *fr,
-                    struct vdt_err *err);
+int vdt_assimp_read(const char *path, const struct vdt_bake_opts *bo, struct vdt_mesh *m,
+                    struct vdt_frames *fr, struct vdt_err *err);
 
 /*
  * Read one file ("-": stdin) that holds an animation or a single mesh:
  * MD2, a skinned model named by an extension vdt_assimp_handles takes
- * (not from stdin), or any mesh format vdt_read_memory knows. For a vdt stream, an
+ * (not from stdin; bo as vdt_assimp_read takes it, may be NULL), or any
+ * mesh format vdt_read_memory knows. For a vdt stream, an
  * FRMS chunk gives the frames (its vertex count must match the MESH
  * chunk; per-frame triangles, if present, must equal the MESH chunk's:
  * "frame 3 differs in connectivity from frame 0 at triangle 17"), and
@@ -61,8 +73,8 @@ int vdt_assimp_read(const char *path, struct vdt_mesh *m, struct vdt_frames *fr,
  * is one frame. Returns 0 or a negative status, *m, *fr and *extra empty
  * on failure.
  */
-int vdt_anim_read(const char *path, struct vdt_mesh *m, struct vdt_frames *fr,
-                  struct vdt_chunks *extra, struct vdt_err *err);
+int vdt_anim_read(const char *path, const struct vdt_bake_opts *bo, struct vdt_mesh *m,
+                  struct vdt_frames *fr, struct vdt_chunks *extra, struct vdt_err *err);
 
 /*
  * Read frames from n files, each as vdt_anim_read does, one after the
@@ -74,8 +86,9 @@ int vdt_anim_read(const char *path, struct vdt_mesh *m, struct vdt_frames *fr,
  * 0 has 500").
  * Returns 0 or a negative status; *m and *fr empty on failure.
  */
-int vdt_anim_read_files(const char *const *paths, size_t n, struct vdt_mesh *m,
-                        struct vdt_frames *fr, size_t *bad, struct vdt_err *err);
+int vdt_anim_read_files(const char *const *paths, size_t n, const struct vdt_bake_opts *bo,
+                        struct vdt_mesh *m, struct vdt_frames *fr, size_t *bad,
+                        struct vdt_err *err);
 
 /*
  * Expand a printf pattern with one integer conversion (%d, %03d, %5d;
@@ -102,8 +115,9 @@ int vdt_anim_pattern(const char *pattern, size_t start, size_t count,
  * On failure *bad (if non-NULL) is the malloc'ed name the error is about.
  */
 int vdt_anim_read_operands(char *const *names, size_t n, size_t start, size_t count,
-                           struct vdt_mesh *m, struct vdt_frames *fr,
-                           struct vdt_chunks *extra, char **bad, struct vdt_err *err);
+                           const struct vdt_bake_opts *bo, struct vdt_mesh *m,
+                           struct vdt_frames *fr, struct vdt_chunks *extra, char **bad,
+                           struct vdt_err *err);
 
 /* Whether s is a pattern with exactly one integer conversion. */
 int vdt_anim_is_pattern(const char *s);

@@ -12,9 +12,11 @@
  * rotations by slerp; a node without a channel keeps its own transform)
  * and O_b the bone's offset matrix (mesh space to bone space at bind
  * time). A mesh without bones moves with its node. The frames are the
- * key times of the file's first animation, every channel's together, in
- * order (a model without one is one frame, as posed); the meshes of every
- * node are joined into one, so that all frames share one connectivity.
+ * key times of one animation (the first that moves a node, or the one
+ * asked for by name or number), every channel's together, in order, or
+ * frames evenly spaced in time at a rate asked for (a model without an
+ * animation is one frame, as posed); the meshes of every node are joined
+ * into one, so that all frames share one connectivity.
  * Morph-target (blend shape) animation is not read.
  *
  * Assimp is reached through its C interface (cimport.h); what it cannot
@@ -130,10 +132,49 @@ globals(const aiNode *n, const aiMatrix4x4 &parent, const aiAnimation *a,
 		globals(n->mChildren[i], g, a, chan, t, out);
 }
 
-/* Frames of s's first animation with channels into *m and *fr (see the
- * top of this file); 0 or a status, with *m and *fr maybe half filled. */
+/* The animation of s that bo names (NULL in *a if s has none and bo names
+ * none): 0 or a status. */
 int
-bake(const aiScene *s, struct vdt_mesh *m, struct vdt_frames *fr, struct vdt_err *err)
+pick(const aiScene *s, const struct vdt_bake_opts *bo, const aiAnimation **a, struct vdt_err *err)
+{
+	const char *want = bo ? bo->animation : nullptr;
+	char *end;
+
+	*a = nullptr;
+	if (want == nullptr) {
+		for (unsigned i = 0; i < s->mNumAnimations && !*a; i++)
+			if (s->mAnimations[i]->mNumChannels > 0)
+				*a = s->mAnimations[i];
+		return 0;
+	}
+	for (unsigned i = 0; i < s->mNumAnimations; i++)
+		if (strcmp(s->mAnimations[i]->mName.C_Str(), want) == 0) {
+			*a = s->mAnimations[i];
+			break;
+		}
+	errno = 0;
+	unsigned long k = strtoul(want, &end, 10);
+	if (*a == nullptr && *want >= '0' && *want <= '9' && *end == '\0' && errno == 0 &&
+	    k < s->mNumAnimations)
+		*a = s->mAnimations[k];
+	if (*a == nullptr) {
+		std::string names;
+		for (unsigned i = 0; i < s->mNumAnimations && names.size() < 200; i++)
+			names += std::string(i ? ", " : "") + std::to_string(i) + " '" +
+			         s->mAnimations[i]->mName.C_Str() + "'";
+		return vdt_err_set(err, VDT_EINVAL, "has no animation '%s' (%u: %s)", want,
+		                   s->mNumAnimations, s->mNumAnimations ? names.c_str() : "none");
+	}
+	if ((*a)->mNumChannels == 0)
+		return vdt_err_set(err, VDT_EINVAL, "animation '%s' moves no bone", want);
+	return 0;
+}
+
+/* Frames of s's animation (pick) into *m and *fr (see the top of this
+ * file); 0 or a status, with *m and *fr maybe half filled. */
+int
+bake(const aiScene *s, const struct vdt_bake_opts *bo, struct vdt_mesh *m, struct vdt_frames *fr,
+     struct vdt_err *err)
 {
 	/* Assimp stands a skeleton without a mesh in for the mesh. */
 	if (s->mFlags & AI_SCENE_FLAGS_INCOMPLETE)
@@ -153,10 +194,10 @@ bake(const aiScene *s, struct vdt_mesh *m, struct vdt_frames *fr, struct vdt_err
 		return vdt_err_set(err, VDT_EINVAL, "has no triangles");
 	if (nv > UINT32_MAX)
 		return vdt_err_set(err, VDT_EINVAL, "has %zu vertices, more than 2^32", nv);
-	const aiAnimation *a = nullptr;
-	for (unsigned i = 0; i < s->mNumAnimations && !a; i++)
-		if (s->mAnimations[i]->mNumChannels > 0)
-			a = s->mAnimations[i];
+	const aiAnimation *a;
+	int rc;
+	if ((rc = pick(s, bo, &a, err)) != 0)
+		return rc;
 	std::map<const aiNode *, const aiNodeAnim *> chan;
 	std::vector<double> times;
 	if (a == nullptr) /* a still model: one frame, as the file poses it */
@@ -183,7 +224,21 @@ bake(const aiScene *s, struct vdt_mesh *m, struct vdt_frames *fr, struct vdt_err
 	if (times.empty()) /* channels of nodes that are not there */
 		return vdt_err_set(err, VDT_EINVAL, "animation '%s' moves no node of the model",
 		                   a->mName.C_Str());
-	int rc;
+	if (a != nullptr && bo != nullptr && bo->fps > 0) {
+		/* Evenly in time instead; a file that does not say its rate is
+		 * taken at Assimp's default, 25 ticks a second. */
+		double tps = a->mTicksPerSecond > 0 ? a->mTicksPerSecond : 25;
+		double t0 = times.front(), span = times.back() - t0, step = tps / bo->fps;
+		double n = std::floor(span / step + 1e-9) + 1;
+		if (!(n <= 1e6))
+			return vdt_err_set(err, VDT_EINVAL,
+			                   "%g frames a second of animation '%s' make %.3g frames, "
+			                   "more than a million",
+			                   bo->fps, a->mName.C_Str(), n);
+		times.resize((size_t)n);
+		for (size_t i = 0; i < times.size(); i++)
+			times[i] = t0 + (double)i * step;
+	}
 	if ((rc = vdt_mesh_alloc(m, nv, nt, 0, err)) != 0 ||
 	    (rc = vdt_frames_alloc(fr, times.size(), nv, err)) != 0)
 		return rc;
@@ -283,8 +338,8 @@ vdt_assimp_handles(const char *path)
 
 
 extern "C" int
-vdt_assimp_read(const char *path, struct vdt_mesh *m, struct vdt_frames *fr,
-                struct vdt_err *err)
+vdt_assimp_read(const char *path, const struct vdt_bake_opts *bo, struct vdt_mesh *m,
+                struct vdt_frames *fr, struct vdt_err *err)
 {
 	int rc;
 
@@ -307,7 +362,7 @@ vdt_assimp_read(const char *path, struct vdt_mesh *m, struct vdt_frames *fr,
 		                   why.empty() ? "not a model Assimp reads" : why.c_str());
 	}
 	try {
-		rc = bake(s, m, fr, err);
+		rc = bake(s, bo, m, fr, err);
 	} catch (const std::bad_alloc &) {
 		rc = vdt_err_set(err, VDT_ENOMEM, "out of memory");
 	}

@@ -472,3 +472,26 @@ PY
 		cmp "$TMP/d.off" "$TMP/q.off"
 	done
 }
+
+@test "vdt-deform --animation picks a skinned model's take, --fps resamples it" {
+	MDL="/usr/share/assimp/models/MDL/MDL (HL1)/man.mdl"
+	[ -r "$MDL" ] || skip "assimp-testmodels is not installed"
+	# six sequences; the second, 'walk', has 26 key times
+	run "$BIN/vdt-deform" -v --samples 1000 --animation walk -r 0.5 "$MDL" -o "$TMP/w.vdt"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"frames=26 "* ]]
+	run "$BIN/vdt-deform" -q --animation 1 -r 0.5 "$MDL" -o "$TMP/w1.vdt"
+	cmp "$TMP/w.vdt" "$TMP/w1.vdt"
+	run "$BIN/vdt-deform" --animation run -r 0.5 "$MDL" -o "$TMP/r.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"has no animation 'run' (6: 0 'reference', 1 'walk',"* ]]
+	[ ! -e "$TMP/r.vdt" ]
+	run "$BIN/vdt-deform" -v --samples 1000 --fps 5 -r 0.5 "$WALK" -o "$TMP/f.vdt"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"frames=5 "* ]]
+	run "$BIN/vdt-deform" --fps 5 -r 0.5 "$SAMPLES/torus.off" -o "$TMP/t.off"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"--fps chooses how a skinned model"* ]]
+}

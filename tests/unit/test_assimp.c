@@ -92,6 +92,19 @@ write_temp(const char *text)
 	return name;
 }
 
+/* Frame f of fr is want, to float rounding. */
+static void
+expect_frame(const struct vdt_frames *fr, size_t f, const float want[9][3])
+{
+	for (size_t v = 0; v < 9; v++)
+		for (int k = 0; k < 3; k++) {
+			float got = fr->positions[3 * (9 * f + v) + k];
+			if (fabsf(got - want[v][k]) > 1e-5f)
+				fail_msg("frame %zu vertex %zu axis %d: %g, not %g", f, v, k, got,
+				         want[v][k]);
+		}
+}
+
 static void
 arm_bends_at_its_joint(void **state)
 {
@@ -101,7 +114,7 @@ arm_bends_at_its_joint(void **state)
 	struct vdt_err err = {0};
 	char *path = write_temp(arm_smd);
 
-	assert_int_equal(vdt_assimp_read(path, &m, &fr, &err), 0);
+	assert_int_equal(vdt_assimp_read(path, NULL, &m, &fr, &err), 0);
 	unlink(path);
 	assert_int_equal(m.vertex_count, 9);
 	assert_int_equal(m.triangle_count, 3);
@@ -110,17 +123,60 @@ arm_bends_at_its_joint(void **state)
 	assert_int_equal(fr.frame_count, 3);
 	assert_int_equal(fr.vertex_count, 9);
 	for (size_t f = 0; f < 3; f++)
-		for (size_t v = 0; v < 9; v++)
-			for (int k = 0; k < 3; k++) {
-				float got = fr.positions[3 * (9 * f + v) + k];
-				if (fabsf(got - arm_frames[f][v][k]) > 1e-5f)
-					fail_msg("frame %zu vertex %zu axis %d: %g, not %g", f, v, k,
-					         got, arm_frames[f][v][k]);
-			}
+		expect_frame(&fr, f, arm_frames[f]);
 	/* the mesh is frame 0 */
 	assert_memory_equal(m.positions, fr.positions, 27 * sizeof(float));
 	vdt_mesh_free(&m);
 	vdt_frames_free(&fr);
+}
+
+/*
+ * --fps: frames evenly in time, from the first key to the last. The SMD's
+ * rate is 25 ticks a second (one per key time here), so 50 frames a
+ * second take a frame every half key: the arm at 0, 22.5, 45, 67.5 and 90
+ * degrees, the keys' frames among them.
+ */
+static void
+fps_samples_evenly(void **state)
+{
+	(void)state;
+	struct vdt_bake_opts bo = {NULL, 50};
+	struct vdt_mesh m;
+	struct vdt_frames fr;
+	char *path = write_temp(arm_smd);
+
+	assert_int_equal(vdt_assimp_read(path, &bo, &m, &fr, NULL), 0);
+	unlink(path);
+	assert_int_equal(fr.frame_count, 5);
+	expect_frame(&fr, 2, arm_frames[1]);
+	expect_frame(&fr, 4, arm_frames[2]);
+	/* vertex 4, (2,0,0) on the arm, at 22.5 degrees about (1,0,0) */
+	const float *p = fr.positions + 1 * 27 + 3 * 4;
+	assert_true(fabsf(p[0] - 1.92387953f) < 1e-5f && fabsf(p[1] - 0.38268343f) < 1e-5f);
+	vdt_mesh_free(&m);
+	vdt_frames_free(&fr);
+}
+
+/* --animation by number; one not there is named, with those there. */
+static void
+animation_by_number(void **state)
+{
+	(void)state;
+	struct vdt_bake_opts zero = {"0", 0}, one = {"1", 0}, walk = {"walk", 0};
+	struct vdt_mesh m;
+	struct vdt_frames fr;
+	struct vdt_err err = {0};
+	char *path = write_temp(arm_smd);
+
+	assert_int_equal(vdt_assimp_read(path, &zero, &m, &fr, NULL), 0);
+	assert_int_equal(fr.frame_count, 3);
+	vdt_mesh_free(&m);
+	vdt_frames_free(&fr);
+	assert_int_equal(vdt_assimp_read(path, &one, &m, &fr, &err), VDT_EINVAL);
+	assert_string_equal(err.msg, "has no animation '1' (1: 0 '')");
+	assert_int_equal(vdt_assimp_read(path, &walk, &m, &fr, &err), VDT_EINVAL);
+	assert_string_equal(err.msg, "has no animation 'walk' (1: 0 '')");
+	unlink(path);
 }
 
 /* A model with one key pose is one frame. */
@@ -136,7 +192,7 @@ one_key_is_one_frame(void **state)
 	struct vdt_frames fr;
 	char *path = write_temp(smd);
 
-	assert_int_equal(vdt_assimp_read(path, &m, &fr, NULL), 0);
+	assert_int_equal(vdt_assimp_read(path, NULL, &m, &fr, NULL), 0);
 	unlink(path);
 	assert_int_equal(fr.frame_count, 1);
 	assert_int_equal(m.vertex_count, 3);
@@ -154,7 +210,7 @@ expect_error(const char *text, int code, const char *message)
 	struct vdt_err err = {0};
 	char *path = write_temp(text);
 
-	assert_int_equal(vdt_assimp_read(path, &m, &fr, &err), code);
+	assert_int_equal(vdt_assimp_read(path, NULL, &m, &fr, &err), code);
 	unlink(path);
 	assert_string_equal(err.msg, message);
 	assert_null(m.positions);
@@ -187,7 +243,7 @@ missing_file_is_an_io_error(void **state)
 	struct vdt_frames fr;
 	struct vdt_err err = {0};
 
-	assert_int_equal(vdt_assimp_read("/nonexistent/walk.fbx", &m, &fr, &err), VDT_EIO);
+	assert_int_equal(vdt_assimp_read("/nonexistent/walk.fbx", NULL, &m, &fr, &err), VDT_EIO);
 	assert_string_equal(err.msg, "No such file or directory");
 }
 
@@ -209,6 +265,8 @@ main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(arm_bends_at_its_joint),
+		cmocka_unit_test(fps_samples_evenly),
+		cmocka_unit_test(animation_by_number),
 		cmocka_unit_test(one_key_is_one_frame),
 		cmocka_unit_test(refuses_what_is_no_animated_mesh),
 		cmocka_unit_test(missing_file_is_an_io_error),

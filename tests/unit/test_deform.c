@@ -401,14 +401,14 @@ frames_must_match(void **state)
 	fclose(f);
 	paths[0] = a;
 	paths[1] = b;
-	assert_int_equal(vdt_anim_read_files(paths, 2, &m, &fr, &bad, &err), VDT_EINVAL);
+	assert_int_equal(vdt_anim_read_files(paths, 2, NULL, &m, &fr, &bad, &err), VDT_EINVAL);
 	assert_int_equal(bad, 1);
 	assert_string_equal(err.msg, "frame 1 differs in connectivity from frame 0 at triangle 0");
 	paths[1] = c;
-	assert_int_equal(vdt_anim_read_files(paths, 2, &m, &fr, &bad, &err), VDT_EINVAL);
+	assert_int_equal(vdt_anim_read_files(paths, 2, NULL, &m, &fr, &bad, &err), VDT_EINVAL);
 	assert_string_equal(err.msg, "frame 1 has 3 vertices, frame 0 has 4");
 	paths[1] = a;
-	assert_int_equal(vdt_anim_read_files(paths, 2, &m, &fr, &bad, &err), 0);
+	assert_int_equal(vdt_anim_read_files(paths, 2, NULL, &m, &fr, &bad, &err), 0);
 	assert_int_equal(fr.frame_count, 2);
 	vdt_mesh_free(&m);
 	vdt_frames_free(&fr);
@@ -500,7 +500,7 @@ write_result(void **state)
 	snprintf(path, sizeof(path), "%s/all.vdt", dir);
 	assert_int_equal(vdt_deform_write(&r, path, NULL, &w, &bad, NULL), 0);
 	assert_null(bad);
-	assert_int_equal(vdt_anim_read(path, &back, &frb, NULL, NULL), 0);
+	assert_int_equal(vdt_anim_read(path, NULL, &back, &frb, NULL, NULL), 0);
 	assert_int_equal(frb.frame_count, 2);
 	assert_int_equal(back.vertex_count, 100);
 	assert_int_equal(vdt_deform_frame_mesh(&r, 1, &f1, NULL), 0);
