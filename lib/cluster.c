@@ -719,11 +719,13 @@ point_hash(const double *p)
 	return vdt_hash_mix(h);
 }
 
-/* An edge's hash from its ends', whichever way the face runs along it. */
+/* An edge's hash from its ends', whichever way the face runs along it:
+ * their sum, the ends' hashes being mixed already (a sum of two such is no
+ * likelier than any value to meet another edge's). */
 static inline uint64_t
 edge_hash(uint64_t a, uint64_t b)
 {
-	return vdt_hash_mix(a + b);
+	return a + b;
 }
 
 /* The corner v of (u, v, w): its edge normal m = (w - u) x n, see the top. */
