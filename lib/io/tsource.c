@@ -457,9 +457,10 @@ ply_triangles(struct vdt_tsource *s, double *tri, size_t max, size_t *n, struct 
 		}
 	}
 	*n = k;
-	if (s->fidx == s->fcount)
+	/* Only a header's box is checked against the sweep. */
+	if (s->has_hbox && s->fidx == s->fcount)
 		ply_sweep(s, s->vcount);
-	else
+	else if (s->has_hbox)
 		ply_sweep(s, (uint64_t)((double)s->fidx / (double)s->fcount * (double)s->vcount));
 	if (s->map)
 		drop_behind(s, s->fcur, s->fbase);

@@ -82,8 +82,8 @@ int vdt_tsource_header_box(const struct vdt_tsource *ts, struct vdt_bbox *box);
  * the way by the triangle pass just completed, so that a declared box can
  * be checked without a pass of its own: 1 and *box once a triangle pass
  * has run from the last rewind to its end and every position was finite;
- * else 0. Binary PLY only (the only source that declares a box): 0 for
- * the others.
+ * else 0. Binary PLY with a declared box only (the only source that
+ * declares one, and the sweep is made only then): 0 for the others.
  */
 int vdt_tsource_swept_box(const struct vdt_tsource *ts, struct vdt_bbox *box);
 

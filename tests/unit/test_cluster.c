@@ -751,9 +751,10 @@ ply_with_box(const char *line, size_t *len)
 }
 
 /*
- * The triangle pass sweeps the vertex records for their box: once it has
- * ended, the box a vertex pass measures, the unused vertex included;
- * before, none.
+ * With a declared box (here a wrong one), the triangle pass sweeps the
+ * vertex records for their box: once it has ended, the box a vertex pass
+ * measures, the unused vertex included; before, none. Without one, no
+ * sweep.
  */
 static void
 swept_box(void **state)
@@ -766,6 +767,13 @@ swept_box(void **state)
 	size_t n;
 
 	(void)state;
+	assert_int_equal(vdt_tsource_open_memory(&ts, buf, len, NULL), 0);
+	assert_int_equal(vdt_tsource_triangles(ts, tri, 4, &n, NULL), 0);
+	assert_int_equal(n, 2);
+	assert_int_equal(vdt_tsource_swept_box(ts, &got), 0);
+	vdt_tsource_close(ts);
+	free(buf);
+	buf = ply_with_box("comment bbox 0 0 0 1 1 1", &len);
 	assert_int_equal(vdt_tsource_open_memory(&ts, buf, len, NULL), 0);
 	assert_int_equal(vdt_tsource_swept_box(ts, &got), 0);
 	assert_int_equal(vdt_cluster_scan_bbox(ts, &want, NULL, NULL, NULL), 0);
