@@ -125,8 +125,8 @@ run(struct cmdline *cl)
 	t1 = vdt_seconds();
 	rc = vdt_cluster_source(ts, &rq, &c, &g, &remeasured, &box_s, p, &err);
 	if (remeasured && !cl->quiet)
-		fprintf(stderr, "%s: %s: the header's bounding box does not fit the vertices: measured it\n",
-		        progname, cl->in);
+		fprintf(stderr, "%s: %s: the header's bounding box is not that of the vertices the "
+		        "faces use: clustered again on theirs\n", progname, cl->in);
 	t1 += box_s;
 	/* The input is read: its mapped pages go before the output is made,
 	 * so that they do not add to the peak. */

@@ -80,7 +80,8 @@ struct vdt_cluster {
 	size_t thmask;
 
 	uint64_t added;
-	/* The range of corner positions in cell units, before clamping. */
+	/* The box of the corners added so far, exactly: the grid is made for
+	 * it (vdt_cluster_source). */
 	double lo[3], hi[3];
 	/* Recently found cells, direct-mapped: neighbouring triangles share cells. */
 	uint64_t recent_key[RECENT]; /* key + 1, 0: none */
@@ -665,8 +666,8 @@ add_scaled(struct vdt_quadric *q, const struct vdt_quadric *r, double s)
 }
 
 /*
- * The cell of p as a key, widening lo and hi (in cell units, unclamped) so
- * that a box given in advance can be checked; lo/hi compile to min/max.
+ * The cell of p as a key, widening the box lo..hi of the corners so that
+ * a box given in advance can be checked; lo/hi compile to min/max.
  */
 static inline uint64_t
 key_of(const struct vdt_cluster *c, const double *p, double *lo, double *hi)
@@ -675,8 +676,8 @@ key_of(const struct vdt_cluster *c, const double *p, double *lo, double *hi)
 
 	for (int k = 0; k < 3; k++) {
 		double f = (p[k] - c->g.origin[k]) * c->inv[k];
-		lo[k] = f < lo[k] ? f : lo[k];
-		hi[k] = f > hi[k] ? f : hi[k];
+		lo[k] = p[k] < lo[k] ? p[k] : lo[k];
+		hi[k] = p[k] > hi[k] ? p[k] : hi[k];
 		key |= (uint64_t)clamp_cell(f, c->top[k]) << k * KEY_BITS;
 	}
 	return key;
@@ -747,10 +748,22 @@ add_edge_normal(struct cell *cl, const double *u, const double *v, const double 
 int
 vdt_cluster_outside(const struct vdt_cluster *c)
 {
+	/* in cell units as key_of has them: rounding keeps the order */
 	for (int k = 0; k < 3; k++)
-		if (c->lo[k] < 0 || c->hi[k] > c->g.dims[k])
+		if (c->added > 0 && ((c->lo[k] - c->g.origin[k]) * c->inv[k] < 0 ||
+		                     (c->hi[k] - c->g.origin[k]) * c->inv[k] > c->g.dims[k]))
 			return 1;
 	return 0;
+}
+
+int
+vdt_cluster_corner_box(const struct vdt_cluster *c, struct vdt_bbox *box)
+{
+	for (int k = 0; k < 3; k++) {
+		box->min[k] = c->lo[k];
+		box->max[k] = c->hi[k];
+	}
+	return c->added > 0;
 }
 
 static int
@@ -1161,21 +1174,20 @@ same_box(const struct vdt_bbox *a, const struct vdt_bbox *b)
 }
 
 /*
- * A declared box is taken only if it is exactly the measured one: the
- * triangle pass sweeps the vertex records as it goes
- * (vdt_tsource_swept_box), so the check costs no pass of its own. Any
- * other box, even one a rounding away (a vertex just outside, or a side
- * holding none), gives another grid and so another output: then the
- * clustering starts again on the swept box, which is the one a measuring
- * pass would have found, bit for bit. With or without the line, the
- * result is the same.
+ * The grid is made for the box of the vertices the faces use: vertices
+ * no face uses are no part of the surface. The clustering pass keeps its
+ * corners' box as it goes (vdt_cluster_corner_box), to the bit; a grid
+ * made for another box (a header's claim a rounding away, or a measured
+ * box that a vertex no face uses widened) is made again for that one, so
+ * that the result never depends on the claim, nor on unused vertices.
+ * A correct claim spares every pass but the clustering.
  */
 int
 vdt_cluster_source(struct vdt_tsource *ts, const struct vdt_cluster_request *rq,
                    struct vdt_cluster **cp, struct vdt_cluster_grid *g, int *remeasured,
                    double *box_seconds, const struct vdt_progress *p, struct vdt_err *err)
 {
-	struct vdt_bbox box, swept;
+	struct vdt_bbox box, corners;
 	int claimed = vdt_tsource_header_box(ts, &box), known = claimed;
 	int rc;
 
@@ -1189,6 +1201,7 @@ vdt_cluster_source(struct vdt_tsource *ts, const struct vdt_cluster_request *rq,
 			if ((rc = vdt_cluster_scan_bbox(ts, &box, NULL, p, err)) != 0)
 				return rc;
 			*box_seconds = vdt_seconds() - t0;
+			known = 1;
 		}
 		if (rq->ratio > 0) /* of the triangles the input announces */
 			ch.target = fmax(1, round(rq->ratio * (double)vdt_tsource_triangle_hint(ts)));
@@ -1197,17 +1210,17 @@ vdt_cluster_source(struct vdt_tsource *ts, const struct vdt_cluster_request *rq,
 		if ((rc = vdt_cluster_choose(&ch, ts, &box, g, p, err)) == 0 &&
 		    (rc = vdt_cluster_new(cp, g, ch.max_cells, err)) == 0)
 			rc = vdt_cluster_scan(*cp, ts, p, err);
-		if (!claimed)
-			break;
-		claimed = 0;
-		/* A failure under the claim may be the claim's: measure, retry. */
-		known = rc == 0 && vdt_tsource_swept_box(ts, &swept);
-		if (known && same_box(&swept, &box))
-			break;
-		if (known) {
-			box = swept;
-			*remeasured = 1;
+		if (rc != 0 && claimed) { /* perhaps the claim's fault: measure */
+			vdt_cluster_free(*cp);
+			*cp = NULL;
+			claimed = known = 0;
+			continue;
 		}
+		if (rc != 0 || !vdt_cluster_corner_box(*cp, &corners) || same_box(&corners, &box))
+			break;
+		*remeasured |= claimed;
+		claimed = 0;
+		box = corners;
 		vdt_cluster_free(*cp);
 		*cp = NULL;
 	}

@@ -165,6 +165,12 @@ int vdt_cluster_finish(struct vdt_cluster *c, struct vdt_mesh *out,
  */
 int vdt_cluster_outside(const struct vdt_cluster *c);
 
+/*
+ * The box of the corners added so far, exactly (the same doubles), into
+ * *box: 1, or 0 when none was added.
+ */
+int vdt_cluster_corner_box(const struct vdt_cluster *c, struct vdt_bbox *box);
+
 /* Free c. NULL is a no-op. */
 void vdt_cluster_free(struct vdt_cluster *c);
 
@@ -218,13 +224,15 @@ int vdt_cluster_choose(const struct vdt_cluster_choice *ch, struct vdt_tsource *
  * (vdt_cluster_choose with ch, whose size is first turned from a percent
  * of the box's diagonal if size_pct, and whose target is set to ratio
  * times the source's triangle hint if ratio > 0), then the clustering into
- * a new *cp (which the caller frees). A claimed box is checked against
- * the box the clustering pass sweeps (vdt_tsource_swept_box) and kept only
- * if it is exactly that one, so that the claim never changes the result;
- * otherwise everything starts again on the swept box, with *remeasured
- * set to 1 (or, if the pass failed under the claim, on a measured box,
- * silently). *box_seconds gets the time of the measuring pass (0 if none
- * ran). On failure *cp is NULL; errors are those of the passes.
+ * a new *cp (which the caller frees). The grid is that of the box of the
+ * corners the faces use (vdt_cluster_corner_box), exactly: when the box
+ * it was made for is another (a claim a rounding away, or a measured box
+ * widened by vertices no face uses), the clustering runs again on the
+ * corners' box, with *remeasured set to 1 if the box was the header's
+ * (and, if the pass failed under the claim, on a measured box, silently).
+ * So the claim never changes the result. *box_seconds gets the time of
+ * the measuring pass (0 if none ran). On failure *cp is NULL; errors are
+ * those of the passes.
  */
 struct vdt_cluster_request {
 	struct vdt_cluster_choice ch;

@@ -75,11 +75,6 @@ struct vdt_tsource {
 	/* a PLY header's "comment bbox" line, if well formed */
 	struct vdt_bbox hbox;
 	int has_hbox;
-	/* The box of every vertex record, swept alongside the triangle pass
-	 * (PLY): records [0, scur) are in sbox; sbad if one was not finite. */
-	uint64_t scur;
-	struct vdt_bbox sbox;
-	int sbad;
 
 	const unsigned char *drop_mark; /* mapped pages before it are released */
 };
@@ -347,32 +342,6 @@ ply_vertices(struct vdt_tsource *s, double *xyz, size_t max, size_t *n, struct v
 	return 0;
 }
 
-/*
- * Take the vertex records up to `to` into the swept box, as the vertex
- * pass and vdt_cluster_scan_bbox would: the same values, the same
- * comparisons, in the same order. Called as the triangle pass goes, at
- * its pace, so that the records read are mostly those the faces just
- * used: still in the page cache, and in the CPU's for a mesh stored in
- * the usual order.
- */
-static void
-ply_sweep(struct vdt_tsource *s, uint64_t to)
-{
-	for (; s->scur < to; s->scur++) {
-		double p[3];
-
-		ply_corner(s, s->scur, p);
-		if (!(isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]))) {
-			s->sbad = 1;
-			continue;
-		}
-		for (int k = 0; k < 3; k++) {
-			s->sbox.min[k] = p[k] < s->sbox.min[k] ? p[k] : s->sbox.min[k];
-			s->sbox.max[k] = p[k] > s->sbox.max[k] ? p[k] : s->sbox.max[k];
-		}
-	}
-}
-
 static int
 bad_index(struct vdt_tsource *s, int64_t v, struct vdt_err *err)
 {
@@ -457,11 +426,6 @@ ply_triangles(struct vdt_tsource *s, double *tri, size_t max, size_t *n, struct 
 		}
 	}
 	*n = k;
-	/* Only a header's box is checked against the sweep. */
-	if (s->has_hbox && s->fidx == s->fcount)
-		ply_sweep(s, s->vcount);
-	else if (s->has_hbox)
-		ply_sweep(s, (uint64_t)((double)s->fidx / (double)s->fcount * (double)s->vcount));
 	if (s->map)
 		drop_behind(s, s->fcur, s->fbase);
 	return 0;
@@ -860,7 +824,6 @@ open_memory(struct vdt_tsource **ts, const unsigned char *buf, size_t len, enum 
 		vdt_tsource_close(s);
 		return rc;
 	}
-	vdt_tsource_rewind(s);
 	*ts = s;
 	return 0;
 }
@@ -969,25 +932,9 @@ vdt_tsource_bytes(const struct vdt_tsource *ts)
 	return ts->len;
 }
 
-int
-vdt_tsource_swept_box(const struct vdt_tsource *ts, struct vdt_bbox *box)
-{
-	if (ts->kind != K_PLY || ts->fcur == NULL || ts->fidx != ts->fcount ||
-	    ts->scur != ts->vcount || ts->vcount == 0 || ts->sbad)
-		return 0;
-	*box = ts->sbox;
-	return 1;
-}
-
 void
 vdt_tsource_rewind(struct vdt_tsource *ts)
 {
-	ts->scur = 0;
-	ts->sbad = 0;
-	for (int k = 0; k < 3; k++) {
-		ts->sbox.min[k] = INFINITY;
-		ts->sbox.max[k] = -INFINITY;
-	}
 	ts->vcur = ts->tcur = ts->fidx = 0;
 	ts->fcur = NULL;
 	ts->poly = NULL;

@@ -72,20 +72,9 @@ uint64_t vdt_tsource_triangle_hint(const struct vdt_tsource *ts);
 /*
  * The bounding box the header declares (a PLY "comment bbox" line of six
  * numbers, read as floats), into *box: 1 if there is one, else 0. A claim,
- * not checked: see vdt_tsource_swept_box.
+ * not checked: see vdt_cluster_source.
  */
 int vdt_tsource_header_box(const struct vdt_tsource *ts, struct vdt_bbox *box);
-
-/*
- * The bounding box of every vertex position, exactly as a vertex pass
- * gives it (the same doubles, compared in the same order), measured along
- * the way by the triangle pass just completed, so that a declared box can
- * be checked without a pass of its own: 1 and *box once a triangle pass
- * has run from the last rewind to its end and every position was finite;
- * else 0. Binary PLY with a declared box only (the only source that
- * declares one, and the sweep is made only then): 0 for the others.
- */
-int vdt_tsource_swept_box(const struct vdt_tsource *ts, struct vdt_bbox *box);
 
 /* Bytes of input (after spooling), for messages and statistics. */
 uint64_t vdt_tsource_bytes(const struct vdt_tsource *ts);

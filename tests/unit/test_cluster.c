@@ -710,8 +710,9 @@ header_box(void **state)
 }
 
 /*
- * A binary PLY of two triangles and a vertex no face uses, with a header
- * box: `line` (NULL: none). *len gets its size; the caller frees it.
+ * A binary PLY of two triangles, with (nv 5) or without (nv 4) a vertex no
+ * face uses, and a header box: `line` (NULL: none). *len gets its size;
+ * the caller frees it.
  *
  *   y
  *   1 2---3          vertex 4 at (-0.5, 0.5, 0.25) is used by no face
@@ -720,7 +721,7 @@ header_box(void **state)
  *     0   1
  */
 static unsigned char *
-ply_with_box(const char *line, size_t *len)
+ply_with(const char *line, int nv, size_t *len)
 {
 	static const float v[5][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0.5f}, {-0.5f, 0.5f, 0.25f}};
 	static const uint32_t f[2][3] = {{0, 1, 2}, {1, 3, 2}};
@@ -728,15 +729,15 @@ ply_with_box(const char *line, size_t *len)
 	unsigned char *buf, *p;
 	int n = snprintf(head, sizeof(head),
 	                 "ply\nformat binary_little_endian 1.0\n%s%s"
-	                 "element vertex 5\nproperty float x\nproperty float y\nproperty float z\n"
+	                 "element vertex %d\nproperty float x\nproperty float y\nproperty float z\n"
 	                 "element face 2\nproperty list uchar int vertex_indices\nend_header\n",
-	                 line ? line : "", line ? "\n" : "");
+	                 line ? line : "", line ? "\n" : "", nv);
 
-	*len = (size_t)n + sizeof(v) + 2 * 13;
+	*len = (size_t)n + (size_t)nv * sizeof(v[0]) + 2 * 13;
 	assert_non_null(buf = malloc(*len));
 	memcpy(buf, head, (size_t)n);
 	p = buf + n;
-	for (int i = 0; i < 5; i++)
+	for (int i = 0; i < nv; i++)
 		for (int k = 0; k < 3; k++, p += 4) {
 			uint32_t u;
 			memcpy(&u, &v[i][k], 4);
@@ -751,109 +752,104 @@ ply_with_box(const char *line, size_t *len)
 }
 
 /*
- * With a declared box (here a wrong one), the triangle pass sweeps the
- * vertex records for their box: once it has ended, the box a vertex pass
- * measures, the unused vertex included; before, none. Without one, no
- * sweep.
+ * The clustering keeps the box of the corners it was given, to the bit:
+ * the unused vertex 4 is not in it.
  */
 static void
-swept_box(void **state)
+corner_box(void **state)
 {
-	size_t len;
-	unsigned char *buf = ply_with_box(NULL, &len);
-	struct vdt_tsource *ts;
-	struct vdt_bbox want, got;
-	double tri[9 * 4];
-	size_t n;
+	struct vdt_cluster_grid g = {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}};
+	const double tri[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0.25};
+	const double tri2[9] = {1, 1, 0.5, 0, 1, 0, 1, 0, 0};
+	struct vdt_cluster *c;
+	struct vdt_bbox box;
 
 	(void)state;
-	assert_int_equal(vdt_tsource_open_memory(&ts, buf, len, NULL), 0);
-	assert_int_equal(vdt_tsource_triangles(ts, tri, 4, &n, NULL), 0);
-	assert_int_equal(n, 2);
-	assert_int_equal(vdt_tsource_swept_box(ts, &got), 0);
-	vdt_tsource_close(ts);
-	free(buf);
-	buf = ply_with_box("comment bbox 0 0 0 1 1 1", &len);
-	assert_int_equal(vdt_tsource_open_memory(&ts, buf, len, NULL), 0);
-	assert_int_equal(vdt_tsource_swept_box(ts, &got), 0);
-	assert_int_equal(vdt_cluster_scan_bbox(ts, &want, NULL, NULL, NULL), 0);
-	assert_true(want.min[0] == -0.5 && want.max[2] == 0.5);
-	assert_int_equal(vdt_tsource_swept_box(ts, &got), 0);
-	vdt_tsource_rewind(ts);
-	assert_int_equal(vdt_tsource_triangles(ts, tri, 1, &n, NULL), 0);
-	assert_int_equal(n, 1);
-	assert_int_equal(vdt_tsource_swept_box(ts, &got), 0);
-	assert_int_equal(vdt_tsource_triangles(ts, tri, 4, &n, NULL), 0);
-	assert_int_equal(n, 1);
-	assert_int_equal(vdt_tsource_swept_box(ts, &got), 1);
-	assert_memory_equal(&got, &want, sizeof(got));
-	vdt_tsource_rewind(ts);
-	assert_int_equal(vdt_tsource_swept_box(ts, &got), 0);
-	vdt_tsource_close(ts);
-	free(buf);
+	assert_int_equal(vdt_cluster_new(&c, &g, 0, NULL), 0);
+	assert_int_equal(vdt_cluster_corner_box(c, &box), 0);
+	assert_int_equal(vdt_cluster_add(c, tri, 1, NULL), 0);
+	assert_int_equal(vdt_cluster_add(c, tri2, 1, NULL), 0);
+	assert_int_equal(vdt_cluster_corner_box(c, &box), 1);
+	assert_true(box.min[0] == 0 && box.min[1] == 0 && box.min[2] == 0 && box.max[0] == 1 &&
+	            box.max[1] == 1 && box.max[2] == 0.5);
+	vdt_cluster_free(c);
 }
 
 /*
- * A header box is taken only when it is the vertices' box exactly: one a
- * float's step away on any side, in or out, or one that leaves out the
- * vertex no face uses, gives the clustering of the box measured, and says
- * so (remeasured). The right one spares the measuring pass.
+ * The grid is that of the box of the vertices the faces use, whatever a
+ * header claims: a claim a float's step away on any side, in or out, or
+ * one that takes in the vertex no face uses, is clustered again on that
+ * box (re 1), to the bit, and so gives the output of no line, which the
+ * unused vertex does not change either. No claim is measured by a pass
+ * of its own: the clustering pass keeps the corners' box.
  */
 static void
 header_box_never_changes_the_result(void **state)
 {
 	static const struct {
+		int nv;
 		const char *line;
-		int remeasured;
+		int remeasured, measured;
 	} cases[] = {
-		{"comment bbox -0.5 0 0 1 1 0.5", 0},
-		{"comment bbox -0.5 0 0 1 1 0.49999997", 1},   /* a vertex outside */
-		{"comment bbox -0.5 0 0 1 1 0.50000006", 1},   /* a side holds none */
-		{"comment bbox -0.50000006 0 0 1 1 0.5", 1},
-		{"comment bbox -0.49999997 0 0 1 1 0.5", 1},
-		{"comment bbox 0 0 0 1 1 0.5", 1},             /* the unused vertex out */
-		{"comment bbox -0.5 -1e-45 0 1 1 0.5", 1},
+		{5, "comment bbox -0.5 0 0 1 1 0.5", 1, 0},   /* the unused vertex in */
+		{5, "comment bbox 0 0 0 1 1 0.49999997", 1, 0}, /* a vertex outside */
+		{5, "comment bbox 0 0 0 1 1 0.50000006", 1, 0}, /* a side holds none */
+		{5, "comment bbox -1e-45 0 0 1 1 0.5", 1, 0},
+		{5, "comment bbox 1e-45 0 0 1 1 0.5", 1, 0},
+		{5, "comment bbox 0 0 0 1 1 0.5", 0, 0},        /* the faces' box */
+		{4, "comment bbox 0 0 0 1 1 0.5", 0, 0},
+		{4, "comment bbox 0 0 0 1 1 0.49999997", 1, 0},
+		{4, "comment bbox 0 -1e-45 0 1 1 0.5", 1, 0},
 	};
 	struct vdt_cluster_request rq = {{0}, 0, 0};
-	struct vdt_mesh want, got;
-	size_t len;
-	unsigned char *buf = ply_with_box(NULL, &len);
+	struct vdt_mesh want[2], got;
+	struct vdt_cluster_grid g, want_g[2];
 	struct vdt_tsource *ts;
 	struct vdt_cluster *c;
-	struct vdt_cluster_grid g, want_g;
+	unsigned char *buf;
+	size_t len;
 	double secs;
 	int re;
 
 	(void)state;
 	rq.ch.dims[0] = 3;
-	assert_int_equal(vdt_tsource_open_memory(&ts, buf, len, NULL), 0);
-	assert_int_equal(vdt_cluster_source(ts, &rq, &c, &want_g, &re, &secs, NULL, NULL), 0);
-	assert_int_equal(re, 0);
-	assert_int_equal(vdt_cluster_finish(c, &want, NULL, NULL, NULL, NULL), 0);
-	vdt_cluster_free(c);
-	vdt_tsource_close(ts);
-	free(buf);
+	for (int w = 0; w < 2; w++) {
+		buf = ply_with(NULL, 4 + w, &len);
+		assert_int_equal(vdt_tsource_open_memory(&ts, buf, len, NULL), 0);
+		assert_int_equal(vdt_cluster_source(ts, &rq, &c, &want_g[w], &re, &secs, NULL, NULL), 0);
+		assert_int_equal(re, 0);
+		assert_int_equal(vdt_cluster_finish(c, &want[w], NULL, NULL, NULL, NULL), 0);
+		vdt_cluster_free(c);
+		vdt_tsource_close(ts);
+		free(buf);
+	}
 	for (size_t i = 0; i < sizeof(cases) / sizeof(cases[0]); i++) {
+		int w = cases[i].nv - 4;
 		struct vdt_bbox hb;
-		buf = ply_with_box(cases[i].line, &len);
+		buf = ply_with(cases[i].line, cases[i].nv, &len);
 		assert_int_equal(vdt_tsource_open_memory(&ts, buf, len, NULL), 0);
 		assert_int_equal(vdt_tsource_header_box(ts, &hb), 1);
+		secs = -1;
 		assert_int_equal(vdt_cluster_source(ts, &rq, &c, &g, &re, &secs, NULL, NULL), 0);
 		/* The grid of the measured box, to the bit, so the same output. */
-		assert_memory_equal(&g, &want_g, sizeof(g));
+		assert_memory_equal(&g, &want_g[w], sizeof(g));
+		assert_memory_equal(&g, &want_g[0], sizeof(g)); /* the unused vertex aside */
 		assert_int_equal(re, cases[i].remeasured);
-		assert_true(secs == 0);
+		assert_int_equal(secs > 0, cases[i].measured);
 		assert_int_equal(vdt_cluster_finish(c, &got, NULL, NULL, NULL, NULL), 0);
-		assert_int_equal(got.vertex_count, want.vertex_count);
-		assert_int_equal(got.triangle_count, want.triangle_count);
-		assert_memory_equal(got.positions, want.positions, 3 * want.vertex_count * sizeof(float));
-		assert_memory_equal(got.triangles, want.triangles, 3 * want.triangle_count * sizeof(uint32_t));
+		assert_int_equal(got.vertex_count, want[w].vertex_count);
+		assert_int_equal(got.triangle_count, want[w].triangle_count);
+		assert_memory_equal(got.positions, want[w].positions,
+		                    3 * want[w].vertex_count * sizeof(float));
+		assert_memory_equal(got.triangles, want[w].triangles,
+		                    3 * want[w].triangle_count * sizeof(uint32_t));
 		vdt_mesh_free(&got);
 		vdt_cluster_free(c);
 		vdt_tsource_close(ts);
 		free(buf);
 	}
-	vdt_mesh_free(&want);
+	vdt_mesh_free(&want[0]);
+	vdt_mesh_free(&want[1]);
 }
 
 /*
@@ -903,7 +899,7 @@ main(void)
 		cmocka_unit_test(non_finite_corners),
 		cmocka_unit_test(outside_the_grid),
 		cmocka_unit_test(header_box),
-		cmocka_unit_test(swept_box),
+		cmocka_unit_test(corner_box),
 		cmocka_unit_test(header_box_never_changes_the_result),
 		cmocka_unit_test(ply_ends_on_a_list_count),
 	};
