@@ -700,24 +700,21 @@ cell_id_cached(struct vdt_cluster *c, uint64_t key, struct vdt_err *err)
 }
 
 /*
- * A position's hash, from its bits (-0 taken as 0: the same point). The
- * low bits of a double made from a float are 0: each coordinate is folded
- * onto them before the three are weighed together and mixed.
+ * A position's hash, from the bits of its coordinates as floats (-0 taken
+ * as 0: the same point; two doubles a float apart are one point here,
+ * which no boundary tells apart): x and y side by side, z multiplied in,
+ * then mixed.
  */
 static inline uint64_t
 point_hash(const double *p)
 {
-	static const uint64_t w[3] = {0x9E3779B97F4A7C15ull, 0xC2B2AE3D27D4EB4Full,
-	                              0x165667B19E3779F9ull};
-	uint64_t h = 0;
+	uint32_t b[3];
 
 	for (int k = 0; k < 3; k++) {
-		double x = p[k] + 0.0;
-		uint64_t b;
-		memcpy(&b, &x, sizeof(b));
-		h += (b ^ b >> 29) * w[k];
+		float x = (float)p[k] + 0.0f;
+		memcpy(&b[k], &x, sizeof(b[k]));
 	}
-	return vdt_hash_mix(h);
+	return vdt_hash_mix(((uint64_t)b[0] << 32 | b[1]) ^ (uint64_t)b[2] * 0x9E3779B97F4A7C15ull);
 }
 
 /* An edge's hash from its ends', whichever way the face runs along it:
