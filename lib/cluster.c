@@ -45,6 +45,7 @@
 #define KEY_MASK ((1ull << KEY_BITS) - 1)
 
 #define RECENT 256
+#define HASHED 4096
 
 /* A kept output triangle's cells, sorted, with its index + 1 (0: empty). */
 struct tslot {
@@ -86,6 +87,11 @@ struct vdt_cluster {
 	/* Recently found cells, direct-mapped: neighbouring triangles share cells. */
 	uint64_t recent_key[RECENT]; /* key + 1, 0: none */
 	uint32_t recent_id[RECENT];
+	/* Recent points' parity hashes by vertex number (+ 1, 0: none),
+	 * direct-mapped: a vertex is a corner of about six faces, near each
+	 * other in the file. */
+	uint64_t hash_vertex[HASHED];
+	uint64_t hash_of[HASHED];
 	int finished;
 };
 
@@ -717,6 +723,20 @@ point_hash(const double *p)
 	return vdt_hash_mix(((uint64_t)b[0] << 32 | b[1]) ^ (uint64_t)b[2] * 0x9E3779B97F4A7C15ull);
 }
 
+/* point_hash of corner p, vertex v of an indexed source, through the
+ * cache of recent vertices. */
+static inline uint64_t
+vertex_hash(struct vdt_cluster *c, uint32_t v, const double *p)
+{
+	size_t r = v & (HASHED - 1);
+
+	if (c->hash_vertex[r] != (uint64_t)v + 1) {
+		c->hash_vertex[r] = (uint64_t)v + 1;
+		c->hash_of[r] = point_hash(p);
+	}
+	return c->hash_of[r];
+}
+
 /* An edge's hash from its ends', whichever way the face runs along it:
  * their sum, the ends' hashes being mixed already (a sum of two such is no
  * likelier than any value to meet another edge's). */
@@ -764,8 +784,8 @@ vdt_cluster_corner_box(const struct vdt_cluster *c, struct vdt_bbox *box)
 }
 
 static int
-add_batch(struct vdt_cluster *c, const double *tri, size_t n, double *lo, double *hi,
-          struct vdt_err *err)
+add_batch(struct vdt_cluster *c, const double *tri, const uint32_t *ids, size_t n, double *lo,
+          double *hi, struct vdt_err *err)
 {
 	for (size_t t = 0; t < n; t++, c->added++) {
 		const double *p[3] = {tri + 9 * t, tri + 9 * t + 3, tri + 9 * t + 6};
@@ -805,7 +825,7 @@ add_batch(struct vdt_cluster *c, const double *tri, size_t n, double *lo, double
 		 * an edge of length 0 is no edge. Flat faces count: they use
 		 * their edges as much as any. */
 		for (int j = 0; j < 3; j++)
-			ph[j] = point_hash(p[j]);
+			ph[j] = ids ? vertex_hash(c, ids[3 * t + j], p[j]) : point_hash(p[j]);
 		for (int j = 0; j < 3; j++)
 			eh[j] = ph[j] == ph[(j + 1) % 3] ? 0 : edge_hash(ph[j], ph[(j + 1) % 3]);
 
@@ -902,8 +922,15 @@ add_batch(struct vdt_cluster *c, const double *tri, size_t n, double *lo, double
 int
 vdt_cluster_add(struct vdt_cluster *c, const double *tri, size_t n, struct vdt_err *err)
 {
+	return vdt_cluster_add_ids(c, tri, NULL, n, err);
+}
+
+int
+vdt_cluster_add_ids(struct vdt_cluster *c, const double *tri, const uint32_t *ids, size_t n,
+                    struct vdt_err *err)
+{
 	double lo[3] = {c->lo[0], c->lo[1], c->lo[2]}, hi[3] = {c->hi[0], c->hi[1], c->hi[2]};
-	int rc = add_batch(c, tri, n, lo, hi, err);
+	int rc = add_batch(c, tri, ids, n, lo, hi, err);
 
 	memcpy(c->lo, lo, sizeof(lo));
 	memcpy(c->hi, hi, sizeof(hi));
@@ -1103,18 +1130,22 @@ vdt_cluster_scan(struct vdt_cluster *c, struct vdt_tsource *ts, const struct vdt
                  struct vdt_err *err)
 {
 	double *buf = malloc(9 * BATCH * sizeof(*buf));
+	uint32_t *ids = vdt_tsource_indexed(ts) ? malloc(3 * BATCH * sizeof(*ids)) : NULL;
 	size_t n;
 	int rc;
 
-	if (buf == NULL)
+	if (buf == NULL || (ids == NULL && vdt_tsource_indexed(ts))) {
+		free(buf);
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	}
 	vdt_tsource_rewind(ts);
-	while ((rc = vdt_tsource_triangles(ts, buf, BATCH, &n, err)) == 0 && n > 0) {
-		if ((rc = vdt_cluster_add(c, buf, n, err)) != 0)
+	while ((rc = vdt_tsource_triangles_ids(ts, buf, ids, BATCH, &n, err)) == 0 && n > 0) {
+		if ((rc = vdt_cluster_add_ids(c, buf, ids, n, err)) != 0)
 			break;
 		vdt_progress_report(p, "clustering", vdt_tsource_fraction(ts));
 	}
 	free(buf);
+	free(ids);
 	return rc;
 }
 

@@ -130,6 +130,15 @@ int vdt_cluster_new(struct vdt_cluster **c, const struct vdt_cluster_grid *g,
 int vdt_cluster_add(struct vdt_cluster *c, const double *tri, size_t n,
                     struct vdt_err *err);
 
+/*
+ * vdt_cluster_add with each corner's vertex number, ids[3 t + j], from a
+ * source that numbers its vertices (the same number always the same
+ * position), so that a vertex's boundary hash is computed once for its
+ * faces; the result is vdt_cluster_add's. ids NULL: vdt_cluster_add.
+ */
+int vdt_cluster_add_ids(struct vdt_cluster *c, const double *tri, const uint32_t *ids, size_t n,
+                        struct vdt_err *err);
+
 struct vdt_cluster_stats {
 	uint64_t triangles_in;
 	size_t cells;          /* occupied cells */

@@ -374,7 +374,8 @@ ply_next_face(struct vdt_tsource *s, struct vdt_err *err)
 }
 
 static int
-ply_triangles(struct vdt_tsource *s, double *tri, size_t max, size_t *n, struct vdt_err *err)
+ply_triangles(struct vdt_tsource *s, double *tri, uint32_t *ids, size_t max, size_t *n,
+              struct vdt_err *err)
 {
 	size_t k = 0;
 	int rc;
@@ -394,6 +395,11 @@ ply_triangles(struct vdt_tsource *s, double *tri, size_t max, size_t *n, struct 
 			ply_corner(s, a, tri + 9 * k);
 			ply_corner(s, b, tri + 9 * k + 3);
 			ply_corner(s, c, tri + 9 * k + 6);
+			if (ids) {
+				ids[3 * k] = a;
+				ids[3 * k + 1] = b;
+				ids[3 * k + 2] = c;
+			}
 			s->fcur += 13;
 			s->fidx++;
 			k++;
@@ -417,6 +423,8 @@ ply_triangles(struct vdt_tsource *s, double *tri, size_t max, size_t *n, struct 
 				if (v[j] < 0 || (uint64_t)v[j] >= s->vcount)
 					return bad_index(s, v[j], err);
 				ply_corner(s, (uint64_t)v[j], tri + 9 * k + 3 * j);
+				if (ids)
+					ids[3 * k + j] = (uint32_t)v[j];
 			}
 			k++;
 			if (++s->poly_k == s->poly_n) {
@@ -743,7 +751,8 @@ vdt_vertices(struct vdt_tsource *s, double *xyz, size_t max, size_t *n, struct v
 }
 
 static int
-vdt_triangles(struct vdt_tsource *s, double *tri, size_t max, size_t *n, struct vdt_err *err)
+vdt_triangles(struct vdt_tsource *s, double *tri, uint32_t *ids, size_t max, size_t *n,
+              struct vdt_err *err)
 {
 	size_t k = 0;
 
@@ -756,6 +765,8 @@ vdt_triangles(struct vdt_tsource *s, double *tri, size_t max, size_t *n, struct 
 				                   " of %" PRIu64, s->tcur, v, s->vcount);
 			for (int a = 0; a < 3; a++)
 				tri[9 * k + 3 * j + a] = vdt_get_f32le(r + 4 * a);
+			if (ids)
+				ids[3 * k + j] = v;
 		}
 	}
 	*n = k;
@@ -968,20 +979,36 @@ int
 vdt_tsource_triangles(struct vdt_tsource *ts, double *tri, size_t max, size_t *n,
                       struct vdt_err *err)
 {
+	return vdt_tsource_triangles_ids(ts, tri, NULL, max, n, err);
+}
+
+int
+vdt_tsource_indexed(const struct vdt_tsource *ts)
+{
+	return ts->kind != K_STL;
+}
+
+int
+vdt_tsource_triangles_ids(struct vdt_tsource *ts, double *tri, uint32_t *ids, size_t max,
+                          size_t *n, struct vdt_err *err)
+{
 	size_t k = 0;
 
 	*n = 0;
 	switch (ts->kind) {
-	case K_PLY: return ply_triangles(ts, tri, max, n, err);
+	case K_PLY: return ply_triangles(ts, tri, ids, max, n, err);
 	case K_STL: return stl_triangles(ts, tri, max, n, 0, err);
 	case K_OBJ:
-	case K_VDT: return vdt_triangles(ts, tri, max, n, err);
+	case K_VDT: return vdt_triangles(ts, tri, ids, max, n, err);
 	case K_MESH:
 		for (; k < max && ts->tcur < ts->mesh.triangle_count; k++, ts->tcur++)
 			for (int j = 0; j < 3; j++) {
-				const float *p = ts->mesh.positions + 3 * (size_t)ts->mesh.triangles[3 * ts->tcur + j];
+				uint32_t v = ts->mesh.triangles[3 * ts->tcur + j];
+				const float *p = ts->mesh.positions + 3 * (size_t)v;
 				for (int a = 0; a < 3; a++)
 					tri[9 * k + 3 * j + a] = p[a];
+				if (ids)
+					ids[3 * k + j] = v;
 			}
 		*n = k;
 		return 0;

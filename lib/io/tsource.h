@@ -100,6 +100,20 @@ int vdt_tsource_triangles(struct vdt_tsource *ts, double *tri, size_t max,
                           size_t *n, struct vdt_err *err);
 
 /*
+ * Whether the source numbers its vertices (all but binary STL, a soup):
+ * then vdt_tsource_triangles_ids gives each corner's vertex number.
+ */
+int vdt_tsource_indexed(const struct vdt_tsource *ts);
+
+/*
+ * vdt_tsource_triangles, and, from an indexed source, the vertex number of
+ * each corner into ids[3 k + j] (which must hold 3 * max; NULL: none). The
+ * same number is always the same position.
+ */
+int vdt_tsource_triangles_ids(struct vdt_tsource *ts, double *tri, uint32_t *ids, size_t max,
+                              size_t *n, struct vdt_err *err);
+
+/*
  * Append to c a copy of every chunk of a vdt stream input that a tool
  * making new vertices passes on (vdt(5), Pass-through): all but the MESH
  * chunk and those describing its vertices, in the order read. Nothing for

@@ -752,6 +752,53 @@ ply_with(const char *line, int nv, size_t *len)
 }
 
 /*
+ * Corners given with their vertex numbers (an indexed source) cluster as
+ * without: the cube without its top, each corner its own cell, keeps its
+ * 4 rim cells, and the same rows come out. The numbers are multiples of
+ * 4096, so that all fall on one entry of the cache of hashes, which must
+ * tell them apart.
+ */
+static void
+vertex_numbers_change_nothing(void **state)
+{
+	static const double v[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+	                               {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+	static const uint32_t f[10][3] = {{0, 2, 1}, {0, 3, 2}, {0, 1, 5}, {0, 5, 4}, {1, 2, 6},
+	                                  {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+	struct vdt_bbox box = {{0, 0, 0}, {1, 1, 1}};
+	uint32_t d2[3] = {2, 2, 2}, ids[30];
+	struct vdt_cluster_grid g;
+	struct vdt_cluster_stats st[2];
+	struct vdt_mesh m[2];
+	uint8_t *border[2];
+	double t[10 * 9];
+
+	(void)state;
+	for (int i = 0; i < 10; i++) {
+		put_tri(t + 9 * i, v[f[i][0]], v[f[i][1]], v[f[i][2]]);
+		for (int j = 0; j < 3; j++)
+			ids[3 * i + j] = f[i][j] * 4096;
+	}
+	for (int k = 0; k < 2; k++) {
+		struct vdt_cluster *c;
+		assert_int_equal(vdt_cluster_grid_dims(&box, d2, &g, NULL), 0);
+		assert_int_equal(vdt_cluster_new(&c, &g, 0, NULL), 0);
+		assert_int_equal(vdt_cluster_add_ids(c, t, k ? ids : NULL, 10, NULL), 0);
+		assert_int_equal(vdt_cluster_finish(c, &m[k], NULL, &border[k], &st[k], NULL), 0);
+		vdt_cluster_free(c);
+	}
+	assert_int_equal(st[0].boundary_cells, 4);
+	assert_int_equal(st[1].boundary_cells, 4);
+	assert_int_equal(m[1].vertex_count, m[0].vertex_count);
+	assert_memory_equal(border[1], border[0], m[0].vertex_count);
+	assert_memory_equal(m[1].positions, m[0].positions, 3 * m[0].vertex_count * sizeof(float));
+	for (int k = 0; k < 2; k++) {
+		free(border[k]);
+		vdt_mesh_free(&m[k]);
+	}
+}
+
+/*
  * The clustering keeps the box of the corners it was given, to the bit:
  * the unused vertex 4 is not in it.
  */
@@ -900,6 +947,7 @@ main(void)
 		cmocka_unit_test(outside_the_grid),
 		cmocka_unit_test(header_box),
 		cmocka_unit_test(corner_box),
+		cmocka_unit_test(vertex_numbers_change_nothing),
 		cmocka_unit_test(header_box_never_changes_the_result),
 		cmocka_unit_test(ply_ends_on_a_list_count),
 	};
