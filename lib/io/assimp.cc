@@ -78,30 +78,38 @@ key_before(const K *keys, unsigned n, double t)
 	return lo;
 }
 
-aiVector3D
-vector_at(const aiVectorKey *k, unsigned n, double t, const aiVector3D &dflt)
+/* The value of keys k[0..n) at time t: the key's at or before the first,
+ * after the last and on a key, else mix of the two around t and how far
+ * along; dflt without keys. */
+template <class K, class V, class Mix>
+V
+value_at(const K *k, unsigned n, double t, const V &dflt, Mix mix)
 {
 	if (n == 0)
 		return dflt;
 	unsigned i = key_before(k, n, t);
 	if (i + 1 >= n || t <= k[i].mTime)
 		return k[i].mValue;
-	double f = (t - k[i].mTime) / (k[i + 1].mTime - k[i].mTime);
-	return k[i].mValue + (k[i + 1].mValue - k[i].mValue) * (ai_real)f;
+	return mix(k[i].mValue, k[i + 1].mValue,
+	           (ai_real)((t - k[i].mTime) / (k[i + 1].mTime - k[i].mTime)));
+}
+
+aiVector3D
+vector_at(const aiVectorKey *k, unsigned n, double t, const aiVector3D &dflt)
+{
+	return value_at(k, n, t, dflt, [](const aiVector3D &a, const aiVector3D &b, ai_real f) {
+		return a + (b - a) * f;
+	});
 }
 
 aiQuaternion
 rotation_at(const aiQuatKey *k, unsigned n, double t, const aiQuaternion &dflt)
 {
-	if (n == 0)
-		return dflt;
-	unsigned i = key_before(k, n, t);
-	if (i + 1 >= n || t <= k[i].mTime)
-		return k[i].mValue;
-	double f = (t - k[i].mTime) / (k[i + 1].mTime - k[i].mTime);
-	aiQuaternion q;
-	aiQuaternion::Interpolate(q, k[i].mValue, k[i + 1].mValue, (ai_real)f);
-	return q.Normalize();
+	return value_at(k, n, t, dflt, [](const aiQuaternion &a, const aiQuaternion &b, ai_real f) {
+		aiQuaternion q;
+		aiQuaternion::Interpolate(q, a, b, f);
+		return q.Normalize();
+	});
 }
 
 /* Every node's global transform at time t of animation a (or at bind
