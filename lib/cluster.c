@@ -706,21 +706,16 @@ cell_id_cached(struct vdt_cluster *c, uint64_t key, struct vdt_err *err)
 }
 
 /*
- * A position's hash, from the bits of its coordinates as floats (-0 taken
- * as 0: the same point; two doubles a float apart are one point here,
- * which no boundary tells apart): x and y side by side, z multiplied in,
- * then mixed.
+ * A position's hash, as welding takes it (vdt_hash_position) of its
+ * coordinates as floats: two doubles a float apart are one point here,
+ * which no boundary tells apart.
  */
 static inline uint64_t
 point_hash(const double *p)
 {
-	uint32_t b[3];
+	const float f[3] = {(float)p[0], (float)p[1], (float)p[2]};
 
-	for (int k = 0; k < 3; k++) {
-		float x = (float)p[k] + 0.0f;
-		memcpy(&b[k], &x, sizeof(b[k]));
-	}
-	return vdt_hash_mix(((uint64_t)b[0] << 32 | b[1]) ^ (uint64_t)b[2] * 0x9E3779B97F4A7C15ull);
+	return vdt_hash_position(f);
 }
 
 /* point_hash of corner p, vertex v of an indexed source, through the

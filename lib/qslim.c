@@ -255,19 +255,6 @@ hash_free(struct hash *h)
 	free(h->val);
 }
 
-/* The hash key of a position, -0 as +0. */
-static uint64_t
-weld_key(const float *p)
-{
-	uint32_t x[3];
-
-	memcpy(x, p, sizeof(x));
-	for (int k = 0; k < 3; k++)
-		if (x[k] == 0x80000000u)
-			x[k] = 0; /* -0 welds with +0 */
-	return vdt_hash_mix(((uint64_t)x[0] << 32 | x[1]) ^ vdt_hash_mix(x[2]));
-}
-
 #define WELD_AHEAD 16 /* positions */
 
 /*
@@ -288,11 +275,11 @@ weld(const struct vdt_mesh *m, uint32_t *canon, uint32_t *first)
 	for (size_t i = 0; i < m->vertex_count; i++) {
 		/* the slot of a position further on is on its way meanwhile */
 		if (i + WELD_AHEAD < m->vertex_count) {
-			size_t a = vdt_hash_mix(weld_key(m->positions + 3 * (i + WELD_AHEAD))) & h.mask;
+			size_t a = vdt_hash_mix(vdt_hash_position(m->positions + 3 * (i + WELD_AHEAD))) & h.mask;
 			__builtin_prefetch(&h.key[a], 1);
 			__builtin_prefetch(&h.val[a], 1);
 		}
-		uint64_t key = weld_key(m->positions + 3 * i);
+		uint64_t key = vdt_hash_position(m->positions + 3 * i);
 		/* Chain on full equality: probe until a slot with equal
 		 * position or an empty one. */
 		size_t s = vdt_hash_mix(key) & h.mask;
