@@ -469,6 +469,35 @@ vdt_chunks_drop_vertex_data(struct vdt_chunks *c)
 }
 
 int
+vdt_chunk_order_next(struct vdt_chunk_order *o, uint32_t type, uint64_t offset,
+                     struct vdt_err *err)
+{
+	char name[5];
+
+	vdt_chunk_name(type, name);
+	if (type == VDT_CHUNK_MESH) {
+		if (o->mesh)
+			return vdt_err_set(err, VDT_EFORMAT, "second MESH chunk at offset %llu",
+			                   (unsigned long long)offset);
+		o->mesh = 1;
+	}
+	for (size_t i = 0; i < sizeof(vertex_types) / sizeof(vertex_types[0]); i++) {
+		if (vertex_types[i] != type)
+			continue;
+		/* another would be silently lost */
+		if (!o->mesh)
+			return vdt_err_set(err, VDT_EFORMAT,
+			                   "chunk %s at offset %llu comes before the MESH chunk", name,
+			                   (unsigned long long)offset);
+		if (o->seen & 1u << i)
+			return vdt_err_set(err, VDT_EFORMAT, "second %s chunk at offset %llu", name,
+			                   (unsigned long long)offset);
+		o->seen |= 1u << i;
+	}
+	return 0;
+}
+
+int
 vdt_chunk_type_of_vertices(uint32_t type)
 {
 	for (size_t i = 0; i < sizeof(vertex_types) / sizeof(vertex_types[0]); i++)

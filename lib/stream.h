@@ -156,6 +156,20 @@ void vdt_chunks_drop_vertex_data(struct vdt_chunks *c);
 int vdt_chunk_type_of_vertices(uint32_t type);
 
 /*
+ * The order a reader takes chunks in (vdt(5), Reading): one MESH chunk,
+ * and after it at most one chunk of each type that describes its
+ * vertices. Zero the struct, then give it each chunk's type and offset in
+ * the order read: 0, or VDT_EFORMAT naming the chunk ("second MESH chunk
+ * at offset 92", "chunk QUAD at offset 12 comes before the MESH chunk").
+ */
+struct vdt_chunk_order {
+	int mesh;      /* a MESH chunk was met */
+	unsigned seen; /* the chunk types of the vertices met, by bit */
+};
+int vdt_chunk_order_next(struct vdt_chunk_order *o, uint32_t type, uint64_t offset,
+                         struct vdt_err *err);
+
+/*
  * Chunk-at-a-time writing: vdt_stream_write_header once, then
  * vdt_stream_write_chunk per chunk, then vdt_stream_write_end (which also
  * flushes f). They return 0 or VDT_EIO; vdt_stream_write_chunk returns

@@ -260,44 +260,22 @@ read_stream(const unsigned char *buf, size_t len, struct vdt_mesh *m,
             struct vdt_chunks *extra, struct vdt_err *err)
 {
 	struct vdt_chunks c = {0};
+	struct vdt_chunk_order order = {0};
 	size_t mesh_at = SIZE_MAX;
 	int rc;
 
 	rc = vdt_stream_decode(buf, len, &c, err);
 	if (rc != 0)
 		return rc;
-	for (size_t i = 0; i < c.count; i++)
-		if (c.items[i].type == VDT_CHUNK_MESH) {
-			if (mesh_at != SIZE_MAX) {
-				rc = vdt_err_set(err, VDT_EFORMAT, "second MESH chunk at offset %llu",
-				                 (unsigned long long)c.items[i].offset);
-				goto fail;
-			}
+	for (size_t i = 0; i < c.count; i++) {
+		if ((rc = vdt_chunk_order_next(&order, c.items[i].type, c.items[i].offset, err)) != 0)
+			goto fail;
+		if (c.items[i].type == VDT_CHUNK_MESH)
 			mesh_at = i;
-		}
+	}
 	if (mesh_at == SIZE_MAX) {
 		rc = vdt_err_set(err, VDT_EFORMAT, "stream has no MESH chunk");
 		goto fail;
-	}
-	/* A chunk of the vertices describes the MESH chunk before it, and
-	 * there is one of each type: another would be silently lost. */
-	for (size_t i = 0; i < c.count; i++) {
-		uint32_t ty = c.items[i].type;
-		char name[5];
-		if (!vdt_chunk_type_of_vertices(ty))
-			continue;
-		vdt_chunk_name(ty, name);
-		if (i < mesh_at) {
-			rc = vdt_err_set(err, VDT_EFORMAT, "chunk %s at offset %llu comes before the MESH chunk",
-			                 name, (unsigned long long)c.items[i].offset);
-			goto fail;
-		}
-		for (size_t j = mesh_at + 1; j < i; j++)
-			if (c.items[j].type == ty) {
-				rc = vdt_err_set(err, VDT_EFORMAT, "second %s chunk at offset %llu", name,
-				                 (unsigned long long)c.items[i].offset);
-				goto fail;
-			}
 	}
 	rc = vdt_mesh_decode(c.items[mesh_at].data, c.items[mesh_at].length, m, err);
 	if (rc != 0) {

@@ -628,8 +628,7 @@ vdt_open(struct vdt_tsource *s, struct vdt_err *err)
 {
 	const unsigned char *mesh = NULL;
 	uint64_t at = VDT_STREAM_HEADER_LEN, mesh_len = 0, mesh_at = 0;
-	uint32_t seen[16]; /* the chunk types of the vertices met */
-	size_t nseen = 0;
+	struct vdt_chunk_order order = {0};
 	int rc;
 
 	if ((rc = vdt_stream_header_check(s->buf, s->len, err)) != 0)
@@ -675,19 +674,8 @@ vdt_open(struct vdt_tsource *s, struct vdt_err *err)
 				                   PRIu64, (uint64_t)(s->len - at - 16), at + 16);
 			break;
 		}
-		if (type == VDT_CHUNK_MESH && mesh != NULL)
-			return vdt_err_set(err, VDT_EFORMAT, "second MESH chunk at offset %" PRIu64, at);
-		/* as vdt_read takes them: after MESH, one of each type */
-		if (vdt_chunk_type_of_vertices(type)) {
-			if (mesh == NULL)
-				return vdt_err_set(err, VDT_EFORMAT,
-				                   "chunk %s at offset %" PRIu64 " comes before the MESH chunk", name, at);
-			for (size_t i = 0; i < nseen; i++)
-				if (seen[i] == type)
-					return vdt_err_set(err, VDT_EFORMAT, "second %s chunk at offset %" PRIu64, name, at);
-			if (nseen < sizeof(seen) / sizeof(seen[0]))
-				seen[nseen++] = type;
-		}
+		if ((rc = vdt_chunk_order_next(&order, type, at, err)) != 0)
+			return rc; /* as vdt_read takes them */
 		if (type != VDT_CHUNK_MESH && !vdt_chunk_type_of_vertices(type)) {
 			uint64_t *p = realloc(s->pass, (s->npass + 1) * sizeof(*p));
 			if (p == NULL)
