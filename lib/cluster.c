@@ -758,17 +758,6 @@ add_edge_normal(struct cell *cl, const double *u, const double *v, const double 
 }
 
 int
-vdt_cluster_outside(const struct vdt_cluster *c)
-{
-	/* in cell units as key_of has them: rounding keeps the order */
-	for (int k = 0; k < 3; k++)
-		if (c->added > 0 && ((c->lo[k] - c->g.origin[k]) * c->inv[k] < 0 ||
-		                     (c->hi[k] - c->g.origin[k]) * c->inv[k] > c->g.dims[k]))
-			return 1;
-	return 0;
-}
-
-int
 vdt_cluster_corner_box(const struct vdt_cluster *c, struct vdt_bbox *box)
 {
 	for (int k = 0; k < 3; k++) {
@@ -1124,12 +1113,13 @@ int
 vdt_cluster_scan(struct vdt_cluster *c, struct vdt_tsource *ts, const struct vdt_progress *p,
                  struct vdt_err *err)
 {
+	int indexed = vdt_tsource_indexed(ts);
 	double *buf = malloc(9 * BATCH * sizeof(*buf));
-	uint32_t *ids = vdt_tsource_indexed(ts) ? malloc(3 * BATCH * sizeof(*ids)) : NULL;
+	uint32_t *ids = indexed ? malloc(3 * BATCH * sizeof(*ids)) : NULL;
 	size_t n;
 	int rc;
 
-	if (buf == NULL || (ids == NULL && vdt_tsource_indexed(ts))) {
+	if (buf == NULL || (indexed && ids == NULL)) {
 		free(buf);
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
 	}

@@ -168,13 +168,6 @@ int vdt_cluster_finish(struct vdt_cluster *c, struct vdt_mesh *out,
                        struct vdt_cluster_stats *stats, struct vdt_err *err);
 
 /*
- * 1 if a corner added so far lay outside the grid (it went to the nearest
- * cell): the grid was made for a box that does not hold the input, such as
- * one a file header claimed.
- */
-int vdt_cluster_outside(const struct vdt_cluster *c);
-
-/*
  * The box of the corners added so far, exactly (the same doubles), into
  * *box: 1, or 0 when none was added.
  */

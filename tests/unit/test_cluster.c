@@ -637,38 +637,6 @@ memory_limit(void **state)
 	vdt_cluster_free(c);
 }
 
-/*
- * A corner outside the grid goes to the nearest cell, and the clustering
- * says so (vdt-cluster then measures the box a header claimed); the far
- * faces of the grid are inside.
- */
-static void
-outside_the_grid(void **state)
-{
-	double a[3] = {0.5, 0.5, 0}, b[3] = {2, 0.5, 0}, d[3] = {0.5, 2, 0}, t[9];
-	struct vdt_cluster_grid g;
-	struct vdt_cluster *c;
-
-	(void)state;
-	grid22(&g);
-	put_tri(t, a, b, d);
-	assert_int_equal(vdt_cluster_new(&c, &g, 0, NULL), 0);
-	assert_int_equal(vdt_cluster_add(c, t, 1, NULL), 0);
-	assert_int_equal(vdt_cluster_outside(c), 0);
-	for (int k = 0; k < 2; k++) {
-		for (double x = -0.25; x < 3; x += 2.75) {
-			double e[3] = {0.5, 0.5, 0};
-			e[k] = x;
-			put_tri(t, a, b, e);
-			vdt_cluster_free(c);
-			assert_int_equal(vdt_cluster_new(&c, &g, 0, NULL), 0);
-			assert_int_equal(vdt_cluster_add(c, t, 1, NULL), 0);
-			assert_int_equal(vdt_cluster_outside(c), 1);
-		}
-	}
-	vdt_cluster_free(c);
-}
-
 /* The "comment bbox" of a PLY header, only when it is six ordered numbers. */
 static void
 header_box(void **state)
@@ -944,7 +912,6 @@ main(void)
 		cmocka_unit_test(ply_any_layout),
 		cmocka_unit_test(memory_limit),
 		cmocka_unit_test(non_finite_corners),
-		cmocka_unit_test(outside_the_grid),
 		cmocka_unit_test(header_box),
 		cmocka_unit_test(corner_box),
 		cmocka_unit_test(vertex_numbers_change_nothing),
