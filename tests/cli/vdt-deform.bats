@@ -495,3 +495,22 @@ PY
 	one_line
 	[[ "$output" == *"--fps chooses how a skinned model"* ]]
 }
+
+@test "vdt-deform --animation: empty, without a skinned model, or of no bone, is refused" {
+	run "$BIN/vdt-deform" --animation '' -r 0.5 "$SAMPLES/torus.off" -o "$TMP/t.off"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"--animation wants a name or a number"* ]]
+	run "$BIN/vdt-deform" --animation 0 -r 0.5 "$SAMPLES/torus.off" -o "$TMP/t.off"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"--animation chooses how a skinned model"* ]]
+	# a glTF whose one animation moves morph weights, not bones
+	MORPH=/usr/share/assimp/models/glTF2/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf
+	[ -r "$MORPH" ] || skip "assimp-testmodels is not installed"
+	run "$BIN/vdt-deform" --animation 0 -r 0.5 "$MORPH" -o "$TMP/m.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"animation '0' moves no bone" ]]
+	[ ! -e "$TMP/m.vdt" ] && [ ! -e "$TMP/t.off" ]
+}

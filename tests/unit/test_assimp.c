@@ -78,18 +78,25 @@ static const float arm_frames[3][9][3] = {
 	 {1.5f, 0.5f, 0}, {1, 2, 0}, {2, 1, 0}},
 };
 
-/* text into a new file named like "/tmp/vdt-assimp-XXXXXX.smd"; the name */
+/* text into a new file named like "/tmp/vdt-assimp-XXXXXX.smd" (or with
+ * another suffix); the name */
 static char *
-write_temp(const char *text)
+write_temp_as(const char *text, const char *suffix)
 {
 	static char name[64];
-	strcpy(name, "/tmp/vdt-assimp-XXXXXX.smd");
-	int fd = mkstemps(name, 4);
+	snprintf(name, sizeof(name), "/tmp/vdt-assimp-XXXXXX%s", suffix);
+	int fd = mkstemps(name, (int)strlen(suffix));
 	assert_true(fd >= 0);
 	size_t n = strlen(text);
 	assert_int_equal(write(fd, text, n), (ssize_t)n);
 	close(fd);
 	return name;
+}
+
+static char *
+write_temp(const char *text)
+{
+	return write_temp_as(text, ".smd");
 }
 
 /* Frame f of fr is want, to float rounding. */
@@ -230,6 +237,24 @@ refuses_what_is_no_animated_mesh(void **state)
 	strcpy(nan_smd + (at - arm_smd), "1 nan");
 	strcat(nan_smd, at + 3);
 	expect_error(nan_smd, VDT_EINVAL, "frame 0: vertex 4 has a non-finite coordinate");
+	/* 10000 frames a second over 5000 ticks at 25 a second: 2 million */
+	struct vdt_bake_opts fast = {NULL, 10000};
+	struct vdt_mesh m;
+	struct vdt_frames fr;
+	struct vdt_err err = {0};
+	char *path = write_temp("version 1\nnodes\n0 \"root\" -1\nend\nskeleton\ntime 0\n"
+	                        "0 0 0 0 0 0 0\ntime 5000\n0 1 0 0 0 0 0\nend\ntriangles\nmat\n"
+	                        "0 0 0 0 0 0 1 0 0\n0 1 0 0 0 0 1 0 0\n0 0 1 0 0 0 1 0 0\nend\n");
+	assert_int_equal(vdt_assimp_read(path, &fast, &m, &fr, &err), VDT_EINVAL);
+	unlink(path);
+	assert_string_equal(err.msg, "10000 frames a second of animation '' make 2e+06 frames, "
+	                             "more than a million");
+	/* a glTF of three points */
+	path = write_temp_as("{\"asset\": {\"version\": \"2.0\"}, \"scene\": 0, \"scenes\": [{\"nodes\": [0]}], \"nodes\": [{\"mesh\": 0}], \"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": 0}, \"mode\": 0}]}], \"buffers\": [{\"byteLength\": 36, \"uri\": \"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA\"}], \"bufferViews\": [{\"buffer\": 0, \"byteLength\": 36}], \"accessors\": [{\"bufferView\": 0, \"componentType\": 5126, \"count\": 3, \"type\": \"VEC3\", \"min\": [0, 0, 0], \"max\": [1, 1, 0]}]}", ".gltf");
+	assert_int_equal(vdt_assimp_read(path, NULL, &m, &fr, &err), VDT_EINVAL);
+	unlink(path);
+	assert_string_equal(err.msg, "has no triangles");
+	assert_null(m.positions);
 	/* a skeleton alone, which Assimp would draw as a mesh of its own */
 	expect_error("version 1\nnodes\n0 \"root\" -1\nend\nskeleton\ntime 0\n0 0 0 0 0 0 0\nend\n",
 	             VDT_EINVAL, "has no mesh");
