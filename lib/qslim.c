@@ -526,6 +526,18 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 		return -1;
 	vdt_topo_drop_repeats(w->triangles, nt, start, fan, dead);
 
+	/*
+	 * Section 3.3: phase I's quadrics, the planes of the input inside each
+	 * cell, stand for the faces'. They say where the input is, not what a
+	 * contraction changes of the intermediate: a cell's patch of the input
+	 * is not the fan of faces around its vertex (a cell that clips the
+	 * surface at a corner holds a sliver of it, its vertex a full fan),
+	 * and the planes of detail finer than a cell stay in its sum. Where
+	 * phase II removes a small part of the vertices, the intermediate's
+	 * own face quadrics foresee a contraction's error better; the coupling
+	 * pays where phase II does most of the work, as section 3.4's four
+	 * times as many intermediate vertices as output ones has it.
+	 */
 	if (o->quadrics) {
 		for (size_t i = 0; i < nin; i++) {
 			struct vdt_quadric q = o->quadrics[i];
