@@ -81,6 +81,7 @@ struct vdt_cluster {
 	size_t thmask;
 
 	uint64_t added;
+	uint64_t solid; /* triangles added with an area */
 	/* The box of the corners added so far, exactly: the grid is made for
 	 * it (vdt_cluster_source). */
 	double lo[3], hi[3];
@@ -144,7 +145,7 @@ vdt_cluster_grid_size(const struct vdt_bbox *box, double size, struct vdt_cluste
 			n += 1;
 		if (n > VDT_CLUSTER_MAX_DIM - 1)
 			return vdt_err_set(err, VDT_EINVAL,
-			                   "cell size %g makes %.0f cells along an axis: at most %u",
+			                   "cell size %g makes %.6g cells along an axis: at most %u",
 			                   size, n, VDT_CLUSTER_MAX_DIM - 1);
 		g->dims[k] = (uint32_t)n;
 		g->cell[k] = size;
@@ -226,37 +227,60 @@ hash64(uint64_t k, size_t mask)
 	return (size_t)k & mask;
 }
 
-/* A set of keys, for the sampler. */
+/*
+ * A set of keys, for the sampler. It starts small and doubles at half
+ * load: the sampler's cap can be far above the cells a small input
+ * occupies (-m 1000000 on a thousand triangles), and a table made for the
+ * cap up front was then terabytes, or gigabytes to sweep.
+ */
 struct keyset {
 	uint64_t *slot; /* key + 1 */
 	size_t mask, count;
 };
 
 static int
-keyset_init(struct keyset *s, size_t cap)
+keyset_init(struct keyset *s)
 {
-	size_t n = 1024;
-
-	while (n < 2 * cap)
-		n *= 2;
-	s->slot = calloc(n, sizeof(*s->slot));
-	s->mask = n - 1;
+	s->slot = calloc(1024, sizeof(*s->slot));
+	s->mask = 1023;
 	s->count = 0;
 	return s->slot ? 0 : -1;
 }
 
-static void
+/* Put key in the table slot/mask, which has room: 1 if it was not there. */
+static int
+keyset_insert(uint64_t *slot, size_t mask, uint64_t key)
+{
+	size_t i = hash64(key, mask);
+
+	while (slot[i] != 0) {
+		if (slot[i] == key + 1)
+			return 0;
+		i = (i + 1) & mask;
+	}
+	slot[i] = key + 1;
+	return 1;
+}
+
+/* Add key, doubling the table at half load; 0, or -1 out of memory. */
+static int
 keyset_put(struct keyset *s, uint64_t key)
 {
-	size_t i = hash64(key, s->mask);
+	if (2 * (s->count + 1) > s->mask + 1) {
+		size_t n = 2 * (s->mask + 1);
+		uint64_t *slot = n > SIZE_MAX / sizeof(*slot) ? NULL : calloc(n, sizeof(*slot));
 
-	while (s->slot[i] != 0) {
-		if (s->slot[i] == key + 1)
-			return;
-		i = (i + 1) & s->mask;
+		if (slot == NULL)
+			return -1;
+		for (size_t j = 0; j <= s->mask; j++)
+			if (s->slot[j] != 0)
+				keyset_insert(slot, n - 1, s->slot[j] - 1);
+		free(s->slot);
+		s->slot = slot;
+		s->mask = n - 1;
 	}
-	s->slot[i] = key + 1;
-	s->count++;
+	s->count += (size_t)keyset_insert(s->slot, s->mask, key);
+	return 0;
 }
 
 /* ---- occupancy sampling (section 3.4) ------------------------------------ */
@@ -291,7 +315,7 @@ vdt_cluster_sampler_new(struct vdt_cluster_sampler **sp, const struct vdt_bbox *
 	}
 	s->side = longest / SAMPLE_FINEST * (1 + 1e-9);
 	s->cap = cap < 1024 ? 1024 : cap;
-	if (keyset_init(&s->set, s->cap) != 0) {
+	if (keyset_init(&s->set) != 0) {
 		free(s);
 		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate the sampling grid");
 	}
@@ -319,10 +343,11 @@ sampler_coarsen(struct vdt_cluster_sampler *s)
 	for (size_t i = 0; i < n; i++)
 		if (s->set.slot[i] != 0)
 			copy[m++] = coarser(s->set.slot[i] - 1);
+	/* No more keys than before: the table has room for them. */
 	memset(s->set.slot, 0, n * sizeof(*s->set.slot));
 	s->set.count = 0;
 	for (size_t i = 0; i < m; i++)
-		keyset_put(&s->set, copy[i]);
+		s->set.count += (size_t)keyset_insert(s->set.slot, s->set.mask, copy[i]);
 	free(copy);
 	s->shift++;
 	return 0;
@@ -344,7 +369,8 @@ vdt_cluster_sampler_add(struct vdt_cluster_sampler *s, const double *xyz, size_t
 			uint64_t lim = (SAMPLE_FINEST >> s->shift) - 1;
 			key |= (c > lim ? lim : c) << (k * KEY_BITS);
 		}
-		keyset_put(&s->set, key);
+		if (keyset_put(&s->set, key) != 0)
+			return vdt_err_set(err, VDT_ENOMEM, "out of memory while sampling");
 		s->vertices++;
 		if (s->set.count > s->cap && s->shift < 12) {
 			if (sampler_coarsen(s) != 0)
@@ -557,7 +583,8 @@ cell_id(struct vdt_cluster *c, uint64_t key, struct vdt_err *err)
 		i = (i + 1) & c->hmask;
 	}
 	if (c->max_cells && c->ncells >= c->max_cells) {
-		vdt_err_set(err, VDT_ELIMIT, "more than %zu cells are occupied: over the memory limit (%.0f MB)",
+		vdt_err_set(err, VDT_ELIMIT,
+		            "more than %zu cells are occupied: over the memory limit (%.4g MB)",
 		            c->max_cells, (double)c->max_cells * VDT_CLUSTER_CELL_BYTES / 1048576);
 		return -1;
 	}
@@ -805,6 +832,7 @@ add_batch(struct vdt_cluster *c, const double *tri, const uint32_t *ids, size_t 
 					return vdt_err_set(err, VDT_EINVAL, "triangle %llu: non-finite coordinate",
 					                   (unsigned long long)c->added);
 		flat = !(len > 0);
+		c->solid += !flat;
 		/* The face's edges, for the parity of each cell's (see the top);
 		 * an edge of length 0 is no edge. Flat faces count: they use
 		 * their edges as much as any. */
@@ -944,6 +972,11 @@ vdt_cluster_finish(struct vdt_cluster *c, struct vdt_mesh *out, struct vdt_quadr
 	if (c->finished)
 		return vdt_err_set(err, VDT_EINVAL, "clustering already finished");
 	c->finished = 1;
+	/* No grid makes a surface of these: bad input, not a coarse grid. */
+	if (c->solid == 0)
+		return vdt_err_set(err, VDT_EINVAL,
+		                   c->added ? "every face has zero area"
+		                            : "empty mesh: no triangles");
 	if (c->ntris == 0)
 		return vdt_err_set(err, VDT_ELIMIT,
 		                   "no triangle spans three cells of the %ux%ux%u grid: use a finer grid",
@@ -1169,9 +1202,9 @@ vdt_cluster_choose(const struct vdt_cluster_choice *ch, struct vdt_tsource *ts,
 	est = vdt_cluster_estimate(&smp, longest / cbrt(g->cell[0] * g->cell[1] * g->cell[2]));
 	if (est > ch->max_cells)
 		return vdt_err_set(err, VDT_ELIMIT,
-		                   "grid %ux%ux%u would occupy about %.0f cells (%.0f MB), over the memory limit (%.0f MB)",
-		                   g->dims[0], g->dims[1], g->dims[2], est,
-		                   est * VDT_CLUSTER_CELL_BYTES / 1048576,
+		                   "grid %ux%ux%u would occupy about %.0f cells, over the memory "
+		                   "limit of %zu (%.4g MB)",
+		                   g->dims[0], g->dims[1], g->dims[2], ceil(est), ch->max_cells,
 		                   (double)ch->max_cells * VDT_CLUSTER_CELL_BYTES / 1048576);
 	return 0;
 }
@@ -1207,6 +1240,10 @@ vdt_cluster_source(struct vdt_tsource *ts, const struct vdt_cluster_request *rq,
 	*cp = NULL;
 	*remeasured = 0;
 	*box_seconds = 0;
+	/* Before the box: vertices with no face are no surface, however
+	 * they lie (a line of them is no flat box to complain of). */
+	if ((rc = vdt_tsource_check_empty(ts, err)) != 0)
+		return rc;
 	for (;;) {
 		struct vdt_cluster_choice ch = rq->ch;
 		if (!known) {

@@ -52,7 +52,9 @@ int vdt_cluster_grid_size(const struct vdt_bbox *box, double size,
 /*
  * dims[0] x dims[1] x dims[2] cells exactly covering box; if dims[1] and
  * dims[2] are 0, dims[0] cells along the longest side and cubic cells.
- * An axis along which box is flat gets one cell. VDT_EINVAL as above.
+ * An axis along which box is flat gets one cell then; given three counts,
+ * it keeps its count, its vertices all in one layer of cells. VDT_EINVAL
+ * as above.
  */
 int vdt_cluster_grid_dims(const struct vdt_bbox *box, const uint32_t dims[3],
                           struct vdt_cluster_grid *g, struct vdt_err *err);
@@ -62,7 +64,8 @@ int vdt_cluster_grid_dims(const struct vdt_bbox *box, const uint32_t dims[3],
  * fixed size grid"): the vertices are binned on a cubic grid of up to 4096
  * cells along the longest side, coarsened by halves whenever more than `cap`
  * cells are occupied; then the occupied cells are counted at every coarser
- * power of two. Memory is that of `cap` keys.
+ * power of two. Memory grows with the occupied cells, to that of about
+ * `cap` keys at most, whatever the cap: a generous one costs nothing.
  */
 #define VDT_CLUSTER_LEVELS 13
 struct vdt_cluster_sample {
@@ -160,7 +163,9 @@ struct vdt_cluster_stats {
  * faces use (an open edge, or a non-manifold one of three faces: see
  * cluster.c), so that phase II can tell those open edges of
  * the intermediate from the rims of thin parts flattened into one sheet.
- * Can be called once. Returns 0 or VDT_ENOMEM; an empty result (no triangle
+ * Can be called once. Returns 0 or VDT_ENOMEM; no triangle added, or none
+ * with an area (every vertex on a line, or faces that repeat a point), is
+ * VDT_EINVAL, the input's fault; an empty result otherwise (no triangle
  * spans three cells) is VDT_ELIMIT.
  */
 int vdt_cluster_finish(struct vdt_cluster *c, struct vdt_mesh *out,
@@ -234,7 +239,7 @@ int vdt_cluster_choose(const struct vdt_cluster_choice *ch, struct vdt_tsource *
  * (and, if the pass failed under the claim, on a measured box, silently).
  * So the claim never changes the result. *box_seconds gets the time of
  * the measuring pass (0 if none ran). On failure *cp is NULL; errors are
- * those of the passes.
+ * those of the passes, and first vdt_tsource_check_empty's.
  */
 struct vdt_cluster_request {
 	struct vdt_cluster_choice ch;

@@ -89,8 +89,10 @@ decode_quadrics(const struct vdt_chunks *c, size_t vertex_count, struct vdt_quad
 	*q = NULL;
 	if (ch == NULL)
 		return 0;
-	if ((rc = vdt_quad_decode(ch->data, ch->length, q, &n, err)) != 0)
+	if ((rc = vdt_quad_decode(ch->data, ch->length, q, &n, err)) != 0) {
+		vdt_err_prefix(err, "chunk QUAD"); /* which of the stream's chunks, as for LABL */
 		return rc;
+	}
 	if (n != vertex_count) {
 		free(*q);
 		*q = NULL;
@@ -106,11 +108,14 @@ decode_border(const struct vdt_chunks *c, size_t vertex_count, uint8_t **flags,
               struct vdt_err *err)
 {
 	const struct vdt_chunk *ch = vdt_chunks_find(c, VDT_CHUNK_BNDY);
+	int rc;
 
 	*flags = NULL;
 	if (ch == NULL)
 		return 0;
-	return vdt_bndy_decode(ch->data, ch->length, vertex_count, flags, err);
+	if ((rc = vdt_bndy_decode(ch->data, ch->length, vertex_count, flags, err)) != 0)
+		vdt_err_prefix(err, "chunk BNDY");
+	return rc;
 }
 
 /*
@@ -1667,6 +1672,34 @@ input_lists(const uint32_t *canon, size_t n, size_t nw, uint32_t **start,
 	return 0;
 }
 
+/*
+ * Whether some face of m has an area (its corners' cross product, in
+ * double, is not zero). A mesh with none, all its vertices on a line or
+ * each face repeating a point, is no surface: bad input whatever the
+ * target, and checked before the target can return it unchanged. Stops
+ * at the first such face, which is nearly always the first face.
+ */
+static int
+any_area(const struct vdt_mesh *m)
+{
+	for (size_t t = 0; t < m->triangle_count; t++) {
+		const uint32_t *v = m->triangles + 3 * t;
+		const float *a = m->positions + 3 * (size_t)v[0],
+		            *b = m->positions + 3 * (size_t)v[1],
+		            *c = m->positions + 3 * (size_t)v[2];
+		double e[3], f[3];
+
+		for (int k = 0; k < 3; k++) {
+			e[k] = (double)b[k] - a[k];
+			f[k] = (double)c[k] - a[k];
+		}
+		if (e[1] * f[2] != e[2] * f[1] || e[2] * f[0] != e[0] * f[2] ||
+		    e[0] * f[1] != e[1] * f[0])
+			return 1;
+	}
+	return 0;
+}
+
 /* vdt_qslim with every distance option in model units. */
 static int
 simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
@@ -1713,6 +1746,8 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
 		if (t > target)
 			target = t;
 	}
+	if (T > 0 && !any_area(in))
+		return vdt_err_set(err, VDT_EINVAL, "every face has zero area");
 	if (target >= T) {
 		stats->reached_target = 1;
 		return vdt_mesh_copy(out, in, err);
@@ -1812,7 +1847,14 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
 	stats->dropped = T - live;
 	free(dead);
 	dead = NULL;
-	if (live == 0 && T > 0) { /* not an empty output, later: the input's fault */
+	/* The engine drops the faces that welding left with a repeated
+	 * vertex: live faces that are all such leave none either. */
+	size_t usable = 0;
+	for (size_t t = 0; t < live && usable == 0; t++) {
+		const uint32_t *v = w.triangles + 3 * t;
+		usable = v[0] != v[1] && v[1] != v[2] && v[0] != v[2];
+	}
+	if (usable == 0 && T > 0) { /* not an empty output, later: the input's fault */
 		rc = vdt_err_set(err, VDT_EINVAL,
 		                 "no face is left once repeated and degenerate ones are dropped");
 		goto fail;

@@ -69,7 +69,18 @@ vdt_chunk_type_check(uint32_t type, uint64_t at, struct vdt_err *err)
 int
 vdt_stream_sniff(const unsigned char *buf, size_t n)
 {
-	return n >= 4 && (buf[0] & 0x7f) == 0x09 && memcmp(buf + 1, "VDT", 3) == 0;
+	int same = 0;
+
+	if (n >= 4 && (buf[0] & 0x7f) == 0x09 && memcmp(buf + 1, "VDT", 3) == 0)
+		return 1;
+	/* One of the first four bytes damaged, the next four whole: a damaged
+	 * stream still, not a binary STL (which any bytes of the right size
+	 * are) to be refused in that format's words. */
+	if (n < 8 || memcmp(buf + 4, VDT_STREAM_SIGNATURE + 4, 4) != 0)
+		return 0;
+	for (int i = 0; i < 4; i++)
+		same += buf[i] == (unsigned char)VDT_STREAM_SIGNATURE[i];
+	return same == 3;
 }
 
 /* CRC-32 of the type bytes then the payload, in pieces zlib's uInt holds. */
@@ -156,6 +167,8 @@ bad_signature(const unsigned char *h, size_t n, size_t at, struct vdt_err *err)
 			why = "LF turned into CR LF (copied in text mode)";
 		else
 			why = "damaged vdt signature";
+	} else if (n >= 8 && memcmp(h + 4, VDT_STREAM_SIGNATURE + 4, 4) == 0) {
+		why = "damaged vdt signature";
 	}
 	return vdt_err_set(err, VDT_EFORMAT, "bad signature at byte %zu: %s", at, why);
 }

@@ -65,10 +65,11 @@ void vdt_chunk_name(uint32_t type, char buf[5]);
 
 /*
  * True if the first n bytes of buf look like a vdt stream: they start with
- * 0x89 'V' 'D' 'T' (or 0x09 'V' 'D' 'T', the high bit stripped). Only the
- * first four bytes are looked at, so that a signature damaged by a
- * text-mode transfer is still sent to vdt_stream_decode, which says what
- * happened, rather than reported as an unknown format.
+ * 0x89 'V' 'D' 'T' (or 0x09 'V' 'D' 'T', the high bit stripped), or the
+ * signature's last four bytes follow three of its first four (one of them
+ * damaged). Only the first four bytes are needed, so that a signature
+ * damaged by a text-mode transfer is still sent to vdt_stream_decode,
+ * which says what happened, rather than reported as an unknown format.
  */
 int vdt_stream_sniff(const unsigned char *buf, size_t n);
 

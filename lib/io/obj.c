@@ -299,6 +299,9 @@ read_v(struct reader *r, struct obj *o, struct vdt_err *err)
 	if (!(isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2])))
 		return vdt_err_set(err, VDT_EINVAL, "line %zu: vertex has a non-finite coordinate",
 		                   r->line);
+	if (n >= 6 && !(isfinite(v[n - 3]) && isfinite(v[n - 2]) && isfinite(v[n - 1])))
+		return vdt_err_set(err, VDT_EINVAL, "line %zu: vertex has a non-finite colour",
+		                   r->line);
 	if (o->visit != NULL) {
 		o->have_v++;
 		return o->visit->vertex(o->visit->ctx, v, err);
@@ -337,6 +340,13 @@ read_vt(struct reader *r, struct obj *o, struct vdt_err *err)
 		return rc;
 	if (n < 1)
 		return vdt_err_set(err, VDT_EFORMAT, "line %zu: texture coordinate has no value", r->line);
+	/* As for a vertex, named by its line, used or not: the check of the
+	 * mesh could name only the vertex a corner became. */
+	for (size_t k = 0; k < n && k < 2; k++)
+		if (!isfinite(v[k]))
+			return vdt_err_set(err, VDT_EINVAL,
+			                   "line %zu: texture coordinate has a non-finite value",
+			                   r->line);
 	if (o->uv != NULL) {
 		o->uv[2 * o->have_t] = v[0];
 		o->uv[2 * o->have_t + 1] = n >= 2 ? v[1] : 0;
@@ -358,6 +368,9 @@ read_vn(struct reader *r, struct obj *o, struct vdt_err *err)
 	if (n < 3)
 		return vdt_err_set(err, VDT_EFORMAT, "line %zu: normal has too few values (%zu of 3)",
 		                   r->line, n);
+	if (!(isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2])))
+		return vdt_err_set(err, VDT_EINVAL, "line %zu: normal has a non-finite coordinate",
+		                   r->line);
 	if (o->nrm != NULL)
 		memcpy(o->nrm + 3 * o->have_n, v, 3 * sizeof(float));
 	o->have_n++;

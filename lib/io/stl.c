@@ -117,6 +117,16 @@ vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 
 			for (int k = 0; k < 3; k++) {
 				v[k] = vdt_get_f32le(p + 12 + 12 * c + 4 * k);
+				/* Named by its record, as vdt-cluster's reader names it:
+				 * a welded vertex number is nowhere in the file. */
+				if (!isfinite(v[k])) {
+					free(table);
+					free(pos);
+					free(tri);
+					return vdt_err_set(err, VDT_EINVAL,
+					                   "triangle %zu: non-finite coordinate",
+					                   t);
+				}
 				if (v[k] == 0.0f)
 					v[k] = 0.0f; /* weld -0 with +0 */
 				memcpy(&b[k], &v[k], 4);

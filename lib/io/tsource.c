@@ -918,6 +918,17 @@ vdt_tsource_triangle_hint(const struct vdt_tsource *ts)
 }
 
 int
+vdt_tsource_check_empty(const struct vdt_tsource *ts, struct vdt_err *err)
+{
+	if (ts->tri_hint > 0)
+		return 0;
+	if (ts->kind == K_STL)
+		return vdt_err_set(err, VDT_EINVAL, "empty mesh (STL holds no triangle)");
+	return vdt_err_set(err, VDT_EINVAL, "empty mesh (%" PRIu64 " vertices, 0 triangles)",
+	                   ts->vcount);
+}
+
+int
 vdt_tsource_header_box(const struct vdt_tsource *ts, struct vdt_bbox *box)
 {
 	if (ts->has_hbox)

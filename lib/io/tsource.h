@@ -70,6 +70,13 @@ int vdt_tsource_streamed(const struct vdt_tsource *ts);
 uint64_t vdt_tsource_triangle_hint(const struct vdt_tsource *ts);
 
 /*
+ * VDT_EINVAL, in the words of vdt_read, when the input announces no
+ * triangle (a face element or MESH chunk of none, an OBJ without faces, an
+ * STL of no record): there is no surface, whatever its vertices. Else 0.
+ */
+int vdt_tsource_check_empty(const struct vdt_tsource *ts, struct vdt_err *err);
+
+/*
  * The bounding box the header declares (a PLY "comment bbox" line of six
  * numbers, read as floats), into *box: 1 if there is one, else 0. A claim,
  * not checked: see vdt_cluster_source.

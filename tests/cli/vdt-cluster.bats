@@ -528,3 +528,121 @@ PY
 	[ "$status" -eq 0 ]
 	[ "$(off_faces "$TMP/c.off")" -eq 1 ]
 }
+
+@test "vdt-cluster takes a generous -m or -t on a small input at once" {
+	# the occupancy sample was sized for the limit, not for the input:
+	# terabytes asked for a torus, and "cannot allocate the sampling grid"
+	for a in "-m 1000000000" "-t 4294967295" "-m 100000"; do
+		run timeout 60 "$BIN/vdt-cluster" -v $a "$SAMPLES/torus.off" -o "$TMP/out.vdq"
+		[ "$status" -eq 0 ]
+		[[ "$output" == *" cells=1152 "* ]]
+		s=$(printf '%s\n' "$output" | sed -n 's/.* cluster_s=\([^ ]*\).*/\1/p')
+		awk -v s="$s" 'BEGIN { exit !(s < 1) }'
+	done
+}
+
+@test "vdt-cluster says an input has no face, or none of any area, in vdt-qslim's words" {
+	printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n' > "$TMP/cloud.obj"
+	printf 'v 0 0 0\nv 1 0 0\n' > "$TMP/two.obj"
+	python3 - "$TMP" <<'PY'
+import struct, sys
+d = sys.argv[1]
+h = (b'ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\n'
+     b'property float y\nproperty float z\nelement face 0\n'
+     b'property list uchar int vertex_indices\nend_header\n')
+open(d + '/cloud.ply', 'wb').write(h + struct.pack('<12f', 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1))
+open(d + '/none.stl', 'wb').write(bytes(84))
+PY
+	# once "use a finer grid", "flat bounding box" or "empty input"
+	for f in cloud.obj two.obj cloud.ply; do
+		same_refusal "$TMP/$f"
+		[[ "$want" == *"'$TMP/$f': empty mesh ("[24]" vertices, 0 triangles)" ]]
+		run sh -c "'$BIN/vdt-cluster' -g 4 -o '$TMP/c.off' < '$TMP/$f'"
+		[ "$status" -eq 2 ]
+		[[ "$output" == *"'<stdin>': empty mesh ("[24]" vertices, 0 triangles)" ]]
+	done
+	same_refusal "$TMP/none.stl"
+	[[ "$want" == *"'$TMP/none.stl': empty mesh (STL holds no triangle)" ]]
+	# faces on a line across the box, and faces that repeat a point: no
+	# grid is fine enough for them, and once the first came out whole
+	printf 'OFF\n4 2 0\n0 0 0\n1 1 1\n2 2 2\n3 3 3\n3 0 1 2\n3 1 2 3\n' > "$TMP/diag.off"
+	printf 'OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 0 1\n3 2 3 3\n' > "$TMP/repeat.off"
+	for f in diag repeat; do
+		run "$BIN/vdt-cluster" -g 4 "$TMP/$f.off" -o "$TMP/c.off"
+		[ "$status" -eq 2 ]
+		[ "$output" = "vdt-cluster: cannot read '$TMP/$f.off': every face has zero area" ]
+	done
+	[ ! -e "$TMP/c.off" ]
+}
+
+@test "vdt-cluster clusters a mesh in an axis plane in that plane" {
+	# a 10 x 10 grid of squares at z = 0: one cell across the plane, or
+	# the layers asked for, the vertices all in one of them
+	python3 - "$TMP/flat.off" <<'PY'
+import sys
+n = 11
+out = ['OFF', '%d %d 0' % (n * n, 2 * (n - 1) ** 2)]
+out += ['%g %g 0' % (i / (n - 1), j / (n - 1)) for j in range(n) for i in range(n)]
+for j in range(n - 1):
+    for i in range(n - 1):
+        a = j * n + i
+        out += ['3 %d %d %d' % (a, a + 1, a + n + 1), '3 %d %d %d' % (a, a + n + 1, a + n)]
+open(sys.argv[1], 'w').write('\n'.join(out) + '\n')
+PY
+	run "$BIN/vdt-cluster" -v -g 4 "$TMP/flat.off" -o "$TMP/a.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *" grid=4x4x1 "* ]]
+	run "$BIN/vdt-cluster" -v -g 4x4x4 "$TMP/flat.off" -o "$TMP/b.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *" grid=4x4x4 "* ]]
+	cmp "$TMP/a.off" "$TMP/b.off"
+	[ "$(off_vertices "$TMP/a.off")" -eq 16 ]
+	awk 'NR > 2 && NF == 3 && $3 != 0 { exit 1 }' "$TMP/a.off"
+}
+
+@test "vdt-cluster names a binary STL's non-finite record as vdt-qslim does" {
+	"$BIN/vdt-qslim" -q -r 1 "$SAMPLES/torus.off" -o "$TMP/t.stl"
+	# record 7's first corner: vdt-qslim once named the welded vertex 9
+	python3 - "$TMP/t.stl" "$TMP/nan.stl" <<'PY'
+import struct, sys
+b = bytearray(open(sys.argv[1], 'rb').read())
+struct.pack_into('<f', b, 84 + 50 * 7 + 12 + 4, float('nan'))
+open(sys.argv[2], 'wb').write(b)
+PY
+	same_refusal "$TMP/nan.stl"
+	[ "$want" = "cannot read '$TMP/nan.stl': triangle 7: non-finite coordinate" ]
+	run sh -c "'$BIN/vdt-qslim' -o '$TMP/q.off' < '$TMP/nan.stl'"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-qslim: cannot read '<stdin>': triangle 7: non-finite coordinate" ]
+	[ ! -e "$TMP/q.off" ]
+	[ ! -e "$TMP/c.off" ]
+}
+
+@test "vdt-cluster says how far over the memory limit, and an absurd cell size, in few words" {
+	# the bunny's 34835 vertices each in its own cell: 17 MB of cells
+	# where -m 17 allows 34816 (once "(17 MB), over the memory limit (17 MB)")
+	run "$BIN/vdt-cluster" -g 2097151 -m 17 "$SAMPLES/fetched/bunny.ply" -o "$TMP/out.vdq"
+	[ "$status" -eq 2 ]
+	[[ "$output" == *"would occupy about 34835 cells, over the memory limit of 34816 (17 MB)" ]]
+	# a 300-digit count of cells, once
+	run "$BIN/vdt-cluster" -s 1e-300 "$SAMPLES/torus.off" -o "$TMP/out.vdq"
+	[ "$status" -eq 2 ]
+	[[ "$output" == *"cell size 1e-300 makes 2.7e+300 cells along an axis: at most 2097151" ]]
+	[ ! -e "$TMP/out.vdq" ]
+}
+
+@test "vdt-cluster and vdt-qslim refuse an OBJ's non-finite normal, texture coordinate or colour by its line" {
+	# vdt-qslim named the vertex the corner became; vdt-cluster, which
+	# reads no normal, took the file
+	printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn nan 0 1\nf 1//1 2//2 3//1\n' > "$TMP/vn.obj"
+	printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 inf\nf 1/1 2/2 3/1\n' > "$TMP/vt.obj"
+	printf 'v 0 0 0 1 1 1\nv 1 0 0 1 nan 1\nv 0 1 0 1 1 1\nf 1 2 3\n' > "$TMP/col.obj"
+	same_refusal "$TMP/vn.obj"
+	[[ "$want" == *"vn.obj': line 5: normal has a non-finite coordinate" ]]
+	same_refusal "$TMP/vt.obj"
+	[[ "$want" == *"vt.obj': line 5: texture coordinate has a non-finite value" ]]
+	same_refusal "$TMP/col.obj"
+	[[ "$want" == *"col.obj': line 2: vertex has a non-finite colour" ]]
+	[ ! -e "$TMP/c.off" ]
+	[ ! -e "$TMP/q.off" ]
+}

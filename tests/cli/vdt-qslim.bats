@@ -455,3 +455,65 @@ END
 	run "$BIN/vdt-cluster" -q -g 4 "$TMP/up.stl" -o "$TMP/up.vdq"
 	[ "$status" -eq 0 ]
 }
+
+@test "vdt-qslim refuses a mesh with no face of any area, whatever the target" {
+	# one face on three points of a line; one on a point; faces that
+	# repeat a vertex
+	printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n' > "$TMP/line.off"
+	printf 'OFF\n3 1 0\n1 1 1\n1 1 1\n1 1 1\n3 0 1 2\n' > "$TMP/point.off"
+	printf 'OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 0 1\n3 1 1 2\n' > "$TMP/repeat.off"
+	echo keep > "$TMP/out.off"
+	for m in line point repeat; do
+		for target in "-r 0.5" "-t 1" "-t 100" "-e 1"; do
+			run "$BIN/vdt-qslim" $target "$TMP/$m.off" -o "$TMP/out.off"
+			[ "$status" -eq 2 ]
+			[ "$output" = "vdt-qslim: cannot simplify '$TMP/$m.off': every face has zero area" ]
+			[ "$(cat "$TMP/out.off")" = keep ]
+		done
+	done
+}
+
+@test "vdt-qslim blames the input, not the output, when welding leaves no face" {
+	# a fin (the same face both ways round, both dropped) and a face
+	# whose first and fourth vertices are one point: welded, it repeats
+	# a vertex, and the engine drops it
+	printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 0\nf 1 2 3\nf 1 3 2\nf 1 4 2\n' > "$TMP/fin.obj"
+	echo keep > "$TMP/out.obj"
+	run "$BIN/vdt-qslim" "$TMP/fin.obj" -o "$TMP/out.obj"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-qslim: cannot simplify '$TMP/fin.obj': no face is left once repeated and degenerate ones are dropped" ]
+	[ "$(cat "$TMP/out.obj")" = keep ]
+}
+
+@test "vdt-qslim and vdt-cluster call a stream whose first bytes are damaged a damaged stream" {
+	"$BIN/vdt-cluster" -q -g 6 "$SAMPLES/torus.off" -o "$TMP/s.vdq"
+	# each of the signature's first four bytes, alone: once taken for a
+	# binary STL of the stream's size ("truncated: it holds 159 of ...")
+	for at in 0 1 2 3; do
+		cp "$TMP/s.vdq" "$TMP/bad.vdq"
+		printf 'x' | dd of="$TMP/bad.vdq" bs=1 seek=$at conv=notrunc status=none
+		for tool in "vdt-qslim -r 0.5" "vdt-cluster -g 6"; do
+			run $BIN/$tool "$TMP/bad.vdq" -o "$TMP/out.off"
+			[ "$status" -eq 2 ]
+			[ "$output" = "${tool%% *}: cannot read '$TMP/bad.vdq': bad signature at byte $at: damaged vdt signature" ]
+			run sh -c "$BIN/$tool -o '$TMP/out.off' < '$TMP/bad.vdq'"
+			[ "$status" -eq 2 ]
+			[ "$output" = "${tool%% *}: cannot read '<stdin>': bad signature at byte $at: damaged vdt signature" ]
+		done
+	done
+	[ ! -e "$TMP/out.off" ]
+}
+
+@test "vdt-qslim names the QUAD or BNDY chunk whose count is wrong" {
+	"$BIN/vdt-cluster" -q -g 6 "$SAMPLES/torus.off" -o "$TMP/s.vdq"
+	# the count of each, 255 more than its records (CRCs made again):
+	# once "255 vertex indices of 4 bytes do not fill ...", of no chunk
+	for t in QUAD BNDY; do
+		restream "$TMP/s.vdq" "$TMP/$t.vdq" \
+			"[(t, (bytes([p[0] ^ 0xff]) + p[1:]) if t == b'$t' else p) for t, p in ch]"
+		run "$BIN/vdt-qslim" -r 0.5 "$TMP/$t.vdq" -o "$TMP/out.off"
+		[ "$status" -eq 2 ]
+		[[ "$output" == "vdt-qslim: cannot read '$TMP/$t.vdq': chunk $t: "*" do not fill a payload of "* ]]
+	done
+	[ ! -e "$TMP/out.off" ]
+}

@@ -637,6 +637,67 @@ memory_limit(void **state)
 	vdt_cluster_free(c);
 }
 
+/*
+ * Triangles without area, on the diagonal of the box, every corner in a
+ * cell of its own: no grid makes a surface of them. VDT_EINVAL, the
+ * input's fault, and not their cells written out as a flat triangle (nor
+ * VDT_ELIMIT's "use a finer grid" on a coarser one).
+ *
+ *   p0 (0.5,0.5,0.5) -- p1 (1.5,1.5,1.5) -- p2 (2.5,2.5,2.5), grid 3x3x3
+ */
+static void
+no_area_is_bad_input(void **state)
+{
+	struct vdt_bbox box = {{0, 0, 0}, {3, 3, 3}};
+	uint32_t d[3] = {3, 3, 3};
+	double p0[3] = {0.5, 0.5, 0.5}, p1[3] = {1.5, 1.5, 1.5}, p2[3] = {2.5, 2.5, 2.5}, t[9];
+	struct vdt_cluster_grid g;
+	struct vdt_cluster *c;
+	struct vdt_mesh m;
+	struct vdt_err err = {0};
+
+	(void)state;
+	assert_int_equal(vdt_cluster_grid_dims(&box, d, &g, NULL), 0);
+	put_tri(t, p0, p1, p2);
+	assert_int_equal(vdt_cluster_new(&c, &g, 0, NULL), 0);
+	assert_int_equal(vdt_cluster_add(c, t, 1, NULL), 0);
+	assert_int_equal(vdt_cluster_finish(c, &m, NULL, NULL, NULL, &err), VDT_EINVAL);
+	assert_string_equal(err.msg, "every face has zero area");
+	assert_null(m.positions);
+	vdt_cluster_free(c);
+	assert_int_equal(vdt_cluster_new(&c, &g, 0, NULL), 0);
+	assert_int_equal(vdt_cluster_finish(c, &m, NULL, NULL, NULL, &err), VDT_EINVAL);
+	assert_string_equal(err.msg, "empty mesh: no triangles");
+	vdt_cluster_free(c);
+}
+
+/*
+ * The sampler's memory follows the cells its vertices occupy, not its cap:
+ * a cap of a quarter of the address space (-m at its largest) once asked
+ * for the whole table at the start, and failed.
+ */
+static void
+sampler_cap_costs_nothing(void **state)
+{
+	struct vdt_bbox box = {{0, 0, 0}, {1, 1, 1}};
+	struct vdt_cluster_sampler *s;
+	struct vdt_cluster_sample out;
+	double xyz[3 * 3000];
+
+	(void)state;
+	for (int i = 0; i < 3000; i++) {
+		xyz[3 * i] = (i % 10) / 10.0;
+		xyz[3 * i + 1] = (i / 10 % 10) / 10.0;
+		xyz[3 * i + 2] = (i / 100) / 30.0;
+	}
+	assert_int_equal(vdt_cluster_sampler_new(&s, &box, SIZE_MAX / 4, NULL), 0);
+	assert_int_equal(vdt_cluster_sampler_add(s, xyz, 3000, NULL), 0);
+	assert_int_equal(vdt_cluster_sampler_finish(s, &out, NULL), 0);
+	assert_int_equal(out.levels, 13);
+	assert_int_equal(out.occupied[12], 3000);
+	assert_int_equal(out.occupied[0], 1);
+}
+
 /* The "comment bbox" of a PLY header, only when it is six ordered numbers. */
 static void
 header_box(void **state)
@@ -911,6 +972,8 @@ main(void)
 		cmocka_unit_test(target_rule),
 		cmocka_unit_test(ply_any_layout),
 		cmocka_unit_test(memory_limit),
+		cmocka_unit_test(no_area_is_bad_input),
+		cmocka_unit_test(sampler_cap_costs_nothing),
 		cmocka_unit_test(non_finite_corners),
 		cmocka_unit_test(header_box),
 		cmocka_unit_test(corner_box),

@@ -441,6 +441,24 @@ test_validated(void **state)
 	                                 &m, NULL, &err),
 	                 VDT_EINVAL);
 	assert_string_equal(err.msg, "line 4: vertex has a non-finite coordinate");
+	/* So are a normal, a texture coordinate and a colour: the check of
+	 * the mesh named the vertex the corner became ("vertex 1"). */
+	static const char vn[] =
+	        "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn nan 0 1\nf 1//1 2//2 3//1\n";
+	assert_int_equal(
+	        vdt_read_memory((const unsigned char *)vn, sizeof(vn) - 1, NULL, &m, NULL, &err),
+	        VDT_EINVAL);
+	assert_string_equal(err.msg, "line 5: normal has a non-finite coordinate");
+	static const char vt[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 inf\nf 1/1 2/2 3/1\n";
+	assert_int_equal(
+	        vdt_read_memory((const unsigned char *)vt, sizeof(vt) - 1, NULL, &m, NULL, &err),
+	        VDT_EINVAL);
+	assert_string_equal(err.msg, "line 5: texture coordinate has a non-finite value");
+	static const char col[] = "v 0 0 0 1 1 1\nv 1 0 0 1 nan 1\nv 0 1 0 1 1 1\nf 1 2 3\n";
+	assert_int_equal(
+	        vdt_read_memory((const unsigned char *)col, sizeof(col) - 1, NULL, &m, NULL, &err),
+	        VDT_EINVAL);
+	assert_string_equal(err.msg, "line 2: vertex has a non-finite colour");
 	assert_int_equal(vdt_read_memory((const unsigned char *)empty, sizeof(empty) - 1, NULL, &m,
 	                                 NULL, &err),
 	                 VDT_EINVAL);

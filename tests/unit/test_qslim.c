@@ -345,7 +345,7 @@ extra_border_decides_the_boundary_planes(void **state)
 	add_quad_chunk(&c, &m, m.vertex_count - 1);
 	add_bndy_chunk(&c, flag, m.vertex_count);
 	assert_int_equal(vdt_qslim_extra_decode(&x, &c, m.vertex_count - 1, 0, &err), VDT_EINVAL);
-	assert_string_equal(err.msg, "boundary vertex 288 is out of range (288 vertices)");
+	assert_string_equal(err.msg, "chunk BNDY: boundary vertex 288 is out of range (288 vertices)");
 	assert_null(x.quadrics);
 	assert_null(x.border);
 	assert_int_equal(c.count, 2);

@@ -760,6 +760,19 @@ bad_signature(void **state)
 	assert_string_equal(err.msg, "bad signature at byte 0: high bit stripped (sent through a 7-bit channel)");
 	assert_false(vdt_stream_sniff((const unsigned char *)"\x89VD", 3));
 	assert_false(vdt_stream_sniff((const unsigned char *)"solid", 5));
+	/* Any one of the first four bytes damaged, the rest whole: still a
+	 * stream, refused as one (not taken for a binary STL of its size). */
+	for (int i = 0; i < 4; i++) {
+		char want[64];
+		memcpy(dam, buf, len);
+		dam[i] ^= 0x20;
+		assert_true(vdt_stream_sniff(dam, len));
+		assert_int_equal(decode_rc(dam, len, &err), VDT_EFORMAT);
+		snprintf(want, sizeof(want), "bad signature at byte %d: damaged vdt signature", i);
+		assert_string_equal(err.msg, want);
+	}
+	dam[0] = 'x'; /* two damaged: not a stream */
+	assert_false(vdt_stream_sniff(dam, len));
 	free(dam);
 	free(buf);
 }
