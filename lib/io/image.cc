@@ -59,6 +59,17 @@ write_image(const char *path, int w, int h, int c, const unsigned char *px, stru
 	if (!out)
 		return no_writer(err);
 	std::string tmp = dst;
+	/* Whichever way this returns, the temporary file is gone or renamed
+	 * by then: a signal need not remove it any more. */
+	struct done_guard {
+		const std::string &tmp;
+		bool on;
+		~done_guard()
+		{
+			if (on)
+				vdt_output_temp_done(tmp.c_str());
+		}
+	} done{tmp, false};
 	if (!special) {
 		char *t = nullptr;
 		int fd = vdt_output_temp(dst.c_str(), &t);
@@ -70,6 +81,7 @@ write_image(const char *path, int w, int h, int c, const unsigned char *px, stru
 		close(fd); /* OpenImageIO opens it again by name */
 		tmp = t;
 		std::free(t);
+		done.on = true;
 	}
 	OIIO::ImageSpec spec(w, h, c, OIIO::TypeDesc::UINT8);
 	fix_date(*out, spec);

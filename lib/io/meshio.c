@@ -8,6 +8,8 @@
 #include <inttypes.h>
 #include <math.h>
 #include <fcntl.h>
+#include <signal.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -520,6 +522,96 @@ keep_mode(int fd, const char *path)
 	}
 }
 
+/*
+ * The temporary files being written, for a signal that ends the process
+ * (^C, make's SIGTERM, SIGXFSZ, SIGPIPE) to remove them too: without
+ * this a killed run left .NAME.XXXXXX beside its output. A slot is
+ * FREE, FILLING while its name is copied, then LIVE; the handler unlinks
+ * the LIVE ones (unlink is async-signal-safe) and lets the signal go on
+ * to its default action, so that the parent still sees the process die
+ * of it. Names past PENDING_SLOTS, or longer than PENDING_PATH, are not
+ * noted: a tool writes one file at a time.
+ */
+#define PENDING_SLOTS 8
+#define PENDING_PATH 4096
+
+enum { FREE, FILLING, LIVE };
+
+static struct {
+	atomic_int state;
+	char path[PENDING_PATH];
+} pending[PENDING_SLOTS];
+
+static const int cleanup_signals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE, SIGXFSZ};
+
+static void
+cleanup_on_signal(int sig)
+{
+	int e = errno;
+	struct sigaction dfl;
+
+	for (int i = 0; i < PENDING_SLOTS; i++)
+		if (atomic_load(&pending[i].state) == LIVE)
+			unlink(pending[i].path);
+	memset(&dfl, 0, sizeof(dfl));
+	dfl.sa_handler = SIG_DFL;
+	sigemptyset(&dfl.sa_mask);
+	sigaction(sig, &dfl, NULL);
+	errno = e;
+	raise(sig); /* delivered, with its default action, on return */
+}
+
+/* Catch the signals above once, leaving those ignored (a background job's
+ * SIGINT, nohup's SIGHUP) or caught by someone else as they are. */
+static void
+cleanup_install(void)
+{
+	static atomic_flag done = ATOMIC_FLAG_INIT;
+
+	if (atomic_flag_test_and_set(&done))
+		return;
+	for (size_t i = 0; i < sizeof(cleanup_signals) / sizeof(cleanup_signals[0]); i++) {
+		struct sigaction old, sa;
+		if (sigaction(cleanup_signals[i], NULL, &old) != 0 ||
+		    (old.sa_flags & SA_SIGINFO) || old.sa_handler != SIG_DFL)
+			continue;
+		memset(&sa, 0, sizeof(sa));
+		sa.sa_handler = cleanup_on_signal;
+		sigemptyset(&sa.sa_mask);
+		for (size_t k = 0; k < sizeof(cleanup_signals) / sizeof(cleanup_signals[0]); k++)
+			sigaddset(&sa.sa_mask, cleanup_signals[k]);
+		sigaction(cleanup_signals[i], &sa, NULL);
+	}
+}
+
+static void
+pending_add(const char *path)
+{
+	size_t n = strlen(path);
+
+	if (n >= PENDING_PATH)
+		return;
+	cleanup_install();
+	for (int i = 0; i < PENDING_SLOTS; i++) {
+		int expect = FREE;
+		if (atomic_compare_exchange_strong(&pending[i].state, &expect, FILLING)) {
+			memcpy(pending[i].path, path, n + 1);
+			atomic_store(&pending[i].state, LIVE);
+			return;
+		}
+	}
+}
+
+void
+vdt_output_temp_done(const char *tmp)
+{
+	for (int i = 0; tmp != NULL && i < PENDING_SLOTS; i++)
+		if (atomic_load(&pending[i].state) == LIVE && strcmp(pending[i].path, tmp) == 0) {
+			atomic_store(&pending[i].state, FREE);
+			return;
+		}
+}
+
 int
 vdt_output_temp(const char *target, char **tmp)
 {
@@ -540,6 +632,7 @@ vdt_output_temp(const char *target, char **tmp)
 		return -1;
 	}
 	keep_mode(fd, target);
+	pending_add(*tmp);
 	return fd;
 }
 
@@ -599,6 +692,7 @@ output_fail(struct vdt_output *o, int fd, struct vdt_err *err, int code, const c
 		close(fd);
 	if (o->tmp != NULL)
 		unlink(o->tmp);
+	vdt_output_temp_done(o->tmp);
 	free(o->path);
 	free(o->tmp);
 	memset(o, 0, sizeof(*o));
@@ -659,6 +753,7 @@ vdt_output_commit(struct vdt_output *o, struct vdt_err *err)
 	}
 	if (rc != 0)
 		unlink(o->tmp);
+	vdt_output_temp_done(o->tmp);
 	free(o->tmp);
 	free(o->path);
 	memset(o, 0, sizeof(*o));
@@ -671,6 +766,7 @@ vdt_output_abort(struct vdt_output *o)
 	if (o->f != NULL && o->tmp != NULL) {
 		fclose(o->f);
 		unlink(o->tmp);
+		vdt_output_temp_done(o->tmp);
 	} else if (o->f != NULL && o->path != NULL) {
 		fclose(o->f);
 	} else if (o->f != NULL) {

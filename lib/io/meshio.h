@@ -167,8 +167,16 @@ void vdt_written_free(struct vdt_written *w);
  * Returns its descriptor with the malloc'ed name in *tmp; -1 (errno set)
  * or -2 (out of memory) with *tmp NULL. Used by vdt_output_open and by
  * the image writer.
+ *
+ * Until vdt_output_temp_done(*tmp), a signal that ends the process
+ * (SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE, SIGXFSZ) removes the file
+ * first: the first call catches those of them left at their default
+ * action, and the handler then lets the signal go on to it.
  */
 int vdt_output_temp(const char *target, char **tmp);
+
+/* The temporary file tmp is renamed or removed: a signal leaves it be. */
+void vdt_output_temp_done(const char *tmp);
 
 int vdt_output_open(struct vdt_output *o, const char *path, struct vdt_err *err);
 int vdt_output_commit(struct vdt_output *o, struct vdt_err *err);

@@ -9,7 +9,9 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include <dirent.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -560,6 +562,80 @@ test_image(void **state)
 	assert_int_not_equal(vdt_image_write(tmp_path("no/dir.png"), 4, 2, 3, px, &err), 0);
 }
 
+/* Entries of the test directory whose names begin with prefix. */
+static int
+entries(const char *prefix)
+{
+	DIR *d = opendir(dir);
+	struct dirent *e;
+	int n = 0;
+
+	assert_non_null(d);
+	while ((e = readdir(d)) != NULL)
+		n += strncmp(e->d_name, prefix, strlen(prefix)) == 0;
+	closedir(d);
+	return n;
+}
+
+/*
+ * In a child: open an output to name, commit it if `commit`, open a
+ * second one to name2, then raise sig; exit 0 if the signal did not end
+ * it (then commit the second). Returns the child's wait status.
+ */
+static int
+killed_while_writing(const char *name, int commit, const char *name2, int sig, int ignore)
+{
+	int status;
+	pid_t pid = fork();
+
+	assert_true(pid >= 0);
+	if (pid == 0) {
+		struct vdt_output o, o2;
+		struct vdt_err err = {0};
+		if (ignore)
+			signal(sig, SIG_IGN);
+		if (vdt_output_open(&o, tmp_path(name), &err) != 0 || fputs("one\n", o.f) < 0)
+			_exit(3);
+		if (commit && vdt_output_commit(&o, &err) != 0)
+			_exit(4);
+		if (vdt_output_open(&o2, tmp_path(name2), &err) != 0 || fputs("two\n", o2.f) < 0)
+			_exit(5);
+		raise(sig);
+		if (vdt_output_commit(&o2, &err) != 0)
+			_exit(6);
+		_exit(0);
+	}
+	assert_int_equal(waitpid(pid, &status, 0), pid);
+	return status;
+}
+
+/* A signal that ends a run mid-write takes the temporary files with it,
+ * and still ends the process; a committed output stays; an ignored
+ * signal stays ignored. */
+static void
+test_signal_cleanup(void **state)
+{
+	struct stat st;
+	int status;
+	(void)state;
+
+	status = killed_while_writing("sig-a.ply", 0, "sig-b.ply", SIGTERM, 0);
+	assert_true(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM);
+	assert_int_equal(entries(".sig-"), 0);
+	assert_int_equal(entries("sig-"), 0);
+
+	status = killed_while_writing("sig-c.ply", 1, "sig-d.ply", SIGINT, 0);
+	assert_true(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT);
+	assert_int_equal(stat(tmp_path("sig-c.ply"), &st), 0);
+	assert_int_equal(entries(".sig-"), 0);
+	assert_int_not_equal(stat(tmp_path("sig-d.ply"), &st), 0);
+
+	status = killed_while_writing("sig-e.ply", 1, "sig-f.ply", SIGHUP, 1);
+	assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+	assert_int_equal(stat(tmp_path("sig-f.ply"), &st), 0);
+	assert_int_equal(entries(".sig-"), 0);
+}
+
 static int
 setup(void **state)
 {
@@ -641,6 +717,7 @@ main(void)
 		cmocka_unit_test(test_stream_extra),
 		cmocka_unit_test(test_atomic),
 		cmocka_unit_test(test_image),
+		cmocka_unit_test(test_signal_cleanup),
 		cmocka_unit_test(test_face_cross),
 		cmocka_unit_test(test_varying_attrs),
 	};
