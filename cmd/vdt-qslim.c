@@ -17,6 +17,7 @@ struct cmdline {
 	struct vdt_qslim_opts q;
 	struct vdt_write_opts w;
 	struct vdt_labl_scale_opts l;
+	const char *label_opt; /* the first option given that needs a LABL chunk */
 	int ignore_quadrics, quiet, verbose;
 };
 
@@ -106,8 +107,14 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 				usage_error("--order must be auto, greedy or passes, not '%s'", optarg);
 			break;
 		case O_DRACO: cl->w.draco_position_bits = (int)parse_count("--draco-bits", optarg, 1, 30); break;
-		case O_CD: cl->l.contour_distance = parse_real("--contour-distance", optarg, 0, 1e6); break;
-		case O_EF: cl->l.factor = parse_real("--error-factor", optarg, 0, 1); break;
+		case O_CD:
+			cl->l.contour_distance = parse_real("--contour-distance", optarg, 0, 1e6);
+			cl->label_opt = cl->label_opt ? cl->label_opt : "--contour-distance";
+			break;
+		case O_EF:
+			cl->l.factor = parse_real("--error-factor", optarg, 0, 1);
+			cl->label_opt = cl->label_opt ? cl->label_opt : "--error-factor";
+			break;
 		case O_NEAR:
 			cl->l.nearest = parse_count("--nearest", optarg, 1, VDT_SIL_NEAREST_MAX);
 			nearest = 1;
@@ -115,6 +122,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		case O_VIEW:
 			parse_vec3("--view", optarg, 1, cl->l.view);
 			cl->l.has_view = 1;
+			cl->label_opt = cl->label_opt ? cl->label_opt : "--view";
 			break;
 		case 'q': cl->quiet = 1; break;
 		case 'v': cl->verbose = 1; break;
@@ -149,6 +157,10 @@ run(struct cmdline *cl)
 		rc = fail("cannot read", cl->in, &err);
 		goto out;
 	}
+	/* Not an error: a batch may give every model the same options. */
+	if (cl->label_opt && x.labl.cams.count == 0 && !cl->quiet)
+		fprintf(stderr, "%s: '%s' has no LABL chunk (vdt-silhouette's labels): %s has no effect\n",
+		        progname, strcmp(cl->in, "-") == 0 ? "<stdin>" : cl->in, cl->label_opt);
 	/* The input is needed for nothing but its counts once simplified. */
 	x.take_input = 1;
 	cl->q.progress = progress_start(cl->quiet);

@@ -216,6 +216,22 @@ load helpers
 	[ -z "$(comm -23 "$TMP/contour" "$TMP/out")" ]
 }
 
+@test "vdt-qslim says when a label option meets no labels, and goes on" {
+	run "$BIN/vdt-qslim" -r 0.5 --view 0,0,1 --error-factor 0.5 "$SAMPLES/sphere.off" -o "$TMP/a.off"
+	[ "$status" -eq 0 ]
+	one_line
+	[[ "$output" == *"'$SAMPLES/sphere.off' has no LABL chunk"*"--view has no effect"* ]]
+	[ -s "$TMP/a.off" ]
+	run "$BIN/vdt-qslim" -q -r 0.5 --contour-distance 3 "$SAMPLES/sphere.off" -o "$TMP/b.off"
+	[ "$status" -eq 0 ]
+	[ -z "$output" ]
+	cmp "$TMP/a.off" "$TMP/b.off"
+	"$BIN/vdt-silhouette" -a 45 -r 32 "$SAMPLES/sphere.off" -o "$TMP/s.vdl"
+	run "$BIN/vdt-qslim" -r 0.5 --contour-distance 3 "$TMP/s.vdl" -o "$TMP/c.off"
+	[ "$status" -eq 0 ]
+	[ -z "$output" ]
+}
+
 @test "vdt-qslim rejects a LABL chunk for another mesh with status 2" {
 	"$BIN/vdt-silhouette" -a 45 -r 32 "$SAMPLES/sphere.off" -o "$TMP/s.vdl"
 	"$BIN/vdt-silhouette" -a 45 -r 32 "$SAMPLES/torus.off" -o "$TMP/t.vdl"
