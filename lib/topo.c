@@ -171,3 +171,50 @@ nomem:
 	free(l.e);
 	return -1;
 }
+
+/* The root of v's set, halving the path on the way. */
+static uint32_t
+find(uint32_t *up, uint32_t v)
+{
+	while (up[v] != v) {
+		up[v] = up[up[v]];
+		v = up[v];
+	}
+	return v;
+}
+
+size_t
+vdt_topo_parts(size_t nv, const uint32_t *tri, size_t nt)
+{
+	uint32_t *up = malloc((nv ? nv : 1) * sizeof(*up));
+	uint8_t *used = calloc(nv ? nv : 1, 1);
+	size_t parts = 0;
+
+	if (up == NULL || used == NULL) {
+		free(up);
+		free(used);
+		return SIZE_MAX;
+	}
+	for (size_t v = 0; v < nv; v++)
+		up[v] = (uint32_t)v;
+	for (size_t t = 0; t < nt; t++) {
+		const uint32_t *c = tri + 3 * t;
+		uint32_t r = find(up, c[0]);
+		used[c[0]] = 1;
+		for (int k = 1; k < 3; k++) {
+			uint32_t q = find(up, c[k]);
+			used[c[k]] = 1;
+			if (q < r) {
+				up[r] = q;
+				r = q;
+			} else if (q > r) {
+				up[q] = r;
+			}
+		}
+	}
+	for (size_t v = 0; v < nv; v++)
+		parts += used[v] && up[v] == v;
+	free(up);
+	free(used);
+	return parts;
+}

@@ -52,4 +52,11 @@ long vdt_topo_open_edges_in(size_t lo, size_t hi, const uint32_t *tri,
                             const uint32_t *start, const uint32_t *fan, const uint8_t *dead,
                             uint32_t **edges, size_t *nonmanifold);
 
+/*
+ * The connected parts of the faces tri[0..3 nt) over nv vertices: faces
+ * that share a vertex are of one part. Faces with a repeated vertex count
+ * as any other. Returns their number, or SIZE_MAX when memory runs out.
+ */
+size_t vdt_topo_parts(size_t nv, const uint32_t *tri, size_t nt);
+
 #endif

@@ -216,6 +216,28 @@ load helpers
 	[ -z "$(comm -23 "$TMP/contour" "$TMP/out")" ]
 }
 
+@test "vdt-qslim keeps a small part while the target holds every part" {
+	# the sphere and a tiny triangle far off: the triangle's quadric is
+	# nearly nothing, and yet losing it costs the distance to the sphere
+	awk 'NR == 2 { print $1 + 3, $2 + 1, $3; next } { print }
+		NR == 2564 { print "5 5 5"; print "5.001 5 5"; print "5 5.001 5" }
+		END { print "3 2562 2563 2564" }' "$SAMPLES/sphere.off" > "$TMP/far.off"
+	for a in "-t 100" "-e 0.5%"; do
+		run "$BIN/vdt-qslim" -q $a -F off "$TMP/far.off" -o "$TMP/out.off"
+		[ "$status" -eq 0 ]
+		awk 'NR > 2 && NF == 3 && $1 > 4' "$TMP/out.off" | grep -q .
+		run "$BIN/vdt-measure" -F kv "$TMP/far.off" "$TMP/out.off"
+		h=$(printf '%s\n' "$output" | tr ' ' '\n' | sed -n 's/^hausdorff_pct=//p')
+		awk -v h="$h" 'BEGIN { exit !(h < 5) }'
+	done
+	# past half the target the smallest parts go: at -t 1 the triangle,
+	# and the sphere stops at a tetrahedron
+	run "$BIN/vdt-qslim" -v -t 1 -F off "$TMP/far.off" -o "$TMP/out.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *" out_triangles=4 "* ]]
+	! awk 'NR > 2 && NF == 3 && $1 > 4' "$TMP/out.off" | grep -q .
+}
+
 @test "vdt-qslim says when a label option meets no labels, and goes on" {
 	run "$BIN/vdt-qslim" -r 0.5 --view 0,0,1 --error-factor 0.5 "$SAMPLES/sphere.off" -o "$TMP/a.off"
 	[ "$status" -eq 0 ]

@@ -126,6 +126,23 @@ ranges_join_to_the_whole(void **state)
 	vdt_mesh_free(&m);
 }
 
+/* Parts join through shared vertices, in whatever order the faces come;
+ * unused vertices are no part. */
+static void
+parts_by_shared_vertices(void **state)
+{
+	/* a strip 0-1-2-3, a lone face 4-5-6, then a face joining the strip
+	 * to a face 7-8-9 listed before it; vertex 10 unused */
+	static const uint32_t tri[] = {0, 1, 2, 1, 2, 3, 4, 5, 6, 7, 8, 9, 3, 9, 7};
+	(void)state;
+
+	assert_int_equal(vdt_topo_parts(11, tri, 0), 0);
+	assert_int_equal(vdt_topo_parts(11, tri, 1), 1);
+	assert_int_equal(vdt_topo_parts(11, tri, 3), 2);
+	assert_int_equal(vdt_topo_parts(11, tri, 4), 3);
+	assert_int_equal(vdt_topo_parts(11, tri, 5), 2);
+}
+
 int
 main(void)
 {
@@ -133,6 +150,7 @@ main(void)
 		cmocka_unit_test(grid_and_sphere),
 		cmocka_unit_test(fin_and_dead_faces),
 		cmocka_unit_test(ranges_join_to_the_whole),
+		cmocka_unit_test(parts_by_shared_vertices),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
