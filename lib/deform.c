@@ -782,20 +782,6 @@ frame_merged(void *vc, uint32_t keep, uint32_t gone, const double pos[3], double
 	qd_merge(&c->q[keep], &c->q[gone]);
 }
 
-static uint32_t
-find(uint32_t *parent, uint32_t v)
-{
-	uint32_t r = v;
-	while (parent[r] != r)
-		r = parent[r];
-	while (parent[v] != r) {
-		uint32_t n = parent[v];
-		parent[v] = r;
-		v = n;
-	}
-	return r;
-}
-
 struct scratch {
 	struct qd *q;
 	float *pos;
@@ -852,8 +838,8 @@ simplify_frame(const struct anim *a, size_t f, const struct vdt_contraction *rec
 		s->parent[gone] = keep;
 	}
 	for (size_t t = 0; t < a->nt; t++) {
-		uint32_t x = find(s->parent, a->tri[3 * t]), y = find(s->parent, a->tri[3 * t + 1]),
-		         z = find(s->parent, a->tri[3 * t + 2]);
+		uint32_t x = vdt_topo_find(s->parent, a->tri[3 * t]), y = vdt_topo_find(s->parent, a->tri[3 * t + 1]),
+		         z = vdt_topo_find(s->parent, a->tri[3 * t + 2]);
 		if (x == y || y == z || x == z)
 			continue;
 		s->tri[3 * nt] = x;
@@ -906,7 +892,7 @@ simplify_frame(const struct anim *a, size_t f, const struct vdt_contraction *rec
 	uint32_t *rep = s->rep;
 	memset(rep, 0xff, nv * sizeof(*rep));
 	for (size_t v0 = 0; v0 < nv; v0++) {
-		uint32_t x = find(s->parent, (uint32_t)v0);
+		uint32_t x = vdt_topo_find(s->parent, (uint32_t)v0);
 		if (finish)
 			x = r.final[x];
 		if (rep[x] == NONE)

@@ -172,17 +172,6 @@ nomem:
 	return -1;
 }
 
-/* The root of v's set, halving the path on the way. */
-static uint32_t
-find(uint32_t *up, uint32_t v)
-{
-	while (up[v] != v) {
-		up[v] = up[up[v]];
-		v = up[v];
-	}
-	return v;
-}
-
 size_t
 vdt_topo_parts(size_t nv, const uint32_t *tri, size_t nt)
 {
@@ -199,10 +188,10 @@ vdt_topo_parts(size_t nv, const uint32_t *tri, size_t nt)
 		up[v] = (uint32_t)v;
 	for (size_t t = 0; t < nt; t++) {
 		const uint32_t *c = tri + 3 * t;
-		uint32_t r = find(up, c[0]);
+		uint32_t r = vdt_topo_find(up, c[0]);
 		used[c[0]] = 1;
 		for (int k = 1; k < 3; k++) {
-			uint32_t q = find(up, c[k]);
+			uint32_t q = vdt_topo_find(up, c[k]);
 			used[c[k]] = 1;
 			if (q < r) {
 				up[r] = q;

@@ -52,6 +52,18 @@ long vdt_topo_open_edges_in(size_t lo, size_t hi, const uint32_t *tri,
                             const uint32_t *start, const uint32_t *fan, const uint8_t *dead,
                             uint32_t **edges, size_t *nonmanifold);
 
+/* The root of v's set in the union-find forest up (up[r] == r at a
+ * root), halving the path on the way. */
+static inline uint32_t
+vdt_topo_find(uint32_t *up, uint32_t v)
+{
+	while (up[v] != v) {
+		up[v] = up[up[v]];
+		v = up[v];
+	}
+	return v;
+}
+
 /*
  * The connected parts of the faces tri[0..3 nt) over nv vertices: faces
  * that share a vertex are of one part. Faces with a repeated vertex count

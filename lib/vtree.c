@@ -21,6 +21,7 @@
 #include "contract.h"
 #include "octree.h"
 #include "quadric.h"
+#include "topo.h"
 
 #define NONE VDT_VTREE_NONE
 #define HEADER 24
@@ -1059,16 +1060,6 @@ cmp_u64(const void *a, const void *b)
 	return x < y ? -1 : x > y;
 }
 
-static uint32_t
-find(uint32_t *uf, uint32_t x)
-{
-	while (uf[x] != x) {
-		uf[x] = uf[uf[x]];
-		x = uf[x];
-	}
-	return x;
-}
-
 /* The topology of the active triangles. */
 static int
 measure(struct front *F, struct vdt_vtree_cut *c)
@@ -1100,7 +1091,7 @@ measure(struct front *F, struct vdt_vtree_cut *c)
 				c->vertices++;
 			}
 			edges[ne++] = u < v ? (uint64_t)u << 32 | v : (uint64_t)v << 32 | u;
-			uint32_t ru = find(uf, u), rv = find(uf, v);
+			uint32_t ru = vdt_topo_find(uf, u), rv = vdt_topo_find(uf, v);
 			if (ru != rv)
 				uf[ru < rv ? rv : ru] = ru < rv ? ru : rv;
 		}
@@ -1116,7 +1107,7 @@ measure(struct front *F, struct vdt_vtree_cut *c)
 		i = j;
 	}
 	for (size_t x = 0; x < t->node_count; x++)
-		if (F->active[x] && F->stamp[x] == s && find(uf, (uint32_t)x) == x)
+		if (F->active[x] && F->stamp[x] == s && vdt_topo_find(uf, (uint32_t)x) == x)
 			c->components++;
 	c->euler = (long)c->vertices - (long)c->edges + (long)c->triangles;
 	free(edges);
