@@ -79,10 +79,16 @@ exit_status(int code)
 	}
 }
 
+const char *
+input_name(const char *path)
+{
+	return path == NULL || strcmp(path, "-") == 0 ? "<stdin>" : path;
+}
+
 int
 fail(const char *what, const char *file, const struct vdt_err *err)
 {
-	const char *name = (file == NULL || strcmp(file, "-") == 0) ? "<stdin>" : file;
+	const char *name = input_name(file);
 
 	progress_done();
 	if (strncmp(what, "cannot write", 12) == 0 && strcmp(file ? file : "-", "-") == 0)

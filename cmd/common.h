@@ -41,6 +41,9 @@ void other_option(int c, void (*usage)(FILE *)) __attribute__((noreturn));
  */
 const char *input_operand(int argc, char **argv, const char *dflt);
 
+/* An input operand as messages name it: "<stdin>" for - (or NULL). */
+const char *input_name(const char *path);
+
 /*
  * Report a library error about a file: "progname: cannot read 'f': msg".
  * `what` is the verb phrase ("cannot read", "cannot write"). Returns the exit

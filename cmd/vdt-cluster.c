@@ -126,7 +126,7 @@ run(struct cmdline *cl)
 	rc = vdt_cluster_source(ts, &rq, &c, &g, &remeasured, &box_s, p, &err);
 	if (remeasured && !cl->quiet)
 		fprintf(stderr, "%s: %s: the header's bounding box is not that of the vertices the "
-		        "faces use: clustered again on theirs\n", progname, cl->in);
+		        "faces use: clustered again on theirs\n", progname, input_name(cl->in));
 	t1 += box_s;
 	/* The input is read: its mapped pages go before the output is made,
 	 * so that they do not add to the peak. */

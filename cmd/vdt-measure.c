@@ -126,7 +126,7 @@ run(const struct cmdline *cl)
 		/* the message may be about either mesh: both are named */
 		char what[4096];
 		snprintf(what, sizeof(what), "cannot measure '%s' against",
-		         strcmp(cl->a, "-") == 0 ? "<stdin>" : cl->a);
+		         input_name(cl->a));
 		rc = fail(what, cl->b, &err);
 		goto out;
 	}

@@ -160,7 +160,7 @@ run(struct cmdline *cl)
 	/* Not an error: a batch may give every model the same options. */
 	if (cl->label_opt && x.labl.cams.count == 0 && !cl->quiet)
 		fprintf(stderr, "%s: '%s' has no LABL chunk (vdt-silhouette's labels): %s has no effect\n",
-		        progname, strcmp(cl->in, "-") == 0 ? "<stdin>" : cl->in, cl->label_opt);
+		        progname, input_name(cl->in), cl->label_opt);
 	/* The input is needed for nothing but its counts once simplified. */
 	x.take_input = 1;
 	cl->q.progress = progress_start(cl->quiet);
