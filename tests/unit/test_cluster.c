@@ -698,6 +698,37 @@ sampler_cap_costs_nothing(void **state)
 	assert_int_equal(out.occupied[0], 1);
 }
 
+/* Past the table the sample starts with (2^20 keys), it grows and loses
+ * no key: 1.2 million vertices in as many finest cells, under a cap above
+ * them, are all counted. */
+static void
+sampler_grows_past_its_start(void **state)
+{
+	struct vdt_bbox box = {{0, 0, 0}, {1, 1, 1}};
+	struct vdt_cluster_sampler *s;
+	struct vdt_cluster_sample out;
+	size_t n = 1200000;
+	double *xyz = malloc(3 * n * sizeof(*xyz));
+
+	(void)state;
+	assert_non_null(xyz);
+	for (size_t i = 0; i < n; i++) { /* cell centres of the finest grid */
+		xyz[3 * i] = ((double)(i % 4096) + 0.5) / 4096;
+		xyz[3 * i + 1] = ((double)(i / 4096 % 4096) + 0.5) / 4096;
+		xyz[3 * i + 2] = 0.5 / 4096;
+	}
+	assert_int_equal(vdt_cluster_sampler_new(&s, &box, 2 * n, NULL), 0);
+	assert_int_equal(vdt_cluster_sampler_add(s, xyz, n, NULL), 0);
+	assert_int_equal(vdt_cluster_sampler_finish(s, &out, NULL), 0);
+	assert_int_equal(out.levels, 13);
+	assert_int_equal(out.occupied[12], n);
+	/* rows 0-291 full, row 292 to x 3967: 146 pairs of rows of 2048
+	 * cells, then 1984 */
+	assert_int_equal(out.occupied[11], 146 * 2048 + 1984);
+	assert_int_equal(out.occupied[0], 1);
+	free(xyz);
+}
+
 /* The "comment bbox" of a PLY header, only when it is six ordered numbers. */
 static void
 header_box(void **state)
@@ -974,6 +1005,7 @@ main(void)
 		cmocka_unit_test(memory_limit),
 		cmocka_unit_test(no_area_is_bad_input),
 		cmocka_unit_test(sampler_cap_costs_nothing),
+		cmocka_unit_test(sampler_grows_past_its_start),
 		cmocka_unit_test(non_finite_corners),
 		cmocka_unit_test(header_box),
 		cmocka_unit_test(corner_box),
