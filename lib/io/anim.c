@@ -90,7 +90,7 @@ vdt_anim_read(const char *path, const struct vdt_bake_opts *bo, struct vdt_mesh 
 	memset(fr, 0, sizeof(*fr));
 	if (extra)
 		memset(extra, 0, sizeof(*extra));
-	if (strcmp(path, "-") != 0 && vdt_assimp_handles(path))
+	if (vdt_assimp_handles(path)) /* never "-" */
 		return vdt_assimp_read(path, bo, m, fr, err);
 	if ((rc = slurp(path, &buf, &len, err)) != 0)
 		return rc;

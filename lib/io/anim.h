@@ -1,7 +1,8 @@
 /*
  * anim.h - reading animations whose frames share one connectivity: Quake
  * II MD2 keyframe models (native), skinned models of the formats Assimp
- * reads (.x, .fbx, .gltf, .glb, .dae, .smd, .iqm, .ms3d, .b3d; assimp.cc),
+ * reads (.x, .fbx, .gltf, .glb, .dae, .smd, .iqm, .md5mesh, .mdl, .ms3d,
+ * .b3d; assimp.cc),
  * a vdt stream with MESH and FRMS chunks, a list of mesh files, or a
  * printf pattern naming them.
  */
@@ -53,9 +54,10 @@ struct vdt_bake_opts {
  * for by name or number is then an error). The meshes of all
  * its nodes are joined into *m (frame 0's positions) in node order; their
  * vertices are as the file has them, split at texture and normal seams.
- * Returns 0, VDT_EIO (cannot open), VDT_EFORMAT (Assimp's own words),
- * VDT_EINVAL (no triangles, an animation of nodes not there, a bad index,
- * a non-finite position: the message names the frame and vertex) or
+ * Returns 0, VDT_EIO (cannot open), VDT_EFORMAT (Assimp's own words, an
+ * index out of range among them), VDT_EINVAL (no mesh or no triangles, an
+ * animation not there or of nodes not there, too many frames, a
+ * non-finite position: the message names the frame and vertex) or
  * VDT_ENOMEM; on failure *m and *fr are empty.
  */
 int vdt_assimp_read(const char *path, const struct vdt_bake_opts *bo, struct vdt_mesh *m,

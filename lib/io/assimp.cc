@@ -27,7 +27,6 @@
 #include <assimp/scene.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -36,6 +35,8 @@
 #include <new>
 #include <string>
 #include <vector>
+
+#include <strings.h>
 
 extern "C" {
 #include "anim.h"
@@ -47,17 +48,30 @@ namespace {
 const char *const exts[] = {".x",   ".fbx",     ".gltf", ".glb",  ".dae", ".smd",
                             ".iqm", ".md5mesh", ".mdl",  ".ms3d", ".b3d"};
 
+/* A mesh of triangles where a node puts it, and the node of each of its
+ * bones (the mesh's own node for a bone that names none), found once. */
 struct Instance {
 	const aiMesh *mesh;
 	const aiNode *node;
+	std::vector<const aiNode *> bones;
 };
 
+/* The instances under n, in node order. Indices need no check here:
+ * aiProcess_ValidateDataStructure refuses a node's mesh, a face's vertex
+ * or a weight's vertex out of range. */
 void
 collect(const aiScene *s, const aiNode *n, std::vector<Instance> &out)
 {
-	for (unsigned i = 0; i < n->mNumMeshes; i++)
-		if (n->mMeshes[i] < s->mNumMeshes)
-			out.push_back({s->mMeshes[n->mMeshes[i]], n});
+	for (unsigned i = 0; i < n->mNumMeshes; i++) {
+		const aiMesh *me = s->mMeshes[n->mMeshes[i]];
+		if (!(me->mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
+			continue;
+		out.push_back({me, n, {}});
+		for (unsigned b = 0; b < me->mNumBones; b++) {
+			const aiNode *bn = s->mRootNode->FindNode(me->mBones[b]->mName);
+			out.back().bones.push_back(bn ? bn : n);
+		}
+	}
 	for (unsigned i = 0; i < n->mNumChildren; i++)
 		collect(s, n->mChildren[i], out);
 }
@@ -112,15 +126,15 @@ rotation_at(const aiQuatKey *k, unsigned n, double t, const aiQuaternion &dflt)
 	});
 }
 
-/* Every node's global transform at time t of animation a (or at bind
- * time with a == NULL), by node. */
+/* Every node's global transform at time t of the animation whose channels
+ * chan holds (none: as posed), by node. */
 void
-globals(const aiNode *n, const aiMatrix4x4 &parent, const aiAnimation *a,
+globals(const aiNode *n, const aiMatrix4x4 &parent,
         const std::map<const aiNode *, const aiNodeAnim *> &chan, double t,
         std::map<const aiNode *, aiMatrix4x4> &out)
 {
 	aiMatrix4x4 local = n->mTransformation;
-	auto it = a ? chan.find(n) : chan.end();
+	auto it = chan.find(n);
 	if (it != chan.end()) {
 		const aiNodeAnim *c = it->second;
 		aiVector3D s0, p0;
@@ -137,7 +151,7 @@ globals(const aiNode *n, const aiMatrix4x4 &parent, const aiAnimation *a,
 	aiMatrix4x4 g = parent * local;
 	out[n] = g;
 	for (unsigned i = 0; i < n->mNumChildren; i++)
-		globals(n->mChildren[i], g, a, chan, t, out);
+		globals(n->mChildren[i], g, chan, t, out);
 }
 
 /* The animation of s that bo names (NULL in *a if s has none and bo names
@@ -192,8 +206,6 @@ bake(const aiScene *s, const struct vdt_bake_opts *bo, struct vdt_mesh *m, struc
 		collect(s, s->mRootNode, inst);
 	size_t nv = 0, nt = 0;
 	for (const Instance &i : inst) {
-		if (!(i.mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
-			continue;
 		nv += i.mesh->mNumVertices;
 		for (unsigned f = 0; f < i.mesh->mNumFaces; f++)
 			nt += i.mesh->mFaces[f].mNumIndices == 3;
@@ -253,43 +265,33 @@ bake(const aiScene *s, const struct vdt_bake_opts *bo, struct vdt_mesh *m, struc
 	/* The joined mesh's triangles. */
 	size_t v0 = 0, t = 0;
 	for (const Instance &i : inst) {
-		if (!(i.mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
-			continue;
 		for (unsigned f = 0; f < i.mesh->mNumFaces; f++) {
 			const aiFace &face = i.mesh->mFaces[f];
 			if (face.mNumIndices != 3)
 				continue;
-			for (int k = 0; k < 3; k++) {
-				if (face.mIndices[k] >= i.mesh->mNumVertices)
-					return vdt_err_set(err, VDT_EINVAL, "mesh '%s': face %u uses vertex %u of %u",
-					                   i.mesh->mName.C_Str(), f, face.mIndices[k],
-					                   i.mesh->mNumVertices);
+			for (int k = 0; k < 3; k++)
 				m->triangles[3 * t + k] = uint32_t(v0 + face.mIndices[k]);
-			}
 			t++;
 		}
 		v0 += i.mesh->mNumVertices;
 	}
 	/* Each frame's positions. */
 	std::vector<double> acc, sum;
+	std::map<const aiNode *, aiMatrix4x4> g; /* every frame overwrites it */
 	for (size_t f = 0; f < times.size(); f++) {
-		std::map<const aiNode *, aiMatrix4x4> g;
-		globals(s->mRootNode, aiMatrix4x4(), a, chan, times[f], g);
+		globals(s->mRootNode, aiMatrix4x4(), chan, times[f], g);
 		float *out = fr->positions + 3 * nv * f;
 		v0 = 0;
 		for (const Instance &i : inst) {
 			const aiMesh *me = i.mesh;
-			if (!(me->mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
-				continue;
 			acc.assign(3 * (size_t)me->mNumVertices, 0.0);
 			sum.assign(me->mNumVertices, 0.0);
 			for (unsigned b = 0; b < me->mNumBones; b++) {
 				const aiBone *bone = me->mBones[b];
-				const aiNode *bn = s->mRootNode->FindNode(bone->mName);
-				aiMatrix4x4 mb = (bn ? g[bn] : g[i.node]) * bone->mOffsetMatrix;
+				aiMatrix4x4 mb = g[i.bones[b]] * bone->mOffsetMatrix;
 				for (unsigned w = 0; w < bone->mNumWeights; w++) {
 					const aiVertexWeight &vw = bone->mWeights[w];
-					if (vw.mVertexId >= me->mNumVertices || !(vw.mWeight > 0))
+					if (!(vw.mWeight > 0))
 						continue;
 					aiVector3D p = mb * me->mVertices[vw.mVertexId];
 					for (int k = 0; k < 3; k++)
@@ -326,24 +328,22 @@ bake(const aiScene *s, const struct vdt_bake_opts *bo, struct vdt_mesh *m, struc
 
 } // namespace
 
+/* The extension as vdt_format_from_path finds it: after the last dot of
+ * the last component, a name that starts with its only dot (".x") having
+ * none. */
 extern "C" int
 vdt_assimp_handles(const char *path)
 {
-	size_t n = strlen(path);
+	const char *base = strrchr(path, '/'), *dot;
 
-	for (const char *e : exts) {
-		size_t k = strlen(e);
-		if (n > k) {
-			bool same = true;
-			for (size_t i = 0; i < k && same; i++)
-				same = (char)std::tolower((unsigned char)path[n - k + i]) == e[i];
-			if (same)
-				return 1;
-		}
-	}
+	base = base ? base + 1 : path;
+	if ((dot = strrchr(base, '.')) == nullptr || dot == base)
+		return 0;
+	for (const char *e : exts)
+		if (strcasecmp(dot, e) == 0)
+			return 1;
 	return 0;
 }
-
 
 extern "C" int
 vdt_assimp_read(const char *path, const struct vdt_bake_opts *bo, struct vdt_mesh *m,
