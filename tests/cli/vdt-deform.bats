@@ -496,6 +496,20 @@ PY
 	[[ "$output" == *"--fps chooses how a skinned model"* ]]
 }
 
+@test "vdt-deform --fps outside 0.001 to 10000 or not a number is a usage error" {
+	for f in 0 20000; do
+		run "$BIN/vdt-deform" --fps $f -r 0.5 "$TMP/walk.fbx" -o "$TMP/w.vdt"
+		[ "$status" -eq 2 ]
+		one_line
+		[ "$output" = "vdt-deform: --fps must be between 0.001 and 10000, not $f" ]
+	done
+	run "$BIN/vdt-deform" --fps 5x -r 0.5 "$TMP/walk.fbx" -o "$TMP/w.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[ "$output" = "vdt-deform: invalid value '5x' for --fps" ]
+	[ ! -e "$TMP/w.vdt" ]
+}
+
 @test "vdt-deform --animation: empty, without a skinned model, or of no bone, is refused" {
 	run "$BIN/vdt-deform" --animation '' -r 0.5 "$SAMPLES/torus.off" -o "$TMP/t.off"
 	[ "$status" -eq 2 ]

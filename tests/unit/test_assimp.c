@@ -260,6 +260,76 @@ refuses_what_is_no_animated_mesh(void **state)
 	             VDT_EINVAL, "has no mesh");
 }
 
+/*
+ * A glTF of one triangle and no animation, (0,0,0) (1,0,0) (0,1,0), with
+ * the indices given (an accessor of three uint16) or none (drawn in order).
+ */
+static char *
+triangle_gltf(const char *indices)
+{
+	static char text[1024];
+	snprintf(
+	        text, sizeof(text),
+	        "{\"asset\": {\"version\": \"2.0\"}, \"scene\": 0, \"scenes\": [{\"nodes\": [0]}], "
+	        "\"nodes\": [{\"mesh\": 0}], \"meshes\": [{\"primitives\": [{\"attributes\": "
+	        "{\"POSITION\": 0}%s}]}], \"buffers\": [{\"byteLength\": 44, \"uri\": "
+	        "\"data:application/octet-stream;base64,"
+	        "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAUAAAA=\"}], "
+	        "\"bufferViews\": [{\"buffer\": 0, \"byteLength\": 36}, "
+	        "{\"buffer\": 0, \"byteOffset\": 36, \"byteLength\": 6}], "
+	        "\"accessors\": [{\"bufferView\": 0, \"componentType\": 5126, \"count\": 3, "
+	        "\"type\": \"VEC3\", \"min\": [0, 0, 0], \"max\": [1, 1, 0]}, "
+	        "{\"bufferView\": 1, \"componentType\": 5123, \"count\": 3, \"type\": "
+	        "\"SCALAR\"}]}",
+	        indices ? indices : "");
+	return write_temp_as(text, ".gltf");
+}
+
+/* A still model is one frame, as posed; an animation asked of it is
+ * refused, with "none" for the list. */
+static void
+still_model_is_one_frame(void **state)
+{
+	(void)state;
+	struct vdt_bake_opts first = {"0", 0};
+	struct vdt_mesh m;
+	struct vdt_frames fr;
+	struct vdt_err err = {0};
+	char *path = triangle_gltf(NULL);
+
+	assert_int_equal(vdt_assimp_read(path, NULL, &m, &fr, &err), 0);
+	assert_int_equal(fr.frame_count, 1);
+	assert_int_equal(m.vertex_count, 3);
+	assert_int_equal(m.triangle_count, 1);
+	assert_true(fabsf(fr.positions[3 * 1 + 0] - 1) < 1e-6f);
+	vdt_mesh_free(&m);
+	vdt_frames_free(&fr);
+	assert_int_equal(vdt_assimp_read(path, &first, &m, &fr, &err), VDT_EINVAL);
+	unlink(path);
+	assert_string_equal(err.msg, "has no animation '0' (0: none)");
+	assert_null(m.positions);
+	assert_null(fr.positions);
+}
+
+/* A face's vertex out of range is Assimp's to refuse (here its glTF reader
+ * drops the face, then ValidateDataStructure the mesh without faces): a
+ * format error, in Assimp's words; the baking checks no index. */
+static void
+index_out_of_range_is_a_format_error(void **state)
+{
+	(void)state;
+	struct vdt_mesh m;
+	struct vdt_frames fr;
+	struct vdt_err err = {0};
+	char *path = triangle_gltf(", \"indices\": 1");
+
+	assert_int_equal(vdt_assimp_read(path, NULL, &m, &fr, &err), VDT_EFORMAT);
+	unlink(path);
+	assert_true(err.msg[0] != '\0');
+	assert_null(m.positions);
+	assert_null(fr.positions);
+}
+
 static void
 missing_file_is_an_io_error(void **state)
 {
@@ -280,6 +350,8 @@ formats_by_extension(void **state)
 	assert_true(vdt_assimp_handles("dir.obj/Walk.GLB"));
 	assert_true(vdt_assimp_handles("a.x"));
 	assert_false(vdt_assimp_handles(".x"));
+	assert_false(vdt_assimp_handles("models/.x"));
+	assert_true(vdt_assimp_handles("models/walk.tar.X"));
 	assert_false(vdt_assimp_handles("bunny.obj"));
 	assert_false(vdt_assimp_handles("frames.vdt"));
 	assert_false(vdt_assimp_handles("sydney.md2"));
@@ -294,6 +366,8 @@ main(void)
 		cmocka_unit_test(animation_by_number),
 		cmocka_unit_test(one_key_is_one_frame),
 		cmocka_unit_test(refuses_what_is_no_animated_mesh),
+		cmocka_unit_test(still_model_is_one_frame),
+		cmocka_unit_test(index_out_of_range_is_a_format_error),
 		cmocka_unit_test(missing_file_is_an_io_error),
 		cmocka_unit_test(formats_by_extension),
 	};
