@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "../lib/stream.h"
@@ -238,4 +239,46 @@ input_operand(int argc, char **argv, const char *dflt)
 	if (optind < argc)
 		usage_error("unexpected argument '%s'", argv[optind]);
 	return in;
+}
+
+/* stat(2) of a path, or of standard input or output for "-". */
+static int
+stat_operand(const char *path, int fd, struct stat *st)
+{
+	return strcmp(path, "-") == 0 ? fstat(fd, st) : stat(path, st);
+}
+
+void
+refuse_outputs_over_inputs(const char *const *in, size_t nin, const char *const *out,
+                           size_t nout)
+{
+	struct stat *si = malloc((nin ? nin : 1) * sizeof(*si)), so;
+	char *ok = malloc(nin ? nin : 1);
+
+	if (si == NULL || ok == NULL) {
+		fprintf(stderr, "%s: out of memory\n", progname);
+		exit(EXIT_WORK);
+	}
+	for (size_t i = 0; i < nin; i++)
+		ok[i] = stat_operand(in[i], STDIN_FILENO, &si[i]) == 0;
+	/* Only a regular file can be destroyed: a FIFO or device written in
+	 * place is no copy of anything. */
+	for (size_t o = 0; o < nout; o++) {
+		if (stat_operand(out[o], STDOUT_FILENO, &so) != 0 || !S_ISREG(so.st_mode))
+			continue;
+		for (size_t i = 0; i < nin; i++)
+			if (ok[i] && si[i].st_dev == so.st_dev && si[i].st_ino == so.st_ino)
+				usage_error("the output '%s' is the input '%s': writing it would "
+				            "destroy the input",
+				            strcmp(out[o], "-") == 0 ? "<stdout>" : out[o],
+				            input_name(in[i]));
+	}
+	free(si);
+	free(ok);
+}
+
+void
+refuse_output_over_input(const char *in, const char *out)
+{
+	refuse_outputs_over_inputs(&in, 1, &out, 1);
 }

@@ -41,6 +41,18 @@ void other_option(int c, void (*usage)(FILE *)) __attribute__((noreturn));
  */
 const char *input_operand(int argc, char **argv, const char *dflt);
 
+/*
+ * A usage error when the output is the input file itself (the same name,
+ * a link to it, or standard output or input redirected to or from it):
+ * renamed over the input, or appended to it, the result would destroy
+ * the only copy of what the user gave.
+ */
+void refuse_output_over_input(const char *in, const char *out);
+
+/* The same for any of nout outputs against any of nin inputs. */
+void refuse_outputs_over_inputs(const char *const *in, size_t nin, const char *const *out,
+                                size_t nout);
+
 /* An input operand as messages name it: "<stdin>" for - (or NULL). */
 const char *input_name(const char *path);
 

@@ -76,6 +76,8 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		cl->in = argv[optind++];
 	if (optind < argc)
 		usage_error("unexpected argument '%s'", argv[optind]);
+	if (cl->check == NULL)
+		refuse_output_over_input(cl->in, cl->out);
 }
 
 /* --check: decode (every invariant), then collapse all and split all back. */

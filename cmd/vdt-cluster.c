@@ -93,6 +93,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	}
 	cl->in = input_operand(argc, argv, cl->in);
 	cl->w.format = output_format(cl->out, cl->w.format);
+	refuse_output_over_input(cl->in, cl->out);
 	if (cl->choices > 1)
 		usage_error("-s, -g, -t and -r each choose the grid: give one");
 	if (cl->choices == 0 && cl->memory_mb == 0)

@@ -144,6 +144,45 @@ statistics(struct cmdline *cl, const struct vdt_mesh *in, const struct vdt_frame
 	free(s.frames);
 }
 
+/*
+ * No file written may be one read: a pattern for -o naming the input
+ * frames would replace the animation with its simplification. Compared
+ * once the frames are read, when their number is known.
+ */
+static void
+refuse_frames_over_inputs(const struct cmdline *cl, size_t frames)
+{
+	char **in = cl->in, **out = NULL;
+	size_t nin = cl->nin, nout = 1;
+	struct vdt_err err = {0};
+	int ok = 1;
+
+	/* The files the pattern named, as reading found them. */
+	if (nin == 1 && vdt_anim_is_pattern(cl->in[0]) &&
+	    vdt_anim_pattern(cl->in[0], cl->start, cl->count, &in, &nin, &err) != 0)
+		return; /* they were read: they are there */
+	if (frames > 1 && vdt_anim_is_pattern(cl->out)) {
+		nout = frames;
+		if ((out = calloc(nout, sizeof(*out))) == NULL)
+			ok = 0;
+		for (size_t f = 0; ok && f < nout; f++)
+			ok = (out[f] = vdt_anim_format(cl->out, f)) != NULL;
+	}
+	if (!ok) {
+		fprintf(stderr, "%s: out of memory\n", progname);
+		exit(EXIT_WORK);
+	}
+	refuse_outputs_over_inputs((const char *const *)in, nin,
+	                           out ? (const char *const *)out : &cl->out, nout);
+	for (size_t f = 0; out && f < nout; f++)
+		free(out[f]);
+	free(out);
+	for (size_t i = 0; in != cl->in && i < nin; i++)
+		free(in[i]);
+	if (in != cl->in)
+		free(in);
+}
+
 static int
 run(struct cmdline *cl)
 {
@@ -164,6 +203,7 @@ run(struct cmdline *cl)
 	if (fr.frame_count > 1 && !vdt_deform_writes_frames(cl->out, &cl->w))
 		usage_error("%zu frames need a pattern (out/%%03d.obj) or a vdt stream for -o",
 		            fr.frame_count);
+	refuse_frames_over_inputs(cl, fr.frame_count);
 	vdt_chunks_drop_vertex_data(&extra);
 	cl->d.progress = progress_start(cl->quiet);
 	t1 = vdt_seconds();

@@ -133,6 +133,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		usage_error("--nearest weighs the cameras nearest to a --view: give one");
 	cl->in = input_operand(argc, argv, cl->in);
 	cl->w.format = output_format(cl->out, cl->w.format);
+	refuse_output_over_input(cl->in, cl->out);
 	if (cl->q.record && cl->w.format != VDT_FMT_VDT)
 		usage_error("--record writes a SEQN chunk, which only a vdt stream holds, not %s: "
 		            "give -F vdt or a .vdt name", vdt_format_name(cl->w.format));

@@ -140,6 +140,10 @@ check_outputs(const struct cmdline *cl, size_t nviews)
 		if (pat[k] && nviews > 1 && strcmp(frame_name(a, pat[k], 0), frame_name(b, pat[k], 1)) == 0)
 			usage_error("%zu views need one file each: give %s a %%d, not '%s'", nviews,
 			            opt[k], pat[k]);
+	for (size_t i = 0; i < nviews; i++)
+		for (int k = 0; k < 2; k++)
+			if (pat[k])
+				refuse_output_over_input(cl->in, frame_name(a, pat[k], i));
 	if (cl->out && vdt_image_writable(frame_name(a, cl->out, 0), &err) != 0)
 		return fail("cannot write", a, &err);
 	if (cl->mesh_out && strcmp(cl->mesh_out, "-") != 0 &&

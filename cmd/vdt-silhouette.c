@@ -99,6 +99,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	if (nearest && !cl->has_view)
 		usage_error("--nearest weighs the cameras nearest to a --view: give one");
 	cl->in = input_operand(argc, argv, cl->in);
+	refuse_output_over_input(cl->in, cl->out);
 }
 
 static int

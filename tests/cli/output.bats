@@ -93,3 +93,35 @@ load helpers
 	[ ! -e "$TMP/no" ]
 	[ "$(ls -A "$TMP" | grep -c '^\.')" -eq 0 ]
 }
+
+@test "no tool writes over a file it reads, by any name, and the file stays whole" {
+	cp "$SAMPLES/sphere.off" "$TMP/s.off"
+	"$BIN/vdt-build" "$TMP/s.off" -o "$TMP/s.vdt"
+	ln -s s.off "$TMP/link.off"
+	mkdir "$TMP/f"
+	for i in 0 1 2; do cp "$TMP/s.off" "$TMP/f/$i.off"; done
+	before=$(cd "$TMP" && cat s.off s.vdt f/*.off | md5sum)
+	for cmd in "vdt-cluster -g 8 $TMP/s.off -o $TMP/link.off" \
+	           "vdt-qslim -r 0.5 $TMP/link.off -o $TMP/s.off" \
+	           "vdt-build $TMP/s.vdt -o $TMP/s.vdt" \
+	           "vdt-silhouette -r 64 $TMP/s.vdt -o $TMP/s.vdt" \
+	           "vdt-measure $TMP/s.off $SAMPLES/sphere.off -o $TMP/s.off" \
+	           "vdt-measure $SAMPLES/sphere.off $TMP/s.off -c $TMP/link.off" \
+	           "vdt-render $TMP/s.vdt --mesh-out $TMP/s.vdt" \
+	           "vdt-deform -r 0.5 $TMP/f/%d.off -o $TMP/f/%d.off" \
+	           "vdt-deform -r 0.5 $TMP/f/0.off $TMP/f/1.off $TMP/f/2.off -o $TMP/f/%d.off"; do
+		# shellcheck disable=SC2086 # cmd is a list of words
+		run $BIN/$cmd
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == *"is the input"* ]]
+	done
+	# standard output appended to an input
+	run sh -c "'$BIN/vdt-cluster' -g 8 -F off '$TMP/s.off' >> '$TMP/s.off'"
+	[ "$status" -eq 2 ]
+	[ "$(cd "$TMP" && cat s.off s.vdt f/*.off | md5sum)" = "$before" ]
+	[ "$(ls -A "$TMP" "$TMP/f" | grep -c '^\.')" -eq 0 ]
+	# other names are written as ever
+	"$BIN/vdt-deform" -r 0.5 "$TMP/f/%d.off" -o "$TMP/g%d.off"
+	[ -s "$TMP/g2.off" ]
+}

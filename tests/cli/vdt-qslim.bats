@@ -555,3 +555,28 @@ END
 	done
 	[ ! -e "$TMP/out.off" ]
 }
+
+@test "vdt-qslim refuses to write over its input, by any name, and leaves it whole" {
+	cp "$SAMPLES/sphere.off" "$TMP/in.off"
+	sum=$(md5sum < "$TMP/in.off")
+	ln -s in.off "$TMP/link.off"
+	ln "$TMP/in.off" "$TMP/hard.off"
+	for args in "$TMP/in.off -o $TMP/in.off" "$TMP/in.off -o $TMP/link.off" \
+	            "$TMP/link.off -o $TMP/in.off" "$TMP/hard.off -o $TMP/in.off"; do
+		run "$BIN/vdt-qslim" -r 0.5 $args
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == *"is the input"* ]]
+		[ "$(md5sum < "$TMP/in.off")" = "$sum" ]
+	done
+	# standard input or output redirected from or to it
+	run sh -c "'$BIN/vdt-qslim' -r 0.5 -o '$TMP/in.off' < '$TMP/in.off'"
+	[ "$status" -eq 2 ]
+	run sh -c "'$BIN/vdt-qslim' -r 0.5 -F off '$TMP/in.off' >> '$TMP/in.off'"
+	[ "$status" -eq 2 ]
+	[ "$(md5sum < "$TMP/in.off")" = "$sum" ]
+	[ "$(ls -A "$TMP" | grep -c '^\.')" -eq 0 ]
+	# another file, and a device, are written as ever
+	"$BIN/vdt-qslim" -r 0.5 "$TMP/in.off" -o "$TMP/out.off"
+	"$BIN/vdt-qslim" -r 0.5 -F off "$TMP/in.off" -o /dev/null
+}
