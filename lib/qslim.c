@@ -603,6 +603,11 @@ virtual_pairs(const struct vdt_mesh *w, double d, uint32_t **out, size_t *count)
 	*out = NULL;
 	*count = 0;
 	vdt_mesh_bbox(w, &box);
+	/* Cells of side at least 2^-60 of the diagonal: of side d an
+	 * absurdly small d (-a 1e-30) puts a vertex more cells out than an
+	 * integer holds. Cells larger than d still hold every pair closer
+	 * than d in neighbouring cells. */
+	double side = fmax(d, vdt_bbox_diagonal(&box) * 0x1p-60);
 	cell = malloc(n * sizeof(*cell));
 	order = malloc(n * sizeof(*order));
 	start = calloc(n + 1, sizeof(*start));
@@ -613,7 +618,7 @@ virtual_pairs(const struct vdt_mesh *w, double d, uint32_t **out, size_t *count)
 	for (size_t i = 0; i < n; i++) {
 		uint64_t key = 0;
 		for (int k = 0; k < 3; k++)
-			key = key << 21 | ((uint64_t)floor((w->positions[3 * i + k] - box.min[k]) / d) & 0x1fffff);
+			key = key << 21 | ((uint64_t)floor((w->positions[3 * i + k] - box.min[k]) / side) & 0x1fffff);
 		size_t s = hash_slot(&h, key, ncell);
 		if (h.val[s] == ncell)
 			ncell++;
@@ -635,7 +640,7 @@ virtual_pairs(const struct vdt_mesh *w, double d, uint32_t **out, size_t *count)
 		double bestd[8];
 		int nb = 0;
 		for (int k = 0; k < 3; k++)
-			ci[k] = (int64_t)floor((p[k] - box.min[k]) / d);
+			ci[k] = (int64_t)floor((p[k] - box.min[k]) / side);
 		for (int dx = -1; dx <= 1; dx++)
 			for (int dy = -1; dy <= 1; dy++)
 				for (int dz = -1; dz <= 1; dz++) {
@@ -659,7 +664,9 @@ virtual_pairs(const struct vdt_mesh *w, double d, uint32_t **out, size_t *count)
 						double dd = 0;
 						for (int k = 0; k < 3; k++)
 							dd += ((double)p[k] - q[k]) * ((double)p[k] - q[k]);
-						if (dd >= d * d)
+						/* (dd > 0: below 1e-154, d * d is 0,
+						 * and a distance of 0 is still under d) */
+						if (dd >= d * d && dd > 0)
 							continue;
 						/* keep the 8 nearest, ties by index */
 						int at = nb < 8 ? nb++ : 8;
