@@ -223,7 +223,6 @@ struct hash {
 	size_t mask;
 };
 
-
 static int
 hash_init(struct hash *h, size_t n)
 {
@@ -237,20 +236,6 @@ hash_init(struct hash *h, size_t n)
 		return -1;
 	memset(h->key, 0xff, cap * sizeof(*h->key));
 	return 0;
-}
-
-/* The slot of key (inserting it with value v if absent). */
-static size_t
-hash_slot(struct hash *h, uint64_t key, uint32_t v)
-{
-	size_t i = vdt_hash_mix(key) & h->mask;
-	while (h->key[i] != key && h->key[i] != UINT64_MAX)
-		i = (i + 1) & h->mask;
-	if (h->key[i] == UINT64_MAX) {
-		h->key[i] = key;
-		h->val[i] = v;
-	}
-	return i;
 }
 
 static void
@@ -587,113 +572,194 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 }
 
 /*
- * Virtual pairs (Garland & Heckbert 97, section 3.2): welded vertices closer
- * than d that share no edge, found through a hash grid of cell size d. At
- * most 8 per vertex, the nearest, so dense regions do not explode.
+ * Virtual pairs (vdt_qslim_virtual_pairs) are found in a static k-d tree over the vertices. Each node keeps
+ * the largest vertex number in its subtree, and a search skips subtrees
+ * holding only lower ones: a vertex visits about as many points as it
+ * finds, however large d (a grid of cells of side d put every vertex in
+ * one cell for -a 100%, and the search became quadratic).
  */
+#define KD_LEAF 8
+
+struct kd {
+	const float *pos;
+	uint32_t *idx;  /* the vertices, each node's range [lo, hi) split at its middle */
+	uint32_t *maxi; /* at a node's middle slot, the largest vertex number in its range */
+	uint8_t *axis;  /* at an inner node's middle slot, the axis it splits */
+};
+
+/* Vertex x before y along axis k: by coordinate, then by number. */
 static int
-virtual_pairs(const struct vdt_mesh *w, double d, uint32_t **out, size_t *count)
+kd_before(const float *pos, int k, uint32_t x, uint32_t y)
 {
-	struct vdt_bbox box;
-	size_t n = w->vertex_count, cap = 0, np = 0;
-	uint32_t *pairs = NULL, *cell = NULL, *order = NULL, *start = NULL;
-	struct hash h = {0};
+	float a = pos[3 * (size_t)x + k], b = pos[3 * (size_t)y + k];
+	return a < b || (a == b && x < y);
+}
+
+/* Put in idx[m] the vertex that sorting idx[lo..hi) along k would, the
+ * ones before it below m and the others above (Hoare's selection). */
+static void
+kd_select(const float *pos, int k, uint32_t *idx, size_t lo, size_t hi, size_t m)
+{
+	while (hi - lo > 1) {
+		size_t mid = lo + (hi - lo) / 2, i = lo, j = hi - 1;
+		uint32_t t, pv;
+		/* median of three as the pivot, at lo */
+		if (kd_before(pos, k, idx[mid], idx[lo]))
+			t = idx[mid], idx[mid] = idx[lo], idx[lo] = t;
+		if (kd_before(pos, k, idx[hi - 1], idx[lo]))
+			t = idx[hi - 1], idx[hi - 1] = idx[lo], idx[lo] = t;
+		if (kd_before(pos, k, idx[mid], idx[hi - 1]))
+			t = idx[mid], idx[mid] = idx[hi - 1], idx[hi - 1] = t;
+		pv = idx[hi - 1];
+		/* Lomuto partition around pv (numbers are distinct: no ties) */
+		for (i = lo, j = lo; j < hi - 1; j++)
+			if (kd_before(pos, k, idx[j], pv)) {
+				t = idx[i], idx[i] = idx[j], idx[j] = t;
+				i++;
+			}
+		t = idx[i], idx[i] = idx[hi - 1], idx[hi - 1] = t;
+		if (i == m)
+			return;
+		if (m < i)
+			hi = i;
+		else
+			lo = i + 1;
+	}
+}
+
+static void
+kd_build(struct kd *t, size_t lo, size_t hi)
+{
+	size_t m = lo + (hi - lo) / 2;
+	uint32_t top = 0;
+	float mn[3], mx[3];
+	int k = 0;
+
+	for (size_t j = lo; j < hi; j++)
+		top = t->idx[j] > top ? t->idx[j] : top;
+	t->maxi[m] = top;
+	if (hi - lo <= KD_LEAF)
+		return;
+	/* split the longest side of the range's box */
+	for (int c = 0; c < 3; c++)
+		mn[c] = mx[c] = t->pos[3 * (size_t)t->idx[lo] + c];
+	for (size_t j = lo + 1; j < hi; j++)
+		for (int c = 0; c < 3; c++) {
+			float v = t->pos[3 * (size_t)t->idx[j] + c];
+			mn[c] = v < mn[c] ? v : mn[c];
+			mx[c] = v > mx[c] ? v : mx[c];
+		}
+	for (int c = 1; c < 3; c++)
+		if (mx[c] - mn[c] > mx[k] - mn[k])
+			k = c;
+	t->axis[m] = (uint8_t)k;
+	kd_select(t->pos, k, t->idx, lo, hi, m);
+	kd_build(t, lo, m);
+	kd_build(t, m + 1, hi);
+}
+
+/* A search: vertex i at p, the nearest n (at most 8) above it so far. */
+struct kd_near {
+	uint32_t i, best[8];
+	double p[3], bestd[8], d2;
+	int n;
+};
+
+static void
+kd_offer(const struct kd *t, struct kd_near *s, uint32_t o)
+{
+	const float *q = t->pos + 3 * (size_t)o;
+	double dd = 0;
+
+	if (o <= s->i)
+		return;
+	for (int k = 0; k < 3; k++)
+		dd += (s->p[k] - q[k]) * (s->p[k] - q[k]);
+	/* (dd > 0: below 1e-154, d * d is 0, and a distance of 0 is still
+	 * under d) */
+	if (dd >= s->d2 && dd > 0)
+		return;
+	/* keep the 8 nearest, ties by number */
+	int at = s->n < 8 ? s->n++ : 8;
+	while (at > 0 && (s->bestd[at - 1] > dd || (s->bestd[at - 1] == dd && s->best[at - 1] > o))) {
+		if (at < 8) {
+			s->bestd[at] = s->bestd[at - 1];
+			s->best[at] = s->best[at - 1];
+		}
+		at--;
+	}
+	if (at < 8) {
+		s->bestd[at] = dd;
+		s->best[at] = o;
+	}
+}
+
+static void
+kd_search(const struct kd *t, struct kd_near *s, size_t lo, size_t hi)
+{
+	size_t m = lo + (hi - lo) / 2;
+
+	if (t->maxi[m] <= s->i)
+		return;
+	if (hi - lo <= KD_LEAF) {
+		for (size_t j = lo; j < hi; j++)
+			kd_offer(t, s, t->idx[j]);
+		return;
+	}
+	int k = t->axis[m];
+	double diff = s->p[k] - t->pos[3 * (size_t)t->idx[m] + k];
+	kd_offer(t, s, t->idx[m]);
+	/* the near side first; the far one if it may hold one as near (a
+	 * tie too, which the lower number wins) */
+	if (diff < 0) {
+		kd_search(t, s, lo, m);
+	} else {
+		kd_search(t, s, m + 1, hi);
+	}
+	double bound = s->n == 8 ? s->bestd[7] : s->d2;
+	if (diff * diff <= bound) {
+		if (diff < 0)
+			kd_search(t, s, m + 1, hi);
+		else
+			kd_search(t, s, lo, m);
+	}
+}
+
+int
+vdt_qslim_virtual_pairs(const float *positions, size_t n, double d, uint32_t **out,
+                        size_t *count)
+{
+	size_t cap = 0, np = 0;
+	uint32_t *pairs = NULL;
+	struct kd t = {positions, NULL, NULL, NULL};
 	int rc = -1;
 
 	*out = NULL;
 	*count = 0;
-	vdt_mesh_bbox(w, &box);
-	/* Cells of side at least 2^-60 of the diagonal: of side d an
-	 * absurdly small d (-a 1e-30) puts a vertex more cells out than an
-	 * integer holds. Cells larger than d still hold every pair closer
-	 * than d in neighbouring cells. */
-	double side = fmax(d, vdt_bbox_diagonal(&box) * 0x1p-60);
-	cell = malloc(n * sizeof(*cell));
-	order = malloc(n * sizeof(*order));
-	start = calloc(n + 1, sizeof(*start));
-	if (!cell || !order || !start || hash_init(&h, n) != 0)
+	t.idx = malloc((n + 1) * sizeof(*t.idx));
+	t.maxi = malloc((n + 1) * sizeof(*t.maxi));
+	t.axis = calloc(n + 1, 1);
+	if (!t.idx || !t.maxi || !t.axis)
 		goto out;
-	/* Cell keys, counted then bucketed (counting sort by cell id). */
-	uint32_t ncell = 0;
-	for (size_t i = 0; i < n; i++) {
-		uint64_t key = 0;
-		for (int k = 0; k < 3; k++)
-			key = key << 21 | ((uint64_t)floor((w->positions[3 * i + k] - box.min[k]) / side) & 0x1fffff);
-		size_t s = hash_slot(&h, key, ncell);
-		if (h.val[s] == ncell)
-			ncell++;
-		cell[i] = h.val[s];
-		start[cell[i] + 1]++;
-	}
-	for (uint32_t c = 0; c < ncell; c++)
-		start[c + 1] += start[c];
 	for (size_t i = 0; i < n; i++)
-		order[start[cell[i]]++] = (uint32_t)i;
-	for (uint32_t c = ncell; c > 0; c--)
-		start[c] = start[c - 1];
-	start[0] = 0;
-
+		t.idx[i] = (uint32_t)i;
+	if (n > 0)
+		kd_build(&t, 0, n);
 	for (size_t i = 0; i < n; i++) {
-		const float *p = w->positions + 3 * i;
-		int64_t ci[3];
-		uint32_t best[8];
-		double bestd[8];
-		int nb = 0;
+		struct kd_near s = {.i = (uint32_t)i, .d2 = d * d};
 		for (int k = 0; k < 3; k++)
-			ci[k] = (int64_t)floor((p[k] - box.min[k]) / side);
-		for (int dx = -1; dx <= 1; dx++)
-			for (int dy = -1; dy <= 1; dy++)
-				for (int dz = -1; dz <= 1; dz++) {
-					int64_t c[3] = {ci[0] + dx, ci[1] + dy, ci[2] + dz};
-					if (c[0] < 0 || c[1] < 0 || c[2] < 0)
-						continue;
-					uint64_t key = (uint64_t)(c[0] & 0x1fffff) << 42 |
-					               (uint64_t)(c[1] & 0x1fffff) << 21 |
-					               (uint64_t)(c[2] & 0x1fffff);
-					size_t s = vdt_hash_mix(key) & h.mask;
-					while (h.key[s] != key && h.key[s] != UINT64_MAX)
-						s = (s + 1) & h.mask;
-					if (h.key[s] == UINT64_MAX)
-						continue;
-					uint32_t cc = h.val[s];
-					for (uint32_t j = start[cc]; j < start[cc + 1]; j++) {
-						uint32_t o = order[j];
-						if (o <= i)
-							continue;
-						const float *q = w->positions + 3 * (size_t)o;
-						double dd = 0;
-						for (int k = 0; k < 3; k++)
-							dd += ((double)p[k] - q[k]) * ((double)p[k] - q[k]);
-						/* (dd > 0: below 1e-154, d * d is 0,
-						 * and a distance of 0 is still under d) */
-						if (dd >= d * d && dd > 0)
-							continue;
-						/* keep the 8 nearest, ties by index */
-						int at = nb < 8 ? nb++ : 8;
-						while (at > 0 && (bestd[at - 1] > dd ||
-						                  (bestd[at - 1] == dd && best[at - 1] > o))) {
-							if (at < 8) {
-								bestd[at] = bestd[at - 1];
-								best[at] = best[at - 1];
-							}
-							at--;
-						}
-						if (at < 8) {
-							bestd[at] = dd;
-							best[at] = o;
-						}
-					}
-				}
-		for (int j = 0; j < nb; j++) {
+			s.p[k] = positions[3 * i + k];
+		kd_search(&t, &s, 0, n);
+		for (int j = 0; j < s.n; j++) {
 			if (np == cap) {
 				cap = cap ? 2 * cap : 1024;
-				uint32_t *t = realloc(pairs, 2 * cap * sizeof(*t));
-				if (t == NULL)
+				uint32_t *p = realloc(pairs, 2 * cap * sizeof(*p));
+				if (p == NULL)
 					goto out;
-				pairs = t;
+				pairs = p;
 			}
 			pairs[2 * np] = (uint32_t)i;
-			pairs[2 * np + 1] = best[j];
+			pairs[2 * np + 1] = s.best[j];
 			np++;
 		}
 	}
@@ -703,10 +769,9 @@ virtual_pairs(const struct vdt_mesh *w, double d, uint32_t **out, size_t *count)
 	rc = 0;
 out:
 	free(pairs);
-	free(cell);
-	free(order);
-	free(start);
-	hash_free(&h);
+	free(t.idx);
+	free(t.maxi);
+	free(t.axis);
 	return rc;
 }
 
@@ -1887,7 +1952,8 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
 			if (c.scale[v] == 0)
 				locked[v] = 1;
 	}
-	if (o->aggregate > 0 && virtual_pairs(&w, o->aggregate, &vpairs, &nvp) != 0)
+	if (o->aggregate > 0 &&
+	    vdt_qslim_virtual_pairs(w.positions, w.vertex_count, o->aggregate, &vpairs, &nvp) != 0)
 		goto nomem;
 
 	uint8_t *seam = malloc(nw);

@@ -229,4 +229,17 @@ int vdt_qslim_extra_encode(const struct vdt_qslim_extra *x, struct vdt_chunks *c
 /* Free what x holds and zero it. Safe on a zeroed x. */
 void vdt_qslim_extra_free(struct vdt_qslim_extra *x);
 
+/*
+ * The virtual pairs of -a d (Garland & Heckbert 97, section 3.2) among n
+ * points (3 floats each): for each point i, the nearest 8 of the points
+ * numbered above i that lie closer than d (or at distance 0), ties by
+ * number, as pairs (i, j) in *pairs (malloc'ed, 2 per pair; NULL when
+ * none), i ascending and each i's nearest first; at most 8 per point, so
+ * dense regions do not explode. Pairs that share an edge are the
+ * engine's to drop. Time about n log n whatever d. Returns 0, or -1 out
+ * of memory (*pairs NULL, *count 0).
+ */
+int vdt_qslim_virtual_pairs(const float *positions, size_t n, double d, uint32_t **pairs,
+                            size_t *count);
+
 #endif

@@ -570,6 +570,70 @@ area_floor_leaves_even_meshes_alone(void **state)
 	vdt_mesh_free(&m);
 }
 
+/*
+ * Virtual pairs against a brute force search: for each point, the 8
+ * nearest of the points above it closer than d, ties by number. The
+ * points lie on a small lattice (many ties and coincident points) and in
+ * a slab (a long axis the k-d tree splits first); d ranges from below the
+ * lattice step to beyond the whole set.
+ */
+static void
+virtual_pairs_match_brute_force(void **state)
+{
+	enum { N = 600 };
+	float *p = malloc(3 * N * sizeof(*p));
+	uint32_t x = 12345;
+
+	(void)state;
+	assert_non_null(p);
+	for (int i = 0; i < N; i++)
+		for (int k = 0; k < 3; k++) {
+			x = x * 1103515245u + 12345u;
+			int v = (int)((x >> 16) % 7);
+			p[3 * i + k] = (float)(k == 0 ? 5 * v : v) + (i % 5 == 0 ? 0.25f * (float)k : 0);
+		}
+	const double ds[] = {0.5, 1, 1.5, 3, 10, 1e300};
+	for (size_t t = 0; t < sizeof(ds) / sizeof(ds[0]); t++) {
+		double d = ds[t];
+		uint32_t *pairs;
+		size_t count, at = 0;
+		assert_int_equal(vdt_qslim_virtual_pairs(p, N, d, &pairs, &count), 0);
+		for (uint32_t i = 0; i < N; i++) {
+			uint32_t best[8];
+			double bestd[8];
+			int n = 0;
+			for (uint32_t o = i + 1; o < N; o++) {
+				double dd = 0;
+				for (int k = 0; k < 3; k++)
+					dd += ((double)p[3 * i + k] - p[3 * o + k]) *
+					      ((double)p[3 * i + k] - p[3 * o + k]);
+				if (dd >= d * d && dd > 0)
+					continue;
+				int j = n < 8 ? n++ : 8;
+				while (j > 0 && bestd[j - 1] > dd) {
+					if (j < 8) {
+						bestd[j] = bestd[j - 1];
+						best[j] = best[j - 1];
+					}
+					j--;
+				}
+				if (j < 8) {
+					bestd[j] = dd;
+					best[j] = o;
+				}
+			}
+			for (int j = 0; j < n; j++, at++) {
+				assert_true(at < count);
+				assert_int_equal(pairs[2 * at], i);
+				assert_int_equal(pairs[2 * at + 1], best[j]);
+			}
+		}
+		assert_int_equal(at, count);
+		free(pairs);
+	}
+	free(p);
+}
+
 int
 main(void)
 {
@@ -584,6 +648,7 @@ main(void)
 		cmocka_unit_test(large_meshes_keep_their_numbers),
 		cmocka_unit_test(area_floor_keeps_finely_tessellated_features),
 		cmocka_unit_test(area_floor_leaves_even_meshes_alone),
+		cmocka_unit_test(virtual_pairs_match_brute_force),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
