@@ -829,18 +829,30 @@ write_obj(FILE *f, const struct vdt_mesh *m)
 	}
 }
 
+/*
+ * Geomview's keyword and vertex order ([ST][C][N]OFF: position, normal,
+ * colour, texture coordinate), so that OFF keeps every attribute the reader
+ * takes. Colours are clamped to [0,1] as the other writers do: the reader
+ * takes integral values above 1 for 0-255 ones.
+ */
 static void
 write_off(FILE *f, const struct vdt_mesh *m)
 {
-	fprintf(f, "%sOFF\n%zu %zu 0\n", m->colors ? "C" : "", m->vertex_count,
-	        m->triangle_count);
+	fprintf(f, "%s%s%sOFF\n%zu %zu 0\n", m->uvs ? "ST" : "", m->colors ? "C" : "",
+	        m->normals ? "N" : "", m->vertex_count, m->triangle_count);
 	for (size_t i = 0; i < m->vertex_count; i++) {
 		const float *p = m->positions + 3 * i;
 		fprintf(f, P9 " " P9 " " P9, p[0], p[1], p[2]);
-		if (m->colors) {
-			const float *c = m->colors + 4 * i;
-			fprintf(f, " " P9 " " P9 " " P9 " " P9, c[0], c[1], c[2], c[3]);
-		}
+		if (m->normals)
+			fprintf(f, " " P9 " " P9 " " P9, m->normals[3 * i], m->normals[3 * i + 1],
+			        m->normals[3 * i + 2]);
+		if (m->colors)
+			for (int k = 0; k < 4; k++) {
+				float c = m->colors[4 * i + k];
+				fprintf(f, " " P9, c < 0 ? 0 : c > 1 ? 1 : c);
+			}
+		if (m->uvs)
+			fprintf(f, " " P9 " " P9, m->uvs[2 * i], m->uvs[2 * i + 1]);
 		fputc('\n', f);
 	}
 	for (size_t t = 0; t < m->triangle_count; t++)

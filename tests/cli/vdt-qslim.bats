@@ -171,6 +171,23 @@ load helpers
 	cmp "$TMP/a.off" "$TMP/b.off"
 }
 
+@test "vdt-qslim keeps normals, texture coordinates and colours in OFF output" {
+	"$BIN/vdt-qslim" -r 0.2 "$SAMPLES/sphere-uv.obj" -o "$TMP/a.off"
+	[ "$(sed -n 1p "$TMP/a.off")" = STNOFF ]
+	# position, normal, texture coordinate: 8 values a vertex
+	[ "$(sed -n 3p "$TMP/a.off" | wc -w)" -eq 8 ]
+	"$BIN/vdt-qslim" -r 0.2 "$SAMPLES/sphere-uv.obj" -o "$TMP/a.obj"
+	"$BIN/vdt-qslim" -r 1 "$TMP/a.off" -o "$TMP/b.obj"
+	cmp "$TMP/a.obj" "$TMP/b.obj"
+	# a float colour above 1 goes out as 1, not as an 8-bit 255 that
+	# would make the other channels' 1 read back as 1/255
+	printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nproperty float red\nproperty float green\nproperty float blue\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n0 0 0 255 0 1\n1 0 0 1 0 1\n0 1 0 0 0 1\n0 0 1 0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n' > "$TMP/c.ply"
+	"$BIN/vdt-qslim" -r 1 "$TMP/c.ply" -o "$TMP/c.off"
+	[ "$(sed -n 1p "$TMP/c.off")" = COFF ]
+	"$BIN/vdt-qslim" -r 1 "$TMP/c.off" -o "$TMP/c.obj"
+	[ "$(grep -c '^v .* 1$' "$TMP/c.obj")" -eq 4 ]
+}
+
 @test "vdt-qslim drops chunks that describe the old vertices, keeps unknown ones" {
 	"$BIN/vdt-qslim" -t 100000 --record "$SAMPLES/sphere.off" -o "$TMP/rec.vdt"
 	grep -aq SEQN "$TMP/rec.vdt"

@@ -173,7 +173,9 @@ labelled_sphere() {
 			"$TMP/s.vdt" --mesh-out "$TMP/l$ef.off"
 		[ "$status" -eq 0 ]
 		[[ "$output" == *" labels=1 "* ]]
-		awk 'NR > 2 && NF == 3 { print $1, $2, $3 }' "$TMP/l$ef.off" | sort > "$TMP/out$ef"
+		# the vertex lines (NOFF: the tree's normals follow the position)
+		awk 'NR == 2 { nv = $1 } NR > 2 && NR <= nv + 2 { print $1, $2, $3 }' "$TMP/l$ef.off" |
+			sort > "$TMP/out$ef"
 	done
 	[ -z "$(comm -23 "$TMP/contour" "$TMP/out0")" ]
 	[ -n "$(comm -23 "$TMP/contour" "$TMP/out1")" ]

@@ -237,6 +237,11 @@ test_roundtrip_attributes(void **state)
 	          VDT_ATTR_NORMALS | VDT_ATTR_UVS, 1);
 	roundtrip(VDT_FMT_STL, "c.stl", all, 0, 1);
 	roundtrip(VDT_FMT_DRC, "c.drc", all, all, 0);
+	/* OFF holds all three (STCNOFF), each alone too */
+	roundtrip(VDT_FMT_OFF, "c.off", all, all, 1);
+	roundtrip(VDT_FMT_OFF, "n.off", VDT_ATTR_NORMALS, VDT_ATTR_NORMALS, 1);
+	roundtrip(VDT_FMT_OFF, "t.off", VDT_ATTR_UVS, VDT_ATTR_UVS, 1);
+	roundtrip(VDT_FMT_OFF, "k.off", VDT_ATTR_COLORS, VDT_ATTR_COLORS, 1);
 }
 
 /* OBJ -> vdt -> PLY -> drc -> OBJ keeps the surface within quantisation. */
