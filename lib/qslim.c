@@ -1069,6 +1069,25 @@ attr_pair_quadric(const struct attr *at, uint32_t a, uint32_t b, int general,
 	return n;
 }
 
+/* Whether p lies farther from the segment [p0, p1] than its length. */
+static int
+off_segment(const double p0[3], const double p1[3], const double p[3])
+{
+	double d[3], r[3], dd = 0, rd = 0, t, x2 = 0;
+
+	for (int k = 0; k < 3; k++) {
+		d[k] = p1[k] - p0[k];
+		r[k] = p[k] - p0[k];
+		dd += d[k] * d[k];
+		rd += r[k] * d[k];
+	}
+	t = dd > 0 ? rd / dd : 0;
+	t = t < 0 ? 0 : t > 1 ? 1 : t;
+	for (int k = 0; k < 3; k++)
+		x2 += (r[k] - t * d[k]) * (r[k] - t * d[k]);
+	return x2 > dd;
+}
+
 static double
 cost_attr(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
           const float pb[3], double pos[3])
@@ -1077,10 +1096,23 @@ cost_attr(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	struct vdt_quadric q;
 	struct wedges s;
 	double p0[3], p1[3], e;
+	long n = attr_pair_quadric(c->at, a, b, 0, &q, &s), groups = 0;
 
-	if (attr_pair_quadric(c->at, a, b, 0, &q, &s) < 0)
+	if (n < 0)
 		return INFINITY;
+	for (long i = 0; i < n; i++)
+		groups += s.sm[i];
 	e = place(c, &q, fixed, pa, pb, p0, p1, pos);
+	if (fixed < 0 && groups > 1 && off_segment(p0, p1, pos)) {
+		/* A seam edge (its two faces pair different wedges) whose
+		 * minimum lies farther from it than its length: the seam
+		 * planes of two corners of the seam network crossing, which
+		 * hold the normal direction only loosely. On a curved surface
+		 * whose every edge is a seam (flat shading) that is deep
+		 * inside, the faces fold and no pair is ever contracted: stay
+		 * on the edge, which is the seam. */
+		e = vdt_quadric_optimize_segment(&q, p0, p1, pos);
+	}
 	if (fixed < 0) {
 		/* Attributes make the system well conditioned where geometry
 		 * alone was flat, and the solve can then land a rounding error

@@ -135,12 +135,18 @@ double
 vdt_quadric_optimize(const struct vdt_quadric *q, const double p0[3],
                      const double p1[3], double v[3])
 {
+	if (vdt_quadric_minimum(q, v) == 0)
+		return vdt_quadric_eval(q, v);
+	return vdt_quadric_optimize_segment(q, p0, p1, v);
+}
+
+double
+vdt_quadric_optimize_segment(const struct vdt_quadric *q, const double p0[3],
+                             const double p1[3], double v[3])
+{
 	double d[3], ad[3], ap[3], a, b, best, e;
 	const double *cand[2] = {p0, p1};
 	double mid[3];
-
-	if (vdt_quadric_minimum(q, v) == 0)
-		return vdt_quadric_eval(q, v);
 
 	/* Q(p0 + t d) = a t^2 + 2 b t + Q(p0), with a = d'Ad, b = d'(A p0 + b). */
 	for (int k = 0; k < 3; k++)

@@ -144,6 +144,10 @@ vdt_quadric_minimum(const struct vdt_quadric *q, double v[3])
  */
 double vdt_quadric_optimize(const struct vdt_quadric *q, const double p0[3],
                             const double p1[3], double v[3]);
+/* The same restricted to the segment [p0, p1]: its best point, or if Q is
+ * flat along it the better of p0, p1 and their midpoint. */
+double vdt_quadric_optimize_segment(const struct vdt_quadric *q, const double p0[3],
+                                    const double p1[3], double v[3]);
 
 /*
  * The minimiser of Q kept inside the box [lo, hi] (the grid cell of

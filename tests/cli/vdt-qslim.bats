@@ -188,6 +188,30 @@ load helpers
 	[ "$(grep -c '^v .* 1$' "$TMP/c.obj")" -eq 4 ]
 }
 
+@test "vdt-qslim simplifies a flat-shaded mesh (every edge a normal seam) without tearing it" {
+	# the icosphere with one normal per face: every vertex split per face
+	awk 'NR == 2 { nv = $1 } NR > 2 && NR <= nv + 2 { x[NR - 3] = $1; y[NR - 3] = $2; z[NR - 3] = $3
+	     print "v", $1, $2, $3 }
+	     NR > nv + 2 && $1 == 3 { a = $2; b = $3; c = $4
+	     ux = x[b] - x[a]; uy = y[b] - y[a]; uz = z[b] - z[a]
+	     vx = x[c] - x[a]; vy = y[c] - y[a]; vz = z[c] - z[a]
+	     nx = uy * vz - uz * vy; ny = uz * vx - ux * vz; nz = ux * vy - uy * vx
+	     l = sqrt(nx * nx + ny * ny + nz * nz); k++
+	     print "vn", nx / l, ny / l, nz / l
+	     print "f", a + 1 "//" k, b + 1 "//" k, c + 1 "//" k }' "$SAMPLES/sphere.off" > "$TMP/flat.obj"
+	[ "$(grep -c '^f ' "$TMP/flat.obj")" -eq 5120 ]
+	run "$BIN/vdt-qslim" -v -t 500 "$TMP/flat.obj" -o "$TMP/out.obj"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *" out_triangles=500 "* ]]
+	[ "$(grep -c '^vn ' "$TMP/out.obj")" -gt 0 ]
+	# welded by position, every directed edge has its reverse exactly once
+	awk '/^v / { p[++n] = $2 " " $3 " " $4 }
+	     /^f / { for (i = 2; i <= 4; i++) { split($i, c, "/"); f[i] = p[c[1]] }
+	             for (i = 2; i <= 4; i++) e[f[i] "|" f[i == 4 ? 2 : i + 1]]++ }
+	     END { for (k in e) { split(k, h, "|"); if (e[k] != 1 || e[h[2] "|" h[1]] != 1) exit 1 }
+	           exit n == 0 }' "$TMP/out.obj"
+}
+
 @test "vdt-qslim drops chunks that describe the old vertices, keeps unknown ones" {
 	"$BIN/vdt-qslim" -t 100000 --record "$SAMPLES/sphere.off" -o "$TMP/rec.vdt"
 	grep -aq SEQN "$TMP/rec.vdt"
