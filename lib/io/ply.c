@@ -251,7 +251,8 @@ read_faces(const struct vdt_plyhead *h, const struct vdt_ply_element *e,
 /* ASCII records: the values of one element after another, one per line. */
 struct text {
 	const char *p, *end;
-	size_t line; /* of p, from 1 */
+	size_t line;  /* of p, from 1 */
+	size_t first; /* the line of the record's first value; 0 before it */
 };
 
 static int
@@ -284,6 +285,8 @@ text_value(struct text *t, enum vdt_ply_type type, const struct where *w, double
 		return vdt_err_set(err, VDT_EFORMAT, "PLY file is truncated in %s %llu of %llu",
 		                   w->e->name, (unsigned long long)w->r,
 		                   (unsigned long long)w->e->count);
+	if (t->first == 0)
+		t->first = t->line;
 	if (type == VDT_PLY_F32 || type == VDT_PLY_F64) {
 		float f;
 
@@ -317,12 +320,23 @@ text_value(struct text *t, enum vdt_ply_type type, const struct where *w, double
 	return 0;
 }
 
-/* A record ends its line: values left there mean the header is wrong. */
+/*
+ * A record ends its line: values left there mean the header is wrong, or,
+ * when the record began on an earlier line, that that line was short (its
+ * values ran on into the next record's).
+ */
 static int
 text_end_record(struct text *t, const struct where *w, struct vdt_err *err)
 {
+	size_t first = t->first;
+
+	t->first = 0;
 	while (t->p < t->end && *t->p != '\n' && is_space(*t->p))
 		t->p++;
+	if (t->p < t->end && *t->p != '\n' && first != 0 && first < t->line)
+		return vdt_err_set(err, VDT_EFORMAT,
+		                   "PLY line %zu: %s %llu has fewer values than its header declares",
+		                   first, w->e->name, (unsigned long long)w->r);
 	if (t->p < t->end && *t->p != '\n')
 		return vdt_err_set(err, VDT_EFORMAT,
 		                   "PLY line %zu: %s %llu has more values than its header declares",
@@ -510,7 +524,7 @@ static int
 read_ascii(const struct vdt_plyhead *h, const struct vdt_ply_element *ve, const struct vdt_ply_element *fe,
            const unsigned char *buf, size_t len, struct vdt_mesh *m, struct vdt_err *err)
 {
-	struct text t = {(const char *)buf + h->data_offset, (const char *)buf + len, 0};
+	struct text t = {(const char *)buf + h->data_offset, (const char *)buf + len, 0, 0};
 	int rc = 0;
 
 	/* Lines of the data, for messages, count on from the header's. */

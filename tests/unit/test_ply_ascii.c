@@ -230,6 +230,9 @@ test_reject(void **state)
 	             "PLY line 10: vertex 0 has more values than its header declares");
 	expect_error(HEAD(3, 1) "0 0 0\n1 0 0\n0 1 0\n3 0 1 2 7\n", VDT_EFORMAT,
 	             "face 0 has more values");
+	/* a short line is named, not the next one its values run into */
+	expect_error(HEAD(3, 1) "0 0 0\n1 0\n0 1 0\n3 0 1 2\n", VDT_EFORMAT,
+	             "PLY line 11: vertex 1 has fewer values than its header declares");
 	expect_error(HEAD(3, 1) "0 0 0\n1 0 0\n0 1 0\n2 0 1\n", VDT_EFORMAT, "face 0 has 2 vertices");
 	expect_error(HEAD(3, 1) "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", VDT_EINVAL,
 	             "face 0 uses vertex 3 of 3");
