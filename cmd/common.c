@@ -118,21 +118,33 @@ parse_count(const char *opt, const char *s, unsigned long min, unsigned long max
 	return v;
 }
 
-double
-parse_real(const char *opt, const char *s, double min, double max)
+/* parse_real of s, whose messages show the operand as given and the
+ * range with unit (a bound in percent has its '%' cut off before). */
+static double
+parse_real_shown(const char *opt, const char *s, const char *given, const char *unit,
+                 double min, double max)
 {
 	char *end;
 	double v;
 
 	errno = 0;
 	if (s == NULL || *s == '\0' || *s == ' ')
-		usage_error("invalid value '%s' for %s", s ? s : "", opt);
+		usage_error("invalid value '%s' for %s", given ? given : "", opt);
 	v = strtod(s, &end);
 	if (errno != 0 || *end != '\0' || !isfinite(v))
-		usage_error("invalid value '%s' for %s", s, opt);
+		usage_error("invalid value '%s' for %s", given, opt);
+	if (v < min && !(max < HUGE_VAL))
+		usage_error("%s must be at least %g%s, not %s", opt, min, unit, given);
 	if (v < min || v > max)
-		usage_error("%s must be between %g and %g, not %s", opt, min, max, s);
+		usage_error("%s must be between %g%s and %g%s, not %s", opt, min, unit, max, unit,
+		            given);
 	return v;
+}
+
+double
+parse_real(const char *opt, const char *s, double min, double max)
+{
+	return parse_real_shown(opt, s, s, "", min, max);
 }
 
 void
@@ -163,7 +175,7 @@ parse_bound(const char *opt, const char *s, int *percent)
 		memcpy(buf, s, n - 1);
 		buf[n - 1] = '\0';
 		*percent = 1;
-		return parse_real(opt, buf, 0, 100);
+		return parse_real_shown(opt, buf, s, "%", 0, 100);
 	}
 	return parse_real(opt, s, 0, HUGE_VAL);
 }

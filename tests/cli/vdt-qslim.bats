@@ -634,3 +634,16 @@ END
 		[ "$(off_vertices "$TMP/out.off")" -eq 7 ]
 	done
 }
+
+@test "vdt-qslim quotes a bound in percent as given" {
+	run "$BIN/vdt-qslim" -e 200% "$SAMPLES/sphere.off" -o "$TMP/out.off"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-qslim: -e must be between 0% and 100%, not 200%" ]
+	run "$BIN/vdt-qslim" -a '1 %' "$SAMPLES/sphere.off" -o "$TMP/out.off"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-qslim: invalid value '1 %' for -a" ]
+	run "$BIN/vdt-qslim" -e -1 "$SAMPLES/sphere.off" -o "$TMP/out.off"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-qslim: -e must be at least 0, not -1" ]
+	[ ! -e "$TMP/out.off" ]
+}
