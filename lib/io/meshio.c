@@ -798,7 +798,12 @@ write_obj(FILE *f, const struct vdt_mesh *m)
 	fputs("# written by vdt\n", f);
 	for (size_t i = 0; i < m->vertex_count; i++, p += 3) {
 		if (m->colors) {
-			const float *c = m->colors + 4 * i;
+			/* clamped to [0,1], as every writer does */
+			float c[3];
+			for (int k = 0; k < 3; k++) {
+				c[k] = m->colors[4 * i + k];
+				c[k] = c[k] < 0 ? 0 : c[k] > 1 ? 1 : c[k];
+			}
 			fprintf(f, "v " P9 " " P9 " " P9 " " P9 " " P9 " " P9 "\n",
 			        p[0], p[1], p[2], c[0], c[1], c[2]);
 		} else {

@@ -647,3 +647,10 @@ END
 	[ "$output" = "vdt-qslim: -e must be at least 0, not -1" ]
 	[ ! -e "$TMP/out.off" ]
 }
+
+@test "vdt-qslim writes OBJ colours within [0,1], as every format" {
+	printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nproperty float red\nproperty float green\nproperty float blue\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 255 0 0.5\n1 0 0 2 0 0.5\n0 1 0 -3 0 0.5\n3 0 1 2\n' >"$TMP/col.ply"
+	"$BIN/vdt-qslim" -r 1 "$TMP/col.ply" -o "$TMP/col.obj"
+	[ "$(grep -c '^v 0 0 0 1 0 0.5$' "$TMP/col.obj")" -eq 1 ]
+	[ "$(grep -c '^v 0 1 0 0 0 0.5$' "$TMP/col.obj")" -eq 1 ]
+}
