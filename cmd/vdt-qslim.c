@@ -181,6 +181,11 @@ run(struct cmdline *cl)
 	if (!st.reached_target && !cl->quiet)
 		fprintf(stderr, "%s: stopped at %zu triangles: no further contraction within the "
 		        "bound and validity tests\n", progname, out.triangle_count);
+	/* Virtual pairs live in the queue of all pairs, which has no passes. */
+	if (cl->q.order == VDT_QSLIM_ORDER_PASSES && !st.passes && st.contractions > 0 &&
+	    !cl->quiet)
+		fprintf(stderr, "%s: -a found virtual pairs, which are contracted one at a time: "
+		        "--order passes has no effect\n", progname);
 	if (cl->verbose)
 		fprintf(stderr, "%s: in_vertices=%zu in_triangles=%zu out_vertices=%zu "
 		        "out_triangles=%zu contractions=%zu rejected=%zu welded=%zu dropped=%zu nonmanifold=%zu "

@@ -654,3 +654,13 @@ END
 	[ "$(grep -c '^v 0 0 0 1 0 0.5$' "$TMP/col.obj")" -eq 1 ]
 	[ "$(grep -c '^v 0 1 0 0 0 0.5$' "$TMP/col.obj")" -eq 1 ]
 }
+
+@test "vdt-qslim says --order passes has no effect once -a finds virtual pairs" {
+	run "$BIN/vdt-qslim" --order passes -a 5% -r 0.5 "$SAMPLES/twosphere.off" -o "$TMP/a.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"--order passes has no effect"* ]]
+	run "$BIN/vdt-qslim" -q --order passes -a 5% -r 0.5 "$SAMPLES/twosphere.off" -o "$TMP/a.off"
+	[ -z "$output" ]
+	run "$BIN/vdt-qslim" --order passes -r 0.5 "$SAMPLES/twosphere.off" -o "$TMP/a.off"
+	[ -z "$output" ]
+}
