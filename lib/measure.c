@@ -533,7 +533,7 @@ vdt_measure_normals(const struct vdt_mesh *a, const struct vdt_bvh *bvh_a,
 	struct vdt_bbox box;
 
 	memset(ns, 0, sizeof(*ns));
-	vdt_mesh_bbox(a, &box);
+	vdt_mesh_bbox_faces(a, &box);
 	job.diag = vdt_bbox_diagonal(&box);
 	job.out = malloc((nb ? nb : 1) * sizeof(*job.out));
 	if (job.out == NULL)
@@ -612,7 +612,7 @@ vdt_measure(const struct vdt_mesh *a, const struct vdt_mesh *b,
 	if (a->triangle_count == 0 || b->triangle_count == 0)
 		return vdt_err_set(err, VDT_EINVAL, "%s mesh has no triangles",
 		                   a->triangle_count == 0 ? "first" : "second");
-	vdt_mesh_bbox(a, &box);
+	vdt_mesh_bbox_faces(a, &box);
 	res->diag = vdt_bbox_diagonal(&box);
 	if (!(res->diag > 0)) /* every distance would be 0% or infinite */
 		return vdt_err_set(err, VDT_EINVAL,

@@ -173,6 +173,28 @@ vdt_mesh_mean_area(const struct vdt_mesh *m, const uint8_t *skip)
 }
 
 void
+vdt_mesh_bbox_faces(const struct vdt_mesh *m, struct vdt_bbox *box)
+{
+	if (m->triangle_count == 0) {
+		vdt_mesh_bbox(m, box);
+		return;
+	}
+	for (int k = 0; k < 3; k++) {
+		box->min[k] = INFINITY;
+		box->max[k] = -INFINITY;
+	}
+	for (size_t c = 0; c < 3 * m->triangle_count; c++) {
+		const float *p = m->positions + 3 * (size_t)m->triangles[c];
+		for (int k = 0; k < 3; k++) {
+			if (p[k] < box->min[k])
+				box->min[k] = p[k];
+			if (p[k] > box->max[k])
+				box->max[k] = p[k];
+		}
+	}
+}
+
+void
 vdt_mesh_bbox(const struct vdt_mesh *m, struct vdt_bbox *box)
 {
 	for (int k = 0; k < 3; k++) {

@@ -85,6 +85,14 @@ double vdt_mesh_area_block(const struct vdt_mesh *m, const uint8_t *skip, size_t
 /* Axis-aligned bounding box of the positions (of every vertex). */
 void vdt_mesh_bbox(const struct vdt_mesh *m, struct vdt_bbox *box);
 
+/*
+ * The box of the surface: of the corners of the triangles, so that a
+ * vertex no face uses (a stray point of a scan) does not stretch the
+ * diagonal distances are given against; of every vertex when there is no
+ * triangle. Triangles must name vertices of m.
+ */
+void vdt_mesh_bbox_faces(const struct vdt_mesh *m, struct vdt_bbox *box);
+
 /* Length of the bounding-box diagonal. */
 double vdt_bbox_diagonal(const struct vdt_bbox *box);
 

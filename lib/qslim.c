@@ -1921,6 +1921,9 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
 	if (!c.q || !border || !locked)
 		goto nomem;
 
+	/* The frame and units of the costs are the surface's: a vertex no
+	 * face uses, however far, is no part of the model. */
+	vdt_mesh_bbox_faces(&w, &box);
 	for (int k = 0; k < 3; k++)
 		c.centre[k] = 0.5 * (box.min[k] + box.max[k]);
 	c.unit = vdt_quadric_unit(vdt_bbox_diagonal(&box));
@@ -2124,7 +2127,7 @@ qslim_units(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_q
 	double diag;
 	int rc;
 
-	vdt_mesh_bbox(in, &box);
+	vdt_mesh_bbox_faces(in, &box); /* a stray vertex stretches no bound */
 	diag = vdt_bbox_diagonal(&box);
 	if (o->max_error_percent)
 		units.max_error = o->max_error * diag / 100;

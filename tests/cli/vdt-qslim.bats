@@ -664,3 +664,19 @@ END
 	run "$BIN/vdt-qslim" --order passes -r 0.5 "$SAMPLES/twosphere.off" -o "$TMP/a.off"
 	[ -z "$output" ]
 }
+
+@test "vdt-qslim -e in percent: a far vertex no face uses stretches no bound" {
+	# the sphere plus one unused vertex a thousand radii away
+	nv=$(sed -n 2p "$SAMPLES/sphere.off" | cut -d' ' -f1)
+	{ echo OFF; sed -n 2p "$SAMPLES/sphere.off" | awk '{ print $1 + 1, $2, $3 }'
+	  sed -n "3,$((2 + nv))p" "$SAMPLES/sphere.off"; echo "1000 0 0"
+	  sed -n "$((3 + nv)),\$p" "$SAMPLES/sphere.off"; } >"$TMP/stray.off"
+	"$BIN/vdt-qslim" -q -e 1% "$SAMPLES/sphere.off" -o "$TMP/a.off"
+	"$BIN/vdt-qslim" -q -e 1% "$TMP/stray.off" -o "$TMP/b.off"
+	[ "$(off_faces "$TMP/a.off")" -gt 20 ]
+	[ "$(off_faces "$TMP/a.off")" -eq "$(off_faces "$TMP/b.off")" ]
+	# and vdt-measure gives the same diagonal with or without it
+	d1=$("$BIN/vdt-measure" -F kv "$SAMPLES/sphere.off" "$TMP/a.off" | tr ' ' '\n' | grep '^diag=')
+	d2=$("$BIN/vdt-measure" -F kv "$TMP/stray.off" "$TMP/a.off" | tr ' ' '\n' | grep '^diag=')
+	[ "$d1" = "$d2" ]
+}
