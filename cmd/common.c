@@ -260,12 +260,13 @@ stat_operand(const char *path, int fd, struct stat *st)
 	return strcmp(path, "-") == 0 ? fstat(fd, st) : stat(path, st);
 }
 
-void
-refuse_outputs_over_inputs(const char *const *in, size_t nin, const char *const *out,
-                           size_t nout)
+long
+output_over_input(const char *const *in, size_t nin, const char *const *out, size_t nout,
+                  size_t *which)
 {
 	struct stat *si = malloc((nin ? nin : 1) * sizeof(*si)), so;
 	char *ok = malloc(nin ? nin : 1);
+	long found = -1;
 
 	if (si == NULL || ok == NULL) {
 		fprintf(stderr, "%s: out of memory\n", progname);
@@ -275,22 +276,26 @@ refuse_outputs_over_inputs(const char *const *in, size_t nin, const char *const 
 		ok[i] = stat_operand(in[i], STDIN_FILENO, &si[i]) == 0;
 	/* Only a regular file can be destroyed: a FIFO or device written in
 	 * place is no copy of anything. */
-	for (size_t o = 0; o < nout; o++) {
+	for (size_t o = 0; o < nout && found < 0; o++) {
 		if (stat_operand(out[o], STDOUT_FILENO, &so) != 0 || !S_ISREG(so.st_mode))
 			continue;
-		for (size_t i = 0; i < nin; i++)
-			if (ok[i] && si[i].st_dev == so.st_dev && si[i].st_ino == so.st_ino)
-				usage_error("the output '%s' is the input '%s': writing it would "
-				            "destroy the input",
-				            strcmp(out[o], "-") == 0 ? "<stdout>" : out[o],
-				            input_name(in[i]));
+		for (size_t i = 0; i < nin && found < 0; i++)
+			if (ok[i] && si[i].st_dev == so.st_dev && si[i].st_ino == so.st_ino) {
+				found = (long)o;
+				*which = i;
+			}
 	}
 	free(si);
 	free(ok);
+	return found;
 }
 
 void
 refuse_output_over_input(const char *in, const char *out)
 {
-	refuse_outputs_over_inputs(&in, 1, &out, 1);
+	size_t i;
+
+	if (output_over_input(&in, 1, &out, 1, &i) >= 0)
+		usage_error("the output '%s' is the input '%s': writing it would destroy the input",
+		            strcmp(out, "-") == 0 ? "<stdout>" : out, input_name(in));
 }

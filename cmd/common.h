@@ -49,9 +49,12 @@ const char *input_operand(int argc, char **argv, const char *dflt);
  */
 void refuse_output_over_input(const char *in, const char *out);
 
-/* The same for any of nout outputs against any of nin inputs. */
-void refuse_outputs_over_inputs(const char *const *in, size_t nin, const char *const *out,
-                                size_t nout);
+/*
+ * The first of nout outputs that is one of nin inputs, as above: its
+ * index, the input's in *which; -1 if none.
+ */
+long output_over_input(const char *const *in, size_t nin, const char *const *out, size_t nout,
+                       size_t *which);
 
 /* An input operand as messages name it: "<stdin>" for - (or NULL). */
 const char *input_name(const char *path);

@@ -172,15 +172,24 @@ refuse_frames_over_inputs(const struct cmdline *cl, size_t frames)
 		fprintf(stderr, "%s: out of memory\n", progname);
 		exit(EXIT_WORK);
 	}
-	refuse_outputs_over_inputs((const char *const *)in, nin,
-	                           out ? (const char *const *)out : &cl->out, nout);
+	size_t i = 0;
+	long o = output_over_input((const char *const *)in, nin,
+	                           out ? (const char *const *)out : &cl->out, nout, &i);
+	char a[4096], b[4096];
+	if (o >= 0) { /* the names, before they are freed */
+		snprintf(a, sizeof(a), "%s", out ? out[o] : cl->out);
+		snprintf(b, sizeof(b), "%s", input_name(in[i]));
+	}
 	for (size_t f = 0; out && f < nout; f++)
 		free(out[f]);
 	free(out);
-	for (size_t i = 0; in != cl->in && i < nin; i++)
-		free(in[i]);
+	for (size_t k = 0; in != cl->in && k < nin; k++)
+		free(in[k]);
 	if (in != cl->in)
 		free(in);
+	if (o >= 0)
+		usage_error("the output '%s' is the input '%s': writing it would destroy the input",
+		            strcmp(a, "-") == 0 ? "<stdout>" : a, b);
 }
 
 static int
