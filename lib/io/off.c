@@ -380,15 +380,16 @@ vdt_off_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 		return rc;
 	/*
 	 * Every value takes a character and a separator ("0 0 0\n" is the
-	 * shortest vertex, "3 0 0 0\n" the shortest face), except that the last
-	 * line may lack its newline.
+	 * shortest vertex), except that the last line may lack its newline; a
+	 * face takes at least its count ("2 0 1\n" is short, but that is for
+	 * the face's own message to say, not a truncation).
 	 */
 	left = (size_t)(r.end - r.p);
 	per_vertex = 2 * (3 + (unsigned long long)l.four + 3 * (unsigned long long)l.normal +
 	                  3 * (unsigned long long)l.color + 2 * (unsigned long long)l.st);
 	if (nv > UINT32_MAX)
 		return vdt_err_set(err, VDT_EFORMAT, "too many vertices (%lld)", nv);
-	if ((unsigned long long)nv * per_vertex + (unsigned long long)nf * 8 >
+	if ((unsigned long long)nv * per_vertex + (unsigned long long)nf * 2 >
 	    (unsigned long long)left + 1)
 		return vdt_err_set(err, VDT_EFORMAT,
 		                   "truncated: %lld vertices and %lld faces cannot fit in %zu bytes",

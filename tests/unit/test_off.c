@@ -246,6 +246,9 @@ test_reject(void **state)
 	             "truncated: expected 3 faces, found 1");
 	expect_error("OFF\n3 1 0\n0 0 0\n", VDT_EFORMAT,
 	             "truncated: 3 vertices and 1 faces cannot fit in 6 bytes");
+	/* a face of two vertices is named as such, not taken for a cut file */
+	expect_error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n", VDT_EFORMAT,
+	             "face 0 has 2 vertices");
 	expect_error("OFF\n5000000000 1 0\n0 0 0\n", VDT_EFORMAT, "too many vertices (5000000000)");
 	expect_error("OFF\n3 99999999999999999999999 0\n0 0 0\n", VDT_EFORMAT, "truncated: 3 vertices");
 	expect_error("OFF\n3 1 0\n0 0 0\n1 0\n0 1 0\n3 0 1 2\n" PAD, VDT_EFORMAT,
