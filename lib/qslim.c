@@ -1955,12 +1955,14 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
 	free(dead);
 	dead = NULL;
 	/* The engine drops the faces that welding left with a repeated
-	 * vertex: live faces that are all such leave none either. */
+	 * vertex (counted as dropped too): live faces that are all such
+	 * leave none either. */
 	size_t usable = 0;
-	for (size_t t = 0; t < live && usable == 0; t++) {
+	for (size_t t = 0; t < live; t++) {
 		const uint32_t *v = w.triangles + 3 * t;
-		usable = v[0] != v[1] && v[1] != v[2] && v[0] != v[2];
+		usable += v[0] != v[1] && v[1] != v[2] && v[0] != v[2];
 	}
+	stats->dropped += live - usable;
 	if (usable == 0 && T > 0) { /* not an empty output, later: the input's fault */
 		rc = vdt_err_set(err, VDT_EINVAL,
 		                 "no face is left once repeated and degenerate ones are dropped");

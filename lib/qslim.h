@@ -112,7 +112,8 @@ struct vdt_qslim_stats {
 	                       planes of its quadric), model units */
 	int reached_target; /* 0: stopped early (bound, or nothing valid left) */
 	size_t welded;      /* input vertices merged with an identical position */
-	size_t dropped;     /* repeated faces removed (see vdt_qslim) */
+	size_t dropped;     /* repeated faces removed (see vdt_qslim), and
+	                       faces welding left with a repeated vertex */
 	size_t nonmanifold; /* edges of three or more faces in the input */
 	int free_topology;  /* 1 if the link condition was not applied */
 	int passes;         /* 1 if contracted in passes, 0 greedy */

@@ -680,3 +680,11 @@ END
 	d2=$("$BIN/vdt-measure" -F kv "$TMP/stray.off" "$TMP/a.off" | tr ' ' '\n' | grep '^diag=')
 	[ "$d1" = "$d2" ]
 }
+
+@test "vdt-qslim -v counts the faces welding leaves with a repeated vertex as dropped" {
+	# vertex 3 welds onto vertex 1, so face 0 3 1 has a repeated vertex
+	printf 'OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n1 0 0\n0 0 1\n3 0 1 2\n3 0 3 1\n3 0 2 4\n' >"$TMP/wd.off"
+	run "$BIN/vdt-qslim" -v -t 1 "$TMP/wd.off" -o "$TMP/out.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *" welded=1 dropped=1 "* ]]
+}
