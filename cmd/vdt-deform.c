@@ -161,7 +161,7 @@ refuse_frames_over_inputs(const struct cmdline *cl, size_t frames)
 	if (nin == 1 && vdt_anim_is_pattern(cl->in[0]) &&
 	    vdt_anim_pattern(cl->in[0], cl->start, cl->count, &in, &nin, &err) != 0)
 		return; /* they were read: they are there */
-	if (frames > 1 && vdt_anim_is_pattern(cl->out)) {
+	if (vdt_anim_is_pattern(cl->out)) { /* expanded even for one frame */
 		nout = frames;
 		if ((out = calloc(nout, sizeof(*out))) == NULL)
 			ok = 0;

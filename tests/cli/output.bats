@@ -109,7 +109,8 @@ load helpers
 	           "vdt-measure $SAMPLES/sphere.off $TMP/s.off -c $TMP/link.off" \
 	           "vdt-render $TMP/s.vdt --mesh-out $TMP/s.vdt" \
 	           "vdt-deform -r 0.5 $TMP/f/%d.off -o $TMP/f/%d.off" \
-	           "vdt-deform -r 0.5 $TMP/f/0.off $TMP/f/1.off $TMP/f/2.off -o $TMP/f/%d.off"; do
+	           "vdt-deform -r 0.5 $TMP/f/0.off $TMP/f/1.off $TMP/f/2.off -o $TMP/f/%d.off" \
+	           "vdt-deform -r 0.5 $TMP/f/0.off -o $TMP/f/%d.off"; do
 		# shellcheck disable=SC2086 # cmd is a list of words
 		run $BIN/$cmd
 		[ "$status" -eq 2 ]
