@@ -63,7 +63,7 @@ tree() { # a tree with a subdirectory and a corrupted model
 	run "$BATCH" -v -j 2 --ratios 50,10 -o "$TMP/out" "$TMP/in"
 	[ "$status" -eq 0 ]
 	[ $(($(date +%s) - start)) -lt 10 ]
-	! printf '%s\n' "$output" | grep -q ' done ('
+	! printf '%s\n' "$output" | grep -q ' done (' || false
 	ls -l --time-style=full-iso "$TMP/out" "$TMP/out/sub" > "$TMP/after"
 	cmp "$TMP/before" "$TMP/after"
 	# one kv line per model
@@ -137,7 +137,7 @@ tree() { # a tree with a subdirectory and a corrupted model
 	run make -j2 --no-print-directory -C "$TMP/s" VDT="$BIN/" MODELS='torus.ply plate.ply'
 	[ "$status" -eq 0 ]
 	[ "$(printf '%s\n' "$output" | grep -c plate)" -eq 5 ]
-	! printf '%s\n' "$output" | grep -q torus
+	! printf '%s\n' "$output" | grep -q torus || false
 	make -s -C "$TMP/s" VDT="$BIN/" MODELS='torus.ply plate.ply' clean
 	[ "$(ls "$TMP/s" | sort | tr '\n' ' ')" = "Makefile plate.off torus.off " ]
 }
@@ -328,7 +328,7 @@ SH
 	(cd "$TMP/out" && ls -l --time-style=full-iso . .vdt-batch/*.cmd .vdt-batch/*.rec) > "$TMP/before"
 	run "$BATCH" -v --ratios 10,5 -o "$TMP/out" "$TMP/in"
 	[ "$status" -eq 0 ]
-	! printf '%s\n' "$output" | grep -q ' done ('
+	! printf '%s\n' "$output" | grep -q ' done (' || false
 	printf '%s\n' "$output" | grep -q '^  torus.lod1.ply  *230 '
 	(cd "$TMP/out" && ls -l --time-style=full-iso . .vdt-batch/*.cmd .vdt-batch/*.rec) > "$TMP/after"
 	cmp "$TMP/before" "$TMP/after"
@@ -353,10 +353,9 @@ SH
 	run "$BATCH" -v --recipe lod,labels --ratios 20 --samples 1000 -o "$TMP/out" "$TMP/in"
 	[ "$status" -eq 0 ]
 	printf '%s\n' "$output" | grep -q 'torus.lod1.ply done ('
-	"$BIN/vdt-silhouette" -q "$SAMPLES/torus.off" | "$BIN/vdt-cluster" -q -t 461 |
-		"$BIN/vdt-qslim" -q -t 461 -o "$TMP/labelled.ply"
+	"$BIN/vdt-silhouette" -q "$SAMPLES/torus.off" | "$BIN/vdt-qslim" -q -t 461 -o "$TMP/labelled.ply"
 	cmp "$TMP/labelled.ply" "$TMP/out/torus.lod1.ply"
-	! cmp -s "$TMP/labelled.ply" "$TMP/plain.ply"
+	! cmp -s "$TMP/labelled.ply" "$TMP/plain.ply" || false
 	run "$BATCH" -v --ratios 20 --samples 1000 -o "$TMP/out" "$TMP/in"
 	[ "$status" -eq 0 ]
 	printf '%s\n' "$output" | grep -q 'torus.lod1.ply done ('
