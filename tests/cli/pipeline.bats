@@ -23,7 +23,7 @@ load helpers
 	"$BIN/vdt-cluster" -q --target 200 "$SAMPLES/plate.off" -o "$TMP/i.vdq"
 	"$BIN/vdt-qslim" -q -t 200 "$TMP/i.vdq" -o "$TMP/c.ply"
 	"$BIN/vdt-qslim" -q -t 200 --ignore-quadrics "$TMP/i.vdq" -o "$TMP/d.ply"
-	! cmp -s "$TMP/c.ply" "$TMP/d.ply"
+	! cmp -s "$TMP/c.ply" "$TMP/d.ply" || false
 }
 
 @test "formats chain OBJ -> vdt -> PLY -> drc -> OBJ keeps the surface" {

@@ -71,9 +71,9 @@ load helpers
 	"$BIN/vdt-build" "$SAMPLES/torus.off" -o "$TMP/b.vdt"
 	cmp "$TMP/a.vdt" "$TMP/b.vdt"
 	"$BIN/vdt-build" --eps 2 "$SAMPLES/torus.off" -o "$TMP/e.vdt"
-	! cmp -s "$TMP/a.vdt" "$TMP/e.vdt"
+	! cmp -s "$TMP/a.vdt" "$TMP/e.vdt" || false
 	"$BIN/vdt-build" --place quadric "$SAMPLES/torus.off" -o "$TMP/q.vdt"
-	! cmp -s "$TMP/a.vdt" "$TMP/q.vdt"
+	! cmp -s "$TMP/a.vdt" "$TMP/q.vdt" || false
 	"$BIN/vdt-build" --sliver 0.3 "$SAMPLES/torus.off" -o "$TMP/s.vdt"
 	for f in e q s; do "$BIN/vdt-build" --check "$TMP/$f.vdt"; done
 }

@@ -43,7 +43,7 @@ tree() {
 	b=$(od -An -tu1 -j $((off + 40)) -N1 "$TMP/bad.vdt" | tr -d ' ')
 	printf "\\$(printf %o $(((b + 1) % 256)))" |
 		dd of="$TMP/bad.vdt" bs=1 seek=$((off + 40)) conv=notrunc 2>/dev/null
-	! cmp -s "$TMP/t.vdt" "$TMP/bad.vdt"
+	! cmp -s "$TMP/t.vdt" "$TMP/bad.vdt" || false
 	run "$BIN/vdt-render" "$TMP/bad.vdt" -o "$TMP/x.png"
 	[ "$status" -eq 2 ]
 	one_line
@@ -308,4 +308,20 @@ path3() {
 	run "$BIN/vdt-render" -q --size 40x30 --path "$TMP/bad.txt" "$TMP/t.vdt" -o "$TMP/b%d.png"
 	[ "$status" -eq 2 ]
 	[[ "$output" == *"line 3: want nine numbers"* ]]
+}
+
+@test "vdt-render --flat, --wire and --levels each change the image, the same way each run" {
+	tree
+	"$BIN/vdt-render" -q -p 2 --size 96x96 "$TMP/t.vdt" -o "$TMP/plain.png"
+	for o in flat wire levels; do
+		"$BIN/vdt-render" -q -p 2 --size 96x96 --"$o" "$TMP/t.vdt" -o "$TMP/$o.png"
+		"$BIN/vdt-render" -q -p 2 --size 96x96 --"$o" "$TMP/t.vdt" -o "$TMP/$o-2.png"
+		run cmp -s "$TMP/plain.png" "$TMP/$o.png"
+		[ "$status" -ne 0 ]
+		cmp "$TMP/$o.png" "$TMP/$o-2.png"
+	done
+	run cmp -s "$TMP/flat.png" "$TMP/wire.png"
+	[ "$status" -ne 0 ]
+	run cmp -s "$TMP/wire.png" "$TMP/levels.png"
+	[ "$status" -ne 0 ]
 }
