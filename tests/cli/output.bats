@@ -19,7 +19,8 @@ load helpers
 	ln -s real.png "$TMP/link.png"
 	run "$BIN/vdt-render" "$TMP/torus.vdt" -o "$TMP/link.png"
 	[ "$status" -eq 0 ]
-	[ -L "$TMP/link.png" ] && [ -s "$TMP/real.png" ]
+	[ -L "$TMP/link.png" ]
+	[ -s "$TMP/real.png" ]
 	# nothing left beside them
 	[ "$(ls -A "$TMP" | grep -c '^\.')" -eq 0 ]
 }

@@ -279,7 +279,8 @@ SH
 	[ "$status" -eq 2 ]
 	[ "$(ls -A "$TMP/out2/.vdt-batch")" = models ]
 	[ "$(cat "$TMP/out2/.vdt-batch/models")" = keep ]
-	[ ! -e "$TMP/empty/.vdt-batch" ] && [ ! -e "$TMP/empty/out" ]
+	[ ! -e "$TMP/empty/.vdt-batch" ]
+	[ ! -e "$TMP/empty/out" ]
 }
 
 @test "vdt-batch: -o naming a file is status 2 in one line; a directory it cannot make, status 1 in one line" {
@@ -377,7 +378,8 @@ SH
 	mkdir -p "$TMP/in"
 	cp "$SAMPLES/torus.off" "$SAMPLES/plate.off" "$TMP/in/"
 	"$BATCH" -q --recipe lod,tree --ratios 50 -o "$TMP/out" "$TMP/in"
-	[ -s "$TMP/out/torus.lod1.ply" ] && [ -s "$TMP/out/torus.vdt" ]
+	[ -s "$TMP/out/torus.lod1.ply" ]
+	[ -s "$TMP/out/torus.vdt" ]
 	sleep 1
 	head -c 300 "$SAMPLES/sphere.off" > "$TMP/in/torus.off"
 	run "$BATCH" -v --recipe lod,tree --ratios 50 -o "$TMP/out" "$TMP/in"

@@ -526,5 +526,6 @@ PY
 	[ "$status" -eq 2 ]
 	one_line
 	[[ "$output" == *"animation '0' moves no bone" ]]
-	[ ! -e "$TMP/m.vdt" ] && [ ! -e "$TMP/t.off" ]
+	[ ! -e "$TMP/m.vdt" ]
+	[ ! -e "$TMP/t.off" ]
 }

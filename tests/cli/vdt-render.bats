@@ -290,7 +290,8 @@ path3() {
 		[ "$status" -eq 2 ]
 		one_line
 		[[ "$output" == *"%d"* ]]
-		[ ! -e "$TMP/one.png" ] && [ ! -e "$TMP/one.off" ]
+		[ ! -e "$TMP/one.png" ]
+		[ ! -e "$TMP/one.off" ]
 	done
 	head -1 "$TMP/p3.txt" > "$TMP/p1.txt"
 	run "$BIN/vdt-render" --size 16x16 --path "$TMP/p1.txt" "$TMP/t.vdt" -o "$TMP/one.png"
@@ -303,7 +304,9 @@ path3() {
 	{ printf '# %02000d\n' 0; printf '0 0 3 0 0 0 0 1 0\n'; printf '%01500s0 3 0 0 0 0 0 0 1\n' ''; } > "$TMP/long.txt"
 	run "$BIN/vdt-render" -q --size 40x30 --path "$TMP/long.txt" "$TMP/t.vdt" -o "$TMP/l%d.png"
 	[ "$status" -eq 0 ]
-	[ -s "$TMP/l0.png" ] && [ -s "$TMP/l1.png" ] && [ ! -e "$TMP/l2.png" ]
+	[ -s "$TMP/l0.png" ]
+	[ -s "$TMP/l1.png" ]
+	[ ! -e "$TMP/l2.png" ]
 	{ printf '0 0 3 0 0 0 0 1 0\n'; printf '# %02000d\n' 0; printf '0 3 0 0 0 0\n'; } > "$TMP/bad.txt"
 	run "$BIN/vdt-render" -q --size 40x30 --path "$TMP/bad.txt" "$TMP/t.vdt" -o "$TMP/b%d.png"
 	[ "$status" -eq 2 ]

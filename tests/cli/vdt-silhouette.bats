@@ -114,5 +114,6 @@ load helpers
 	[ "$status" -eq 2 ]
 	one_line
 	[[ "$output" == "vdt-qslim: --nearest weighs the cameras nearest to a --view: give one"* ]]
-	[ ! -e "$TMP/l.vdl" ] && [ ! -e "$TMP/q.off" ]
+	[ ! -e "$TMP/l.vdl" ]
+	[ ! -e "$TMP/q.off" ]
 }
