@@ -572,11 +572,12 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 }
 
 /*
- * Virtual pairs (vdt_qslim_virtual_pairs) are found in a static k-d tree over the vertices. Each node keeps
- * the largest vertex number in its subtree, and a search skips subtrees
- * holding only lower ones: a vertex visits about as many points as it
- * finds, however large d (a grid of cells of side d put every vertex in
- * one cell for -a 100%, and the search became quadratic).
+ * Virtual pairs (vdt_qslim_virtual_pairs) are found in a static k-d tree
+ * over the vertices. Each node keeps the largest vertex number in its
+ * subtree, and a search skips subtrees holding only lower ones: a vertex
+ * visits about as many points as it finds, however large d (a grid of
+ * cells of side d put every vertex in one cell for -a 100%, and the search
+ * became quadratic).
  */
 #define KD_LEAF 8
 
@@ -596,14 +597,14 @@ kd_before(const float *pos, int k, uint32_t x, uint32_t y)
 }
 
 /* Put in idx[m] the vertex that sorting idx[lo..hi) along k would, the
- * ones before it below m and the others above (Hoare's selection). */
+ * ones before it below m and the others above (quickselect). */
 static void
 kd_select(const float *pos, int k, uint32_t *idx, size_t lo, size_t hi, size_t m)
 {
 	while (hi - lo > 1) {
-		size_t mid = lo + (hi - lo) / 2, i = lo, j = hi - 1;
+		size_t mid = lo + (hi - lo) / 2, i, j;
 		uint32_t t, pv;
-		/* median of three as the pivot, at lo */
+		/* median of three as the pivot, at hi - 1 */
 		if (kd_before(pos, k, idx[mid], idx[lo]))
 			t = idx[mid], idx[mid] = idx[lo], idx[lo] = t;
 		if (kd_before(pos, k, idx[hi - 1], idx[lo]))
@@ -1634,8 +1635,9 @@ locality_order(struct vdt_mesh *w, const struct vdt_bbox *box, uint32_t **to, ui
 	for (size_t v = 0; v < nv; v++) {
 		uint32_t m = 0;
 		for (int k = 0; k < 3; k++) {
+			/* (clamped: a vertex no face uses may lie outside) */
 			double c = (w->positions[3 * v + k] - box->min[k]) * scale[k];
-			m |= spread3(c > 0 ? (uint32_t)c : 0) << k;
+			m |= spread3(c > 0 ? c < 31 ? (uint32_t)c : 31 : 0) << k;
 		}
 		key[v] = (uint64_t)m << 32 | v;
 	}
@@ -1806,7 +1808,7 @@ any_area(const struct vdt_mesh *m)
 
 /* vdt_qslim with every distance option in model units. */
 static int
-simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
+simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox *box,
          const struct vdt_qslim_opts *o, struct vdt_mesh *out,
          struct vdt_contraction **records, size_t *record_count,
          struct vdt_qslim_stats *stats, struct vdt_err *err)
@@ -1817,7 +1819,6 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
 	struct vdt_contract_opts co;
 	struct vdt_contract_ops ops = {cost_fn, merged_fn, valid_fn, &c, 0, NULL, 0};
 	struct vdt_contract_result r = {0};
-	struct vdt_bbox box;
 	uint32_t *canon = NULL, *first = NULL, *wstart = NULL, *wlist = NULL;
 	uint32_t *vpairs = NULL;
 	uint8_t *border = NULL, *locked = NULL, *dead = NULL;
@@ -1902,9 +1903,8 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
 	}
 	free(first);
 	first = NULL;
-	vdt_mesh_bbox(&w, &box);
 	if (nw >= VDT_QSLIM_PASSES_MIN && scattered(&w)) {
-		if (locality_order(&w, &box, &vto, &forder) != 0)
+		if (locality_order(&w, box, &vto, &forder) != 0)
 			goto nomem;
 		renumbered = 1;
 		for (size_t i = 0; i < n; i++)
@@ -1921,12 +1921,9 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
 	if (!c.q || !border || !locked)
 		goto nomem;
 
-	/* The frame and units of the costs are the surface's: a vertex no
-	 * face uses, however far, is no part of the model. */
-	vdt_mesh_bbox_faces(&w, &box);
 	for (int k = 0; k < 3; k++)
-		c.centre[k] = 0.5 * (box.min[k] + box.max[k]);
-	c.unit = vdt_quadric_unit(vdt_bbox_diagonal(&box));
+		c.centre[k] = 0.5 * (box->min[k] + box->max[k]);
+	c.unit = vdt_quadric_unit(vdt_bbox_diagonal(box));
 	c.max_error = o->max_error < INFINITY ? o->max_error * o->max_error : INFINITY;
 	dead = vdt_calloc_huge(T + 1, 1);
 	if (dead == NULL || build_quadrics(&w, o, canon, n, &c, border, dead, &stats->nonmanifold) != 0)
@@ -2001,7 +1998,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take,
 	/* Attribute errors in bounding-box diagonals, like Hoppe's unit box;
 	 * attributes the same everywhere have none. */
 	if (o->attribute_weight > 0 && varying != 0) {
-		double d = vdt_bbox_diagonal(&box);
+		double d = vdt_bbox_diagonal(box);
 		if (input_lists(canon, n, nw, &wstart, &wlist) != 0) {
 			free(seam);
 			goto nomem;
@@ -2129,13 +2126,16 @@ qslim_units(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_q
 	double diag;
 	int rc;
 
-	vdt_mesh_bbox_faces(in, &box); /* a stray vertex stretches no bound */
+	/* The surface's box, for the bounds in percent and the frame and
+	 * units of the costs: a vertex no face uses, however far, is no part
+	 * of the model. */
+	vdt_mesh_bbox_faces(in, &box);
 	diag = vdt_bbox_diagonal(&box);
 	if (o->max_error_percent)
 		units.max_error = o->max_error * diag / 100;
 	if (o->aggregate_percent)
 		units.aggregate = o->aggregate * diag / 100;
-	rc = simplify(in, take, &units, out, records, record_count, stats, err);
+	rc = simplify(in, take, &box, &units, out, records, record_count, stats, err);
 	if (rc == 0)
 		stats->error_pct = diag > 0 ? 100 * stats->max_error / diag : 0;
 	return rc;
