@@ -130,7 +130,8 @@ struct engine {
 	uint8_t *cut;          /* per vertex, shares a face with another
 	                          part's */
 	uint8_t *aside;        /* per vertex: near a pair set aside this round */
-	float *ecost;          /* passes: per face, the cost of the pair of each
+	float *ecost;          /* passes, and the vertex queue (but exhaustive):
+	                          per face, the cost of the pair of each
 	                          of its edges, corner k to k + 1 (fan_costs) */
 	double fit_per_pair;   /* the pool room the last round's pairs might take */
 };
@@ -863,16 +864,6 @@ try_pair(struct engine *e, uint32_t u, uint32_t v, uint32_t *keep, uint32_t *gon
 
 /* ---- the vertex queue ---- */
 
-static uint32_t
-next_stamp(struct engine *e)
-{
-	if (e->stamp_now >= UINT32_MAX - 4) {
-		memset(e->stamp, 0, e->nv * sizeof(*e->stamp));
-		e->stamp_now = 0;
-	}
-	return ++e->stamp_now;
-}
-
 static int
 vcost_reserve(struct vcost **d, size_t *cap, size_t n)
 {
@@ -1084,13 +1075,23 @@ fan_costs(struct engine *e, uint32_t v, int upper, int how, struct vcost *out)
 	return n;
 }
 
-/* v's neighbours and the costs of their pairs, in e->vn; their number or -1. */
+/*
+ * v's neighbours and the costs of their pairs, in e->vn; their number or
+ * -1. `how` as fan_costs: the vertex queue notes the costs of the pairs of
+ * a vertex that survived a contraction (FAN_NOTE), whose data changed, and
+ * reads them for any other (FAN_NOTED). A pair's cost changes only when
+ * one of its vertices survives a contraction, which notes it afresh, so
+ * every note is the pair's current cost: the vertices whose cheapest pair
+ * went stale read their fans instead of costing them, and the order is
+ * the one that costing afresh gives (with exhaustive, which the tests
+ * compare).
+ */
 static long
-vertex_pairs(struct engine *e, uint32_t v)
+vertex_pairs(struct engine *e, uint32_t v, int how)
 {
 	if (vcost_reserve(&e->vn, &e->vn_cap, 2 * (size_t)e->vt[v].len) != 0)
 		return -1;
-	return fan_costs(e, v, 0, FAN_EVAL, e->vn);
+	return fan_costs(e, v, 0, e->ecost != NULL ? how : FAN_EVAL, e->vn);
 }
 
 /* Pair (., x) at cost c before pair (., bx) at bc; a refused pair never is. */
@@ -1166,7 +1167,7 @@ cheapest_valid(struct engine *e, uint32_t v, struct vcost *vn, long n, uint32_t 
 static int
 vertex_update(struct engine *e, uint32_t v, int valid_only)
 {
-	long n = vertex_pairs(e, v);
+	long n = vertex_pairs(e, v, FAN_NOTED);
 	struct top2 t = {NONE, NONE, INFINITY, INFINITY};
 
 	if (n < 0)
@@ -1197,7 +1198,7 @@ vertex_merged(struct engine *e, uint32_t keep, uint32_t gone)
 {
 	heap_remove(e, gone);
 	e->best[gone] = NONE;
-	long n = vertex_pairs(e, keep);
+	long n = vertex_pairs(e, keep, FAN_NOTE);
 	if (n < 0 || vcost_reserve(&e->vk, &e->vk_cap, (size_t)n) != 0)
 		return -1;
 	if (n > 0) /* none when keep lost its last face */
@@ -1283,36 +1284,29 @@ vertex_merged(struct engine *e, uint32_t keep, uint32_t gone)
 static int
 vertex_queue_init(struct engine *e)
 {
-	double pos[3];
-
 	for (size_t v = 0; v < e->nv; v++) {
 		e->heap[v] = (struct hent){INFINITY, (uint32_t)v};
 		e->best[v] = e->alt[v] = NONE;
 		e->altc[v] = INFINITY;
 	}
 	for (size_t v = 0; v < e->nv; v++) {
-		const struct list *l = &e->vt[v];
-		uint32_t stamp = next_stamp(e);
-		for (uint32_t i = 0; i < l->len; i++) {
-			const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + i];
-			for (int k = 0; k < 3; k++) {
-				uint32_t x = t[k];
-				if (x <= v || e->stamp[x] == stamp)
-					continue;
-				e->stamp[x] = stamp;
-				float c = (float)eval_pair(e, (uint32_t)v, x, pos);
-				if (!(c < INFINITY))
-					continue;
-				uint32_t ends[2] = {(uint32_t)v, x};
-				for (int j = 0; j < 2; j++) {
-					uint32_t a = ends[j], b = ends[1 - j];
-					struct top2 t2 = {e->best[a], e->alt[a], e->heap[a].cost, e->altc[a]};
-					top2_add(&t2, b, c);
-					e->best[a] = t2.x1;
-					e->heap[a].cost = t2.c1;
-					e->alt[a] = t2.x2;
-					e->altc[a] = t2.c2;
-				}
+		if (vcost_reserve(&e->vn, &e->vn_cap, 2 * (size_t)e->vt[v].len) != 0)
+			return -1;
+		uint32_t n = fan_costs(e, (uint32_t)v, 1, e->ecost != NULL ? FAN_NOTE : FAN_EVAL, e->vn);
+		for (uint32_t i = 0; i < n; i++) {
+			uint32_t x = e->vn[i].x;
+			float c = e->vn[i].cost;
+			if (!(c < INFINITY))
+				continue;
+			uint32_t ends[2] = {(uint32_t)v, x};
+			for (int j = 0; j < 2; j++) {
+				uint32_t a = ends[j], b = ends[1 - j];
+				struct top2 t2 = {e->best[a], e->alt[a], e->heap[a].cost, e->altc[a]};
+				top2_add(&t2, b, c);
+				e->best[a] = t2.x1;
+				e->heap[a].cost = t2.c1;
+				e->alt[a] = t2.x2;
+				e->altc[a] = t2.c2;
 			}
 		}
 	}
@@ -2826,8 +2820,11 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 	}
 
 	/* Initial costs, then one heapify. */
-	if (e.vq)
-		vertex_queue_init(&e);
+	if (e.vq && !e.exhaustive &&
+	    (e.ecost = vdt_malloc_huge((3 * e.nt + 1) * sizeof(*e.ecost))) == NULL)
+		goto nomem;
+	if (e.vq && vertex_queue_init(&e) != 0)
+		goto nomem;
 	for (size_t p = 0; p < e.np; p++) {
 		uint32_t a = e.pv[2 * p], b = e.pv[2 * p + 1];
 		int la = e.vflag[a] & V_LOCKED, lb = e.vflag[b] & V_LOCKED;

@@ -151,12 +151,12 @@ struct vdt_contract_opts {
 	 * it. */
 	int threads;
 	/*
-	 * Passes take two shortcuts: a vertex that must find its cheapest
-	 * pair again reads the costs noted on its faces when last computed (a
-	 * pair's cost depends only on its two vertices), and a pass sorts
-	 * only the keys it may claim. Nonzero: neither, costing those pairs
-	 * afresh and sorting every key. Slower, and the same result, which
-	 * the tests check.
+	 * The vertex queue and passes take shortcuts: a vertex that must find
+	 * its cheapest pair again reads the costs noted on its faces when
+	 * last computed (a pair's cost depends only on its two vertices), at
+	 * 4 bytes per face corner, and a pass sorts only the keys it may
+	 * claim. Nonzero: none, costing those pairs afresh and sorting every
+	 * key. Slower, and the same result, which the tests check.
 	 */
 	int exhaustive;
 };
