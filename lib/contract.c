@@ -126,10 +126,10 @@ struct engine {
 	struct vcost *pout;
 	size_t pout_cap;
 	uint8_t *part;         /* passes on threads: per vertex, its part (one
-	                          per thread, a region of space) */
-	uint8_t *cut;          /* per vertex, shares a face with another
-	                          part's */
-	uint8_t *aside;        /* per vertex: near a pair set aside this round */
+	                          per thread, a region of space) in the low
+	                          bits, and P_CUT, P_ASIDE (one byte, which a
+	                          contraction's tests read at every corner
+	                          around it: one cache miss, not three) */
 	float *ecost;          /* passes, and the vertex queue (but exhaustive):
 	                          per face, the cost of the pair of each
 	                          of its edges, corner k to k + 1 (fan_costs) */
@@ -1804,13 +1804,13 @@ tally(struct ptally *t, int made, double cost)
  * neighbourhood (the vertices that share a face with either end). The
  * vertices are cut into one part per thread, each a region of space
  * (parts_init); a vertex that shares a face with another part's is on the
- * cut (e->cut, kept up to date by the contractions made on one thread, the
+ * cut (P_CUT, kept up to date by the contractions made on one thread, the
  * only ones that can join parts).
  * In a round, each thread takes the claimed pairs of its part, in vertex
  * order, and contracts a pair only if every vertex of its neighbourhood,
  * as it then is, is of its part, off the cut, and not set aside; else it
  * sets the pair aside and marks what of that neighbourhood is its own
- * (e->aside), so that no later pair of its part touching it is contracted
+ * (P_ASIDE), so that no later pair of its part touching it is contracted
  * before it. A thread thus changes only faces, lists and positions of its
  * own part's vertices off the cut, which nothing else reads meanwhile, and
  * reads only those and faces around vertices on the cut, which nothing
@@ -1822,12 +1822,25 @@ tally(struct ptally *t, int made, double cost)
  * few.
  */
 #define PASS_RUN_MIN 1024    /* claimed pairs per thread, at least */
+/* e->part: P_PART the vertex's part; P_CUT: it shares a face with another
+ * part's; P_ASIDE: it is near a pair set aside this round. A round's
+ * threads read other parts' bytes (their part and cut, which stay) while
+ * the owner may set P_ASIDE in them: the bytes are read and written
+ * atomically, relaxed. */
+enum { P_PART = 0x0f, P_CUT = 0x10, P_ASIDE = 0x20 };
+_Static_assert(VDT_CONTRACT_MAX_THREADS <= P_PART + 1, "a part number fits P_PART");
 #define PASS_FIT_START 24    /* pool entries a pair's merged list may take */
+
+static uint8_t
+part_bits(const struct engine *e, uint32_t v)
+{
+	return __atomic_load_n(&e->part[v], __ATOMIC_RELAXED);
+}
 
 static uint32_t
 part_of(const struct engine *e, uint32_t v)
 {
-	return e->part[v];
+	return part_bits(e, v) & P_PART;
 }
 
 #define PART_BINS 1024 /* a part's extent along the axis it is cut across, in bins */
@@ -1942,7 +1955,8 @@ cut_face(struct engine *e, const uint32_t *c)
 	uint32_t p0 = part_of(e, c[0]);
 
 	if (part_of(e, c[1]) != p0 || part_of(e, c[2]) != p0)
-		e->cut[c[0]] = e->cut[c[1]] = e->cut[c[2]] = 1;
+		for (int k = 0; k < 3; k++)
+			e->part[c[k]] |= P_CUT;
 }
 
 /* After a contraction on one thread: the faces around the survivor. */
@@ -1958,8 +1972,7 @@ cut_around(struct engine *e, uint32_t v)
 static int
 cut_init(struct engine *e)
 {
-	if (parts_init(e) != 0 || (e->cut = calloc(e->nv, 1)) == NULL ||
-	    (e->aside = calloc(e->nv, 1)) == NULL)
+	if (parts_init(e) != 0)
 		return -1;
 	for (size_t t = 0; t < e->nt; t++)
 		if (e->tri[3 * t] != NONE)
@@ -1988,13 +2001,15 @@ struct prun {
 static int
 readable(const struct engine *e, uint32_t v, uint32_t part)
 {
-	return part_of(e, v) == part || e->cut[v];
+	uint8_t b = part_bits(e, v);
+
+	return (b & P_PART) == part || (b & P_CUT);
 }
 
 static int
 mine(const struct engine *e, uint32_t v, uint32_t part)
 {
-	return part_of(e, v) == part && !e->cut[v] && !e->aside[v];
+	return (part_bits(e, v) & (P_PART | P_CUT | P_ASIDE)) == part;
 }
 
 /* Whether the pair (v, x) is the part's to contract now (see above; and,
@@ -2028,9 +2043,12 @@ set_aside(struct engine *e, uint32_t v, uint32_t x, uint32_t part)
 		const struct list *l = &e->vt[ends[i]];
 		for (uint32_t f = 0; f < l->len; f++) {
 			const uint32_t *c = e->tri + 3 * (size_t)e->tpool.data[l->off + f];
-			for (int k = 0; k < 3; k++)
-				if (part_of(e, c[k]) == part && !e->cut[c[k]])
-					e->aside[c[k]] = 1;
+			for (int k = 0; k < 3; k++) {
+				uint8_t b = part_bits(e, c[k]);
+				if ((b & (P_PART | P_CUT)) == part)
+					__atomic_store_n(&e->part[c[k]], (uint8_t)(b | P_ASIDE),
+					                 __ATOMIC_RELAXED);
+			}
 		}
 	}
 }
@@ -2136,7 +2154,7 @@ pass_round(struct engine *e, const struct vdt_contract_opts *o,
 		return 0;
 	if (o->target_vertices && e->live_verts <= o->target_vertices + m)
 		return 0;
-	if (e->cut == NULL && cut_init(e) != 0)
+	if (e->part == NULL && cut_init(e) != 0)
 		return -1;
 	memset(run, 0, sizeof(run));
 	order = malloc(m * sizeof(*order));
@@ -2217,8 +2235,9 @@ pass_round(struct engine *e, const struct vdt_contract_opts *o,
 		                      rec[i].cost) != 0)
 			rc = -1;
 out:
-	if (e->aside != NULL)
-		memset(e->aside, 0, e->nv);
+	if (e->part != NULL)
+		for (size_t v = 0; v < e->nv; v++)
+			e->part[v] &= (uint8_t)~P_ASIDE;
 	for (size_t k = 0; k < t; k++)
 		free(run[k].w.wing);
 	free(order);
@@ -2242,7 +2261,7 @@ pass_serial(struct engine *e, const struct vdt_contract_opts *o,
 		work_apply(e, &e->work);
 		if (made < 0 || (made && o->record && record(res, rec_cap, r.keep, r.gone, r.pos, c) != 0))
 			return -1;
-		if (made && e->cut != NULL)
+		if (made && e->part != NULL)
 			cut_around(e, r.keep);
 		tally(t, made, c);
 	}
@@ -2508,7 +2527,7 @@ engine_shed(struct engine *e)
 	              (void **)&e->vn, (void **)&e->vk, (void **)&e->work.wing,
 	              (void **)&e->keys, (void **)&e->kscratch, (void **)&e->plist, (void **)&e->poff,
 	              (void **)&e->pcount, (void **)&e->pout, (void **)&e->part,
-	              (void **)&e->cut, (void **)&e->aside, (void **)&e->ecost};
+	              (void **)&e->ecost};
 	for (size_t i = 0; i < sizeof(p) / sizeof(p[0]); i++) {
 		free(*p[i]);
 		*p[i] = NULL;
@@ -2548,8 +2567,6 @@ engine_free(struct engine *e)
 	free(e->pcount);
 	free(e->pout);
 	free(e->part);
-	free(e->cut);
-	free(e->aside);
 	free(e->ecost);
 }
 
