@@ -2115,12 +2115,35 @@ prun_contract(void *arg)
 }
 
 /*
+ * How many of the claimed pairs keys[0..m), in order, are bound to leave
+ * more faces than the target (each removes at most the faces of the end
+ * with fewer) and to fit their merged lists in `room` pool entries.
+ */
+static size_t
+round_prefix(const struct engine *e, const struct vdt_contract_opts *o, const uint64_t *keys,
+             size_t m, size_t room)
+{
+	size_t tris = 0, grow = 0;
+	size_t spare = e->live_tris > o->target_triangles ? e->live_tris - o->target_triangles : 0;
+
+	for (size_t i = 0; i < m; i++) {
+		uint32_t v = (uint32_t)keys[i], lv = e->vt[v].len, lx = e->vt[e->best[v]].len;
+		tris += lv < lx ? lv : lx;
+		grow += grown_cap(lv + lx);
+		if (tris >= spare || grow > room)
+			return i;
+	}
+	return m;
+}
+
+/*
  * Contract the first of the claimed pairs keys[0..m) (in vertex order) on
  * e->threads threads, as one thread would in order: as many as the
  * face-list pool has room for (a round), compacted first when an eighth is
- * holes. Returns how many, or 0 without contracting any when that is not
- * worth it or the round may reach the target (the caller then contracts
- * the rest on one thread, checking after each pair), or -1 out of memory.
+ * holes, and as cannot reach the target. Returns how many, or 0 without
+ * contracting any when too few would be shared to be worth it (the caller
+ * then contracts the rest on one thread, checking after each pair), or -1
+ * out of memory.
  */
 static long
 pass_round(struct engine *e, const struct vdt_contract_opts *o,
@@ -2165,35 +2188,44 @@ pass_round(struct engine *e, const struct vdt_contract_opts *o,
 	}
 	if (order == NULL || aside == NULL || (o->record && (rec == NULL || made == NULL)))
 		goto out;
-	/* Each part's pairs, in vertex order. */
-	for (size_t i = 0; i < m; i++)
-		at[part_of(e, (uint32_t)keys[i]) + 1]++;
-	for (size_t k = 0; k < t; k++) {
-		at[k + 1] += at[k];
-		run[k] = (struct prun){.e = e, .keys = keys, .order = order, .begin = at[k],
-		                       .end = at[k + 1], .part = (uint32_t)k, .aside = aside,
-		                       .rec = rec, .made = made};
-	}
-	for (size_t i = 0; i < m; i++)
-		order[at[part_of(e, (uint32_t)keys[i])]++] = (uint32_t)i;
-	vdt_run_jobs(prun_bound, run, sizeof(run[0]), (int)t);
-	size_t tris = 0;
-	for (size_t k = 0; k < t; k++) {
-		grow += run[k].grow;
-		tris += run[k].tris;
-	}
-	if (e->live_tris <= o->target_triangles + tris) {
-		rc = 0; /* may reach the target: one pair at a time */
-		goto out;
-	}
-	e->fit_per_pair = (double)grow / m;
-	/* (The order of faces in lists, which compaction changes, changes
-	 * no result.) */
-	if (p->len + grow > p->cap && p->holes > p->cap / 8 && pool_compact(p, e->vt, e->nv) != 0)
-		goto out;
-	if (p->len + grow > p->cap) {
-		rc = 0;
-		goto out;
+	for (;;) {
+		/* Each part's pairs, in vertex order. */
+		memset(at, 0, sizeof(at));
+		for (size_t i = 0; i < m; i++)
+			at[part_of(e, (uint32_t)keys[i]) + 1]++;
+		for (size_t k = 0; k < t; k++) {
+			at[k + 1] += at[k];
+			run[k] = (struct prun){.e = e, .keys = keys, .order = order, .begin = at[k],
+			                       .end = at[k + 1], .part = (uint32_t)k, .aside = aside,
+			                       .rec = rec, .made = made};
+		}
+		for (size_t i = 0; i < m; i++)
+			order[at[part_of(e, (uint32_t)keys[i])]++] = (uint32_t)i;
+		vdt_run_jobs(prun_bound, run, sizeof(run[0]), (int)t);
+		size_t tris = 0;
+		grow = 0;
+		for (size_t k = 0; k < t; k++) {
+			grow += run[k].grow;
+			tris += run[k].tris;
+		}
+		e->fit_per_pair = (double)grow / m;
+		/* (The order of faces in lists, which compaction changes,
+		 * changes no result.) */
+		if (p->len + grow > p->cap && p->holes > p->cap / 8 &&
+		    pool_compact(p, e->vt, e->nv) != 0)
+			goto out;
+		if (p->len + grow <= p->cap && e->live_tris > o->target_triangles + tris)
+			break;
+		/* The round may reach the target, or its lists overrun the
+		 * pool: the pairs up to where neither can happen go on the
+		 * threads, the rest to the next round, or when that is too
+		 * short to share, one pair at a time. */
+		size_t fit = round_prefix(e, o, keys, m, p->cap - p->len);
+		if (fit < 2 * PASS_RUN_MIN || fit >= m) {
+			rc = 0;
+			goto out;
+		}
+		m = fit;
 	}
 	p->shared = 1;
 	vdt_run_jobs(prun_contract, run, sizeof(run[0]), (int)t);

@@ -954,6 +954,49 @@ passes_on_threads_match_one_thread(void **state)
 	vdt_mesh_free(&m);
 }
 
+/*
+ * Near the target a round on threads takes the claimed pairs that cannot
+ * overshoot it (each removes at most the faces of its end with fewer),
+ * not none, and leaves the rest to the pair-by-pair check. A bumpy grid of
+ * 320000 faces to a quarter, whose last passes still claim thousands of
+ * pairs: the same contractions and faces on one thread as on two,
+ * stopping at the target, and over nine in ten of them shared (it was
+ * under nine in ten when such a round went to one thread whole).
+ */
+static void
+passes_on_threads_stop_at_the_target(void **state)
+{
+	struct vdt_mesh m;
+	struct vdt_contract_result r[2];
+
+	(void)state;
+	shape_grid(&m, 400);
+	bump(&m, 7, 0.02f);
+	size_t nt = m.triangle_count, target = nt / 4;
+	for (int k = 0; k < 2; k++) {
+		struct qctx c = {face_quadrics(&m)};
+		struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0};
+		struct vdt_contract_opts o;
+		vdt_contract_defaults(&o);
+		o.passes = 1;
+		o.record = 1;
+		o.threads = k + 1;
+		o.target_triangles = target;
+		assert_int_equal(vdt_contract_run(&m, &ops, &o, &r[k], NULL), 0);
+		assert_true(r[k].reached_target);
+		assert_true(r[k].triangle_count + 2 > target);
+		free(c.q);
+	}
+	assert_int_equal(r[1].record_count, r[0].record_count);
+	assert_memory_equal(r[1].records, r[0].records, r[0].record_count * sizeof(*r[0].records));
+	assert_int_equal(r[1].triangle_count, r[0].triangle_count);
+	assert_memory_equal(r[1].triangles, r[0].triangles, 3 * r[0].triangle_count * sizeof(uint32_t));
+	assert_true(r[1].shared > r[1].contractions * 9 / 10);
+	for (int k = 0; k < 2; k++)
+		vdt_contract_result_free(&r[k]);
+	vdt_mesh_free(&m);
+}
+
 /* --order auto: passes from VDT_QSLIM_PASSES_MIN welded vertices up,
  * greedy below; the explicit orders whatever the size. */
 /*
@@ -1130,6 +1173,7 @@ main(void)
 		cmocka_unit_test(passes_contract_only_edges),
 		cmocka_unit_test(auto_order_follows_the_size),
 		cmocka_unit_test(passes_on_threads_match_one_thread),
+		cmocka_unit_test(passes_on_threads_stop_at_the_target),
 		cmocka_unit_test(qslim_threads_do_not_matter),
 		cmocka_unit_test(passes_sort_past_the_claimable_keys),
 	};
