@@ -36,6 +36,14 @@ struct vdt_bbox {
 	double min[3], max[3];
 };
 
+/* A colour channel as every writer stores it: clamped to [0, 1] (readers
+ * and filters can leave values outside). */
+static inline float
+vdt_color_clamp(float c)
+{
+	return c < 0 ? 0 : c > 1 ? 1 : c;
+}
+
 /*
  * Allocate the arrays of a mesh with the given counts and attributes (a mask
  * of enum vdt_mesh_attr). The contents are uninitialised. On failure the mesh

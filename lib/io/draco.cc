@@ -161,11 +161,8 @@ write_mesh(FILE *f, const struct vdt_mesh *m, int bits, int speed, struct vdt_er
 		draco::PointAttribute *pa = dm.attribute(id);
 		for (size_t i = 0; i < nv; i++) {
 			uint8_t c[4];
-			for (int k = 0; k < 4; k++) {
-				float v = m->colors[4 * i + k];
-				v = v < 0 ? 0 : v > 1 ? 1 : v;
-				c[k] = uint8_t(std::lrint(v * 255.0f));
-			}
+			for (int k = 0; k < 4; k++)
+				c[k] = uint8_t(std::lrint(vdt_color_clamp(m->colors[4 * i + k]) * 255.0f));
 			pa->SetAttributeValue(draco::AttributeValueIndex(uint32_t(i)), c);
 		}
 	}

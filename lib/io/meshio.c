@@ -798,14 +798,9 @@ write_obj(FILE *f, const struct vdt_mesh *m)
 	fputs("# written by vdt\n", f);
 	for (size_t i = 0; i < m->vertex_count; i++, p += 3) {
 		if (m->colors) {
-			/* clamped to [0,1], as every writer does */
-			float c[3];
-			for (int k = 0; k < 3; k++) {
-				c[k] = m->colors[4 * i + k];
-				c[k] = c[k] < 0 ? 0 : c[k] > 1 ? 1 : c[k];
-			}
-			fprintf(f, "v " P9 " " P9 " " P9 " " P9 " " P9 " " P9 "\n",
-			        p[0], p[1], p[2], c[0], c[1], c[2]);
+			const float *c = m->colors + 4 * i;
+			fprintf(f, "v " P9 " " P9 " " P9 " " P9 " " P9 " " P9 "\n", p[0], p[1], p[2],
+			        vdt_color_clamp(c[0]), vdt_color_clamp(c[1]), vdt_color_clamp(c[2]));
 		} else {
 			fprintf(f, "v " P9 " " P9 " " P9 "\n", p[0], p[1], p[2]);
 		}
@@ -852,10 +847,8 @@ write_off(FILE *f, const struct vdt_mesh *m)
 			fprintf(f, " " P9 " " P9 " " P9, m->normals[3 * i], m->normals[3 * i + 1],
 			        m->normals[3 * i + 2]);
 		if (m->colors)
-			for (int k = 0; k < 4; k++) {
-				float c = m->colors[4 * i + k];
-				fprintf(f, " " P9, c < 0 ? 0 : c > 1 ? 1 : c);
-			}
+			for (int k = 0; k < 4; k++)
+				fprintf(f, " " P9, vdt_color_clamp(m->colors[4 * i + k]));
 		if (m->uvs)
 			fprintf(f, " " P9 " " P9, m->uvs[2 * i], m->uvs[2 * i + 1]);
 		fputc('\n', f);
@@ -890,11 +883,8 @@ write_ply_ascii(FILE *f, const struct vdt_mesh *m)
 		if (m->uvs)
 			fprintf(f, " " P9 " " P9, m->uvs[2 * i], m->uvs[2 * i + 1]);
 		if (m->colors)
-			for (int k = 0; k < 4; k++) {
-				float c = m->colors[4 * i + k];
-				c = c < 0 ? 0 : c > 1 ? 1 : c;
-				fprintf(f, " %ld", lrintf(c * 255.0f));
-			}
+			for (int k = 0; k < 4; k++)
+				fprintf(f, " %ld", lrintf(vdt_color_clamp(m->colors[4 * i + k]) * 255.0f));
 		fputc('\n', f);
 	}
 	for (size_t t = 0; t < m->triangle_count; t++)

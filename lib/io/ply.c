@@ -728,11 +728,8 @@ vdt_ply_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err)
 			for (int k = 0; k < 2; k++, q += 4)
 				vdt_put_f32le(q, m->uvs[2 * i + k]);
 		if (m->colors)
-			for (int k = 0; k < 4; k++) {
-				float c = m->colors[4 * i + k];
-				c = c < 0 ? 0 : c > 1 ? 1 : c;
-				*q++ = (unsigned char)lrintf(c * 255.0f);
-			}
+			for (int k = 0; k < 4; k++)
+				*q++ = (unsigned char)lrintf(vdt_color_clamp(m->colors[4 * i + k]) * 255.0f);
 		n += rec;
 	}
 	for (size_t i = 0; i < m->triangle_count && rc == 0; i++) {
