@@ -172,6 +172,18 @@ vdt_mesh_mean_area(const struct vdt_mesh *m, const uint8_t *skip)
 	return count ? sum / (double)count : 0;
 }
 
+/* box grown to hold p. */
+static void
+bbox_add(struct vdt_bbox *box, const float p[3])
+{
+	for (int k = 0; k < 3; k++) {
+		if (p[k] < box->min[k])
+			box->min[k] = p[k];
+		if (p[k] > box->max[k])
+			box->max[k] = p[k];
+	}
+}
+
 void
 vdt_mesh_bbox_faces(const struct vdt_mesh *m, struct vdt_bbox *box)
 {
@@ -183,15 +195,8 @@ vdt_mesh_bbox_faces(const struct vdt_mesh *m, struct vdt_bbox *box)
 		box->min[k] = INFINITY;
 		box->max[k] = -INFINITY;
 	}
-	for (size_t c = 0; c < 3 * m->triangle_count; c++) {
-		const float *p = m->positions + 3 * (size_t)m->triangles[c];
-		for (int k = 0; k < 3; k++) {
-			if (p[k] < box->min[k])
-				box->min[k] = p[k];
-			if (p[k] > box->max[k])
-				box->max[k] = p[k];
-		}
-	}
+	for (size_t c = 0; c < 3 * m->triangle_count; c++)
+		bbox_add(box, m->positions + 3 * (size_t)m->triangles[c]);
 }
 
 void
@@ -202,13 +207,7 @@ vdt_mesh_bbox(const struct vdt_mesh *m, struct vdt_bbox *box)
 		box->max[k] = m->vertex_count ? -INFINITY : 0;
 	}
 	for (size_t i = 0; i < m->vertex_count; i++)
-		for (int k = 0; k < 3; k++) {
-			double x = m->positions[3 * i + k];
-			if (x < box->min[k])
-				box->min[k] = x;
-			if (x > box->max[k])
-				box->max[k] = x;
-		}
+		bbox_add(box, m->positions + 3 * i);
 }
 
 double
