@@ -291,11 +291,17 @@ output_over_input(const char *const *in, size_t nin, const char *const *out, siz
 }
 
 void
+output_is_input(const char *out, const char *in)
+{
+	usage_error("the output '%s' is the input '%s': writing it would destroy the input",
+	            strcmp(out, "-") == 0 ? "<stdout>" : out, input_name(in));
+}
+
+void
 refuse_output_over_input(const char *in, const char *out)
 {
 	size_t i;
 
 	if (output_over_input(&in, 1, &out, 1, &i) >= 0)
-		usage_error("the output '%s' is the input '%s': writing it would destroy the input",
-		            strcmp(out, "-") == 0 ? "<stdout>" : out, input_name(in));
+		output_is_input(out, in);
 }

@@ -56,6 +56,9 @@ void refuse_output_over_input(const char *in, const char *out);
 long output_over_input(const char *const *in, size_t nin, const char *const *out, size_t nout,
                        size_t *which);
 
+/* The usage error of the two above, naming the output and the input. */
+void output_is_input(const char *out, const char *in) __attribute__((noreturn));
+
 /* An input operand as messages name it: "<stdin>" for - (or NULL). */
 const char *input_name(const char *path);
 

@@ -178,7 +178,7 @@ refuse_frames_over_inputs(const struct cmdline *cl, size_t frames)
 	char a[4096], b[4096];
 	if (o >= 0) { /* the names, before they are freed */
 		snprintf(a, sizeof(a), "%s", out ? out[o] : cl->out);
-		snprintf(b, sizeof(b), "%s", input_name(in[i]));
+		snprintf(b, sizeof(b), "%s", in[i]);
 	}
 	for (size_t f = 0; out && f < nout; f++)
 		free(out[f]);
@@ -188,8 +188,7 @@ refuse_frames_over_inputs(const struct cmdline *cl, size_t frames)
 	if (in != cl->in)
 		free(in);
 	if (o >= 0)
-		usage_error("the output '%s' is the input '%s': writing it would destroy the input",
-		            strcmp(a, "-") == 0 ? "<stdout>" : a, b);
+		output_is_input(a, b);
 }
 
 static int
