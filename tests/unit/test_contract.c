@@ -1150,6 +1150,58 @@ passes_sort_past_the_claimable_keys(void **state)
 	vdt_mesh_free(&m);
 }
 
+/* ---- vdt_run_jobs ---- */
+
+struct count_job {
+	int runs;      /* times this job ran (only its own thread writes it) */
+	int nested_t;  /* jobs it runs itself, 0 none */
+	struct count_job *inner;
+};
+
+static void *
+count_run(void *arg)
+{
+	struct count_job *j = arg;
+	j->runs++;
+	if (j->nested_t > 0)
+		vdt_run_jobs(count_run, j->inner, sizeof(*j->inner), j->nested_t);
+	return NULL;
+}
+
+/* Every job of every call runs exactly once, and before the call returns,
+ * whatever number of jobs calls in a row ask for (a worker with no job in
+ * one call must not take one of the next), and when jobs run jobs: calls
+ * from several threads at once, one of which holds the kept threads. */
+static void
+run_jobs_runs_each_job_once(void **state)
+{
+	static const int ts[] = {4, 2, 3, 1, 5, 2, 16, 3, 2, 7, 1, 16};
+	struct count_job job[VDT_CONTRACT_MAX_THREADS];
+	(void)state;
+	for (int round = 0; round < 2000; round++) {
+		int t = ts[round % (int)(sizeof(ts) / sizeof(ts[0]))];
+		memset(job, 0, sizeof(job));
+		vdt_run_jobs(count_run, job, sizeof(job[0]), t);
+		for (int k = 0; k < VDT_CONTRACT_MAX_THREADS; k++)
+			assert_int_equal(job[k].runs, k < t ? 1 : 0);
+	}
+
+	/* Jobs that run jobs. */
+	struct count_job outer[3], inner[3][4];
+	memset(outer, 0, sizeof(outer));
+	memset(inner, 0, sizeof(inner));
+	for (int k = 0; k < 3; k++) {
+		outer[k].nested_t = 4;
+		outer[k].inner = inner[k];
+	}
+	vdt_run_jobs(count_run, outer, sizeof(outer[0]), 3);
+	for (int k = 0; k < 3; k++) {
+		assert_int_equal(outer[k].runs, 1);
+		for (int i = 0; i < 4; i++)
+			assert_int_equal(inner[k][i].runs, 1);
+	}
+}
+
 int
 main(void)
 {
@@ -1176,6 +1228,7 @@ main(void)
 		cmocka_unit_test(passes_on_threads_stop_at_the_target),
 		cmocka_unit_test(qslim_threads_do_not_matter),
 		cmocka_unit_test(passes_sort_past_the_claimable_keys),
+		cmocka_unit_test(run_jobs_runs_each_job_once),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
