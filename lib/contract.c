@@ -1589,7 +1589,8 @@ pass_kept_of(struct engine *e, uint32_t v, const struct vcost *vn, long n)
 
 struct pjob {
 	struct engine *e;
-	size_t begin, end; /* of e->plist */
+	size_t *next, end; /* of e->plist: the first not yet taken (atomic),
+	                      and the end */
 	int upper;         /* only the pairs with vertices above */
 	int how;           /* FAN_NOTE, FAN_NOTED or FAN_EVAL */
 	int best;          /* and each vertex not V_REFUSED takes its cheapest
@@ -1597,19 +1598,30 @@ struct pjob {
 	                      entries; refused ones test validity, on one thread) */
 };
 
-/* The pairs of each vertex of the job and their costs (fan_costs). */
+/*
+ * The vertices of plist a job takes at a time. The jobs take them as they
+ * go, so that a slower thread (one started late, or on a busier core)
+ * does less: each vertex's results are the same whichever job has it.
+ */
+#define PJOB_TAKE 256
+
+/* The pairs of each vertex the job takes and their costs (fan_costs). */
 static void *
 pjob_run(void *arg)
 {
 	const struct pjob *j = arg;
+	size_t begin, end;
 
-	for (size_t i = j->begin; i < j->end; i++) {
-		uint32_t v = j->e->plist[i];
-		struct vcost *vn = j->e->pout + j->e->poff[i];
-		prefetch_ahead(j->e, j->e->plist, i, j->end);
-		j->e->pcount[i] = fan_costs(j->e, v, j->upper, j->how, vn);
-		if (j->best && !(j->e->vflag[v] & V_REFUSED))
-			pass_best_of(j->e, v, vn, j->e->pcount[i]);
+	while ((begin = __atomic_fetch_add(j->next, PJOB_TAKE, __ATOMIC_RELAXED)) < j->end) {
+		end = begin + PJOB_TAKE < j->end ? begin + PJOB_TAKE : j->end;
+		for (size_t i = begin; i < end; i++) {
+			uint32_t v = j->e->plist[i];
+			struct vcost *vn = j->e->pout + j->e->poff[i];
+			prefetch_ahead(j->e, j->e->plist, i, end);
+			j->e->pcount[i] = fan_costs(j->e, v, j->upper, j->how, vn);
+			if (j->best && !(j->e->vflag[v] & V_REFUSED))
+				pass_best_of(j->e, v, vn, j->e->pcount[i]);
+		}
 	}
 	return NULL;
 }
@@ -1625,7 +1637,7 @@ static int
 pass_cost(struct engine *e, size_t n, int upper, int how, int best)
 {
 	struct pjob job[VDT_CONTRACT_MAX_THREADS];
-	size_t total = 0;
+	size_t total = 0, next = 0;
 	int t = e->threads;
 
 	for (size_t i = 0; i < n; i++) {
@@ -1642,8 +1654,7 @@ pass_cost(struct engine *e, size_t n, int upper, int how, int best)
 	if ((size_t)t > n / 64 + 1)
 		t = (int)(n / 64 + 1);
 	for (int k = 0; k < t; k++)
-		job[k] = (struct pjob){e, n * (size_t)k / (size_t)t, n * (size_t)(k + 1) / (size_t)t,
-		                       upper, how, best};
+		job[k] = (struct pjob){e, &next, n, upper, how, best};
 	vdt_run_jobs(pjob_run, job, sizeof(job[0]), t);
 	return 0;
 }
