@@ -2472,6 +2472,14 @@ run_passes(struct engine *e, const struct vdt_contract_opts *o,
 					return -1;
 				front = n;
 			}
+			/* (best and hpos are read at random: ask ahead) */
+			if (i + 16 < front) {
+				uint32_t a = (uint32_t)e->keys[i + 16];
+				__builtin_prefetch(&e->best[a]);
+				__builtin_prefetch(&e->hpos[a]);
+			}
+			if (i + 8 < front)
+				__builtin_prefetch(&e->hpos[e->best[(uint32_t)e->keys[i + 8]]]);
 			uint32_t v = (uint32_t)e->keys[i], x = e->best[v];
 			float c = key_cost(e->keys[i]);
 			if (!(c <= o->max_cost)) {
