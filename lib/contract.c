@@ -1596,6 +1596,9 @@ struct pjob {
 	int best;          /* and each vertex not V_REFUSED takes its cheapest
 	                      (pass_best_of, which writes only the vertex's own
 	                      entries; refused ones test validity, on one thread) */
+	int first;         /* with upper, the first costs (pass_init): both ends
+	                      of each pair take it if cheaper than theirs, where
+	                      the job owns them (first_take) */
 };
 
 /*
@@ -1604,16 +1607,55 @@ struct pjob {
  * does less: each vertex's results are the same whichever job has it.
  */
 #define PJOB_TAKE 256
+#define PJOB_TAKE_FIRST 4096 /* with first: fewer pairs leave the run */
+
+/* Pair (., x) at cost c for v's cheapest, if it is cheaper. */
+static inline void
+take_if_cheaper(struct engine *e, uint32_t v, uint32_t x, float c)
+{
+	if (cheaper(c, x, e->altc[v], e->best[v])) {
+		e->best[v] = x;
+		e->altc[v] = c;
+	}
+}
+
+/*
+ * The first costs of the vertices plist[begin..end), ascending, whose
+ * pairs are with vertices above them: the job owns the vertex numbers from
+ * plist[begin] to plist[end - 1], which no other job's run holds, and
+ * offers each pair to both ends it owns. A pair whose upper end lies past
+ * the run is left at the front of its vertex's pout, pcount of them, for
+ * the caller to offer to that end; the result is the same minimum
+ * whichever offers a pair first.
+ */
+static void
+first_take(struct engine *e, size_t begin, size_t end)
+{
+	uint32_t last = e->plist[end - 1];
+
+	for (size_t i = begin; i < end; i++) {
+		uint32_t a = e->plist[i], left = 0;
+		struct vcost *vn = e->pout + e->poff[i];
+		for (uint32_t k = 0; k < e->pcount[i]; k++) {
+			take_if_cheaper(e, a, vn[k].x, vn[k].cost);
+			if (vn[k].x <= last)
+				take_if_cheaper(e, vn[k].x, a, vn[k].cost);
+			else
+				vn[left++] = vn[k];
+		}
+		e->pcount[i] = left;
+	}
+}
 
 /* The pairs of each vertex the job takes and their costs (fan_costs). */
 static void *
 pjob_run(void *arg)
 {
 	const struct pjob *j = arg;
-	size_t begin, end;
+	size_t begin, end, take = j->first ? PJOB_TAKE_FIRST : PJOB_TAKE;
 
-	while ((begin = __atomic_fetch_add(j->next, PJOB_TAKE, __ATOMIC_RELAXED)) < j->end) {
-		end = begin + PJOB_TAKE < j->end ? begin + PJOB_TAKE : j->end;
+	while ((begin = __atomic_fetch_add(j->next, take, __ATOMIC_RELAXED)) < j->end) {
+		end = begin + take < j->end ? begin + take : j->end;
 		for (size_t i = begin; i < end; i++) {
 			uint32_t v = j->e->plist[i];
 			struct vcost *vn = j->e->pout + j->e->poff[i];
@@ -1622,6 +1664,8 @@ pjob_run(void *arg)
 			if (j->best && !(j->e->vflag[v] & V_REFUSED))
 				pass_best_of(j->e, v, vn, j->e->pcount[i]);
 		}
+		if (j->first)
+			first_take(j->e, begin, end);
 	}
 	return NULL;
 }
@@ -1654,7 +1698,7 @@ pass_cost(struct engine *e, size_t n, int upper, int how, int best)
 	if ((size_t)t > n / 64 + 1)
 		t = (int)(n / 64 + 1);
 	for (int k = 0; k < t; k++)
-		job[k] = (struct pjob){e, &next, n, upper, how, best};
+		job[k] = (struct pjob){e, &next, n, upper, how, best, upper && how == FAN_NOTE};
 	vdt_run_jobs(pjob_run, job, sizeof(job[0]), t);
 	return 0;
 }
@@ -1721,7 +1765,8 @@ key_cost(uint64_t k)
 }
 
 /* Every vertex's cheapest pair, each edge costed once (by its lower end,
- * in batches costed in parallel). */
+ * in batches costed in parallel, which also offer each pair to its ends
+ * but those past a job's run: offered here). */
 static int
 pass_init(struct engine *e)
 {
@@ -1738,20 +1783,9 @@ pass_init(struct engine *e)
 		if (pass_cost(e, n, 1, FAN_NOTE, 0) != 0)
 			return -1;
 		for (size_t i = 0; i < n; i++) {
-			uint32_t a = e->plist[i];
 			const struct vcost *vn = e->pout + e->poff[i];
-			for (uint32_t k = 0; k < e->pcount[i]; k++) {
-				uint32_t x = vn[k].x;
-				float c = vn[k].cost;
-				if (cheaper(c, x, e->altc[a], e->best[a])) {
-					e->best[a] = x;
-					e->altc[a] = c;
-				}
-				if (cheaper(c, a, e->altc[x], e->best[x])) {
-					e->best[x] = a;
-					e->altc[x] = c;
-				}
-			}
+			for (uint32_t k = 0; k < e->pcount[i]; k++)
+				take_if_cheaper(e, vn[k].x, e->plist[i], vn[k].cost);
 		}
 	}
 	return 0;

@@ -1150,6 +1150,123 @@ passes_sort_past_the_claimable_keys(void **state)
 	vdt_mesh_free(&m);
 }
 
+/* How many records the first pass made: progress is reported after each. */
+struct first_pass {
+	const struct vdt_contract_result *r;
+	size_t records; /* SIZE_MAX until the first report */
+};
+
+static void
+note_first_pass(void *ctx, const char *phase, double fraction)
+{
+	struct first_pass *f = ctx;
+	(void)phase;
+	(void)fraction;
+	if (f->records == SIZE_MAX)
+		f->records = f->r->record_count;
+}
+
+/*
+ * A pass lists the cheapest pair at each vertex and claims them cheapest
+ * first, each unless an end is claimed already. So on the input (a
+ * jittered flat grid: no pair is refused), every contraction of the first
+ * pass is the cheapest pair at one of its ends, and a vertex whose
+ * cheapest pair is cheaper than the dearest contraction has it or its
+ * partner contracted. The first costs are taken by vertex runs on
+ * threads, each run passing on the pairs whose upper end lies past it:
+ * with the vertices numbered at random, nearly every pair does, and an
+ * upper end that missed them would list a dearer pair.
+ */
+static void
+first_pass_claims_cheapest_pairs(void **state)
+{
+	struct vdt_mesh m;
+	struct vdt_contract_result r;
+	struct vdt_contract_opts o;
+	uint32_t seed = 99;
+
+	(void)state;
+	shape_grid(&m, 120); /* 14641 vertices: runs of first costs split them */
+	size_t nv = m.vertex_count, nt = m.triangle_count;
+	for (size_t i = 0; i < nv; i++)
+		for (int k = 0; k < 2; k++)
+			m.positions[3 * i + k] += 0.1f / 120 * (next_unit(&seed) - 0.5f);
+	uint32_t *perm = malloc(nv * sizeof(*perm));
+	float *pos = malloc(3 * nv * sizeof(*pos));
+	assert_non_null(perm);
+	assert_non_null(pos);
+	for (size_t i = 0; i < nv; i++)
+		perm[i] = (uint32_t)i;
+	for (size_t i = nv - 1; i > 0; i--) {
+		size_t j = (size_t)(next_unit(&seed) * (float)(i + 1)) % (i + 1);
+		uint32_t x = perm[i];
+		perm[i] = perm[j];
+		perm[j] = x;
+	}
+	for (size_t i = 0; i < nv; i++)
+		memcpy(pos + 3 * perm[i], m.positions + 3 * i, 3 * sizeof(float));
+	memcpy(m.positions, pos, 3 * nv * sizeof(float));
+	for (size_t i = 0; i < 3 * nt; i++)
+		m.triangles[i] = perm[m.triangles[i]];
+
+	/* Each vertex's cheapest pair on the input: by cost, then partner. */
+	uint32_t *best = malloc(nv * sizeof(*best));
+	double *bc = malloc(nv * sizeof(*bc));
+	assert_non_null(best);
+	assert_non_null(bc);
+	for (size_t v = 0; v < nv; v++) {
+		best[v] = UINT32_MAX;
+		bc[v] = INFINITY;
+	}
+	for (size_t t = 0; t < nt; t++)
+		for (int k = 0; k < 3; k++) {
+			uint32_t a = m.triangles[3 * t + k], b = m.triangles[3 * t + (k + 1) % 3];
+			double at[3];
+			float c = (float)length_cost(NULL, a, b, -1, m.positions + 3 * a,
+			                             m.positions + 3 * b, at);
+			uint32_t end[2] = {a, b};
+			for (int e = 0; e < 2; e++) {
+				uint32_t v = end[e], x = end[1 - e];
+				if (c < bc[v] || (c == bc[v] && x < best[v])) {
+					bc[v] = c;
+					best[v] = x;
+				}
+			}
+		}
+
+	struct first_pass fp = {&r, SIZE_MAX};
+	struct vdt_progress progress = {note_first_pass, &fp};
+	vdt_contract_defaults(&o);
+	o.passes = 1;
+	o.record = 1;
+	o.threads = 2;
+	o.target_triangles = nt / 2;
+	o.progress = &progress;
+	assert_int_equal(vdt_contract_run(&m, &length_ops, &o, &r, NULL), 0);
+	size_t first = fp.records;
+	assert_true(r.passes);
+	assert_true(first > nv / 20 && first != SIZE_MAX);
+	uint8_t *done = calloc(nv, 1);
+	assert_non_null(done);
+	double dearest = 0;
+	for (size_t i = 0; i < first; i++) {
+		uint32_t a = r.records[i].keep, b = r.records[i].gone;
+		assert_true(best[a] == b || best[b] == a);
+		done[a] = done[b] = 1;
+		dearest = fmax(dearest, fmin(bc[a], bc[b]));
+	}
+	for (size_t v = 0; v < nv; v++)
+		if (bc[v] < dearest)
+			assert_true(done[v] || done[best[v]]);
+	free(done);
+	vdt_contract_result_free(&r);
+	free(perm);
+	free(pos);
+	free(best);
+	free(bc);
+	vdt_mesh_free(&m);
+}
+
 /* ---- vdt_run_jobs ---- */
 
 struct count_job {
@@ -1228,6 +1345,7 @@ main(void)
 		cmocka_unit_test(passes_on_threads_stop_at_the_target),
 		cmocka_unit_test(qslim_threads_do_not_matter),
 		cmocka_unit_test(passes_sort_past_the_claimable_keys),
+		cmocka_unit_test(first_pass_claims_cheapest_pairs),
 		cmocka_unit_test(run_jobs_runs_each_job_once),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
