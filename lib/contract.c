@@ -2850,6 +2850,7 @@ static struct {
 	int workers;          /* started, never stopped */
 	int spin;             /* polls before sleeping (atomic) */
 	long cpus;            /* online processors, once known */
+	int atfork;           /* pool_forked is registered */
 	unsigned call;        /* bumped for each call (atomic) */
 	unsigned born[VDT_CONTRACT_MAX_THREADS]; /* each worker's call before its first */
 	int pending;          /* workers yet to finish the call (atomic): all
@@ -2861,7 +2862,7 @@ static struct {
 	size_t size;
 	int t;
 } pool = {PTHREAD_MUTEX_INITIALIZER, PTHREAD_MUTEX_INITIALIZER, PTHREAD_COND_INITIALIZER,
-          PTHREAD_COND_INITIALIZER, 0, 0, 0, 0, {0}, 0, NULL, NULL, 0, 0};
+          PTHREAD_COND_INITIALIZER, 0, 0, 0, 0, 0, {0}, 0, NULL, NULL, 0, 0};
 
 static inline void
 spin_pause(void)
@@ -2903,6 +2904,17 @@ pool_worker(void *arg)
 	return NULL;
 }
 
+/* In the child of a fork, which has none of the workers: a pool anew. */
+static void
+pool_forked(void)
+{
+	pthread_mutex_init(&pool.own, NULL);
+	pthread_mutex_init(&pool.lock, NULL);
+	pthread_cond_init(&pool.go, NULL);
+	pthread_cond_init(&pool.done, NULL);
+	pool.workers = 0;
+}
+
 /* Jobs 0..t-2 on the pool's workers, started as needed: 0, or -1 when
  * the pool is another caller's or no worker can start (nothing run). */
 static int
@@ -2910,6 +2922,12 @@ pool_run(void *(*fn)(void *), void *jobs, size_t size, int t)
 {
 	if (pthread_mutex_trylock(&pool.own) != 0)
 		return -1;
+	if (!pool.atfork && pthread_atfork(NULL, NULL, pool_forked) == 0)
+		pool.atfork = 1;
+	if (!pool.atfork) {
+		pthread_mutex_unlock(&pool.own);
+		return -1;
+	}
 	while (pool.workers < t - 1) {
 		pthread_t th;
 		pool.born[pool.workers] = __atomic_load_n(&pool.call, __ATOMIC_RELAXED);

@@ -168,9 +168,10 @@ struct vdt_contract_opts {
 int vdt_contract_threads(int threads);
 
 /* Run fn on each of t jobs (job k at (char *)jobs + k * size, t at most
- * VDT_CONTRACT_MAX_THREADS): t - 1 on threads of their own, the last and
- * any whose thread cannot start on the caller's; return when all are
- * done. */
+ * VDT_CONTRACT_MAX_THREADS): t - 1 on threads of their own (kept from one
+ * call to the next, but for calls made while another is running), the
+ * last and any whose thread cannot start on the caller's; return when all
+ * are done. */
 void vdt_run_jobs(void *(*fn)(void *), void *jobs, size_t size, int t);
 
 /* Fill opts with the defaults (target 0 triangles, no bound, 75 degrees). */

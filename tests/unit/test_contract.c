@@ -7,6 +7,8 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "../../lib/contract.h"
 #include "../../lib/qslim.h"
@@ -1287,8 +1289,9 @@ count_run(void *arg)
 
 /* Every job of every call runs exactly once, and before the call returns,
  * whatever number of jobs calls in a row ask for (a worker with no job in
- * one call must not take one of the next), and when jobs run jobs: calls
- * from several threads at once, one of which holds the kept threads. */
+ * one call must not take one of the next), when jobs run jobs (calls
+ * from several threads at once, one of which holds the kept threads), and
+ * in a forked child. */
 static void
 run_jobs_runs_each_job_once(void **state)
 {
@@ -1317,6 +1320,21 @@ run_jobs_runs_each_job_once(void **state)
 		for (int i = 0; i < 4; i++)
 			assert_int_equal(inner[k][i].runs, 1);
 	}
+
+	/* The child of a fork has none of the kept threads: its calls must
+	 * run all their jobs all the same (and not wait for ever). */
+	pid_t pid = fork();
+	assert_true(pid >= 0);
+	if (pid == 0) {
+		alarm(20);
+		memset(job, 0, sizeof(job));
+		vdt_run_jobs(count_run, job, sizeof(job[0]), 3);
+		_exit(job[0].runs == 1 && job[1].runs == 1 && job[2].runs == 1 ? 0 : 1);
+	}
+	int status;
+	assert_int_equal(waitpid(pid, &status, 0), pid);
+	assert_true(WIFEXITED(status));
+	assert_int_equal(WEXITSTATUS(status), 0);
 }
 
 int
