@@ -95,10 +95,6 @@ struct engine {
 
 	uint32_t *parent; /* the vertex each removed vertex merged into */
 
-	/* scratch for neighbourhood tests */
-	uint32_t *nbr;
-	size_t nbr_cap;
-	uint32_t *stamp, *slot, stamp_now;
 	uint16_t *vrej;   /* set-aside pairs at each vertex */
 
 	/* vertex queue: the heap holds vertices, best[v] is v's partner and
@@ -516,63 +512,58 @@ pair_cost(struct engine *e, uint32_t p, double pos[3])
 }
 
 /*
- * Neighbour multiplicities of v: for each vertex x sharing a triangle with
- * v, how many triangles contain edge (v,x). Fills e->nbr from `base` with
- * pairs (x, count) and returns their number, or -1 on allocation failure.
- * Vertices already stamped `prev` (the neighbours of the previous call) are
- * counted in *common. Per-vertex stamps make this linear in the degree.
- */
-static long
-neighbours(struct engine *e, uint32_t v, size_t base, uint32_t prev, long *common)
-{
-	const struct list *l = &e->vt[v];
-	size_t n = 0;
-	uint32_t stamp;
-
-	if (e->stamp_now >= UINT32_MAX - 4 && prev == 0) {
-		memset(e->stamp, 0, e->nv * sizeof(*e->stamp));
-		e->stamp_now = 0;
-	}
-	stamp = ++e->stamp_now;
-
-	if (base + 2 * (2 * (size_t)l->len) > e->nbr_cap) {
-		size_t cap = 2 * (base + 4 * (size_t)l->len) + 64;
-		uint32_t *d = realloc(e->nbr, cap * sizeof(*d));
-		if (d == NULL)
-			return -1;
-		e->nbr = d;
-		e->nbr_cap = cap;
-	}
-	uint32_t *out = e->nbr + base;
-	for (uint32_t i = 0; i < l->len; i++) {
-		const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + i];
-		for (int k = 0; k < 3; k++) {
-			uint32_t x = t[k];
-			if (x == v)
-				continue;
-			if (e->stamp[x] != stamp) {
-				if (e->stamp[x] == prev && prev != 0)
-					(*common)++;
-				e->stamp[x] = stamp;
-				e->slot[x] = (uint32_t)n;
-				out[2 * n] = x;
-				out[2 * n + 1] = 0;
-				n++;
-			}
-			out[2 * e->slot[x] + 1]++;
-		}
-	}
-	return (long)n;
-}
-
-/*
- * The face lists link_ok takes without per-vertex stamps: up to this long,
- * both ends' neighbours fit on the stack and are found by linear search,
- * which any number of threads may do at once.
+ * Neighbour multiplicities of v: for each vertex x sharing a face with v,
+ * how many faces contain edge (v, x), into out as pairs (x, count); their
+ * number. Reads the engine only, so that any number of threads may run it
+ * at once. Up to LINK_LOCAL faces the neighbours are found by linear
+ * search, on the stack; a longer list (a vertex that has gathered a flat
+ * region of a CAD model has hundreds) through a table of `mask + 1` slots
+ * (a power of two, at least twice its 2 * faces entries), which holds
+ * one plus the index in out of the neighbour there, 0 where none.
  */
 #define LINK_LOCAL 24
 
-/* neighbours() for a list of at most LINK_LOCAL faces, into out. */
+static long
+fan_neighbours_hashed(const struct engine *e, uint32_t v, uint32_t *out, uint32_t *slots,
+                      uint32_t mask)
+{
+	const struct list *l = &e->vt[v];
+	long n = 0;
+
+	memset(slots, 0, ((size_t)mask + 1) * sizeof(*slots));
+	for (uint32_t i = 0; i < l->len; i++) {
+		const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + i];
+		for (int k = 0; k < 3; k++) {
+			uint32_t x = t[k], h = (x * 2654435761u) & mask;
+			if (x == v)
+				continue;
+			while (slots[h] != 0 && out[2 * (slots[h] - 1)] != x)
+				h = (h + 1) & mask;
+			if (slots[h] == 0) {
+				out[2 * n] = x;
+				out[2 * n + 1] = 0;
+				slots[h] = (uint32_t)++n;
+			}
+			out[2 * (slots[h] - 1) + 1]++;
+		}
+	}
+	return n;
+}
+
+/* Whether x is in the table fan_neighbours_hashed filled for out. */
+static int
+fan_has(const uint32_t *out, const uint32_t *slots, uint32_t mask, uint32_t x)
+{
+	uint32_t h = (x * 2654435761u) & mask;
+
+	while (slots[h] != 0) {
+		if (out[2 * (slots[h] - 1)] == x)
+			return 1;
+		h = (h + 1) & mask;
+	}
+	return 0;
+}
+
 static long
 fan_neighbours(const struct engine *e, uint32_t v, uint32_t *out)
 {
@@ -617,11 +608,12 @@ has_boundary(const uint32_t *nb, long n)
  * repeated faces).
  */
 static int
-link_ok(struct engine *e, uint32_t a, uint32_t b)
+link_ok(const struct engine *e, uint32_t a, uint32_t b)
 {
 	uint32_t local[2 * 2 * 2 * LINK_LOCAL];
 	const uint32_t *A = local, *B;
 	long common = 0, shared = 0, na, nb;
+	uint32_t *big = NULL;
 
 	if (e->vt[a].len <= LINK_LOCAL && e->vt[b].len <= LINK_LOCAL) {
 		na = fan_neighbours(e, a, local);
@@ -634,25 +626,34 @@ link_ok(struct engine *e, uint32_t a, uint32_t b)
 					break;
 				}
 	} else {
-		if ((na = neighbours(e, a, 0, 0, &common)) < 0)
+		/* a's and b's lists, a's table, b's table */
+		size_t la = e->vt[a].len, lb = e->vt[b].len;
+		uint32_t mask = 15;
+		while (mask + 1 < 4 * (la > lb ? la : lb))
+			mask = 2 * mask + 1;
+		if ((big = malloc((4 * (la + lb) + 2 * ((size_t)mask + 1)) * sizeof(*big))) == NULL)
 			return 0;
-		uint32_t sa = e->stamp_now;
-		if ((nb = neighbours(e, b, 2 * (size_t)na, sa, &common)) < 0)
-			return 0;
-		A = e->nbr;
-		B = e->nbr + 2 * na;
+		uint32_t *sa = big + 4 * (la + lb), *sb = sa + mask + 1;
+		na = fan_neighbours_hashed(e, a, big, sa, mask);
+		nb = fan_neighbours_hashed(e, b, big + 2 * na, sb, mask);
+		A = big;
+		B = big + 2 * na;
+		for (long i = 0; i < nb; i++)
+			common += fan_has(A, sa, mask, B[2 * i]);
 	}
 
 	for (long i = 0; i < na; i++)
 		if (A[2 * i] == b)
 			shared = A[2 * i + 1];
+	int ok;
 	if (shared > 2)
-		return 0;
-	if (shared == 0)
-		return common == 0;
-	long lhs = common + (has_boundary(A, na) && has_boundary(B, nb));
-	long rhs = shared + (shared == 1);
-	return lhs == rhs;
+		ok = 0;
+	else if (shared == 0)
+		ok = common == 0;
+	else
+		ok = common + (has_boundary(A, na) && has_boundary(B, nb)) == shared + (shared == 1);
+	free(big);
+	return ok;
 }
 
 /*
@@ -2057,8 +2058,7 @@ mine(const struct engine *e, uint32_t v, uint32_t part)
 	return (part_bits(e, v) & (P_PART | P_CUT | P_ASIDE)) == part;
 }
 
-/* Whether the pair (v, x) is the part's to contract now (see above; and,
- * but in the first part, short enough for link_ok without stamps). */
+/* Whether the pair (v, x) is the part's to contract now (see above). */
 static int
 pair_mine(const struct engine *e, uint32_t v, uint32_t x, uint32_t part)
 {
@@ -2066,7 +2066,7 @@ pair_mine(const struct engine *e, uint32_t v, uint32_t x, uint32_t part)
 
 	for (int i = 0; i < 2; i++) {
 		const struct list *l = &e->vt[ends[i]];
-		if (!mine(e, ends[i], part) || (part > 0 && l->len > LINK_LOCAL))
+		if (!mine(e, ends[i], part))
 			return 0;
 		for (uint32_t f = 0; f < l->len; f++) {
 			const uint32_t *c = e->tri + 3 * (size_t)e->tpool.data[l->off + f];
@@ -2606,8 +2606,7 @@ engine_shed(struct engine *e)
 	void **p[] = {(void **)&e->tnormal, (void **)&e->vflag, (void **)&e->vt,
 	              (void **)&e->vp, (void **)&e->tpool.data, (void **)&e->ppool.data,
 	              (void **)&e->pv, (void **)&e->pflag, (void **)&e->heap,
-	              (void **)&e->hpos, (void **)&e->nbr, (void **)&e->stamp,
-	              (void **)&e->slot, (void **)&e->vrej, (void **)&e->best,
+	              (void **)&e->hpos, (void **)&e->vrej, (void **)&e->best,
 	              (void **)&e->alt, (void **)&e->altc,
 	              (void **)&e->vn, (void **)&e->vk, (void **)&e->work.wing,
 	              (void **)&e->keys, (void **)&e->kscratch, (void **)&e->plist, (void **)&e->poff,
@@ -2634,10 +2633,7 @@ engine_free(struct engine *e)
 	free(e->pflag);
 	free(e->heap);
 	free(e->hpos);
-	free(e->nbr);
 	free(e->parent);
-	free(e->stamp);
-	free(e->slot);
 	free(e->vrej);
 	free(e->best);
 	free(e->alt);
@@ -2672,11 +2668,9 @@ engine_init(struct engine *e, const struct vdt_mesh *m, float *own_pos,
 	e->vt = vdt_calloc_huge(nv, sizeof(struct list));
 	e->vp = vdt_calloc_huge(nv, sizeof(struct list));
 	e->parent = vdt_malloc_huge((nv + 1) * sizeof(uint32_t));
-	e->stamp = vdt_calloc_huge(nv + 1, sizeof(uint32_t));
-	e->slot = vdt_malloc_huge((nv + 1) * sizeof(uint32_t));
 	e->vrej = vdt_calloc_huge(nv + 1, sizeof(uint16_t));
 	keys = malloc((o->virtual_pair_count + 1) * sizeof(uint64_t));
-	if (!e->pos || !e->tri || !e->tnormal || !e->vflag || !e->vt || !e->vp || !e->parent || !e->stamp || !e->slot || !e->vrej || !keys)
+	if (!e->pos || !e->tri || !e->tnormal || !e->vflag || !e->vt || !e->vp || !e->parent || !e->vrej || !keys)
 		goto nomem;
 	if (e->pos != m->positions)
 		memcpy(e->pos, m->positions, 3 * nv * sizeof(float));
@@ -2736,16 +2730,22 @@ engine_init(struct engine *e, const struct vdt_mesh *m, float *own_pos,
 	 * not edges (the link test refuses non-manifold edges at pop time). Two
 	 * passes, counting then filling, so nothing is held but the pairs.
 	 */
-	size_t np = 0, nvirt = 0;
-	long dummy = 0;
+	size_t np = 0, nvirt = 0, longest = 0;
+	for (size_t v = 0; v < nv; v++)
+		if (e->vt[v].len > longest)
+			longest = e->vt[v].len;
+	uint32_t mask = 15;
+	while (mask + 1 < 4 * longest)
+		mask = 2 * mask + 1;
+	uint32_t *nbr = malloc((4 * longest + (size_t)mask + 1) * sizeof(*nbr));
+	if (nbr == NULL)
+		goto nomem;
 	for (int pass = 0; pass < 2; pass++) {
 		np = 0;
 		for (size_t v = 0; v < nv; v++) {
-			long n = neighbours(e, (uint32_t)v, 0, 0, &dummy);
-			if (n < 0)
-				goto nomem;
+			long n = fan_neighbours_hashed(e, (uint32_t)v, nbr, nbr + 4 * longest, mask);
 			for (long i = 0; i < n; i++) {
-				uint32_t x = e->nbr[2 * i];
+				uint32_t x = nbr[2 * i];
 				if (x < v)
 					continue;
 				if (pass == 1) {
@@ -2764,8 +2764,10 @@ engine_init(struct engine *e, const struct vdt_mesh *m, float *own_pos,
 				continue;
 			keys[nvirt++] = a < b ? a << 32 | b : b << 32 | a;
 		}
-		if (vdt_sort_u64(keys, nvirt) != 0)
+		if (vdt_sort_u64(keys, nvirt) != 0) {
+			free(nbr);
 			goto nomem;
+		}
 		size_t kept = 0;
 		for (size_t i = 0; i < nvirt; i++) {
 			uint32_t a = (uint32_t)(keys[i] >> 32), b = (uint32_t)keys[i];
@@ -2781,9 +2783,12 @@ engine_init(struct engine *e, const struct vdt_mesh *m, float *own_pos,
 		}
 		nvirt = kept;
 		e->pv = malloc(2 * (np + nvirt + 1) * sizeof(uint32_t));
-		if (!e->pv)
+		if (!e->pv) {
+			free(nbr);
 			goto nomem;
+		}
 	}
+	free(nbr);
 	for (size_t i = 0; i < nvirt; i++) {
 		e->pv[2 * np] = (uint32_t)(keys[i] >> 32);
 		e->pv[2 * np + 1] = (uint32_t)keys[i];
@@ -2841,7 +2846,7 @@ nomem:
  * a time owns the pool; another, or a job that runs jobs itself, gets
  * threads of its own as before.
  */
-#define POOL_SPIN 20000 /* polls before a worker or the caller sleeps (0.4 ms here) */
+#define POOL_SPIN 20000 /* polls before a worker or the caller sleeps */
 
 static struct {
 	pthread_mutex_t own;  /* held by the caller running jobs on the pool */

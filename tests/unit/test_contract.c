@@ -1152,6 +1152,77 @@ passes_sort_past_the_claimable_keys(void **state)
 	vdt_mesh_free(&m);
 }
 
+/* Pairs with vertex 0 cost next to nothing, and keep it where it is. */
+static double
+apex_cost(void *ctx, uint32_t a, uint32_t b, int fixed, const float pa[3], const float pb[3],
+          double pos[3])
+{
+	double d = 0;
+	(void)ctx;
+	(void)fixed;
+	for (int k = 0; k < 3; k++) {
+		pos[k] = a == 0 ? pa[k] : b == 0 ? pb[k] : 0.5 * (pa[k] + pb[k]);
+		d += ((double)pa[k] - pb[k]) * ((double)pa[k] - pb[k]);
+	}
+	return a == 0 || b == 0 ? 1e-3 * d : 1 + d;
+}
+
+/*
+ * The link condition on long face lists (more than the 24 faces whose
+ * neighbours link_ok finds by linear search): a bipyramid over a 40-gon
+ * whose top apex (vertex 0, 40 faces) is the cheap end of every pair. Each
+ * rim vertex it takes leaves the link of the pair the two rim neighbours
+ * they share, so the apex takes the rim down to the smallest closed
+ * surface, and never makes it other than a closed manifold: in the greedy
+ * order and in passes on two threads. (With the fold-over test off: the
+ * faces swing about the axis.)
+ */
+static void
+long_fans_keep_the_link_condition(void **state)
+{
+	enum { N = 40 };
+	struct vdt_mesh m;
+	(void)state;
+	assert_int_equal(vdt_mesh_alloc(&m, N + 2, 2 * N, 0, NULL), 0);
+	m.positions[0] = m.positions[1] = 0;
+	m.positions[2] = 1; /* the top apex */
+	m.positions[3] = m.positions[4] = 0;
+	m.positions[5] = -1;
+	for (int i = 0; i < N; i++) {
+		float *p = m.positions + 3 * (2 + i);
+		p[0] = cosf(2 * (float)M_PI * (float)i / N);
+		p[1] = sinf(2 * (float)M_PI * (float)i / N);
+		p[2] = 0;
+		uint32_t r = 2 + (uint32_t)i, s = 2 + (uint32_t)((i + 1) % N);
+		uint32_t *t = m.triangles + 6 * i;
+		t[0] = 0, t[1] = r, t[2] = s;
+		t[3] = 1, t[4] = s, t[5] = r;
+	}
+	assert_true(shape_closed_manifold(&m));
+	static const struct vdt_contract_ops ops = {apex_cost, NULL, NULL, NULL, 1, NULL, 0};
+	for (int passes = 0; passes < 2; passes++) {
+		struct vdt_contract_opts o;
+		struct vdt_contract_result r;
+		vdt_contract_defaults(&o);
+		o.target_triangles = 4;
+		o.max_normal_angle = 180;
+		o.record = 1;
+		o.passes = passes;
+		o.threads = 2;
+		assert_int_equal(vdt_contract_run(&m, &ops, &o, &r, NULL), 0);
+		struct vdt_mesh out = {r.vertex_count, r.positions, NULL, NULL, NULL,
+		                       r.triangle_count, r.triangles};
+		assert_true(shape_closed_manifold(&out));
+		size_t apex = 0;
+		for (size_t i = 0; i < r.record_count; i++)
+			apex += r.records[i].keep == 0 || r.records[i].gone == 0;
+		assert_true(apex >= N - 3);
+		assert_true(r.triangle_count <= 6);
+		vdt_contract_result_free(&r);
+	}
+	vdt_mesh_free(&m);
+}
+
 /* How many records the first pass made: progress is reported after each. */
 struct first_pass {
 	const struct vdt_contract_result *r;
@@ -1363,6 +1434,7 @@ main(void)
 		cmocka_unit_test(passes_on_threads_stop_at_the_target),
 		cmocka_unit_test(qslim_threads_do_not_matter),
 		cmocka_unit_test(passes_sort_past_the_claimable_keys),
+		cmocka_unit_test(long_fans_keep_the_link_condition),
 		cmocka_unit_test(first_pass_claims_cheapest_pairs),
 		cmocka_unit_test(run_jobs_runs_each_job_once),
 	};
