@@ -1531,7 +1531,9 @@ record(struct vdt_contract_result *res, size_t *cap, uint32_t keep, uint32_t gon
 
 /*
  * v's cheapest pair into best[v] and its cost into altc[v]; with V_REFUSED
- * its cheapest pair that passes the validity tests now.
+ * its cheapest pair that passes the validity tests now. Reads the mesh
+ * and writes v's entries only (not its flags, which the tests of other
+ * vertices read): costing jobs run it on any number of threads.
  */
 static void
 pass_best_of(struct engine *e, uint32_t v, struct vcost *vn, long n)
@@ -1550,7 +1552,6 @@ pass_best_of(struct engine *e, uint32_t v, struct vcost *vn, long n)
 	}
 	e->best[v] = bx;
 	e->altc[v] = bc;
-	e->vflag[v] &= (uint8_t)~(V_DIRTY | V_REFUSED);
 }
 
 /*
@@ -1594,9 +1595,8 @@ struct pjob {
 	                      and the end */
 	int upper;         /* only the pairs with vertices above */
 	int how;           /* FAN_NOTE, FAN_NOTED or FAN_EVAL */
-	int best;          /* and each vertex not V_REFUSED takes its cheapest
-	                      (pass_best_of, which writes only the vertex's own
-	                      entries; refused ones test validity, on one thread) */
+	int best;          /* and each vertex takes its cheapest (pass_best_of:
+	                      a refused one, its cheapest valid) */
 	int first;         /* with upper, the first costs (pass_init): both ends
 	                      of each pair take it if cheaper than theirs, where
 	                      the job owns them (first_take) */
@@ -1662,7 +1662,7 @@ pjob_run(void *arg)
 			struct vcost *vn = j->e->pout + j->e->poff[i];
 			prefetch_ahead(j->e, j->e->plist, i, end);
 			j->e->pcount[i] = fan_costs(j->e, v, j->upper, j->how, vn);
-			if (j->best && !(j->e->vflag[v] & V_REFUSED))
+			if (j->best)
 				pass_best_of(j->e, v, vn, j->e->pcount[i]);
 		}
 		if (j->first)
@@ -1726,17 +1726,16 @@ pass_recost(struct engine *e, int kept)
 		}
 		if (n == 0)
 			continue;
-		/* The cheapest pairs in the jobs but with fresh costs, whose
-		 * cost function reads the flags the jobs would write. */
-		int in_jobs = !kept && !e->exhaustive;
-		if (pass_cost(e, n, 0, kept ? FAN_NOTE : e->exhaustive ? FAN_EVAL : FAN_NOTED, in_jobs) != 0)
+		/* Survivors offer their pairs to their neighbours here; the
+		 * others find their cheapest in the jobs, whose flags are
+		 * cleared after them. */
+		if (pass_cost(e, n, 0, kept ? FAN_NOTE : e->exhaustive ? FAN_EVAL : FAN_NOTED, !kept) != 0)
 			return -1;
 		for (size_t j = 0; j < n; j++) {
-			struct vcost *vn = e->pout + e->poff[j];
 			if (kept)
-				pass_kept_of(e, e->plist[j], vn, e->pcount[j]);
-			else if (!in_jobs || (e->vflag[e->plist[j]] & V_REFUSED))
-				pass_best_of(e, e->plist[j], vn, e->pcount[j]);
+				pass_kept_of(e, e->plist[j], e->pout + e->poff[j], e->pcount[j]);
+			else
+				e->vflag[e->plist[j]] &= (uint8_t)~(V_DIRTY | V_REFUSED);
 		}
 	}
 	return 0;
