@@ -512,29 +512,50 @@ pair_cost(struct engine *e, uint32_t p, double pos[3])
 }
 
 /*
- * Neighbour multiplicities of v: for each vertex x sharing a face with v,
- * how many faces contain edge (v, x), into out as pairs (x, count); their
- * number. Reads the engine only, so that any number of threads may run it
- * at once. Up to LINK_LOCAL faces the neighbours are found by linear
- * search, on the stack; a longer list (a vertex that has gathered a flat
- * region of a CAD model has hundreds) through a table of `mask + 1` slots
- * (a power of two, at least twice its 2 * faces entries), which holds
- * one plus the index in out of the neighbour there, 0 where none.
+ * The slot of vertex x in an open-addressing table of 2^bits entries:
+ * Fibonacci hashing, which takes the high bits of the product (its low
+ * bits depend only on the low bits of x).
  */
-#define LINK_LOCAL 24
+static inline uint32_t
+fan_slot(uint32_t x, int bits)
+{
+	return (x * 2654435761u) >> (32 - bits);
+}
 
+/* The bits of the table fan_neighbours takes for a list of `faces` faces:
+ * at least twice the 2 * faces neighbours it may hold. */
+static int
+fan_bits(size_t faces)
+{
+	int bits = 4;
+
+	while (((size_t)1 << bits) < 4 * faces)
+		bits++;
+	return bits;
+}
+
+/*
+ * Neighbour multiplicities of v: for each vertex x sharing a face with v,
+ * how many faces contain edge (v, x), into out (room for 4 per face) as
+ * pairs (x, count) in the order the fan meets them; their number. The
+ * neighbours are found through `slots`, a table of 2^fan_bits(faces)
+ * entries that holds one plus the index in out of the neighbour there, 0
+ * where none (fan_has looks them up). Reads the engine only, so that any
+ * number of threads may run it at once.
+ */
 static long
-fan_neighbours_hashed(const struct engine *e, uint32_t v, uint32_t *out, uint32_t *slots,
-                      uint32_t mask)
+fan_neighbours(const struct engine *e, uint32_t v, uint32_t *out, uint32_t *slots)
 {
 	const struct list *l = &e->vt[v];
+	int bits = fan_bits(l->len);
+	uint32_t mask = (1u << bits) - 1;
 	long n = 0;
 
 	memset(slots, 0, ((size_t)mask + 1) * sizeof(*slots));
 	for (uint32_t i = 0; i < l->len; i++) {
 		const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + i];
 		for (int k = 0; k < 3; k++) {
-			uint32_t x = t[k], h = (x * 2654435761u) & mask;
+			uint32_t x = t[k], h = fan_slot(x, bits);
 			if (x == v)
 				continue;
 			while (slots[h] != 0 && out[2 * (slots[h] - 1)] != x)
@@ -550,11 +571,12 @@ fan_neighbours_hashed(const struct engine *e, uint32_t v, uint32_t *out, uint32_
 	return n;
 }
 
-/* Whether x is in the table fan_neighbours_hashed filled for out. */
+/* Whether x is among the neighbours fan_neighbours listed in out through
+ * slots, a table of 2^bits entries. */
 static int
-fan_has(const uint32_t *out, const uint32_t *slots, uint32_t mask, uint32_t x)
+fan_has(const uint32_t *out, const uint32_t *slots, int bits, uint32_t x)
 {
-	uint32_t h = (x * 2654435761u) & mask;
+	uint32_t h = fan_slot(x, bits), mask = (1u << bits) - 1;
 
 	while (slots[h] != 0) {
 		if (out[2 * (slots[h] - 1)] == x)
@@ -564,31 +586,18 @@ fan_has(const uint32_t *out, const uint32_t *slots, uint32_t mask, uint32_t x)
 	return 0;
 }
 
-static long
-fan_neighbours(const struct engine *e, uint32_t v, uint32_t *out)
+/* The words fan_neighbours takes for a list of `faces` faces: its list
+ * and its table. */
+static size_t
+fan_words(size_t faces)
 {
-	const struct list *l = &e->vt[v];
-	long n = 0;
-
-	for (uint32_t i = 0; i < l->len; i++) {
-		const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + i];
-		for (int k = 0; k < 3; k++) {
-			uint32_t x = t[k];
-			long j = 0;
-			if (x == v)
-				continue;
-			while (j < n && out[2 * j] != x)
-				j++;
-			if (j == n) {
-				out[2 * n] = x;
-				out[2 * n + 1] = 0;
-				n++;
-			}
-			out[2 * j + 1]++;
-		}
-	}
-	return n;
+	return 4 * faces + ((size_t)1 << fan_bits(faces));
 }
+
+/* Face lists up to this long have their link test's scratch on the stack
+ * (8 KB); longer ones (a vertex that has gathered a flat region of a CAD
+ * model can have thousands of faces) allocate it. */
+#define LINK_STACK 128
 
 static int
 has_boundary(const uint32_t *nb, long n)
@@ -610,37 +619,23 @@ has_boundary(const uint32_t *nb, long n)
 static int
 link_ok(const struct engine *e, uint32_t a, uint32_t b)
 {
-	uint32_t local[2 * 2 * 2 * LINK_LOCAL];
-	const uint32_t *A = local, *B;
+	uint32_t local[2 * (4 * LINK_STACK + 4 * LINK_STACK)]; /* 2 fan_words(LINK_STACK) */
+	size_t la = e->vt[a].len, lb = e->vt[b].len, need = fan_words(la) + fan_words(lb);
+	uint32_t *A = local, *big = NULL;
 	long common = 0, shared = 0, na, nb;
-	uint32_t *big = NULL;
 
-	if (e->vt[a].len <= LINK_LOCAL && e->vt[b].len <= LINK_LOCAL) {
-		na = fan_neighbours(e, a, local);
-		nb = fan_neighbours(e, b, local + 2 * na);
-		B = local + 2 * na;
-		for (long i = 0; i < nb; i++)
-			for (long j = 0; j < na; j++)
-				if (A[2 * j] == B[2 * i]) {
-					common++;
-					break;
-				}
-	} else {
-		/* a's and b's lists, a's table, b's table */
-		size_t la = e->vt[a].len, lb = e->vt[b].len;
-		uint32_t mask = 15;
-		while (mask + 1 < 4 * (la > lb ? la : lb))
-			mask = 2 * mask + 1;
-		if ((big = malloc((4 * (la + lb) + 2 * ((size_t)mask + 1)) * sizeof(*big))) == NULL)
+	if (need > sizeof(local) / sizeof(local[0])) {
+		if ((big = malloc(need * sizeof(*big))) == NULL)
 			return 0;
-		uint32_t *sa = big + 4 * (la + lb), *sb = sa + mask + 1;
-		na = fan_neighbours_hashed(e, a, big, sa, mask);
-		nb = fan_neighbours_hashed(e, b, big + 2 * na, sb, mask);
 		A = big;
-		B = big + 2 * na;
-		for (long i = 0; i < nb; i++)
-			common += fan_has(A, sa, mask, B[2 * i]);
 	}
+	/* a's list and table, then b's */
+	int bits = fan_bits(la);
+	uint32_t *sa = A + 4 * la, *B = sa + ((size_t)1 << bits), *sb = B + 4 * lb;
+	na = fan_neighbours(e, a, A, sa);
+	nb = fan_neighbours(e, b, B, sb);
+	for (long i = 0; i < nb; i++)
+		common += fan_has(A, sa, bits, B[2 * i]);
 
 	for (long i = 0; i < na; i++)
 		if (A[2 * i] == b)
@@ -982,7 +977,7 @@ fan_add(const struct engine *e, uint8_t *hash, struct vcost *out, uint32_t *n, u
 	uint32_t s;
 
 	if (hash != NULL) {
-		uint32_t h = (x * 2654435761u) >> (32 - 7); /* log2 FAN_HASH */
+		uint32_t h = fan_slot(x, 7); /* log2 FAN_HASH */
 		while (hash[h] != 0 && out[hash[h] - 1].x != x)
 			h = (h + 1) & (FAN_HASH - 1);
 		if (hash[h] != 0)
@@ -2733,16 +2728,13 @@ engine_init(struct engine *e, const struct vdt_mesh *m, float *own_pos,
 	for (size_t v = 0; v < nv; v++)
 		if (e->vt[v].len > longest)
 			longest = e->vt[v].len;
-	uint32_t mask = 15;
-	while (mask + 1 < 4 * longest)
-		mask = 2 * mask + 1;
-	uint32_t *nbr = malloc((4 * longest + (size_t)mask + 1) * sizeof(*nbr));
+	uint32_t *nbr = malloc(fan_words(longest) * sizeof(*nbr));
 	if (nbr == NULL)
 		goto nomem;
 	for (int pass = 0; pass < 2; pass++) {
 		np = 0;
 		for (size_t v = 0; v < nv; v++) {
-			long n = fan_neighbours_hashed(e, (uint32_t)v, nbr, nbr + 4 * longest, mask);
+			long n = fan_neighbours(e, (uint32_t)v, nbr, nbr + 4 * (size_t)e->vt[v].len);
 			for (long i = 0; i < n; i++) {
 				uint32_t x = nbr[2 * i];
 				if (x < v)

@@ -1168,59 +1168,66 @@ apex_cost(void *ctx, uint32_t a, uint32_t b, int fixed, const float pa[3], const
 }
 
 /*
- * The link condition on long face lists (more than the 24 faces whose
- * neighbours link_ok finds by linear search): a bipyramid over a 40-gon
- * whose top apex (vertex 0, 40 faces) is the cheap end of every pair. Each
- * rim vertex it takes leaves the link of the pair the two rim neighbours
- * they share, so the apex takes the rim down to the smallest closed
- * surface, and never makes it other than a closed manifold: in the greedy
- * order and in passes on two threads. (With the fold-over test off: the
- * faces swing about the axis.)
+ * The link condition on short and long face lists (link_ok keeps its
+ * scratch on the stack up to 8 KB, two lists of 128 faces, and allocates
+ * it beyond: 400 faces and 4 do not fit): a
+ * bipyramid over an n-gon whose top apex (vertex 0, n faces) is the cheap
+ * end of every pair. Each rim vertex it takes leaves the link of the pair
+ * the two rim neighbours they share, so the apex takes the rim down to the
+ * smallest closed surface in the greedy order, and neither order (passes
+ * on two threads) makes it other than a closed manifold. (With the
+ * fold-over test off: the faces swing about the axis.)
  */
 static void
 long_fans_keep_the_link_condition(void **state)
 {
-	enum { N = 40 };
-	struct vdt_mesh m;
-	(void)state;
-	assert_int_equal(vdt_mesh_alloc(&m, N + 2, 2 * N, 0, NULL), 0);
-	m.positions[0] = m.positions[1] = 0;
-	m.positions[2] = 1; /* the top apex */
-	m.positions[3] = m.positions[4] = 0;
-	m.positions[5] = -1;
-	for (int i = 0; i < N; i++) {
-		float *p = m.positions + 3 * (2 + i);
-		p[0] = cosf(2 * (float)M_PI * (float)i / N);
-		p[1] = sinf(2 * (float)M_PI * (float)i / N);
-		p[2] = 0;
-		uint32_t r = 2 + (uint32_t)i, s = 2 + (uint32_t)((i + 1) % N);
-		uint32_t *t = m.triangles + 6 * i;
-		t[0] = 0, t[1] = r, t[2] = s;
-		t[3] = 1, t[4] = s, t[5] = r;
-	}
-	assert_true(shape_closed_manifold(&m));
+	static const int sizes[] = {40, 400};
 	static const struct vdt_contract_ops ops = {apex_cost, NULL, NULL, NULL, 1, NULL, 0};
-	for (int passes = 0; passes < 2; passes++) {
-		struct vdt_contract_opts o;
-		struct vdt_contract_result r;
-		vdt_contract_defaults(&o);
-		o.target_triangles = 4;
-		o.max_normal_angle = 180;
-		o.record = 1;
-		o.passes = passes;
-		o.threads = 2;
-		assert_int_equal(vdt_contract_run(&m, &ops, &o, &r, NULL), 0);
-		struct vdt_mesh out = {r.vertex_count, r.positions, NULL, NULL, NULL,
-		                       r.triangle_count, r.triangles};
-		assert_true(shape_closed_manifold(&out));
-		size_t apex = 0;
-		for (size_t i = 0; i < r.record_count; i++)
-			apex += r.records[i].keep == 0 || r.records[i].gone == 0;
-		assert_true(apex >= N - 3);
-		assert_true(r.triangle_count <= 6);
-		vdt_contract_result_free(&r);
+	(void)state;
+	for (int z = 0; z < 2; z++) {
+		int n = sizes[z];
+		struct vdt_mesh m;
+		assert_int_equal(vdt_mesh_alloc(&m, (size_t)n + 2, 2 * (size_t)n, 0, NULL), 0);
+		m.positions[0] = m.positions[1] = 0;
+		m.positions[2] = 1; /* the top apex */
+		m.positions[3] = m.positions[4] = 0;
+		m.positions[5] = -1;
+		for (int i = 0; i < n; i++) {
+			float *p = m.positions + 3 * (2 + i);
+			p[0] = cosf(2 * (float)M_PI * (float)i / (float)n);
+			p[1] = sinf(2 * (float)M_PI * (float)i / (float)n);
+			p[2] = 0;
+			uint32_t r = 2 + (uint32_t)i, s = 2 + (uint32_t)((i + 1) % n);
+			uint32_t *t = m.triangles + 6 * i;
+			t[0] = 0, t[1] = r, t[2] = s;
+			t[3] = 1, t[4] = s, t[5] = r;
+		}
+		assert_true(shape_closed_manifold(&m));
+		for (int passes = 0; passes < 2; passes++) {
+			struct vdt_contract_opts o;
+			struct vdt_contract_result r;
+			vdt_contract_defaults(&o);
+			o.target_triangles = 4;
+			o.max_normal_angle = 180;
+			o.record = 1;
+			o.passes = passes;
+			o.threads = 2;
+			assert_int_equal(vdt_contract_run(&m, &ops, &o, &r, NULL), 0);
+			struct vdt_mesh out = {r.vertex_count, r.positions, NULL, NULL, NULL,
+			                       r.triangle_count, r.triangles};
+			assert_true(shape_closed_manifold(&out));
+			size_t apex = 0;
+			for (size_t i = 0; i < r.record_count; i++)
+				apex += r.records[i].keep == 0 || r.records[i].gone == 0;
+			/* (passes on the long rim claim its own pairs too once
+			 * the apex is claimed: a pass holds an eighth of it) */
+			if (!passes || n <= 128)
+				assert_true(apex >= (size_t)n - 3);
+			assert_true(r.triangle_count <= 6);
+			vdt_contract_result_free(&r);
+		}
+		vdt_mesh_free(&m);
 	}
-	vdt_mesh_free(&m);
 }
 
 /* How many records the first pass made: progress is reported after each. */
