@@ -41,6 +41,41 @@ shape_grid(struct vdt_mesh *m, int n)
 		}
 }
 
+/*
+ * Number m's vertices at random (Fisher-Yates, from seed): positions move
+ * with their vertex and faces follow, so the surface is the same and
+ * neighbours lie far apart in memory. Returns 0, or -1 out of memory.
+ */
+static inline int
+shape_shuffle(struct vdt_mesh *m, uint32_t seed)
+{
+	size_t nv = m->vertex_count;
+	uint32_t *to = malloc(nv * sizeof(*to) + 1);
+	float *p = malloc(3 * nv * sizeof(*p) + 1);
+	if (to == NULL || p == NULL) {
+		free(to);
+		free(p);
+		return -1;
+	}
+	for (size_t i = 0; i < nv; i++)
+		to[i] = (uint32_t)i;
+	for (size_t i = nv; i-- > 1;) {
+		seed = seed * 1664525u + 1013904223u;
+		size_t j = seed % (i + 1);
+		uint32_t t = to[i];
+		to[i] = to[j];
+		to[j] = t;
+	}
+	for (size_t i = 0; i < nv; i++)
+		memcpy(p + 3 * (size_t)to[i], m->positions + 3 * i, 3 * sizeof(float));
+	memcpy(m->positions, p, 3 * nv * sizeof(float));
+	for (size_t j = 0; j < 3 * m->triangle_count; j++)
+		m->triangles[j] = to[m->triangles[j]];
+	free(to);
+	free(p);
+	return 0;
+}
+
 /* Midpoint of edge (a,b) on the unit sphere, cached in a small edge table. */
 static inline uint32_t
 shape_mid(struct vdt_mesh *m, uint64_t *keys, uint32_t *vals, size_t cap,

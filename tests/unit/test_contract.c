@@ -874,27 +874,16 @@ passes_on_threads_match_one_thread(void **state)
 {
 	struct vdt_mesh g, m;
 	struct vdt_contract_result r[4];
-	uint32_t seed = 99, *perm;
 	const uint32_t ring = 40;
 
 	(void)state;
 	shape_grid(&g, 160); /* 25921 vertices */
+	bump(&g, 99, 0.02f);
+	assert_int_equal(shape_shuffle(&g, 99), 0);
 	size_t nv = g.vertex_count + 1 + 2 * ring, nt = g.triangle_count + 3 * ring;
 	assert_int_equal(vdt_mesh_alloc(&m, nv, nt, 0, NULL), 0);
-	perm = malloc(g.vertex_count * sizeof(*perm));
-	assert_non_null(perm);
-	for (uint32_t i = 0; i < g.vertex_count; i++)
-		perm[i] = i;
-	for (uint32_t i = (uint32_t)g.vertex_count - 1; i > 0; i--) {
-		uint32_t j = (uint32_t)(next_unit(&seed) * (float)(i + 1)), x = perm[i];
-		perm[i] = perm[j < i ? j : i];
-		perm[j < i ? j : i] = x;
-	}
-	bump(&g, seed, 0.02f);
-	for (size_t i = 0; i < g.vertex_count; i++)
-		memcpy(m.positions + 3 * (size_t)perm[i], g.positions + 3 * i, 3 * sizeof(float));
-	for (size_t i = 0; i < 3 * g.triangle_count; i++)
-		m.triangles[i] = perm[g.triangles[i]];
+	memcpy(m.positions, g.positions, 3 * g.vertex_count * sizeof(float));
+	memcpy(m.triangles, g.triangles, 3 * g.triangle_count * sizeof(uint32_t));
 	uint32_t a = (uint32_t)g.vertex_count, *t = m.triangles + 3 * g.triangle_count;
 	float *p = m.positions + 3 * (size_t)a;
 	p[0] = 0.5f, p[1] = 0.5f, p[2] = 2;
@@ -951,7 +940,6 @@ passes_on_threads_match_one_thread(void **state)
 	for (int k = 0; k < 4; k++)
 		vdt_contract_result_free(&r[k]);
 	free(c.q);
-	free(perm);
 	vdt_mesh_free(&g);
 	vdt_mesh_free(&m);
 }
@@ -1271,23 +1259,7 @@ first_pass_claims_cheapest_pairs(void **state)
 	for (size_t i = 0; i < nv; i++)
 		for (int k = 0; k < 2; k++)
 			m.positions[3 * i + k] += 0.1f / 120 * (next_unit(&seed) - 0.5f);
-	uint32_t *perm = malloc(nv * sizeof(*perm));
-	float *pos = malloc(3 * nv * sizeof(*pos));
-	assert_non_null(perm);
-	assert_non_null(pos);
-	for (size_t i = 0; i < nv; i++)
-		perm[i] = (uint32_t)i;
-	for (size_t i = nv - 1; i > 0; i--) {
-		size_t j = (size_t)(next_unit(&seed) * (float)(i + 1)) % (i + 1);
-		uint32_t x = perm[i];
-		perm[i] = perm[j];
-		perm[j] = x;
-	}
-	for (size_t i = 0; i < nv; i++)
-		memcpy(pos + 3 * perm[i], m.positions + 3 * i, 3 * sizeof(float));
-	memcpy(m.positions, pos, 3 * nv * sizeof(float));
-	for (size_t i = 0; i < 3 * nt; i++)
-		m.triangles[i] = perm[m.triangles[i]];
+	assert_int_equal(shape_shuffle(&m, seed), 0);
 
 	/* Each vertex's cheapest pair on the input: by cost, then partner. */
 	uint32_t *best = malloc(nv * sizeof(*best));
@@ -1340,8 +1312,6 @@ first_pass_claims_cheapest_pairs(void **state)
 			assert_true(done[v] || done[best[v]]);
 	free(done);
 	vdt_contract_result_free(&r);
-	free(perm);
-	free(pos);
 	free(best);
 	free(bc);
 	vdt_mesh_free(&m);
