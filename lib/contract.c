@@ -1685,10 +1685,10 @@ pass_cost(struct engine *e, size_t n, int upper, int how, int best)
 		total += 2 * (size_t)e->vt[e->plist[i]].len;
 	}
 	if (total > e->pout_cap) { /* no slack: this is most of the passes' scratch */
-		struct vcost *d = realloc(e->pout, total * sizeof(*d));
-		if (d == NULL)
+		free(e->pout); /* (scratch: nothing to keep) */
+		e->pout_cap = 0;
+		if ((e->pout = vdt_malloc_huge(total * sizeof(*e->pout))) == NULL)
 			return -1;
-		e->pout = d;
 		e->pout_cap = total;
 	}
 	if ((size_t)t > n / 64 + 1)
@@ -2659,7 +2659,7 @@ engine_init(struct engine *e, const struct vdt_mesh *m, float *own_pos,
 	e->tri = own_tri ? own_tri : malloc(3 * nt * sizeof(uint32_t));
 	e->tnormal = vdt_malloc_huge(3 * nt * sizeof(*e->tnormal));
 	e->vflag = calloc(nv, 1);
-	e->vt = vdt_calloc_huge(nv, sizeof(struct list));
+	e->vt = vdt_zalloc_huge(nv, sizeof(struct list));
 	e->vp = vdt_calloc_huge(nv, sizeof(struct list));
 	e->parent = vdt_malloc_huge((nv + 1) * sizeof(uint32_t));
 	e->vrej = vdt_calloc_huge(nv + 1, sizeof(uint16_t));
@@ -3126,9 +3126,9 @@ finish:
 	res->vertex_count = e.nv;
 	res->positions = e.pos;
 	e.pos = NULL;
-	res->triangles = malloc((3 * e.live_tris + 1) * sizeof(uint32_t));
-	res->sources = malloc((e.live_tris + 1) * sizeof(uint32_t));
-	res->final = malloc((e.nv + 1) * sizeof(uint32_t));
+	res->triangles = vdt_malloc_huge((3 * e.live_tris + 1) * sizeof(uint32_t));
+	res->sources = vdt_malloc_huge((e.live_tris + 1) * sizeof(uint32_t));
+	res->final = vdt_malloc_huge((e.nv + 1) * sizeof(uint32_t));
 	if (res->triangles == NULL || res->sources == NULL || res->final == NULL)
 		goto nomem;
 	for (size_t t = 0; t < e.nt; t++)

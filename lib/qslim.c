@@ -1409,8 +1409,8 @@ build_output_attr(const struct vdt_mesh *in, const struct ctx *c,
                   struct vdt_err *err)
 {
 	struct attr *at = c->at;
-	uint32_t *index = malloc((in->vertex_count + 1) * sizeof(*index));
-	uint32_t *src = malloc((3 * r->triangle_count + 1) * sizeof(*src));
+	uint32_t *index = vdt_malloc_huge((in->vertex_count + 1) * sizeof(*index));
+	uint32_t *src = vdt_malloc_huge((3 * r->triangle_count + 1) * sizeof(*src));
 	uint32_t *slot = malloc((3 * r->triangle_count + 1) * sizeof(*slot));
 	size_t nout = 0, S = at->stride;
 	int rc, m = at->m;
@@ -1624,7 +1624,7 @@ locality_order(struct vdt_mesh *w, const struct vdt_bbox *box, uint32_t **to, ui
 	uint32_t *tri = vdt_malloc_huge(3 * nt * sizeof(*tri) + 1);
 	double scale[3];
 
-	*to = malloc(nv * sizeof(**to) + 1);
+	*to = vdt_malloc_huge(nv * sizeof(**to) + 1);
 	*from = vdt_malloc_huge(nt * sizeof(**from) + 1);
 	if (key == NULL || pos == NULL || tri == NULL || *to == NULL || *from == NULL)
 		goto nomem;
@@ -1651,7 +1651,7 @@ locality_order(struct vdt_mesh *w, const struct vdt_bbox *box, uint32_t **to, ui
 	/* Faces renumbered in place, then in order of their lowest vertex,
 	 * in input order among equals: a counting sort, lowest vertices in
 	 * key's space. */
-	uint32_t *lowest = (uint32_t *)key, *at = calloc(nv + 1, sizeof(*at));
+	uint32_t *lowest = (uint32_t *)key, *at = vdt_zalloc_huge(nv + 1, sizeof(*at));
 	if (at == NULL)
 		goto nomem;
 	for (size_t t = 0; t < nt; t++) {
@@ -1760,7 +1760,7 @@ static int
 input_lists(const uint32_t *canon, size_t n, size_t nw, uint32_t **start,
             uint32_t **list)
 {
-	uint32_t *s = calloc(nw + 2, sizeof(*s)), *l = malloc((n + 1) * sizeof(*l));
+	uint32_t *s = vdt_zalloc_huge(nw + 2, sizeof(*s)), *l = vdt_malloc_huge((n + 1) * sizeof(*l));
 
 	if (s == NULL || l == NULL) {
 		free(s);
@@ -1915,7 +1915,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 		}
 	}
 
-	c.q = vdt_calloc_huge(nw, sizeof(*c.q));
+	c.q = vdt_zalloc_huge(nw, sizeof(*c.q));
 	border = calloc(nw, 1);
 	locked = calloc(nw, 1);
 	if (!c.q || !border || !locked)

@@ -7,7 +7,7 @@
 int
 vdt_topo_fans(size_t nv, const uint32_t *tri, size_t nt, uint32_t **start, uint32_t **fan)
 {
-	uint32_t *s = vdt_calloc_huge(nv + 2, sizeof(*s));
+	uint32_t *s = vdt_zalloc_huge(nv + 2, sizeof(*s));
 	uint32_t *f = vdt_malloc_huge((3 * nt + 1) * sizeof(*f));
 
 	if (s == NULL || f == NULL) {
@@ -175,7 +175,7 @@ nomem:
 size_t
 vdt_topo_parts(size_t nv, const uint32_t *tri, size_t nt)
 {
-	uint32_t *up = malloc((nv ? nv : 1) * sizeof(*up));
+	uint32_t *up = vdt_malloc_huge((nv ? nv : 1) * sizeof(*up));
 	uint8_t *used = calloc(nv ? nv : 1, 1);
 	size_t parts = 0;
 
