@@ -2702,7 +2702,7 @@ engine_init(struct engine *e, const struct vdt_mesh *m, float *own_pos,
 	e->vp = vdt_calloc_huge(nv, sizeof(struct list));
 	e->parent = vdt_malloc_huge((nv + 1) * sizeof(uint32_t));
 	e->vrej = vdt_calloc_huge(nv + 1, sizeof(uint16_t));
-	keys = malloc((o->virtual_pair_count + 1) * sizeof(uint64_t));
+	keys = vdt_malloc_huge((o->virtual_pair_count + 1) * sizeof(uint64_t));
 	if (!e->pos || !e->tri || !e->tnormal || !e->vflag || !e->vt || !e->vp || !e->parent || !e->vrej || !keys)
 		goto nomem;
 	if (e->pos != m->positions)
@@ -2812,7 +2812,7 @@ engine_init(struct engine *e, const struct vdt_mesh *m, float *own_pos,
 				keys[kept++] = keys[i];
 		}
 		nvirt = kept;
-		e->pv = malloc(2 * (np + nvirt + 1) * sizeof(uint32_t));
+		e->pv = vdt_malloc_huge(2 * (np + nvirt + 1) * sizeof(uint32_t));
 		if (!e->pv) {
 			free(nbr);
 			goto nomem;
@@ -2828,8 +2828,8 @@ engine_init(struct engine *e, const struct vdt_mesh *m, float *own_pos,
 	keys = NULL;
 	e->np = np;
 	e->pflag = calloc(np + 1, 1);
-	e->heap = malloc((np + 1) * sizeof(struct hent));
-	e->hpos = malloc((np + 1) * sizeof(uint32_t));
+	e->heap = vdt_malloc_huge((np + 1) * sizeof(struct hent));
+	e->hpos = vdt_malloc_huge((np + 1) * sizeof(uint32_t));
 	if (!e->pflag || !e->heap || !e->hpos)
 		goto nomem;
 	for (size_t p = 0; p < np; p++) {
