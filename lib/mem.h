@@ -51,6 +51,8 @@ vdt_hint_huge(void *p, size_t bytes)
 static inline size_t
 vdt_huge_size(size_t bytes)
 {
+	if (bytes > SIZE_MAX - VDT_HUGE)
+		return bytes; /* (no rounding past the largest size: malloc fails) */
 	size_t up = (bytes + VDT_HUGE - 1) & ~(VDT_HUGE - 1);
 
 	return up - bytes <= VDT_HUGE / 4 ? up : bytes;

@@ -26,6 +26,9 @@ huge_size_rounds_small_tails_only(void **state)
 	assert_int_equal(vdt_huge_size(6021144), 6 * MB); /* 12 bytes a vertex */
 	assert_int_equal(vdt_huge_size(12042240), 12042240); /* would add 540 KB */
 	assert_int_equal(vdt_huge_size(44155056), 44155056);  /* 88 bytes a vertex */
+	/* near the largest size nothing wraps round to a small block */
+	for (size_t back = 1; back <= 2 * VDT_HUGE; back += VDT_HUGE / 8)
+		assert_true(vdt_huge_size(SIZE_MAX - back) >= SIZE_MAX - back);
 }
 
 /* Blocks that take a huge page start on one, and the whole of the rounded
@@ -48,8 +51,8 @@ malloc_huge_aligns_blocks_of_huge_pages(void **state)
 	}
 }
 
-/* vdt_zalloc_huge zeroes its block, after memory was used and freed, and
- * refuses a size that does not fit in size_t. */
+/* vdt_zalloc_huge zeroes its block, after memory was used and freed;
+ * sizes that do not fit are refused. */
 static void
 zalloc_huge_zeroes(void **state)
 {
@@ -64,6 +67,8 @@ zalloc_huge_zeroes(void **state)
 		free(a);
 	}
 	assert_null(vdt_zalloc_huge(SIZE_MAX / 2, 4));
+	volatile size_t huge = SIZE_MAX - 100; /* (not a constant to the compiler) */
+	assert_null(vdt_malloc_huge(huge));
 }
 
 int
