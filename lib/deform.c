@@ -74,7 +74,7 @@ vdt_deform_defaults(struct vdt_deform_opts *o)
 	o->sharp_angle = 60;
 	o->p = 0.96;
 	o->coherence = VDT_DEFORM_COHERENCE;
-	o->boundary_weight = 100;
+	o->boundary_weight = VDT_QSLIM_BOUNDARY_WEIGHT;
 	o->area_floor = VDT_QSLIM_AREA_FLOOR;
 	o->max_normal_angle = 75;
 }

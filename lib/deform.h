@@ -58,8 +58,8 @@ struct vdt_deform_opts {
 };
 
 /* Defaults: ours, k1 1, k2 VDT_DEFORM_K2, 60 degrees, P 0.96, coherence
- * VDT_DEFORM_COHERENCE, boundary weight 100, area floor VDT_QSLIM_AREA_FLOOR,
- * 75 degrees; no target. */
+ * VDT_DEFORM_COHERENCE, boundary weight VDT_QSLIM_BOUNDARY_WEIGHT, area
+ * floor VDT_QSLIM_AREA_FLOOR, 75 degrees; no target. */
 #define VDT_DEFORM_K2 0.5
 #define VDT_DEFORM_COHERENCE 0.5
 void vdt_deform_defaults(struct vdt_deform_opts *o);

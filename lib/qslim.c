@@ -48,7 +48,7 @@ vdt_qslim_defaults(struct vdt_qslim_opts *o)
 {
 	memset(o, 0, sizeof(*o));
 	o->max_error = INFINITY;
-	o->boundary_weight = 100;
+	o->boundary_weight = VDT_QSLIM_BOUNDARY_WEIGHT;
 	o->max_normal_angle = 75;
 	o->area_floor = VDT_QSLIM_AREA_FLOOR;
 }
@@ -2004,7 +2004,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 			goto nomem;
 		}
 		if (attr_setup(&c, in, &w, fsrc, wstart, wlist, o->attribute_weight * d * d,
-		               o->boundary_weight * fmax(1, o->attribute_weight), nvp > 0,
+		               VDT_QSLIM_SEAM_WEIGHT * fmax(1, o->attribute_weight), nvp > 0,
 		               seam) == NULL) {
 			free(seam);
 			goto nomem;

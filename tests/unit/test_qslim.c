@@ -514,12 +514,12 @@ area_floor_keeps_finely_tessellated_features(void **state)
 	}
 	vdt_qslim_defaults(&o);
 	assert_true(o.area_floor == VDT_QSLIM_AREA_FLOOR && o.area_floor > 0);
-	o.target_triangles = 200;
+	o.target_triangles = 100;
 	assert_int_equal(vdt_qslim(&m, &o, &a, NULL, NULL, &st, NULL), 0);
 	o.area_floor = 0;
 	assert_int_equal(vdt_qslim(&m, &o, &b, NULL, NULL, &st, NULL), 0);
-	assert_int_equal(a.triangle_count, 200);
-	assert_int_equal(b.triangle_count, 200);
+	assert_int_equal(a.triangle_count, 100);
+	assert_int_equal(b.triangle_count, 100);
 	assert_true(above_bowl(&a) > 0.9 * h);
 	assert_true(above_bowl(&b) < 0.2 * h);
 	vdt_mesh_free(&a);
