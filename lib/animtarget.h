@@ -45,7 +45,7 @@ size_t vdt_anim_vertices_again(size_t vertices, size_t triangles, size_t want,
  * vertex target starts at vdt_anim_vertices_for on the welded vertices,
  * or at o->target_vertices if that is larger (a vertex target of the
  * caller's is reached first, and stays); while the largest frame keeps
- * more than `triangles`, up to twice, the run is done again with the
+ * more than `triangles`, up to three times, the run is done again with the
  * target vdt_anim_vertices_again gives it, never below
  * o->target_vertices. o is not changed. Returns vdt_deform's status, or
  * VDT_ENOMEM; on failure *res is empty.

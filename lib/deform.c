@@ -49,6 +49,13 @@ qd_get(const struct qd *s, struct vdt_quadric *q)
 	q->w = 0;
 }
 
+/* The trace of the A of a + b: the scale of vdt_quadric_tie. */
+static double
+qd_trace(const struct qd *a, const struct qd *b)
+{
+	return a->a[0] + a->a[3] + a->a[5] + b->a[0] + b->a[3] + b->a[5];
+}
+
 static void
 qd_add(struct qd *d, const struct vdt_quadric *q)
 {
@@ -601,13 +608,17 @@ unified_cost(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 			for (int k = 0; k < 3; k++)
 				pos[k] = v[k] + c->centre[k];
 	}
+	/* equal costs: the pair shorter in the first frame first */
+	double tie = vdt_quadric_tie(c->cur + 3 * a * nf, c->cur + 3 * b * nf,
+	                             qd_trace(&c->q[a * nf], &c->q[b * nf]));
 	switch (c->method) {
 	case VDT_DEFORM_FIRST:
-		return c->ec[0] * c->unit;
+		return (c->ec[0] + tie) * c->unit;
 	case VDT_DEFORM_DSD:
-		return vdt_deform_cost(c->ec, nf, 0, 0, 0) * c->unit;
+		return (vdt_deform_cost(c->ec, nf, 0, 0, 0) + tie) * c->unit;
 	default:
-		return vdt_deform_cost(c->ec, nf, c->fw ? pair_fw(c, a, b) : 0, c->k1, c->k2) *
+		return (vdt_deform_cost(c->ec, nf, c->fw ? pair_fw(c, a, b) : 0, c->k1, c->k2) +
+		        tie) *
 		       c->unit;
 	}
 }
@@ -770,7 +781,7 @@ frame_cost(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 		pos[k] += c->centre[k];
 	if (c->prefer && c->prefer->n && pairset_has(c->prefer, a, b))
 		e *= c->discount;
-	return e * c->unit;
+	return (e + vdt_quadric_tie(pa, pb, qd_trace(&c->q[a], &c->q[b]))) * c->unit;
 }
 
 static void

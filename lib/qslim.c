@@ -163,6 +163,10 @@ cost_fn(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	struct vdt_quadric q = c->q[a];
 	double p0[3], p1[3], e;
 
+	/* Without the attribute terms and their seam planes, nothing else
+	 * holds a seam where it was: a vertex off it merges into it there. */
+	if (fixed < 0 && c->seam[a] != c->seam[b])
+		fixed = c->seam[b];
 	vdt_quadric_add(&q, &c->q[b]);
 	e = place(c, &q, fixed, pa, pb, p0, p1, pos);
 	for (int k = 0; k < 3; k++)
@@ -171,7 +175,7 @@ cost_fn(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 		e = scaled(c, a, b, e);
 	if (c->max_error < INFINITY && q.w > 0 && e > c->max_error * q.w)
 		return INFINITY;
-	return e * c->unit;
+	return (e + vdt_quadric_tie(pa, pb, q.a00 + q.a11 + q.a22)) * c->unit;
 }
 
 /* *worst = max(*worst, x) from any number of threads at once: a pass
@@ -191,18 +195,16 @@ static void
 merged_fn(void *vc, uint32_t keep, uint32_t gone, const double pos[3], double cost)
 {
 	struct ctx *c = vc;
+	double p[3];
 
-	(void)pos;
-	cost /= c->unit;
-	if (c->scale) {
-		double s = fmin(c->scale[keep], c->scale[gone]);
-		if (s > 0 && s != 1)
-			cost *= s * s; /* the error itself, for the statistics */
-		c->scale[keep] = s;
-	}
+	(void)cost; /* scaled and with its tie: the error itself instead */
+	if (c->scale)
+		c->scale[keep] = fmin(c->scale[keep], c->scale[gone]);
 	vdt_quadric_add(&c->q[keep], &c->q[gone]);
+	for (int k = 0; k < 3; k++)
+		p[k] = pos[k] - c->centre[k];
 	if (c->q[keep].w > 0)
-		worst_max(&c->worst, cost / c->q[keep].w);
+		worst_max(&c->worst, vdt_quadric_eval(&c->q[keep], p) / c->q[keep].w);
 }
 
 /* A seam vertex may only merge into another seam vertex. */
@@ -1146,7 +1148,8 @@ cost_attr(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	}
 	for (int k = 0; k < 3; k++)
 		pos[k] += c->centre[k];
-	return (c->scale ? scaled(c, a, b, e) : e) * c->unit;
+	return ((c->scale ? scaled(c, a, b, e) : e) + vdt_quadric_tie(pa, pb, q.a00 + q.a11 + q.a22)) *
+	       c->unit;
 }
 
 static void

@@ -518,8 +518,9 @@ area_floor_keeps_finely_tessellated_features(void **state)
 	assert_int_equal(vdt_qslim(&m, &o, &a, NULL, NULL, &st, NULL), 0);
 	o.area_floor = 0;
 	assert_int_equal(vdt_qslim(&m, &o, &b, NULL, NULL, &st, NULL), 0);
-	assert_int_equal(a.triangle_count, 100);
-	assert_int_equal(b.triangle_count, 100);
+	/* an inner contraction takes two faces: from 101, 99 */
+	assert_true(a.triangle_count >= 99 && a.triangle_count <= 100);
+	assert_true(b.triangle_count >= 99 && b.triangle_count <= 100);
 	assert_true(above_bowl(&a) > 0.9 * h);
 	assert_true(above_bowl(&b) < 0.2 * h);
 	vdt_mesh_free(&a);
@@ -564,6 +565,42 @@ area_floor_leaves_even_meshes_alone(void **state)
  * a slab (a long axis the k-d tree splits first); d ranges from below the
  * lattice step to beyond the whole set.
  */
+/*
+ * On a plane every pair costs nothing, and the shorter must go first: a
+ * flat grid with one narrow column (0.01 wide against 0.125) loses its
+ * nine narrow pairs, one per row, before any other. Fails if the order of
+ * equal costs is left to rounding.
+ */
+static void
+equal_costs_go_shortest_first(void **state)
+{
+	struct vdt_mesh m, out;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+	struct vdt_contraction *rec = NULL;
+	size_t nrec = 0;
+
+	(void)state;
+	shape_grid(&m, 8);
+	for (size_t v = 0; v < m.vertex_count; v++) {
+		float *p = m.positions + 3 * v;
+		if (p[0] > 0.45f)
+			p[0] = p[0] == 0.5f ? 0.385f : p[0]; /* column 4 next to column 3 */
+	}
+	vdt_qslim_defaults(&o);
+	o.target_triangles = m.triangle_count - 20;
+	assert_int_equal(vdt_qslim(&m, &o, &out, &rec, &nrec, &st, NULL), 0);
+	assert_true(nrec >= 9);
+	for (size_t i = 0; i < 9; i++) {
+		const float *a = m.positions + 3 * (size_t)rec[i].keep;
+		const float *b = m.positions + 3 * (size_t)rec[i].gone;
+		assert_true(fabsf(a[0] - b[0]) < 0.02f && a[1] == b[1]);
+	}
+	free(rec);
+	vdt_mesh_free(&out);
+	vdt_mesh_free(&m);
+}
+
 static void
 virtual_pairs_match_brute_force(void **state)
 {
@@ -635,6 +672,7 @@ main(void)
 		cmocka_unit_test(large_meshes_keep_their_numbers),
 		cmocka_unit_test(area_floor_keeps_finely_tessellated_features),
 		cmocka_unit_test(area_floor_leaves_even_meshes_alone),
+		cmocka_unit_test(equal_costs_go_shortest_first),
 		cmocka_unit_test(virtual_pairs_match_brute_force),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
