@@ -37,6 +37,7 @@ struct ctx {
 	double centre[3];
 	double max_error;      /* squared-distance bound, or INFINITY */
 	const uint8_t *seam;
+	int pin_seams;         /* attributes vary: seams stay put (cost_fn) */
 	double worst;          /* largest contraction error so far (squared) */
 	struct attr *at;       /* attribute quadrics, or NULL */
 	double *scale;         /* per welded vertex error scale, or NULL */
@@ -164,8 +165,10 @@ cost_fn(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	double p0[3], p1[3], e;
 
 	/* Without the attribute terms and their seam planes, nothing else
-	 * holds a seam where it was: a vertex off it merges into it there. */
-	if (fixed < 0 && c->seam[a] != c->seam[b])
+	 * holds a seam where it was: a vertex off it merges into it there.
+	 * (Without attributes that vary, a "seam" is only a repeated
+	 * position, which nothing needs kept.) */
+	if (fixed < 0 && c->pin_seams && c->seam[a] != c->seam[b])
 		fixed = c->seam[b];
 	vdt_quadric_add(&q, &c->q[b]);
 	e = place(c, &q, fixed, pa, pb, p0, p1, pos);
@@ -2016,6 +2019,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 		ops.merged = merged_attr;
 	}
 	c.seam = seam;
+	c.pin_seams = varying != 0;
 	vdt_contract_defaults(&co);
 	co.target_triangles = target;
 	co.keep_a_face = 1; /* -e alone must not empty the mesh */
