@@ -329,6 +329,50 @@ sphere_simplifies_cleanly(void **state)
 }
 
 /*
+ * The same cut without attributes is only a repeated position: nothing
+ * there needs keeping, and the middle column simplifies like the rest (the
+ * seam rule would hold it at x = 0.5, as it did the dragon's 2100 repeated
+ * points).
+ */
+static void
+repeated_positions_are_not_seams(void **state)
+{
+	struct vdt_mesh g, m, out;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+	int n = 8, off = 0;
+
+	(void)state;
+	shape_grid(&g, n);
+	vdt_mesh_alloc(&m, g.vertex_count + n + 1, g.triangle_count, 0, NULL);
+	memcpy(m.positions, g.positions, 12 * g.vertex_count);
+	memcpy(m.triangles, g.triangles, 12 * g.triangle_count);
+	for (int j = 0; j <= n; j++)
+		memcpy(m.positions + 3 * (g.vertex_count + j),
+		       m.positions + 3 * (j * (n + 1) + n / 2), 12);
+	for (size_t t = 0; t < m.triangle_count; t++) {
+		const uint32_t *c = g.triangles + 3 * t;
+		float cx = (g.positions[3 * c[0]] + g.positions[3 * c[1]] + g.positions[3 * c[2]]) / 3;
+		if (cx > 0.5f)
+			for (int k = 0; k < 3; k++)
+				if (c[k] % (n + 1) == (uint32_t)n / 2)
+					m.triangles[3 * t + k] = g.vertex_count + c[k] / (n + 1);
+	}
+	vdt_qslim_defaults(&o);
+	o.target_triangles = 8;
+	assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
+	assert_int_equal(st.welded, n + 1);
+	for (size_t i = 0; i < out.vertex_count; i++) {
+		float x = out.positions[3 * i];
+		off += x != 0 && x != 0.5f && x != 1;
+	}
+	assert_true(off > 0);
+	vdt_mesh_free(&out);
+	vdt_mesh_free(&m);
+	vdt_mesh_free(&g);
+}
+
+/*
  * Seams: the grid cut along x = 0.5 into two halves with their own copies of
  * the middle column (different UVs), as a texture atlas would. The result
  * must have no open edge inside the square: the copies stay together.
@@ -1406,6 +1450,7 @@ main(void)
 		cmocka_unit_test(flat_grid_reduces_to_its_corners),
 		cmocka_unit_test(sphere_simplifies_cleanly),
 		cmocka_unit_test(uv_seam_does_not_open),
+		cmocka_unit_test(repeated_positions_are_not_seams),
 		cmocka_unit_test(given_quadrics_drive_placement),
 		cmocka_unit_test(aggregation_joins_parts),
 		cmocka_unit_test(repeated_faces_are_dropped),
