@@ -329,6 +329,40 @@ sphere_simplifies_cleanly(void **state)
 }
 
 /*
+ * The n x n grid cut along x = 0.5: the right half's faces use copies of the
+ * middle column (vertices after the grid's). With UVs, each half is
+ * continuous in its own half of the atlas (u = x / 2 on the left, 0.5 + x / 2
+ * on the right, so 0.25 and 0.75 on the cut).
+ */
+static void
+split_grid(struct vdt_mesh *m, int n, int uvs)
+{
+	struct vdt_mesh g;
+
+	shape_grid(&g, n);
+	vdt_mesh_alloc(m, g.vertex_count + n + 1, g.triangle_count, uvs ? VDT_ATTR_UVS : 0, NULL);
+	memcpy(m->positions, g.positions, 12 * g.vertex_count);
+	memcpy(m->triangles, g.triangles, 12 * g.triangle_count);
+	for (int j = 0; j <= n; j++)
+		memcpy(m->positions + 3 * (g.vertex_count + j),
+		       g.positions + 3 * (j * (n + 1) + n / 2), 12);
+	for (size_t i = 0; uvs && i < m->vertex_count; i++) {
+		float x = m->positions[3 * i];
+		m->uvs[2 * i] = i >= g.vertex_count || x > 0.5f ? 0.5f + x * 0.5f : x * 0.5f;
+		m->uvs[2 * i + 1] = m->positions[3 * i + 1];
+	}
+	for (size_t t = 0; t < m->triangle_count; t++) {
+		const uint32_t *c = g.triangles + 3 * t;
+		float cx = (g.positions[3 * c[0]] + g.positions[3 * c[1]] + g.positions[3 * c[2]]) / 3;
+		if (cx > 0.5f)
+			for (int k = 0; k < 3; k++)
+				if (c[k] % (n + 1) == (uint32_t)n / 2)
+					m->triangles[3 * t + k] = g.vertex_count + c[k] / (n + 1);
+	}
+	vdt_mesh_free(&g);
+}
+
+/*
  * The same cut without attributes is only a repeated position: nothing
  * there needs keeping, and the middle column simplifies like the rest (the
  * seam rule would hold it at x = 0.5, as it did the dragon's 2100 repeated
@@ -337,27 +371,13 @@ sphere_simplifies_cleanly(void **state)
 static void
 repeated_positions_are_not_seams(void **state)
 {
-	struct vdt_mesh g, m, out;
+	struct vdt_mesh m, out;
 	struct vdt_qslim_opts o;
 	struct vdt_qslim_stats st;
 	int n = 8, off = 0;
 
 	(void)state;
-	shape_grid(&g, n);
-	vdt_mesh_alloc(&m, g.vertex_count + n + 1, g.triangle_count, 0, NULL);
-	memcpy(m.positions, g.positions, 12 * g.vertex_count);
-	memcpy(m.triangles, g.triangles, 12 * g.triangle_count);
-	for (int j = 0; j <= n; j++)
-		memcpy(m.positions + 3 * (g.vertex_count + j),
-		       m.positions + 3 * (j * (n + 1) + n / 2), 12);
-	for (size_t t = 0; t < m.triangle_count; t++) {
-		const uint32_t *c = g.triangles + 3 * t;
-		float cx = (g.positions[3 * c[0]] + g.positions[3 * c[1]] + g.positions[3 * c[2]]) / 3;
-		if (cx > 0.5f)
-			for (int k = 0; k < 3; k++)
-				if (c[k] % (n + 1) == (uint32_t)n / 2)
-					m.triangles[3 * t + k] = g.vertex_count + c[k] / (n + 1);
-	}
+	split_grid(&m, n, 0);
 	vdt_qslim_defaults(&o);
 	o.target_triangles = 8;
 	assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
@@ -369,7 +389,6 @@ repeated_positions_are_not_seams(void **state)
 	assert_true(off > 0);
 	vdt_mesh_free(&out);
 	vdt_mesh_free(&m);
-	vdt_mesh_free(&g);
 }
 
 /*
@@ -380,38 +399,13 @@ repeated_positions_are_not_seams(void **state)
 static void
 uv_seam_does_not_open(void **state)
 {
-	struct vdt_mesh g, m, out;
+	struct vdt_mesh m, out;
 	struct vdt_qslim_opts o;
 	struct vdt_qslim_stats st;
 	int n = 8;
 
 	(void)state;
-	shape_grid(&g, n);
-	/* duplicate the middle column (i = n/2) for the right half */
-	vdt_mesh_alloc(&m, g.vertex_count + n + 1, g.triangle_count, VDT_ATTR_UVS, NULL);
-	memcpy(m.positions, g.positions, 12 * g.vertex_count);
-	memcpy(m.triangles, g.triangles, 12 * g.triangle_count);
-	/* each half continuous in its own half of the atlas: u = x / 2 on the
-	 * left, 0.5 + x / 2 on the right */
-	for (size_t i = 0; i < g.vertex_count; i++) {
-		float x = g.positions[3 * i];
-		m.uvs[2 * i] = x > 0.5f ? 0.5f + x * 0.5f : x * 0.5f;
-		m.uvs[2 * i + 1] = g.positions[3 * i + 1];
-	}
-	for (int j = 0; j <= n; j++) {
-		size_t src = j * (n + 1) + n / 2, dst = g.vertex_count + j;
-		memcpy(m.positions + 3 * dst, m.positions + 3 * src, 12);
-		m.uvs[2 * dst] = 0.75f;
-		m.uvs[2 * dst + 1] = m.positions[3 * dst + 1];
-	}
-	for (size_t t = 0; t < m.triangle_count; t++) {
-		const uint32_t *c = g.triangles + 3 * t;
-		float cx = (g.positions[3 * c[0]] + g.positions[3 * c[1]] + g.positions[3 * c[2]]) / 3;
-		if (cx > 0.5f)
-			for (int k = 0; k < 3; k++)
-				if (c[k] % (n + 1) == (uint32_t)n / 2)
-					m.triangles[3 * t + k] = g.vertex_count + c[k] / (n + 1);
-	}
+	split_grid(&m, n, 1);
 	vdt_qslim_defaults(&o);
 	o.target_triangles = 8;
 	assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
@@ -449,7 +443,6 @@ uv_seam_does_not_open(void **state)
 			assert_true(out.positions[3 * i] == 0.5f);
 	vdt_mesh_free(&out);
 	vdt_mesh_free(&m);
-	vdt_mesh_free(&g);
 }
 
 /*
