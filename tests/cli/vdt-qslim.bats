@@ -63,6 +63,14 @@ load helpers
 	[ "$(off_faces "$TMP/out.off")" -gt 52 ]
 }
 
+@test "vdt-qslim -e 0 takes what costs nothing and reports no error" {
+	# a plate's flat faces merge at no error; rounding is not reported as one
+	run "$BIN/vdt-qslim" -v -e 0 "$SAMPLES/plate.off" -o "$TMP/out.off"
+	[ "$status" -eq 0 ]
+	[ "$(off_faces "$TMP/out.off")" -lt "$(off_faces "$SAMPLES/plate.off")" ]
+	[[ "$output" == *" error=0 error_pct=0 "* ]]
+}
+
 @test "vdt-qslim keeps a mesh with boundaries open where it was" {
 	"$BIN/vdt-qslim" -r 0.2 --lock-border "$SAMPLES/open.off" -o "$TMP/out.off"
 	[ "$(off_faces "$TMP/out.off")" -lt "$(off_faces "$SAMPLES/open.off")" ]
