@@ -352,6 +352,11 @@ load helpers
 	"$BIN/vdt-qslim" -q -r 0.1 --boundary-weight 0 "$SAMPLES/open.off" -o "$TMP/bw0.off"
 	"$BIN/vdt-qslim" -q -r 0.1 --boundary-weight 100 "$SAMPLES/open.off" -o "$TMP/bw100.off"
 	! cmp -s "$TMP/bw0.off" "$TMP/bw100.off" || false
+	# but not seams, whose planes keep their own weight: a closed UV
+	# sphere comes out the same at any boundary weight
+	"$BIN/vdt-qslim" -q -r 0.1 --boundary-weight 0 "$SAMPLES/sphere-uv.obj" -o "$TMP/s0.obj"
+	"$BIN/vdt-qslim" -q -r 0.1 --boundary-weight 100 "$SAMPLES/sphere-uv.obj" -o "$TMP/s100.obj"
+	cmp "$TMP/s0.obj" "$TMP/s100.obj"
 	# --area-floor: a face below that share of the mean area weighs as one
 	# of it; on the UV sphere none is below the default's share, and with
 	# 1 every face below the mean weighs as a mean one
