@@ -200,7 +200,7 @@ worst_max(double *worst, double x)
  * the last place of terms as large as c + tr(A) |p|^2, not to 0.
  */
 static double
-exact_error(const struct vdt_quadric *q, const double p[3])
+error_at(const struct vdt_quadric *q, const double p[3])
 {
 	double e = vdt_quadric_eval(q, p);
 	double size = fabs(q->c) + (q->a00 + q->a11 + q->a22) * (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
@@ -221,7 +221,7 @@ merged_fn(void *vc, uint32_t keep, uint32_t gone, const double pos[3], double co
 	for (int k = 0; k < 3; k++)
 		p[k] = pos[k] - c->centre[k];
 	if (c->q[keep].w > 0)
-		worst_max(&c->worst, exact_error(&c->q[keep], p) / c->q[keep].w);
+		worst_max(&c->worst, error_at(&c->q[keep], p) / c->q[keep].w);
 }
 
 /* A seam vertex may only merge into another seam vertex. */
@@ -1228,7 +1228,7 @@ merged_attr(void *vc, uint32_t keep, uint32_t gone, const double pos[3], double 
 	at->qr[keep] = qr;
 	for (int k = 0; k < 3; k++)
 		p[k] = pos[k] - c->centre[k];
-	double e = exact_error(&c->q[keep], p);
+	double e = error_at(&c->q[keep], p);
 	if (c->q[keep].w > 0)
 		worst_max(&c->worst, e / c->q[keep].w);
 }
