@@ -179,6 +179,54 @@ fold_over_is_refused(void **state)
 	vdt_contract_result_free(&r);
 }
 
+/* Pair (0, 1) costs nothing and goes where 1 is; any other costs 100. */
+static double
+onto_one(void *ctx, uint32_t a, uint32_t b, int fixed, const float pa[3], const float pb[3],
+         double pos[3])
+{
+	(void)ctx; (void)fixed;
+	for (int k = 0; k < 3; k++)
+		pos[k] = a == 0 && b == 1 ? pb[k] : pa[k];
+	return a == 0 && b == 1 ? 0 : 100;
+}
+
+/*
+ * The fold-over threshold is the angle asked for, acute or obtuse: face
+ * 0-2-3 lies in z = 0, and contracting 0 onto 1 turns it by `turn` degrees
+ * about its edge 2-3 (1 is 0 turned so about that edge; face 0-1-2 makes
+ * the pair an edge and goes). Half a degree more allows it, half a degree
+ * less refuses it.
+ */
+static void
+fold_over_threshold_is_the_angle(void **state)
+{
+	static const uint32_t t[] = {0, 2, 3, 0, 1, 2};
+	static const double turns[] = {10, 40, 75, 100, 150};
+	struct vdt_contract_ops ops = {onto_one, NULL, NULL, NULL, 0, NULL, 0};
+
+	(void)state;
+	for (size_t i = 0; i < sizeof(turns) / sizeof(turns[0]); i++) {
+		double a = turns[i] * M_PI / 180, r = sqrt(0.5);
+		/* from the edge's middle (0.5, 0.5, 0) towards 0, turned by a */
+		float p[12] = {0, 0, 0,
+		               (float)(0.5 - r * cos(a) * sqrt(0.5)), (float)(0.5 - r * cos(a) * sqrt(0.5)),
+		               (float)(r * sin(a)),
+		               1, 0, 0, 0, 1, 0};
+		struct vdt_mesh m = {4, p, NULL, NULL, NULL, 2, (uint32_t *)t};
+		for (int more = 0; more < 2; more++) {
+			struct vdt_contract_opts o;
+			struct vdt_contract_result r;
+			vdt_contract_defaults(&o);
+			o.target_triangles = 1;
+			o.max_cost = 1;
+			o.max_normal_angle = turns[i] + (more ? 0.5 : -0.5);
+			assert_int_equal(vdt_contract_run(&m, &ops, &o, &r, NULL), 0);
+			assert_int_equal(r.contractions, (size_t)more);
+			vdt_contract_result_free(&r);
+		}
+	}
+}
+
 /*
  * An edge shared by three faces is never contracted while it is so, though
  * it is by far the cheapest: the fins 0-1-2, 1-0-3 and 0-1-4 share 0-1.
@@ -1438,6 +1486,7 @@ main(void)
 		cmocka_unit_test(vertex_target_counts_orphans),
 		cmocka_unit_test(sphere_stays_manifold),
 		cmocka_unit_test(fold_over_is_refused),
+		cmocka_unit_test(fold_over_threshold_is_the_angle),
 		cmocka_unit_test(non_manifold_edge_is_kept),
 		cmocka_unit_test(seqn_round_trip_and_rejects),
 		cmocka_unit_test(flat_grid_reduces_to_its_corners),
