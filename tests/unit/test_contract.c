@@ -206,11 +206,10 @@ fold_over_threshold_is_the_angle(void **state)
 
 	(void)state;
 	for (size_t i = 0; i < sizeof(turns) / sizeof(turns[0]); i++) {
-		double a = turns[i] * M_PI / 180, r = sqrt(0.5);
-		/* from the edge's middle (0.5, 0.5, 0) towards 0, turned by a */
+		/* 0 lies half a diagonal from the edge's middle (0.5, 0.5, 0) */
+		double a = turns[i] * M_PI / 180, out = 0.5 * cos(a);
 		float p[12] = {0, 0, 0,
-		               (float)(0.5 - r * cos(a) * sqrt(0.5)), (float)(0.5 - r * cos(a) * sqrt(0.5)),
-		               (float)(r * sin(a)),
+		               (float)(0.5 - out), (float)(0.5 - out), (float)(sqrt(0.5) * sin(a)),
 		               1, 0, 0, 0, 1, 0};
 		struct vdt_mesh m = {4, p, NULL, NULL, NULL, 2, (uint32_t *)t};
 		for (int more = 0; more < 2; more++) {
