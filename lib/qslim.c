@@ -178,7 +178,7 @@ cost_fn(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 		e = scaled(c, a, b, e);
 	if (c->max_error < INFINITY && q.w > 0 && e > c->max_error * q.w)
 		return INFINITY;
-	return (e + vdt_quadric_tie(pa, pb, q.a00 + q.a11 + q.a22)) * c->unit;
+	return (e + vdt_quadric_tie(pa, pb, vdt_quadric_trace(&q))) * c->unit;
 }
 
 /* *worst = max(*worst, x) from any number of threads at once: a pass
@@ -203,7 +203,7 @@ static double
 error_at(const struct vdt_quadric *q, const double p[3])
 {
 	double e = vdt_quadric_eval(q, p);
-	double size = fabs(q->c) + (q->a00 + q->a11 + q->a22) * (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+	double size = fabs(q->c) + vdt_quadric_trace(q) * (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
 
 	return e > 1e-14 * size ? e : 0;
 }
@@ -1170,7 +1170,7 @@ cost_attr(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	}
 	for (int k = 0; k < 3; k++)
 		pos[k] += c->centre[k];
-	return ((c->scale ? scaled(c, a, b, e) : e) + vdt_quadric_tie(pa, pb, q.a00 + q.a11 + q.a22)) *
+	return ((c->scale ? scaled(c, a, b, e) : e) + vdt_quadric_tie(pa, pb, vdt_quadric_trace(&q))) *
 	       c->unit;
 }
 

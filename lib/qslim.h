@@ -91,8 +91,8 @@ struct vdt_qslim_opts {
 /*
  * Defaults: no target, no bound, boundary weight VDT_QSLIM_BOUNDARY_WEIGHT,
  * 75 degrees, area floor VDT_QSLIM_AREA_FLOOR, attribute weight 0
- * (attributes copied, as before the weight existed). VDT_QSLIM_ATTRIBUTE_WEIGHT is the weight vdt-qslim uses
- * by default.
+ * (attributes copied, as before the weight existed).
+ * VDT_QSLIM_ATTRIBUTE_WEIGHT is the weight vdt-qslim uses by default.
  *
  * The area floor: weighed by area alone, a part tessellated much finer
  * than the rest (a scanner's close-up, a thin ridge, a spike of small

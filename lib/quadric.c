@@ -159,7 +159,7 @@ vdt_quadric_optimize_segment(const struct vdt_quadric *q, const double p0[3],
 	ap[2] = q->a02 * p0[0] + q->a12 * p0[1] + q->a22 * p0[2] + q->b2;
 	a = d[0] * ad[0] + d[1] * ad[1] + d[2] * ad[2];
 	b = d[0] * ap[0] + d[1] * ap[1] + d[2] * ap[2];
-	if (a > 1e-12 * (q->a00 + q->a11 + q->a22) * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2])) {
+	if (a > 1e-12 * vdt_quadric_trace(q) * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2])) {
 		double t = -b / a;
 		t = t < 0 ? 0 : t > 1 ? 1 : t;
 		for (int k = 0; k < 3; k++)

@@ -90,6 +90,14 @@ vdt_quadric_add(struct vdt_quadric *q, const struct vdt_quadric *r)
 /* q *= s (weight included). */
 void vdt_quadric_scale(struct vdt_quadric *q, double s);
 
+/* The trace of A: the summed weights of the planes, which bounds A's
+ * eigenvalues (A is positive semi-definite). */
+static inline double
+vdt_quadric_trace(const struct vdt_quadric *q)
+{
+	return q->a00 + q->a11 + q->a22;
+}
+
 /*
  * What to add to the cost of contracting pa and pb, whose merged quadric's
  * A has trace t (the summed weights of its planes), so that among pairs of
@@ -145,7 +153,7 @@ vdt_quadric_minimum(const struct vdt_quadric *q, double v[3])
 	double c12 = q->a01 * q->a02 - q->a00 * q->a12;
 	double c22 = q->a00 * q->a11 - q->a01 * q->a01;
 	double det = q->a00 * c00 + q->a01 * c01 + q->a02 * c02;
-	double trace = q->a00 + q->a11 + q->a22;
+	double trace = vdt_quadric_trace(q);
 
 	if (!(trace > 0) || !(fabs(det) > 1e-9 * trace * trace * trace))
 		return -1;
