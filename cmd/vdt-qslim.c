@@ -28,7 +28,7 @@ usage(FILE *f)
 	        "usage: vdt-qslim [-t TRIANGLES] [-r RATIO] [-e ERROR[%%]] [-o OUTPUT] [-F FORMAT]\n"
 	        "                 [-a DISTANCE[%%]] [--lock-border] [--boundary-weight W]\n"
 	        "                 [--area-floor F] [--max-angle DEGREES] [--min-quality Q]\n"
-	        "                 [--ignore-quadrics]"
+	        "                 [--ignore-quadrics] [--no-fit]"
 	        " [--attribute-weight W] [--topology auto|keep|free]\n"
 	        "                 [--order auto|greedy|passes] [-j THREADS] [--record]\n"
 	        "                 [--contour-distance PIXELS] [--error-factor F]\n"
@@ -41,7 +41,7 @@ usage(FILE *f)
 static void
 parse_cmdline(int argc, char **argv, struct cmdline *cl)
 {
-	enum { O_LOCK = 256, O_BW, O_ANGLE, O_QUALITY, O_IGNORE, O_RECORD, O_DRACO, O_AW, O_TOPO, O_CD, O_EF, O_VIEW, O_NEAR, O_ORDER, O_FLOOR };
+	enum { O_LOCK = 256, O_BW, O_ANGLE, O_QUALITY, O_IGNORE, O_RECORD, O_DRACO, O_AW, O_TOPO, O_CD, O_EF, O_VIEW, O_NEAR, O_ORDER, O_FLOOR, O_NOFIT };
 	static const struct option longopts[] = {
 		{"triangles", required_argument, NULL, 't'},
 		{"ratio", required_argument, NULL, 'r'},
@@ -55,6 +55,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		{"max-angle", required_argument, NULL, O_ANGLE},
 		{"min-quality", required_argument, NULL, O_QUALITY},
 		{"ignore-quadrics", no_argument, NULL, O_IGNORE},
+		{"no-fit", no_argument, NULL, O_NOFIT},
 		{"topology", required_argument, NULL, O_TOPO},
 		{"attribute-weight", required_argument, NULL, O_AW},
 		{"record", no_argument, NULL, O_RECORD},
@@ -96,6 +97,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		case O_ANGLE: cl->q.max_normal_angle = parse_real("--max-angle", optarg, 1, 180); break;
 		case O_QUALITY: cl->q.min_quality = parse_real("--min-quality", optarg, 0, 1); break;
 		case O_IGNORE: cl->ignore_quadrics = 1; break;
+		case O_NOFIT: cl->q.fit = 0; break;
 		case O_TOPO:
 			if ((cl->q.topology = vdt_topology_parse(optarg)) < 0)
 				usage_error("--topology must be auto, keep or free, not '%s'", optarg);
@@ -188,11 +190,12 @@ run(struct cmdline *cl)
 		        "--order passes has no effect\n", progname);
 	if (cl->verbose)
 		fprintf(stderr, "%s: in_vertices=%zu in_triangles=%zu out_vertices=%zu "
-		        "out_triangles=%zu contractions=%zu rejected=%zu welded=%zu dropped=%zu nonmanifold=%zu "
+		        "out_triangles=%zu contractions=%zu rejected=%zu fitted=%zu welded=%zu dropped=%zu "
+		        "nonmanifold=%zu "
 		        "topology=%s order=%s error=%.6g error_pct=%.6g "
 		        "read_s=%.3f simplify_s=%.3f write_s=%.3f peak_mb=%.1f\n",
 		        progname, in.vertex_count, in.triangle_count, out.vertex_count,
-		        out.triangle_count, st.contractions, st.rejected, st.welded, st.dropped,
+		        out.triangle_count, st.contractions, st.rejected, st.fitted, st.welded, st.dropped,
 		        st.nonmanifold, st.free_topology ? "free" : "keep",
 		        st.passes ? "passes" : "greedy", st.max_error,
 		        st.error_pct, t1 - t0, t2 - t1,

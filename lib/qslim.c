@@ -18,6 +18,7 @@
  * + c does not cancel away on models far from the origin.
  */
 #include "qslim.h"
+#include "fit.h"
 #include "hash.h"
 #include "mem.h"
 #include "sort.h"
@@ -52,6 +53,7 @@ vdt_qslim_defaults(struct vdt_qslim_opts *o)
 	o->boundary_weight = VDT_QSLIM_BOUNDARY_WEIGHT;
 	o->max_normal_angle = 75;
 	o->area_floor = VDT_QSLIM_AREA_FLOOR;
+	o->fit = 1;
 }
 
 /* The index of name among three, or -1. */
@@ -1850,6 +1852,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	uint32_t *fsrc = NULL, *vto = NULL, *forder = NULL;
 	int renumbered = 0;
 	uint64_t *dups = NULL; /* corner << 32 | input vertex, by corner */
+	float *src = NULL;     /* the welded positions, for the fit */
 	size_t nw, nvp = 0, ndups = 0;
 	int rc = VDT_ENOMEM;
 
@@ -2080,10 +2083,30 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	ops.concurrent = 1;
 	ops.vertex_data = c.at ? c.at->qc : c.q;
 	ops.vertex_stride = sizeof(*c.q);
+	/* The fit (below) reads where the vertices were, which the engine
+	 * overwrites; a record must replay to the output, so none with one. */
+	int fit = o->fit && records == NULL;
+	if (fit && (src = vdt_malloc_huge(3 * nw * sizeof(*src) + 1)) == NULL) {
+		free(seam);
+		goto nomem;
+	}
+	if (fit)
+		memcpy(src, w.positions, 3 * nw * sizeof(*src));
 	rc = vdt_contract_run_in_place(&w, &ops, &co, &r, err);
 	free(seam);
 	if (rc != 0)
 		goto fail;
+	if (fit) {
+		struct vdt_fit_stats fs;
+		for (size_t v = 0; v < nw; v++)
+			locked[v] |= border[v] & 1; /* open edges keep their planes' place */
+		if (vdt_fit_normal(r.positions, r.vertex_count, r.triangles, r.triangle_count, src, nw,
+		                   r.final, locked, o->threads, &fs) != 0)
+			goto nomem;
+		stats->fitted = fs.moved;
+		free(src);
+		src = NULL;
+	}
 	stats->passes = r.passes;
 	stats->contractions = r.contractions;
 	stats->rejected = r.rejected;
@@ -2139,6 +2162,7 @@ done:
 	free(vto);
 	free(forder);
 	free(dups);
+	free(src);
 	return rc;
 }
 

@@ -82,6 +82,9 @@ struct vdt_qslim_opts {
 	                             attributes; 0: one per processor (see
 	                             vdt_contract_opts.threads); the result
 	                             does not depend on it */
+	int fit;                  /* move smooth vertices along their normals
+	                             to fit the input better (vdt_fit_normal;
+	                             not with a record) */
 	int record;               /* keep the contraction record
 	                             (vdt_qslim_extra_run; vdt_qslim takes
 	                             its records argument instead) */
@@ -137,6 +140,7 @@ struct vdt_qslim_stats {
 	size_t nonmanifold; /* edges of three or more faces in the input */
 	int free_topology;  /* 1 if the link condition was not applied */
 	int passes;         /* 1 if contracted in passes, 0 greedy */
+	size_t fitted;      /* vertices the fit moved */
 	double error_pct;   /* max_error in percent of the input's
 	                       bounding-box diagonal (0 if that is 0) */
 };

@@ -96,10 +96,10 @@ setup() {
 
 @test "vdt-deform on a single frame equals vdt-qslim" {
 	"$BIN/vdt-deform" --vertices 100 "$SAMPLES/sphere.off" -o "$TMP/d.off"
-	"$BIN/vdt-qslim" -t "$(off_faces "$TMP/d.off")" "$SAMPLES/sphere.off" -o "$TMP/q.off"
+	"$BIN/vdt-qslim" --no-fit -t "$(off_faces "$TMP/d.off")" "$SAMPLES/sphere.off" -o "$TMP/q.off"
 	cmp "$TMP/d.off" "$TMP/q.off"
 	"$BIN/vdt-deform" --method independent --vertices 100 "$SAMPLES/open.off" -o "$TMP/d.off"
-	"$BIN/vdt-qslim" --order greedy -t "$(off_faces "$TMP/d.off")" "$SAMPLES/open.off" -o "$TMP/q.off"
+	"$BIN/vdt-qslim" --no-fit --order greedy -t "$(off_faces "$TMP/d.off")" "$SAMPLES/open.off" -o "$TMP/q.off"
 	cmp "$TMP/d.off" "$TMP/q.off"
 }
 
@@ -400,10 +400,10 @@ setup() {
 @test "vdt-deform on a single frame equals vdt-qslim --order greedy at any share" {
 	for P in 0 0.5 0.96 1; do
 		"$BIN/vdt-deform" -q --k2 0 -P "$P" -t 500 "$SAMPLES/torus.off" -o "$TMP/d.off"
-		"$BIN/vdt-qslim" -q --order greedy -t 500 "$SAMPLES/torus.off" -o "$TMP/q.off"
+		"$BIN/vdt-qslim" -q --no-fit --order greedy -t 500 "$SAMPLES/torus.off" -o "$TMP/q.off"
 		cmp "$TMP/d.off" "$TMP/q.off"
 		"$BIN/vdt-deform" -q -P "$P" --vertices 100 "$SAMPLES/sphere.off" -o "$TMP/d.off"
-		"$BIN/vdt-qslim" -q --order greedy -t "$(off_faces "$TMP/d.off")" "$SAMPLES/sphere.off" -o "$TMP/q.off"
+		"$BIN/vdt-qslim" -q --no-fit --order greedy -t "$(off_faces "$TMP/d.off")" "$SAMPLES/sphere.off" -o "$TMP/q.off"
 		cmp "$TMP/d.off" "$TMP/q.off"
 	done
 }
@@ -457,8 +457,8 @@ PY
 		}
 	}' > "$TMP/bowl.off"
 	"$BIN/vdt-deform" -q --vertices 60 "$TMP/bowl.off" -o "$TMP/d.off"
-	"$BIN/vdt-qslim" -q -t "$(off_faces "$TMP/d.off")" "$TMP/bowl.off" -o "$TMP/q.off"
-	"$BIN/vdt-qslim" -q --area-floor 0 -t "$(off_faces "$TMP/d.off")" "$TMP/bowl.off" -o "$TMP/q0.off"
+	"$BIN/vdt-qslim" -q --no-fit -t "$(off_faces "$TMP/d.off")" "$TMP/bowl.off" -o "$TMP/q.off"
+	"$BIN/vdt-qslim" -q --no-fit --area-floor 0 -t "$(off_faces "$TMP/d.off")" "$TMP/bowl.off" -o "$TMP/q0.off"
 	cmp "$TMP/d.off" "$TMP/q.off"
 	! cmp -s "$TMP/q.off" "$TMP/q0.off" || false
 }
@@ -468,7 +468,7 @@ PY
 		"$BIN/vdt-deform" -q --method independent -t $t "$SAMPLES/open.off" -o "$TMP/d.off"
 		n=$(off_faces "$TMP/d.off")
 		[ "$n" -le $t ]
-		"$BIN/vdt-qslim" -q --order greedy -t "$n" "$SAMPLES/open.off" -o "$TMP/q.off"
+		"$BIN/vdt-qslim" -q --no-fit --order greedy -t "$n" "$SAMPLES/open.off" -o "$TMP/q.off"
 		cmp "$TMP/d.off" "$TMP/q.off"
 	done
 }

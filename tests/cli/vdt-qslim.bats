@@ -717,3 +717,21 @@ END
 	[ "$status" -eq 0 ]
 	[[ "$output" == *" welded=1 dropped=1 "* ]]
 }
+
+@test "vdt-qslim fits smooth vertices to the input unless --no-fit, and -v counts them" {
+	run "$BIN/vdt-qslim" -v -r 0.05 "$SAMPLES/sphere.off" -o "$TMP/fit.off"
+	[ "$status" -eq 0 ]
+	n=$(printf '%s\n' "$output" | tr ' ' '\n' | sed -n 's/^fitted=//p')
+	[ "$n" -gt 0 ]
+	run "$BIN/vdt-qslim" -v --no-fit -r 0.05 "$SAMPLES/sphere.off" -o "$TMP/plain.off"
+	[[ "$output" == *" fitted=0 "* ]]
+	! cmp -s "$TMP/fit.off" "$TMP/plain.off" || false
+	[ "$(off_faces "$TMP/fit.off")" -eq "$(off_faces "$TMP/plain.off")" ]
+	# the same faces, nearer the sphere
+	rf=$("$BIN/vdt-measure" -F kv "$SAMPLES/sphere.off" "$TMP/fit.off" | kv rms_pct)
+	rp=$("$BIN/vdt-measure" -F kv "$SAMPLES/sphere.off" "$TMP/plain.off" | kv rms_pct)
+	awk -v f="$rf" -v p="$rp" 'BEGIN { exit !(f < 0.8 * p) }'
+	# a record replays to the output, so none is fitted with one
+	run "$BIN/vdt-qslim" -v --record -r 0.05 "$SAMPLES/sphere.off" -o "$TMP/rec.vdt"
+	[[ "$output" == *" fitted=0 "* ]]
+}

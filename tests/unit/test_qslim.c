@@ -515,6 +515,7 @@ area_floor_keeps_finely_tessellated_features(void **state)
 	vdt_qslim_defaults(&o);
 	assert_true(o.area_floor == VDT_QSLIM_AREA_FLOOR && o.area_floor > 0);
 	o.target_triangles = 100;
+	o.fit = 0; /* which would lift the flattened spike's vertices a little */
 	assert_int_equal(vdt_qslim(&m, &o, &a, NULL, NULL, &st, NULL), 0);
 	o.area_floor = 0;
 	assert_int_equal(vdt_qslim(&m, &o, &b, NULL, NULL, &st, NULL), 0);

@@ -1,0 +1,394 @@
+/*
+ * fit.c - one least-squares step of the simplified vertices along their
+ * normals towards the input (Hoppe, DeRose, Duchamp, McDonald and
+ * Stuetzle, "Mesh optimization", SIGGRAPH 93, section 4.3).
+ *
+ * Each input vertex is projected on the nearest face around the vertex it
+ * ended in, leaving a residual r along that face's normal and barycentric
+ * weights b_j at its corners. Moving corner j by d_j along its own normal
+ * n_j moves the face there by about s_j d_j, s_j = b_j (n_j . n_face). The
+ * normal equations of the least squares in the d_j are solved by one
+ * Jacobi step with the row sums of their matrix on the diagonal:
+ *
+ *     d_j = sum(s_j r) / sum(s_j (s_0 + s_1 + s_2)),
+ *
+ * over the input vertices on the faces at j, which moves a region whose
+ * residuals are all equal by exactly that residual, and never overshoots
+ * as the plain diagonal (twice as far, on even meshes) does.
+ *
+ * The sums are fixed-point integers, so that the result is the same
+ * however the input is split among threads.
+ */
+#include "fit.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "contract.h"
+#include "err.h"
+
+#define NONE UINT32_MAX
+#define FIT_SHARP_COS 0.70710678118654752 /* cos 45 degrees */
+#define FIT_TURN_COS 0.86602540378443865  /* cos 30 degrees */
+#define FIT_CAP 0.2                       /* of the mean edge length */
+#define FIT_PRIOR 0.5                     /* input vertices' worth of weight on staying put */
+#define FIT_NUM_BITS 32
+#define FIT_DEN_BITS 40
+
+struct fit {
+	float *pos;
+	const uint32_t *tri;
+	const float *src;
+	const uint32_t *final;
+	const uint32_t *idx;    /* slot -> live vertex, or NONE */
+	const uint32_t *vstart; /* live vertex -> its faces in vface */
+	const uint32_t *vface;
+	const double *fn;      /* unit face normals */
+	const double *vn;      /* unit vertex normals */
+	const uint8_t *smooth; /* per live vertex */
+	double num_scale;      /* to fixed point */
+	double diag;           /* of the simplified mesh's box */
+};
+
+struct fit_job {
+	const struct fit *f;
+	size_t lo, hi;
+	int64_t *num, *den; /* per live vertex */
+};
+
+static double
+dot3(const double a[3], const double b[3])
+{
+	return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void
+sub3(const float *a, const float *b, double d[3])
+{
+	for (int k = 0; k < 3; k++)
+		d[k] = (double)a[k] - b[k];
+}
+
+static void
+cross3(const double a[3], const double b[3], double c[3])
+{
+	c[0] = a[1] * b[2] - a[2] * b[1];
+	c[1] = a[2] * b[0] - a[0] * b[2];
+	c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static void
+face_cross(const float *pos, const uint32_t *t, double n[3])
+{
+	double u[3], v[3];
+
+	sub3(pos + 3 * (size_t)t[1], pos + 3 * (size_t)t[0], u);
+	sub3(pos + 3 * (size_t)t[2], pos + 3 * (size_t)t[0], v);
+	cross3(u, v, n);
+}
+
+/*
+ * The barycentric weights of the point of triangle abc nearest p (Ericson,
+ * "Real-Time Collision Detection", 5.1.5), and the squared distance.
+ */
+static double
+closest(const double p[3], const double a[3], const double b[3], const double c[3], double w[3])
+{
+	double ab[3], ac[3], ap[3], bp[3], cp[3], d[3];
+
+	for (int k = 0; k < 3; k++) {
+		ab[k] = b[k] - a[k];
+		ac[k] = c[k] - a[k];
+		ap[k] = p[k] - a[k];
+		bp[k] = p[k] - b[k];
+		cp[k] = p[k] - c[k];
+	}
+	double d1 = dot3(ab, ap), d2 = dot3(ac, ap), d3 = dot3(ab, bp), d4 = dot3(ac, bp);
+	double d5 = dot3(ab, cp), d6 = dot3(ac, cp);
+	double va = d3 * d6 - d5 * d4, vb = d5 * d2 - d1 * d6, vc = d1 * d4 - d3 * d2;
+
+	w[0] = w[1] = w[2] = 0;
+	if (d1 <= 0 && d2 <= 0) {
+		w[0] = 1;
+	} else if (d3 >= 0 && d4 <= d3) {
+		w[1] = 1;
+	} else if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+		w[1] = d1 / (d1 - d3);
+		w[0] = 1 - w[1];
+	} else if (d6 >= 0 && d5 <= d6) {
+		w[2] = 1;
+	} else if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+		w[2] = d2 / (d2 - d6);
+		w[0] = 1 - w[2];
+	} else if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
+		w[2] = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+		w[1] = 1 - w[2];
+	} else {
+		double s = va + vb + vc;
+		if (!(s > 0)) /* degenerate: its first corner */
+			s = INFINITY;
+		w[1] = vb / s;
+		w[2] = vc / s;
+		w[0] = 1 - w[1] - w[2];
+	}
+	for (int k = 0; k < 3; k++)
+		d[k] = p[k] - (w[0] * a[k] + w[1] * b[k] + w[2] * c[k]);
+	return dot3(d, d);
+}
+
+/* The sums of the job's input vertices (see above). */
+static void *
+fit_run(void *arg)
+{
+	struct fit_job *j = arg;
+	const struct fit *f = j->f;
+
+	for (size_t i = j->lo; i < j->hi; i++) {
+		uint32_t v = f->idx[f->final[i]], bf = NONE;
+		double p[3], best = INFINITY, bw[3] = {0, 0, 0};
+		if (v == NONE)
+			continue;
+		for (int k = 0; k < 3; k++)
+			p[k] = f->src[3 * i + k];
+		for (uint32_t s = f->vstart[v]; s < f->vstart[v + 1]; s++) {
+			const uint32_t *t = f->tri + 3 * (size_t)f->vface[s];
+			double c[3][3], w[3];
+			for (int m = 0; m < 3; m++)
+				for (int k = 0; k < 3; k++)
+					c[m][k] = f->pos[3 * (size_t)t[m] + k];
+			double d = closest(p, c[0], c[1], c[2], w);
+			if (d < best) {
+				best = d;
+				bf = f->vface[s];
+				memcpy(bw, w, sizeof(bw));
+			}
+		}
+		if (bf == NONE)
+			continue;
+		const uint32_t *t = f->tri + 3 * (size_t)bf;
+		const double *n = f->fn + 3 * (size_t)bf;
+		double q[3], r, s[3], st = 0;
+		for (int k = 0; k < 3; k++)
+			q[k] = p[k] - (bw[0] * f->pos[3 * (size_t)t[0] + k] +
+			               bw[1] * f->pos[3 * (size_t)t[1] + k] +
+			               bw[2] * f->pos[3 * (size_t)t[2] + k]);
+		r = dot3(q, n);
+		if (!(fabs(r) <= f->diag)) /* (no use, and the sums must not overflow) */
+			continue;
+		for (int m = 0; m < 3; m++) {
+			s[m] = bw[m] * dot3(f->vn + 3 * (size_t)f->idx[t[m]], n);
+			st += s[m];
+		}
+		for (int m = 0; m < 3; m++) {
+			uint32_t u = f->idx[t[m]];
+			if (!f->smooth[u])
+				continue;
+			j->num[u] += llrint(s[m] * r * f->num_scale);
+			j->den[u] += llrint(s[m] * st * (double)(1ll << FIT_DEN_BITS));
+		}
+	}
+	return NULL;
+}
+
+/* Whether v's faces make one closed disk: each neighbour is the next
+ * corner of one face and the previous corner of one other. */
+static int
+closed_fan(const uint32_t *tri, const uint32_t *vface, uint32_t lo, uint32_t hi, uint32_t slot)
+{
+	for (uint32_t a = lo; a < hi; a++) {
+		const uint32_t *t = tri + 3 * (size_t)vface[a];
+		int k = t[0] == slot ? 0 : t[1] == slot ? 1 : 2;
+		uint32_t next = t[(k + 1) % 3], found = 0;
+		for (uint32_t b = lo; b < hi; b++) {
+			const uint32_t *u = tri + 3 * (size_t)vface[b];
+			int l = u[0] == slot ? 0 : u[1] == slot ? 1 : 2;
+			found += u[(l + 2) % 3] == next;
+		}
+		if (found != 1)
+			return 0;
+	}
+	return hi > lo;
+}
+
+int
+vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triangle_count,
+               const float *source, size_t source_count, const uint32_t *final,
+               const uint8_t *fixed, int threads, struct vdt_fit_stats *stats)
+{
+	uint32_t *idx = NULL, *vstart = NULL, *vface = NULL, *slot = NULL;
+	double *fn = NULL, *vn = NULL, *delta = NULL, *cap = NULL;
+	uint8_t *smooth = NULL, *merged = NULL;
+	float *old = NULL;
+	struct fit_job job[VDT_CONTRACT_MAX_THREADS];
+	int64_t *sums = NULL;
+	size_t nv = 0, nt = triangle_count;
+	int t = vdt_contract_threads(threads), rc = VDT_ENOMEM;
+
+	memset(stats, 0, sizeof(*stats));
+	if (nt == 0 || source_count == 0)
+		return 0;
+	if ((idx = malloc(slot_count * sizeof(*idx))) == NULL)
+		goto out;
+	for (size_t s = 0; s < slot_count; s++)
+		idx[s] = NONE;
+	for (size_t i = 0; i < 3 * nt; i++)
+		if (idx[tri[i]] == NONE)
+			idx[tri[i]] = (uint32_t)nv++;
+	vstart = calloc(nv + 2, sizeof(*vstart));
+	vface = malloc(3 * nt * sizeof(*vface));
+	slot = malloc(nv * sizeof(*slot));
+	fn = malloc(3 * nt * sizeof(*fn));
+	vn = calloc(3 * nv, sizeof(*vn));
+	cap = calloc(nv, sizeof(*cap));
+	delta = calloc(nv, sizeof(*delta));
+	smooth = calloc(nv, 1);
+	old = malloc(3 * nv * sizeof(*old));
+	sums = calloc(2 * (size_t)t * nv, sizeof(*sums));
+	merged = calloc(nv, 1);
+	if (!vstart || !vface || !slot || !fn || !vn || !cap || !delta || !smooth || !old ||
+	    !sums || !merged)
+		goto out;
+	/* A vertex that replaced no other lies on the input: it stays. */
+	for (size_t i = 0; i < source_count; i++)
+		if (final[i] != i && idx[final[i]] != NONE)
+			merged[idx[final[i]]] = 1;
+	/* The faces of each live vertex, and the normals. */
+	for (size_t i = 0; i < 3 * nt; i++)
+		vstart[idx[tri[i]] + 2]++;
+	for (size_t v = 0; v < nv; v++)
+		vstart[v + 2] += vstart[v + 1];
+	for (size_t f = 0; f < nt; f++)
+		for (int k = 0; k < 3; k++)
+			vface[vstart[idx[tri[3 * f + k]] + 1]++] = (uint32_t)f;
+	for (size_t i = 0; i < 3 * nt; i++)
+		slot[idx[tri[i]]] = tri[i];
+	double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+	for (size_t v = 0; v < nv; v++)
+		for (int k = 0; k < 3; k++) {
+			double x = pos[3 * (size_t)slot[v] + k];
+			lo[k] = fmin(lo[k], x);
+			hi[k] = fmax(hi[k], x);
+		}
+	double diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+	                   (hi[2] - lo[2]) * (hi[2] - lo[2]));
+	if (!(diag > 0) || !(diag < INFINITY)) {
+		rc = 0;
+		goto out;
+	}
+	for (size_t f = 0; f < nt; f++) {
+		double *n = fn + 3 * f, l;
+		face_cross(pos, tri + 3 * f, n);
+		for (int k = 0; k < 3; k++) {
+			double *m = vn + 3 * (size_t)idx[tri[3 * f + k]];
+			m[0] += n[0];
+			m[1] += n[1];
+			m[2] += n[2];
+		}
+		l = sqrt(dot3(n, n));
+		for (int k = 0; k < 3; k++)
+			n[k] = l > 0 ? n[k] / l : 0;
+	}
+	for (size_t v = 0; v < nv; v++) {
+		double *n = vn + 3 * v, l = sqrt(dot3(n, n)), len = 0;
+		uint32_t s = slot[v];
+		int ok = l > 0 && merged[v] && !(fixed && fixed[s]) &&
+		         closed_fan(tri, vface, vstart[v], vstart[v + 1], s);
+		for (int k = 0; k < 3; k++)
+			n[k] = l > 0 ? n[k] / l : 0;
+		for (uint32_t a = vstart[v]; ok && a < vstart[v + 1]; a++) {
+			const uint32_t *tf = tri + 3 * (size_t)vface[a];
+			ok = dot3(fn + 3 * (size_t)vface[a], n) > FIT_SHARP_COS;
+			for (int k = 0; k < 3; k++)
+				if (tf[k] != s) {
+					double e[3];
+					sub3(pos + 3 * (size_t)tf[k], pos + 3 * (size_t)s, e);
+					len += sqrt(dot3(e, e));
+				}
+		}
+		smooth[v] = (uint8_t)ok;
+		cap[v] = ok ? FIT_CAP * len / (2.0 * (vstart[v + 1] - vstart[v])) : 0;
+	}
+
+	struct fit f = {.pos = pos,
+	                .tri = tri,
+	                .src = source,
+	                .final = final,
+	                .idx = idx,
+	                .vstart = vstart,
+	                .vface = vface,
+	                .fn = fn,
+	                .vn = vn,
+	                .smooth = smooth,
+	                .num_scale = (double)(1ll << FIT_NUM_BITS) / diag,
+	                .diag = diag};
+	if ((size_t)t > source_count / 4096 + 1)
+		t = (int)(source_count / 4096 + 1);
+	for (int k = 0; k < t; k++)
+		job[k] = (struct fit_job){&f, source_count * (size_t)k / (size_t)t,
+		                          source_count * (size_t)(k + 1) / (size_t)t,
+		                          sums + 2 * (size_t)k * nv,
+		                          sums + (2 * (size_t)k + 1) * nv};
+	vdt_run_jobs(fit_run, job, sizeof(job[0]), t);
+	for (int k = 1; k < t; k++)
+		for (size_t v = 0; v < nv; v++) {
+			job[0].num[v] += job[k].num[v];
+			job[0].den[v] += job[k].den[v];
+		}
+
+	/* The moves, then undo those that turn a face too far, until none
+	 * does (each round undoes at least one). */
+	for (size_t v = 0; v < nv; v++) {
+		double num = (double)job[0].num[v] / f.num_scale;
+		double den = (double)job[0].den[v] / (double)(1ll << FIT_DEN_BITS) + FIT_PRIOR;
+		double d = smooth[v] && den > 0 ? num / den : 0;
+		delta[v] = d > cap[v] ? cap[v] : d < -cap[v] ? -cap[v] : d;
+		for (int k = 0; k < 3; k++) {
+			old[3 * v + k] = pos[3 * (size_t)slot[v] + k];
+			if (delta[v] != 0)
+				pos[3 * (size_t)slot[v] + k] =
+				        (float)(old[3 * v + k] + delta[v] * vn[3 * v + k]);
+		}
+	}
+	for (int again = 1; again;) {
+		again = 0;
+		for (size_t fi = 0; fi < nt; fi++) {
+			const uint32_t *tf = tri + 3 * fi;
+			double n[3];
+			if (delta[idx[tf[0]]] == 0 && delta[idx[tf[1]]] == 0 &&
+			    delta[idx[tf[2]]] == 0)
+				continue;
+			face_cross(pos, tf, n);
+			double l = sqrt(dot3(n, n));
+			if (l > 0 && dot3(n, fn + 3 * fi) > FIT_TURN_COS * l)
+				continue;
+			for (int k = 0; k < 3; k++) {
+				uint32_t v = idx[tf[k]];
+				if (delta[v] == 0)
+					continue;
+				delta[v] = 0;
+				memcpy(pos + 3 * (size_t)tf[k], old + 3 * (size_t)v,
+				       3 * sizeof(float));
+				stats->reverted++;
+				again = 1;
+			}
+		}
+	}
+	for (size_t v = 0; v < nv; v++)
+		stats->moved += delta[v] != 0;
+	rc = 0;
+out:
+	free(idx);
+	free(vstart);
+	free(vface);
+	free(slot);
+	free(fn);
+	free(vn);
+	free(cap);
+	free(delta);
+	free(smooth);
+	free(merged);
+	free(old);
+	free(sums);
+	return rc;
+}
