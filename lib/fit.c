@@ -33,6 +33,9 @@
 #define FIT_TURN_COS 0.86602540378443865  /* cos 30 degrees */
 #define FIT_CAP 0.2                       /* of the mean edge length */
 #define FIT_PRIOR 0.5                     /* input vertices' worth of weight on staying put */
+/* Input vertices per thread, at least: a thread costs more memory than a
+ * small mesh's fit saves time. */
+#define FIT_JOB_MIN 32768
 #define FIT_NUM_BITS 32
 #define FIT_DEN_BITS 40
 
@@ -322,8 +325,8 @@ vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triang
 	                .smooth = smooth,
 	                .num_scale = (double)(1ll << FIT_NUM_BITS) / diag,
 	                .diag = diag};
-	if ((size_t)t > source_count / 4096 + 1)
-		t = (int)(source_count / 4096 + 1);
+	if ((size_t)t > source_count / FIT_JOB_MIN + 1)
+		t = (int)(source_count / FIT_JOB_MIN + 1);
 	for (int k = 0; k < t; k++)
 		job[k] = (struct fit_job){&f, source_count * (size_t)k / (size_t)t,
 		                          source_count * (size_t)(k + 1) / (size_t)t,

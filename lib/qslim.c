@@ -2096,6 +2096,8 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	free(seam);
 	if (rc != 0)
 		goto fail;
+	free(c.q); /* (the output needs no quadric: room for the fit) */
+	c.q = NULL;
 	if (fit) {
 		struct vdt_fit_stats fs;
 		for (size_t v = 0; v < nw; v++)

@@ -59,7 +59,7 @@ fit_moves_a_sphere_out_to_its_input(void **state)
 	struct vdt_qslim_stats st;
 
 	(void)state;
-	shape_icosphere(&m, 5); /* 10242 vertices: two threads' worth */
+	shape_icosphere(&m, 6); /* 40962 vertices: two threads' worth */
 	vdt_qslim_defaults(&o);
 	o.target_ratio = 0.02;
 	o.threads = 2;
