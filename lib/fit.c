@@ -21,6 +21,7 @@
  */
 #include "fit.h"
 
+#include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -36,18 +37,29 @@
 /* Input vertices per thread, at least: a thread costs more memory than a
  * small mesh's fit saves time. */
 #define FIT_JOB_MIN 32768
+#define FIT_FAN_MAX 64 /* faces of a fan listed on the stack */
 #define FIT_NUM_BITS 32
 #define FIT_DEN_BITS 40
 
+/* A face as the projections read it: corner a, edges e0 = b - a and
+ * e1 = c - a, unit normal n (about the box centre, in floats), the
+ * edges' dot products and the inverse of their Gram determinant (0 for a
+ * degenerate face). One cache line. */
+struct fface {
+	float a[3], e0[3], e1[3], n[3];
+	float d00, d01, d11, inv;
+};
+
 struct fit {
 	float *pos;
+	const struct fface *ff;
+	double centre[3];
 	const uint32_t *tri;
 	const float *src;
 	const uint32_t *final;
 	const uint32_t *idx;    /* slot -> live vertex, or NONE */
 	const uint32_t *vstart; /* live vertex -> its faces in vface */
 	const uint32_t *vface;
-	const double *fn;      /* unit face normals */
 	const double *vn;      /* unit vertex normals */
 	const uint8_t *smooth; /* per live vertex */
 	double num_scale;      /* to fixed point */
@@ -140,6 +152,25 @@ closest(const double p[3], const double a[3], const double b[3], const double c[
 	return dot3(d, d);
 }
 
+/* Face `face` instead of *bf if p is nearer to it than *best (squared). */
+static void
+nearer(const struct fit *f, const double p[3], uint32_t face, double *best, uint32_t *bf,
+       double bw[3])
+{
+	const uint32_t *t = f->tri + 3 * (size_t)face;
+	double c[3][3], w[3];
+
+	for (int m = 0; m < 3; m++)
+		for (int k = 0; k < 3; k++)
+			c[m][k] = f->pos[3 * (size_t)t[m] + k];
+	double d = closest(p, c[0], c[1], c[2], w);
+	if (d < *best) {
+		*best = d;
+		*bf = face;
+		memcpy(bw, w, sizeof(w));
+	}
+}
+
 /* The sums of the job's input vertices (see above). */
 static void *
 fit_run(void *arg)
@@ -150,28 +181,49 @@ fit_run(void *arg)
 	for (size_t i = j->lo; i < j->hi; i++) {
 		uint32_t v = f->idx[f->final[i]], bf = NONE;
 		double p[3], best = INFINITY, bw[3] = {0, 0, 0};
+		float pc[3];
 		if (v == NONE)
 			continue;
-		for (int k = 0; k < 3; k++)
+		for (int k = 0; k < 3; k++) {
 			p[k] = f->src[3 * i + k];
-		for (uint32_t s = f->vstart[v]; s < f->vstart[v + 1]; s++) {
-			const uint32_t *t = f->tri + 3 * (size_t)f->vface[s];
-			double c[3][3], w[3];
-			for (int m = 0; m < 3; m++)
-				for (int k = 0; k < 3; k++)
-					c[m][k] = f->pos[3 * (size_t)t[m] + k];
-			double d = closest(p, c[0], c[1], c[2], w);
-			if (d < best) {
-				best = d;
+			pc[k] = (float)(p[k] - f->centre[k]);
+		}
+		/* The nearest point of the fan: in a face it projects into, at
+		 * the distance to the face's plane; the exact distance to any
+		 * other face is no less than that to its plane, and is worked
+		 * out only when that is less than the best so far. */
+		uint32_t lo = f->vstart[v], hi = f->vstart[v + 1], out[FIT_FAN_MAX], nout = 0;
+		float hout[FIT_FAN_MAX];
+		for (uint32_t s = lo; s < hi && hi - lo <= FIT_FAN_MAX; s++) {
+			const struct fface *g = f->ff + f->vface[s];
+			float v0[3] = {pc[0] - g->a[0], pc[1] - g->a[1], pc[2] - g->a[2]};
+			float d20 = v0[0] * g->e0[0] + v0[1] * g->e0[1] + v0[2] * g->e0[2];
+			float d21 = v0[0] * g->e1[0] + v0[1] * g->e1[1] + v0[2] * g->e1[2];
+			float b1 = (g->d11 * d20 - g->d01 * d21) * g->inv;
+			float b2 = (g->d00 * d21 - g->d01 * d20) * g->inv;
+			float h = v0[0] * g->n[0] + v0[1] * g->n[1] + v0[2] * g->n[2];
+			if (!(g->inv > 0 && b1 >= 0 && b2 >= 0 && b1 + b2 <= 1)) {
+				hout[nout] = h * h;
+				out[nout++] = f->vface[s];
+			} else if (h * h < best) {
+				best = h * h;
 				bf = f->vface[s];
-				memcpy(bw, w, sizeof(bw));
+				bw[0] = 1 - b1 - b2;
+				bw[1] = b1;
+				bw[2] = b2;
 			}
 		}
+		for (uint32_t k = 0; k < nout; k++)
+			if (hout[k] < best)
+				nearer(f, p, out[k], &best, &bf, bw);
+		for (uint32_t s = lo; s < hi && hi - lo > FIT_FAN_MAX;
+		     s++) /* (a fan too big to list) */
+			nearer(f, p, f->vface[s], &best, &bf, bw);
 		if (bf == NONE)
 			continue;
 		const uint32_t *t = f->tri + 3 * (size_t)bf;
-		const double *n = f->fn + 3 * (size_t)bf;
-		double q[3], r, s[3], st = 0;
+		const float *nf = f->ff[bf].n;
+		double n[3] = {nf[0], nf[1], nf[2]}, q[3], r, s[3], st = 0;
 		for (int k = 0; k < 3; k++)
 			q[k] = p[k] - (bw[0] * f->pos[3 * (size_t)t[0] + k] +
 			               bw[1] * f->pos[3 * (size_t)t[1] + k] +
@@ -214,44 +266,81 @@ closed_fan(const uint32_t *tri, const uint32_t *vface, uint32_t lo, uint32_t hi,
 	return hi > lo;
 }
 
+/* A bump allocator over one block. */
+struct arena {
+	char *at;
+	size_t left;
+};
+
+static void *
+take(struct arena *a, size_t n, size_t size)
+{
+	size_t bytes = (n * size + 15) & ~(size_t)15;
+	void *p = a->at;
+
+	assert(bytes <= a->left);
+	a->at += bytes;
+	a->left -= bytes;
+	return p;
+}
+
 int
 vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triangle_count,
                const float *source, size_t source_count, const uint32_t *final,
-               const uint8_t *fixed, int threads, struct vdt_fit_stats *stats)
+               const uint8_t *fixed, int threads, void *scratch, size_t scratch_bytes,
+               struct vdt_fit_stats *stats)
 {
-	uint32_t *idx = NULL, *vstart = NULL, *vface = NULL, *slot = NULL;
-	double *fn = NULL, *vn = NULL, *delta = NULL, *cap = NULL;
-	uint8_t *smooth = NULL, *merged = NULL;
-	float *old = NULL;
+	uint32_t *idx, *vstart, *vface, *slot;
+	double *vn, *delta, *cap;
+	struct fface *ff;
+	uint8_t *smooth, *merged;
+	float *old;
 	struct fit_job job[VDT_CONTRACT_MAX_THREADS];
-	int64_t *sums = NULL;
+	int64_t *sums;
 	size_t nv = 0, nt = triangle_count;
-	int t = vdt_contract_threads(threads), rc = VDT_ENOMEM;
+	int t = vdt_contract_threads(threads);
+	void *own = NULL;
+	struct arena a;
 
 	memset(stats, 0, sizeof(*stats));
 	if (nt == 0 || source_count == 0)
 		return 0;
-	if ((idx = malloc(slot_count * sizeof(*idx))) == NULL)
-		goto out;
+	if ((size_t)t > source_count / FIT_JOB_MIN + 1)
+		t = (int)(source_count / FIT_JOB_MIN + 1);
+	/* Every array in one block: the scratch if it holds them (memory
+	 * already touched costs no page faults), else one of our own. The
+	 * live vertices are at most the slots the faces use. */
+	size_t most = 3 * nt < slot_count ? 3 * nt : slot_count;
+	size_t need = 16 * 13 + slot_count * 4 + (most + 2) * 4 + 3 * nt * 4 + most * 4 +
+	              nt * sizeof(struct fface) + most * (3 * 8 + 8 + 8 + 1 + 1 + 3 * 4) +
+	              2 * (size_t)t * most * 8;
+	if (scratch == NULL || scratch_bytes < need) {
+		if ((own = malloc(need)) == NULL)
+			return VDT_ENOMEM;
+		scratch = own;
+	}
+	a = (struct arena){scratch, need};
+	idx = take(&a, slot_count, sizeof(*idx));
 	for (size_t s = 0; s < slot_count; s++)
 		idx[s] = NONE;
 	for (size_t i = 0; i < 3 * nt; i++)
 		if (idx[tri[i]] == NONE)
 			idx[tri[i]] = (uint32_t)nv++;
-	vstart = calloc(nv + 2, sizeof(*vstart));
-	vface = malloc(3 * nt * sizeof(*vface));
-	slot = malloc(nv * sizeof(*slot));
-	fn = malloc(3 * nt * sizeof(*fn));
-	vn = calloc(3 * nv, sizeof(*vn));
-	cap = calloc(nv, sizeof(*cap));
-	delta = calloc(nv, sizeof(*delta));
-	smooth = calloc(nv, 1);
-	old = malloc(3 * nv * sizeof(*old));
-	sums = calloc(2 * (size_t)t * nv, sizeof(*sums));
-	merged = calloc(nv, 1);
-	if (!vstart || !vface || !slot || !fn || !vn || !cap || !delta || !smooth || !old ||
-	    !sums || !merged)
-		goto out;
+	vstart = take(&a, nv + 2, sizeof(*vstart));
+	vface = take(&a, 3 * nt, sizeof(*vface));
+	slot = take(&a, nv, sizeof(*slot));
+	ff = take(&a, nt, sizeof(*ff));
+	vn = take(&a, 3 * nv, sizeof(*vn));
+	cap = take(&a, nv, sizeof(*cap));
+	delta = take(&a, nv, sizeof(*delta));
+	smooth = take(&a, nv, 1);
+	merged = take(&a, nv, 1);
+	old = take(&a, 3 * nv, sizeof(*old));
+	sums = take(&a, 2 * (size_t)t * nv, sizeof(*sums));
+	memset(vstart, 0, (nv + 2) * sizeof(*vstart));
+	memset(vn, 0, 3 * nv * sizeof(*vn));
+	memset(merged, 0, nv);
+	memset(sums, 0, 2 * (size_t)t * nv * sizeof(*sums));
 	/* A vertex that replaced no other lies on the input: it stays. */
 	for (size_t i = 0; i < source_count; i++)
 		if (final[i] != i && idx[final[i]] != NONE)
@@ -276,21 +365,39 @@ vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triang
 	double diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
 	                   (hi[2] - lo[2]) * (hi[2] - lo[2]));
 	if (!(diag > 0) || !(diag < INFINITY)) {
-		rc = 0;
-		goto out;
+		free(own);
+		return 0;
 	}
-	for (size_t f = 0; f < nt; f++) {
-		double *n = fn + 3 * f, l;
-		face_cross(pos, tri + 3 * f, n);
+	/* The faces as the projections read them, and the vertex normals
+	 * (the sums of the faces' area vectors). */
+	for (size_t fi = 0; fi < nt; fi++) {
+		const uint32_t *tf = tri + 3 * fi;
+		struct fface *g = ff + fi;
+		double a[3], e0[3], e1[3], n[3], l;
+		face_cross(pos, tf, n);
 		for (int k = 0; k < 3; k++) {
-			double *m = vn + 3 * (size_t)idx[tri[3 * f + k]];
+			double *m = vn + 3 * (size_t)idx[tf[k]];
 			m[0] += n[0];
 			m[1] += n[1];
 			m[2] += n[2];
 		}
 		l = sqrt(dot3(n, n));
-		for (int k = 0; k < 3; k++)
-			n[k] = l > 0 ? n[k] / l : 0;
+		for (int k = 0; k < 3; k++) {
+			double c = 0.5 * (lo[k] + hi[k]);
+			a[k] = pos[3 * (size_t)tf[0] + k] - c;
+			e0[k] = (double)pos[3 * (size_t)tf[1] + k] - pos[3 * (size_t)tf[0] + k];
+			e1[k] = (double)pos[3 * (size_t)tf[2] + k] - pos[3 * (size_t)tf[0] + k];
+			g->a[k] = (float)a[k];
+			g->e0[k] = (float)e0[k];
+			g->e1[k] = (float)e1[k];
+			g->n[k] = l > 0 ? (float)(n[k] / l) : 0;
+		}
+		double d00 = dot3(e0, e0), d01 = dot3(e0, e1), d11 = dot3(e1, e1);
+		double det = d00 * d11 - d01 * d01;
+		g->d00 = (float)d00;
+		g->d01 = (float)d01;
+		g->d11 = (float)d11;
+		g->inv = det > 1e-12 * d00 * d11 ? (float)(1 / det) : 0;
 	}
 	for (size_t v = 0; v < nv; v++) {
 		double *n = vn + 3 * v, l = sqrt(dot3(n, n)), len = 0;
@@ -301,7 +408,8 @@ vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triang
 			n[k] = l > 0 ? n[k] / l : 0;
 		for (uint32_t a = vstart[v]; ok && a < vstart[v + 1]; a++) {
 			const uint32_t *tf = tri + 3 * (size_t)vface[a];
-			ok = dot3(fn + 3 * (size_t)vface[a], n) > FIT_SHARP_COS;
+			const float *m = ff[vface[a]].n;
+			ok = m[0] * n[0] + m[1] * n[1] + m[2] * n[2] > FIT_SHARP_COS;
 			for (int k = 0; k < 3; k++)
 				if (tf[k] != s) {
 					double e[3];
@@ -313,20 +421,20 @@ vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triang
 		cap[v] = ok ? FIT_CAP * len / (2.0 * (vstart[v + 1] - vstart[v])) : 0;
 	}
 
-	struct fit f = {.pos = pos,
-	                .tri = tri,
-	                .src = source,
-	                .final = final,
-	                .idx = idx,
-	                .vstart = vstart,
-	                .vface = vface,
-	                .fn = fn,
-	                .vn = vn,
-	                .smooth = smooth,
-	                .num_scale = (double)(1ll << FIT_NUM_BITS) / diag,
-	                .diag = diag};
-	if ((size_t)t > source_count / FIT_JOB_MIN + 1)
-		t = (int)(source_count / FIT_JOB_MIN + 1);
+	struct fit f = {
+	        .pos = pos,
+	        .ff = ff,
+	        .centre = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])},
+	        .tri = tri,
+	        .src = source,
+	        .final = final,
+	        .idx = idx,
+	        .vstart = vstart,
+	        .vface = vface,
+	        .vn = vn,
+	        .smooth = smooth,
+	        .num_scale = (double)(1ll << FIT_NUM_BITS) / diag,
+	        .diag = diag};
 	for (int k = 0; k < t; k++)
 		job[k] = (struct fit_job){&f, source_count * (size_t)k / (size_t)t,
 		                          source_count * (size_t)(k + 1) / (size_t)t,
@@ -363,7 +471,8 @@ vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triang
 				continue;
 			face_cross(pos, tf, n);
 			double l = sqrt(dot3(n, n));
-			if (l > 0 && dot3(n, fn + 3 * fi) > FIT_TURN_COS * l)
+			const float *m = ff[fi].n;
+			if (l > 0 && n[0] * m[0] + n[1] * m[1] + n[2] * m[2] > FIT_TURN_COS * l)
 				continue;
 			for (int k = 0; k < 3; k++) {
 				uint32_t v = idx[tf[k]];
@@ -379,19 +488,6 @@ vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triang
 	}
 	for (size_t v = 0; v < nv; v++)
 		stats->moved += delta[v] != 0;
-	rc = 0;
-out:
-	free(idx);
-	free(vstart);
-	free(vface);
-	free(slot);
-	free(fn);
-	free(vn);
-	free(cap);
-	free(delta);
-	free(smooth);
-	free(merged);
-	free(old);
-	free(sums);
-	return rc;
+	free(own);
+	return 0;
 }

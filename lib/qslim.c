@@ -2096,19 +2096,20 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	free(seam);
 	if (rc != 0)
 		goto fail;
-	free(c.q); /* (the output needs no quadric: room for the fit) */
-	c.q = NULL;
 	if (fit) {
 		struct vdt_fit_stats fs;
 		for (size_t v = 0; v < nw; v++)
 			locked[v] |= border[v] & 1; /* open edges keep their planes' place */
+		/* (the quadrics are done with: the fit's scratch) */
 		if (vdt_fit_normal(r.positions, r.vertex_count, r.triangles, r.triangle_count, src, nw,
-		                   r.final, locked, o->threads, &fs) != 0)
+		                   r.final, locked, o->threads, c.q, nw * sizeof(*c.q), &fs) != 0)
 			goto nomem;
 		stats->fitted = fs.moved;
 		free(src);
 		src = NULL;
 	}
+	free(c.q); /* (the output needs no quadric) */
+	c.q = NULL;
 	stats->passes = r.passes;
 	stats->contractions = r.contractions;
 	stats->rejected = r.rejected;

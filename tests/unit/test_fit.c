@@ -195,7 +195,8 @@ fit_undoes_a_move_that_turns_a_face(void **state)
 		float h = sliver ? 0.02f : 0.5f;
 		float pos[24] = {0, 0, 0, 1, h, 0, -1, h, 0, 0, -1, 0}, was[24];
 		memcpy(was, pos, sizeof(pos));
-		assert_int_equal(vdt_fit_normal(pos, 8, tri, 3, src, 8, final, NULL, 2, &st), 0);
+		assert_int_equal(
+		        vdt_fit_normal(pos, 8, tri, 3, src, 8, final, NULL, 2, NULL, 0, &st), 0);
 		assert_true(pos[0] == 0 && pos[1] == 0);
 		assert_memory_equal(pos + 3, was + 3, 21 * sizeof(float));
 		if (sliver) {
@@ -212,7 +213,7 @@ fit_undoes_a_move_that_turns_a_face(void **state)
 	/* Nothing merged into slot 0: it lies on the input, and stays. */
 	float pos[24] = {0, 0, 0, 1, 0.5f, 0, -1, 0.5f, 0, 0, -1, 0};
 	final[4] = 4;
-	assert_int_equal(vdt_fit_normal(pos, 8, tri, 3, src, 8, final, NULL, 1, &st), 0);
+	assert_int_equal(vdt_fit_normal(pos, 8, tri, 3, src, 8, final, NULL, 1, NULL, 0, &st), 0);
 	assert_int_equal(st.moved, 0);
 	assert_true(pos[2] == 0);
 }
