@@ -3,8 +3,9 @@
  * normals towards the input (Hoppe, DeRose, Duchamp, McDonald and
  * Stuetzle, "Mesh optimization", SIGGRAPH 93, section 4.3).
  *
- * Each input vertex is projected on the nearest face around the vertex it
- * ended in, leaving a residual r along that face's normal and barycentric
+ * Each vertex merged away, where it was when merged (where the input had
+ * it, unless it had taken others in before), is projected on the nearest
+ * face around the vertex it ended in, leaving a residual r along that face's normal and barycentric
  * weights b_j at its corners. Moving corner j by d_j along its own normal
  * n_j moves the face there by about s_j d_j, s_j = b_j (n_j . n_face). The
  * normal equations of the least squares in the d_j are solved by one
@@ -55,7 +56,6 @@ struct fit {
 	const struct fface *ff;
 	double centre[3];
 	const uint32_t *tri;
-	const float *src;
 	const uint32_t *final;
 	const uint32_t *idx;    /* slot -> live vertex, or NONE */
 	const uint32_t *vstart; /* live vertex -> its faces in vface */
@@ -182,10 +182,10 @@ fit_run(void *arg)
 		uint32_t v = f->idx[f->final[i]], bf = NONE;
 		double p[3], best = INFINITY, bw[3] = {0, 0, 0};
 		float pc[3];
-		if (v == NONE)
+		if (v == NONE || f->final[i] == i) /* (a live vertex: no sample) */
 			continue;
 		for (int k = 0; k < 3; k++) {
-			p[k] = f->src[3 * i + k];
+			p[k] = f->pos[3 * i + k];
 			pc[k] = (float)(p[k] - f->centre[k]);
 		}
 		/* The nearest point of the fan: in a face it projects into, at
@@ -286,9 +286,8 @@ take(struct arena *a, size_t n, size_t size)
 
 int
 vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triangle_count,
-               const float *source, size_t source_count, const uint32_t *final,
-               const uint8_t *fixed, int threads, void *scratch, size_t scratch_bytes,
-               struct vdt_fit_stats *stats)
+               const uint32_t *final, const uint8_t *fixed, int threads, void *scratch,
+               size_t scratch_bytes, struct vdt_fit_stats *stats)
 {
 	uint32_t *idx, *vstart, *vface, *slot;
 	double *vn, *delta, *cap;
@@ -303,10 +302,10 @@ vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triang
 	struct arena a;
 
 	memset(stats, 0, sizeof(*stats));
-	if (nt == 0 || source_count == 0)
+	if (nt == 0)
 		return 0;
-	if ((size_t)t > source_count / FIT_JOB_MIN + 1)
-		t = (int)(source_count / FIT_JOB_MIN + 1);
+	if ((size_t)t > slot_count / FIT_JOB_MIN + 1)
+		t = (int)(slot_count / FIT_JOB_MIN + 1);
 	/* Every array in one block: the scratch if it holds them (memory
 	 * already touched costs no page faults), else one of our own. The
 	 * live vertices are at most the slots the faces use. */
@@ -342,7 +341,7 @@ vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triang
 	memset(merged, 0, nv);
 	memset(sums, 0, 2 * (size_t)t * nv * sizeof(*sums));
 	/* A vertex that replaced no other lies on the input: it stays. */
-	for (size_t i = 0; i < source_count; i++)
+	for (size_t i = 0; i < slot_count; i++)
 		if (final[i] != i && idx[final[i]] != NONE)
 			merged[idx[final[i]]] = 1;
 	/* The faces of each live vertex, and the normals. */
@@ -426,7 +425,6 @@ vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triang
 	        .ff = ff,
 	        .centre = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])},
 	        .tri = tri,
-	        .src = source,
 	        .final = final,
 	        .idx = idx,
 	        .vstart = vstart,
@@ -436,8 +434,8 @@ vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triang
 	        .num_scale = (double)(1ll << FIT_NUM_BITS) / diag,
 	        .diag = diag};
 	for (int k = 0; k < t; k++)
-		job[k] = (struct fit_job){&f, source_count * (size_t)k / (size_t)t,
-		                          source_count * (size_t)(k + 1) / (size_t)t,
+		job[k] = (struct fit_job){&f, slot_count * (size_t)k / (size_t)t,
+		                          slot_count * (size_t)(k + 1) / (size_t)t,
 		                          sums + 2 * (size_t)k * nv,
 		                          sums + (2 * (size_t)k + 1) * nv};
 	vdt_run_jobs(fit_run, job, sizeof(job[0]), t);

@@ -1852,7 +1852,6 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	uint32_t *fsrc = NULL, *vto = NULL, *forder = NULL;
 	int renumbered = 0;
 	uint64_t *dups = NULL; /* corner << 32 | input vertex, by corner */
-	float *src = NULL;     /* the welded positions, for the fit */
 	size_t nw, nvp = 0, ndups = 0;
 	int rc = VDT_ENOMEM;
 
@@ -2083,15 +2082,8 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	ops.concurrent = 1;
 	ops.vertex_data = c.at ? c.at->qc : c.q;
 	ops.vertex_stride = sizeof(*c.q);
-	/* The fit (below) reads where the vertices were, which the engine
-	 * overwrites; a record must replay to the output, so none with one. */
+	/* A record must replay to the output: no fit with one. */
 	int fit = o->fit && records == NULL;
-	if (fit && (src = vdt_malloc_huge(3 * nw * sizeof(*src) + 1)) == NULL) {
-		free(seam);
-		goto nomem;
-	}
-	if (fit)
-		memcpy(src, w.positions, 3 * nw * sizeof(*src));
 	rc = vdt_contract_run_in_place(&w, &ops, &co, &r, err);
 	free(seam);
 	if (rc != 0)
@@ -2101,12 +2093,10 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 		for (size_t v = 0; v < nw; v++)
 			locked[v] |= border[v] & 1; /* open edges keep their planes' place */
 		/* (the quadrics are done with: the fit's scratch) */
-		if (vdt_fit_normal(r.positions, r.vertex_count, r.triangles, r.triangle_count, src, nw,
-		                   r.final, locked, o->threads, c.q, nw * sizeof(*c.q), &fs) != 0)
+		if (vdt_fit_normal(r.positions, r.vertex_count, r.triangles, r.triangle_count, r.final,
+		                   locked, o->threads, c.q, nw * sizeof(*c.q), &fs) != 0)
 			goto nomem;
 		stats->fitted = fs.moved;
-		free(src);
-		src = NULL;
 	}
 	free(c.q); /* (the output needs no quadric) */
 	c.q = NULL;
@@ -2165,7 +2155,6 @@ done:
 	free(vto);
 	free(forder);
 	free(dups);
-	free(src);
 	return rc;
 }
 

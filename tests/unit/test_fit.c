@@ -173,20 +173,19 @@ fit_leaves_creases_and_borders(void **state)
 }
 
 /*
- * A flat fan of three faces round slot 0, with the input above it: slot 0
- * moves up (at most a fifth of its mean edge), unless a face of its fan is
- * a sliver that the move would turn past 30 degrees; then it stays. Its
- * neighbours, on the fan's open rim, stay. A vertex that replaced none
+ * A flat fan of three faces round slot 0, with the vertices merged into it
+ * (slots 4 to 7) above it: slot 0 moves up (at most a fifth of its mean
+ * edge), unless a face of its fan is a sliver that the move would turn
+ * past 30 degrees; then it stays. Its neighbours, on the fan's open rim,
+ * stay, and so do the merged vertices' slots. A vertex that replaced none
  * stays too.
  */
 static void
 fit_undoes_a_move_that_turns_a_face(void **state)
 {
 	static const uint32_t tri[] = {0, 1, 2, 0, 2, 3, 0, 3, 1};
-	/* where the vertices were: the last four merged into the first four,
-	 * and all but the rim's first three above the fan */
-	const float src[] = {0,    0, 0.3f, 1, 0.5f, 0,    -1, 0.5f, 0,    0,     -1, 0,
-	                     0.1f, 0, 0.3f, 1, 0.4f, 0.3f, -1, 0.4f, 0.3f, 0.05f, -1, 0.3f};
+	/* slots 4 to 7 merged into 0 to 3, where they were then */
+	const float gone[] = {0.1f, 0, 0.3f, 1, 0.4f, 0.3f, -1, 0.4f, 0.3f, 0.05f, -1, 0.3f};
 	uint32_t final[] = {0, 1, 2, 3, 0, 1, 2, 3};
 	struct vdt_fit_stats st;
 
@@ -194,9 +193,9 @@ fit_undoes_a_move_that_turns_a_face(void **state)
 	for (int sliver = 0; sliver < 2; sliver++) {
 		float h = sliver ? 0.02f : 0.5f;
 		float pos[24] = {0, 0, 0, 1, h, 0, -1, h, 0, 0, -1, 0}, was[24];
+		memcpy(pos + 12, gone, sizeof(gone));
 		memcpy(was, pos, sizeof(pos));
-		assert_int_equal(
-		        vdt_fit_normal(pos, 8, tri, 3, src, 8, final, NULL, 2, NULL, 0, &st), 0);
+		assert_int_equal(vdt_fit_normal(pos, 8, tri, 3, final, NULL, 2, NULL, 0, &st), 0);
 		assert_true(pos[0] == 0 && pos[1] == 0);
 		assert_memory_equal(pos + 3, was + 3, 21 * sizeof(float));
 		if (sliver) {
@@ -210,10 +209,12 @@ fit_undoes_a_move_that_turns_a_face(void **state)
 			assert_true(pos[2] > 0.1f && pos[2] <= 0.2 * mean + 1e-6);
 		}
 	}
-	/* Nothing merged into slot 0: it lies on the input, and stays. */
+	/* Nothing merged into slot 0 (slot 4 ended in itself, faceless): it
+	 * lies on the input, and stays. */
 	float pos[24] = {0, 0, 0, 1, 0.5f, 0, -1, 0.5f, 0, 0, -1, 0};
+	memcpy(pos + 12, gone, sizeof(gone));
 	final[4] = 4;
-	assert_int_equal(vdt_fit_normal(pos, 8, tri, 3, src, 8, final, NULL, 1, NULL, 0, &st), 0);
+	assert_int_equal(vdt_fit_normal(pos, 8, tri, 3, final, NULL, 1, NULL, 0, &st), 0);
 	assert_int_equal(st.moved, 0);
 	assert_true(pos[2] == 0);
 }
