@@ -96,6 +96,40 @@ fit_moves_a_sphere_out_to_its_input(void **state)
 	vdt_mesh_free(&m);
 }
 
+/*
+ * Vertices near a view's contours (an error scale below 1, from the labels
+ * of vdt-silhouette) keep the place their quadrics gave them: the fit
+ * moves contours out.
+ */
+static void
+fit_leaves_contour_vertices(void **state)
+{
+	struct vdt_mesh m, a;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+	double *scale;
+
+	(void)state;
+	shape_icosphere(&m, 3);
+	scale = malloc(m.vertex_count * sizeof(*scale));
+	assert_non_null(scale);
+	vdt_qslim_defaults(&o);
+	o.target_ratio = 0.1;
+	o.error_scale = scale;
+	for (int near = 0; near < 2; near++) {
+		for (size_t v = 0; v < m.vertex_count; v++)
+			scale[v] = near ? 0.5 : 1;
+		assert_int_equal(vdt_qslim(&m, &o, &a, NULL, NULL, &st, NULL), 0);
+		if (near)
+			assert_int_equal(st.fitted, 0);
+		else
+			assert_true(st.fitted > a.vertex_count / 2);
+		vdt_mesh_free(&a);
+	}
+	free(scale);
+	vdt_mesh_free(&m);
+}
+
 /* Per vertex of m: 1 on an open edge, 2 with faces on both sides of the
  * fold (their normals' x of both signs), 3 both. */
 static uint8_t *
@@ -225,6 +259,7 @@ main(void)
 	const struct CMUnitTest tests[] = {
 	        cmocka_unit_test(fit_moves_a_sphere_out_to_its_input),
 	        cmocka_unit_test(fit_leaves_creases_and_borders),
+	        cmocka_unit_test(fit_leaves_contour_vertices),
 	        cmocka_unit_test(fit_undoes_a_move_that_turns_a_face),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
