@@ -171,7 +171,7 @@ nearer(const struct fit *f, const double p[3], uint32_t face, double *best, uint
 	}
 }
 
-/* The sums of the job's input vertices (see above). */
+/* The sums of the job's merged-away vertices (see above). */
 static void *
 fit_run(void *arg)
 {
@@ -194,6 +194,9 @@ fit_run(void *arg)
 		 * out only when that is less than the best so far. */
 		uint32_t lo = f->vstart[v], hi = f->vstart[v + 1], out[FIT_FAN_MAX], nout = 0;
 		float hout[FIT_FAN_MAX];
+		if (hi - lo > FIT_FAN_MAX) /* (too many to list: every face exactly) */
+			for (uint32_t s = lo; s < hi; s++)
+				nearer(f, p, f->vface[s], &best, &bf, bw);
 		for (uint32_t s = lo; s < hi && hi - lo <= FIT_FAN_MAX; s++) {
 			const struct fface *g = f->ff + f->vface[s];
 			float v0[3] = {pc[0] - g->a[0], pc[1] - g->a[1], pc[2] - g->a[2]};
@@ -216,9 +219,6 @@ fit_run(void *arg)
 		for (uint32_t k = 0; k < nout; k++)
 			if (hout[k] < best)
 				nearer(f, p, out[k], &best, &bf, bw);
-		for (uint32_t s = lo; s < hi && hi - lo > FIT_FAN_MAX;
-		     s++) /* (a fan too big to list) */
-			nearer(f, p, f->vface[s], &best, &bf, bw);
 		if (bf == NONE)
 			continue;
 		const uint32_t *t = f->tri + 3 * (size_t)bf;

@@ -253,6 +253,43 @@ fit_undoes_a_move_that_turns_a_face(void **state)
 	assert_true(pos[2] == 0);
 }
 
+/* A flat fan of n faces round slot 0, one merged vertex above it: the
+ * centre moves up alike with 8 faces and with 80 (past the fans the fit
+ * lists on its stack). */
+static void
+fit_takes_big_fans_alike(void **state)
+{
+	(void)state;
+	for (int n = 8; n <= 80; n += 72) {
+		uint32_t *tri = malloc(3 * (size_t)n * sizeof(*tri)), *final = malloc((n + 2) * 4);
+		float *pos = calloc(3 * (size_t)(n + 2), sizeof(*pos));
+		struct vdt_fit_stats st;
+		assert_non_null(tri);
+		assert_non_null(final);
+		assert_non_null(pos);
+		for (int i = 0; i < n; i++) {
+			pos[3 * (i + 1)] = (float)cos(2 * M_PI * i / n);
+			pos[3 * (i + 1) + 1] = (float)sin(2 * M_PI * i / n);
+			tri[3 * i] = 0;
+			tri[3 * i + 1] = (uint32_t)(1 + i);
+			tri[3 * i + 2] = (uint32_t)(1 + (i + 1) % n);
+		}
+		for (int i = 0; i <= n; i++)
+			final[i] = (uint32_t)i;
+		final[n + 1] = 0;
+		pos[3 * (n + 1)] = 0.1f;
+		pos[3 * (n + 1) + 2] = 0.3f;
+		assert_int_equal(vdt_fit_normal(pos, (size_t)n + 2, tri, (size_t)n, final, NULL, 1,
+		                                NULL, 0, &st),
+		                 0);
+		assert_int_equal(st.moved, 1);
+		assert_true(pos[2] > 0.1f && pos[2] <= 0.2f + 1e-6f);
+		free(tri);
+		free(final);
+		free(pos);
+	}
+}
+
 int
 main(void)
 {
@@ -261,6 +298,7 @@ main(void)
 	        cmocka_unit_test(fit_leaves_creases_and_borders),
 	        cmocka_unit_test(fit_leaves_contour_vertices),
 	        cmocka_unit_test(fit_undoes_a_move_that_turns_a_face),
+	        cmocka_unit_test(fit_takes_big_fans_alike),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
