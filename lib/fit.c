@@ -27,8 +27,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bvh.h"
 #include "contract.h"
 #include "err.h"
+#include "mesh.h"
 
 #define NONE UINT32_MAX
 #define FIT_SHARP_COS 0.70710678118654752 /* cos 45 degrees */
@@ -78,97 +80,36 @@ dot3(const double a[3], const double b[3])
 	return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-static void
-sub3(const float *a, const float *b, double d[3])
-{
-	for (int k = 0; k < 3; k++)
-		d[k] = (double)a[k] - b[k];
-}
-
-static void
-cross3(const double a[3], const double b[3], double c[3])
-{
-	c[0] = a[1] * b[2] - a[2] * b[1];
-	c[1] = a[2] * b[0] - a[0] * b[2];
-	c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-static void
-face_cross(const float *pos, const uint32_t *t, double n[3])
-{
-	double u[3], v[3];
-
-	sub3(pos + 3 * (size_t)t[1], pos + 3 * (size_t)t[0], u);
-	sub3(pos + 3 * (size_t)t[2], pos + 3 * (size_t)t[0], v);
-	cross3(u, v, n);
-}
-
 /*
- * The barycentric weights of the point of triangle abc nearest p (Ericson,
- * "Real-Time Collision Detection", 5.1.5), and the squared distance.
+ * Face `face` instead of *bf if p is nearer to it than *best (squared):
+ * the nearest point by vdt_closest_on_triangle, its weights at the
+ * corners from the face's edges (a degenerate face's all at its first).
  */
-static double
-closest(const double p[3], const double a[3], const double b[3], const double c[3], double w[3])
-{
-	double ab[3], ac[3], ap[3], bp[3], cp[3], d[3];
-
-	for (int k = 0; k < 3; k++) {
-		ab[k] = b[k] - a[k];
-		ac[k] = c[k] - a[k];
-		ap[k] = p[k] - a[k];
-		bp[k] = p[k] - b[k];
-		cp[k] = p[k] - c[k];
-	}
-	double d1 = dot3(ab, ap), d2 = dot3(ac, ap), d3 = dot3(ab, bp), d4 = dot3(ac, bp);
-	double d5 = dot3(ab, cp), d6 = dot3(ac, cp);
-	double va = d3 * d6 - d5 * d4, vb = d5 * d2 - d1 * d6, vc = d1 * d4 - d3 * d2;
-
-	w[0] = w[1] = w[2] = 0;
-	if (d1 <= 0 && d2 <= 0) {
-		w[0] = 1;
-	} else if (d3 >= 0 && d4 <= d3) {
-		w[1] = 1;
-	} else if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-		w[1] = d1 / (d1 - d3);
-		w[0] = 1 - w[1];
-	} else if (d6 >= 0 && d5 <= d6) {
-		w[2] = 1;
-	} else if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-		w[2] = d2 / (d2 - d6);
-		w[0] = 1 - w[2];
-	} else if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
-		w[2] = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-		w[1] = 1 - w[2];
-	} else {
-		double s = va + vb + vc;
-		if (!(s > 0)) /* degenerate: its first corner */
-			s = INFINITY;
-		w[1] = vb / s;
-		w[2] = vc / s;
-		w[0] = 1 - w[1] - w[2];
-	}
-	for (int k = 0; k < 3; k++)
-		d[k] = p[k] - (w[0] * a[k] + w[1] * b[k] + w[2] * c[k]);
-	return dot3(d, d);
-}
-
-/* Face `face` instead of *bf if p is nearer to it than *best (squared). */
 static void
 nearer(const struct fit *f, const double p[3], uint32_t face, double *best, uint32_t *bf,
        double bw[3])
 {
 	const uint32_t *t = f->tri + 3 * (size_t)face;
-	double c[3][3], w[3];
+	const struct fface *g = f->ff + face;
+	double c[3][3], q[3], e0[3], e1[3], v0[3];
 
 	for (int m = 0; m < 3; m++)
 		for (int k = 0; k < 3; k++)
 			c[m][k] = f->pos[3 * (size_t)t[m] + k];
-	double d = closest(p, c[0], c[1], c[2], w);
-	if (d < *best) {
-		*best = d;
-		*bf = face;
-		memcpy(bw, w, sizeof(w));
+	double d = vdt_closest_on_triangle(p, c[0], c[1], c[2], q);
+	if (!(d < *best))
+		return;
+	for (int k = 0; k < 3; k++) {
+		e0[k] = g->e0[k];
+		e1[k] = g->e1[k];
+		v0[k] = q[k] - c[0][k];
 	}
+	double d20 = dot3(v0, e0), d21 = dot3(v0, e1);
+	*best = d;
+	*bf = face;
+	bw[1] = (g->d11 * d20 - g->d01 * d21) * g->inv;
+	bw[2] = (g->d00 * d21 - g->d01 * d20) * g->inv;
+	bw[0] = 1 - bw[1] - bw[2];
 }
 
 /* The sums of the job's merged-away vertices (see above). */
@@ -354,15 +295,18 @@ vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triang
 			vface[vstart[idx[tri[3 * f + k]] + 1]++] = (uint32_t)f;
 	for (size_t i = 0; i < 3 * nt; i++)
 		slot[idx[tri[i]]] = tri[i];
-	double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-	for (size_t v = 0; v < nv; v++)
-		for (int k = 0; k < 3; k++) {
-			double x = pos[3 * (size_t)slot[v] + k];
-			lo[k] = fmin(lo[k], x);
-			hi[k] = fmax(hi[k], x);
-		}
-	double diag = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-	                   (hi[2] - lo[2]) * (hi[2] - lo[2]));
+	/* The simplified mesh as the mesh layer sees it (positions and
+	 * faces only). */
+	struct vdt_mesh view = {.vertex_count = slot_count,
+	                        .positions = pos,
+	                        .triangle_count = nt,
+	                        .triangles = (uint32_t *)tri};
+	struct vdt_bbox box;
+	double centre[3];
+	vdt_mesh_bbox_faces(&view, &box);
+	double diag = vdt_bbox_diagonal(&box);
+	for (int k = 0; k < 3; k++)
+		centre[k] = 0.5 * (box.min[k] + box.max[k]);
 	if (!(diag > 0) || !(diag < INFINITY)) {
 		free(own);
 		return 0;
@@ -373,7 +317,7 @@ vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triang
 		const uint32_t *tf = tri + 3 * fi;
 		struct fface *g = ff + fi;
 		double a[3], e0[3], e1[3], n[3], l;
-		face_cross(pos, tf, n);
+		vdt_mesh_face_cross(&view, fi, n);
 		for (int k = 0; k < 3; k++) {
 			double *m = vn + 3 * (size_t)idx[tf[k]];
 			m[0] += n[0];
@@ -382,8 +326,7 @@ vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triang
 		}
 		l = sqrt(dot3(n, n));
 		for (int k = 0; k < 3; k++) {
-			double c = 0.5 * (lo[k] + hi[k]);
-			a[k] = pos[3 * (size_t)tf[0] + k] - c;
+			a[k] = pos[3 * (size_t)tf[0] + k] - centre[k];
 			e0[k] = (double)pos[3 * (size_t)tf[1] + k] - pos[3 * (size_t)tf[0] + k];
 			e1[k] = (double)pos[3 * (size_t)tf[2] + k] - pos[3 * (size_t)tf[0] + k];
 			g->a[k] = (float)a[k];
@@ -411,8 +354,10 @@ vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triang
 			ok = m[0] * n[0] + m[1] * n[1] + m[2] * n[2] > FIT_SHARP_COS;
 			for (int k = 0; k < 3; k++)
 				if (tf[k] != s) {
-					double e[3];
-					sub3(pos + 3 * (size_t)tf[k], pos + 3 * (size_t)s, e);
+					const float *x = pos + 3 * (size_t)tf[k],
+					            *y = pos + 3 * (size_t)s;
+					double e[3] = {(double)x[0] - y[0], (double)x[1] - y[1],
+					               (double)x[2] - y[2]};
 					len += sqrt(dot3(e, e));
 				}
 		}
@@ -420,19 +365,18 @@ vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triang
 		cap[v] = ok ? FIT_CAP * len / (2.0 * (vstart[v + 1] - vstart[v])) : 0;
 	}
 
-	struct fit f = {
-	        .pos = pos,
-	        .ff = ff,
-	        .centre = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])},
-	        .tri = tri,
-	        .final = final,
-	        .idx = idx,
-	        .vstart = vstart,
-	        .vface = vface,
-	        .vn = vn,
-	        .smooth = smooth,
-	        .num_scale = (double)(1ll << FIT_NUM_BITS) / diag,
-	        .diag = diag};
+	struct fit f = {.pos = pos,
+	                .ff = ff,
+	                .centre = {centre[0], centre[1], centre[2]},
+	                .tri = tri,
+	                .final = final,
+	                .idx = idx,
+	                .vstart = vstart,
+	                .vface = vface,
+	                .vn = vn,
+	                .smooth = smooth,
+	                .num_scale = (double)(1ll << FIT_NUM_BITS) / diag,
+	                .diag = diag};
 	for (int k = 0; k < t; k++)
 		job[k] = (struct fit_job){&f, slot_count * (size_t)k / (size_t)t,
 		                          slot_count * (size_t)(k + 1) / (size_t)t,
@@ -467,7 +411,7 @@ vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triang
 			if (delta[idx[tf[0]]] == 0 && delta[idx[tf[1]]] == 0 &&
 			    delta[idx[tf[2]]] == 0)
 				continue;
-			face_cross(pos, tf, n);
+			vdt_mesh_face_cross(&view, fi, n);
 			double l = sqrt(dot3(n, n));
 			const float *m = ff[fi].n;
 			if (l > 0 && n[0] * m[0] + n[1] * m[1] + n[2] * m[2] > FIT_TURN_COS * l)
