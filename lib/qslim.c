@@ -2082,13 +2082,11 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	ops.concurrent = 1;
 	ops.vertex_data = c.at ? c.at->qc : c.q;
 	ops.vertex_stride = sizeof(*c.q);
-	/* A record must replay to the output: no fit with one. */
-	int fit = o->fit && records == NULL;
 	rc = vdt_contract_run_in_place(&w, &ops, &co, &r, err);
 	free(seam);
 	if (rc != 0)
 		goto fail;
-	if (fit) {
+	if (o->fit && records == NULL) { /* (a record must replay to the output) */
 		struct vdt_fit_stats fs;
 		/* Open edges keep their planes' place, and vertices near the
 		 * contours of a view (an error scale below 1) where their
