@@ -1833,6 +1833,99 @@ any_area(const struct vdt_mesh *m)
 	return 0;
 }
 
+/* A connected part of the contracted mesh: its area, faces and root. */
+struct part {
+	double area;
+	size_t faces;
+	uint32_t root;
+};
+
+static int
+by_area(const void *p, const void *q)
+{
+	const struct part *a = p, *b = q;
+
+	if (a->area != b->area)
+		return a->area < b->area ? -1 : 1;
+	return (a->root > b->root) - (a->root < b->root);
+}
+
+/*
+ * What is left when the contractions stop above the target on a model of
+ * more parts than it holds: closed parts end as tetrahedra, which no
+ * contraction removes. The smallest parts (by area; the one of the lower
+ * vertex slot first among equals) go whole until the target is met or one
+ * part is left. Returns the number of parts given up, or -1 out of memory.
+ */
+static long
+give_up_parts(struct vdt_contract_result *r, size_t target)
+{
+	size_t nt = r->triangle_count, nv = r->vertex_count ? r->vertex_count : 1, np = 0;
+	uint32_t *up = vdt_malloc_huge(nv * sizeof(*up)), *slot = malloc(nv * sizeof(*slot));
+	struct part *p = malloc((nt ? nt : 1) * sizeof(*p));
+	long given = 0;
+
+	if (up == NULL || slot == NULL || p == NULL) {
+		free(up);
+		free(slot);
+		free(p);
+		return -1;
+	}
+	for (size_t v = 0; v < r->vertex_count; v++) {
+		up[v] = (uint32_t)v;
+		slot[v] = UINT32_MAX;
+	}
+	for (size_t t = 0; t < nt; t++) {
+		const uint32_t *c = r->triangles + 3 * t;
+		for (int k = 1; k < 3; k++) {
+			uint32_t x = vdt_topo_find(up, c[0]), y = vdt_topo_find(up, c[k]);
+			if (x != y)
+				up[x > y ? x : y] = x < y ? x : y;
+		}
+	}
+	for (size_t t = 0; t < nt; t++) {
+		const uint32_t *c = r->triangles + 3 * t;
+		uint32_t root = vdt_topo_find(up, c[0]);
+		const float *q0 = r->positions + 3 * (size_t)c[0], *q1 = r->positions + 3 * (size_t)c[1],
+		            *q2 = r->positions + 3 * (size_t)c[2];
+		double e1[3], e2[3];
+		if (slot[root] == UINT32_MAX) {
+			p[np] = (struct part){0, 0, root};
+			slot[root] = (uint32_t)np++;
+		}
+		for (int k = 0; k < 3; k++) {
+			e1[k] = (double)q1[k] - q0[k];
+			e2[k] = (double)q2[k] - q0[k];
+		}
+		double n0 = e1[1] * e2[2] - e1[2] * e2[1], n1 = e1[2] * e2[0] - e1[0] * e2[2],
+		       n2 = e1[0] * e2[1] - e1[1] * e2[0];
+		p[slot[root]].area += 0.5 * sqrt(n0 * n0 + n1 * n1 + n2 * n2);
+		p[slot[root]].faces++;
+	}
+	qsort(p, np, sizeof(*p), by_area);
+	for (size_t i = 0; i + 1 < np && nt > target; i++) {
+		slot[p[i].root] = UINT32_MAX - 1; /* given up */
+		nt -= p[i].faces;
+		given++;
+	}
+	if (given > 0) {
+		size_t n = 0;
+		for (size_t t = 0; t < r->triangle_count; t++) {
+			const uint32_t *c = r->triangles + 3 * t;
+			if (slot[vdt_topo_find(up, c[0])] == UINT32_MAX - 1)
+				continue;
+			memmove(r->triangles + 3 * n, c, 3 * sizeof(*c));
+			r->sources[n++] = r->sources[t];
+		}
+		r->triangle_count = n;
+		r->reached_target = n <= target;
+	}
+	free(p);
+	free(slot);
+	free(up);
+	return given;
+}
+
 /* vdt_qslim with every distance option in model units. */
 static int
 simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox *box,
@@ -2086,6 +2179,14 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	free(seam);
 	if (rc != 0)
 		goto fail;
+	/* (a record must replay to the output: it has no word for a part
+	 * given up) */
+	if (!co.keep_parts && target > 0 && r.triangle_count > target && records == NULL) {
+		long given = give_up_parts(&r, target);
+		if (given < 0)
+			goto nomem;
+		stats->parts_given_up = (size_t)given;
+	}
 	if (o->fit && records == NULL) { /* (a record must replay to the output) */
 		struct vdt_fit_stats fs;
 		/* Open edges keep their planes' place, and vertices near the

@@ -287,6 +287,39 @@ load helpers
 	! awk 'NR > 2 && NF == 3 && $1 > 4' "$TMP/out.off" | grep -q . || false
 }
 
+@test "vdt-qslim gives up whole parts, the smallest first, past half the target" {
+	# ten octahedra, the i-th of size i about x = 10 i: each contracts to
+	# a tetrahedron and no further, so 40 triangles is all contraction
+	# can reach
+	awk 'BEGIN {
+		n = 10; print "OFF"; print 6 * n, 8 * n, 0
+		for (i = 1; i <= n; i++) {
+			x = 10 * i
+			print x + i, 0, 0; print x - i, 0, 0; print x, i, 0
+			print x, -i, 0; print x, 0, i; print x, 0, -i
+		}
+		for (b = 0; b < 6 * n; b += 6) {
+			print 3, b, b + 2, b + 4; print 3, b + 2, b + 1, b + 4
+			print 3, b + 1, b + 3, b + 4; print 3, b + 3, b, b + 4
+			print 3, b + 2, b, b + 5; print 3, b + 1, b + 2, b + 5
+			print 3, b + 3, b + 1, b + 5; print 3, b, b + 3, b + 5
+		}
+	}' > "$TMP/oct.off"
+	run "$BIN/vdt-qslim" -v -t 12 -F off "$TMP/oct.off" -o "$TMP/out.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *" out_triangles=12 "*" parts_given_up=7 "* ]]
+	[ "$(awk 'NR > 2 && NF == 3 { print int(($1 + 5) / 10) }' "$TMP/out.off" | sort -un | tr '\n' ' ')" = "8 9 10 11 " ]
+	# down to one part, short of a target below a tetrahedron, and says so
+	run "$BIN/vdt-qslim" -v -t 1 -F off "$TMP/oct.off" -o "$TMP/out.off"
+	[[ "$output" == *"stopped at 4 triangles"*" parts_given_up=9 "* ]]
+	# a target of twice the parts keeps them all, and says where it stopped
+	run "$BIN/vdt-qslim" -v -t 20 -F off "$TMP/oct.off" -o "$TMP/out.off"
+	[[ "$output" == *"stopped at 40 triangles"*" parts_given_up=0 "* ]]
+	# a record has no word for a part given up: it replays to the output
+	run "$BIN/vdt-qslim" -v --record -t 12 "$TMP/oct.off" -o "$TMP/out.vdt"
+	[[ "$output" == *" out_triangles=40 "*" parts_given_up=0 "* ]]
+}
+
 @test "vdt-qslim says when a label option meets no labels, and goes on" {
 	run "$BIN/vdt-qslim" -r 0.5 --view 0,0,1 --error-factor 0.5 "$SAMPLES/sphere.off" -o "$TMP/a.off"
 	[ "$status" -eq 0 ]
