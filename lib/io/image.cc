@@ -7,12 +7,15 @@
  * names, and in place to a device or FIFO (vdt_output_target). The writer
  * is picked by the target's extension, so the temporary name needs none.
  */
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <vector>
 #include <unistd.h>
 
 extern "C" {
@@ -44,20 +47,67 @@ fix_date(OIIO::ImageOutput &out, OIIO::ImageSpec &spec)
 		spec.attribute("DateTime", "1970:01:01 00:00:00");
 }
 
+/* The name OpenImageIO picks a writer by: "-" (standard output) is PNG. */
+const char *
+writer_name(const char *path)
+{
+	return std::strcmp(path, "-") == 0 ? "-.png" : path;
+}
+
+/*
+ * Encode into memory, then write the bytes as any other output
+ * (vdt_output_open: standard output, atomic replacement, and every write
+ * error reported). The writers' own file output loses errors: the PNG
+ * writer leaves a cut-short file on a full disk and says nothing.
+ */
+int
+write_through_memory(OIIO::ImageOutput &out, const char *path, const OIIO::ImageSpec &spec,
+                     const unsigned char *px, struct vdt_err *err)
+{
+	OIIO::Filesystem::IOVecOutput mem;
+	if (!out.set_ioproxy(&mem) || !out.open(writer_name(path), spec))
+		return vdt_err_set(err, VDT_EIO, "%s", out.geterror().c_str());
+	bool ok = out.write_image(OIIO::TypeDesc::UINT8, px);
+	std::string e = ok ? "" : out.geterror();
+	if (!out.close() && ok) {
+		ok = false;
+		e = out.geterror();
+	}
+	if (!ok)
+		return vdt_err_set(err, VDT_EIO, "%s", e.c_str());
+	const std::vector<unsigned char> &b = mem.buffer();
+	struct vdt_output o;
+	int rc = vdt_output_open(&o, path, err);
+	if (rc != 0)
+		return rc;
+	if (!b.empty() && std::fwrite(b.data(), 1, b.size(), o.f) != b.size()) {
+		int en = errno;
+		vdt_output_abort(&o);
+		return vdt_err_set(err, VDT_EIO, "write error: %s", std::strerror(en));
+	}
+	return vdt_output_commit(&o, err);
+}
+
 int
 write_image(const char *path, int w, int h, int c, const unsigned char *px, struct vdt_err *err)
 {
 	if (w <= 0 || h <= 0 || c <= 0 || c > 4)
 		return vdt_err_set(err, VDT_EINVAL, "bad image size %dx%d with %d channels", w, h, c);
+	auto out = OIIO::ImageOutput::create(writer_name(path));
+	if (!out)
+		return no_writer(err);
+	OIIO::ImageSpec spec(w, h, c, OIIO::TypeDesc::UINT8);
+	fix_date(*out, spec);
+	if (out->supports("ioproxy"))
+		return write_through_memory(*out, path, spec, px, err);
+	if (std::strcmp(path, "-") == 0)
+		return vdt_err_set(err, VDT_EINVAL, "this image format cannot go to standard output");
 	int special = 0;
 	char *target = vdt_output_target(path, &special);
 	if (target == nullptr)
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
 	std::string dst(target);
 	std::free(target);
-	auto out = OIIO::ImageOutput::create(path);
-	if (!out)
-		return no_writer(err);
 	std::string tmp = dst;
 	/* Whichever way this returns, the temporary file is gone or renamed
 	 * by then: a signal need not remove it any more. */
@@ -83,8 +133,6 @@ write_image(const char *path, int w, int h, int c, const unsigned char *px, stru
 		std::free(t);
 		done.on = true;
 	}
-	OIIO::ImageSpec spec(w, h, c, OIIO::TypeDesc::UINT8);
-	fix_date(*out, spec);
 	if (!out->open(tmp, spec)) {
 		std::string e = out->geterror();
 		if (!special)
@@ -147,7 +195,7 @@ extern "C" int
 vdt_image_writable(const char *path, struct vdt_err *err)
 {
 	try {
-		auto out = OIIO::ImageOutput::create(path);
+		auto out = OIIO::ImageOutput::create(writer_name(path));
 		return out ? 0 : no_writer(err);
 	} catch (const std::bad_alloc &) {
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
