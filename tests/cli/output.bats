@@ -84,6 +84,22 @@ load helpers
 	[[ "$output" == *"cannot write '<stdout>'"*"No space left on device" ]]
 }
 
+@test "an image that cannot be written whole is reported, with status 1; - is PNG on stdout" {
+	[ -c /dev/full ] || skip "no /dev/full"
+	"$BIN/vdt-build" -q "$SAMPLES/torus.off" -o "$TMP/t.vdt"
+	# (through a link, as a full disk: the writer's own file output
+	# used to drop the error and leave a cut-short PNG)
+	ln -s /dev/full "$TMP/full.png"
+	run "$BIN/vdt-render" --size 64x48 "$TMP/t.vdt" -o "$TMP/full.png"
+	[ "$status" -eq 1 ]
+	one_line
+	[[ "$output" == *"cannot write"*"full.png"*"No space left on device" ]]
+	# standard output takes PNG, the same bytes as a file
+	"$BIN/vdt-render" --size 64x48 "$TMP/t.vdt" -o "$TMP/a.png"
+	"$BIN/vdt-render" --size 64x48 "$TMP/t.vdt" -o - >"$TMP/b.png"
+	cmp "$TMP/a.png" "$TMP/b.png"
+}
+
 @test "vdt-silhouette --view -o writes its file whole, and names a missing directory" {
 	run "$BIN/vdt-silhouette" -a 45 -r 32 --view 0,0,1 "$SAMPLES/sphere.off" -o "$TMP/labels.txt"
 	[ "$status" -eq 0 ]
