@@ -305,3 +305,16 @@ refuse_output_over_input(const char *in, const char *out)
 	if (output_over_input(&in, 1, &out, 1, &i) >= 0)
 		output_is_input(out, in);
 }
+
+void
+refuse_one_file_for_two(const char *oa, const char *a, const char *ob, const char *b)
+{
+	struct stat sa, sb;
+	int ea = stat_operand(a, STDOUT_FILENO, &sa) == 0, eb = stat_operand(b, STDOUT_FILENO, &sb) == 0;
+
+	if (ea && eb && !(S_ISREG(sa.st_mode) && S_ISREG(sb.st_mode)))
+		return;
+	if (strcmp(a, b) == 0 || (ea && eb && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino))
+		usage_error("%s '%s' and %s '%s' are one file: one would overwrite the other", oa,
+		            strcmp(a, "-") == 0 ? "<stdout>" : a, ob, strcmp(b, "-") == 0 ? "<stdout>" : b);
+}

@@ -56,6 +56,13 @@ void refuse_output_over_input(const char *in, const char *out);
 long output_over_input(const char *const *in, size_t nin, const char *const *out, size_t nout,
                        size_t *which);
 
+/*
+ * A usage error when outputs a and b (given by options oa and ob) are one
+ * file: the same name, or names of one existing file. Devices and FIFOs
+ * written in place (/dev/null) may take both.
+ */
+void refuse_one_file_for_two(const char *oa, const char *a, const char *ob, const char *b);
+
 /* The usage error of the two above, naming the output and the input. */
 void output_is_input(const char *out, const char *in) __attribute__((noreturn));
 

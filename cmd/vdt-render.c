@@ -140,10 +140,24 @@ check_outputs(const struct cmdline *cl, size_t nviews)
 		if (pat[k] && nviews > 1 && strcmp(frame_name(a, pat[k], 0), frame_name(b, pat[k], 1)) == 0)
 			usage_error("%zu views need one file each: give %s a %%d, not '%s'", nviews,
 			            opt[k], pat[k]);
+	/* Every frame against every file read: the tree, the path of views
+	 * and the reference images, which a frame written over would turn
+	 * into a comparison of the frame with itself. */
 	for (size_t i = 0; i < nviews; i++)
-		for (int k = 0; k < 2; k++)
-			if (pat[k])
-				refuse_output_over_input(cl->in, frame_name(a, pat[k], i));
+		for (int k = 0; k < 2; k++) {
+			if (!pat[k])
+				continue;
+			frame_name(a, pat[k], i);
+			refuse_output_over_input(cl->in, a);
+			if (cl->path)
+				refuse_output_over_input(cl->path, a);
+			for (size_t j = 0; cl->compare && j < nviews; j++)
+				refuse_output_over_input(frame_name(b, cl->compare, j), a);
+		}
+	if (cl->out && cl->mesh_out)
+		for (size_t i = 0; i < nviews; i++)
+			refuse_one_file_for_two("-o", frame_name(a, cl->out, i), "--mesh-out",
+			                        frame_name(b, cl->mesh_out, i));
 	if (cl->out && vdt_image_writable(frame_name(a, cl->out, 0), &err) != 0)
 		return fail("cannot write", a, &err);
 	if (cl->mesh_out && strcmp(cl->mesh_out, "-") != 0 &&

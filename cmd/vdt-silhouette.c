@@ -100,6 +100,8 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		usage_error("--nearest weighs the cameras nearest to a --view: give one");
 	cl->in = input_operand(argc, argv, cl->in);
 	refuse_output_over_input(cl->in, cl->out);
+	if (cl->cameras)
+		refuse_output_over_input(cl->cameras, cl->out);
 }
 
 static int

@@ -117,8 +117,14 @@ load helpers
 	ln -s s.off "$TMP/link.off"
 	mkdir "$TMP/f"
 	for i in 0 1 2; do cp "$TMP/s.off" "$TMP/f/$i.off"; done
-	before=$(cd "$TMP" && cat s.off s.vdt f/*.off | md5sum)
+	echo "0 0 3 0 0 0 0 1 0" >"$TMP/view.txt"
+	echo "0 0 1" >"$TMP/cams.txt"
+	"$BIN/vdt-render" --size 32x24 "$TMP/s.vdt" -o "$TMP/ref.png"
+	before=$(cd "$TMP" && cat s.off s.vdt f/*.off view.txt cams.txt ref.png | md5sum)
 	for cmd in "vdt-cluster -g 8 $TMP/s.off -o $TMP/link.off" \
+	           "vdt-render --size 32x24 $TMP/s.vdt --compare $TMP/ref.png -o $TMP/ref.png" \
+	           "vdt-render --path $TMP/view.txt $TMP/s.vdt --mesh-out $TMP/view.txt" \
+	           "vdt-silhouette -c $TMP/cams.txt $TMP/s.off -o $TMP/cams.txt" \
 	           "vdt-qslim -r 0.5 $TMP/link.off -o $TMP/s.off" \
 	           "vdt-build $TMP/s.vdt -o $TMP/s.vdt" \
 	           "vdt-silhouette -r 64 $TMP/s.vdt -o $TMP/s.vdt" \
@@ -137,7 +143,13 @@ load helpers
 	# standard output appended to an input
 	run sh -c "'$BIN/vdt-cluster' -g 8 -F off '$TMP/s.off' >> '$TMP/s.off'"
 	[ "$status" -eq 2 ]
-	[ "$(cd "$TMP" && cat s.off s.vdt f/*.off | md5sum)" = "$before" ]
+	# nor one output over another
+	run "$BIN/vdt-measure" -o "$TMP/r.txt" -c "$TMP/r.txt" "$TMP/s.off" "$TMP/s.off"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"are one file"* ]]
+	[ ! -e "$TMP/r.txt" ]
+	[ "$(cd "$TMP" && cat s.off s.vdt f/*.off view.txt cams.txt ref.png | md5sum)" = "$before" ]
 	[ "$(ls -A "$TMP" "$TMP/f" | grep -c '^\.')" -eq 0 ]
 	# other names are written as ever
 	"$BIN/vdt-deform" -r 0.5 "$TMP/f/%d.off" -o "$TMP/g%d.off"
