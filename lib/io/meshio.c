@@ -192,11 +192,21 @@ is_obj(const unsigned char *buf, size_t n)
 	return 0;
 }
 
+size_t
+vdt_bom_length(const unsigned char *buf, size_t n)
+{
+	return n >= 3 && buf[0] == 0xef && buf[1] == 0xbb && buf[2] == 0xbf ? 3 : 0;
+}
+
 enum vdt_format
 vdt_format_detect(const unsigned char *buf, size_t n)
 {
 	if (buf == NULL || n == 0)
 		return VDT_FMT_AUTO;
+	if (vdt_bom_length(buf, n)) { /* text after it, or nothing known */
+		enum vdt_format f = vdt_format_detect(buf + 3, n - 3);
+		return f == VDT_FMT_VDT || f == VDT_FMT_DRC || f == VDT_FMT_STL ? VDT_FMT_AUTO : f;
+	}
 	/* The first four bytes only: the stream reader says what damaged
 	 * the rest of a signature (vdt(5)). */
 	if (vdt_stream_sniff(buf, n))
@@ -326,6 +336,11 @@ vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
 		/* Only text formats can hide from detection (long comments). */
 		if (hint == VDT_FMT_OBJ || hint == VDT_FMT_OFF)
 			f = hint;
+	}
+	if (f != VDT_FMT_AUTO) { /* a text format: the mark is no part of it */
+		size_t b = vdt_bom_length(buf, len);
+		buf += b;
+		len -= b;
 	}
 	switch (f) {
 	case VDT_FMT_VDT: rc = read_stream(buf, len, m, extra, err); break;

@@ -777,6 +777,11 @@ setup(struct vdt_tsource *s, enum vdt_format hint, struct vdt_err *err)
 	s->format = vdt_format_detect(s->buf, s->len);
 	if (s->format == VDT_FMT_AUTO && (hint == VDT_FMT_OBJ || hint == VDT_FMT_OFF))
 		s->format = hint;
+	if (s->format != VDT_FMT_AUTO) { /* a text format: the mark is no part of it */
+		size_t b = vdt_bom_length(s->buf, s->len);
+		s->buf += b;
+		s->len -= b;
+	}
 	if (vdt_stream_sniff(s->buf, s->len)) {
 		s->kind = K_VDT;
 		s->format = VDT_FMT_VDT;

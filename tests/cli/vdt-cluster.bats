@@ -646,3 +646,11 @@ PY
 	[ ! -e "$TMP/c.off" ]
 	[ ! -e "$TMP/q.off" ]
 }
+
+@test "vdt-cluster reads text after a UTF-8 byte order mark as without it" {
+	printf '\357\273\277' >"$TMP/bom.obj"
+	cat "$SAMPLES/sphere-uv.obj" >>"$TMP/bom.obj"
+	"$BIN/vdt-cluster" -g 8 -F off "$SAMPLES/sphere-uv.obj" -o "$TMP/a.off"
+	"$BIN/vdt-cluster" -g 8 -F off "$TMP/bom.obj" -o "$TMP/b.off"
+	cmp "$TMP/a.off" "$TMP/b.off"
+}

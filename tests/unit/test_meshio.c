@@ -127,6 +127,42 @@ read_bytes(const char *text, size_t n, struct vdt_mesh *m, struct vdt_err *err)
 	return vdt_read_memory((const unsigned char *)text, n, NULL, m, NULL, err);
 }
 
+/* A UTF-8 byte order mark before text is passed over, not read as part of
+ * the first line (which made an OBJ lose its first vertex and every face
+ * point at the wrong ones), and makes nothing binary of what follows. */
+static void
+test_bom(void **state)
+{
+	static const char *const text[] = {
+	    "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
+	    "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+	    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+	    "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+	    "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+	};
+	(void)state;
+	for (size_t i = 0; i < sizeof(text) / sizeof(text[0]); i++) {
+		char b[512] = "\xef\xbb\xbf";
+		struct vdt_mesh m, r;
+		struct vdt_err err = {0};
+		size_t n = strlen(text[i]);
+		memcpy(b + 3, text[i], n);
+		assert_int_equal(vdt_format_detect((const unsigned char *)b, n + 3),
+		                 vdt_format_detect((const unsigned char *)text[i], n));
+		assert_int_equal(read_bytes(text[i], n, &r, &err), 0);
+		assert_int_equal(read_bytes(b, n + 3, &m, &err), 0);
+		assert_int_equal(m.vertex_count, r.vertex_count);
+		assert_int_equal(m.triangle_count, r.triangle_count);
+		assert_memory_equal(m.positions, r.positions, 3 * r.vertex_count * sizeof(float));
+		assert_memory_equal(m.triangles, r.triangles, 3 * r.triangle_count * sizeof(uint32_t));
+		vdt_mesh_free(&m);
+		vdt_mesh_free(&r);
+	}
+	/* a mark before a stream's signature: no stream */
+	assert_int_equal(vdt_format_detect((const unsigned char *)"\xef\xbb\xbf" "DRACO", 8),
+	                 VDT_FMT_AUTO);
+}
+
 static void
 test_format_names(void **state)
 {
@@ -718,6 +754,7 @@ main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_format_names),
+		cmocka_unit_test(test_bom),
 		cmocka_unit_test(test_detect),
 		cmocka_unit_test(test_roundtrip_plain),
 		cmocka_unit_test(test_roundtrip_attributes),
