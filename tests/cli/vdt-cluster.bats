@@ -648,9 +648,11 @@ PY
 }
 
 @test "vdt-cluster reads text after a UTF-8 byte order mark as without it" {
+	# (from its first vertex: the mark hid the first line)
+	grep -v '^#' "$SAMPLES/sphere-uv.obj" >"$TMP/a.obj"
 	printf '\357\273\277' >"$TMP/bom.obj"
-	cat "$SAMPLES/sphere-uv.obj" >>"$TMP/bom.obj"
-	"$BIN/vdt-cluster" -g 8 -F off "$SAMPLES/sphere-uv.obj" -o "$TMP/a.off"
+	cat "$TMP/a.obj" >>"$TMP/bom.obj"
+	"$BIN/vdt-cluster" -g 8 -F off "$TMP/a.obj" -o "$TMP/a.off"
 	"$BIN/vdt-cluster" -g 8 -F off "$TMP/bom.obj" -o "$TMP/b.off"
 	cmp "$TMP/a.off" "$TMP/b.off"
 }
