@@ -559,6 +559,20 @@ static struct {
 
 static const int cleanup_signals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE, SIGXFSZ};
 
+/*
+ * The runs' sets of files written (vdt_written) for the handler too: each
+ * a list whose nodes are complete before they are published at its head,
+ * and which is taken off its slot before its nodes are freed.
+ */
+struct vdt_wnode {
+	struct vdt_wnode *next;
+	char path[];
+};
+
+#define WRITTEN_SLOTS 4
+
+static struct vdt_written *written_sets[WRITTEN_SLOTS];
+
 static void
 cleanup_on_signal(int sig)
 {
@@ -568,6 +582,12 @@ cleanup_on_signal(int sig)
 	for (int i = 0; i < PENDING_SLOTS; i++)
 		if (atomic_load(&pending[i].state) == LIVE)
 			unlink(pending[i].path);
+	for (int i = 0; i < WRITTEN_SLOTS; i++) {
+		struct vdt_written *w = __atomic_load_n(&written_sets[i], __ATOMIC_ACQUIRE);
+		for (struct vdt_wnode *n = w ? __atomic_load_n(&w->head, __ATOMIC_ACQUIRE) : NULL; n;
+		     n = n->next)
+			unlink(n->path);
+	}
 	memset(&dfl, 0, sizeof(dfl));
 	dfl.sa_handler = SIG_DFL;
 	sigemptyset(&dfl.sa_mask);
@@ -654,7 +674,8 @@ vdt_output_temp(const char *target, char **tmp)
 int
 vdt_written_add(struct vdt_written *w, const char *path, struct vdt_err *err)
 {
-	char *target, **grown;
+	struct vdt_wnode *n;
+	char *target;
 	int special;
 
 	if (strcmp(path, "-") == 0)
@@ -669,34 +690,49 @@ vdt_written_add(struct vdt_written *w, const char *path, struct vdt_err *err)
 		free(target);
 		return 0;
 	}
-	if (w->count == w->cap) {
-		size_t cap = w->cap ? 2 * w->cap : 16;
-		if ((grown = realloc(w->names, cap * sizeof(*grown))) == NULL) {
-			remove(target);
-			free(target);
-			return vdt_err_set(err, VDT_ENOMEM, "out of memory");
-		}
-		w->names = grown;
-		w->cap = cap;
+	if ((n = malloc(sizeof(*n) + strlen(target) + 1)) == NULL) {
+		remove(target);
+		free(target);
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
 	}
-	w->names[w->count++] = target;
+	strcpy(n->path, target);
+	free(target);
+	n->next = w->head;
+	__atomic_store_n(&w->head, n, __ATOMIC_RELEASE);
+	w->count++;
+	if (w->slot == 0) { /* (more sets at once than slots: not on a signal) */
+		cleanup_install();
+		for (int i = 0; i < WRITTEN_SLOTS && w->slot == 0; i++) {
+			struct vdt_written *none = NULL;
+			if (__atomic_compare_exchange_n(&written_sets[i], &none, w, 0, __ATOMIC_RELEASE,
+			                                __ATOMIC_RELAXED))
+				w->slot = i + 1;
+		}
+	}
 	return 0;
 }
 
 void
 vdt_written_remove(struct vdt_written *w)
 {
-	for (size_t i = 0; i < w->count; i++)
-		remove(w->names[i]);
+	for (struct vdt_wnode *n = w->head; n; n = n->next)
+		remove(n->path);
 	vdt_written_free(w);
 }
 
 void
 vdt_written_free(struct vdt_written *w)
 {
-	for (size_t i = 0; i < w->count; i++)
-		free(w->names[i]);
-	free(w->names);
+	struct vdt_wnode *n = w->head;
+
+	if (w->slot > 0)
+		__atomic_store_n(&written_sets[w->slot - 1], NULL, __ATOMIC_RELEASE);
+	__atomic_store_n(&w->head, NULL, __ATOMIC_RELEASE);
+	while (n) {
+		struct vdt_wnode *next = n->next;
+		free(n);
+		n = next;
+	}
 	memset(w, 0, sizeof(*w));
 }
 

@@ -142,12 +142,16 @@ char *vdt_output_target(const char *path, int *special);
 
 /*
  * The files a run has written so far, for a tool that writes several (one
- * per frame) to take them all back when a later one fails: a failed run
- * leaves no output behind (vdt(7)). Start from {0}.
+ * per frame) to take them all back when a later one fails, or when a
+ * signal ends the process (as for the temporary files below): a failed
+ * run leaves no output behind (vdt(7)). Start from {0}.
  */
+struct vdt_wnode;
 struct vdt_written {
-	char **names; /* what was written, through symbolic links */
-	size_t count, cap;
+	struct vdt_wnode *head; /* what was written, through symbolic links,
+	                           newest first (the signal handler reads it) */
+	size_t count;
+	int slot; /* where the handler finds it, from 1; 0 before any */
 };
 
 /*
