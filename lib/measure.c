@@ -617,6 +617,14 @@ vdt_measure(const struct vdt_mesh *a, const struct vdt_mesh *b,
 	if (!(res->diag > 0)) /* every distance would be 0% or infinite */
 		return vdt_err_set(err, VDT_EINVAL,
 		                   "first mesh is a single point: no diagonal to give distances against");
+	/* Mean and RMS are over the area sampled; a surface of none (every
+	 * face degenerate) has neither, and no Hausdorff distance that says
+	 * anything of a surface. */
+	for (int k = 0; k < 2; k++)
+		if (!(vdt_mesh_mean_area(k ? b : a, NULL) > 0))
+			return vdt_err_set(err, VDT_EINVAL,
+			                   "%s mesh has no area: every face is degenerate",
+			                   k ? "second" : "first");
 
 	/*
 	 * a -> b needs only the tree of b. The tree of a, usually the large

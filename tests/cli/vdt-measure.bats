@@ -225,13 +225,22 @@ assert len(d["ab_hausdorff_at"]) == 3 and len(d["ba_hausdorff_at"]) == 3'
 	[ ! -e "$TMP/r3.txt" ]
 }
 
-@test "vdt-measure refuses a first mesh that is one point, and a density past 2^32 samples" {
+@test "vdt-measure refuses a first mesh that is one point, a mesh of no area, and a density past 2^32 samples" {
 	printf 'v 0 0 0\nv 0 0 0\nv 0 0 0\nf 1 2 3\n' > "$TMP/pt.obj"
 	printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 4 3\n' > "$TMP/sq.obj"
 	run "$BIN/vdt-measure" "$TMP/pt.obj" "$TMP/sq.obj"
 	[ "$status" -eq 2 ]
 	one_line
 	[[ "$output" == "vdt-measure: cannot measure '$TMP/pt.obj' against '$TMP/sq.obj': first mesh is a single point"* ]]
+	# faces of no area, on a line: no surface to sample, either side
+	printf 'v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n' > "$TMP/line.obj"
+	for pair in "$TMP/line.obj $TMP/sq.obj first" "$TMP/sq.obj $TMP/line.obj second"; do
+		set -- $pair
+		run "$BIN/vdt-measure" "$1" "$2"
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == *"'$2': $3 mesh has no area: every face is degenerate" ]]
+	done
 	run "$BIN/vdt-measure" -d 1e12 "$TMP/sq.obj" "$TMP/sq.obj"
 	[ "$status" -eq 2 ]
 	one_line
