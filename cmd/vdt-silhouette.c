@@ -2,10 +2,12 @@
  * vdt-silhouette - label every vertex with its distance to the silhouette
  * from a set of cameras (a LABL chunk), for vdt-qslim and vdt-render.
  */
+#include <errno.h>
 #include <getopt.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "../lib/io/meshio.h"
 #include "../lib/silhouette.h"
@@ -118,6 +120,14 @@ run(struct cmdline *cl)
 	struct vdt_sil_images im = {0};
 	int rc = EXIT_OK;
 
+	if (cl->images) { /* before the work, not after the first camera's */
+		struct stat st;
+		int bad = stat(cl->images, &st) != 0 ? errno : !S_ISDIR(st.st_mode) ? ENOTDIR : 0;
+		if (bad) {
+			vdt_err_set(&err, VDT_EIO, "%s", strerror(bad));
+			return fail("cannot write images into", cl->images, &err);
+		}
+	}
 	if (cl->cameras) {
 		if (vdt_cameras_read(&cams, cl->cameras, &err) != 0)
 			return fail("cannot read", cl->cameras, &err);

@@ -38,6 +38,8 @@ vdt_sil_write_images(void *ctx, size_t camera, const struct vdt_sil_work *w, str
 		if ((rc = vdt_image_write(path, w->res, w->res, 1, px, err)) == 0)
 			rc = vdt_written_add(&im->written, path, err);
 	}
+	if (rc != 0)
+		vdt_err_prefix(err, "'%s'", path);
 	free(px);
 	return rc;
 }

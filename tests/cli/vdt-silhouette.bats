@@ -99,6 +99,21 @@ load helpers
 	run "$BIN/vdt-silhouette" -a 90 -r 32 --images "$TMP/img2" "$SAMPLES/torus.off" -o "$TMP/no/t.vdl"
 	[ "$status" -ne 0 ]
 	[ -z "$(ls "$TMP/img2")" ]
+	# which image could not be written is named
+	run "$BIN/vdt-silhouette" -a 90 -r 32 --images "$TMP/img" "$SAMPLES/torus.off" -o "$TMP/t.vdl"
+	one_line
+	[[ "$output" == *"'$TMP/img/cam003-binary.png': "* ]]
+}
+
+@test "vdt-silhouette --images names a directory that is not there before any work" {
+	run "$BIN/vdt-silhouette" -a 90 -r 32 --images "$TMP/none" "$SAMPLES/torus.off" -o "$TMP/t.vdl"
+	[ "$status" -eq 1 ]
+	one_line
+	[ "$output" = "vdt-silhouette: cannot write images into '$TMP/none': No such file or directory" ]
+	[ ! -e "$TMP/t.vdl" ]
+	run "$BIN/vdt-silhouette" -a 90 -r 32 --images "$SAMPLES/torus.off" "$SAMPLES/torus.off" -o "$TMP/t.vdl"
+	[ "$status" -eq 1 ]
+	[[ "$output" == *"cannot write images into '$SAMPLES/torus.off': Not a directory" ]]
 }
 
 @test "vdt-silhouette: -a with -c, or --nearest without --view, is a usage error" {
