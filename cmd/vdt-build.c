@@ -44,7 +44,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		{"version", no_argument, NULL, 'V'},
 		{NULL, 0, NULL, 0},
 	};
-	int c;
+	int c, out_given = 0;
 
 	memset(cl, 0, sizeof(*cl));
 	vdt_vtree_defaults(&cl->o);
@@ -61,7 +61,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 			break;
 		case O_SLIVER: cl->o.min_quality = parse_real("--sliver", optarg, 1e-9, 1); break;
 		case O_CHECK: cl->check = optarg; break;
-		case 'o': cl->out = optarg; break;
+		case 'o': cl->out = optarg; out_given = 1; break;
 		case 'F':
 			if (vdt_format_parse(optarg) != VDT_FMT_VDT)
 				usage_error("the output is only the vdt stream, not '%s' (-F vdt); "
@@ -78,6 +78,8 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		usage_error("unexpected argument '%s'", argv[optind]);
 	if (cl->check == NULL)
 		refuse_output_over_input(cl->in, cl->out);
+	else if (out_given)
+		usage_error("--check writes nothing: -o has no use with it");
 }
 
 /* --check: decode (every invariant), then collapse all and split all back. */

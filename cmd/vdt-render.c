@@ -94,7 +94,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 			    (cl->v.height = (int)strtol(end + 1, &end, 10)) < 1 || cl->v.height > 16384 || *end)
 				usage_error("invalid size '%s' for --size: want WxH, 1 to 16384", optarg);
 			break;
-		case O_LIGHT: parse_vec3("--light", optarg, 0, cl->o.ro.light); break;
+		case O_LIGHT: parse_vec3("--light", optarg, 1, cl->o.ro.light); break;
 		case O_PATH: cl->path = optarg; break;
 		case O_FLAT: cl->o.ro.smooth = 0; break;
 		case O_WIRE: cl->o.ro.wire = 1; break;

@@ -26,6 +26,12 @@ load helpers
 	run "$BIN/vdt-build" "$SAMPLES/sphere.off" "$SAMPLES/torus.off"
 	[ "$status" -eq 2 ]
 	one_line
+	# --check reads and writes nothing: an output is a mistake
+	"$BIN/vdt-build" -q "$SAMPLES/sphere.off" -o "$TMP/s.vdt"
+	run "$BIN/vdt-build" --check "$TMP/s.vdt" -o "$TMP/x.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"--check writes nothing"* ]]
 }
 
 @test "vdt-build writes a stream with MESH and VTRE that --check accepts" {
@@ -149,7 +155,10 @@ load helpers
 	printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 0 0\n3 0 0 1\n' > "$TMP/degen.off"
 	printf 'OFF\n3 1 0\n0 0 0\n1 0 0\nnan 1 0\n3 0 1 2\n' > "$TMP/nan.off"
 	printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n' > "$TMP/idx.off"
-	for f in degen nan idx none; do
+	# faces of no area: three corners at one point, or on a line
+	printf 'OFF\n3 1 0\n0 0 0\n0 0 0\n0 0 0\n3 0 1 2\n' > "$TMP/point.off"
+	printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n' > "$TMP/line.off"
+	for f in degen nan idx none point line; do
 		run "$BIN/vdt-build" "$TMP/$f.off" -o "$TMP/out.vdt"
 		[ "$status" -eq 2 ]
 		one_line
