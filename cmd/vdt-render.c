@@ -202,7 +202,11 @@ run(struct cmdline *cl)
 	if (views == &cl->v)
 		vdt_view_aim(&cl->v, &box, cl->has_eye, cl->has_at);
 	if (vdt_views_check(views, nviews, &box, &err) != 0) {
-		fprintf(stderr, "%s: bad %s\n", progname, err.msg);
+		if (cl->path)
+			fprintf(stderr, "%s: bad view in '%s': %s\n", progname, cl->path, err.msg);
+		else
+			fprintf(stderr, "%s: bad view of '%s' (--eye, --at, --up): %s\n", progname,
+			        input_name(cl->in), err.msg);
 		rc = EXIT_USAGE;
 		goto out;
 	}

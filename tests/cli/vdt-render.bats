@@ -54,6 +54,13 @@ tree() {
 	run "$BIN/vdt-render" --eye 0,0,5 --at 0,0,5 "$TMP/t.vdt" -o "$TMP/x.png"
 	[ "$status" -eq 2 ]
 	one_line
+	[[ "$output" == "vdt-render: bad view of '$TMP/t.vdt' (--eye, --at, --up): "*coincide ]]
+	# a view of the path file that parses but cannot be: the file is named
+	printf '0 0 5 0 0 0 0 1 0\n0 0 5 0 0 5 0 1 0\n' > "$TMP/p2.txt"
+	run "$BIN/vdt-render" --path "$TMP/p2.txt" "$TMP/t.vdt" -o "$TMP/x%d.png"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == "vdt-render: bad view in '$TMP/p2.txt': view 2: "*coincide ]]
 	printf '0 0 5 0 0 0 0 1 0\n0 0 5 0 0 0\n' > "$TMP/p.txt"
 	run "$BIN/vdt-render" --path "$TMP/p.txt" "$TMP/t.vdt" -o "$TMP/x%d.png"
 	[ "$status" -eq 2 ]
