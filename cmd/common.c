@@ -41,6 +41,10 @@ output_format(const char *path, enum vdt_format given)
 	if (f == VDT_FMT_AUTO)
 		usage_error("cannot tell the output format from '%s': give a known extension or -F",
 		            path);
+	/* (as vdt_write would, but before the input is read and worked on) */
+	if (strcmp(path, "-") == 0 && vdt_format_is_binary(f) && isatty(STDOUT_FILENO))
+		usage_error("refusing to write binary %s to a terminal: give -o or a pipe",
+		            f == VDT_FMT_VDT ? "vdt stream" : vdt_format_name(f));
 	return f;
 }
 

@@ -977,8 +977,8 @@ vdt_text_write(FILE *f, const struct vdt_mesh *m, enum vdt_format format,
 	return 0;
 }
 
-static int
-is_binary_format(enum vdt_format f)
+int
+vdt_format_is_binary(enum vdt_format f)
 {
 	return f == VDT_FMT_VDT || f == VDT_FMT_PLY || f == VDT_FMT_STL || f == VDT_FMT_DRC;
 }
@@ -1027,7 +1027,7 @@ vdt_write(const char *path, const struct vdt_mesh *m,
 
 	if ((f = vdt_output_format(path, f)) == VDT_FMT_AUTO)
 		return vdt_err_set(err, VDT_EINVAL, "unknown output format (give a known extension)");
-	if (to_stdout && is_binary_format(f) && isatty(STDOUT_FILENO))
+	if (to_stdout && vdt_format_is_binary(f) && isatty(STDOUT_FILENO))
 		return vdt_err_set(err, VDT_EINVAL, "refusing to write binary %s to a terminal",
 		                   f == VDT_FMT_VDT ? "vdt stream" : vdt_format_name(f));
 	rc = vdt_mesh_validate(m, err);

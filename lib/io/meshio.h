@@ -70,6 +70,9 @@ int vdt_input_limit_error(const unsigned char *head, struct vdt_err *err);
  * plenty). Returns VDT_FMT_AUTO if unrecognised. ASCII PLY and binary PLY,
  * ASCII and binary STL are told apart.
  */
+/* Whether f is written as bytes no terminal should get (and never is). */
+int vdt_format_is_binary(enum vdt_format f);
+
 /* The length of a UTF-8 byte order mark at buf, which some programs put
  * before text (detection and the readers pass over it): 3, or 0. */
 size_t vdt_bom_length(const unsigned char *buf, size_t n);

@@ -318,7 +318,10 @@ PY
 @test "vdt-cluster refuses to write the stream to a terminal" {
 	if ! command -v script >/dev/null; then skip "no script(1)"; fi
 	run script -qec "$BIN/vdt-cluster -g 8 $SAMPLES/sphere.off" /dev/null
-	[[ "$output" == *"terminal"* ]]
+	[ "$status" -eq 2 ]
+	# at once, before any reading or progress
+	[[ "$output" == "vdt-cluster: refusing to write binary vdt stream to a terminal"* ]]
+	[ "$(printf '%s\n' "$output" | wc -l)" -eq 1 ]
 }
 
 @test "vdt-cluster -t is --target, as in the other tools" {
