@@ -100,6 +100,26 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		cl->ch.dims[0] = 256;
 }
 
+/* The attributes of mask (VDT_ATTR_*), as -v names them ("normals,uvs")
+ * or in words ("normals and texture coordinates"); "none". */
+static const char *
+attr_names(unsigned mask, int words, char buf[64])
+{
+	static const char *const name[2][3] = {{"normals", "uvs", "colors"},
+	                                       {"normals", "texture coordinates", "colours"}};
+	const char *have[3];
+	int n = 0;
+
+	for (int i = 0; i < 3; i++)
+		if (mask & (1u << i))
+			have[n++] = name[words][i];
+	buf[0] = 0;
+	for (int i = 0; i < n; i++)
+		snprintf(buf + strlen(buf), 64 - strlen(buf), "%s%s",
+		         i == 0 ? "" : !words ? "," : i == n - 1 ? " and " : ", ", have[i]);
+	return n ? buf : "none";
+}
+
 static int
 run(struct cmdline *cl)
 {
@@ -116,6 +136,8 @@ run(struct cmdline *cl)
 	const struct vdt_progress *p = progress_start(cl->quiet);
 	double t0 = vdt_seconds(), t1, t2, t3, box_s;
 	int rc, remeasured, streamed;
+	unsigned attrs = 0;
+	char names[64];
 
 	rq.ch.size = cl->size;
 	rq.ch.max_cells = cl->memory_mb > 0 ? (size_t)(cl->memory_mb * 1048576 / VDT_CLUSTER_CELL_BYTES) : 0;
@@ -124,6 +146,7 @@ run(struct cmdline *cl)
 		goto out;
 	}
 	t1 = vdt_seconds();
+	attrs = vdt_tsource_attrs(ts);
 	rc = vdt_cluster_source(ts, &rq, &c, &g, &remeasured, &box_s, p, &err);
 	if (remeasured && !cl->quiet)
 		fprintf(stderr, "%s: %s: the header's bounding box is not that of the vertices the "
@@ -172,11 +195,15 @@ run(struct cmdline *cl)
 		goto write_failed;
 	t3 = vdt_seconds();
 	progress_done();
+	if (attrs && !cl->quiet)
+		fprintf(stderr, "%s: note: '%s' has %s, which clustering does not keep (vdt-qslim "
+		        "alone keeps them)\n", progname, input_name(cl->in), attr_names(attrs, 1, names));
 	if (cl->verbose)
-		fprintf(stderr, "%s: in_triangles=%llu streamed=%d cells=%zu boundary_cells=%zu "
+		fprintf(stderr, "%s: in_triangles=%llu in_attributes=%s streamed=%d cells=%zu boundary_cells=%zu "
 		        "out_vertices=%zu out_triangles=%zu grid=%ux%ux%u cell_size=%.6g "
 		        "bbox_s=%.3f cluster_s=%.3f write_s=%.3f total_s=%.3f mtri_per_s=%.2f peak_mb=%.1f\n",
-		        progname, (unsigned long long)st.triangles_in, streamed, st.cells,
+		        progname, (unsigned long long)st.triangles_in, attr_names(attrs, 0, names),
+		        streamed, st.cells,
 		        st.boundary_cells, st.vertices_out, st.triangles_out, g.dims[0], g.dims[1],
 		        g.dims[2], fmax(g.cell[0], fmax(g.cell[1], g.cell[2])), t1 - t0, t2 - t1,
 		        t3 - t2, t3 - t0, st.triangles_in / fmax(t2 - t0, 1e-9) / 1e6,

@@ -238,7 +238,8 @@ int vdt_obj_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
  * face's fan (as 0-based file vertex numbers) to triangle(). Either
  * returns 0 to go on, or a status, with its message set, to stop with.
  * For readers that keep the mesh elsewhere (vdt-cluster's spool). Returns
- * 0 or the first error.
+ * 0 or the first error; *attrs gets the attributes the file has (VDT_ATTR_*:
+ * vt, vn, colours after a position), which the visit does not receive.
  */
 struct vdt_obj_visit {
 	int (*vertex)(void *ctx, const float p[3], struct vdt_err *err);
@@ -246,7 +247,7 @@ struct vdt_obj_visit {
 	void *ctx;
 };
 int vdt_obj_scan(const unsigned char *buf, size_t len, const struct vdt_obj_visit *visit,
-                 struct vdt_err *err);
+                 unsigned *attrs, struct vdt_err *err);
 int vdt_ply_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err);
 
 /*

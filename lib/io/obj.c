@@ -202,6 +202,7 @@ quote(const char *p, const char *end, char out[24])
 
 struct obj {
 	size_t nv, nt, nn, nf;     /* statements counted before parsing */
+	unsigned scan_attrs;       /* vdt_obj_scan: colours seen (VDT_ATTR_*) */
 	size_t have_v, have_t, have_n; /* read so far */
 	float *pos;                /* 3 per v */
 	float *col;                /* 4 per v, or NULL: no v has a colour */
@@ -304,6 +305,8 @@ read_v(struct reader *r, struct obj *o, struct vdt_err *err)
 		                   r->line);
 	if (o->visit != NULL) {
 		o->have_v++;
+		if (n >= 6)
+			o->scan_attrs |= VDT_ATTR_COLORS;
 		return o->visit->vertex(o->visit->ctx, v, err);
 	}
 	memcpy(o->pos + 3 * i, v, 3 * sizeof(float));
@@ -736,15 +739,19 @@ build_split(struct obj *o, struct vdt_mesh *m, struct vdt_err *err)
 
 int
 vdt_obj_scan(const unsigned char *buf, size_t len, const struct vdt_obj_visit *visit,
-             struct vdt_err *err)
+             unsigned *attrs, struct vdt_err *err)
 {
 	struct obj o = {0};
 	int rc;
 
 	o.visit = visit;
+	*attrs = 0;
 	if ((rc = count((const char *)buf, len, &o, err)) != 0)
 		return rc;
-	return parse((const char *)buf, len, &o, err);
+	if ((rc = parse((const char *)buf, len, &o, err)) != 0)
+		return rc;
+	*attrs = o.scan_attrs | (o.nt ? VDT_ATTR_UVS : 0) | (o.nn ? VDT_ATTR_NORMALS : 0);
+	return 0;
 }
 
 int

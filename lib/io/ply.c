@@ -56,6 +56,16 @@ attr_of(const char *name)
 	return -1;
 }
 
+unsigned
+vdt_ply_property_attr(const char *name)
+{
+	int a = attr_of(name);
+
+	return a >= A_NX && a <= A_NZ ? VDT_ATTR_NORMALS
+	       : a == A_U || a == A_V ? VDT_ATTR_UVS
+	       : a >= A_R ? VDT_ATTR_COLORS : 0;
+}
+
 static double
 color_value(double v, enum vdt_ply_type t)
 {

@@ -93,4 +93,8 @@ size_t vdt_plyhead_face_list(const struct vdt_ply_element *e);
 size_t vdt_plyhead_list_offset(const struct vdt_ply_element *e, size_t li, const unsigned char *p,
                                int be);
 
+/* The attribute (VDT_ATTR_*) a vertex property of that name holds, as
+ * vdt_ply_read takes them, or 0 (a position, or unknown). */
+unsigned vdt_ply_property_attr(const char *name);
+
 #endif

@@ -32,6 +32,7 @@ enum kind { K_PLY, K_STL, K_OBJ, K_VDT, K_MESH };
 struct vdt_tsource {
 	enum kind kind;
 	enum vdt_format format;
+	unsigned attrs; /* the input's attributes, which are not read (VDT_ATTR_*) */
 	const unsigned char *buf;
 	size_t len;
 	void *map; /* what to munmap, or NULL */
@@ -283,6 +284,8 @@ ply_open(struct vdt_tsource *s, struct vdt_err *err)
 		s->xyz_off[k] = off;
 		s->xyz_type[k] = ve->props[i].type;
 	}
+	for (size_t i = 0; i < ve->prop_count; i++)
+		s->attrs |= vdt_ply_property_attr(ve->props[i].name);
 	s->vcount = ve->count;
 	s->fast_vertex = !s->be && s->xyz_type[0] == VDT_PLY_F32 && s->xyz_type[1] == VDT_PLY_F32 &&
 	                 s->xyz_type[2] == VDT_PLY_F32;
@@ -576,7 +579,7 @@ obj_open(struct vdt_tsource *s, struct vdt_err *err)
 		goto out;
 	}
 	fd[0] = fd[1] = -1;
-	if ((rc = vdt_obj_scan(s->buf, s->len, &visit, err)) != 0)
+	if ((rc = vdt_obj_scan(s->buf, s->len, &visit, &s->attrs, err)) != 0)
 		goto out;
 	if (s->map) /* the text is read: its pages need not stay */
 		drop_range(s->buf, s->buf + s->len);
@@ -704,6 +707,7 @@ vdt_open(struct vdt_tsource *s, struct vdt_err *err)
 		if (mask & ~7u || vdt_get_u32le(mesh + 4) != 0)
 			return vdt_err_set(err, VDT_EFORMAT, "chunk MESH at byte %" PRIu64 ": bad attribute mask or reserved word",
 			                   mesh_at);
+		s->attrs = mask;
 		per = 12 + (mask & VDT_ATTR_NORMALS ? 12 : 0) + (mask & VDT_ATTR_UVS ? 8 : 0) +
 		      (mask & VDT_ATTR_COLORS ? 16 : 0);
 		if (v > (mesh_len - 24) / per || t > (mesh_len - 24 - v * per) / 12 ||
@@ -807,6 +811,7 @@ setup(struct vdt_tsource *s, enum vdt_format hint, struct vdt_err *err)
 	s->kind = K_MESH;
 	if ((rc = vdt_read_memory(s->buf, s->len, NULL, &s->mesh, NULL, err)) != 0)
 		return rc;
+	s->attrs = vdt_mesh_attrs(&s->mesh);
 	s->vcount = s->mesh.vertex_count;
 	s->tri_hint = s->mesh.triangle_count;
 	return 0;
@@ -908,6 +913,12 @@ enum vdt_format
 vdt_tsource_format(const struct vdt_tsource *ts)
 {
 	return ts->format;
+}
+
+unsigned
+vdt_tsource_attrs(const struct vdt_tsource *ts)
+{
+	return ts->attrs;
 }
 
 int

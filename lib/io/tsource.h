@@ -60,6 +60,12 @@ void vdt_tsource_close(struct vdt_tsource *ts);
 /* The detected format of the input. */
 enum vdt_format vdt_tsource_format(const struct vdt_tsource *ts);
 
+/*
+ * The attributes the input has (VDT_ATTR_NORMALS, _UVS, _COLORS), which a
+ * source never reads: positions are all it gives.
+ */
+unsigned vdt_tsource_attrs(const struct vdt_tsource *ts);
+
 /* 1 if the input is read in place (streamed), 0 if it was loaded whole. */
 int vdt_tsource_streamed(const struct vdt_tsource *ts);
 

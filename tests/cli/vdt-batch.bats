@@ -415,3 +415,20 @@ SH
 		[ "$status" -eq 2 ] && [[ "$output" == "vdt-batch: bad ratio '*' "* ]])
 	[ ! -e "$TMP/out" ]
 }
+
+@test "vdt-batch: a model with texture coordinates keeps them in every level" {
+	mkdir -p "$TMP/in"
+	cp "$SAMPLES/sphere-uv.obj" "$SAMPLES/torus.off" "$TMP/in/"
+	run "$BATCH" -q -F obj --ratios 50,10 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+	# clustering would drop them: the levels are vdt-qslim's alone
+	for k in 1 2; do
+		grep -q '^vt ' "$TMP/out/sphere-uv.lod$k.obj"
+		grep -q '^vn ' "$TMP/out/sphere-uv.lod$k.obj"
+	done
+	"$BIN/vdt-qslim" -q -t 96 "$SAMPLES/sphere-uv.obj" -o "$TMP/s.obj"
+	cmp "$TMP/s.obj" "$TMP/out/sphere-uv.lod2.obj"
+	# a model without them still takes the multiphase pipeline
+	"$BIN/vdt-cluster" -q -t 230 "$SAMPLES/torus.off" | "$BIN/vdt-qslim" -q -t 230 -o "$TMP/t.obj"
+	cmp "$TMP/t.obj" "$TMP/out/torus.lod2.obj"
+}

@@ -659,3 +659,21 @@ PY
 	"$BIN/vdt-cluster" -g 8 -F off "$TMP/bom.obj" -o "$TMP/b.off"
 	cmp "$TMP/a.off" "$TMP/b.off"
 }
+
+@test "vdt-cluster names the attributes it does not keep, in any format" {
+	for f in obj ply vdt drc; do
+		"$BIN/vdt-qslim" -q -r 1 "$SAMPLES/sphere-uv.obj" -o "$TMP/s.$f"
+		run "$BIN/vdt-cluster" -v -g 8 "$TMP/s.$f" -o "$TMP/c.vdq"
+		[ "$status" -eq 0 ]
+		[[ "${lines[0]}" == "vdt-cluster: note: '$TMP/s.$f' has normals and texture coordinates, which clustering does not keep"* ]]
+		[[ "${lines[1]}" == *" in_attributes=normals,uvs "* ]]
+		run "$BIN/vdt-cluster" -q -g 8 "$TMP/s.$f" -o "$TMP/c.vdq"
+		[ -z "$output" ]
+	done
+	printf 'v 0 0 0 1 0 0\nv 1 0 0 1 0 0\nv 0 1 0 1 0 0\nf 1 2 3\n' >"$TMP/c.obj"
+	run "$BIN/vdt-cluster" -v -g 8 "$TMP/c.obj" -o "$TMP/c.vdq"
+	[[ "$output" == *"has colours, which"*" in_attributes=colors "* ]]
+	run "$BIN/vdt-cluster" -v -g 8 "$SAMPLES/sphere.off" -o "$TMP/c.vdq"
+	one_line
+	[[ "$output" == *" in_attributes=none "* ]]
+}
