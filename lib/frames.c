@@ -136,6 +136,9 @@ vdt_frms_decode(const unsigned char *data, uint64_t length, struct vdt_frames *f
 				                   (unsigned long long)f);
 			uint64_t t = vdt_get_u64le(data + p);
 			p += 8;
+			if (t == 0)
+				return vdt_err_set(err, VDT_EFORMAT, "frame %llu has no triangles",
+				                   (unsigned long long)f);
 			if (t > (length - p) / 12)
 				return vdt_err_set(err, VDT_EFORMAT,
 				                   "frame %llu claims %llu triangles but the FRMS chunk is too short",

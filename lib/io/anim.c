@@ -58,22 +58,23 @@ slurp(const char *path, unsigned char **buf, size_t *len, struct vdt_err *err)
 	return 0;
 }
 
-/* Frame f's triangles against frame 0's: 0, or a message. */
+/* Frame f's triangles against those of m0, which `ref` names ("frame 0",
+ * "the MESH chunk"): 0, or a message. */
 static int
-same_connectivity(const struct vdt_mesh *m0, size_t f, size_t nv, size_t nt,
+same_connectivity(const struct vdt_mesh *m0, const char *ref, size_t f, size_t nv, size_t nt,
                   const uint32_t *tri, struct vdt_err *err)
 {
 	if (nv != m0->vertex_count)
-		return vdt_err_set(err, VDT_EINVAL, "frame %zu has %zu vertices, frame 0 has %zu",
-		                   f, nv, m0->vertex_count);
+		return vdt_err_set(err, VDT_EINVAL, "frame %zu has %zu vertices, %s has %zu",
+		                   f, nv, ref, m0->vertex_count);
 	if (nt != m0->triangle_count)
-		return vdt_err_set(err, VDT_EINVAL, "frame %zu has %zu triangles, frame 0 has %zu",
-		                   f, nt, m0->triangle_count);
+		return vdt_err_set(err, VDT_EINVAL, "frame %zu has %zu triangles, %s has %zu",
+		                   f, nt, ref, m0->triangle_count);
 	for (size_t i = 0; i < 3 * nt; i++)
 		if (tri[i] != m0->triangles[i])
 			return vdt_err_set(err, VDT_EINVAL,
-			                   "frame %zu differs in connectivity from frame 0 at triangle %zu",
-			                   f, i / 3);
+			                   "frame %zu differs in connectivity from %s at triangle %zu",
+			                   f, ref, i / 3);
 	return 0;
 }
 
@@ -116,7 +117,7 @@ vdt_anim_read(const char *path, const struct vdt_bake_opts *bo, struct vdt_mesh 
 		}
 		if (fr->tri_start) {
 			for (size_t f = 0; f < fr->frame_count; f++)
-				if ((rc = same_connectivity(m, f, m->vertex_count,
+				if ((rc = same_connectivity(m, "the MESH chunk", f, m->vertex_count,
 				                            fr->tri_start[f + 1] - fr->tri_start[f],
 				                            fr->triangles + 3 * fr->tri_start[f], err)) != 0)
 					goto fail;
@@ -169,8 +170,8 @@ vdt_anim_read_files(const char *const *paths, size_t n, const struct vdt_bake_op
 		}
 		if (i == 0)
 			nv = m->vertex_count;
-		else if ((rc = same_connectivity(m, nf, x.vertex_count, x.triangle_count, x.triangles,
-		                                 err)) != 0)
+		else if ((rc = same_connectivity(m, "frame 0", nf, x.vertex_count, x.triangle_count,
+		                                 x.triangles, err)) != 0)
 			goto fail;
 		size_t k = xf.frame_count;
 		if (k > SIZE_MAX / 12 / nv - nf) {

@@ -372,6 +372,15 @@ frms_codec(void **state)
 	assert_string_equal(err.msg, "frame 2: vertex 1 has a non-finite coordinate");
 	free(d);
 	vdt_frames_free(&fr);
+	/* With triangles per frame, a frame of none is named as such (the
+	 * count of the next was read from where its triangles were not). */
+	unsigned char t[16 + 2 * 36 + 8 + 8 + 12] = {2, 0, 0, 0, 1, 0, 0, 0, 3};
+	unsigned char *c = t + 16 + 2 * 36;
+	c[8] = 1;                         /* frame 0: 0 triangles; frame 1: 1 */
+	c[16 + 4] = 1;                    /* (0 1 2) */
+	c[16 + 8] = 2;
+	assert_int_equal(vdt_frms_decode(t, sizeof(t), &back, &err), VDT_EFORMAT);
+	assert_string_equal(err.msg, "frame 0 has no triangles");
 }
 
 /* Frames read from files must share frame 0's connectivity. */
@@ -411,8 +420,31 @@ frames_must_match(void **state)
 	paths[1] = a;
 	assert_int_equal(vdt_anim_read_files(paths, 2, NULL, &m, &fr, &bad, &err), 0);
 	assert_int_equal(fr.frame_count, 2);
-	vdt_mesh_free(&m);
-	vdt_frames_free(&fr);
+	/* A stream's frames against its MESH chunk, which is what they are
+	 * named against (frame 0's own triangles may be the ones that differ) */
+	{
+		size_t start[2] = {0, 2};
+		uint32_t tri[6] = {0, 1, 3, 1, 2, 3};
+		struct vdt_frames one = fr;
+		struct vdt_chunks ex = {0};
+		struct vdt_write_opts wo = {VDT_FMT_VDT, 0, 0};
+		unsigned char *d;
+		uint64_t n;
+		one.frame_count = 1;
+		one.tri_start = start;
+		one.triangles = tri;
+		assert_int_equal(vdt_frms_encode(&one, &d, &n, NULL), 0);
+		assert_int_equal(vdt_chunks_add(&ex, VDT_CHUNK_FRMS, d, n, NULL), 0);
+		snprintf(c, sizeof(c), "%s/d.vdt", dir);
+		assert_int_equal(vdt_write(c, &m, &ex, &wo, NULL), 0);
+		vdt_chunks_free(&ex);
+		vdt_mesh_free(&m);
+		vdt_frames_free(&fr);
+		paths[0] = c;
+		assert_int_equal(vdt_anim_read_files(paths, 1, NULL, &m, &fr, &bad, &err), VDT_EINVAL);
+		assert_string_equal(err.msg,
+		                    "frame 0 differs in connectivity from the MESH chunk at triangle 0");
+	}
 	unlink(a);
 	unlink(b);
 	unlink(c);
