@@ -432,3 +432,22 @@ SH
 	"$BIN/vdt-cluster" -q -t 230 "$SAMPLES/torus.off" | "$BIN/vdt-qslim" -q -t 230 -o "$TMP/t.obj"
 	cmp "$TMP/t.obj" "$TMP/out/torus.lod2.obj"
 }
+
+@test "vdt-batch: a directory path with a blank is refused before anything is written" {
+	mkdir -p "$TMP/w/models" "$TMP/w/my models" "$TMP/w/out"
+	cp "$SAMPLES/torus.off" "$TMP/w/models/"
+	cp "$SAMPLES/torus.off" "$TMP/w/my models/"
+	"$BATCH" -q --ratios 50 -o "$TMP/w/out" "$TMP/w/models"
+	before=$(cat "$TMP/w/out/torus.lod1.ply" | md5sum)
+	# (make would split the output's name and write 'out/...' from here)
+	cd "$TMP/w"
+	run "$BATCH" -q --ratios 50 -o "my out" models
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"cannot use '$TMP/w/my out': a directory path with blanks"* ]]
+	run "$BATCH" -q --ratios 50 -o o "my models"
+	[ "$status" -eq 2 ]
+	one_line
+	[ ! -e "my out" ] && [ ! -e o ]
+	[ "$(cat "$TMP/w/out/torus.lod1.ply" | md5sum)" = "$before" ]
+}
