@@ -209,8 +209,8 @@ run(struct cmdline *cl)
 		goto out;
 	}
 	if (fr.frame_count > 1 && !vdt_deform_writes_frames(cl->out, &cl->w))
-		usage_error("%zu frames need a pattern (out/%%03d.obj) or a vdt stream for -o",
-		            fr.frame_count);
+		usage_error("%zu frames need a pattern with one %%d of width 20 at most "
+		            "(out/%%03d.obj) or a vdt stream for -o", fr.frame_count);
 	refuse_frames_over_inputs(cl, fr.frame_count);
 	vdt_chunks_drop_vertex_data(&extra);
 	cl->d.progress = progress_start(cl->quiet);

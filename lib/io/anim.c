@@ -204,7 +204,12 @@ fail:
 	return rc;
 }
 
-/* The one integer conversion of a pattern: its start, or -1. */
+/* The widest field a conversion may ask for: a size_t's 20 digits. */
+#define PATTERN_WIDTH 20
+
+/* The one integer conversion of a pattern: its start, or -1 (none, more
+ * than one, or a field wider than PATTERN_WIDTH, which no frame number
+ * needs and which formatting would cut). */
 static int
 conversion(const char *s, size_t *at, size_t *end)
 {
@@ -216,10 +221,10 @@ conversion(const char *s, size_t *at, size_t *end)
 			i++;
 			continue;
 		}
-		size_t j = i + 1;
-		while (s[j] >= '0' && s[j] <= '9')
-			j++;
-		if (s[j] != 'd' || found)
+		size_t j = i + 1, width = 0;
+		while (s[j] >= '0' && s[j] <= '9' && width <= PATTERN_WIDTH)
+			width = 10 * width + (size_t)(s[j++] - '0');
+		if (s[j] != 'd' || found || width > PATTERN_WIDTH)
 			return -1;
 		found = 1;
 		*at = i;
@@ -242,7 +247,7 @@ vdt_anim_format(const char *pattern, size_t i)
 	size_t at, end;
 	char spec[32];
 
-	if (conversion(pattern, &at, &end) != 0 || end - at > 20)
+	if (conversion(pattern, &at, &end) != 0 || end - at > 24)
 		return NULL;
 	memcpy(spec, pattern + at, end - at - 1);
 	memcpy(spec + (end - at - 1), "zu", 3);

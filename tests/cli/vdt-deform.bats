@@ -529,3 +529,16 @@ PY
 	[ ! -e "$TMP/m.vdt" ]
 	[ ! -e "$TMP/t.off" ]
 }
+
+@test "vdt-deform: a pattern's field is 20 wide at most, not cut short into one name for every frame" {
+	"$MKANIM" -d twist -n 4 "$SAMPLES/torus.off" -o "$TMP/f%02d.off"
+	mkdir "$TMP/p"
+	run "$BIN/vdt-deform" -q -r 0.5 "$TMP/f%02d.off" -o "$TMP/p/%064d.obj"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"4 frames need a pattern with one %d of width 20 at most"* ]]
+	[ -z "$(ls -A "$TMP/p")" ]
+	"$BIN/vdt-deform" -q -r 0.5 "$TMP/f%02d.off" -o "$TMP/p/%020d.obj"
+	[ "$(ls "$TMP/p" | wc -l)" -eq 4 ]
+	[ -e "$TMP/p/00000000000000000003.obj" ]
+}
