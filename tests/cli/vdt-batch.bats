@@ -140,6 +140,16 @@ tree() { # a tree with a subdirectory and a corrupted model
 	! printf '%s\n' "$output" | grep -q torus || false
 	make -s -C "$TMP/s" VDT="$BIN/" MODELS='torus.ply plate.ply' clean
 	[ "$(ls "$TMP/s" | sort | tr '\n' ' ')" = "Makefile plate.off torus.off " ]
+	# a model of your own beside an OFF of its name is neither remade
+	# from it nor cleaned
+	cp "$SAMPLES/sphere.off" "$TMP/s/mine.off"
+	"$BIN/vdt-qslim" -q -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/s/mine.ply"
+	sum=$(md5sum <"$TMP/s/mine.ply")
+	touch "$TMP/s/mine.off"
+	make -s -C "$TMP/s" VDT="$BIN/" MODELS='mine.ply'
+	[ -s "$TMP/s/mine.lod1.ply" ]
+	make -s -C "$TMP/s" VDT="$BIN/" MODELS='mine.ply' clean
+	[ "$(md5sum <"$TMP/s/mine.ply")" = "$sum" ]
 }
 
 @test "vdt-batch -j 2 on real models: killed half-way, the re-run makes only what is missing and names the corrupted model" {
