@@ -461,3 +461,24 @@ SH
 	[ ! -e "my out" ] && [ ! -e o ]
 	[ "$(cat "$TMP/w/out/torus.lod1.ply" | md5sum)" = "$before" ]
 }
+
+@test "vdt-batch killed by its PID alone stops make and the tools it ran" {
+	mkdir -p "$TMP/in"
+	cp "$SAMPLES/fetched/bunny.ply" "$SAMPLES/sphere.off" "$SAMPLES/torus.off" "$TMP/in/"
+	"$BATCH" -q -j 2 -o "$TMP/out" "$TMP/in" & pid=$!
+	for _ in $(seq 600); do
+		[ -e "$TMP/out/.vdt-batch/Makefile" ] && break
+		sleep 0.05
+	done
+	sleep 0.5
+	kill -TERM "$pid"
+	st=0
+	wait "$pid" || st=$?
+	[ "$st" -eq 143 ]
+	sleep 0.5
+	# nothing of the run goes on behind its back
+	! pgrep -f "$TMP/out/.vdt-batch" || false
+	run "$BATCH" -q -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+	[ -s "$TMP/out/bunny.lod4.ply" ]
+}
