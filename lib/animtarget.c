@@ -111,6 +111,20 @@ vdt_anim_deform_triangles(const struct vdt_mesh *m, const struct vdt_frames *fr,
 		d.target_vertices = v > o->target_vertices ? v : o->target_vertices;
 	}
 	rc = vdt_deform(m, fr, &d, res, err);
+	/* Faces on the same vertices as another (a scan's fins) are dropped
+	 * before the contractions, and count for nothing: estimated from the
+	 * faces that are left, the target is not missed by their number (the
+	 * dragon at 5000: 3239 triangles from the 47794 faces, 2171 of them
+	 * repeats; 4999 from the 45623 others). */
+	if (rc == 0 && triangles > 0 && res->dropped > 0) {
+		v = vdt_anim_vertices_for(nv, m->triangle_count - res->dropped, triangles);
+		v = v > o->target_vertices ? v : o->target_vertices;
+		if (v != d.target_vertices) {
+			d.target_vertices = v;
+			vdt_deform_result_free(res);
+			rc = vdt_deform(m, fr, &d, res, err);
+		}
+	}
 	for (int again = 3; rc == 0 && triangles > 0 && again > 0; again--) {
 		if ((v = retarget(res, triangles, d.target_vertices, o->target_vertices, again == 1)) == 0)
 			break;

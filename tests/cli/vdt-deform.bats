@@ -542,3 +542,17 @@ PY
 	[ "$(ls "$TMP/p" | wc -l)" -eq 4 ]
 	[ -e "$TMP/p/00000000000000000003.obj" ]
 }
+
+@test "vdt-deform -t counts without repeated faces, which are dropped first" {
+	# the sphere with its first 500 faces given twice: counted with the
+	# repeats, the target took 500 triangles, half of it
+	awk 'NR == 2 { print $1, $2 + 500, $3; next } { print }
+		NR > 2 + 2562 && NR <= 2 + 2562 + 500 { dup[NR] = $0 }
+		END { for (i = 2 + 2562 + 1; i <= 2 + 2562 + 500; i++) print dup[i] }' \
+		"$SAMPLES/sphere.off" > "$TMP/rep.off"
+	[ "$(off_faces "$TMP/rep.off")" -eq 5620 ]
+	run "$BIN/vdt-deform" -v -t 1000 "$TMP/rep.off" -F off -o "$TMP/d.off"
+	[ "$status" -eq 0 ]
+	n=$(off_faces "$TMP/d.off")
+	[ "$n" -le 1000 ] && [ "$n" -ge 990 ]
+}
