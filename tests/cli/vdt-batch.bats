@@ -482,3 +482,20 @@ SH
 	[ "$status" -eq 0 ]
 	[ -s "$TMP/out/bunny.lod4.ply" ]
 }
+
+@test "vdt-batch: two models whose outputs would share a name both fail, and neither is written" {
+	mkdir -p "$TMP/in"
+	cp "$SAMPLES/torus.off" "$TMP/in/a.off"
+	cp "$SAMPLES/sphere.off" "$TMP/in/a.lod1.off"
+	cp "$SAMPLES/plate.off" "$TMP/in/b.off"
+	run "$BATCH" --ratios 20 -F vdt --recipe lod,tree -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 1 ]
+	[[ "$output" == *"a.lod1.off: cannot take part"*"output name shared with another model"* ]]
+	[[ "$output" == *"failed: a.lod1.off a.off"* ]]
+	[ ! -e "$TMP/out/a.lod1.vdt" ] && [ ! -e "$TMP/out/a.vdt" ]
+	[ -s "$TMP/out/b.lod1.vdt" ] && [ -s "$TMP/out/b.vdt" ]
+	# in another format the levels do not meet the tree: all take part
+	run "$BATCH" -q --ratios 20 --recipe lod,tree -o "$TMP/out2" "$TMP/in"
+	[ "$status" -eq 0 ]
+	[ -s "$TMP/out2/a.lod1.ply" ] && [ -s "$TMP/out2/a.lod1.vdt" ]
+}
