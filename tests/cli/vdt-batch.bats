@@ -499,3 +499,16 @@ SH
 	[ "$status" -eq 0 ]
 	[ -s "$TMP/out2/a.lod1.ply" ] && [ -s "$TMP/out2/a.lod1.vdt" ]
 }
+
+@test "vdt-batch takes .DRC models as .drc ones; tools it cannot find are status 1" {
+	mkdir -p "$TMP/in"
+	"$BIN/vdt-qslim" -q -r 1 "$SAMPLES/torus.off" -o "$TMP/in/t.DRC"
+	run "$BATCH" -q --ratios 50 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+	[ -s "$TMP/out/t.lod1.ply" ]
+	VDT_BIN="$TMP/none" run "$BATCH" -q --ratios 50 -o "$TMP/out3" "$TMP/in"
+	[ "$status" -eq 1 ]
+	one_line
+	[[ "$output" == *"cannot find $TMP/none/"* ]]
+	[ ! -e "$TMP/out3" ]
+}
