@@ -46,12 +46,12 @@ slurp(const char *path, unsigned char **buf, size_t *len, struct vdt_err *err)
 		if (got == 0)
 			break;
 	}
-	int bad = ferror(f);
+	int bad = ferror(f) ? (errno ? errno : EIO) : 0;
 	if (!std)
 		fclose(f);
 	if (bad) {
 		free(b);
-		return vdt_err_set(err, VDT_EIO, "read error");
+		return vdt_err_set(err, VDT_EIO, "%s", bad == EISDIR ? "is a directory" : strerror(bad));
 	}
 	*buf = b;
 	*len = n;

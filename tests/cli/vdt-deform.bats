@@ -556,3 +556,11 @@ PY
 	n=$(off_faces "$TMP/d.off")
 	[ "$n" -le 1000 ] && [ "$n" -ge 990 ]
 }
+
+@test "vdt-deform names a directory given as a frame as the other tools do" {
+	mkdir "$TMP/d"
+	run "$BIN/vdt-deform" -r 0.5 "$TMP/d" -o "$TMP/x.obj"
+	[ "$status" -eq 2 ]
+	one_line
+	[ "$output" = "vdt-deform: cannot read '$TMP/d': is a directory" ]
+}
