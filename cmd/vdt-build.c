@@ -126,7 +126,7 @@ run(struct cmdline *cl)
 	struct vdt_chunks extra = {0};
 	struct vdt_vtree t = {0};
 	struct vdt_vtree_stats st;
-	struct vdt_write_opts w = {VDT_FMT_VDT, 0, 0};
+	struct vdt_write_opts w = {.format = VDT_FMT_VDT};
 	struct vdt_err err = {0};
 	uint64_t len;
 	size_t dropped;

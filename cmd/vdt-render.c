@@ -184,7 +184,7 @@ run(struct cmdline *cl)
 	struct vdt_err err = {0};
 	struct vdt_bbox box;
 	struct vdt_written done = {0};
-	struct vdt_write_opts wo = {VDT_FMT_AUTO, 0, 0};
+	struct vdt_write_opts wo = {.format = VDT_FMT_AUTO, .stage = &done};
 	static const unsigned char bg[3] = {40, 44, 52};
 	size_t nviews = 1;
 	char name[4096];
@@ -220,14 +220,14 @@ run(struct cmdline *cl)
 		if (vdt_render_draw(&R, &cam, bg, &err) != 0)
 			rc = fail("cannot render", cl->in, &err);
 		t2 = vdt_seconds();
-		/* A failed write takes back the frames written before it. */
+		/* Frames stay staged until all are written: a failed run
+		 * replaces none of what their names held. */
 		if (rc == EXIT_OK && cl->out &&
-		    (vdt_image_write(frame_name(name, cl->out, i), R.r.width, R.r.height, 3, R.r.rgb,
-		                     &err) != 0 || vdt_written_add(&done, name, &err) != 0))
+		    vdt_image_write_staged(frame_name(name, cl->out, i), R.r.width, R.r.height, 3,
+		                           R.r.rgb, &done, &err) != 0)
 			rc = fail("cannot write", name, &err);
 		if (rc == EXIT_OK && cl->mesh_out &&
-		    (vdt_write(frame_name(name, cl->mesh_out, i), R.drawn, NULL, &wo, &err) != 0 ||
-		     vdt_written_add(&done, name, &err) != 0))
+		    vdt_write(frame_name(name, cl->mesh_out, i), R.drawn, NULL, &wo, &err) != 0)
 			rc = fail("cannot write", name, &err);
 		if (rc == EXIT_OK && cl->compare &&
 		    vdt_render_compare(&R, frame_name(name, cl->compare, i), &rmse, &err) != 0)
@@ -244,7 +244,8 @@ run(struct cmdline *cl)
 	}
 	if (rc != EXIT_OK)
 		vdt_written_remove(&done); /* leave nothing behind */
-	vdt_written_free(&done);
+	else if (vdt_written_commit(&done, &err) != 0)
+		rc = fail("cannot write", cl->out ? cl->out : cl->mesh_out, &err);
 out:
 	if (views != &cl->v)
 		free(views);

@@ -163,7 +163,7 @@ run(struct cmdline *cl)
 			vdt_labl_view(&l, cl->view, cl->nearest, v);
 			for (size_t i = 0; i < m.vertex_count; i++)
 				fprintf(o.f, "%g\n", v[i]);
-			if (vdt_output_commit(&o, &err) != 0)
+			if (vdt_output_stage(&o, &im.written, &err) != 0)
 				rc = fail("cannot write", cl->out, &err);
 		}
 		free(v);
@@ -172,7 +172,8 @@ run(struct cmdline *cl)
 	vdt_chunks_remove(&extra, VDT_CHUNK_LABL);
 	if (vdt_labl_encode(&l, &data, &len, &err) != 0 ||
 	    vdt_chunks_prepend(&extra, VDT_CHUNK_LABL, data, len, &err) != 0 ||
-	    vdt_write(cl->out, &m, &extra, &(struct vdt_write_opts){VDT_FMT_VDT, 0, 0}, &err) != 0) {
+	    vdt_write(cl->out, &m, &extra,
+	              &(struct vdt_write_opts){.format = VDT_FMT_VDT, .stage = &im.written}, &err) != 0) {
 		rc = fail("cannot write", cl->out, &err);
 		goto out;
 	}
@@ -184,9 +185,12 @@ run(struct cmdline *cl)
 		        (unsigned long long)len, t1 - t0, 100 * vdt_labl_min_share(&l, 1),
 		        100 * vdt_labl_min_share(&l, 2));
 out:
-	if (rc != EXIT_OK) /* the images of a failed run go with it */
+	/* The images and the labels stay staged until all are written: a
+	 * failed run replaces nothing, and leaves nothing behind. */
+	if (rc != EXIT_OK)
 		vdt_written_remove(&im.written);
-	vdt_written_free(&im.written);
+	else if (vdt_written_commit(&im.written, &err) != 0)
+		rc = fail("cannot write", cl->images ? cl->images : cl->out, &err);
 	vdt_mesh_free(&m);
 	vdt_chunks_free(&extra);
 	vdt_cameras_free(&cams);

@@ -1280,29 +1280,34 @@ vdt_deform_write_pattern(const struct vdt_deform_result *res, const char *patter
                          const struct vdt_write_opts *w, char **failed, struct vdt_err *err)
 {
 	struct vdt_written done = {0};
+	struct vdt_write_opts staged = *w;
 	struct vdt_mesh m = {0};
 	int rc = 0;
 
+	/* Frames stay staged until all are written: a failed run replaces
+	 * none of what their names held, and leaves nothing behind. */
+	staged.stage = &done;
 	if (failed)
 		*failed = NULL;
 	for (size_t f = 0; f < res->frame_count && rc == 0; f++) {
 		char *p = vdt_anim_format(pattern, f);
 		if (p == NULL)
 			rc = vdt_err_set(err, VDT_ENOMEM, "cannot expand the pattern");
-		else if ((rc = vdt_deform_frame_mesh(res, f, &m, err)) == 0 &&
-		         (rc = vdt_write(p, &m, NULL, w, err)) == 0)
-			rc = vdt_written_add(&done, p, err);
+		else if ((rc = vdt_deform_frame_mesh(res, f, &m, err)) == 0)
+			rc = vdt_write(p, &m, NULL, &staged, err);
 		vdt_mesh_free(&m);
 		if (rc == 0) {
 			free(p);
 			continue;
 		}
-		vdt_written_remove(&done); /* leave nothing behind */
+		vdt_written_remove(&done);
 		if (failed)
 			*failed = p ? p : strdup(pattern);
 		else
 			free(p);
 	}
+	if (rc == 0 && (rc = vdt_written_commit(&done, err)) != 0 && failed)
+		*failed = strdup(pattern);
 	vdt_written_free(&done);
 	return rc;
 }

@@ -29,14 +29,12 @@ vdt_sil_write_images(void *ctx, size_t camera, const struct vdt_sil_work *w, str
 			top = w->dist[i];
 	}
 	snprintf(path, sizeof(path), "%s/cam%03zu-binary.png", im->dir, camera);
-	if ((rc = vdt_image_write(path, w->res, w->res, 1, px, err)) == 0)
-		rc = vdt_written_add(&im->written, path, err);
+	rc = vdt_image_write_staged(path, w->res, w->res, 1, px, &im->written, err);
 	for (size_t i = 0; rc == 0 && i < rr; i++)
 		px[i] = top > 0 ? (unsigned char)(255 * (w->dist[i] < top ? w->dist[i] : top) / top) : 0;
 	if (rc == 0) {
 		snprintf(path, sizeof(path), "%s/cam%03zu-distance.png", im->dir, camera);
-		if ((rc = vdt_image_write(path, w->res, w->res, 1, px, err)) == 0)
-			rc = vdt_written_add(&im->written, path, err);
+		rc = vdt_image_write_staged(path, w->res, w->res, 1, px, &im->written, err);
 	}
 	if (rc != 0)
 		vdt_err_prefix(err, "'%s'", path);

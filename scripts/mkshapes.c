@@ -1232,7 +1232,7 @@ write_builder(const struct builder *b, const float *normals, const float *uvs,
               const struct opts *o)
 {
 	struct vdt_mesh m = {0};
-	struct vdt_write_opts wo = {o->format, 0, 0};
+	struct vdt_write_opts wo = {.format = o->format};
 	struct vdt_err err = {0};
 
 	m.vertex_count = b->nv;

@@ -50,7 +50,7 @@ main(int argc, char **argv)
 		{"help", no_argument, NULL, 'h'},
 		{NULL, 0, NULL, 0},
 	};
-	struct vdt_write_opts wo = {VDT_FMT_AUTO, 0, 0};
+	struct vdt_write_opts wo = {.format = VDT_FMT_AUTO};
 	struct vdt_mesh m = {0};
 	struct vdt_chunks extra = {0};
 	struct vdt_err err = {0};

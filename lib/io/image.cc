@@ -62,7 +62,7 @@ writer_name(const char *path)
  */
 int
 write_through_memory(OIIO::ImageOutput &out, const char *path, const OIIO::ImageSpec &spec,
-                     const unsigned char *px, struct vdt_err *err)
+                     const unsigned char *px, struct vdt_written *stage, struct vdt_err *err)
 {
 	OIIO::Filesystem::IOVecOutput mem;
 	if (!out.set_ioproxy(&mem) || !out.open(writer_name(path), spec))
@@ -85,11 +85,12 @@ write_through_memory(OIIO::ImageOutput &out, const char *path, const OIIO::Image
 		vdt_output_abort(&o);
 		return vdt_err_set(err, VDT_EIO, "write error: %s", std::strerror(en));
 	}
-	return vdt_output_commit(&o, err);
+	return stage ? vdt_output_stage(&o, stage, err) : vdt_output_commit(&o, err);
 }
 
 int
-write_image(const char *path, int w, int h, int c, const unsigned char *px, struct vdt_err *err)
+write_image(const char *path, int w, int h, int c, const unsigned char *px,
+            struct vdt_written *stage, struct vdt_err *err)
 {
 	if (w <= 0 || h <= 0 || c <= 0 || c > 4)
 		return vdt_err_set(err, VDT_EINVAL, "bad image size %dx%d with %d channels", w, h, c);
@@ -99,7 +100,7 @@ write_image(const char *path, int w, int h, int c, const unsigned char *px, stru
 	OIIO::ImageSpec spec(w, h, c, OIIO::TypeDesc::UINT8);
 	fix_date(*out, spec);
 	if (out->supports("ioproxy"))
-		return write_through_memory(*out, path, spec, px, err);
+		return write_through_memory(*out, path, spec, px, stage, err);
 	if (std::strcmp(path, "-") == 0)
 		return vdt_err_set(err, VDT_EINVAL, "this image format cannot go to standard output");
 	int special = 0;
@@ -155,7 +156,9 @@ write_image(const char *path, int w, int h, int c, const unsigned char *px, stru
 		std::remove(tmp.c_str());
 		return vdt_err_set(err, VDT_EIO, "cannot rename the temporary file: %s", std::strerror(en));
 	}
-	return 0;
+	/* (a writer of its own file cannot be staged: what it replaced is
+	 * gone, and what it wrote goes with a failed run) */
+	return stage ? vdt_written_add(stage, path, err) : 0;
 }
 
 int
@@ -208,8 +211,16 @@ extern "C" int
 vdt_image_write(const char *path, int width, int height, int channels,
                 const unsigned char *pixels, struct vdt_err *err)
 {
+	return vdt_image_write_staged(path, width, height, channels, pixels, nullptr, err);
+}
+
+extern "C" int
+vdt_image_write_staged(const char *path, int width, int height, int channels,
+                       const unsigned char *pixels, struct vdt_written *stage,
+                       struct vdt_err *err)
+{
 	try {
-		return write_image(path, width, height, channels, pixels, err);
+		return write_image(path, width, height, channels, pixels, stage, err);
 	} catch (const std::bad_alloc &) {
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
 	} catch (...) {

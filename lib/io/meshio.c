@@ -566,7 +566,9 @@ static const int cleanup_signals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE,
  */
 struct vdt_wnode {
 	struct vdt_wnode *next;
-	char path[];
+	char *target; /* staged: what path is renamed to at commit; else NULL */
+	char path[];  /* what a failure removes: the staged temporary file, or
+	                 the file written */
 };
 
 #define WRITTEN_SLOTS 4
@@ -671,6 +673,24 @@ vdt_output_temp(const char *target, char **tmp)
 	return fd;
 }
 
+/* Publish n at the head of w, where the signal handler finds it. */
+static void
+written_push(struct vdt_written *w, struct vdt_wnode *n)
+{
+	n->next = w->head;
+	__atomic_store_n(&w->head, n, __ATOMIC_RELEASE);
+	w->count++;
+	if (w->slot == 0) { /* (more sets at once than slots: not on a signal) */
+		cleanup_install();
+		for (int i = 0; i < WRITTEN_SLOTS && w->slot == 0; i++) {
+			struct vdt_written *none = NULL;
+			if (__atomic_compare_exchange_n(&written_sets[i], &none, w, 0, __ATOMIC_RELEASE,
+			                                __ATOMIC_RELAXED))
+				w->slot = i + 1;
+		}
+	}
+}
+
 int
 vdt_written_add(struct vdt_written *w, const char *path, struct vdt_err *err)
 {
@@ -697,19 +717,70 @@ vdt_written_add(struct vdt_written *w, const char *path, struct vdt_err *err)
 	}
 	strcpy(n->path, target);
 	free(target);
-	n->next = w->head;
-	__atomic_store_n(&w->head, n, __ATOMIC_RELEASE);
-	w->count++;
-	if (w->slot == 0) { /* (more sets at once than slots: not on a signal) */
-		cleanup_install();
-		for (int i = 0; i < WRITTEN_SLOTS && w->slot == 0; i++) {
-			struct vdt_written *none = NULL;
-			if (__atomic_compare_exchange_n(&written_sets[i], &none, w, 0, __ATOMIC_RELEASE,
-			                                __ATOMIC_RELAXED))
-				w->slot = i + 1;
-		}
-	}
+	n->target = NULL;
+	written_push(w, n);
 	return 0;
+}
+
+int
+vdt_output_stage(struct vdt_output *o, struct vdt_written *w, struct vdt_err *err)
+{
+	struct vdt_wnode *n;
+	int rc = 0;
+
+	if (o->f == NULL)
+		return vdt_err_set(err, VDT_EINVAL, "output is not open");
+	if (o->tmp == NULL) /* stdout, a device, a FIFO: written in place */
+		return vdt_output_commit(o, err);
+	if (fflush(o->f) != 0 || ferror(o->f)) {
+		rc = vdt_err_set(err, VDT_EIO, "write error: %s", strerror(errno));
+		fclose(o->f);
+	} else if (fclose(o->f) != 0) {
+		rc = vdt_err_set(err, VDT_EIO, "write error: %s", strerror(errno));
+	} else if ((n = malloc(sizeof(*n) + strlen(o->tmp) + 1)) == NULL ||
+	           (n->target = strdup(o->path)) == NULL) {
+		free(n);
+		rc = vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	} else {
+		strcpy(n->path, o->tmp);
+		written_push(w, n); /* before the temporary file's own note goes */
+	}
+	if (rc != 0)
+		unlink(o->tmp);
+	vdt_output_temp_done(o->tmp);
+	free(o->tmp);
+	free(o->path);
+	memset(o, 0, sizeof(*o));
+	return rc;
+}
+
+int
+vdt_written_commit(struct vdt_written *w, struct vdt_err *err)
+{
+	struct vdt_wnode **order = malloc((w->count ? w->count : 1) * sizeof(*order));
+	size_t n = 0;
+	int rc = 0;
+
+	if (order == NULL) {
+		vdt_written_remove(w);
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	}
+	for (struct vdt_wnode *x = w->head; x; x = x->next)
+		order[n++] = x;
+	/* in the order written (the list is newest first) */
+	while (n-- > 0 && rc == 0)
+		if (order[n]->target && rename(order[n]->path, order[n]->target) != 0) {
+			rc = vdt_err_set(err, VDT_EIO, "cannot rename the temporary file '%s': %s",
+			                 order[n]->path, strerror(errno));
+			break;
+		}
+	/* what a failed rename left staged goes; what was renamed stays */
+	for (size_t i = 0; rc != 0 && i <= n; i++)
+		if (order[i]->target)
+			unlink(order[i]->path);
+	free(order);
+	vdt_written_free(w);
+	return rc;
 }
 
 void
@@ -730,6 +801,7 @@ vdt_written_free(struct vdt_written *w)
 	__atomic_store_n(&w->head, NULL, __ATOMIC_RELEASE);
 	while (n) {
 		struct vdt_wnode *next = n->next;
+		free(n->target);
 		free(n);
 		n = next;
 	}
@@ -762,6 +834,11 @@ vdt_output_open(struct vdt_output *o, const char *path, struct vdt_err *err)
 	}
 	if ((o->path = vdt_output_target(path, &special)) == NULL)
 		return output_fail(o, -1, err, VDT_ENOMEM, "out of memory", 0);
+	/* Said now, not when the file written is to be renamed over it (for
+	 * staged frames, after the others were written). */
+	struct stat st;
+	if (!special && stat(o->path, &st) == 0 && S_ISDIR(st.st_mode))
+		return output_fail(o, -1, err, VDT_EIO, "", EISDIR);
 	if (special) {
 		/* A device, FIFO or socket: written in place, as there is no
 		 * file to replace (and replacing /dev/null would be a crime). */
@@ -1050,5 +1127,6 @@ vdt_write(const char *path, const struct vdt_mesh *m,
 		vdt_output_abort(&o);
 		return rc;
 	}
-	return vdt_output_commit(&o, err);
+	return opts && opts->stage ? vdt_output_stage(&o, opts->stage, err)
+	                           : vdt_output_commit(&o, err);
 }

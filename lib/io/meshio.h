@@ -93,10 +93,14 @@ enum vdt_format vdt_format_detect(const unsigned char *buf, size_t n);
 int vdt_read(const char *path, struct vdt_mesh *m, struct vdt_chunks *extra,
              struct vdt_err *err);
 
+struct vdt_written;
 struct vdt_write_opts {
 	enum vdt_format format; /* VDT_FMT_AUTO: from the path's extension */
 	int draco_position_bits; /* Draco quantisation, 0 = default (16) */
 	int draco_speed;         /* Draco encoder speed 1..10, 0 = default (5) */
+	struct vdt_written *stage; /* non-NULL: the file is left staged in it
+	                              (vdt_output_stage), renamed over its
+	                              target by vdt_written_commit */
 };
 
 /*
@@ -164,7 +168,25 @@ struct vdt_written {
  */
 int vdt_written_add(struct vdt_written *w, const char *path, struct vdt_err *err);
 
-/* Remove every file noted in w, then empty w. */
+/*
+ * Instead of vdt_output_commit, for one of several outputs that must all be
+ * written before any replaces what it names (the frames of a run): flush
+ * and close o's temporary file and note it in w, to be renamed over its
+ * target by vdt_written_commit, or removed by vdt_written_remove or a
+ * signal. Standard output, devices and FIFOs are committed at once. Write
+ * errors are VDT_EIO, the temporary file then gone.
+ */
+int vdt_output_stage(struct vdt_output *o, struct vdt_written *w, struct vdt_err *err);
+
+/*
+ * Rename every staged file of w over its target, in the order written,
+ * then empty w: the run succeeded. A rename that fails (VDT_EIO) leaves
+ * the targets renamed before it and removes the staged files after it.
+ */
+int vdt_written_commit(struct vdt_written *w, struct vdt_err *err);
+
+/* Remove every file noted in w (the staged ones unrenamed: what they
+ * would have replaced stays), then empty w. */
 void vdt_written_remove(struct vdt_written *w);
 
 /* Forget w's files, keeping them (the run succeeded). */
@@ -286,6 +308,11 @@ int vdt_draco_write(FILE *f, const struct vdt_mesh *m, int position_bits,
  */
 int vdt_image_write(const char *path, int width, int height, int channels,
                     const unsigned char *pixels, struct vdt_err *err);
+/* The same, the file left staged in `stage` (non-NULL) as
+ * vdt_output_stage leaves it, for vdt_written_commit. */
+int vdt_image_write_staged(const char *path, int width, int height, int channels,
+                           const unsigned char *pixels, struct vdt_written *stage,
+                           struct vdt_err *err);
 /*
  * Whether vdt_image_write has a writer for path's extension: 0, or
  * VDT_EINVAL naming the problem. Writes nothing.

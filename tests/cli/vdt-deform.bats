@@ -564,3 +564,20 @@ PY
 	one_line
 	[ "$output" = "vdt-deform: cannot read '$TMP/d': is a directory" ]
 }
+
+@test "vdt-deform: a run that fails on a later frame replaces none of the earlier frames' files" {
+	"$MKANIM" -d twist -n 6 "$SAMPLES/torus.off" -o "$TMP/f%02d.off"
+	mkdir -p "$TMP/p/004.obj"
+	echo old >"$TMP/p/001.obj"
+	run "$BIN/vdt-deform" -r 0.3 "$TMP/f%02d.off" -o "$TMP/p/%03d.obj"
+	[ "$status" -eq 1 ]
+	one_line
+	[[ "$output" == *"004.obj"*"Is a directory"* ]]
+	# what the names held stays; nothing new, nor hidden, is left
+	[ "$(cat "$TMP/p/001.obj")" = old ]
+	[ "$(ls -A "$TMP/p" | tr '\n' ' ')" = "001.obj 004.obj " ]
+	rmdir "$TMP/p/004.obj"
+	"$BIN/vdt-deform" -q -r 0.3 "$TMP/f%02d.off" -o "$TMP/p/%03d.obj"
+	[ "$(ls "$TMP/p" | wc -l)" -eq 6 ]
+	head -n 1 "$TMP/p/001.obj" | grep -q '^# written by vdt'
+}

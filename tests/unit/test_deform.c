@@ -427,7 +427,7 @@ frames_must_match(void **state)
 		uint32_t tri[6] = {0, 1, 3, 1, 2, 3};
 		struct vdt_frames one = fr;
 		struct vdt_chunks ex = {0};
-		struct vdt_write_opts wo = {VDT_FMT_VDT, 0, 0};
+		struct vdt_write_opts wo = {.format = VDT_FMT_VDT};
 		unsigned char *d;
 		uint64_t n;
 		one.frame_count = 1;
