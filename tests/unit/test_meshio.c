@@ -163,6 +163,61 @@ test_bom(void **state)
 	                 VDT_FMT_AUTO);
 }
 
+/* Staged outputs replace their targets only at commit; removed, never. */
+static void
+test_staged_outputs(void **state)
+{
+	char dir[] = "/tmp/vdt-stage-XXXXXX", a[64], b[64], buf[16];
+	struct vdt_written w = {0};
+	struct vdt_output o;
+	FILE *f;
+
+	(void)state;
+	assert_non_null(mkdtemp(dir));
+	snprintf(a, sizeof(a), "%s/a.txt", dir);
+	snprintf(b, sizeof(b), "%s/b.txt", dir);
+	for (int round = 0; round < 2; round++) {
+		f = fopen(a, "w");
+		fputs("old", f);
+		fclose(f);
+		const char *names[2] = {a, b};
+		for (int i = 0; i < 2; i++) {
+			assert_int_equal(vdt_output_open(&o, names[i], NULL), 0);
+			fputs("new", o.f);
+			assert_int_equal(vdt_output_stage(&o, &w, NULL), 0);
+		}
+		assert_int_equal(w.count, 2);
+		/* staged: the old file is whole, the new one not there yet */
+		f = fopen(a, "r");
+		assert_non_null(fgets(buf, sizeof(buf), f));
+		fclose(f);
+		assert_string_equal(buf, "old");
+		assert_int_equal(access(b, F_OK), -1);
+		if (round == 0) {
+			vdt_written_remove(&w);
+			f = fopen(a, "r");
+			assert_non_null(fgets(buf, sizeof(buf), f));
+			fclose(f);
+			assert_string_equal(buf, "old");
+			assert_int_equal(access(b, F_OK), -1);
+		} else {
+			assert_int_equal(vdt_written_commit(&w, NULL), 0);
+			f = fopen(b, "r");
+			assert_non_null(fgets(buf, sizeof(buf), f));
+			fclose(f);
+			assert_string_equal(buf, "new");
+		}
+		assert_null(w.head);
+		/* nothing hidden is left beside them */
+		char cmd[128];
+		snprintf(cmd, sizeof(cmd), "test -z \"$(ls -A %s | grep '^\\.')\"", dir);
+		assert_int_equal(system(cmd), 0);
+	}
+	unlink(a);
+	unlink(b);
+	rmdir(dir);
+}
+
 static void
 test_format_names(void **state)
 {
@@ -755,6 +810,7 @@ main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_format_names),
 		cmocka_unit_test(test_bom),
+		cmocka_unit_test(test_staged_outputs),
 		cmocka_unit_test(test_detect),
 		cmocka_unit_test(test_roundtrip_plain),
 		cmocka_unit_test(test_roundtrip_attributes),
