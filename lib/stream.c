@@ -76,7 +76,7 @@ vdt_stream_sniff(const unsigned char *buf, size_t n)
 	/* One of the first four bytes damaged, the next four whole: a damaged
 	 * stream still, not a binary STL (which any bytes of the right size
 	 * are) to be refused in that format's words. */
-	if (n < 8 || memcmp(buf + 4, VDT_STREAM_SIGNATURE + 4, 4) != 0)
+	if (n < 8 || memcmp(buf + 4, &VDT_STREAM_SIGNATURE[4], 4) != 0)
 		return 0;
 	for (int i = 0; i < 4; i++)
 		same += buf[i] == (unsigned char)VDT_STREAM_SIGNATURE[i];
@@ -167,7 +167,7 @@ bad_signature(const unsigned char *h, size_t n, size_t at, struct vdt_err *err)
 			why = "LF turned into CR LF (copied in text mode)";
 		else
 			why = "damaged vdt signature";
-	} else if (n >= 8 && memcmp(h + 4, VDT_STREAM_SIGNATURE + 4, 4) == 0) {
+	} else if (n >= 8 && memcmp(h + 4, &VDT_STREAM_SIGNATURE[4], 4) == 0) {
 		why = "damaged vdt signature";
 	}
 	return vdt_err_set(err, VDT_EFORMAT, "bad signature at byte %zu: %s", at, why);
