@@ -94,6 +94,8 @@ write_image(const char *path, int w, int h, int c, const unsigned char *px,
 {
 	if (w <= 0 || h <= 0 || c <= 0 || c > 4)
 		return vdt_err_set(err, VDT_EINVAL, "bad image size %dx%d with %d channels", w, h, c);
+	if (std::strcmp(path, "-") == 0 && isatty(STDOUT_FILENO))
+		return vdt_err_set(err, VDT_EINVAL, "refusing to write a binary image to a terminal");
 	auto out = OIIO::ImageOutput::create(writer_name(path));
 	if (!out)
 		return no_writer(err);
@@ -197,6 +199,8 @@ read_image(const char *path, int *w, int *h, int *c, unsigned char **px, struct 
 extern "C" int
 vdt_image_writable(const char *path, struct vdt_err *err)
 {
+	if (std::strcmp(path, "-") == 0 && isatty(STDOUT_FILENO))
+		return vdt_err_set(err, VDT_EINVAL, "refusing to write a binary image to a terminal");
 	try {
 		auto out = OIIO::ImageOutput::create(writer_name(path));
 		return out ? 0 : no_writer(err);

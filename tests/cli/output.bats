@@ -98,6 +98,12 @@ load helpers
 	"$BIN/vdt-render" --size 64x48 "$TMP/t.vdt" -o "$TMP/a.png"
 	"$BIN/vdt-render" --size 64x48 "$TMP/t.vdt" -o - >"$TMP/b.png"
 	cmp "$TMP/a.png" "$TMP/b.png"
+	# but not to a terminal, before any rendering
+	if command -v script >/dev/null; then
+		run script -qec "$BIN/vdt-render --size 64x48 $TMP/t.vdt -o -" /dev/null
+		[ "$status" -eq 2 ]
+		[[ "$output" == *"refusing to write a binary image to a terminal"* ]]
+	fi
 }
 
 @test "vdt-silhouette --view -o writes its file whole, and names a missing directory" {
