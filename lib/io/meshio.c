@@ -722,29 +722,25 @@ vdt_written_add(struct vdt_written *w, const char *path, struct vdt_err *err)
 	return 0;
 }
 
-int
-vdt_output_stage(struct vdt_output *o, struct vdt_written *w, struct vdt_err *err)
+/* Flush and close o's temporary file: 0, or VDT_EIO (a full disk). */
+static int
+close_temp(struct vdt_output *o, struct vdt_err *err)
 {
-	struct vdt_wnode *n;
-	int rc = 0;
-
-	if (o->f == NULL)
-		return vdt_err_set(err, VDT_EINVAL, "output is not open");
-	if (o->tmp == NULL) /* stdout, a device, a FIFO: written in place */
-		return vdt_output_commit(o, err);
 	if (fflush(o->f) != 0 || ferror(o->f)) {
-		rc = vdt_err_set(err, VDT_EIO, "write error: %s", strerror(errno));
+		int rc = vdt_err_set(err, VDT_EIO, "write error: %s", strerror(errno));
 		fclose(o->f);
-	} else if (fclose(o->f) != 0) {
-		rc = vdt_err_set(err, VDT_EIO, "write error: %s", strerror(errno));
-	} else if ((n = malloc(sizeof(*n) + strlen(o->tmp) + 1)) == NULL ||
-	           (n->target = strdup(o->path)) == NULL) {
-		free(n);
-		rc = vdt_err_set(err, VDT_ENOMEM, "out of memory");
-	} else {
-		strcpy(n->path, o->tmp);
-		written_push(w, n); /* before the temporary file's own note goes */
+		return rc;
 	}
+	if (fclose(o->f) != 0)
+		return vdt_err_set(err, VDT_EIO, "write error: %s", strerror(errno));
+	return 0;
+}
+
+/* Done with o's temporary file, renamed or noted elsewhere, or removed
+ * when rc (returned) says the output failed; o is emptied. */
+static int
+release_temp(struct vdt_output *o, int rc)
+{
 	if (rc != 0)
 		unlink(o->tmp);
 	vdt_output_temp_done(o->tmp);
@@ -752,6 +748,28 @@ vdt_output_stage(struct vdt_output *o, struct vdt_written *w, struct vdt_err *er
 	free(o->path);
 	memset(o, 0, sizeof(*o));
 	return rc;
+}
+
+int
+vdt_output_stage(struct vdt_output *o, struct vdt_written *w, struct vdt_err *err)
+{
+	struct vdt_wnode *n;
+	int rc;
+
+	if (o->f == NULL)
+		return vdt_err_set(err, VDT_EINVAL, "output is not open");
+	if (o->tmp == NULL) /* stdout, a device, a FIFO: written in place */
+		return vdt_output_commit(o, err);
+	if ((rc = close_temp(o, err)) != 0)
+		return release_temp(o, rc);
+	if ((n = malloc(sizeof(*n) + strlen(o->tmp) + 1)) == NULL ||
+	    (n->target = strdup(o->path)) == NULL) {
+		free(n);
+		return release_temp(o, vdt_err_set(err, VDT_ENOMEM, "out of memory"));
+	}
+	strcpy(n->path, o->tmp);
+	written_push(w, n); /* before the temporary file's own note goes */
+	return release_temp(o, 0);
 }
 
 int
@@ -871,21 +889,9 @@ vdt_output_commit(struct vdt_output *o, struct vdt_err *err)
 		memset(o, 0, sizeof(*o));
 		return rc;
 	}
-	if (fflush(o->f) != 0 || ferror(o->f)) {
-		rc = vdt_err_set(err, VDT_EIO, "write error: %s", strerror(errno));
-		fclose(o->f);
-	} else if (fclose(o->f) != 0) {
-		rc = vdt_err_set(err, VDT_EIO, "write error: %s", strerror(errno));
-	} else if (rename(o->tmp, o->path) != 0) {
+	if ((rc = close_temp(o, err)) == 0 && rename(o->tmp, o->path) != 0)
 		rc = vdt_err_set(err, VDT_EIO, "cannot rename the temporary file: %s", strerror(errno));
-	}
-	if (rc != 0)
-		unlink(o->tmp);
-	vdt_output_temp_done(o->tmp);
-	free(o->tmp);
-	free(o->path);
-	memset(o, 0, sizeof(*o));
-	return rc;
+	return release_temp(o, rc);
 }
 
 void
