@@ -13,12 +13,13 @@
 #include "frames.h"
 
 /*
- * The vertices of fr left once those that coincide in every frame are
- * welded, as vdt_deform welds them (-0 with +0). Returns 0 with *count
- * set, or VDT_ENOMEM.
+ * What vdt_deform contracts of m's faces over fr: the vertices left once
+ * those that coincide in every frame are welded (-0 with +0), and the
+ * faces left once those that welding puts on another face's vertices are
+ * dropped (m NULL: no face). Returns 0 with both set, or VDT_ENOMEM.
  */
-int vdt_anim_welded_vertices(const struct vdt_frames *fr, size_t *count,
-                             struct vdt_err *err);
+int vdt_anim_welded_counts(const struct vdt_mesh *m, const struct vdt_frames *fr,
+                           size_t *vertices, size_t *faces, struct vdt_err *err);
 
 /*
  * The vertex target for `want` triangles on a mesh of `vertices` (welded)

@@ -26,17 +26,26 @@ welded_in_every_frame(void **state)
 	float p[] = {0, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0, -0.0f, 0, 0,
 	             0, 0, 1, 1, 0, 1, 0, 0, 1, 2, 0, 1, 0, 0, 1};
 	struct vdt_frames fr = {.frame_count = 2, .vertex_count = 5, .positions = p};
-	size_t n = 0;
+	size_t n = 0, nf = 1;
 
 	(void)state;
-	assert_int_equal(vdt_anim_welded_vertices(&fr, &n, NULL), 0);
+	assert_int_equal(vdt_anim_welded_counts(NULL, &fr, &n, &nf, NULL), 0);
 	assert_int_equal(n, 3);
 	fr.frame_count = 1; /* frame 0 alone: 3 joins 1 */
-	assert_int_equal(vdt_anim_welded_vertices(&fr, &n, NULL), 0);
+	assert_int_equal(vdt_anim_welded_counts(NULL, &fr, &n, &nf, NULL), 0);
 	assert_int_equal(n, 2);
 	fr.vertex_count = 0;
-	assert_int_equal(vdt_anim_welded_vertices(&fr, &n, NULL), 0);
+	assert_int_equal(vdt_anim_welded_counts(NULL, &fr, &n, &nf, NULL), 0);
 	assert_int_equal(n, 0);
+	assert_int_equal(nf, 0);
+	/* faces: (0 1 3) and (2 1 3) are one once 2 is welded to 0 */
+	uint32_t t[] = {0, 1, 3, 2, 1, 3};
+	struct vdt_mesh m = {.vertex_count = 5, .triangle_count = 2, .triangles = t};
+	fr.frame_count = 2;
+	fr.vertex_count = 5;
+	assert_int_equal(vdt_anim_welded_counts(&m, &fr, &n, &nf, NULL), 0);
+	assert_int_equal(n, 3);
+	assert_int_equal(nf, 1);
 }
 
 /*
