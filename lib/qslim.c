@@ -1871,35 +1871,22 @@ give_up_parts(struct vdt_contract_result *r, size_t target)
 		free(p);
 		return -1;
 	}
-	for (size_t v = 0; v < r->vertex_count; v++) {
-		up[v] = (uint32_t)v;
+	/* (a view of the contracted mesh, for its faces' geometry) */
+	const struct vdt_mesh view = {.positions = r->positions, .vertex_count = r->vertex_count,
+	                              .triangles = r->triangles, .triangle_count = nt};
+
+	vdt_topo_part_forest(r->vertex_count, r->triangles, nt, up);
+	for (size_t v = 0; v < r->vertex_count; v++)
 		slot[v] = UINT32_MAX;
-	}
 	for (size_t t = 0; t < nt; t++) {
-		const uint32_t *c = r->triangles + 3 * t;
-		for (int k = 1; k < 3; k++) {
-			uint32_t x = vdt_topo_find(up, c[0]), y = vdt_topo_find(up, c[k]);
-			if (x != y)
-				up[x > y ? x : y] = x < y ? x : y;
-		}
-	}
-	for (size_t t = 0; t < nt; t++) {
-		const uint32_t *c = r->triangles + 3 * t;
-		uint32_t root = vdt_topo_find(up, c[0]);
-		const float *q0 = r->positions + 3 * (size_t)c[0], *q1 = r->positions + 3 * (size_t)c[1],
-		            *q2 = r->positions + 3 * (size_t)c[2];
-		double e1[3], e2[3];
+		uint32_t root = vdt_topo_find(up, r->triangles[3 * t]);
+		double n[3];
 		if (slot[root] == UINT32_MAX) {
 			p[np] = (struct part){0, 0, root};
 			slot[root] = (uint32_t)np++;
 		}
-		for (int k = 0; k < 3; k++) {
-			e1[k] = (double)q1[k] - q0[k];
-			e2[k] = (double)q2[k] - q0[k];
-		}
-		double n0 = e1[1] * e2[2] - e1[2] * e2[1], n1 = e1[2] * e2[0] - e1[0] * e2[2],
-		       n2 = e1[0] * e2[1] - e1[1] * e2[0];
-		p[slot[root]].area += 0.5 * sqrt(n0 * n0 + n1 * n1 + n2 * n2);
+		vdt_mesh_face_cross(&view, t, n);
+		p[slot[root]].area += 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
 		p[slot[root]].faces++;
 	}
 	qsort(p, np, sizeof(*p), by_area);

@@ -172,6 +172,26 @@ nomem:
 	return -1;
 }
 
+void
+vdt_topo_part_forest(size_t nv, const uint32_t *tri, size_t nt, uint32_t *up)
+{
+	for (size_t v = 0; v < nv; v++)
+		up[v] = (uint32_t)v;
+	for (size_t t = 0; t < nt; t++) {
+		const uint32_t *c = tri + 3 * t;
+		uint32_t r = vdt_topo_find(up, c[0]);
+		for (int k = 1; k < 3; k++) {
+			uint32_t q = vdt_topo_find(up, c[k]);
+			if (q < r) {
+				up[r] = q;
+				r = q;
+			} else if (q > r) {
+				up[q] = r;
+			}
+		}
+	}
+}
+
 size_t
 vdt_topo_parts(size_t nv, const uint32_t *tri, size_t nt)
 {
@@ -184,23 +204,9 @@ vdt_topo_parts(size_t nv, const uint32_t *tri, size_t nt)
 		free(used);
 		return SIZE_MAX;
 	}
-	for (size_t v = 0; v < nv; v++)
-		up[v] = (uint32_t)v;
-	for (size_t t = 0; t < nt; t++) {
-		const uint32_t *c = tri + 3 * t;
-		uint32_t r = vdt_topo_find(up, c[0]);
-		used[c[0]] = 1;
-		for (int k = 1; k < 3; k++) {
-			uint32_t q = vdt_topo_find(up, c[k]);
-			used[c[k]] = 1;
-			if (q < r) {
-				up[r] = q;
-				r = q;
-			} else if (q > r) {
-				up[q] = r;
-			}
-		}
-	}
+	vdt_topo_part_forest(nv, tri, nt, up);
+	for (size_t i = 0; i < 3 * nt; i++)
+		used[tri[i]] = 1;
 	for (size_t v = 0; v < nv; v++)
 		parts += used[v] && up[v] == v;
 	free(up);

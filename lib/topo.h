@@ -71,4 +71,10 @@ vdt_topo_find(uint32_t *up, uint32_t v)
  */
 size_t vdt_topo_parts(size_t nv, const uint32_t *tri, size_t nt);
 
+/*
+ * The same as a union-find forest in up (nv entries, filled here): each
+ * part's root is its lowest vertex, vdt_topo_find(up, v) the part of v.
+ */
+void vdt_topo_part_forest(size_t nv, const uint32_t *tri, size_t nt, uint32_t *up);
+
 #endif
