@@ -47,11 +47,21 @@ fix_date(OIIO::ImageOutput &out, OIIO::ImageSpec &spec)
 		spec.attribute("DateTime", "1970:01:01 00:00:00");
 }
 
-/* The name OpenImageIO picks a writer by: "-" (standard output) is PNG. */
+/* The name OpenImageIO picks a writer by: "-" (standard output) is PNG,
+ * whose writer goes through memory (write_through_memory). */
 const char *
 writer_name(const char *path)
 {
 	return std::strcmp(path, "-") == 0 ? "-.png" : path;
+}
+
+/* Bytes of an image are no more for a terminal than a binary mesh is. */
+int
+refuse_terminal(const char *path, struct vdt_err *err)
+{
+	if (std::strcmp(path, "-") == 0 && isatty(STDOUT_FILENO))
+		return vdt_err_set(err, VDT_EINVAL, "refusing to write a binary image to a terminal");
+	return 0;
 }
 
 /*
@@ -94,8 +104,8 @@ write_image(const char *path, int w, int h, int c, const unsigned char *px,
 {
 	if (w <= 0 || h <= 0 || c <= 0 || c > 4)
 		return vdt_err_set(err, VDT_EINVAL, "bad image size %dx%d with %d channels", w, h, c);
-	if (std::strcmp(path, "-") == 0 && isatty(STDOUT_FILENO))
-		return vdt_err_set(err, VDT_EINVAL, "refusing to write a binary image to a terminal");
+	if (int rc = refuse_terminal(path, err))
+		return rc;
 	auto out = OIIO::ImageOutput::create(writer_name(path));
 	if (!out)
 		return no_writer(err);
@@ -103,8 +113,7 @@ write_image(const char *path, int w, int h, int c, const unsigned char *px,
 	fix_date(*out, spec);
 	if (out->supports("ioproxy"))
 		return write_through_memory(*out, path, spec, px, stage, err);
-	if (std::strcmp(path, "-") == 0)
-		return vdt_err_set(err, VDT_EINVAL, "this image format cannot go to standard output");
+	/* A writer of its own file (SGI here), by name: never "-". */
 	int special = 0;
 	char *target = vdt_output_target(path, &special);
 	if (target == nullptr)
@@ -199,8 +208,8 @@ read_image(const char *path, int *w, int *h, int *c, unsigned char **px, struct 
 extern "C" int
 vdt_image_writable(const char *path, struct vdt_err *err)
 {
-	if (std::strcmp(path, "-") == 0 && isatty(STDOUT_FILENO))
-		return vdt_err_set(err, VDT_EINVAL, "refusing to write a binary image to a terminal");
+	if (int rc = refuse_terminal(path, err))
+		return rc;
 	try {
 		auto out = OIIO::ImageOutput::create(writer_name(path));
 		return out ? 0 : no_writer(err);
