@@ -155,6 +155,11 @@ load helpers
 	one_line
 	[[ "$output" == *"are one file"* ]]
 	[ ! -e "$TMP/r.txt" ]
+	run "$BIN/vdt-render" --size 32x24 "$TMP/s.vdt" -o "$TMP/r.png" --mesh-out "$TMP/r.png"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"-o '$TMP/r.png' and --mesh-out '$TMP/r.png' are one file"* ]]
+	[ ! -e "$TMP/r.png" ]
 	[ "$(cd "$TMP" && cat s.off s.vdt f/*.off view.txt cams.txt ref.png | md5sum)" = "$before" ]
 	[ "$(ls -A "$TMP" "$TMP/f" | grep -c '^\.')" -eq 0 ]
 	# other names are written as ever

@@ -512,3 +512,14 @@ SH
 	[[ "$output" == *"cannot find $TMP/none/"* ]]
 	[ ! -e "$TMP/out3" ]
 }
+
+@test "vdt-batch: the labels recipe without vdt-silhouette beside the tools is status 1" {
+	mkdir -p "$TMP/in" "$TMP/bin"
+	cp "$SAMPLES/torus.off" "$TMP/in/"
+	for t in vdt-cluster vdt-qslim vdt-measure vdt-build; do cp "$BIN/$t" "$TMP/bin/"; done
+	VDT_BIN="$TMP/bin" run "$BATCH" -q --recipe lod,labels -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 1 ]
+	one_line
+	[[ "$output" == *"the labels recipe needs vdt-silhouette, not found in $TMP/bin" ]]
+	[ ! -e "$TMP/out" ]
+}

@@ -354,3 +354,17 @@ path3() {
 	run cmp -s "$TMP/wire.png" "$TMP/levels.png"
 	[ "$status" -ne 0 ]
 }
+
+@test "vdt-render writes formats whose writer makes its own file (SGI) too, and takes them back on failure" {
+	tree
+	printf '0 0 3 0 0 0 0 1 0\n3 0 0 0 0 0 0 1 0\n' >"$TMP/p2.txt"
+	mkdir "$TMP/s"
+	"$BIN/vdt-render" --size 32x24 --path "$TMP/p2.txt" "$TMP/t.vdt" -o "$TMP/s/f%d.sgi"
+	[ "$(ls -A "$TMP/s" | tr '\n' ' ')" = "f0.sgi f1.sgi " ]
+	rm "$TMP/s"/*
+	mkdir "$TMP/s/f1.sgi"
+	run "$BIN/vdt-render" --size 32x24 --path "$TMP/p2.txt" "$TMP/t.vdt" -o "$TMP/s/f%d.sgi"
+	[ "$status" -eq 1 ]
+	one_line
+	[ "$(ls -A "$TMP/s")" = f1.sgi ]
+}
