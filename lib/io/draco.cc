@@ -11,6 +11,7 @@
 #include <draco/core/encoder_buffer.h>
 #include <draco/mesh/mesh.h>
 
+#include <cfloat>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -36,6 +37,30 @@ add_float_attribute(draco::Mesh &dm, draco::GeometryAttribute::Type type, int co
 	for (size_t i = 0; i < n; i++)
 		pa->SetAttributeValue(draco::AttributeValueIndex(uint32_t(i)), data + comps * i);
 	return id;
+}
+
+/*
+ * Whether Draco can quantise these values to `bits`: it takes the widest
+ * component's range in float and steps of range / (2^bits - 1), which a
+ * range past the float maximum makes infinite (the encoder then crashes)
+ * and one near the smallest normal float makes zero (every value lands on
+ * one point). Values it cannot quantise are stored as they are.
+ */
+bool
+quantisable(const float *data, int comps, size_t n, int bits)
+{
+	float range = 0;
+
+	for (int k = 0; k < comps && n > 0; k++) {
+		float lo = data[k], hi = data[k];
+		for (size_t i = 1; i < n; i++) {
+			lo = std::fmin(lo, data[comps * i + k]);
+			hi = std::fmax(hi, data[comps * i + k]);
+		}
+		range = std::fmax(range, hi - lo);
+	}
+	return std::isfinite(range) &&
+	       (range == 0 || range / float((1u << bits) - 1) >= FLT_MIN * float(1u << bits));
 }
 
 /* Read component values of point p as floats (integers normalised). */
@@ -175,9 +200,11 @@ write_mesh(FILE *f, const struct vdt_mesh *m, int bits, int speed, struct vdt_er
 	}
 
 	draco::Encoder enc;
-	enc.SetAttributeQuantization(draco::GeometryAttribute::POSITION, bits);
+	if (quantisable(m->positions, 3, nv, bits))
+		enc.SetAttributeQuantization(draco::GeometryAttribute::POSITION, bits);
 	enc.SetAttributeQuantization(draco::GeometryAttribute::NORMAL, 10);
-	enc.SetAttributeQuantization(draco::GeometryAttribute::TEX_COORD, 12);
+	if (m->uvs == NULL || quantisable(m->uvs, 2, nv, 12))
+		enc.SetAttributeQuantization(draco::GeometryAttribute::TEX_COORD, 12);
 	enc.SetSpeedOptions(speed, speed);
 	draco::EncoderBuffer eb;
 	draco::Status st = enc.EncodeMeshToBuffer(dm, &eb);

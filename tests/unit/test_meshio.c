@@ -316,6 +316,41 @@ test_roundtrip_plain(void **state)
 	roundtrip(VDT_FMT_DRC, "a.drc", 0, 0, 0);
 }
 
+/* Positions (and UVs) whose range Draco cannot quantise, past the float
+ * maximum or near the smallest normal float, are kept as they are: the
+ * encoder crashed on the first and put every vertex on one point for the
+ * second. */
+static void
+test_draco_extreme_ranges(void **state)
+{
+	static const float scale[] = {3e38f, -3e38f, 1e-40f, 1e-30f};
+	(void)state;
+	for (size_t s = 0; s < sizeof(scale) / sizeof(scale[0]); s++) {
+		struct vdt_mesh m, r;
+		struct vdt_write_opts o = {.format = VDT_FMT_DRC};
+		struct vdt_err err = {0};
+		struct vdt_bbox box;
+		const char *path = tmp_path("x.drc");
+
+		make_square(&m, VDT_ATTR_UVS);
+		for (size_t i = 0; i < 3 * m.vertex_count; i++)
+			m.positions[i] *= scale[s];
+		for (size_t i = 0; i < 2 * m.vertex_count; i++)
+			m.uvs[i] *= scale[s];
+		if (fabsf(scale[s]) > 1e38f) /* x from -3e38 to 3e38 */
+			m.positions[0] = -m.positions[3];
+		if (vdt_write(path, &m, NULL, &o, &err) != 0)
+			fail_msg("write at %g: %s", (double)scale[s], err.msg);
+		if (vdt_read(path, &r, NULL, &err) != 0)
+			fail_msg("read at %g: %s", (double)scale[s], err.msg);
+		vdt_mesh_bbox(&m, &box);
+		assert_true(vdt_bbox_diagonal(&box) > 0);
+		assert_same_surface(&m, &r, vdt_bbox_diagonal(&box) / 30000.0);
+		vdt_mesh_free(&m);
+		vdt_mesh_free(&r);
+	}
+}
+
 static void
 test_roundtrip_attributes(void **state)
 {
@@ -813,6 +848,7 @@ main(void)
 		cmocka_unit_test(test_staged_outputs),
 		cmocka_unit_test(test_detect),
 		cmocka_unit_test(test_roundtrip_plain),
+		cmocka_unit_test(test_draco_extreme_ranges),
 		cmocka_unit_test(test_roundtrip_attributes),
 		cmocka_unit_test(test_chain),
 		cmocka_unit_test(test_obj_seam),
