@@ -45,9 +45,10 @@
 #define FIT_DEN_BITS 40
 
 /* A face as the projections read it: corner a, edges e0 = b - a and
- * e1 = c - a, unit normal n (about the box centre, in floats), the
- * edges' dot products and the inverse of their Gram determinant (0 for a
- * degenerate face). One cache line. */
+ * e1 = c - a, unit normal n (in floats, about the box centre and in
+ * units of about the box's diagonal, which any model's size leaves in
+ * the float range), the edges' dot products and the inverse of their Gram
+ * determinant (0 for a degenerate face). One cache line. */
 struct fface {
 	float a[3], e0[3], e1[3], n[3];
 	float d00, d01, d11, inv;
@@ -57,6 +58,7 @@ struct fit {
 	float *pos;
 	const struct fface *ff;
 	double centre[3];
+	double unit;           /* the faces' unit: a power of two near diag */
 	const uint32_t *tri;
 	const uint32_t *final;
 	const uint32_t *idx;    /* slot -> live vertex, or NONE */
@@ -96,13 +98,13 @@ nearer(const struct fit *f, const double p[3], uint32_t face, double *best, uint
 	for (int m = 0; m < 3; m++)
 		for (int k = 0; k < 3; k++)
 			c[m][k] = f->pos[3 * (size_t)t[m] + k];
-	double d = vdt_closest_on_triangle(p, c[0], c[1], c[2], q);
+	double d = vdt_closest_on_triangle(p, c[0], c[1], c[2], q) * f->unit * f->unit;
 	if (!(d < *best))
 		return;
 	for (int k = 0; k < 3; k++) {
 		e0[k] = g->e0[k];
 		e1[k] = g->e1[k];
-		v0[k] = q[k] - c[0][k];
+		v0[k] = (q[k] - c[0][k]) * f->unit;
 	}
 	double d20 = dot3(v0, e0), d21 = dot3(v0, e1);
 	*best = d;
@@ -127,7 +129,7 @@ fit_run(void *arg)
 			continue;
 		for (int k = 0; k < 3; k++) {
 			p[k] = f->pos[3 * i + k];
-			pc[k] = (float)(p[k] - f->centre[k]);
+			pc[k] = (float)((p[k] - f->centre[k]) * f->unit);
 		}
 		/* The nearest point of the fan: in a face it projects into, at
 		 * the distance to the face's plane; the exact distance to any
@@ -311,6 +313,7 @@ vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triang
 		free(own);
 		return 0;
 	}
+	double unit = ldexp(1, -ilogb(diag));
 	/* The faces as the projections read them, and the vertex normals
 	 * (the sums of the faces' area vectors). */
 	for (size_t fi = 0; fi < nt; fi++) {
@@ -326,9 +329,9 @@ vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triang
 		}
 		l = sqrt(dot3(n, n));
 		for (int k = 0; k < 3; k++) {
-			a[k] = pos[3 * (size_t)tf[0] + k] - centre[k];
-			e0[k] = (double)pos[3 * (size_t)tf[1] + k] - pos[3 * (size_t)tf[0] + k];
-			e1[k] = (double)pos[3 * (size_t)tf[2] + k] - pos[3 * (size_t)tf[0] + k];
+			a[k] = (pos[3 * (size_t)tf[0] + k] - centre[k]) * unit;
+			e0[k] = ((double)pos[3 * (size_t)tf[1] + k] - pos[3 * (size_t)tf[0] + k]) * unit;
+			e1[k] = ((double)pos[3 * (size_t)tf[2] + k] - pos[3 * (size_t)tf[0] + k]) * unit;
 			g->a[k] = (float)a[k];
 			g->e0[k] = (float)e0[k];
 			g->e1[k] = (float)e1[k];
@@ -368,6 +371,7 @@ vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triang
 	struct fit f = {.pos = pos,
 	                .ff = ff,
 	                .centre = {centre[0], centre[1], centre[2]},
+	                .unit = unit,
 	                .tri = tri,
 	                .final = final,
 	                .idx = idx,

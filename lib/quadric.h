@@ -112,9 +112,9 @@ vdt_quadric_trace(const struct vdt_quadric *q)
 static inline double
 vdt_quadric_tie(const float pa[3], const float pb[3], double t)
 {
-	float d0 = pa[0] - pb[0], d1 = pa[1] - pb[1], d2 = pa[2] - pb[2];
+	double d0 = (double)pa[0] - pb[0], d1 = (double)pa[1] - pb[1], d2 = (double)pa[2] - pb[2];
 
-	return 1e-9 * (double)(d0 * d0 + d1 * d1 + d2 * d2) * t;
+	return 1e-9 * (d0 * d0 + d1 * d1 + d2 * d2) * t;
 }
 
 /* Q(v) = v'Av + 2b'v + c, clamped at 0 against rounding. */

@@ -193,6 +193,14 @@ vdt_vtree_prepare(struct vdt_mesh *m, size_t *dropped, struct vdt_err *err)
 	if (!(vdt_mesh_mean_area(m, NULL) > 0))
 		return vdt_err_set(err, VDT_EINVAL, "no face has an area: every vertex on a line "
 		                   "or at one point");
+	/* A node's deviation bound is a sum of distances down the tree, kept
+	 * as a float: a box near the float maximum would overflow it. */
+	struct vdt_bbox box;
+	vdt_mesh_bbox(m, &box);
+	if (!(vdt_bbox_diagonal(&box) <= VDT_VTREE_MAX_EXTENT))
+		return vdt_err_set(err, VDT_EINVAL, "the bounding box's diagonal %g is past %g, the "
+		                   "largest the tree's 32-bit distances hold", vdt_bbox_diagonal(&box),
+		                   VDT_VTREE_MAX_EXTENT);
 	return 0;
 }
 

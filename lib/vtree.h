@@ -25,6 +25,9 @@
 #include "stream.h"
 
 #define VDT_VTREE_NONE UINT32_MAX
+/* The largest bounding-box diagonal a tree takes: 2^-20 of the float
+ * maximum, room for deviation bounds summed down any real tree. */
+#define VDT_VTREE_MAX_EXTENT 3.2e32
 
 enum vdt_vtree_place {
 	VDT_VTREE_PLACE_AVERAGE = 0, /* the pair's midpoint (the paper) */
@@ -86,7 +89,8 @@ int vdt_vtree_place_parse(const char *name);
  * Make m fit for a tree in place: drop each triangle that repeats a vertex
  * and each triangle on the same three vertices as an earlier one (either
  * orientation), keeping the order of the rest. *dropped (may be NULL)
- * counts them. Returns 0, or VDT_EINVAL when nothing would be left.
+ * counts them. Returns 0, or VDT_EINVAL when nothing would be left, no
+ * face has an area, or the bounding box is past VDT_VTREE_MAX_EXTENT.
  */
 int vdt_vtree_prepare(struct vdt_mesh *m, size_t *dropped, struct vdt_err *err);
 

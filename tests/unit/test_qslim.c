@@ -78,6 +78,51 @@ percent_bounds_are_of_the_diagonal(void **state)
 }
 
 /*
+ * The size of a model changes nothing but its units: the icosphere scaled
+ * by a power of two (exact in float) from 2^-100 to 2^127 simplifies to the
+ * same triangles at every scale. The tie-break between equal costs once
+ * squared pair lengths in float, which overflowed past 1.8e19 and made
+ * every pair infinite: the sphere at 1e20 stopped half-way, at 1e30
+ * before its first contraction, with no word but "no valid contraction".
+ */
+static void
+scale_changes_nothing(void **state)
+{
+	static const int exps[] = {-100, -20, 20, 66, 100, 126};
+	struct vdt_mesh m, ref, s, out;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+
+	(void)state;
+	shape_icosphere(&m, 3);
+	vdt_qslim_defaults(&o);
+	o.target_triangles = m.triangle_count / 10;
+	assert_int_equal(vdt_qslim(&m, &o, &ref, NULL, NULL, &st, NULL), 0);
+	assert_int_equal(ref.triangle_count, o.target_triangles);
+	for (size_t e = 0; e < sizeof(exps) / sizeof(exps[0]); e++) {
+		assert_int_equal(vdt_mesh_copy(&s, &m, NULL), 0);
+		for (size_t i = 0; i < 3 * s.vertex_count; i++)
+			s.positions[i] = ldexpf(s.positions[i], exps[e]);
+		assert_int_equal(vdt_qslim(&s, &o, &out, NULL, NULL, &st, NULL), 0);
+		if (out.triangle_count != ref.triangle_count)
+			fail_msg("at 2^%d: %zu triangles, not %zu", exps[e], out.triangle_count,
+			         ref.triangle_count);
+		assert_memory_equal(out.triangles, ref.triangles, 3 * ref.triangle_count * sizeof(uint32_t));
+		for (size_t i = 0; i < 3 * out.vertex_count; i++)
+			out.positions[i] = ldexpf(out.positions[i], -exps[e]);
+		float worst = 0;
+		for (size_t i = 0; i < 3 * out.vertex_count; i++)
+			worst = fmaxf(worst, fabsf(out.positions[i] - ref.positions[i]));
+		if (!(worst <= 1e-5f))
+			fail_msg("at 2^%d: a position %g off", exps[e], (double)worst);
+		vdt_mesh_free(&s);
+		vdt_mesh_free(&out);
+	}
+	vdt_mesh_free(&ref);
+	vdt_mesh_free(&m);
+}
+
+/*
  * vdt_qslim_take gives vdt_qslim's result, down to which duplicate vertex
  * each output corner keeps, while taking over the input's arrays: the
  * positions always, the triangles too when it has no attributes or only
@@ -664,6 +709,7 @@ main(void)
 		cmocka_unit_test(topology_names),
 		cmocka_unit_test(percent_bounds_are_of_the_diagonal),
 		cmocka_unit_test(take_gives_the_same_result),
+		cmocka_unit_test(scale_changes_nothing),
 		cmocka_unit_test(extra_refuses_quadrics_of_another_mesh),
 		cmocka_unit_test(extra_runs_with_the_chunk_quadrics),
 		cmocka_unit_test(extra_border_decides_the_boundary_planes),
