@@ -1014,6 +1014,18 @@ vdt_deform(const struct vdt_mesh *m, const struct vdt_frames *fr,
 		                   fr->vertex_count, m->vertex_count);
 	if (m->vertex_count >= UINT32_MAX || m->triangle_count >= UINT32_MAX / 3)
 		return vdt_err_set(err, VDT_EINVAL, "mesh too large for 32-bit indices");
+	/* A frame may shrink to a point (a model growing from nothing), but
+	 * an animation of which no frame has an area is no surface (as for
+	 * vdt-qslim, whatever the target). */
+	int area = 0;
+	for (size_t f = 0; f < nf && !area; f++) {
+		struct vdt_mesh view = *m;
+		view.positions = fr->positions + 3 * m->vertex_count * f;
+		area = vdt_mesh_any_area(&view);
+	}
+	if (!area)
+		return vdt_err_set(err, VDT_EINVAL, nf == 1 ? "every face has zero area"
+		                             : "every face has zero area in every frame");
 
 	if (anim_build(&a, m, fr, res) != 0)
 		goto nomem;

@@ -159,6 +159,27 @@ vdt_mesh_area_block(const struct vdt_mesh *m, const uint8_t *skip, size_t b, siz
 	return sum / 2;
 }
 
+int
+vdt_mesh_any_area(const struct vdt_mesh *m)
+{
+	for (size_t t = 0; t < m->triangle_count; t++) {
+		const uint32_t *v = m->triangles + 3 * t;
+		const float *a = m->positions + 3 * (size_t)v[0],
+		            *b = m->positions + 3 * (size_t)v[1],
+		            *c = m->positions + 3 * (size_t)v[2];
+		double e[3], f[3];
+
+		for (int k = 0; k < 3; k++) {
+			e[k] = (double)b[k] - a[k];
+			f[k] = (double)c[k] - a[k];
+		}
+		if (e[1] * f[2] != e[2] * f[1] || e[2] * f[0] != e[0] * f[2] ||
+		    e[0] * f[1] != e[1] * f[0])
+			return 1;
+	}
+	return 0;
+}
+
 double
 vdt_mesh_mean_area(const struct vdt_mesh *m, const uint8_t *skip)
 {

@@ -77,6 +77,15 @@ int vdt_mesh_validate(const struct vdt_mesh *m, struct vdt_err *err);
 void vdt_mesh_face_cross(const struct vdt_mesh *m, size_t t, double n[3]);
 
 /*
+ * Whether some face of m has an area (its corners' cross product, in
+ * double, is not zero). A mesh with none, all its vertices on a line or
+ * each face repeating a point, is no surface: bad input to every tool
+ * whatever its options. Stops at the first such face, which is nearly
+ * always the first face.
+ */
+int vdt_mesh_any_area(const struct vdt_mesh *m);
+
+/*
  * The mean area of the triangles (of those with skip[t] == 0, when skip is
  * given); 0 for none. Summed block by block (VDT_AREA_BLOCK triangles
  * each, vdt_mesh_area_block), then the blocks in order, so that the

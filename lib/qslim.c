@@ -1805,34 +1805,6 @@ input_lists(const uint32_t *canon, size_t n, size_t nw, uint32_t **start,
 	return 0;
 }
 
-/*
- * Whether some face of m has an area (its corners' cross product, in
- * double, is not zero). A mesh with none, all its vertices on a line or
- * each face repeating a point, is no surface: bad input whatever the
- * target, and checked before the target can return it unchanged. Stops
- * at the first such face, which is nearly always the first face.
- */
-static int
-any_area(const struct vdt_mesh *m)
-{
-	for (size_t t = 0; t < m->triangle_count; t++) {
-		const uint32_t *v = m->triangles + 3 * t;
-		const float *a = m->positions + 3 * (size_t)v[0],
-		            *b = m->positions + 3 * (size_t)v[1],
-		            *c = m->positions + 3 * (size_t)v[2];
-		double e[3], f[3];
-
-		for (int k = 0; k < 3; k++) {
-			e[k] = (double)b[k] - a[k];
-			f[k] = (double)c[k] - a[k];
-		}
-		if (e[1] * f[2] != e[2] * f[1] || e[2] * f[0] != e[0] * f[2] ||
-		    e[0] * f[1] != e[1] * f[0])
-			return 1;
-	}
-	return 0;
-}
-
 /* A connected part of the contracted mesh: its area, faces and root. */
 struct part {
 	double area;
@@ -1958,7 +1930,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 		if (t > target)
 			target = t;
 	}
-	if (T > 0 && !any_area(in))
+	if (T > 0 && !vdt_mesh_any_area(in))
 		return vdt_err_set(err, VDT_EINVAL, "every face has zero area");
 	if (target >= T) {
 		stats->reached_target = 1;

@@ -630,6 +630,8 @@ vdt_labl_compute(const struct vdt_mesh *m, const struct vdt_cameras *cams,
 	memset(out, 0, sizeof(*out));
 	if (o->dt != VDT_SIL_EDT && o->dt != VDT_SIL_CHAMFER)
 		return vdt_err_set(err, VDT_EINVAL, "unknown distance transform %d", o->dt);
+	if (!vdt_mesh_any_area(m))
+		return vdt_err_set(err, VDT_EINVAL, "every face has zero area");
 	if ((rc = vdt_sil_frame(m, centre, &radius, err)) != 0)
 		return rc;
 	if ((rc = vdt_sil_work_alloc(&w, o->res, nv, err)) != 0)

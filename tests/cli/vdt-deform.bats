@@ -581,3 +581,21 @@ PY
 	[ "$(ls "$TMP/p" | wc -l)" -eq 6 ]
 	head -n 1 "$TMP/p/001.obj" | grep -q '^# written by vdt'
 }
+
+@test "vdt-deform refuses frames of no area as vdt-qslim does, and takes one frame at a point" {
+	printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n' > "$TMP/line.off"
+	run "$BIN/vdt-deform" -t 1 "$TMP/line.off" -o "$TMP/out.off"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-deform: cannot simplify '$TMP/line.off': every face has zero area" ]
+	[ ! -e "$TMP/out.off" ]
+	printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n' > "$TMP/a1.off"
+	cp "$TMP/a1.off" "$TMP/a2.off"
+	run "$BIN/vdt-deform" -t 1 "$TMP/a1.off" "$TMP/a2.off" -o "$TMP/o%d.off"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-deform: cannot simplify '$TMP/a1.off': every face has zero area in every frame" ]
+	# a model growing from a point: its first frame has no area
+	printf 'OFF\n4 2 0\n0 0 0\n0 0 0\n0 0 0\n0 0 0\n3 0 1 2\n3 0 2 3\n' > "$TMP/g1.off"
+	printf 'OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n' > "$TMP/g2.off"
+	"$BIN/vdt-deform" -q -t 1 "$TMP/g1.off" "$TMP/g2.off" -o "$TMP/out%d.off"
+	[ -s "$TMP/out0.off" ] && [ -s "$TMP/out1.off" ]
+}

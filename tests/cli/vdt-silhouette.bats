@@ -132,3 +132,12 @@ load helpers
 	[ ! -e "$TMP/l.vdl" ]
 	[ ! -e "$TMP/q.off" ]
 }
+
+@test "vdt-silhouette refuses a mesh with no face of any area" {
+	# on a line: no view sees a surface (it took it, with exit 0)
+	printf 'OFF\n4 2 0\n0 0 0\n1 0 0\n2 0 0\n3 0 0\n3 0 1 2\n3 1 2 3\n' > "$TMP/line.off"
+	run "$BIN/vdt-silhouette" "$TMP/line.off" -o "$TMP/out.vdl"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-silhouette: cannot label '$TMP/line.off': every face has zero area" ]
+	[ ! -e "$TMP/out.vdl" ]
+}
