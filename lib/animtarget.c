@@ -145,5 +145,16 @@ vdt_anim_deform_triangles(const struct vdt_mesh *m, const struct vdt_frames *fr,
 		vdt_deform_result_free(res);
 		rc = vdt_deform(m, fr, &d, res, err);
 	}
+	/* The target met is the caller's: every frame at or below the count
+	 * of triangles, or of vertices when one was given too (the vertex
+	 * target the engine was given is only a means to it). */
+	if (rc == 0 && triangles > 0) {
+		int faces = 1, verts = o->target_vertices > 0;
+		for (size_t f = 0; f < res->frame_count; f++) {
+			faces &= res->tri_start[f + 1] - res->tri_start[f] <= triangles;
+			verts &= res->live_vertices[f] <= o->target_vertices;
+		}
+		res->reached_target = faces || verts;
+	}
 	return rc;
 }

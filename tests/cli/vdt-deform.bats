@@ -293,6 +293,16 @@ setup() {
 	# a vertex target reached first wins, as in vdt-qslim
 	"$BIN/vdt-deform" -t 200 --vertices 500 "$SAMPLES/sphere.off" -o "$TMP/v.off"
 	[ "$(off_vertices "$TMP/v.off")" -eq 500 ]
+	# a triangle target met is met, whatever vertex count the engine was
+	# given on the way (it warned that frames stopped above it)
+	awk 'BEGIN { n = 20; print "OFF"; print (n + 1) * (n + 1), 2 * n * n, 0
+		for (j = 0; j <= n; j++) for (i = 0; i <= n; i++) print i / n, j / n, 0
+		for (j = 0; j < n; j++) for (i = 0; i < n; i++) {
+			a = j * (n + 1) + i; print 3, a, a + 1, a + n + 2; print 3, a, a + n + 2, a + n + 1 } }' > "$TMP/grid.off"
+	run "$BIN/vdt-deform" -t 1 "$TMP/grid.off" -o "$TMP/one.off"
+	[ "$status" -eq 0 ]
+	[ "$output" = "" ]
+	[ "$(off_faces "$TMP/one.off")" -eq 1 ]
 }
 
 @test "vdt-deform keeps the last triangle of a small mesh, with a warning" {
