@@ -76,9 +76,10 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		cl->in = argv[optind++];
 	if (optind < argc)
 		usage_error("unexpected argument '%s'", argv[optind]);
-	if (cl->check == NULL)
+	if (cl->check == NULL) {
+		output_format(cl->out, VDT_FMT_VDT); /* (a terminal, before the work) */
 		refuse_output_over_input(cl->in, cl->out);
-	else if (out_given)
+	} else if (out_given)
 		usage_error("--check writes nothing: -o has no use with it");
 }
 

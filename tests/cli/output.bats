@@ -166,3 +166,14 @@ load helpers
 	"$BIN/vdt-deform" -r 0.5 "$TMP/f/%d.off" -o "$TMP/g%d.off"
 	[ -s "$TMP/g2.off" ]
 }
+
+@test "vdt-build and vdt-silhouette refuse a terminal for their stream before reading" {
+	if ! command -v script >/dev/null; then skip "no script(1)"; fi
+	# the input is missing: refused first, it is not even looked at
+	# (they built the tree or the labels, then refused)
+	for t in vdt-build vdt-silhouette; do
+		run script -qec "$BIN/$t $TMP/missing.off" /dev/null
+		[ "$status" -eq 2 ]
+		[[ "$output" == "$t: refusing to write binary vdt stream to a terminal"* ]]
+	done
+}
