@@ -187,11 +187,13 @@ run(struct cmdline *cl)
 	struct vdt_write_opts wo = {.format = VDT_FMT_AUTO, .stage = &done};
 	static const unsigned char bg[3] = {40, 44, 52};
 	size_t nviews = 1;
+	double start = vdt_seconds(), read_s, render_s = 0, write_s = 0;
 	char name[4096];
 	int rc = EXIT_OK;
 
 	if (vdt_read(cl->in, &m, &extra, &err) != 0)
 		return fail("cannot read", cl->in, &err);
+	read_s = vdt_seconds() - start;
 	if (vdt_render_init(&R, &m, &extra, &cl->o, cl->v.width, cl->v.height, &err) != 0)
 		rc = fail(err.code == VDT_ENOMEM ? "cannot render" : "cannot read", cl->in, &err);
 	else if (cl->path && vdt_camera_read_path(cl->path, &cl->v, &views, &nviews, &err) != 0)
@@ -213,13 +215,14 @@ run(struct cmdline *cl)
 	if ((rc = check_outputs(cl, nviews)) != EXIT_OK)
 		goto out;
 	for (size_t i = 0; i < nviews && rc == EXIT_OK; i++) {
-		double t0 = vdt_seconds(), t1, t2, rmse;
+		double t0 = vdt_seconds(), t1, t2, t3, rmse;
 		vdt_camera_setup(&cam, &views[i], &box, NULL);
 		vdt_render_adapt(&R, &cam);
 		t1 = vdt_seconds();
 		if (vdt_render_draw(&R, &cam, bg, &err) != 0)
 			rc = fail("cannot render", cl->in, &err);
 		t2 = vdt_seconds();
+		render_s += t2 - t0;
 		/* Frames stay staged until all are written: a failed run
 		 * replaces none of what their names held. */
 		if (rc == EXIT_OK && cl->out &&
@@ -229,6 +232,8 @@ run(struct cmdline *cl)
 		if (rc == EXIT_OK && cl->mesh_out &&
 		    vdt_write(frame_name(name, cl->mesh_out, i), R.drawn, NULL, &wo, &err) != 0)
 			rc = fail("cannot write", name, &err);
+		t3 = vdt_seconds();
+		write_s += t3 - t2;
 		if (rc == EXIT_OK && cl->compare &&
 		    vdt_render_compare(&R, frame_name(name, cl->compare, i), &rmse, &err) != 0)
 			rc = fail("cannot compare with", name, &err) ? EXIT_USAGE : 0;
@@ -246,6 +251,10 @@ run(struct cmdline *cl)
 		vdt_written_remove(&done); /* leave nothing behind */
 	else if (vdt_written_commit(&done, &err) != 0)
 		rc = fail("cannot write", cl->out ? cl->out : cl->mesh_out, &err);
+	if (cl->verbose && rc == EXIT_OK)
+		fprintf(stderr, "%s: frames=%zu in_vertices=%zu in_triangles=%zu read_s=%.3f render_s=%.3f "
+		        "write_s=%.3f peak_mb=%.1f\n", progname, nviews, m.vertex_count,
+		        m.triangle_count, read_s, render_s, write_s, peak_rss_bytes() / 1048576.0);
 out:
 	if (views != &cl->v)
 		free(views);

@@ -117,7 +117,7 @@ run(struct cmdline *cl)
 	struct vdt_err err = {0};
 	unsigned char *data;
 	uint64_t len;
-	double t0 = vdt_seconds(), t1;
+	double t0 = vdt_seconds(), tr, t1;
 	struct vdt_sil_images im = {0};
 	int rc = EXIT_OK;
 
@@ -139,6 +139,7 @@ run(struct cmdline *cl)
 		rc = fail("cannot read", cl->in, &err);
 		goto out;
 	}
+	tr = vdt_seconds();
 	if (cl->images) {
 		im.dir = cl->images;
 		cl->s.on_camera = vdt_sil_write_images;
@@ -181,10 +182,11 @@ run(struct cmdline *cl)
 	if (cl->verbose)
 		fprintf(stderr, "%s: vertices=%zu triangles=%zu cameras=%zu resolution=%d "
 		        "contours=%s label_bytes=%llu label_s=%.3f min_within_1px_pct=%.1f "
-		        "min_within_2px_pct=%.1f\n", progname, m.vertex_count, m.triangle_count,
-		        cams.count, cl->s.res, cl->s.external ? "external" : "all",
-		        (unsigned long long)len, t1 - t0, 100 * vdt_labl_min_share(&l, 1),
-		        100 * vdt_labl_min_share(&l, 2));
+		        "min_within_2px_pct=%.1f read_s=%.3f write_s=%.3f peak_mb=%.1f\n", progname,
+		        m.vertex_count, m.triangle_count, cams.count, cl->s.res,
+		        cl->s.external ? "external" : "all", (unsigned long long)len, t1 - t0,
+		        100 * vdt_labl_min_share(&l, 1), 100 * vdt_labl_min_share(&l, 2), tr - t0,
+		        vdt_seconds() - t1, peak_rss_bytes() / 1048576.0);
 out:
 	/* The images and the labels stay staged until all are written: a
 	 * failed run replaces nothing, and leaves nothing behind. */

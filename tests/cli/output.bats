@@ -177,3 +177,14 @@ load helpers
 		[[ "$output" == "$t: refusing to write binary vdt stream to a terminal"* ]]
 	done
 }
+
+@test "vdt-render and vdt-silhouette -v end in a line with sizes, phase times and peak_mb, as vdt(7) says of every tool" {
+	"$BIN/vdt-build" -q "$SAMPLES/sphere.off" -o "$TMP/s.vdt"
+	run "$BIN/vdt-render" -v --size 32x24 "$TMP/s.vdt" -o "$TMP/s.png"
+	[ "$status" -eq 0 ]
+	printf '%s\n' "$output" | tail -n 1 |
+		grep -q '^vdt-render: frames=1 in_vertices=[0-9]* in_triangles=[0-9]* read_s=[0-9.]* render_s=[0-9.]* write_s=[0-9.]* peak_mb=[0-9.]*$'
+	run "$BIN/vdt-silhouette" -v -a 90 -r 32 "$SAMPLES/sphere.off" -o "$TMP/s.vdl"
+	[ "$status" -eq 0 ]
+	printf '%s\n' "$output" | tail -n 1 | grep -q '^vdt-silhouette: vertices=[0-9]* .* read_s=[0-9.]* write_s=[0-9.]* peak_mb=[0-9.]*$'
+}
