@@ -145,7 +145,7 @@ vdt_cluster_grid_size(const struct vdt_bbox *box, double size, struct vdt_cluste
 		if (n * size <= ext)
 			n += 1;
 		if (n > VDT_CLUSTER_MAX_DIM - 1)
-			return vdt_err_set(err, VDT_EINVAL,
+			return vdt_err_set(err, VDT_ELIMIT,
 			                   "cell size %g makes %.6g cells along an axis: at most %u",
 			                   size, n, VDT_CLUSTER_MAX_DIM - 1);
 		g->dims[k] = (uint32_t)n;
