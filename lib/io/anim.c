@@ -5,57 +5,36 @@
  */
 #include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "anim.h"
 #include "meshio.h"
 
+/* The rest of fd after the len bytes in *buf (cap of them malloc'ed). */
 static int
-slurp(const char *path, unsigned char **buf, size_t *len, struct vdt_err *err)
+read_whole(int fd, unsigned char **buf, size_t *len, size_t cap, struct vdt_err *err)
 {
-	int std = strcmp(path, "-") == 0;
-	FILE *f = std ? stdin : fopen(path, "rb");
-	size_t cap = 1 << 16, n = 0;
-	unsigned char *b;
-
-	*buf = NULL;
-	*len = 0;
-	if (f == NULL)
-		return vdt_err_set(err, VDT_EIO, "%s", strerror(errno));
-	if ((b = malloc(cap)) == NULL) {
-		if (!std)
-			fclose(f);
-		return vdt_err_set(err, VDT_ENOMEM, "out of memory reading");
-	}
 	for (;;) {
-		if (n == cap) {
-			unsigned char *t = realloc(b, cap *= 2);
-			if (t == NULL) {
-				free(b);
-				if (!std)
-					fclose(f);
+		if (*len == cap) {
+			unsigned char *t = realloc(*buf, cap *= 2);
+			if (t == NULL)
 				return vdt_err_set(err, VDT_ENOMEM, "out of memory reading");
-			}
-			b = t;
+			*buf = t;
 		}
-		size_t got = fread(b + n, 1, cap - n, f);
-		n += got;
+		ssize_t got = read(fd, *buf + *len, cap - *len);
+		if (got < 0 && errno == EINTR)
+			continue;
+		if (got < 0)
+			return vdt_err_set(err, VDT_EIO, "%s", strerror(errno));
 		if (got == 0)
-			break;
+			return 0;
+		*len += (size_t)got;
 	}
-	int bad = ferror(f) ? (errno ? errno : EIO) : 0;
-	if (!std)
-		fclose(f);
-	if (bad) {
-		free(b);
-		return vdt_err_set(err, VDT_EIO, "%s", bad == EISDIR ? "is a directory" : strerror(bad));
-	}
-	*buf = b;
-	*len = n;
-	return 0;
 }
 
 /* Frame f's triangles against those of m0, which `ref` names ("frame 0",
@@ -93,15 +72,29 @@ vdt_anim_read(const char *path, const struct vdt_bake_opts *bo, struct vdt_mesh 
 		memset(extra, 0, sizeof(*extra));
 	if (vdt_assimp_handles(path)) /* never "-" */
 		return vdt_assimp_read(path, bo, m, fr, err);
-	if ((rc = slurp(path, &buf, &len, err)) != 0)
-		return rc;
-	if (vdt_md2_sniff(buf, len)) {
-		rc = vdt_md2_read(buf, len, m, fr, err);
-		free(buf);
-		return rc;
+	/* The first bytes tell MD2, read whole here; any other format is
+	 * vdt_read's (a stream on a pipe refused at its first bad byte). */
+	int std = strcmp(path, "-") == 0, fd = std ? 0 : open(path, O_RDONLY | O_CLOEXEC);
+	size_t cap = 1 << 16;
+	if (fd < 0)
+		return vdt_err_set(err, VDT_EIO, "%s", strerror(errno));
+	if ((buf = malloc(cap)) == NULL)
+		rc = vdt_err_set(err, VDT_ENOMEM, "out of memory reading");
+	else if ((rc = vdt_read_head(fd, buf, VDT_DETECT_BYTES, &len, err)) == 0) {
+		if (vdt_md2_sniff(buf, len)) {
+			if ((rc = read_whole(fd, &buf, &len, cap, err)) == 0)
+				rc = vdt_md2_read(buf, len, m, fr, err);
+			free(buf);
+			if (!std)
+				close(fd);
+			return rc;
+		}
+		rc = vdt_read_rest(fd, buf, len, cap, path, m, &ch, err);
+		buf = NULL; /* (taken) */
 	}
-	rc = vdt_read_memory(buf, len, path, m, &ch, err);
 	free(buf);
+	if (!std)
+		close(fd);
 	if (rc != 0)
 		return rc;
 	const struct vdt_chunk *c = vdt_chunks_find(&ch, VDT_CHUNK_FRMS);

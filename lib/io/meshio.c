@@ -267,18 +267,16 @@ vdt_input_limit_error(const unsigned char *head, struct vdt_err *err)
 	return vdt_err_set(err, VDT_EFORMAT, "unknown format");
 }
 
+/* The mesh and the other chunks (to extra, if given) of a decoded stream,
+ * whose chunks it takes. */
 static int
-read_stream(const unsigned char *buf, size_t len, struct vdt_mesh *m,
-            struct vdt_chunks *extra, struct vdt_err *err)
+stream_mesh(struct vdt_chunks c, struct vdt_mesh *m, struct vdt_chunks *extra,
+            struct vdt_err *err)
 {
-	struct vdt_chunks c = {0};
 	struct vdt_chunk_order order = {0};
 	size_t mesh_at = SIZE_MAX;
 	int rc;
 
-	rc = vdt_stream_decode(buf, len, &c, err);
-	if (rc != 0)
-		return rc;
 	for (size_t i = 0; i < c.count; i++) {
 		if ((rc = vdt_chunk_order_next(&order, c.items[i].type, c.items[i].offset, err)) != 0)
 			goto fail;
@@ -315,6 +313,16 @@ read_stream(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 fail:
 	vdt_chunks_free(&c);
 	return rc;
+}
+
+static int
+read_stream(const unsigned char *buf, size_t len, struct vdt_mesh *m,
+            struct vdt_chunks *extra, struct vdt_err *err)
+{
+	struct vdt_chunks c;
+	int rc = vdt_stream_decode(buf, len, &c, err);
+
+	return rc != 0 ? rc : stream_mesh(c, m, extra, err);
 }
 
 int
@@ -378,14 +386,11 @@ vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
 /* Read all of fd into a malloc'ed buffer (pipes and terminals), unless
  * its first bytes are of no known format (hint: the name's). */
 static int
-slurp(int fd, enum vdt_format hint, unsigned char **out, size_t *len, struct vdt_err *err)
+slurp(int fd, enum vdt_format hint, unsigned char *b, size_t n, size_t cap,
+      unsigned char **out, size_t *len, struct vdt_err *err)
 {
-	size_t cap = 1 << 16, n = 0;
-	unsigned char *b = malloc(cap);
 	uint64_t limit = 0; /* vdt_input_limit, once known */
 
-	if (b == NULL)
-		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
 	for (;;) {
 		ssize_t r;
 
@@ -461,15 +466,74 @@ vdt_read(const char *path, struct vdt_mesh *m, struct vdt_chunks *extra,
 			return rc;
 		}
 	}
-	unsigned char *buf = NULL;
-	size_t len = 0;
-
-	rc = slurp(fd, stdin_ ? VDT_FMT_AUTO : vdt_format_from_path(path), &buf, &len, err);
+	size_t cap = 1 << 16, len = 0;
+	unsigned char *buf = malloc(cap);
+	if (buf == NULL)
+		rc = vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	else if ((rc = vdt_read_head(fd, buf, VDT_DETECT_BYTES, &len, err)) == 0)
+		rc = vdt_read_rest(fd, buf, len, cap, stdin_ ? NULL : path, m, extra, err);
+	else
+		free(buf);
 	if (!stdin_)
 		close(fd);
-	if (rc != 0)
+	return rc;
+}
+
+int
+vdt_read_head(int fd, unsigned char *buf, size_t want, size_t *len, struct vdt_err *err)
+{
+	*len = 0;
+	while (*len < want) {
+		ssize_t r = read(fd, buf + *len, want - *len);
+		if (r < 0 && errno == EINTR)
+			continue;
+		if (r < 0)
+			return vdt_err_set(err, VDT_EIO, "%s", errno == EISDIR ? "is a directory" : strerror(errno));
+		if (r == 0)
+			break;
+		*len += (size_t)r;
+	}
+	return 0;
+}
+
+int
+vdt_read_rest(int fd, unsigned char *buf, size_t len, size_t cap, const char *name,
+              struct vdt_mesh *m, struct vdt_chunks *extra, struct vdt_err *err)
+{
+	int rc;
+
+	memset(m, 0, sizeof(*m));
+	if (extra != NULL)
+		memset(extra, 0, sizeof(*extra));
+	/* A vdt stream is decoded as it arrives, so that a bad header or
+	 * chunk is refused at once, not once an endless upstream has filled
+	 * the memory; any other format is read whole first. */
+	if (len > 0 && vdt_format_detect(buf, len) == VDT_FMT_VDT) {
+		struct vdt_chunks c;
+		int dfd = dup(fd);
+		FILE *f = dfd < 0 ? NULL : fdopen(dfd, "rb");
+		if (f == NULL) {
+			if (dfd >= 0)
+				close(dfd);
+			free(buf);
+			return vdt_err_set(err, VDT_ENOMEM, "%s", strerror(errno));
+		}
+		rc = vdt_stream_read(f, buf, len, &c, err);
+		fclose(f);
+		free(buf);
+		if (rc == 0 && (rc = stream_mesh(c, m, extra, err)) == 0 &&
+		    (rc = vdt_mesh_validate(m, err)) != 0) {
+			vdt_mesh_free(m);
+			if (extra != NULL)
+				vdt_chunks_free(extra);
+		}
 		return rc;
-	rc = vdt_read_memory(buf, len, stdin_ ? NULL : path, m, extra, err);
+	}
+	rc = slurp(fd, name ? vdt_format_from_path(name) : VDT_FMT_AUTO, buf, len, cap, &buf, &len,
+	           err);
+	if (rc != 0)
+		return rc; /* (buf freed) */
+	rc = vdt_read_memory(buf, len, name, m, extra, err);
 	free(buf);
 	return rc;
 }

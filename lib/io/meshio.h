@@ -216,6 +216,18 @@ int vdt_output_commit(struct vdt_output *o, struct vdt_err *err);
 void vdt_output_abort(struct vdt_output *o);
 
 /*
+ * Reading a pipe in two steps, for callers that look at its first bytes
+ * themselves: vdt_read_head reads up to `want` bytes of fd into buf (fewer
+ * only at its end; *len), and vdt_read_rest reads the mesh whose first len
+ * bytes are those, in buf (malloc'ed, cap bytes), which it takes. As
+ * vdt_read: a vdt stream is decoded as it arrives, so a bad one is refused
+ * at once; `name` (may be NULL) is the hint of vdt_read_memory.
+ */
+int vdt_read_head(int fd, unsigned char *buf, size_t want, size_t *len, struct vdt_err *err);
+int vdt_read_rest(int fd, unsigned char *buf, size_t len, size_t cap, const char *name,
+                  struct vdt_mesh *m, struct vdt_chunks *extra, struct vdt_err *err);
+
+/*
  * Read a mesh from content held in memory (buf, len), as vdt_read does for a
  * file: the format is detected from the bytes; `name` (may be NULL) is only a
  * hint used when the content is not recognised (its extension). The buffer is

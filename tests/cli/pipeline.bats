@@ -98,3 +98,24 @@ load helpers
 	[ "$status" -eq 2 ]
 	[[ "$output" == *"second QUAD chunk"* ]]
 }
+
+@test "a bad stream or format on an endless pipe is refused at once, not at its end" {
+	# a newer version's header, then zeros forever: every tool that reads
+	# a mesh read the whole pipe first (1.7 GB in 10 s, then out of memory)
+	for t in vdt-qslim vdt-build vdt-silhouette vdt-deform; do
+		run bash -c "(printf '\x89VDT\r\n\x1a\n\x02\x00\x00\x00'; cat /dev/zero) | timeout 20 '$BIN/$t' -o '$TMP/out.vdt'"
+		[ "$status" -eq 2 ]
+		[ "$output" = "$t: cannot read '<stdin>': version 2.0 at byte 8 is newer than this reader (1.1)" ]
+	done
+	run bash -c "(printf '\x89VDT\r\n\x1a\n\x02\x00\x00\x00'; cat /dev/zero) | timeout 20 '$BIN/vdt-measure' - '$SAMPLES/sphere.off'"
+	[ "$status" -eq 2 ]
+	# vdt-deform's own reader (for MD2) read a pipe whole before looking
+	run bash -c "yes | timeout 20 '$BIN/vdt-deform' -o '$TMP/out.off'"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-deform: cannot read '<stdin>': unknown format" ]
+	# what is good on a pipe still reads: a stream, and MD2
+	"$BIN/vdt-cluster" -q -g 8 "$SAMPLES/sphere.off" -o "$TMP/s.vdq"
+	cat "$TMP/s.vdq" | "$BIN/vdt-deform" -q -r 0.5 -o "$TMP/d.off"
+	cat "$TMP/s.vdq" | "$BIN/vdt-qslim" -q -r 0.5 -o "$TMP/q.off"
+	[ "$(off_faces "$TMP/d.off")" -gt 0 ] && [ "$(off_faces "$TMP/q.off")" -gt 0 ]
+}
