@@ -163,7 +163,8 @@ bad_signature(const unsigned char *h, size_t n, size_t at, struct vdt_err *err)
 			why = "high bit stripped (sent through a 7-bit channel)";
 		else if (n >= 7 && memcmp(h + 4, "\n\x1a\n", 3) == 0)
 			why = "CR LF turned into LF (copied in text mode)";
-		else if (n >= 7 && memcmp(h + 4, "\r\r\n", 3) == 0)
+		else if ((n >= 7 && memcmp(h + 4, "\r\r\n", 3) == 0) ||
+		         (n >= 9 && memcmp(h + 4, "\r\n\x1a\r\n", 5) == 0)) /* (or lone LF only) */
 			why = "LF turned into CR LF (copied in text mode)";
 		else
 			why = "damaged vdt signature";

@@ -752,6 +752,12 @@ bad_signature(void **state)
 	memcpy(dam + 6, buf + 5, len - 5);
 	assert_int_equal(decode_rc(dam, len + 1, &err), VDT_EFORMAT);
 	assert_string_equal(err.msg, "bad signature at byte 5: LF turned into CR LF (copied in text mode)");
+	/* Lone LF to CR LF, the CR LF left (unix2dos): 89 V D T CR LF 1A CR LF. */
+	memcpy(dam, buf, 7);
+	dam[7] = '\r';
+	memcpy(dam + 8, buf + 7, len - 7);
+	assert_int_equal(decode_rc(dam, len + 1, &err), VDT_EFORMAT);
+	assert_string_equal(err.msg, "bad signature at byte 7: LF turned into CR LF (copied in text mode)");
 	/* 7-bit channel. */
 	memcpy(dam, buf, len);
 	dam[0] &= 0x7f;
