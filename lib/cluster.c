@@ -1214,7 +1214,18 @@ vdt_cluster_choose(const struct vdt_cluster_choice *ch, struct vdt_tsource *ts,
 			r = rm < r ? rm : r;
 		}
 		d[0] = r;
-		return vdt_cluster_grid_dims(box, d, g, err);
+		if ((rc = vdt_cluster_grid_dims(box, d, g, err)) != 0)
+			return rc;
+		/* A model thinner than a cell (a strip, a thin plate) would
+		 * fold into one layer whose faces span no three cells (100 x
+		 * 0.1 at -t 50: nothing left): two cells across any extent. */
+		for (int k = 0; k < 3; k++)
+			if (g->dims[k] < 2 && box->max[k] > box->min[k]) {
+				g->dims[k] = 2;
+				g->cell[k] = (box->max[k] - box->min[k]) / 2 * (1 + 1e-9);
+				g->origin[k] = 0.5 * (box->min[k] + box->max[k]) - g->cell[k];
+			}
+		return 0;
 	}
 	/* The sample is cubic: compare at the same cell volume. */
 	for (int k = 0; k < 3; k++)

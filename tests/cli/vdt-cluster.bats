@@ -677,3 +677,16 @@ PY
 	one_line
 	[[ "$output" == *" in_attributes=none "* ]]
 }
+
+@test "vdt-cluster -t keeps a model thinner than its cells: two cells across every extent" {
+	# a flat strip 100 long and 0.1 wide: the cubic grid -t chose had one
+	# cell across it, so no face spanned three cells and it refused
+	awk 'BEGIN { n = 1000; print "OFF"; print 2 * (n + 1), 2 * n, 0
+		for (i = 0; i <= n; i++) { print i / 10, 0, 0; print i / 10, 0.1, 0 }
+		for (i = 0; i < n; i++) { a = 2 * i; print 3, a, a + 2, a + 3; print 3, a, a + 3, a + 1 } }' > "$TMP/strip.off"
+	run "$BIN/vdt-cluster" -v -t 50 "$TMP/strip.off" -o "$TMP/s.vdq"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *" grid="*"x2x1 "* ]]
+	"$BIN/vdt-qslim" -q -t 50 "$TMP/s.vdq" -o "$TMP/s.off"
+	[ "$(off_faces "$TMP/s.off")" -eq 50 ]
+}
