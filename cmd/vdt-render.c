@@ -223,6 +223,17 @@ run(struct cmdline *cl)
 			rc = fail("cannot render", cl->in, &err);
 		t2 = vdt_seconds();
 		render_s += t2 - t0;
+		/* (a tree whose coarse levels are lines: a strip whose sides
+		 * merged first has no triangle under a small budget) */
+		if (rc == EXIT_OK && R.drawn->triangle_count == 0 && cl->o.budget > 0) {
+			vdt_err_set(&err, VDT_EINVAL, "frame %zu: no triangle within the budget of %lu "
+			            "(-t): the coarser levels of this tree have no area", i,
+			            (unsigned long)cl->o.budget);
+			if (cl->mesh_out)
+				rc = fail("cannot write", frame_name(name, cl->mesh_out, i), &err);
+			else if (!cl->quiet)
+				fprintf(stderr, "%s: %s\n", progname, err.msg);
+		}
 		/* Frames stay staged until all are written: a failed run
 		 * replaces none of what their names held. */
 		if (rc == EXIT_OK && cl->out &&

@@ -368,3 +368,23 @@ path3() {
 	one_line
 	[ "$(ls -A "$TMP/s")" = f1.sgi ]
 }
+
+@test "vdt-render says when no triangle fits the budget, and writes no empty --mesh-out" {
+	# a strip 100 long and 0.1 wide: its tree merges the two sides first,
+	# so its coarse fronts are lines (a blank image said nothing)
+	awk 'BEGIN { n = 1000; print "OFF"; print 2 * (n + 1), 2 * n, 0
+		for (i = 0; i <= n; i++) { print i / 10, 0, 0; print i / 10, 0.1, 0 }
+		for (i = 0; i < n; i++) { a = 2 * i; print 3, a, a + 2, a + 3; print 3, a, a + 3, a + 1 } }' > "$TMP/strip.off"
+	"$BIN/vdt-build" -q "$TMP/strip.off" -o "$TMP/strip.vdt"
+	run "$BIN/vdt-render" -t 100 --size 64x64 "$TMP/strip.vdt" -o "$TMP/s.png"
+	[ "$status" -eq 0 ]
+	[ "$output" = "vdt-render: frame 0: no triangle within the budget of 100 (-t): the coarser levels of this tree have no area" ]
+	[ -s "$TMP/s.png" ]
+	run "$BIN/vdt-render" -t 100 --size 64x64 --mesh-out "$TMP/s.off" "$TMP/strip.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[ ! -e "$TMP/s.off" ]
+	run "$BIN/vdt-render" -t 2000 --size 64x64 --mesh-out "$TMP/s.off" "$TMP/strip.vdt"
+	[ "$status" -eq 0 ]
+	[ "$(off_faces "$TMP/s.off")" -gt 0 ]
+}
