@@ -1904,6 +1904,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	uint32_t *fsrc = NULL, *vto = NULL, *forder = NULL;
 	int renumbered = 0;
 	uint64_t *dups = NULL; /* corner << 32 | input vertex, by corner */
+	uint32_t *pforest = NULL; /* the input's parts, when some may go */
 	size_t nw, nvp = 0, ndups = 0;
 	int rc = VDT_ENOMEM;
 
@@ -2110,6 +2111,12 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	if (parts == SIZE_MAX)
 		goto nomem;
 	co.keep_parts = target == 0 || parts <= target / 2;
+	/* Which part each vertex is of, to count the parts that vanish. */
+	if (!co.keep_parts) {
+		if ((pforest = vdt_malloc_huge((nw ? nw : 1) * sizeof(*pforest))) == NULL)
+			goto nomem;
+		vdt_topo_part_forest(nw, w.triangles, live, pforest);
+	}
 	co.max_normal_angle = o->max_normal_angle;
 	co.min_quality = o->min_quality;
 	co.locked = locked;
@@ -2141,10 +2148,22 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	/* (a record must replay to the output: it has no word for a part
 	 * given up) */
 	if (!co.keep_parts && target > 0 && r.triangle_count > target && records == NULL) {
-		long given = give_up_parts(&r, target);
-		if (given < 0)
+		if (give_up_parts(&r, target) < 0)
 			goto nomem;
-		stats->parts_given_up = (size_t)given;
+	}
+	/* The parts given up: those contraction took (a lone triangle goes
+	 * in one) and those removed whole, none of whose faces is left. */
+	if (pforest != NULL) {
+		uint8_t *kept = calloc(nw ? nw : 1, 1);
+		size_t left = 0;
+		if (kept == NULL)
+			goto nomem;
+		for (size_t i = 0; i < 3 * r.triangle_count; i++)
+			kept[vdt_topo_find(pforest, r.triangles[i])] = 1;
+		for (size_t v = 0; v < nw; v++)
+			left += kept[v];
+		free(kept);
+		stats->parts_given_up = parts > left ? parts - left : 0;
 	}
 	if (o->fit && records == NULL) { /* (a record must replay to the output) */
 		struct vdt_fit_stats fs;
@@ -2218,6 +2237,7 @@ done:
 	free(vto);
 	free(forder);
 	free(dups);
+	free(pforest);
 	return rc;
 }
 

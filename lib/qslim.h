@@ -141,7 +141,7 @@ struct vdt_qslim_stats {
 	int free_topology;  /* 1 if the link condition was not applied */
 	int passes;         /* 1 if contracted in passes, 0 greedy */
 	size_t fitted;      /* vertices the fit moved */
-	size_t parts_given_up; /* whole parts removed to meet the target */
+	size_t parts_given_up; /* parts of which no face is left, to meet the target */
 	double error_pct;   /* max_error in percent of the input's
 	                       bounding-box diagonal (0 if that is 0) */
 };

@@ -318,6 +318,13 @@ load helpers
 	# a record has no word for a part given up: it replays to the output
 	run "$BIN/vdt-qslim" -v --record -t 12 "$TMP/oct.off" -o "$TMP/out.vdt"
 	[[ "$output" == *" out_triangles=40 "*" parts_given_up=0 "* ]]
+	# open parts that contraction takes count too (a soup of 50 lone
+	# triangles to 5: 45 went, and it said 0)
+	awk 'BEGIN { n = 50; print "OFF"; print 3 * n, n, 0
+		for (i = 0; i < n; i++) { print 2 * i, 0, 0; print 2 * i + 1, 0, 0; print 2 * i, 1, 0 }
+		for (i = 0; i < n; i++) print 3, 3 * i, 3 * i + 1, 3 * i + 2 }' > "$TMP/soup.off"
+	run "$BIN/vdt-qslim" -v -t 5 "$TMP/soup.off" -o "$TMP/out.off"
+	[[ "$output" == *" out_triangles=5 "*" parts_given_up=45 "* ]]
 }
 
 @test "vdt-qslim says when a label option meets no labels, and goes on" {
