@@ -54,7 +54,7 @@ vdt_anim_welded_counts(const struct vdt_mesh *m, const struct vdt_frames *fr, si
 			tri[i] = canon[m->triangles[i]];
 		if (vdt_topo_fans(distinct, tri, nt, &start, &fan) != 0)
 			goto out;
-		*faces = nt - vdt_topo_drop_repeats(tri, nt, start, fan, dead);
+		*faces = nt - vdt_topo_drop_repeats(tri, nt, start, fan, dead, 1);
 	}
 	*vertices = distinct;
 	rc = 0;

@@ -208,7 +208,7 @@ anim_build(struct anim *a, const struct vdt_mesh *m, const struct vdt_frames *fr
 		a->tri[i] = res->canon[m->triangles[i]];
 	if (vdt_topo_fans(nw, a->tri, nt, &fs, &fan) != 0)
 		goto out;
-	vdt_topo_drop_repeats(a->tri, nt, fs, fan, dead);
+	vdt_topo_drop_repeats(a->tri, nt, fs, fan, dead, 1);
 	free(fs);
 	free(fan);
 	fs = fan = NULL;

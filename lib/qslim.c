@@ -531,7 +531,7 @@ open_edges(const struct vdt_mesh *w, const uint32_t *start, const uint32_t *fan,
 static int
 build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
                const uint32_t *canon, size_t nin, struct ctx *c, uint8_t *border,
-               uint8_t *dead, size_t *nonmanifold)
+               uint8_t *dead, size_t *nonmanifold, uint64_t **backs, size_t *nbacks)
 {
 	size_t nt = w->triangle_count, nv = w->vertex_count;
 	int threads = nv < FQ_MIN_VERTICES ? 1 : vdt_contract_threads(o->threads);
@@ -539,7 +539,29 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 
 	if (vdt_topo_fans(nv, w->triangles, nt, &start, &fan) != 0)
 		return -1;
-	vdt_topo_drop_repeats(w->triangles, nt, start, fan, dead);
+	/* A face and its reverse: on a clustered intermediate a fin of no
+	 * volume, both dropped; on a model, a double-sided face (a leaf, a
+	 * sign), simplified as its front, its back given back at the end
+	 * (front << 32 | back, in w's faces). */
+	vdt_topo_drop_repeats(w->triangles, nt, start, fan, dead, o->quadrics != NULL);
+	*backs = NULL;
+	*nbacks = 0;
+	for (size_t t = 0; o->quadrics == NULL && t < nt; t++)
+		if (dead[t] == VDT_TOPO_BACK) {
+			uint32_t f = vdt_topo_back_of(w->triangles, (uint32_t)t, start, fan, dead);
+			if ((*nbacks & (*nbacks - 1)) == 0) {
+				uint64_t *b = realloc(*backs, 2 * (*nbacks ? *nbacks : 1) * sizeof(*b));
+				if (b == NULL) {
+					free(*backs);
+					*backs = NULL;
+					free(start);
+					free(fan);
+					return -1;
+				}
+				*backs = b;
+			}
+			(*backs)[(*nbacks)++] = (uint64_t)f << 32 | t;
+		}
 
 	/*
 	 * Section 3.3: phase I's quadrics, the planes of the input inside each
@@ -1805,6 +1827,74 @@ input_lists(const uint32_t *canon, size_t n, size_t nw, uint32_t **start,
 	return 0;
 }
 
+static int
+cmp_u64(const void *a, const void *b)
+{
+	uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+	return (x > y) - (x < y);
+}
+
+/*
+ * After each output face whose source is the front of a double-sided face
+ * (backs: front << 32 | back, input faces, sorted), its back: the same
+ * corners the other way round, with the back as its source (so that its
+ * corners take the back's attributes, a normal the other way). Corner k
+ * of the back is where its input corner k went, when the input's faces
+ * are at hand; else the corners reversed. 0, or -1 out of memory.
+ */
+static int
+add_backs(struct vdt_contract_result *r, const uint64_t *backs, size_t nbacks,
+          const struct vdt_mesh *in, const uint32_t *canon)
+{
+	size_t nt = r->triangle_count, add = 0;
+
+	for (size_t pass = 0; pass < 2; pass++) {
+		size_t k = nt;
+		for (size_t t = 0; t < nt; t++) {
+			size_t lo = 0, hi = nbacks;
+			uint32_t f = r->sources[t];
+			while (lo < hi) { /* the first pair of front f */
+				size_t mid = lo + (hi - lo) / 2;
+				if ((uint32_t)(backs[mid] >> 32) < f)
+					lo = mid + 1;
+				else
+					hi = mid;
+			}
+			for (; lo < nbacks && (uint32_t)(backs[lo] >> 32) == f; lo++) {
+				if (pass == 0) {
+					add++;
+					continue;
+				}
+				uint32_t b = (uint32_t)backs[lo], *c = r->triangles + 3 * t,
+				         *d = r->triangles + 3 * k;
+				d[0] = c[0];
+				d[1] = c[2];
+				d[2] = c[1];
+				for (int q = 0; in->triangles != NULL && q < 3; q++)
+					for (int j = 0; j < 3; j++)
+						if (canon[in->triangles[3 * (size_t)b + q]] ==
+						    canon[in->triangles[3 * (size_t)f + j]])
+							d[q] = c[j];
+				r->sources[k++] = b;
+			}
+		}
+		if (pass == 0) {
+			if (add == 0)
+				return 0;
+			uint32_t *tri = realloc(r->triangles, 3 * (nt + add) * sizeof(*tri));
+			if (tri == NULL)
+				return -1;
+			r->triangles = tri;
+			uint32_t *src = realloc(r->sources, (nt + add) * sizeof(*src));
+			if (src == NULL)
+				return -1;
+			r->sources = src;
+		}
+	}
+	r->triangle_count = nt + add;
+	return 0;
+}
+
 /* A connected part of the contracted mesh: its area, faces and root. */
 struct part {
 	double area;
@@ -1905,6 +1995,8 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	int renumbered = 0;
 	uint64_t *dups = NULL; /* corner << 32 | input vertex, by corner */
 	uint32_t *pforest = NULL; /* the input's parts, when some may go */
+	uint64_t *backs = NULL;   /* double-sided faces: front << 32 | back */
+	size_t nbacks = 0;
 	size_t nw, nvp = 0, ndups = 0;
 	int rc = VDT_ENOMEM;
 
@@ -2006,8 +2098,14 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	c.unit = vdt_quadric_unit(vdt_bbox_diagonal(box));
 	c.max_error = o->max_error < INFINITY ? o->max_error * o->max_error : INFINITY;
 	dead = vdt_calloc_huge(T + 1, 1);
-	if (dead == NULL || build_quadrics(&w, o, canon, n, &c, border, dead, &stats->nonmanifold) != 0)
+	if (dead == NULL || build_quadrics(&w, o, canon, n, &c, border, dead, &stats->nonmanifold,
+	                                   &backs, &nbacks) != 0)
 		goto nomem;
+	/* (in the input's faces, by front) */
+	for (size_t i = 0; forder != NULL && i < nbacks; i++)
+		backs[i] = (uint64_t)forder[backs[i] >> 32] << 32 | forder[(uint32_t)backs[i]];
+	if (nbacks > 1)
+		qsort(backs, nbacks, sizeof(*backs), cmp_u64);
 	/* The engine sees the live faces only; fsrc maps back to the input
 	 * (NULL while no face is dropped or moved: the same numbers). */
 	size_t live = 0;
@@ -2028,7 +2126,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	}
 	forder = NULL;
 	w.triangle_count = live;
-	stats->dropped = T - live;
+	stats->dropped = T - live - nbacks;
 	free(dead);
 	dead = NULL;
 	/* The engine drops the faces that welding left with a repeated
@@ -2095,6 +2193,14 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	c.seam = seam;
 	c.pin_seams = varying != 0;
 	vdt_contract_defaults(&co);
+	/* Each front comes back with its back: the engine's share of the
+	 * target is its share of the faces (exact where all faces are
+	 * double-sided, or none; else as near as the fronts' share stays). */
+	if (nbacks > 0 && target > 0) {
+		target = (size_t)floor((double)target * (double)live / (double)(live + nbacks));
+		if (target < 1)
+			target = 1;
+	}
 	co.target_triangles = target;
 	co.keep_a_face = 1; /* -e alone must not empty the mesh */
 	/*
@@ -2189,6 +2295,8 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	stats->max_error = sqrt(c.worst);
 	for (size_t t = 0; fsrc && t < r.triangle_count; t++)
 		r.sources[t] = fsrc[r.sources[t]];
+	if (nbacks > 0 && add_backs(&r, backs, nbacks, in, canon) != 0)
+		goto nomem;
 	if (renumbered && by_source(&r) != 0)
 		goto nomem;
 	if (vto != NULL) { /* records in welded numbers (vdt(5), SEQN) */
@@ -2238,6 +2346,7 @@ done:
 	free(forder);
 	free(dups);
 	free(pforest);
+	free(backs);
 	return rc;
 }
 

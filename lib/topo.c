@@ -43,7 +43,7 @@ vdt_topo_same_face(const uint32_t *a, const uint32_t *b)
 
 size_t
 vdt_topo_drop_repeats(const uint32_t *tri, size_t nt, const uint32_t *start,
-                      const uint32_t *fan, uint8_t *dead)
+                      const uint32_t *fan, uint8_t *dead, int fins)
 {
 	size_t n = 0;
 
@@ -60,9 +60,9 @@ vdt_topo_drop_repeats(const uint32_t *tri, size_t nt, const uint32_t *start,
 				continue;
 			int same = dead[fan[i]] ? 0 : vdt_topo_same_face(v, u);
 			if (same != 0) {
-				dead[t] = 1;
+				dead[t] = same < 0 && !fins ? VDT_TOPO_BACK : 1;
 				n++;
-				if (same < 0) {
+				if (same < 0 && fins) {
 					dead[fan[i]] = 1;
 					n++;
 				}
@@ -71,6 +71,19 @@ vdt_topo_drop_repeats(const uint32_t *tri, size_t nt, const uint32_t *start,
 		}
 	}
 	return n;
+}
+
+uint32_t
+vdt_topo_back_of(const uint32_t *tri, uint32_t t, const uint32_t *start, const uint32_t *fan,
+                 const uint8_t *dead)
+{
+	const uint32_t *v = tri + 3 * (size_t)t;
+	uint32_t m = v[0] < v[1] ? (v[0] < v[2] ? v[0] : v[2]) : (v[1] < v[2] ? v[1] : v[2]);
+
+	for (uint32_t i = start[m]; i < start[m + 1] && fan[i] < t; i++)
+		if (!dead[fan[i]] && vdt_topo_same_face(v, tri + 3 * (size_t)fan[i]) < 0)
+			return fan[i];
+	return UINT32_MAX;
 }
 
 struct open_list {

@@ -24,12 +24,19 @@ int vdt_topo_same_face(const uint32_t *a, const uint32_t *b);
 
 /*
  * Mark in dead[] (nt bytes, zeroed by the caller) each face on the same
- * three vertices as an earlier live face, and both of them when they face
- * opposite ways (a fin of zero volume, as clustering leaves them).
- * Returns the number of faces marked.
+ * three vertices as an earlier live face. When they face opposite ways,
+ * with fins both are marked (a fin of zero volume, as clustering leaves
+ * them); without, only the later, as VDT_TOPO_BACK (the back of a
+ * double-sided face: vdt_topo_back_of finds its front). Returns the
+ * number of faces marked.
  */
+#define VDT_TOPO_BACK 2
 size_t vdt_topo_drop_repeats(const uint32_t *tri, size_t nt, const uint32_t *start,
-                             const uint32_t *fan, uint8_t *dead);
+                             const uint32_t *fan, uint8_t *dead, int fins);
+
+/* The live face that face t, marked VDT_TOPO_BACK, is the back of. */
+uint32_t vdt_topo_back_of(const uint32_t *tri, uint32_t t, const uint32_t *start,
+                          const uint32_t *fan, const uint8_t *dead);
 
 /*
  * The open edges: (a, b), a < b, held by exactly one live face (dead may be
