@@ -470,6 +470,66 @@ struct oe_job {
 	size_t nonmanifold;
 };
 
+/*
+ * Face f and its reverse t (dead, VDT_TOPO_BACK): on each edge of f, the
+ * live single-sided faces (not a front) that hold it, and of those the
+ * ones that hold it the other way round (as a consistent neighbour of f
+ * does).
+ */
+static void
+pair_edges(const uint32_t *tri, uint32_t f, const uint32_t *start, const uint32_t *fan,
+           const uint8_t *dead, const uint8_t *front, int held[3], int along_f[3])
+{
+	const uint32_t *c = tri + 3 * (size_t)f;
+
+	for (int k = 0; k < 3; k++) {
+		uint32_t a = c[k], b = c[(k + 1) % 3];
+		held[k] = along_f[k] = 0;
+		for (uint32_t i = start[a]; i < start[a + 1]; i++) {
+			const uint32_t *u = tri + 3 * (size_t)fan[i];
+			if (dead[fan[i]] || front[fan[i]]) /* (f, too) */
+				continue;
+			for (int j = 0; j < 3; j++)
+				if (u[j] == a && (u[(j + 1) % 3] == b || u[(j + 2) % 3] == b)) {
+					held[k]++;
+					along_f[k] += u[(j + 2) % 3] == b;
+				}
+		}
+	}
+}
+
+/*
+ * Whether face f and its reverse t lie inside a single-sided surface,
+ * every edge held by its faces: a scan's fin, or a face given twice in a
+ * closed model, of which one is kept, the one its neighbours agree with,
+ * and no back comes back. Else they are part of a double-sided surface
+ * (a leaf, a sign, a shell given both ways), whose faces around are
+ * double-sided too, or none.
+ */
+static int
+embedded_pair(const uint32_t *tri, uint32_t f, uint32_t t, const uint32_t *start,
+              const uint32_t *fan, uint8_t *dead, const uint8_t *front)
+{
+	int held[3], along[3], agree = 0;
+
+	pair_edges(tri, f, start, fan, dead, front, held, along);
+	for (int k = 0; k < 3; k++) {
+		if (held[k] == 0)
+			return 0;
+		agree += along[k];
+	}
+	/* (a neighbour that holds f's edge the same way round as f agrees
+	 * with t) */
+	int disagree = held[0] + held[1] + held[2] - agree;
+	if (agree < disagree) { /* t is the one its neighbours agree with */
+		dead[f] = 1;
+		dead[t] = 0;
+	} else {
+		dead[t] = 1;
+	}
+	return 1;
+}
+
 static void *
 oe_run(void *arg)
 {
@@ -546,22 +606,33 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 	vdt_topo_drop_repeats(w->triangles, nt, start, fan, dead, o->quadrics != NULL);
 	*backs = NULL;
 	*nbacks = 0;
+	/* Every pair first (front << 32 | back), then which are double-sided. */
+	uint8_t *front = NULL;
 	for (size_t t = 0; o->quadrics == NULL && t < nt; t++)
 		if (dead[t] == VDT_TOPO_BACK) {
 			uint32_t f = vdt_topo_back_of(w->triangles, (uint32_t)t, start, fan, dead);
 			if ((*nbacks & (*nbacks - 1)) == 0) {
 				uint64_t *b = realloc(*backs, 2 * (*nbacks ? *nbacks : 1) * sizeof(*b));
-				if (b == NULL) {
-					free(*backs);
-					*backs = NULL;
-					free(start);
-					free(fan);
-					return -1;
-				}
+				if (b == NULL)
+					goto nomem;
 				*backs = b;
 			}
 			(*backs)[(*nbacks)++] = (uint64_t)f << 32 | t;
 		}
+	if (*nbacks > 0 && (front = calloc(nt, 1)) == NULL)
+		goto nomem;
+	for (size_t i = 0; i < *nbacks; i++)
+		front[(*backs)[i] >> 32] = 1;
+	size_t kept = 0;
+	for (size_t i = 0; i < *nbacks; i++) {
+		uint32_t f = (uint32_t)((*backs)[i] >> 32), t = (uint32_t)(*backs)[i];
+		if (dead[f]) /* (f gave way to an earlier back, which t repeats) */
+			dead[t] = 1;
+		else if (!embedded_pair(w->triangles, f, t, start, fan, dead, front))
+			(*backs)[kept++] = (*backs)[i];
+	}
+	*nbacks = kept;
+	free(front);
 
 	/*
 	 * Section 3.3: phase I's quadrics, the planes of the input inside each
@@ -617,6 +688,13 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 	free(start);
 	free(fan);
 	return 0;
+nomem:
+	free(*backs);
+	*backs = NULL;
+	*nbacks = 0;
+	free(start);
+	free(fan);
+	return -1;
 }
 
 /*
