@@ -105,6 +105,26 @@ fail(const char *what, const char *file, const struct vdt_err *err)
 	return exit_status(err ? err->code : VDT_EIO);
 }
 
+void
+note_float_precision(const char *path, const struct vdt_mesh *m, int quiet)
+{
+	struct vdt_bbox box;
+	double step = vdt_mesh_float_step(m), diag, far = 0;
+
+	if (quiet || m->vertex_count == 0)
+		return;
+	vdt_mesh_bbox(m, &box);
+	diag = vdt_bbox_diagonal(&box);
+	for (int k = 0; k < 3; k++)
+		far = fmax(far, fmax(fabs(box.min[k]), fabs(box.max[k])));
+	/* (a box of no size: one point, read so or rounded so, no telling) */
+	if (diag > 0 && step > 1e-4 * diag)
+		fprintf(stderr, "%s: note: '%s' reaches %g from the origin, where 32-bit floats "
+		        "step by %g: %.2g%% of its diagonal of %g, its detail rounded away as it "
+		        "was read (move it near the origin)\n", progname, input_name(path), far,
+		        step, 100 * step / diag, diag);
+}
+
 unsigned long
 parse_count(const char *opt, const char *s, unsigned long min, unsigned long max)
 {

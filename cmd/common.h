@@ -76,6 +76,14 @@ const char *input_name(const char *path);
  */
 int fail(const char *what, const char *file, const struct vdt_err *err);
 
+/*
+ * A note on standard error (unless quiet) when m, read from path, lies so
+ * far from the origin for its size that 32-bit floats step by more than
+ * 1e-4 of its diagonal there (a box of some size): its detail was rounded
+ * away as it was read.
+ */
+void note_float_precision(const char *path, const struct vdt_mesh *m, int quiet);
+
 /* Exit status that matches a library status: 2 for input problems, else 1. */
 int exit_status(int code);
 

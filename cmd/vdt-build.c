@@ -136,6 +136,7 @@ run(struct cmdline *cl)
 
 	if (vdt_read(cl->in, &m, &extra, &err) != 0)
 		return fail("cannot read", cl->in, &err);
+	note_float_precision(cl->in, &m, cl->quiet);
 	if ((rc = vdt_vtree_prepare(&m, &dropped, &err)) != 0) {
 		rc = fail("cannot build a tree of", cl->in, &err);
 		goto out;

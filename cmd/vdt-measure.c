@@ -126,6 +126,8 @@ run(const struct cmdline *cl)
 		rc = fail("cannot read", cl->b, &err);
 		goto out;
 	}
+	note_float_precision(cl->a, &a, cl->quiet);
+	note_float_precision(cl->b, &b, cl->quiet);
 	if (cl->color && (verr = malloc(a.vertex_count * sizeof(float) + 1)) == NULL)
 		rc = vdt_err_set(&err, VDT_ENOMEM, "out of memory");
 	t1 = vdt_seconds();

@@ -194,6 +194,7 @@ run(struct cmdline *cl)
 	if (vdt_read(cl->in, &m, &extra, &err) != 0)
 		return fail("cannot read", cl->in, &err);
 	read_s = vdt_seconds() - start;
+	note_float_precision(cl->in, &m, cl->quiet);
 	if (vdt_render_init(&R, &m, &extra, &cl->o, cl->v.width, cl->v.height, &err) != 0)
 		rc = fail(err.code == VDT_ENOMEM ? "cannot render" : "cannot read", cl->in, &err);
 	else if (cl->path && vdt_camera_read_path(cl->path, &cl->v, &views, &nviews, &err) != 0)

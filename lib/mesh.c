@@ -159,6 +159,16 @@ vdt_mesh_area_block(const struct vdt_mesh *m, const uint8_t *skip, size_t b, siz
 	return sum / 2;
 }
 
+double
+vdt_mesh_float_step(const struct vdt_mesh *m)
+{
+	float big = 0;
+
+	for (size_t i = 0; i < 3 * m->vertex_count; i++)
+		big = fmaxf(big, fabsf(m->positions[i]));
+	return m->vertex_count > 0 ? (double)nextafterf(big, INFINITY) - big : 0;
+}
+
 int
 vdt_mesh_any_area(const struct vdt_mesh *m)
 {

@@ -77,6 +77,12 @@ int vdt_mesh_validate(const struct vdt_mesh *m, struct vdt_err *err);
 void vdt_mesh_face_cross(const struct vdt_mesh *m, size_t t, double n[3]);
 
 /*
+ * How far apart 32-bit floats are at m's largest coordinate (in size: the
+ * rounding of every position read or computed there); 0 for no vertex.
+ */
+double vdt_mesh_float_step(const struct vdt_mesh *m);
+
+/*
  * Whether some face of m has an area (its corners' cross product, in
  * double, is not zero). A mesh with none, all its vertices on a line or
  * each face repeating a point, is no surface: bad input to every tool

@@ -188,3 +188,21 @@ load helpers
 	[ "$status" -eq 0 ]
 	printf '%s\n' "$output" | tail -n 1 | grep -q '^vdt-silhouette: vertices=[0-9]* .* read_s=[0-9.]* write_s=[0-9.]* peak_mb=[0-9.]*$'
 }
+
+@test "a model far from the origin for its size gets a note that floats rounded its detail" {
+	# the unit sphere moved to 1e7, where floats step by 1: it welded into
+	# a blob with no word (and vdt-measure, reading floats too, saw no error)
+	awk 'NR == 2 { nv = $1 } NR > 2 && NR <= 2 + nv { printf "%.9g %.9g %.9g\n", $1 + 1e7, $2 + 1e7, $3 + 1e7; next } { print }' \
+		"$SAMPLES/sphere.off" > "$TMP/far.off"
+	for t in vdt-qslim vdt-build vdt-silhouette; do
+		run "$BIN/$t" "$TMP/far.off" -o "$TMP/out.vdt"
+		[[ "${lines[0]}" == "$t: note: '$TMP/far.off' reaches 1e+07 from the origin, where 32-bit floats step by 1: "*"% of its diagonal"*"(move it near the origin)" ]]
+	done
+	run "$BIN/vdt-measure" "$TMP/far.off" "$TMP/far.off"
+	[[ "${lines[0]}" == "vdt-measure: note: '$TMP/far.off' reaches 1e+07"* ]]
+	run "$BIN/vdt-qslim" -q "$TMP/far.off" -o "$TMP/out.off"
+	[ "$output" = "" ]
+	# where a model's size is, nothing
+	run "$BIN/vdt-qslim" "$SAMPLES/sphere.off" -o "$TMP/out.off"
+	[ "$output" = "" ]
+}
