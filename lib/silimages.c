@@ -1,8 +1,8 @@
 /*
  * silimages.c - the per-camera images of vdt-silhouette --images, apart
- * from lib/silhouette.c so that tools that only read labels (vdt-qslim,
- * vdt-render) do not link OpenImageIO, whose libraries cost ~130 MB of
- * resident memory at start-up.
+ * from lib/silhouette.c so that tools that only read labels (vdt-qslim)
+ * do not take in the image code (image.c, which loads OpenImageIO's
+ * module at the first image).
  */
 #include "silhouette.h"
 

@@ -12,6 +12,7 @@ ROOT="$BATS_TEST_DIRNAME/../.."
 	[ -x "$p/bin/vdt-batch" ]
 	for t in "$ROOT"/bin/vdt-*; do
 		n=$(basename "$t")
+		[ "$n" != vdt-image.so ] || continue
 		run "$p/bin/$n" --version
 		[ "$status" -eq 0 ]
 		[[ "$output" == "$n "* ]]
@@ -38,6 +39,13 @@ ROOT="$BATS_TEST_DIRNAME/../.."
 	(cd "$TMP" && PATH=/usr/bin:/bin "$p/bin/vdt-batch" -q --ratios 50 -o "$TMP/out" "$TMP/in")
 	[ -s "$TMP/out/torus.lod1.ply" ]
 	grep -q "'$p/bin/vdt-batch' --step" "$TMP/out/.vdt-batch/Makefile"
+	# the installed vdt-render loads the image module installed with it
+	[ -f "$p/lib/vdt/vdt-image.so" ]
+	"$p/bin/vdt-build" -q "$SAMPLES/torus.off" -o "$TMP/t.vdt"
+	if command -v strace >/dev/null; then
+		strace -f -e trace=openat -o "$TMP/trace" "$p/bin/vdt-render" --size 32x24 "$TMP/t.vdt" -o "$TMP/t.png"
+		grep -q "\"$p/bin/../lib/vdt/vdt-image.so\".* = [0-9]" "$TMP/trace"
+	fi
 	make -s -C "$ROOT" uninstall DESTDIR="$TMP/d" PREFIX=/opt/vdt
 	[ -z "$(find "$TMP/d" -type f)" ]
 }

@@ -206,3 +206,17 @@ load helpers
 	run "$BIN/vdt-qslim" "$SAMPLES/sphere.off" -o "$TMP/out.off"
 	[ "$output" = "" ]
 }
+
+@test "OpenImageIO is loaded at the first image, not at start-up" {
+	if ! command -v strace >/dev/null; then skip "no strace(1)"; fi
+	# its libraries cost every run of vdt-render and vdt-silhouette a
+	# third of a second and 130 MB, images or not
+	strace -f -e trace=openat -o "$TMP/sil" "$BIN/vdt-silhouette" -q -a 90 -r 32 "$SAMPLES/sphere.off" -o "$TMP/s.vdl"
+	! grep -q 'libOpenImageIO' "$TMP/sil"
+	"$BIN/vdt-build" -q "$SAMPLES/sphere.off" -o "$TMP/s.vdt"
+	strace -f -e trace=openat -o "$TMP/mesh" "$BIN/vdt-render" --size 32x24 --mesh-out "$TMP/m.off" "$TMP/s.vdt"
+	! grep -q 'libOpenImageIO' "$TMP/mesh"
+	strace -f -e trace=openat -o "$TMP/png" "$BIN/vdt-render" --size 32x24 "$TMP/s.vdt" -o "$TMP/s.png"
+	grep -q 'vdt-image.so' "$TMP/png"
+	[ -s "$TMP/s.png" ]
+}

@@ -1,0 +1,222 @@
+/*
+ * image.c - 8-bit images in and out through vdt-image.so (imagemod.h),
+ * loaded at the first image: the tools that never touch one, and those
+ * runs of vdt-render and vdt-silhouette that do not, never pay for
+ * OpenImageIO. Output is atomic, as for meshes (vdt_output_open): written
+ * to a hidden temporary file beside the target, .NAME.XXXXXX from mkstemp
+ * with the target's permissions, and renamed over the target on success;
+ * through a symbolic link to what it names, and in place to a device or
+ * FIFO (vdt_output_target). The writer is picked by the target's
+ * extension, so the temporary name needs none.
+ */
+#include <dlfcn.h>
+#include <errno.h>
+#include <limits.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "imagemod.h"
+#include "meshio.h"
+
+#ifndef VDT_IMAGE_MODULE_BUILT
+#define VDT_IMAGE_MODULE_BUILT ""
+#endif
+
+static struct {
+	vdt_img_writer_fn *writer;
+	vdt_img_encode_fn *encode;
+	vdt_img_write_file_fn *write_file;
+	vdt_img_read_fn *read;
+	char why[512]; /* when it could not be loaded */
+} mod;
+static pthread_once_t mod_once = PTHREAD_ONCE_INIT;
+
+/* dlopen the first of: beside this program, in ../lib/vdt from it (an
+ * installed tree), where the build left it. */
+static void
+load(void)
+{
+	char exe[PATH_MAX], path[PATH_MAX + 64];
+	void *h = NULL;
+	ssize_t n = readlink("/proc/self/exe", exe, sizeof(exe) - 1);
+
+	if (n > 0) {
+		exe[n] = '\0';
+		char *slash = strrchr(exe, '/');
+		if (slash != NULL)
+			slash[1] = '\0';
+		snprintf(path, sizeof(path), "%s%s", exe, VDT_IMAGE_MODULE);
+		if ((h = dlopen(path, RTLD_NOW | RTLD_LOCAL)) == NULL) {
+			snprintf(path, sizeof(path), "%s../lib/vdt/%s", exe, VDT_IMAGE_MODULE);
+			h = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+		}
+	}
+	if (h == NULL && VDT_IMAGE_MODULE_BUILT[0] != '\0') {
+		snprintf(path, sizeof(path), "%s", VDT_IMAGE_MODULE_BUILT);
+		h = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+	}
+	if (h == NULL) {
+		const char *e = dlerror();
+		snprintf(mod.why, sizeof(mod.why), "cannot load the image module %s (beside the "
+		         "tool or in ../lib/vdt from it): %s", VDT_IMAGE_MODULE, e ? e : "not found");
+		return;
+	}
+	*(void **)&mod.writer = dlsym(h, VDT_IMG_WRITER);
+	*(void **)&mod.encode = dlsym(h, VDT_IMG_ENCODE);
+	*(void **)&mod.write_file = dlsym(h, VDT_IMG_WRITE_FILE);
+	*(void **)&mod.read = dlsym(h, VDT_IMG_READ);
+	if (!mod.writer || !mod.encode || !mod.write_file || !mod.read) {
+		snprintf(mod.why, sizeof(mod.why), "the image module %s lacks a function",
+		         VDT_IMAGE_MODULE);
+		mod.writer = NULL;
+	}
+}
+
+static int
+loaded(struct vdt_err *err)
+{
+	pthread_once(&mod_once, load);
+	return mod.writer ? 0 : vdt_err_set(err, VDT_EIO, "%s", mod.why);
+}
+
+static int
+from_module(int code, const char *msg, struct vdt_err *err)
+{
+	switch (code) {
+	case VDT_IMG_OK: return 0;
+	case VDT_IMG_NO_WRITER: return vdt_err_set(err, VDT_EINVAL, "%s", msg);
+	case VDT_IMG_BAD: return vdt_err_set(err, VDT_EFORMAT, "%s", msg);
+	case VDT_IMG_NOMEM: return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	default: return vdt_err_set(err, VDT_EIO, "%s", msg[0] ? msg : "cannot use the image");
+	}
+}
+
+/* The name a writer is picked by: "-" (standard output) is PNG, which
+ * is encoded in memory. */
+static const char *
+writer_name(const char *path)
+{
+	return strcmp(path, "-") == 0 ? "-.png" : path;
+}
+
+/* Bytes of an image are no more for a terminal than a binary mesh is. */
+static int
+refuse_terminal(const char *path, struct vdt_err *err)
+{
+	if (strcmp(path, "-") == 0 && isatty(STDOUT_FILENO))
+		return vdt_err_set(err, VDT_EINVAL, "refusing to write a binary image to a terminal");
+	return 0;
+}
+
+/* A writer of its own file (SGI here), by name: never "-". */
+static int
+write_own_file(const char *path, int w, int h, int c, const unsigned char *px,
+               struct vdt_written *stage, struct vdt_err *err)
+{
+	char msg[512] = "", *tmp = NULL;
+	int special = 0, rc;
+	char *dst = vdt_output_target(path, &special);
+
+	if (dst == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	if (!special) {
+		int fd = vdt_output_temp(dst, &tmp);
+		if (fd == -2) {
+			free(dst);
+			return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+		}
+		if (fd < 0) {
+			int e = errno;
+			free(dst);
+			return vdt_err_set(err, VDT_EIO, "cannot create a temporary file: %s", strerror(e));
+		}
+		close(fd); /* the writer opens it again by name */
+	}
+	rc = from_module(mod.write_file(writer_name(path), special ? dst : tmp, w, h, c, px, msg,
+	                                sizeof(msg)), msg, err);
+	if (rc == 0 && !special && rename(tmp, dst) != 0) {
+		int e = errno;
+		rc = vdt_err_set(err, VDT_EIO, "cannot rename the temporary file: %s", strerror(e));
+	}
+	if (rc != 0 && !special)
+		remove(tmp);
+	/* (gone or renamed by now: a signal need not remove it any more) */
+	if (!special)
+		vdt_output_temp_done(tmp);
+	free(tmp);
+	free(dst);
+	/* (a writer of its own file cannot be staged: what it replaced is
+	 * gone, and what it wrote goes with a failed run) */
+	return rc == 0 && stage ? vdt_written_add(stage, path, err) : rc;
+}
+
+int
+vdt_image_writable(const char *path, struct vdt_err *err)
+{
+	char msg[512] = "";
+	int rc;
+
+	if ((rc = refuse_terminal(path, err)) != 0 || (rc = loaded(err)) != 0)
+		return rc;
+	return from_module(mod.writer(writer_name(path), msg, sizeof(msg)), msg, err);
+}
+
+int
+vdt_image_write(const char *path, int width, int height, int channels,
+                const unsigned char *pixels, struct vdt_err *err)
+{
+	return vdt_image_write_staged(path, width, height, channels, pixels, NULL, err);
+}
+
+int
+vdt_image_write_staged(const char *path, int width, int height, int channels,
+                       const unsigned char *pixels, struct vdt_written *stage,
+                       struct vdt_err *err)
+{
+	char msg[512] = "";
+	unsigned char *bytes = NULL;
+	size_t len = 0;
+	struct vdt_output o;
+	int rc;
+
+	if (width <= 0 || height <= 0 || channels <= 0 || channels > 4)
+		return vdt_err_set(err, VDT_EINVAL, "bad image size %dx%d with %d channels", width,
+		                   height, channels);
+	if ((rc = refuse_terminal(path, err)) != 0 || (rc = loaded(err)) != 0)
+		return rc;
+	rc = mod.encode(writer_name(path), width, height, channels, pixels, &bytes, &len, msg,
+	                sizeof(msg));
+	if (rc == VDT_IMG_OWN_FILE)
+		return write_own_file(path, width, height, channels, pixels, stage, err);
+	if ((rc = from_module(rc, msg, err)) != 0)
+		return rc;
+	if ((rc = vdt_output_open(&o, path, err)) != 0) {
+		free(bytes);
+		return rc;
+	}
+	if (len > 0 && fwrite(bytes, 1, len, o.f) != len) {
+		int e = errno;
+		free(bytes);
+		vdt_output_abort(&o);
+		return vdt_err_set(err, VDT_EIO, "write error: %s", strerror(e));
+	}
+	free(bytes);
+	return stage ? vdt_output_stage(&o, stage, err) : vdt_output_commit(&o, err);
+}
+
+int
+vdt_image_read(const char *path, int *width, int *height, int *channels,
+               unsigned char **pixels, struct vdt_err *err)
+{
+	char msg[512] = "";
+	int rc;
+
+	*pixels = NULL;
+	if ((rc = loaded(err)) != 0)
+		return rc;
+	return from_module(mod.read(path, width, height, channels, pixels, msg, sizeof(msg)), msg,
+	                   err);
+}
