@@ -87,7 +87,7 @@ $(B)/%.o: %.cc
 	$(CXX) $(CPPFLAGS) $(CXXFLAGS) -c -o $@ $<
 
 # Where the build leaves the image module: the last place a tool looks.
-$(B)/lib/io/image.o: override CPPFLAGS += -DVDT_IMAGE_MODULE_BUILT='"$(CURDIR)/$(MODULE)"'
+$(B)/lib/io/imageio.o: override CPPFLAGS += -DVDT_IMAGE_MODULE_BUILT='"$(CURDIR)/$(MODULE)"'
 $(B)/lib/io/imagemod/%.o: override CXXFLAGS += -fPIC
 $(MODULE): $(B)/lib/io/imagemod/vdt-image.o build/variant
 	@mkdir -p $(@D)

@@ -1,7 +1,7 @@
 /*
  * silimages.c - the per-camera images of vdt-silhouette --images, apart
  * from lib/silhouette.c so that tools that only read labels (vdt-qslim)
- * do not take in the image code (image.c, which loads OpenImageIO's
+ * do not take in the image code (imageio.c, which loads OpenImageIO's
  * module at the first image).
  */
 #include "silhouette.h"

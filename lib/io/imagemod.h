@@ -2,8 +2,8 @@
  * imagemod.h - the face of vdt-image.so, the module that holds
  * OpenImageIO. Its libraries (some 250, with their own) cost a third of a
  * second and ~130 MB of resident memory at start-up, so the tools load it
- * (image.c) only when an image is read or written. The module knows
- * nothing of libvdt: bytes in memory and a message out; image.c writes
+ * (imageio.c) only when an image is read or written. The module knows
+ * nothing of libvdt: bytes in memory and a message out; imageio.c writes
  * them as any other output.
  *
  * Each function returns VDT_IMG_OK or one of the codes below, with a

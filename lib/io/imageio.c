@@ -1,5 +1,5 @@
 /*
- * image.c - 8-bit images in and out through vdt-image.so (imagemod.h),
+ * imageio.c - 8-bit images in and out through vdt-image.so (imagemod.h),
  * loaded at the first image: the tools that never touch one, and those
  * runs of vdt-render and vdt-silhouette that do not, never pay for
  * OpenImageIO. Output is atomic, as for meshes (vdt_output_open): written
