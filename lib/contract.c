@@ -68,6 +68,7 @@ struct work {
 	uint32_t *wing;        /* third corners of the faces a contraction removed */
 	size_t wing_len, wing_cap;
 	size_t dead_tris, dead_verts;
+	size_t dead_counted; /* the faces removed as the target counts them */
 };
 
 struct engine {
@@ -89,6 +90,8 @@ struct engine {
 	size_t hlen;
 
 	size_t live_tris, live_verts;
+	size_t counted;         /* live faces as the target counts them (twice) */
+	const uint8_t *twice;   /* vdt_contract_opts.twice */
 	double cos_max, min_quality;
 	int allow_nonmanifold, keep_parts, keep_a_face;
 	const struct vdt_contract_ops *ops;
@@ -1400,6 +1403,7 @@ contract(struct engine *e, struct work *w, uint32_t keep, uint32_t gone,
 			}
 			c[0] = c[1] = c[2] = NONE;
 			w->dead_tris++;
+			w->dead_counted += 1 + (e->twice != NULL && e->twice[t]);
 			continue;
 		}
 		for (int k = 0; k < 3; k++)
@@ -1494,8 +1498,9 @@ static void
 work_apply(struct engine *e, struct work *w)
 {
 	e->live_tris -= w->dead_tris;
+	e->counted -= w->dead_counted;
 	e->live_verts -= w->dead_verts;
-	w->dead_tris = w->dead_verts = 0;
+	w->dead_tris = w->dead_verts = w->dead_counted = 0;
 }
 
 /* contract() on the engine's own thread, its counts applied at once. */
@@ -1514,7 +1519,7 @@ contract_now(struct engine *e, uint32_t keep, uint32_t gone, const double dpos[3
 static int
 done(const struct engine *e, const struct vdt_contract_opts *o)
 {
-	if (e->live_tris <= o->target_triangles &&
+	if (e->counted <= o->target_triangles &&
 	    (o->target_vertices == 0 || e->live_verts <= o->target_vertices))
 		return 1;
 	return 0;
@@ -1800,8 +1805,8 @@ pass_need(const struct engine *e, const struct vdt_contract_opts *o)
 {
 	size_t n = 0;
 
-	if (e->live_tris > o->target_triangles)
-		n = (e->live_tris - o->target_triangles + 1) / 2;
+	if (e->counted > o->target_triangles)
+		n = (e->counted - o->target_triangles + 1) / 2;
 	if (o->target_vertices && e->live_verts > o->target_vertices &&
 	    e->live_verts - o->target_vertices > n)
 		n = e->live_verts - o->target_vertices;
@@ -2221,11 +2226,11 @@ round_prefix(const struct engine *e, const struct vdt_contract_opts *o, const ui
              size_t m, size_t room)
 {
 	size_t tris = 0, grow = 0;
-	size_t spare = e->live_tris > o->target_triangles ? e->live_tris - o->target_triangles : 0;
+	size_t spare = e->counted > o->target_triangles ? e->counted - o->target_triangles : 0;
 
 	for (size_t i = 0; i < m; i++) {
 		uint32_t v = (uint32_t)keys[i], lv = e->vt[v].len, lx = e->vt[e->best[v]].len;
-		tris += lv < lx ? lv : lx;
+		tris += (lv < lx ? lv : lx) * (e->twice ? 2u : 1u);
 		grow += grown_cap(lv + lx);
 		if (tris >= spare || grow > room)
 			return i;
@@ -2311,7 +2316,7 @@ pass_round(struct engine *e, const struct vdt_contract_opts *o,
 		if (p->len + grow > p->cap && p->holes > p->cap / 8 &&
 		    pool_compact(p, e->vt, e->nv) != 0)
 			goto out;
-		if (p->len + grow <= p->cap && e->live_tris > o->target_triangles + tris)
+		if (p->len + grow <= p->cap && e->counted > o->target_triangles + tris)
 			break;
 		/* The round may reach the target, or its lists overrun the
 		 * pool: the pairs up to where neither can happen go on the
@@ -2746,6 +2751,10 @@ engine_init(struct engine *e, const struct vdt_mesh *m, float *own_pos,
 		live++;
 	}
 	e->live_tris = live;
+	e->twice = o->twice;
+	e->counted = live;
+	for (size_t f = 0; o->twice != NULL && f < nt; f++)
+		e->counted += e->tri[3 * f] != NONE && o->twice[f];
 	e->tpool.marks = nv < LIST_MARK; /* faces number fewer than NONE / 3 */
 	if (pool_reserve(&e->tpool, 3 * live + live / 4 + 64) != 0)
 		goto nomem;

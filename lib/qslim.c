@@ -2074,6 +2074,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	uint64_t *dups = NULL; /* corner << 32 | input vertex, by corner */
 	uint32_t *pforest = NULL; /* the input's parts, when some may go */
 	uint64_t *backs = NULL;   /* double-sided faces: front << 32 | back */
+	uint8_t *twice = NULL;    /* per engine face: a front (counts twice) */
 	size_t nbacks = 0;
 	size_t nw, nvp = 0, ndups = 0;
 	int rc = VDT_ENOMEM;
@@ -2179,7 +2180,14 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	if (dead == NULL || build_quadrics(&w, o, canon, n, &c, border, dead, &stats->nonmanifold,
 	                                   &backs, &nbacks) != 0)
 		goto nomem;
-	/* (in the input's faces, by front) */
+	/* The fronts count twice toward the target (their backs come back),
+	 * in the engine's faces; the pairs in the input's, by front. */
+	if (nbacks > 0) {
+		if ((twice = calloc(T, 1)) == NULL)
+			goto nomem;
+		for (size_t i = 0; i < nbacks; i++)
+			twice[backs[i] >> 32] = 1;
+	}
 	for (size_t i = 0; forder != NULL && i < nbacks; i++)
 		backs[i] = (uint64_t)forder[backs[i] >> 32] << 32 | forder[(uint32_t)backs[i]];
 	if (nbacks > 1)
@@ -2196,6 +2204,8 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 		for (size_t t = 0; t < T; t++)
 			if (!dead[t]) {
 				memmove(w.triangles + 3 * live, w.triangles + 3 * t, 3 * sizeof(uint32_t));
+				if (twice != NULL)
+					twice[live] = twice[t];
 				fsrc[live++] = forder ? forder[t] : (uint32_t)t;
 			}
 		free(forder);
@@ -2271,15 +2281,8 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	c.seam = seam;
 	c.pin_seams = varying != 0;
 	vdt_contract_defaults(&co);
-	/* Each front comes back with its back: the engine's share of the
-	 * target is its share of the faces (exact where all faces are
-	 * double-sided, or none; else as near as the fronts' share stays). */
-	if (nbacks > 0 && target > 0) {
-		target = (size_t)floor((double)target * (double)live / (double)(live + nbacks));
-		if (target < 1)
-			target = 1;
-	}
 	co.target_triangles = target;
+	co.twice = twice;
 	co.keep_a_face = 1; /* -e alone must not empty the mesh */
 	/*
 	 * No part vanishes while the target can hold them all with room to
@@ -2425,6 +2428,7 @@ done:
 	free(dups);
 	free(pforest);
 	free(backs);
+	free(twice);
 	return rc;
 }
 
