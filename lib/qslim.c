@@ -18,6 +18,7 @@
  * + c does not cancel away on models far from the origin.
  */
 #include "qslim.h"
+#include "bvh.h"
 #include "fit.h"
 #include "hash.h"
 #include "mem.h"
@@ -1525,6 +1526,40 @@ attr_setup(struct ctx *c, const struct vdt_mesh *in, const struct vdt_mesh *w,
 }
 
 /*
+ * The input vertex that corner k of output face t stands for: its source
+ * face's corner, or for a back added by add_backs (faces from bk->first
+ * on, when the input's faces were at hand) the vertex it names.
+ */
+struct back {
+	uint64_t pair; /* front << 32 | back, input faces */
+	float p[9];    /* the back's corners as the input had them */
+};
+
+struct back_corners {
+	uint32_t *src;  /* 3 per back, or NULL */
+	uint32_t *slot; /* 3 per back: the slot of each corner */
+	size_t first;
+	struct back *pos;            /* per pair, as backs */
+	uint32_t *start, *list;      /* per slot: the pairs with a corner there */
+};
+
+static int
+by_pair(const void *a, const void *b)
+{
+	uint64_t x = ((const struct back *)a)->pair, y = ((const struct back *)b)->pair;
+	return (x > y) - (x < y);
+}
+
+static uint32_t
+corner_vertex(const struct vdt_mesh *in, const struct vdt_contract_result *r,
+              const struct back_corners *bk, size_t t, int k)
+{
+	if (bk->src != NULL && t >= bk->first)
+		return bk->src[3 * (t - bk->first) + k];
+	return in->triangles[3 * (size_t)r->sources[t] + k];
+}
+
+/*
  * The output with interpolated attributes: one vertex per surviving wedge,
  * in order of first use, its attributes the minimiser of the wedge's
  * quadric at the final position. A vertex that never took part in a merge
@@ -1532,8 +1567,8 @@ attr_setup(struct ctx *c, const struct vdt_mesh *in, const struct vdt_mesh *w,
  */
 static int
 build_output_attr(const struct vdt_mesh *in, const struct ctx *c,
-                  const struct vdt_contract_result *r, struct vdt_mesh *out,
-                  struct vdt_err *err)
+                  const struct vdt_contract_result *r, const struct back_corners *bk,
+                  struct vdt_mesh *out, struct vdt_err *err)
 {
 	struct attr *at = c->at;
 	uint32_t *index = vdt_malloc_huge((in->vertex_count + 1) * sizeof(*index));
@@ -1552,7 +1587,7 @@ build_output_attr(const struct vdt_mesh *in, const struct ctx *c,
 	for (size_t t = 0; t < r->triangle_count; t++)
 		for (int k = 0; k < 3; k++) {
 			uint32_t v = r->triangles[3 * t + k];
-			uint32_t w = wroot(at->wpar, in->triangles[3 * (size_t)r->sources[t] + k]);
+			uint32_t w = wroot(at->wpar, corner_vertex(in, r, bk, t, k));
 			if (index[w] == NONE) {
 				index[w] = (uint32_t)nout;
 				src[nout] = w;
@@ -1657,8 +1692,8 @@ static int
 build_output(const struct vdt_mesh *in, const uint32_t *canon,
              const uint32_t *wstart, const uint32_t *wlist,
              const uint64_t *dups, size_t ndups,
-             const struct vdt_contract_result *r, struct vdt_mesh *out,
-             struct vdt_err *err)
+             const struct vdt_contract_result *r, const struct back_corners *bk,
+             struct vdt_mesh *out, struct vdt_err *err)
 {
 	uint32_t *index = malloc((in->vertex_count + 1) * sizeof(*index));
 	uint32_t *src = malloc((3 * r->triangle_count + 1) * sizeof(*src));
@@ -1677,7 +1712,7 @@ build_output(const struct vdt_mesh *in, const uint32_t *canon,
 			uint32_t pick = wlist[wstart[v]];
 			size_t corner = 3 * (size_t)r->sources[t] + k;
 			uint32_t w0 = wstart[v + 1] - wstart[v] < 2 ? NONE
-			            : in->triangles ? in->triangles[corner]
+			            : in->triangles ? corner_vertex(in, r, bk, t, k)
 			            : dup_at(dups, ndups, corner);
 			if (w0 != NONE) {
 				double best = INFINITY;
@@ -1905,13 +1940,6 @@ input_lists(const uint32_t *canon, size_t n, size_t nw, uint32_t **start,
 	return 0;
 }
 
-static int
-cmp_u64(const void *a, const void *b)
-{
-	uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
-	return (x > y) - (x < y);
-}
-
 /*
  * After each output face whose source is the front of a double-sided face
  * (backs: front << 32 | back, input faces, sorted), its back: the same
@@ -1922,9 +1950,13 @@ cmp_u64(const void *a, const void *b)
  */
 static int
 add_backs(struct vdt_contract_result *r, const uint64_t *backs, size_t nbacks,
-          const struct vdt_mesh *in, const uint32_t *canon)
+          const struct vdt_mesh *in, const uint32_t *canon, struct back_corners *bk)
 {
 	size_t nt = r->triangle_count, add = 0;
+	uint32_t *at = NULL; /* per slot: an input vertex of a back face welded there */
+
+	bk->src = NULL;
+	bk->first = nt;
 
 	for (size_t pass = 0; pass < 2; pass++) {
 		size_t k = nt;
@@ -1953,24 +1985,152 @@ add_backs(struct vdt_contract_result *r, const uint64_t *backs, size_t nbacks,
 						if (canon[in->triangles[3 * (size_t)b + q]] ==
 						    canon[in->triangles[3 * (size_t)f + j]])
 							d[q] = c[j];
+				if (at != NULL) /* (the back's own vertex at each corner's
+				                   slot, one per slot: no new seam) */
+					for (int q = 0; q < 3; q++) {
+						uint32_t x = at[d[q]];
+						bk->src[3 * (k - nt) + q] =
+						        x != NONE ? x : in->triangles[3 * (size_t)b + q];
+						bk->slot[3 * (k - nt) + q] = d[q];
+					}
 				r->sources[k++] = b;
 			}
 		}
 		if (pass == 0) {
 			if (add == 0)
 				return 0;
+			/* The attributes of a back's corner are those of the back's
+			 * input vertex at the slot it ended in: that vertex's, not
+			 * those of the corner's own input vertex, which may have
+			 * been merged there from afar. */
+			if (in->triangles != NULL) {
+				size_t nv = r->vertex_count;
+				at = malloc((nv + 1) * sizeof(*at));
+				bk->src = malloc(3 * add * sizeof(*bk->src));
+				bk->slot = malloc(3 * add * sizeof(*bk->slot));
+				bk->start = calloc(nv + 2, sizeof(*bk->start));
+				bk->list = malloc(3 * nbacks * sizeof(*bk->list));
+				if (!at || !bk->src || !bk->slot || !bk->start || !bk->list) {
+					free(at);
+					return -1;
+				}
+				memset(at, 0xff, nv * sizeof(*at));
+				for (size_t i = 0; i < nbacks; i++)
+					for (int q = 0; q < 3; q++) {
+						uint32_t x = in->triangles[3 * (size_t)(uint32_t)backs[i] + q];
+						if (at[canon[x]] == NONE)
+							at[canon[x]] = x;
+						bk->start[r->final[canon[x]] + 2]++;
+					}
+				/* (the pairs with a corner at each slot, where the
+				 * input's back faces around a vertex of it went) */
+				for (size_t v = 0; v < nv; v++)
+					bk->start[v + 2] += bk->start[v + 1];
+				for (size_t i = 0; i < nbacks; i++)
+					for (int q = 0; q < 3; q++) {
+						uint32_t x = in->triangles[3 * (size_t)(uint32_t)backs[i] + q];
+						bk->list[bk->start[r->final[canon[x]] + 1]++] = (uint32_t)i;
+					}
+			}
 			uint32_t *tri = realloc(r->triangles, 3 * (nt + add) * sizeof(*tri));
-			if (tri == NULL)
+			uint32_t *src = tri == NULL ? NULL : realloc(r->sources, (nt + add) * sizeof(*src));
+			if (tri != NULL)
+				r->triangles = tri;
+			if (src == NULL) {
+				free(at);
 				return -1;
-			r->triangles = tri;
-			uint32_t *src = realloc(r->sources, (nt + add) * sizeof(*src));
-			if (src == NULL)
-				return -1;
+			}
 			r->sources = src;
 		}
 	}
+	free(at);
 	r->triangle_count = nt + add;
 	return 0;
+}
+
+/*
+ * The attributes of the backs' vertices where the vertices are now: on
+ * the input's back faces that went to the same slot, the point nearest
+ * each, its corners' attributes mixed by its barycentric weights (as the
+ * attribute-aware cost gives the fronts theirs; a back's own vertex there
+ * has those of where it was).
+ */
+static void
+back_attributes(const struct vdt_mesh *in, const struct back_corners *bk, size_t nbacks,
+                struct vdt_mesh *out)
+{
+	uint8_t *done = calloc(out->vertex_count + 1, 1);
+
+	if (done == NULL || bk->src == NULL || (!out->uvs && !out->normals && !out->colors)) {
+		free(done);
+		return;
+	}
+	(void)nbacks;
+	for (size_t t = bk->first; t < out->triangle_count; t++)
+		for (int q = 0; q < 3; q++) {
+			uint32_t o = out->triangles[3 * t + q], v = bk->slot[3 * (t - bk->first) + q];
+			double p[3], best = INFINITY, w[3] = {1, 0, 0};
+			uint32_t pick = NONE;
+			if (done[o])
+				continue;
+			done[o] = 1;
+			for (int k = 0; k < 3; k++)
+				p[k] = out->positions[3 * (size_t)o + k];
+			for (uint32_t j = bk->start[v]; j < bk->start[v + 1]; j++) {
+				const float *c = bk->pos[bk->list[j]].p;
+				double a[3], b[3], cc[3], x[3];
+				for (int k = 0; k < 3; k++) {
+					a[k] = c[k];
+					b[k] = c[3 + k];
+					cc[k] = c[6 + k];
+				}
+				double d = vdt_closest_on_triangle(p, a, b, cc, x);
+				if (!(d < best))
+					continue;
+				/* x's weights: by the areas of the sub-triangles */
+				double e0[3], e1[3], ex[3], d00 = 0, d01 = 0, d11 = 0, d20 = 0, d21 = 0;
+				for (int k = 0; k < 3; k++) {
+					e0[k] = b[k] - a[k];
+					e1[k] = cc[k] - a[k];
+					ex[k] = x[k] - a[k];
+					d00 += e0[k] * e0[k];
+					d01 += e0[k] * e1[k];
+					d11 += e1[k] * e1[k];
+					d20 += ex[k] * e0[k];
+					d21 += ex[k] * e1[k];
+				}
+				double det = d00 * d11 - d01 * d01;
+				if (!(det > 0))
+					continue;
+				best = d;
+				pick = bk->list[j];
+				w[1] = (d11 * d20 - d01 * d21) / det;
+				w[2] = (d00 * d21 - d01 * d20) / det;
+				w[0] = 1 - w[1] - w[2];
+			}
+			if (pick == NONE)
+				continue;
+			const uint32_t *bc = in->triangles + 3 * (size_t)(uint32_t)bk->pos[pick].pair;
+			for (int k = 0; out->uvs && k < 2; k++)
+				out->uvs[2 * (size_t)o + k] = (float)(w[0] * in->uvs[2 * (size_t)bc[0] + k] +
+				                                      w[1] * in->uvs[2 * (size_t)bc[1] + k] +
+				                                      w[2] * in->uvs[2 * (size_t)bc[2] + k]);
+			for (int k = 0; out->colors && k < 4; k++)
+				out->colors[4 * (size_t)o + k] = (float)(w[0] * in->colors[4 * (size_t)bc[0] + k] +
+				                                         w[1] * in->colors[4 * (size_t)bc[1] + k] +
+				                                         w[2] * in->colors[4 * (size_t)bc[2] + k]);
+			if (out->normals) {
+				double n[3], l;
+				for (int k = 0; k < 3; k++)
+					n[k] = w[0] * in->normals[3 * (size_t)bc[0] + k] +
+					       w[1] * in->normals[3 * (size_t)bc[1] + k] +
+					       w[2] * in->normals[3 * (size_t)bc[2] + k];
+				l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+				for (int k = 0; l > 1e-6 && k < 3; k++)
+					out->normals[3 * (size_t)o + k] = (float)(n[k] / l);
+			}
+		}
+	free(done);
 }
 
 /* A connected part of the contracted mesh: its area, faces and root. */
@@ -2075,6 +2235,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	uint32_t *pforest = NULL; /* the input's parts, when some may go */
 	uint64_t *backs = NULL;   /* double-sided faces: front << 32 | back */
 	uint8_t *twice = NULL;    /* per engine face: a front (counts twice) */
+	struct back_corners bk = {0};
 	size_t nbacks = 0;
 	size_t nw, nvp = 0, ndups = 0;
 	int rc = VDT_ENOMEM;
@@ -2188,10 +2349,25 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 		for (size_t i = 0; i < nbacks; i++)
 			twice[backs[i] >> 32] = 1;
 	}
-	for (size_t i = 0; forder != NULL && i < nbacks; i++)
-		backs[i] = (uint64_t)forder[backs[i] >> 32] << 32 | forder[(uint32_t)backs[i]];
-	if (nbacks > 1)
-		qsort(backs, nbacks, sizeof(*backs), cmp_u64);
+	/* (each back's corners where the input had them, for its attributes
+	 * at the end: the engine moves the vertices) */
+	if (nbacks > 0) {
+		struct back *b = malloc(nbacks * sizeof(*b));
+		if (b == NULL)
+			goto nomem;
+		for (size_t i = 0; i < nbacks; i++) {
+			uint32_t t = (uint32_t)backs[i];
+			b[i].pair = forder == NULL ? backs[i]
+			            : (uint64_t)forder[backs[i] >> 32] << 32 | forder[t];
+			for (int q = 0; q < 3; q++)
+				memcpy(b[i].p + 3 * q, w.positions + 3 * (size_t)w.triangles[3 * (size_t)t + q],
+				       3 * sizeof(float));
+		}
+		qsort(b, nbacks, sizeof(*b), by_pair);
+		for (size_t i = 0; i < nbacks; i++)
+			backs[i] = b[i].pair;
+		bk.pos = b;
+	}
 	/* The engine sees the live faces only; fsrc maps back to the input
 	 * (NULL while no face is dropped or moved: the same numbers). */
 	size_t live = 0;
@@ -2376,8 +2552,6 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	stats->max_error = sqrt(c.worst);
 	for (size_t t = 0; fsrc && t < r.triangle_count; t++)
 		r.sources[t] = fsrc[r.sources[t]];
-	if (nbacks > 0 && add_backs(&r, backs, nbacks, in, canon) != 0)
-		goto nomem;
 	if (renumbered && by_source(&r) != 0)
 		goto nomem;
 	if (vto != NULL) { /* records in welded numbers (vdt(5), SEQN) */
@@ -2392,10 +2566,15 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 		}
 		free(old);
 	}
+	/* (after the order by source: the backs come last) */
+	if (nbacks > 0 && add_backs(&r, backs, nbacks, in, canon, &bk) != 0)
+		goto nomem;
 	if (c.at == NULL && input_lists(canon, n, nw, &wstart, &wlist) != 0)
 		goto nomem;
-	rc = c.at ? build_output_attr(in, &c, &r, out, err)
-	          : build_output(in, canon, wstart, wlist, dups, ndups, &r, out, err);
+	rc = c.at ? build_output_attr(in, &c, &r, &bk, out, err)
+	          : build_output(in, canon, wstart, wlist, dups, ndups, &r, &bk, out, err);
+	if (rc == 0 && c.at != NULL && nbacks > 0)
+		back_attributes(in, &bk, nbacks, out);
 	if (rc != 0)
 		goto fail;
 	if (records) {
@@ -2429,6 +2608,11 @@ done:
 	free(pforest);
 	free(backs);
 	free(twice);
+	free(bk.src);
+	free(bk.slot);
+	free(bk.pos);
+	free(bk.start);
+	free(bk.list);
 	return rc;
 }
 
