@@ -1029,6 +1029,11 @@ vdt_deform(const struct vdt_mesh *m, const struct vdt_frames *fr,
 
 	if (anim_build(&a, m, fr, res) != 0)
 		goto nomem;
+	if (a.nt == 0) { /* (it was "cannot write: empty mesh") */
+		rc = vdt_err_set(err, VDT_EINVAL, "no face is left once repeated faces, and each "
+		                 "face with its reverse, are dropped");
+		goto fail;
+	}
 	size_t nv = a.nv;
 	target = o->target_vertices;
 	if (o->target_ratio > 0) {

@@ -609,3 +609,12 @@ PY
 	"$BIN/vdt-deform" -q -t 1 "$TMP/g1.off" "$TMP/g2.off" -o "$TMP/out%d.off"
 	[ -s "$TMP/out0.off" ] && [ -s "$TMP/out1.off" ]
 }
+
+@test "vdt-deform says when no face is left once a face and its reverse are dropped" {
+	# (it said "cannot write: empty mesh")
+	printf 'OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 2 1\n' > "$TMP/pair.off"
+	run "$BIN/vdt-deform" -r 0.5 "$TMP/pair.off" -o "$TMP/out.off"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-deform: cannot simplify '$TMP/pair.off': no face is left once repeated faces, and each face with its reverse, are dropped" ]
+	[ ! -e "$TMP/out.off" ]
+}
