@@ -630,3 +630,25 @@ vdt_bvh_any_within(const struct vdt_bvh *bvh, const double p[3], double r2,
 	}
 	return 0;
 }
+
+int
+vdt_barycentric(const double q[3], const double a[3], const double b[3], const double c[3],
+                double w[3])
+{
+	double e0[3], e1[3], ex[3];
+
+	sub3(e0, b, a);
+	sub3(e1, c, a);
+	sub3(ex, q, a);
+	double d00 = dot3(e0, e0), d01 = dot3(e0, e1), d11 = dot3(e1, e1);
+	double d20 = dot3(ex, e0), d21 = dot3(ex, e1), det = d00 * d11 - d01 * d01;
+	if (!(det > 0)) {
+		w[0] = 1;
+		w[1] = w[2] = 0;
+		return -1;
+	}
+	w[1] = (d11 * d20 - d01 * d21) / det;
+	w[2] = (d00 * d21 - d01 * d20) / det;
+	w[0] = 1 - w[1] - w[2];
+	return 0;
+}

@@ -82,4 +82,12 @@ double vdt_closest_on_triangle(const double p[3], const double a[3],
                                const double b[3], const double c[3],
                                double q[3]);
 
+/*
+ * The barycentric weights w of a point q of triangle abc's plane (q from
+ * vdt_closest_on_triangle): q = w0 a + w1 b + w2 c. Returns 0, or -1 with
+ * w = (1, 0, 0) for a triangle of no area.
+ */
+int vdt_barycentric(const double q[3], const double a[3], const double b[3],
+                    const double c[3], double w[3]);
+
 #endif

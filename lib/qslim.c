@@ -2056,8 +2056,7 @@ add_backs(struct vdt_contract_result *r, const uint64_t *backs, size_t nbacks,
  * has those of where it was).
  */
 static void
-back_attributes(const struct vdt_mesh *in, const struct back_corners *bk, size_t nbacks,
-                struct vdt_mesh *out)
+back_attributes(const struct vdt_mesh *in, const struct back_corners *bk, struct vdt_mesh *out)
 {
 	uint8_t *done = calloc(out->vertex_count + 1, 1);
 
@@ -2065,7 +2064,6 @@ back_attributes(const struct vdt_mesh *in, const struct back_corners *bk, size_t
 		free(done);
 		return;
 	}
-	(void)nbacks;
 	for (size_t t = bk->first; t < out->triangle_count; t++)
 		for (int q = 0; q < 3; q++) {
 			uint32_t o = out->triangles[3 * t + q], v = bk->slot[3 * (t - bk->first) + q];
@@ -2084,29 +2082,12 @@ back_attributes(const struct vdt_mesh *in, const struct back_corners *bk, size_t
 					b[k] = c[3 + k];
 					cc[k] = c[6 + k];
 				}
-				double d = vdt_closest_on_triangle(p, a, b, cc, x);
-				if (!(d < best))
-					continue;
-				/* x's weights: by the areas of the sub-triangles */
-				double e0[3], e1[3], ex[3], d00 = 0, d01 = 0, d11 = 0, d20 = 0, d21 = 0;
-				for (int k = 0; k < 3; k++) {
-					e0[k] = b[k] - a[k];
-					e1[k] = cc[k] - a[k];
-					ex[k] = x[k] - a[k];
-					d00 += e0[k] * e0[k];
-					d01 += e0[k] * e1[k];
-					d11 += e1[k] * e1[k];
-					d20 += ex[k] * e0[k];
-					d21 += ex[k] * e1[k];
-				}
-				double det = d00 * d11 - d01 * d01;
-				if (!(det > 0))
+				double d = vdt_closest_on_triangle(p, a, b, cc, x), xw[3];
+				if (!(d < best) || vdt_barycentric(x, a, b, cc, xw) != 0)
 					continue;
 				best = d;
 				pick = bk->list[j];
-				w[1] = (d11 * d20 - d01 * d21) / det;
-				w[2] = (d00 * d21 - d01 * d20) / det;
-				w[0] = 1 - w[1] - w[2];
+				memcpy(w, xw, sizeof(xw));
 			}
 			if (pick == NONE)
 				continue;
@@ -2574,7 +2555,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	rc = c.at ? build_output_attr(in, &c, &r, &bk, out, err)
 	          : build_output(in, canon, wstart, wlist, dups, ndups, &r, &bk, out, err);
 	if (rc == 0 && c.at != NULL && nbacks > 0)
-		back_attributes(in, &bk, nbacks, out);
+		back_attributes(in, &bk, out);
 	if (rc != 0)
 		goto fail;
 	if (records) {
