@@ -621,7 +621,7 @@ vdt_measure(const struct vdt_mesh *a, const struct vdt_mesh *b,
 	 * face degenerate) has neither, and no Hausdorff distance that says
 	 * anything of a surface. */
 	for (int k = 0; k < 2; k++)
-		if (!(vdt_mesh_mean_area(k ? b : a, NULL) > 0))
+		if (!vdt_mesh_any_area(k ? b : a))
 			return vdt_err_set(err, VDT_EINVAL,
 			                   "%s mesh has no area: every face is degenerate",
 			                   k ? "second" : "first");

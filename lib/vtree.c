@@ -190,7 +190,7 @@ vdt_vtree_prepare(struct vdt_mesh *m, size_t *dropped, struct vdt_err *err)
 	m->triangle_count = kept;
 	/* A surface of no area has no view to render it from, nor any error
 	 * in screen space to order its collapses by. */
-	if (!(vdt_mesh_mean_area(m, NULL) > 0))
+	if (!vdt_mesh_any_area(m))
 		return vdt_err_set(err, VDT_EINVAL, "no face has an area: every vertex on a line "
 		                   "or at one point");
 	/* A node's deviation bound is a sum of distances down the tree, kept
