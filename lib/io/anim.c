@@ -15,28 +15,6 @@
 #include "anim.h"
 #include "meshio.h"
 
-/* The rest of fd after the len bytes in *buf (cap of them malloc'ed). */
-static int
-read_whole(int fd, unsigned char **buf, size_t *len, size_t cap, struct vdt_err *err)
-{
-	for (;;) {
-		if (*len == cap) {
-			unsigned char *t = realloc(*buf, cap *= 2);
-			if (t == NULL)
-				return vdt_err_set(err, VDT_ENOMEM, "out of memory reading");
-			*buf = t;
-		}
-		ssize_t got = read(fd, *buf + *len, cap - *len);
-		if (got < 0 && errno == EINTR)
-			continue;
-		if (got < 0)
-			return vdt_err_set(err, VDT_EIO, "%s", strerror(errno));
-		if (got == 0)
-			return 0;
-		*len += (size_t)got;
-	}
-}
-
 /* Frame f's triangles against those of m0, which `ref` names ("frame 0",
  * "the MESH chunk"): 0, or a message. */
 static int
@@ -82,7 +60,7 @@ vdt_anim_read(const char *path, const struct vdt_bake_opts *bo, struct vdt_mesh 
 		rc = vdt_err_set(err, VDT_ENOMEM, "out of memory reading");
 	else if ((rc = vdt_read_head(fd, buf, VDT_DETECT_BYTES, &len, err)) == 0) {
 		if (vdt_md2_sniff(buf, len)) {
-			if ((rc = read_whole(fd, &buf, &len, cap, err)) == 0)
+			if ((rc = vdt_read_whole(fd, &buf, &len, cap, err)) == 0)
 				rc = vdt_md2_read(buf, len, m, fr, err);
 			free(buf);
 			if (!std)

@@ -383,10 +383,11 @@ vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
 	return rc;
 }
 
-/* Read all of fd into a malloc'ed buffer (pipes and terminals), unless
- * its first bytes are of no known format (hint: the name's). */
+/* Read all of fd into a malloc'ed buffer (pipes and terminals), with
+ * sniff unless its first bytes are of no known format (hint: the name's).
+ * b (cap bytes, n read) is freed on failure. */
 static int
-slurp(int fd, enum vdt_format hint, unsigned char *b, size_t n, size_t cap,
+slurp(int fd, enum vdt_format hint, int sniff, unsigned char *b, size_t n, size_t cap,
       unsigned char **out, size_t *len, struct vdt_err *err)
 {
 	uint64_t limit = 0; /* vdt_input_limit, once known */
@@ -414,7 +415,7 @@ slurp(int fd, enum vdt_format hint, unsigned char *b, size_t n, size_t cap,
 		if (r == 0)
 			break;
 		n += (size_t)r;
-		if (n >= VDT_DETECT_BYTES) {
+		if (sniff && n >= VDT_DETECT_BYTES) {
 			if (limit == 0)
 				limit = vdt_input_limit(b, hint);
 			if (n > limit) {
@@ -427,6 +428,16 @@ slurp(int fd, enum vdt_format hint, unsigned char *b, size_t n, size_t cap,
 	*out = b;
 	*len = n;
 	return 0;
+}
+
+int
+vdt_read_whole(int fd, unsigned char **buf, size_t *len, size_t cap, struct vdt_err *err)
+{
+	int rc = slurp(fd, VDT_FMT_AUTO, 0, *buf, *len, cap, buf, len, err);
+
+	if (rc != 0)
+		*buf = NULL;
+	return rc;
 }
 
 int
@@ -529,8 +540,8 @@ vdt_read_rest(int fd, unsigned char *buf, size_t len, size_t cap, const char *na
 		}
 		return rc;
 	}
-	rc = slurp(fd, name ? vdt_format_from_path(name) : VDT_FMT_AUTO, buf, len, cap, &buf, &len,
-	           err);
+	rc = slurp(fd, name ? vdt_format_from_path(name) : VDT_FMT_AUTO, 1, buf, len, cap, &buf,
+	           &len, err);
 	if (rc != 0)
 		return rc; /* (buf freed) */
 	rc = vdt_read_memory(buf, len, name, m, extra, err);

@@ -226,6 +226,9 @@ void vdt_output_abort(struct vdt_output *o);
 int vdt_read_head(int fd, unsigned char *buf, size_t want, size_t *len, struct vdt_err *err);
 int vdt_read_rest(int fd, unsigned char *buf, size_t len, size_t cap, const char *name,
                   struct vdt_mesh *m, struct vdt_chunks *extra, struct vdt_err *err);
+/* The rest of fd, whatever its format, after the *len bytes in *buf (cap
+ * of them malloc'ed): *buf grows and is freed, and NULL, on failure. */
+int vdt_read_whole(int fd, unsigned char **buf, size_t *len, size_t cap, struct vdt_err *err);
 
 /*
  * Read a mesh from content held in memory (buf, len), as vdt_read does for a
