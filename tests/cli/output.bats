@@ -222,3 +222,21 @@ load helpers
 	grep -q 'vdt-image.so' "$TMP/png"
 	[ -s "$TMP/s.png" ]
 }
+
+@test "the limits the man pages state: --draco-bits 1-30, --samples from 100, vdt-build's largest box" {
+	for b in 0 31; do
+		run "$BIN/vdt-qslim" --draco-bits $b "$SAMPLES/sphere.off" -o "$TMP/x.drc"
+		[ "$status" -eq 2 ]
+		[ "$output" = "vdt-qslim: --draco-bits must be between 1 and 30, not $b" ]
+	done
+	"$BIN/vdt-qslim" -q -r 1 --draco-bits 30 "$SAMPLES/sphere.off" -o "$TMP/x.drc"
+	run "$BIN/vdt-deform" --samples 99 "$SAMPLES/sphere.off" -o "$TMP/x.off"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-deform: --samples must be between 100 and 100000000, not 99" ]
+	"$BIN/vdt-deform" -q --samples 100 -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/x.off"
+	printf 'OFF\n3 1 0\n-2e38 0 0\n2e38 0 0\n0 1e38 0\n3 0 1 2\n' > "$TMP/big.off"
+	run "$BIN/vdt-build" "$TMP/big.off" -o "$TMP/b.vdt"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-build: cannot build a tree of '$TMP/big.off': the bounding box's diagonal 4.12311e+38 is past 3.2e+32, the largest the tree's 32-bit distances hold" ]
+	[ ! -e "$TMP/b.vdt" ]
+}
