@@ -2216,6 +2216,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	uint32_t *pforest = NULL; /* the input's parts, when some may go */
 	uint64_t *backs = NULL;   /* double-sided faces: front << 32 | back */
 	uint8_t *twice = NULL;    /* per engine face: a front (counts twice) */
+	uint8_t *wedges = NULL;   /* input vertices at each position, to 255 */
 	struct back_corners bk = {0};
 	size_t nbacks = 0;
 	size_t nw, nvp = 0, ndups = 0;
@@ -2465,6 +2466,20 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	co.min_quality = o->min_quality;
 	co.locked = locked;
 	co.rank = seam;
+	/* Without the attribute terms, a vertex keeps the input's attribute
+	 * sets at its position (build_output): of two on seams, the one where
+	 * more meet survives (a corner of a flat-shaded cube, not a vertex of
+	 * its edge that the corner joins). */
+	if (c.pin_seams && c.at == NULL) {
+		if ((wedges = calloc(nw ? nw : 1, 1)) == NULL) {
+			free(seam);
+			goto nomem;
+		}
+		for (size_t i = 0; i < n; i++)
+			if (wedges[canon[i]] < UINT8_MAX)
+				wedges[canon[i]]++;
+		co.rank = wedges;
+	}
 	co.virtual_pairs = vpairs;
 	co.virtual_pair_count = nvp;
 	co.record = records != NULL;
@@ -2589,6 +2604,7 @@ done:
 	free(pforest);
 	free(backs);
 	free(twice);
+	free(wedges);
 	free(bk.src);
 	free(bk.slot);
 	free(bk.pos);
