@@ -272,7 +272,8 @@ int vdt_obj_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
  * OBJ text parsed as vdt_obj_read parses it (the same statements, numbers,
  * line continuations, index checks and messages), storing nothing: each
  * vertex position goes to vertex() in file order, each triangle of each
- * face's fan (as 0-based file vertex numbers) to triangle(). Either
+ * face's fan (as 0-based file vertex numbers) to triangle(), and the fan
+ * of a polygon to polygon() too. Either
  * returns 0 to go on, or a status, with its message set, to stop with.
  * For readers that keep the mesh elsewhere (vdt-cluster's spool). Returns
  * 0 or the first error; *attrs gets the attributes the file has (VDT_ATTR_*:
@@ -282,6 +283,11 @@ struct vdt_obj_visit {
 	int (*vertex)(void *ctx, const float p[3], struct vdt_err *err);
 	int (*triangle)(void *ctx, const uint32_t v[3], struct vdt_err *err);
 	void *ctx;
+	/* Or NULL: after the fan of a face of corners > 3 (up to
+	 * VDT_POLYGON_EAR_MAX), the number of its first triangle among those
+	 * handed out, for the visitor to triangulate it (vdt_polygon_refan)
+	 * once it has the positions. */
+	int (*polygon)(void *ctx, uint64_t first, size_t corners, struct vdt_err *err);
 };
 int vdt_obj_scan(const unsigned char *buf, size_t len, const struct vdt_obj_visit *visit,
                  unsigned *attrs, struct vdt_err *err);

@@ -15,7 +15,7 @@
  *
  * Everything else (o, g, s, usemtl, mtllib, l, p, curves, surfaces, unknown
  * statements) is ignored: a mesh filter has no use for it, and refusing it
- * would refuse real files. Polygons are fan-triangulated. w is a weight for
+ * would refuse real files. Polygons are triangulated (polygon.h). w is a weight for
  * rational curves and means nothing for polygons, so it is dropped.
  *
  * OBJ attributes belong to corners, ours to vertices. A corner is the triple
@@ -45,6 +45,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "polygon.h"
 #include "text.h"
 
 #define MAX_CORNERS 65536
@@ -216,6 +217,10 @@ struct obj {
 	int miss_t, miss_n;        /* some corner lacks one */
 	int lockstep;              /* every vt and vn used so far equals its v */
 	const struct vdt_obj_visit *visit; /* vdt_obj_scan: hand out, store nothing */
+	uint64_t handed;                   /* vdt_obj_scan: triangles handed out */
+	struct vdt_polygon poly;           /* scratch for the polygons' triangles */
+	uint64_t *later;                   /* first triangle << 20 | corners of the polygons */
+	size_t nlater, later_cap;          /* that use a vertex defined after them */
 };
 
 static void
@@ -228,6 +233,8 @@ obj_free(struct obj *o)
 	free(o->tri_v);
 	free(o->tri_t);
 	free(o->tri_n);
+	free(o->later);
+	vdt_polygon_free(&o->poly);
 }
 
 /* First pass: count the statements that define indexable elements. */
@@ -468,6 +475,66 @@ bad:
 	                   face, quote(r->p, r->end, q));
 }
 
+/*
+ * The fan of k corners just made: triangulated now (polygon.h) if every
+ * corner's position has been read; else noted, to be triangulated once
+ * all have (mend_later). vdt_obj_scan tells its visitor instead.
+ */
+static int
+polygon(struct obj *o, size_t k, struct vdt_err *err)
+{
+	if (o->visit != NULL)
+		return o->visit->polygon
+		               ? o->visit->polygon(o->visit->ctx, o->handed - (k - 2), k, err)
+		               : 0;
+
+	size_t t = o->tri_count - (k - 2);
+	uint32_t *fan = o->tri_v + 3 * t, *more[2] = {NULL, NULL};
+	int ready = 1;
+	if (o->tri_t != NULL) {
+		more[0] = o->tri_t + 3 * t;
+		more[1] = o->tri_n + 3 * t;
+	}
+	for (size_t j = 0; j < 3 * (k - 2); j++)
+		ready &= fan[j] < o->have_v;
+	if (ready) {
+		if (vdt_polygon_refan(&o->poly, vdt_polygon_floats, o->pos, fan, k, more,
+		                      o->tri_t ? 2 : 0) != 0)
+			return vdt_err_set(err, VDT_ENOMEM,
+			                   "cannot triangulate a face of %zu corners", k);
+		return 0;
+	}
+	if (o->nlater == o->later_cap) {
+		size_t cap = o->later_cap ? 2 * o->later_cap : 64;
+		uint64_t *l = realloc(o->later, cap * sizeof(*l));
+		if (l == NULL)
+			return vdt_err_set(err, VDT_ENOMEM, "cannot note a face of %zu corners", k);
+		o->later = l;
+		o->later_cap = cap;
+	}
+	o->later[o->nlater++] = (uint64_t)t << 20 | k;
+	return 0;
+}
+
+/* The polygons noted by polygon(), now that every position is read. */
+static int
+mend_later(struct obj *o, struct vdt_err *err)
+{
+	for (size_t i = 0; i < o->nlater; i++) {
+		size_t t = (size_t)(o->later[i] >> 20), k = (size_t)(o->later[i] & 0xfffff);
+		uint32_t *more[2] = {NULL, NULL};
+		if (o->tri_t != NULL) {
+			more[0] = o->tri_t + 3 * t;
+			more[1] = o->tri_n + 3 * t;
+		}
+		if (vdt_polygon_refan(&o->poly, vdt_polygon_floats, o->pos, o->tri_v + 3 * t, k,
+		                      more, o->tri_t ? 2 : 0) != 0)
+			return vdt_err_set(err, VDT_ENOMEM,
+			                   "cannot triangulate a face of %zu corners", k);
+	}
+	return 0;
+}
+
 static int
 read_f(struct reader *r, struct obj *o, size_t face, struct vdt_err *err)
 {
@@ -493,6 +560,7 @@ read_f(struct reader *r, struct obj *o, size_t face, struct vdt_err *err)
 			uint32_t tri[3] = {first[0], prev[0], c[0]};
 			if ((rc = o->visit->triangle(o->visit->ctx, tri, err)) != 0)
 				return rc;
+			o->handed++;
 		} else if (k >= 2) {
 			size_t t = 3 * o->tri_count;
 
@@ -516,6 +584,8 @@ read_f(struct reader *r, struct obj *o, size_t face, struct vdt_err *err)
 	if (k < 3)
 		return vdt_err_set(err, VDT_EFORMAT, "line %zu: face %zu has %zu corners", r->line, face,
 		                   k);
+	if (k > 3 && k <= VDT_POLYGON_EAR_MAX)
+		return polygon(o, k, err);
 	return 0;
 }
 
@@ -748,7 +818,9 @@ vdt_obj_scan(const unsigned char *buf, size_t len, const struct vdt_obj_visit *v
 	*attrs = 0;
 	if ((rc = count((const char *)buf, len, &o, err)) != 0)
 		return rc;
-	if ((rc = parse((const char *)buf, len, &o, err)) != 0)
+	rc = parse((const char *)buf, len, &o, err);
+	obj_free(&o);
+	if (rc != 0)
 		return rc;
 	*attrs = o.scan_attrs | (o.nt ? VDT_ATTR_UVS : 0) | (o.nn ? VDT_ATTR_NORMALS : 0);
 	return 0;
@@ -776,6 +848,8 @@ vdt_obj_read(const unsigned char *buf, size_t len, struct vdt_mesh *m, struct vd
 	rc = grow_triangles(&o, o.nf, err);
 	if (rc == 0)
 		rc = parse((const char *)buf, len, &o, err);
+	if (rc == 0)
+		rc = mend_later(&o, err);
 	if (rc != 0)
 		goto out;
 	if (!o.any_t && !o.any_n)

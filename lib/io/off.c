@@ -14,8 +14,9 @@
  * floats in [0,1] or integers in [0,255]; a file is taken to hold integers
  * when every colour value in it is integral and one exceeds 1 (so that "1 0
  * 0" is red, as Geomview reads it). Face colours are skipped. Polygons are
- * fan-triangulated. Binary OFF is refused: OpenMesh, the other reader at
- * hand, hangs on hostile binary counts as it did on text.
+ * triangulated (polygon.h: a fan, or ears where the polygon is concave).
+ * Binary OFF is refused: OpenMesh, the other reader at hand, hangs on
+ * hostile binary counts as it did on text.
  *
  * Line breaks are significant: a vertex or a face ends with its line, which
  * is what lets a colour have 3 or 4 components and a face carry a colour
@@ -32,6 +33,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "polygon.h"
 #include "text.h"
 
 #define MAX_FACE_VERTICES 65536
@@ -302,7 +304,8 @@ read_vertices(struct reader *r, const struct layout *l, struct vdt_mesh *m,
 }
 
 static int
-read_faces(struct reader *r, size_t nf, struct vdt_mesh *m, struct vdt_err *err)
+read_faces(struct reader *r, size_t nf, struct vdt_mesh *m, struct vdt_polygon *poly,
+           struct vdt_err *err)
 {
 	size_t nv = m->vertex_count, nt = 0, cap = nf > 0 ? nf : 1;
 	char q[24];
@@ -357,6 +360,11 @@ read_faces(struct reader *r, size_t nf, struct vdt_mesh *m, struct vdt_err *err)
 			prev = v;
 		}
 		end_line(r); /* a face colour, if any */
+		if (k > 3 && vdt_polygon_refan(poly, vdt_polygon_floats, m->positions,
+		                               m->triangles + 3 * (nt - (size_t)(k - 2)), (size_t)k,
+		                               NULL, 0) != 0)
+			return vdt_err_set(err, VDT_ENOMEM,
+			                   "cannot triangulate face %zu of %lld vertices", f, k);
 	}
 	m->triangle_count = nt;
 	return 0;
@@ -405,8 +413,11 @@ vdt_off_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 		goto out;
 	}
 	rc = read_vertices(&r, &l, m, no_alpha, &int_colors, err);
-	if (rc == 0)
-		rc = read_faces(&r, (size_t)nf, m, err);
+	if (rc == 0) {
+		struct vdt_polygon poly = {0};
+		rc = read_faces(&r, (size_t)nf, m, &poly, err);
+		vdt_polygon_free(&poly);
+	}
 	if (rc == 0 && int_colors)
 		for (size_t i = 0; i < m->vertex_count; i++)
 			for (int c = 0; c < 4; c++)

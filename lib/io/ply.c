@@ -10,7 +10,7 @@
  * Vertices take x y z, nx ny nz, s t (or u v, texture_u texture_v, ...) and
  * red green blue [alpha] (8- or 16-bit integers scaled to [0,1], or floats
  * taken as they are); faces their vertex_indices (or vertex_index) list,
- * fan-triangulated. Other properties and elements are skipped.
+ * triangulated (polygon.h). Other properties and elements are skipped.
  *
  * The header is untrusted: every count is checked against the bytes that
  * remain before anything is allocated (an ASCII value takes at least two
@@ -31,6 +31,7 @@
 #include "text.h"
 
 #include "plyhead.h"
+#include "polygon.h"
 
 enum { A_X, A_Y, A_Z, A_NX, A_NY, A_NZ, A_U, A_V, A_R, A_G, A_B, A_A, A_COUNT };
 
@@ -200,6 +201,7 @@ read_faces(const struct vdt_plyhead *h, const struct vdt_ply_element *e,
 		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu triangles", tris);
 
 	size_t nt = 0, nv = m->vertex_count;
+	struct vdt_polygon poly = {0};
 	int simple = li == 0 && e->prop_count == 1 && lp->count_type == VDT_PLY_U8 &&
 	             (lp->type == VDT_PLY_I32 || lp->type == VDT_PLY_U32) && !be;
 	o = 0;
@@ -218,6 +220,7 @@ read_faces(const struct vdt_plyhead *h, const struct vdt_ply_element *e,
 					                              : (int64_t)vdt_get_u32le(q + 4 * k);
 					if (v < 0 || (uint64_t)v >= nv) {
 						free(t);
+						vdt_polygon_free(&poly);
 						return vdt_err_set(err, VDT_EINVAL, "face %llu uses vertex %lld of %zu",
 						                   (unsigned long long)f, (long long)v, nv);
 					}
@@ -238,6 +241,7 @@ read_faces(const struct vdt_plyhead *h, const struct vdt_ply_element *e,
 
 			if (v < 0 || (uint64_t)v >= nv) {
 				free(t);
+				vdt_polygon_free(&poly);
 				return vdt_err_set(err, VDT_EINVAL, "face %llu uses vertex %lld of %zu",
 				                   (unsigned long long)f, (long long)v, nv);
 			}
@@ -251,8 +255,18 @@ read_faces(const struct vdt_plyhead *h, const struct vdt_ply_element *e,
 			}
 			prev = v;
 		}
+		if (c > 3 &&
+		    vdt_polygon_refan(&poly, vdt_polygon_floats, m->positions,
+		                      t + 3 * (nt - (size_t)(c - 2)), (size_t)c, NULL, 0) != 0) {
+			free(t);
+			vdt_polygon_free(&poly);
+			return vdt_err_set(err, VDT_ENOMEM,
+			                   "cannot triangulate face %llu of %lld vertices",
+			                   (unsigned long long)f, (long long)c);
+		}
 		o += vdt_plyhead_record_size(e, p + o, *used - o, be);
 	}
+	vdt_polygon_free(&poly);
 	m->triangles = t;
 	m->triangle_count = nt;
 	return 0;
@@ -458,6 +472,7 @@ text_faces(struct text *t, const struct vdt_ply_element *e, struct vdt_mesh *m, 
 	size_t li = vdt_plyhead_face_list(e), nt = 0, cap = e->count > 0 ? (size_t)e->count : 1;
 	size_t nv = m->vertex_count;
 	struct where w = {e, 0};
+	struct vdt_polygon poly = {0};
 	uint32_t *tri;
 	double d;
 	int rc;
@@ -517,15 +532,26 @@ text_faces(struct text *t, const struct vdt_ply_element *e, struct vdt_mesh *m, 
 				}
 				prev = v;
 			}
+			if (i == li && c > 3 &&
+			    vdt_polygon_refan(&poly, vdt_polygon_floats, m->positions,
+			                      tri + 3 * (nt - (size_t)(c - 2)), (size_t)c, NULL,
+			                      0) != 0) {
+				rc = vdt_err_set(err, VDT_ENOMEM,
+				                 "cannot triangulate face %llu of %lld vertices",
+				                 (unsigned long long)w.r, (long long)c);
+				goto fail;
+			}
 		}
 		if ((rc = text_end_record(t, &w, err)) != 0)
 			goto fail;
 	}
+	vdt_polygon_free(&poly);
 	free(m->triangles);
 	m->triangles = tri;
 	m->triangle_count = nt;
 	return 0;
 fail:
+	vdt_polygon_free(&poly);
 	free(tri);
 	return rc;
 }

@@ -26,6 +26,7 @@
 #include "../bytes.h"
 #include "../stream.h"
 #include "plyhead.h"
+#include "polygon.h"
 
 enum kind { K_PLY, K_STL, K_OBJ, K_VDT, K_MESH };
 
@@ -53,9 +54,12 @@ struct vdt_tsource {
 	uint64_t fcount, fidx;
 	struct vdt_ply_element face;
 	size_t list_prop; /* index of vertex_indices in face */
-	const unsigned char *poly; /* polygon being fanned */
+	const unsigned char *poly; /* polygon being triangulated */
 	uint64_t poly_n, poly_k;
 	enum vdt_ply_type poly_type;
+	struct vdt_polygon pscratch;
+	uint32_t *ptri; /* its triangles (polygon.h), corners 0..n-1 */
+	size_t ptri_cap;
 
 	/* STL and vdt: triangle cursor */
 	uint64_t tcur;
@@ -352,6 +356,48 @@ bad_index(struct vdt_tsource *s, int64_t v, struct vdt_err *err)
 	                   s->fidx, v, s->vcount);
 }
 
+/* Corner k of the polygon being read (checked by ply_polygon). */
+static int64_t
+ply_poly_corner(const struct vdt_tsource *s, uint64_t k)
+{
+	return vdt_plyhead_int(s->poly + k * vdt_ply_type_size[s->poly_type], s->poly_type, s->be);
+}
+
+/*
+ * The triangles of the polygon just started into s->ptri (polygon.h),
+ * every corner checked first. A triangle, or a polygon past
+ * VDT_POLYGON_EAR_MAX corners, is fanned as it is read instead.
+ */
+static int
+ply_polygon(struct vdt_tsource *s, struct vdt_err *err)
+{
+	size_t n = (size_t)s->poly_n;
+	double *p;
+
+	if (n == 3 || n > VDT_POLYGON_EAR_MAX)
+		return 0;
+	if (3 * (n - 2) > s->ptri_cap) {
+		uint32_t *t = realloc(s->ptri, 3 * (n - 2) * sizeof(*t));
+		if (t == NULL)
+			return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+		s->ptri = t;
+		s->ptri_cap = 3 * (n - 2);
+	}
+	if ((p = malloc(3 * n * sizeof(*p))) == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	for (size_t k = 0; k < n; k++) {
+		int64_t v = ply_poly_corner(s, k);
+		if (v < 0 || (uint64_t)v >= s->vcount) {
+			free(p);
+			return bad_index(s, v, err);
+		}
+		ply_corner(s, (uint64_t)v, p + 3 * k);
+	}
+	int rc = vdt_polygon_triangulate(&s->pscratch, p, n, s->ptri);
+	free(p);
+	return rc != 0 ? vdt_err_set(err, VDT_ENOMEM, "out of memory") : 0;
+}
+
 /* Start the next face record: set s->poly, poly_n, poly_k. */
 static int
 ply_next_face(struct vdt_tsource *s, struct vdt_err *err)
@@ -373,7 +419,7 @@ ply_next_face(struct vdt_tsource *s, struct vdt_err *err)
 		                   s->fidx, s->poly_n);
 	s->poly_k = 2;
 	s->fcur = p + size;
-	return 0;
+	return ply_polygon(s, err);
 }
 
 static int
@@ -414,13 +460,15 @@ ply_triangles(struct vdt_tsource *s, double *tri, uint32_t *ids, size_t max, siz
 			if ((rc = ply_next_face(s, err)) != 0)
 				return rc;
 		}
-		/* Fan: (0, k-1, k). */
+		/* Triangle poly_k - 2 of the polygon's (ply_polygon), or of its
+		 * fan: (0, k-1, k). */
 		{
-			unsigned isz = vdt_ply_type_size[s->poly_type];
+			int own = s->poly_n > 3 && s->poly_n <= VDT_POLYGON_EAR_MAX;
+			const uint32_t *t = own ? s->ptri + 3 * (s->poly_k - 2) : NULL;
 			int64_t v[3] = {
-				vdt_plyhead_int(s->poly, s->poly_type, s->be),
-				vdt_plyhead_int(s->poly + (s->poly_k - 1) * isz, s->poly_type, s->be),
-				vdt_plyhead_int(s->poly + s->poly_k * isz, s->poly_type, s->be),
+			        ply_poly_corner(s, own ? t[0] : 0),
+			        ply_poly_corner(s, own ? t[1] : s->poly_k - 1),
+			        ply_poly_corner(s, own ? t[2] : s->poly_k),
 			};
 			for (int j = 0; j < 3; j++) {
 				if (v[j] < 0 || (uint64_t)v[j] >= s->vcount)
@@ -512,6 +560,7 @@ stl_triangles(struct vdt_tsource *s, double *tri, size_t max, size_t *n, int cor
  */
 struct obj_spool {
 	FILE *pos, *tri;
+	FILE *poly; /* polygons' first triangle and corners, 12 bytes each */
 	uint64_t nv, nt;
 };
 
@@ -547,6 +596,131 @@ spool_triangle(void *ctx, const uint32_t v[3], struct vdt_err *err)
 	return spool_put(o->tri, b, err);
 }
 
+static int
+spool_polygon(void *ctx, uint64_t first, size_t corners, struct vdt_err *err)
+{
+	struct obj_spool *o = ctx;
+	unsigned char b[12];
+	int fd;
+
+	if (o->poly == NULL) {
+		if ((fd = scratch_file(err)) < 0)
+			return fd;
+		if ((o->poly = fdopen(fd, "w+")) == NULL) {
+			close(fd);
+			return vdt_err_set(err, VDT_ESYSTEM, "%s", strerror(errno));
+		}
+	}
+	vdt_put_u64le(b, first);
+	vdt_put_u32le(b + 8, (uint32_t)corners);
+	return spool_put(o->poly, b, err);
+}
+
+/* Vertex v of the spooled positions (ctx: the mapping). */
+static void
+spooled_position(const void *ctx, uint32_t v, double p[3])
+{
+	const unsigned char *b = (const unsigned char *)ctx + 12 * (size_t)v;
+
+	for (int k = 0; k < 3; k++)
+		p[k] = vdt_get_f32le(b + 4 * k);
+}
+
+/* Triangles of the spool mend_polygons holds in memory at a time, at least. */
+#define MEND_WINDOW 65536
+
+/* Write the window of `count` triangles from triangle `at` back, if changed. */
+static int
+mend_flush(int fd, const unsigned char *win, uint64_t at, size_t count, int *dirty,
+           struct vdt_err *err)
+{
+	size_t bytes = 12 * count;
+
+	if (*dirty && pwrite(fd, win, bytes, (off_t)(12 * at)) != (ssize_t)bytes)
+		return vdt_err_set(err, VDT_ESYSTEM, "cannot write a temporary file: %s",
+		                   errno ? strerror(errno) : "short write");
+	*dirty = 0;
+	return 0;
+}
+
+/*
+ * Triangulate the polygons the scan noted (polygon.h), now that their
+ * positions are mapped: their fans are read from the triangle spool a
+ * window at a time (the notes come in order) and written back where one
+ * changed.
+ */
+static int
+mend_polygons(struct obj_spool *o, const void *pos, struct vdt_err *err)
+{
+	unsigned char note[12 * 256];
+	struct vdt_polygon poly = {0};
+	uint32_t *fan = NULL;
+	unsigned char *win = NULL;
+	size_t fan_cap = 0, win_cap = 0, win_n = 0, got;
+	uint64_t win_at = 0;
+	int fd = fileno(o->tri), rc = 0, dirty = 0;
+
+	if (fflush(o->tri) != 0 || fflush(o->poly) != 0 || fseek(o->poly, 0, SEEK_SET) != 0)
+		return vdt_err_set(err, VDT_ESYSTEM, "cannot write a temporary file: %s", strerror(errno));
+	while (rc == 0 && (got = fread(note, 12, 256, o->poly)) > 0) {
+		for (size_t i = 0; i < got && rc == 0; i++) {
+			uint64_t first = vdt_get_u64le(note + 12 * i);
+			size_t n = vdt_get_u32le(note + 12 * i + 8), k = n - 2;
+			if (first < win_at || first + k > win_at + win_n) { /* move the window */
+				if ((rc = mend_flush(fd, win, win_at, win_n, &dirty, err)) != 0)
+					break;
+				size_t want = k > MEND_WINDOW ? k : MEND_WINDOW;
+				if (want > o->nt - first)
+					want = (size_t)(o->nt - first);
+				if (want > win_cap) {
+					free(win);
+					if ((win = malloc(12 * want)) == NULL) {
+						rc = vdt_err_set(err, VDT_ENOMEM, "out of memory");
+						break;
+					}
+					win_cap = want;
+				}
+				win_at = first;
+				win_n = want;
+				errno = 0;
+				if (pread(fd, win, 12 * want, (off_t)(12 * first)) != (ssize_t)(12 * want)) {
+					rc = vdt_err_set(err, VDT_ESYSTEM, "cannot read a temporary file: %s",
+					                 errno ? strerror(errno) : "short read");
+					break;
+				}
+			}
+			if (3 * k > fan_cap) {
+				free(fan);
+				fan_cap = 3 * k;
+				if ((fan = malloc(fan_cap * sizeof(*fan))) == NULL) {
+					rc = vdt_err_set(err, VDT_ENOMEM, "out of memory");
+					break;
+				}
+			}
+			unsigned char *raw = win + 12 * (size_t)(first - win_at);
+			for (size_t j = 0; j < 3 * k; j++)
+				fan[j] = vdt_get_u32le(raw + 4 * j);
+			if (vdt_polygon_refan(&poly, spooled_position, pos, fan, n, NULL, 0) != 0) {
+				rc = vdt_err_set(err, VDT_ENOMEM, "out of memory");
+				break;
+			}
+			for (size_t j = 0; j < 3 * k; j++)
+				if (vdt_get_u32le(raw + 4 * j) != fan[j]) {
+					vdt_put_u32le(raw + 4 * j, fan[j]);
+					dirty = 1;
+				}
+		}
+	}
+	if (rc == 0 && ferror(o->poly))
+		rc = vdt_err_set(err, VDT_ESYSTEM, "cannot read a temporary file: %s", strerror(errno));
+	if (rc == 0)
+		rc = mend_flush(fd, win, win_at, win_n, &dirty, err);
+	free(fan);
+	free(win);
+	vdt_polygon_free(&poly);
+	return rc;
+}
+
 /* A spool file written, mapped in place of the FILE (closed). */
 static int
 spool_map(FILE *f, void **map, size_t *len, struct vdt_err *err)
@@ -565,8 +739,8 @@ spool_map(FILE *f, void **map, size_t *len, struct vdt_err *err)
 static int
 obj_open(struct vdt_tsource *s, struct vdt_err *err)
 {
-	struct obj_spool o = {NULL, NULL, 0, 0};
-	struct vdt_obj_visit visit = {spool_vertex, spool_triangle, &o};
+	struct obj_spool o = {NULL, NULL, NULL, 0, 0};
+	struct vdt_obj_visit visit = {spool_vertex, spool_triangle, &o, spool_polygon};
 	int fd[2] = {-1, -1}, rc;
 
 	for (int i = 0; i < 2; i++)
@@ -585,6 +759,8 @@ obj_open(struct vdt_tsource *s, struct vdt_err *err)
 		drop_range(s->buf, s->buf + s->len);
 	rc = spool_map(o.pos, &s->pos_map, &s->pos_len, err);
 	o.pos = NULL;
+	if (rc == 0 && o.poly != NULL)
+		rc = mend_polygons(&o, s->pos_map, err);
 	if (rc == 0)
 		rc = spool_map(o.tri, &s->tri_map, &s->tri_len, err);
 	o.tri = NULL;
@@ -595,6 +771,8 @@ obj_open(struct vdt_tsource *s, struct vdt_err *err)
 	s->vcount = o.nv;
 	s->tbase = s->tri_map;
 	s->tri_hint = o.nt;
+	if (o.poly != NULL)
+		fclose(o.poly);
 	return 0;
 out:
 	for (int i = 0; i < 2; i++)
@@ -604,6 +782,8 @@ out:
 		fclose(o.pos);
 	if (o.tri != NULL)
 		fclose(o.tri);
+	if (o.poly != NULL)
+		fclose(o.poly);
 	return rc;
 }
 
@@ -899,6 +1079,8 @@ vdt_tsource_close(struct vdt_tsource *ts)
 	if (ts == NULL)
 		return;
 	free(ts->pass);
+	free(ts->ptri);
+	vdt_polygon_free(&ts->pscratch);
 	if (ts->map)
 		munmap(ts->map, ts->map_len);
 	if (ts->pos_map)

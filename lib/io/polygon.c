@@ -1,0 +1,241 @@
+/*
+ * polygon.c - the triangles of a polygonal face (see polygon.h).
+ *
+ * Ear clipping: a corner whose two neighbours it can be cut off with (it
+ * turns the polygon's way, and no corner left that turns the other way
+ * lies in the triangle) is cut off, until three corners remain. Every
+ * simple polygon has such a corner; one that is not simple, or that
+ * rounding leaves without, gets its most convex corner cut off instead,
+ * so that the n - 2 triangles always come out.
+ */
+#include "polygon.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void
+vdt_polygon_free(struct vdt_polygon *s)
+{
+	free(s->p);
+	free(s->ring);
+	free(s->corner);
+	free(s->tri);
+	memset(s, 0, sizeof(*s));
+}
+
+static int
+reserve(struct vdt_polygon *s, size_t n)
+{
+	if (n <= s->cap)
+		return 0;
+	double *p = realloc(s->p, 3 * n * sizeof(*p));
+	if (p != NULL)
+		s->p = p;
+	uint32_t *r = realloc(s->ring, 2 * n * sizeof(*r));
+	if (r != NULL)
+		s->ring = r;
+	uint32_t *c = realloc(s->corner, n * sizeof(*c));
+	if (c != NULL)
+		s->corner = c;
+	uint32_t *t = realloc(s->tri, 3 * n * sizeof(*t));
+	if (t != NULL)
+		s->tri = t;
+	if (p == NULL || r == NULL || c == NULL || t == NULL)
+		return -1;
+	s->cap = n;
+	return 0;
+}
+
+static void
+fan(size_t n, uint32_t *tri)
+{
+	for (size_t i = 0; i + 2 < n; i++) {
+		tri[3 * i] = 0;
+		tri[3 * i + 1] = (uint32_t)(i + 1);
+		tri[3 * i + 2] = (uint32_t)(i + 2);
+	}
+}
+
+static int
+is_fan(const uint32_t *tri, size_t n)
+{
+	for (size_t i = 0; i + 2 < n; i++)
+		if (tri[3 * i] != 0 || tri[3 * i + 1] != i + 1 || tri[3 * i + 2] != i + 2)
+			return 0;
+	return 1;
+}
+
+/* Twice the signed area of (a, b, c) in the plane: > 0 turning left. */
+static double
+turn(const double *q, uint32_t a, uint32_t b, uint32_t c)
+{
+	const double *pa = q + 2 * (size_t)a, *pb = q + 2 * (size_t)b, *pc = q + 2 * (size_t)c;
+
+	return (pb[0] - pa[0]) * (pc[1] - pa[1]) - (pb[1] - pa[1]) * (pc[0] - pa[0]);
+}
+
+static int
+same(const double *q, uint32_t a, uint32_t b)
+{
+	return q[2 * (size_t)a] == q[2 * (size_t)b] && q[2 * (size_t)a + 1] == q[2 * (size_t)b + 1];
+}
+
+/*
+ * The corners in the plane of their Newell normal, into q (2 each, q may
+ * be p), turning left round a polygon of positive area: 0, or -1 when the
+ * polygon has no area to speak of.
+ */
+static int
+flatten(const double *p, size_t n, double *q)
+{
+	double nn[3] = {0, 0, 0}, len;
+	int ax = 0;
+
+	for (size_t i = 0; i < n; i++) {
+		const double *a = p + 3 * i, *b = p + 3 * ((i + 1) % n);
+		nn[0] += (a[1] - b[1]) * (a[2] + b[2] - 2 * p[2]);
+		nn[1] += (a[2] - b[2]) * (a[0] + b[0] - 2 * p[0]);
+		nn[2] += (a[0] - b[0]) * (a[1] + b[1] - 2 * p[1]);
+	}
+	len = sqrt(nn[0] * nn[0] + nn[1] * nn[1] + nn[2] * nn[2]);
+	if (!(len > 0))
+		return -1;
+	for (int k = 1; k < 3; k++)
+		if (fabs(nn[k]) > fabs(nn[ax]))
+			ax = k;
+	int u = (ax + 1) % 3, v = (ax + 2) % 3;
+	double flip = nn[ax] < 0 ? -1 : 1, o[3] = {p[0], p[1], p[2]};
+	for (size_t i = 0; i < n; i++) {
+		double x = p[3 * i + u] - o[u], y = p[3 * i + v] - o[v];
+		q[2 * i] = flip * x;
+		q[2 * i + 1] = y;
+	}
+	return 0;
+}
+
+/* Whether corner i, between a and c, is an ear of the ring that starts at
+ * i (no corner of it that turns right lies in the triangle a, i, c). */
+static int
+ear(const double *q, const uint32_t *ring, uint32_t a, uint32_t i, uint32_t c)
+{
+	if (!(turn(q, a, i, c) > 0))
+		return 0;
+	for (uint32_t x = ring[2 * c + 1]; x != a; x = ring[2 * x + 1]) {
+		uint32_t xp = ring[2 * x], xn = ring[2 * x + 1];
+		if (turn(q, xp, x, xn) > 0 || same(q, x, a) || same(q, x, i) || same(q, x, c))
+			continue;
+		if (turn(q, a, i, x) >= 0 && turn(q, i, c, x) >= 0 && turn(q, c, a, x) >= 0)
+			return 0;
+	}
+	return 1;
+}
+
+int
+vdt_polygon_triangulate(struct vdt_polygon *s, const double *p, size_t n, uint32_t *tri)
+{
+	size_t left = n, out = 0, misses = 0;
+	uint32_t i = 0;
+	double *q;
+	int convex = 1;
+
+	fan(n, tri);
+	if (n <= 3 || n > VDT_POLYGON_EAR_MAX)
+		return 0;
+	if (reserve(s, n) != 0)
+		return -1;
+	q = s->p;
+	if (p != q)
+		memmove(q, p, 3 * n * sizeof(*q));
+	if (flatten(q, n, q) != 0)
+		return 0;
+	for (size_t k = 0; k < n && convex; k++)
+		convex = turn(q, (uint32_t)((k + n - 1) % n), (uint32_t)k,
+		              (uint32_t)((k + 1) % n)) >= 0;
+	if (convex)
+		return 0;
+
+	uint32_t *ring = s->ring;
+	for (size_t k = 0; k < n; k++) {
+		ring[2 * k] = (uint32_t)((k + n - 1) % n);
+		ring[2 * k + 1] = (uint32_t)((k + 1) % n);
+	}
+	while (left > 3) {
+		uint32_t a = ring[2 * i], c = ring[2 * i + 1];
+		if (misses == left) { /* no ear: cut off the most convex corner */
+			double best = -INFINITY;
+			uint32_t x = i, start = i;
+			do {
+				double t = turn(q, ring[2 * x], x, ring[2 * x + 1]);
+				if (t > best) {
+					best = t;
+					i = x;
+				}
+				x = ring[2 * x + 1];
+			} while (x != start);
+			a = ring[2 * i];
+			c = ring[2 * i + 1];
+		} else if (!ear(q, ring, a, i, c)) {
+			i = c;
+			misses++;
+			continue;
+		}
+		tri[3 * out] = a;
+		tri[3 * out + 1] = i;
+		tri[3 * out + 2] = c;
+		out++;
+		ring[2 * a + 1] = c;
+		ring[2 * c] = a;
+		left--;
+		misses = 0;
+		i = a;
+	}
+	tri[3 * out] = ring[2 * i];
+	tri[3 * out + 1] = i;
+	tri[3 * out + 2] = ring[2 * i + 1];
+	return 0;
+}
+
+/* The corners of a fan laid out as a reader writes it, into c. */
+static void
+fan_corners(const uint32_t *fan_tri, size_t n, uint32_t *c)
+{
+	c[0] = fan_tri[0];
+	c[1] = fan_tri[1];
+	for (size_t j = 0; j + 2 < n; j++)
+		c[j + 2] = fan_tri[3 * j + 2];
+}
+
+void
+vdt_polygon_floats(const void *ctx, uint32_t v, double p[3])
+{
+	const float *f = (const float *)ctx + 3 * (size_t)v;
+
+	p[0] = f[0];
+	p[1] = f[1];
+	p[2] = f[2];
+}
+
+int
+vdt_polygon_refan(struct vdt_polygon *s, vdt_polygon_at *at, const void *ctx, uint32_t *fan_tri,
+                  size_t n, uint32_t *const *more, int nmore)
+{
+	if (n <= 3 || n > VDT_POLYGON_EAR_MAX)
+		return 0;
+	if (reserve(s, n) != 0)
+		return -1;
+	fan_corners(fan_tri, n, s->corner);
+	for (size_t k = 0; k < n; k++)
+		at(ctx, s->corner[k], s->p + 3 * k);
+	if (vdt_polygon_triangulate(s, s->p, n, s->tri) != 0)
+		return -1;
+	if (is_fan(s->tri, n))
+		return 0;
+	for (int a = -1; a < nmore; a++) {
+		uint32_t *x = a < 0 ? fan_tri : more[a];
+		fan_corners(x, n, s->corner);
+		for (size_t j = 0; j < 3 * (n - 2); j++)
+			x[j] = s->corner[s->tri[j]];
+	}
+	return 0;
+}
