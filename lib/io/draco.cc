@@ -11,6 +11,7 @@
 #include <draco/core/encoder_buffer.h>
 #include <draco/mesh/mesh.h>
 
+#include <cerrno>
 #include <cfloat>
 #include <cmath>
 #include <cstring>
@@ -211,7 +212,7 @@ write_mesh(FILE *f, const struct vdt_mesh *m, int bits, int speed, struct vdt_er
 	if (!st.ok())
 		return vdt_err_set(err, VDT_EINVAL, "Draco cannot encode the mesh: %s", st.error_msg());
 	if (fwrite(eb.data(), 1, eb.size(), f) != eb.size())
-		return vdt_err_set(err, VDT_EIO, "write error");
+		return vdt_err_set(err, VDT_EIO, "write error: %s", std::strerror(errno));
 	return 0;
 }
 

@@ -695,9 +695,11 @@ out:
 static int
 flush_buf(FILE *f, unsigned char *b, size_t *n, struct vdt_err *err)
 {
-	if (*n && fwrite(b, 1, *n, f) != *n)
+	size_t k = *n;
+
+	*n = 0; /* (written or not: the buffer is free again either way) */
+	if (k && fwrite(b, 1, k, f) != k)
 		return vdt_err_set(err, VDT_EIO, "write error: %s", strerror(errno));
-	*n = 0;
 	return 0;
 }
 
@@ -752,8 +754,8 @@ vdt_ply_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err)
 	for (size_t i = 0; i < m->vertex_count && rc == 0; i++) {
 		unsigned char *q;
 
-		if (n + rec > BUF)
-			rc = flush_buf(f, b, &n, err);
+		if (n + rec > BUF && (rc = flush_buf(f, b, &n, err)) != 0)
+			break;
 		q = b + n;
 		for (int k = 0; k < 3; k++, q += 4)
 			vdt_put_f32le(q, m->positions[3 * i + k]);
@@ -769,8 +771,8 @@ vdt_ply_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err)
 		n += rec;
 	}
 	for (size_t i = 0; i < m->triangle_count && rc == 0; i++) {
-		if (n + 13 > BUF)
-			rc = flush_buf(f, b, &n, err);
+		if (n + 13 > BUF && (rc = flush_buf(f, b, &n, err)) != 0)
+			break;
 		b[n] = 3;
 		for (int k = 0; k < 3; k++)
 			vdt_put_u32le(b + n + 1 + 4 * k, m->triangles[3 * i + k]);

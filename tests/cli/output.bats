@@ -84,6 +84,22 @@ load helpers
 	[[ "$output" == *"cannot write '<stdout>'"*"No space left on device" ]]
 }
 
+@test "a full disk is reported in every format, past the writers' buffers" {
+	[ -c /dev/full ] || skip "no /dev/full"
+	# 40000 vertices: more than the binary writers hold before writing (the
+	# PLY writer wrote past its buffer once a write had failed: SANITIZE=1)
+	awk 'BEGIN { n = 200; for (j = 0; j <= n; j++) for (i = 0; i <= n; i++)
+		printf "v %d %d %g\n", i, j, (i * j) % 7
+		for (j = 0; j < n; j++) for (i = 0; i < n; i++) { a = j * (n + 1) + i + 1
+			printf "f %d %d %d\nf %d %d %d\n", a, a + 1, a + n + 2, a, a + n + 2, a + n + 1 } }' >"$TMP/g.obj"
+	for f in ply ply-ascii obj off stl stl-ascii drc vdt; do
+		run sh -c "'$BIN/vdt-qslim' -r 1 -F $f '$TMP/g.obj' >/dev/full"
+		[ "$status" -eq 1 ]
+		one_line
+		[[ "$output" == *"cannot write '<stdout>'"*"No space left on device" ]]
+	done
+}
+
 @test "an image that cannot be written whole is reported, with status 1; - is PNG on stdout" {
 	[ -c /dev/full ] || skip "no /dev/full"
 	"$BIN/vdt-build" -q "$SAMPLES/torus.off" -o "$TMP/t.vdt"
