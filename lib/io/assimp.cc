@@ -366,6 +366,9 @@ vdt_assimp_read(const char *path, const struct vdt_bake_opts *bo, struct vdt_mes
 		std::string why = aiGetErrorString();
 		while (!why.empty() && (why.back() == '\n' || why.back() == '.' || why.back() == ' '))
 			why.pop_back();
+		/* (Assimp catches its own exceptions, out of memory too) */
+		if (why.find("bad_alloc") != std::string::npos)
+			return vdt_err_set(err, VDT_ENOMEM, "out of memory");
 		return vdt_err_set(err, VDT_EFORMAT, "%s",
 		                   why.empty() ? "not a model Assimp reads" : why.c_str());
 	}

@@ -143,8 +143,10 @@ map_fd(int fd, size_t len, void **p, struct vdt_err *err)
 {
 	*p = mmap(NULL, len, PROT_READ, MAP_PRIVATE, fd, 0);
 	if (*p == MAP_FAILED) {
+		int e = errno;
 		*p = NULL;
-		return vdt_err_set(err, VDT_EIO, "cannot map %zu bytes: %s", len, strerror(errno));
+		return vdt_err_set(err, e == ENOMEM ? VDT_ENOMEM : VDT_EIO, "cannot map %zu bytes: %s",
+		                   len, strerror(e));
 	}
 	/* One linear scan: let the kernel read ahead and drop behind. */
 	madvise(*p, len, MADV_SEQUENTIAL);

@@ -690,3 +690,25 @@ PY
 	"$BIN/vdt-qslim" -q -t 50 "$TMP/s.vdq" -o "$TMP/s.off"
 	[ "$(off_faces "$TMP/s.off")" -eq 50 ]
 }
+
+@test "vdt-cluster short of memory says so, with status 1 (not bad input)" {
+	# (AddressSanitizer reserves more address space than any limit allows)
+	nm "$BIN/vdt-cluster" 2>/dev/null | grep -q __asan_init && skip "sanitized build"
+	awk 'BEGIN { n = 300; for (j = 0; j <= n; j++) for (i = 0; i <= n; i++)
+		printf "v %d %d %g\n", i, j, (i * j) % 7
+		for (j = 0; j < n; j++) for (i = 0; i < n; i++) { a = j * (n + 1) + i + 1
+			printf "f %d %d %d\nf %d %d %d\n", a, a + 1, a + n + 2, a, a + n + 2, a + n + 1 } }' >"$TMP/g.obj"
+	"$BIN/vdt-qslim" -q -r 1 "$TMP/g.obj" -o "$TMP/g.ply"
+	short=0
+	# from too little to load the program (127) to enough
+	for kb in $(seq 8000 1000 40000); do
+		status=0
+		output=$(sh -c "ulimit -v $kb; '$BIN/vdt-cluster' -q -t 1000 '$TMP/g.ply' -o '$TMP/c.ply'" 2>&1) || status=$?
+		[ "$status" -eq 0 ] || [ "$status" -eq 1 ] || [ "$status" -eq 127 ]
+		if [ "$status" -eq 1 ]; then
+			short=1
+			[[ "$output" == *"memory"* || "$output" == *"cannot allocate"* ]]
+		fi
+	done
+	[ "$short" -eq 1 ]
+}
