@@ -574,17 +574,33 @@ fan_neighbours(const struct engine *e, uint32_t v, uint32_t *out, uint32_t *slot
 	return n;
 }
 
-/* Whether x is among the neighbours fan_neighbours listed in out through
- * slots, a table of 2^bits entries. */
-static int
+/* How many faces hold the edge to x, of the neighbours fan_neighbours
+ * listed in out through slots, a table of 2^bits entries: 0 if x is none. */
+static uint32_t
 fan_has(const uint32_t *out, const uint32_t *slots, int bits, uint32_t x)
 {
 	uint32_t h = fan_slot(x, bits), mask = (1u << bits) - 1;
 
 	while (slots[h] != 0) {
 		if (out[2 * (slots[h] - 1)] == x)
-			return 1;
+			return out[2 * (slots[h] - 1) + 1];
 		h = (h + 1) & mask;
+	}
+	return 0;
+}
+
+/* Whether the first face at v that holds x runs from v to x (x follows v
+ * round it). */
+static int
+runs_to(const struct engine *e, uint32_t v, uint32_t x)
+{
+	const struct list *l = &e->vt[v];
+
+	for (uint32_t i = 0; i < l->len; i++) {
+		const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + i];
+		for (int k = 0; k < 3; k++)
+			if (t[k] == v && (t[(k + 1) % 3] == x || t[(k + 2) % 3] == x))
+				return t[(k + 1) % 3] == x;
 	}
 	return 0;
 }
@@ -614,8 +630,11 @@ has_boundary(const uint32_t *nb, long n)
 /*
  * The link condition: link(a) ∩ link(b) == link(ab), with a dummy vertex
  * joined to every boundary vertex and edge so that open surfaces are covered.
- * For a virtual pair (no shared triangle) only require that the two share no
- * neighbour, which rules out duplicate faces. A caller that accepts
+ * For a virtual pair (no shared triangle) require that the two share no
+ * neighbour, which rules out duplicate faces, but where the pair zips two
+ * open rims together: up to two shared neighbours, each reached from both
+ * by an edge of one face, the two faces running opposite ways along it.
+ * A caller that accepts
  * non-manifold results skips the test (duplicates() still guards against
  * repeated faces).
  */
@@ -637,8 +656,17 @@ link_ok(const struct engine *e, uint32_t a, uint32_t b)
 	uint32_t *sa = A + 4 * la, *B = sa + ((size_t)1 << bits), *sb = B + 4 * lb;
 	na = fan_neighbours(e, a, A, sa);
 	nb = fan_neighbours(e, b, B, sb);
-	for (long i = 0; i < nb; i++)
-		common += fan_has(A, sa, bits, B[2 * i]);
+	/* (zip: a virtual pair may close a gap between two open rims that
+	 * meet at a neighbour, each rim's edge to it held by one face, the
+	 * two run opposite ways: the merged edge is then held by two faces,
+	 * consistently, as a seam welded shut) */
+	int zip = 1;
+	for (long i = 0; i < nb; i++) {
+		uint32_t x = B[2 * i], in_a = fan_has(A, sa, bits, x);
+		common += in_a != 0;
+		if (in_a != 0)
+			zip &= in_a == 1 && B[2 * i + 1] == 1 && runs_to(e, a, x) != runs_to(e, b, x);
+	}
 
 	for (long i = 0; i < na; i++)
 		if (A[2 * i] == b)
@@ -647,7 +675,7 @@ link_ok(const struct engine *e, uint32_t a, uint32_t b)
 	if (shared > 2)
 		ok = 0;
 	else if (shared == 0)
-		ok = common == 0;
+		ok = common == 0 || (zip && common <= 2);
 	else
 		ok = common + (has_boundary(A, na) && has_boundary(B, nb)) == shared + (shared == 1);
 	free(big);

@@ -572,6 +572,60 @@ aggregation_joins_parts(void **state)
 }
 
 /*
+ * A gap zipped shut: two 8 x 8 sheets side by side whose facing rims lie
+ * 1e-6 apart (a seam exported as two copies that rounding split). Virtual
+ * pairs join the rims' vertices across the gap one after another, each
+ * pair sharing the neighbour the last one made, and the simplified sheet
+ * has no open edge left along the seam, only round its outside.
+ *
+ *   +--+--+  +--+--+
+ *   |  |  |  |  |  |     left sheet [0,1]^2, right [1+1e-6, 2] x [0,1]
+ *   +--+--+  +--+--+
+ */
+static void
+virtual_pairs_zip_a_gap_shut(void **state)
+{
+	struct vdt_mesh g, m, out;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+
+	(void)state;
+	shape_grid(&g, 8);
+	vdt_mesh_alloc(&m, 2 * g.vertex_count, 2 * g.triangle_count, 0, NULL);
+	memcpy(m.positions, g.positions, 12 * g.vertex_count);
+	for (size_t i = 0; i < g.vertex_count; i++) {
+		memcpy(m.positions + 3 * (g.vertex_count + i), g.positions + 3 * i, 12);
+		m.positions[3 * (g.vertex_count + i)] += 1.000001f;
+	}
+	memcpy(m.triangles, g.triangles, 12 * g.triangle_count);
+	for (size_t i = 0; i < 3 * g.triangle_count; i++)
+		m.triangles[3 * g.triangle_count + i] = g.triangles[i] + (uint32_t)g.vertex_count;
+	vdt_qslim_defaults(&o);
+	o.target_ratio = 0.5;
+	o.aggregate = 1e-5;
+	assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
+	/* every open edge is on the outside: x at 0 or 2, or y at 0 or 1 */
+	for (size_t t = 0; t < out.triangle_count; t++)
+		for (int k = 0; k < 3; k++) {
+			uint32_t a = out.triangles[3 * t + k], b = out.triangles[3 * t + (k + 1) % 3];
+			int twin = 0;
+			for (size_t u = 0; u < out.triangle_count; u++)
+				for (int j = 0; j < 3; j++)
+					twin |= out.triangles[3 * u + j] == b &&
+					        out.triangles[3 * u + (j + 1) % 3] == a;
+			if (twin)
+				continue;
+			const float *pa = out.positions + 3 * a, *pb = out.positions + 3 * b;
+			int outside = (pa[0] == pb[0] && (pa[0] == 0 || pa[0] > 1.99f)) ||
+			              (pa[1] == pb[1] && (pa[1] == 0 || pa[1] == 1));
+			assert_true(outside);
+		}
+	vdt_mesh_free(&out);
+	vdt_mesh_free(&m);
+	vdt_mesh_free(&g);
+}
+
+/*
  * Repeated faces: the 4 x 4 grid plus a copy of face 0 (same orientation)
  * and a reversed copy of face 5, whose edges the grid's faces hold (a
  * face given twice inside a surface). The copy goes, and of face 5 and its
@@ -1502,6 +1556,7 @@ main(void)
 		cmocka_unit_test(repeated_positions_are_not_seams),
 		cmocka_unit_test(given_quadrics_drive_placement),
 		cmocka_unit_test(aggregation_joins_parts),
+		cmocka_unit_test(virtual_pairs_zip_a_gap_shut),
 		cmocka_unit_test(repeated_faces_are_dropped),
 		cmocka_unit_test(nonmanifold_virtual_pair_is_opt_in),
 		cmocka_unit_test(vertex_queue_matches_pair_queue),
