@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "../lib/io/meshio.h"
+#include "../lib/silhouette.h"
 #include "../lib/vtree.h"
 #include "common.h"
 
@@ -83,6 +84,18 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		usage_error("--check writes nothing: -o has no use with it");
 }
 
+/* Whether the stream's labels, if any, are of m's vertices (vdt-render
+ * reads them with the tree): 0, or the status with err set. */
+static int
+labels_fit(const struct vdt_chunks *extra, const struct vdt_mesh *m, struct vdt_err *err)
+{
+	struct vdt_labl l = {0};
+	int rc = vdt_labl_decode_chunk(extra, m->vertex_count, &l, err);
+
+	vdt_labl_free(&l);
+	return rc;
+}
+
 /* --check: decode (every invariant), then collapse all and split all back. */
 static int
 check(struct cmdline *cl)
@@ -97,6 +110,7 @@ check(struct cmdline *cl)
 	if (vdt_read(cl->check, &m, &extra, &err) != 0)
 		return fail("cannot read", cl->check, &err);
 	if ((rc = vdt_vtree_decode_chunk(&extra, &m, &t, &err)) != 0 ||
+	    (rc = labels_fit(&extra, &m, &err)) != 0 ||
 	    (rc = vdt_vtree_summarize(&t, &m, &s, &err)) != 0) {
 		rc = fail("invalid tree in", cl->check, &err);
 		goto out;
@@ -136,6 +150,10 @@ run(struct cmdline *cl)
 
 	if (vdt_read(cl->in, &m, &extra, &err) != 0)
 		return fail("cannot read", cl->in, &err);
+	if (labels_fit(&extra, &m, &err) != 0) {
+		rc = fail("cannot read", cl->in, &err);
+		goto out;
+	}
 	note_float_precision(cl->in, &m, cl->quiet);
 	if ((rc = vdt_vtree_prepare(&m, &dropped, &err)) != 0) {
 		rc = fail("cannot build a tree of", cl->in, &err);

@@ -204,3 +204,23 @@ load helpers
 		[ ! -e "$TMP/c.$f" ]
 	done
 }
+
+@test "vdt-build refuses a LABL chunk for another mesh, and --check finds one, status 2" {
+	"$BIN/vdt-silhouette" -q -a 45 -r 32 "$SAMPLES/sphere.off" -o "$TMP/s.vdl"
+	"$BIN/vdt-silhouette" -q -a 45 -r 32 "$SAMPLES/torus.off" -o "$TMP/t.vdl"
+	# the torus's labels after the sphere's mesh
+	splice_labl "$TMP/s.vdl" "$TMP/t.vdl" "$TMP/bad.vdl"
+	run "$BIN/vdt-build" "$TMP/bad.vdl" -o "$TMP/x.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"bad.vdl"*"LABL"* ]]
+	[ ! -e "$TMP/x.vdt" ]
+	# a tree whose labels were spliced in afterwards
+	"$BIN/vdt-build" -q "$TMP/s.vdl" -o "$TMP/s.vdt"
+	splice_labl "$TMP/s.vdt" "$TMP/t.vdl" "$TMP/bad.vdt"
+	run "$BIN/vdt-build" --check "$TMP/bad.vdt"
+	[ "$status" -eq 2 ]
+	[[ "$output" == *"bad.vdt"*"LABL"* ]]
+	run "$BIN/vdt-build" --check "$TMP/s.vdt"
+	[ "$status" -eq 0 ]
+}
