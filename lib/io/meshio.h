@@ -288,6 +288,9 @@ struct vdt_obj_visit {
 	 * handed out, for the visitor to triangulate it (vdt_polygon_refan)
 	 * once it has the positions. */
 	int (*polygon)(void *ctx, uint64_t first, size_t corners, struct vdt_err *err);
+	/* Or NULL: the text before offset is read, for now (each of the two
+	 * passes over it tells, every few megabytes). */
+	void (*read_to)(void *ctx, size_t offset);
 };
 int vdt_obj_scan(const unsigned char *buf, size_t len, const struct vdt_obj_visit *visit,
                  unsigned *attrs, struct vdt_err *err);

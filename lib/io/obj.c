@@ -238,14 +238,30 @@ obj_free(struct obj *o)
 }
 
 /* First pass: count the statements that define indexable elements. */
+/* Text read between calls of the visitor's read_to, at least. */
+#define READ_STEP ((size_t)8 << 20)
+
+/* Tell vdt_obj_scan's visitor how far the text is read, every READ_STEP. */
+static void
+read_to(const struct obj *o, const struct reader *r, const char *buf, size_t *told)
+{
+	size_t at = (size_t)(r->p - buf);
+
+	if (o->visit != NULL && o->visit->read_to != NULL && at - *told >= READ_STEP) {
+		o->visit->read_to(o->visit->ctx, at);
+		*told = at;
+	}
+}
+
 static int
 count(const char *buf, size_t len, struct obj *o, struct vdt_err *err)
 {
 	struct reader r = {buf, buf + len, 1};
 	const char *k;
-	size_t n;
+	size_t n, told = 0;
 
 	while ((k = next_keyword(&r, &n)) != NULL) {
+		read_to(o, &r, buf, &told);
 		switch (keyword_of(k, n)) {
 		case K_V: o->nv++; break;
 		case K_VT: o->nt++; break;
@@ -594,12 +610,13 @@ parse(const char *buf, size_t len, struct obj *o, struct vdt_err *err)
 {
 	struct reader r = {buf, buf + len, 1};
 	const char *k;
-	size_t n, face = 0;
+	size_t n, face = 0, told = 0;
 	int rc = 0;
 
 	while (rc == 0 && (k = next_keyword(&r, &n)) != NULL) {
 		enum keyword kw = keyword_of(k, n);
 
+		read_to(o, &r, buf, &told);
 		/*
 		 * Both passes split statements alike, so the counts hold; the arrays
 		 * are sized by them, so this is checked rather than assumed.

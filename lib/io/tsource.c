@@ -37,6 +37,7 @@ struct vdt_tsource {
 	const unsigned char *buf;
 	size_t len;
 	void *map; /* what to munmap, or NULL */
+	int mapped; /* buf is a file's mapping, whose pages may be dropped */
 	size_t map_len;
 	uint64_t tri_hint;
 
@@ -564,6 +565,7 @@ struct obj_spool {
 	FILE *pos, *tri;
 	FILE *poly; /* polygons' first triangle and corners, 12 bytes each */
 	uint64_t nv, nt;
+	const struct vdt_tsource *s; /* the text's mapping */
 };
 
 static int
@@ -616,6 +618,17 @@ spool_polygon(void *ctx, uint64_t first, size_t corners, struct vdt_err *err)
 	vdt_put_u64le(b, first);
 	vdt_put_u32le(b + 8, (uint32_t)corners);
 	return spool_put(o->poly, b, err);
+}
+
+/* The text before offset is read (for now: the scan reads it twice): its
+ * mapped pages need not stay. */
+static void
+spool_read_to(void *ctx, size_t offset)
+{
+	const struct obj_spool *o = ctx;
+
+	if (o->s->mapped)
+		drop_range(o->s->buf, o->s->buf + offset);
 }
 
 /* Vertex v of the spooled positions (ctx: the mapping). */
@@ -741,8 +754,8 @@ spool_map(FILE *f, void **map, size_t *len, struct vdt_err *err)
 static int
 obj_open(struct vdt_tsource *s, struct vdt_err *err)
 {
-	struct obj_spool o = {NULL, NULL, NULL, 0, 0};
-	struct vdt_obj_visit visit = {spool_vertex, spool_triangle, &o, spool_polygon};
+	struct obj_spool o = {NULL, NULL, NULL, 0, 0, s};
+	struct vdt_obj_visit visit = {spool_vertex, spool_triangle, &o, spool_polygon, spool_read_to};
 	int fd[2] = {-1, -1}, rc;
 
 	for (int i = 0; i < 2; i++)
@@ -757,7 +770,7 @@ obj_open(struct vdt_tsource *s, struct vdt_err *err)
 	fd[0] = fd[1] = -1;
 	if ((rc = vdt_obj_scan(s->buf, s->len, &visit, &s->attrs, err)) != 0)
 		goto out;
-	if (s->map) /* the text is read: its pages need not stay */
+	if (s->mapped) /* the text is read: its pages need not stay */
 		drop_range(s->buf, s->buf + s->len);
 	rc = spool_map(o.pos, &s->pos_map, &s->pos_len, err);
 	o.pos = NULL;
@@ -1001,7 +1014,7 @@ setup(struct vdt_tsource *s, enum vdt_format hint, struct vdt_err *err)
 
 static int
 open_memory(struct vdt_tsource **ts, const unsigned char *buf, size_t len, enum vdt_format hint,
-            struct vdt_err *err)
+            int mapped, struct vdt_err *err)
 {
 	struct vdt_tsource *s = calloc(1, sizeof(*s));
 	int rc;
@@ -1011,6 +1024,7 @@ open_memory(struct vdt_tsource **ts, const unsigned char *buf, size_t len, enum 
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
 	s->buf = buf;
 	s->len = len;
+	s->mapped = mapped;
 	if ((rc = setup(s, hint, err)) != 0) {
 		vdt_tsource_close(s);
 		return rc;
@@ -1023,7 +1037,7 @@ int
 vdt_tsource_open_memory(struct vdt_tsource **ts, const unsigned char *buf, size_t len,
                         struct vdt_err *err)
 {
-	return open_memory(ts, buf, len, VDT_FMT_AUTO, err);
+	return open_memory(ts, buf, len, VDT_FMT_AUTO, 0, err);
 }
 
 int
@@ -1061,7 +1075,7 @@ vdt_tsource_open(struct vdt_tsource **ts, const char *path, struct vdt_err *err)
 	}
 	if (len > 0 && (rc = map_fd(fd, len, &map, err)) != 0)
 		goto done;
-	if ((rc = open_memory(&s, map, len, hint, err)) != 0) {
+	if ((rc = open_memory(&s, map, len, hint, map != NULL, err)) != 0) {
 		if (map)
 			munmap(map, len);
 		goto done;

@@ -585,6 +585,71 @@ test_floats(void **state)
 	}
 }
 
+/* What test_scan_tells_progress's visitor saw. */
+struct seen {
+	size_t vertices, triangles, calls, last, passes;
+};
+
+static int
+seen_vertex(void *ctx, const float p[3], struct vdt_err *err)
+{
+	(void)p;
+	(void)err;
+	((struct seen *)ctx)->vertices++;
+	return 0;
+}
+
+static int
+seen_triangle(void *ctx, const uint32_t v[3], struct vdt_err *err)
+{
+	(void)v;
+	(void)err;
+	((struct seen *)ctx)->triangles++;
+	return 0;
+}
+
+static void
+seen_read_to(void *ctx, size_t offset)
+{
+	struct seen *s = ctx;
+
+	if (offset < s->last) /* the second pass starts again from the top */
+		s->passes++;
+	s->last = offset;
+	s->calls++;
+}
+
+/*
+ * vdt_obj_scan tells its visitor how far it has read, a few megabytes at
+ * a time in each of its two passes, so that a mapped file's pages can be
+ * released as it goes (vdt-cluster): over 16 MB of text, 4 calls or more
+ * in all, never past the end.
+ */
+static void
+test_scan_tells_progress(void **state)
+{
+	size_t n = 800000, len = 0, cap = 48 * n + 64;
+	char *text = malloc(cap);
+	struct seen s = {0};
+	struct vdt_obj_visit v = {seen_vertex, seen_triangle, &s, NULL, seen_read_to};
+	struct vdt_err err = {0};
+	unsigned attrs;
+
+	(void)state;
+	for (size_t i = 0; i < n; i++)
+		len += (size_t)snprintf(text + len, cap - len, "v %zu.125 0.5 0.25\n", i);
+	for (size_t i = 0; i + 2 < n && len + 64 < cap; i += 3)
+		len += (size_t)snprintf(text + len, cap - len, "f %zu %zu %zu\n", i + 1, i + 2, i + 3);
+	assert_true(len > 16u << 20);
+	assert_int_equal(vdt_obj_scan((const unsigned char *)text, len, &v, &attrs, &err), 0);
+	assert_int_equal(s.vertices, n);
+	assert_true(s.triangles > 0);
+	assert_int_equal(s.passes, 1);
+	assert_true(s.calls >= 4);
+	assert_true(s.last <= len);
+	free(text);
+}
+
 int
 main(void)
 {
@@ -597,6 +662,7 @@ main(void)
 		cmocka_unit_test(test_reject),       cmocka_unit_test(test_corner_limit),
 		cmocka_unit_test(test_openmesh_crash), cmocka_unit_test(test_validated),
 		cmocka_unit_test(test_roundtrip),    cmocka_unit_test(test_floats),
+		cmocka_unit_test(test_scan_tells_progress),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
