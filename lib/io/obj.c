@@ -26,9 +26,10 @@
  * unchanged, unused vertices included: a file whose faces use no vt and no
  * vn, and a file whose every corner uses the same number for vt and vn as
  * for v with one vt and one vn per v (as vdt and many exporters write them).
- * Corners without a vt or a vn in a file where other corners have one read
- * as 0 there: there is nothing better to invent, and it is what other
- * readers do.
+ * Corners without a vt in a file where other corners have one read as
+ * (0, 0) there: there is nothing better to invent, and it is what other
+ * readers do. Corners without a vn take the normal of their vertex's faces
+ * that lack one (a normal of 0 is none: vdt(5) has normals of unit length).
  *
  * Everything is untrusted. The text is scanned once to count v, vt and vn
  * statements, which bounds every index before any face is read (OBJ allows
@@ -782,6 +783,44 @@ keep_numbers(struct obj *o, struct vdt_mesh *m)
 	}
 }
 
+/*
+ * The normals of the vertices whose corners gave none (n[i] == NONE) in a
+ * file where others do: the sum of their faces' normals, each as long as
+ * twice its face's area, made unit; (0, 0, 1) where those faces have no
+ * area. A normal of 0 would not be one (vdt(5): normals are unit length).
+ */
+static void
+face_normals(struct vdt_mesh *m, const uint32_t *n)
+{
+	for (size_t i = 0; i < m->vertex_count; i++)
+		if (n[i] == NONE)
+			m->normals[3 * i] = m->normals[3 * i + 1] = m->normals[3 * i + 2] = 0;
+	for (size_t f = 0; f < m->triangle_count; f++) {
+		const uint32_t *c = m->triangles + 3 * f;
+		double fn[3];
+		if (n[c[0]] != NONE && n[c[1]] != NONE && n[c[2]] != NONE)
+			continue;
+		vdt_mesh_face_cross(m, f, fn);
+		for (int k = 0; k < 3; k++)
+			if (n[c[k]] == NONE)
+				for (int a = 0; a < 3; a++)
+					m->normals[3 * (size_t)c[k] + a] += (float)fn[a];
+	}
+	for (size_t i = 0; i < m->vertex_count; i++) {
+		float *x = m->normals + 3 * i;
+		double l = sqrt((double)x[0] * x[0] + (double)x[1] * x[1] + (double)x[2] * x[2]);
+		if (n[i] != NONE)
+			continue;
+		if (l > 0 && isfinite(l)) {
+			for (int a = 0; a < 3; a++)
+				x[a] = (float)(x[a] / l);
+		} else {
+			x[0] = x[1] = 0;
+			x[2] = 1;
+		}
+	}
+}
+
 static int
 build_split(struct obj *o, struct vdt_mesh *m, struct vdt_err *err)
 {
@@ -817,6 +856,8 @@ build_split(struct obj *o, struct vdt_mesh *m, struct vdt_err *err)
 		m->triangles = o->tri_v;
 		m->triangle_count = o->tri_count;
 		o->tri_v = NULL;
+		if (m->normals && o->miss_n)
+			face_normals(m, n);
 	}
 	free(v);
 	free(t);

@@ -282,6 +282,36 @@ test_mixed(void **state)
 	vdt_mesh_free(&m);
 }
 
+/*
+ * Corners without a vn in a file whose other corners have one: their
+ * vertices take the normal of their faces (area-weighted, unit), not 0.
+ * The square (1, 2, 3, 4) in z = 0 wound counter-clockwise, face 1 with
+ * vn (1, 0, 0), face 2 without; a degenerate face without gets (0, 0, 1).
+ */
+static void
+test_missing_normals(void **state)
+{
+	struct vdt_mesh m;
+	(void)state;
+
+	read_ok("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 1 0 0\n"
+	        "f 1//1 2//1 3//1\nf 1 3 4\n", &m);
+	assert_int_equal(m.vertex_count, 6);
+	for (size_t i = 0; i < 6; i++) {
+		const float *n = m.normals + 3 * i;
+		int with = i < 3; /* the first face's corners, in order of first use */
+		assert_true(n[0] == (with ? 1 : 0) && n[1] == 0 && n[2] == (with ? 0 : 1));
+	}
+	vdt_mesh_free(&m);
+
+	read_ok("v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nvn 0 1 0\nf 1//1 2//1 4//1\nf 1 2 3\n", &m);
+	for (size_t i = 0; i < m.vertex_count; i++) {
+		const float *n = m.normals + 3 * i;
+		assert_true(fabsf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2] - 1) < 1e-6f);
+	}
+	vdt_mesh_free(&m);
+}
+
 /* v x y z [w] [r g b]: w is dropped; vertices without colour are white. */
 static void
 test_colors(void **state)
@@ -662,7 +692,7 @@ main(void)
 		cmocka_unit_test(test_reject),       cmocka_unit_test(test_corner_limit),
 		cmocka_unit_test(test_openmesh_crash), cmocka_unit_test(test_validated),
 		cmocka_unit_test(test_roundtrip),    cmocka_unit_test(test_floats),
-		cmocka_unit_test(test_scan_tells_progress),
+		cmocka_unit_test(test_scan_tells_progress), cmocka_unit_test(test_missing_normals),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
