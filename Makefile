@@ -23,7 +23,7 @@ override CPPFLAGS += -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
 override CFLAGS += -std=c11 -Wall -Wextra -Werror -MMD -MP
 override CXXFLAGS += -std=c++17 -Wall -Wextra -Werror -MMD -MP \
 	-Wno-deprecated-declarations -Wno-deprecated-copy
-LDLIBS_VDT = -Wl,--as-needed -lOpenMeshCore -ldraco -lassimp -lz -lm -lpthread -ldl
+LDLIBS_VDT = -Wl,--as-needed -ldraco -lassimp -lz -lm -lpthread -ldl
 # OpenImageIO is in a module the tools load at their first image: its
 # libraries cost a third of a second and ~130 MB at start-up.
 LDLIBS_IMAGE = -lOpenImageIO -lOpenImageIO_Util
@@ -113,7 +113,7 @@ $(B)/scripts/%: $(B)/scripts/%.o $(LIB)
 # Comparison drivers for the bench: each links one peer library.
 BENCH_LIBS_meshopt = -lmeshoptimizer
 BENCH_LIBS_cgal = -lgmp -lmpfr
-BENCH_LIBS_openmesh = -lOpenMeshTools
+BENCH_LIBS_openmesh = -lOpenMeshTools -lOpenMeshCore
 BENCH_LIBS_vtk = -lvtkFiltersCore-9.1 -lvtkCommonExecutionModel-9.1 -lvtkCommonDataModel-9.1 -lvtkCommonCore-9.1 -lvtksys-9.1
 $(B)/scripts/bench/vtk_%.o: override CXXFLAGS += -isystem /usr/include/vtk-9.1
 # CGAL's Garland-Heckbert policies include <Eigen/Dense> (libeigen3-dev).

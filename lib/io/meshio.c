@@ -368,8 +368,10 @@ vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
 		rc = vdt_obj_read(buf, len, m, err);
 		break;
 	case VDT_FMT_STL_ASCII:
-		if ((rc = vdt_stl_ascii_check(buf, len, err)) == 0)
-			rc = vdt_openmesh_read(buf, len, f, m, err);
+		/* Not OpenMesh: it read a bad number as 0, took a cut-off file
+		 * for a whole one and dropped degenerate facets, which binary
+		 * STL keeps. */
+		rc = vdt_stl_ascii_read(buf, len, m, err);
 		break;
 	default: return vdt_err_set(err, VDT_EFORMAT, "unknown format");
 	}

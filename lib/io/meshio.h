@@ -1,10 +1,10 @@
 /*
  * meshio.h - reading and writing meshes in every format vdt speaks.
  *
- * ASCII STL is parsed by OpenMesh; OBJ, PLY (ASCII and binary, either byte
- * order), binary STL and ASCII OFF by native C readers (binary OFF is
- * refused); .drc through Draco; the vdt stream natively. Text formats are
- * written natively. "-" means stdin or stdout. The format of an input is
+ * OBJ, PLY (ASCII and binary, either byte order), STL (binary and ASCII)
+ * and ASCII OFF are read by native C readers (binary OFF is refused); .drc
+ * through Draco; the vdt stream natively. Text formats are written
+ * natively. "-" means stdin or stdout. The format of an input is
  * detected from its first bytes (never from its name alone); the format of an
  * output comes from its extension unless given.
  */
@@ -247,20 +247,23 @@ int vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
  * VDT_ENOMEM (f is not closed).
  *
  * vdt_ply_read: PLY, ASCII or binary of either byte order (ply.c, native);
- *   polygons are fan-triangulated, elements other than vertex and face and
+ *   polygons are triangulated (polygon.h), elements other than vertex and face and
  *   unknown properties are skipped.
  * vdt_obj_read: Wavefront OBJ (obj.c, native): v (with optional vertex
- *   colours), vt, vn and f; polygons are fan-triangulated. Vertices are
+ *   colours), vt, vn and f; polygons are triangulated. Vertices are
  *   split where the (v, vt, vn) triples of corners differ: one vertex per
  *   distinct triple used by a face, in order of first use, positions used by
  *   no face dropped. A file whose faces use no vt or vn, or use vt and vn
  *   numbered as v with one of each per v, keeps the file's vertex numbers.
  * vdt_stl_read: binary STL; identical positions are welded (stl.c, native).
+ * vdt_stl_ascii_read: ASCII STL, any number of solids, keywords in any
+ *   case (stl.c, native); welded as vdt_stl_read welds, so that both forms
+ *   of the same triangles read to the same mesh. Every facet is kept,
+ *   degenerate ones too. A fault of grammar or a number that is not one or
+ *   not finite is VDT_EFORMAT, its message naming the line.
  * vdt_off_read: ASCII OFF and its NOFF, COFF, STOFF, 4OFF variants (off.c,
- *   native); polygons are fan-triangulated, face colours skipped. Binary OFF
+ *   native); polygons are triangulated, face colours skipped. Binary OFF
  *   is refused (VDT_EFORMAT).
- * vdt_openmesh_read: ASCII STL through OpenMesh's parser (`format` must be
- *   VDT_FMT_STL_ASCII).
  * vdt_draco_read: a Draco mesh (.drc).
  */
 int vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
@@ -307,12 +310,8 @@ int vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 int vdt_stl_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err);
 int vdt_off_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
                  struct vdt_err *err);
-/* Whether buf is well-formed ASCII STL, every number finite (stl.c):
- * 0, or VDT_EFORMAT with the line and the fault. */
-int vdt_stl_ascii_check(const unsigned char *buf, size_t len, struct vdt_err *err);
-int vdt_openmesh_read(const unsigned char *buf, size_t len,
-                      enum vdt_format format, struct vdt_mesh *m,
-                      struct vdt_err *err);
+int vdt_stl_ascii_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
+                       struct vdt_err *err);
 /*
  * OBJ, OFF, ASCII PLY and ASCII STL are written natively (meshio.c), with 9
  * significant digits so that every float reads back exactly: OpenMesh's

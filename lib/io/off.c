@@ -15,8 +15,8 @@
  * when every colour value in it is integral and one exceeds 1 (so that "1 0
  * 0" is red, as Geomview reads it). Face colours are skipped. Polygons are
  * triangulated (polygon.h: a fan, or ears where the polygon is concave).
- * Binary OFF is refused: OpenMesh, the other reader at hand, hangs on
- * hostile binary counts as it did on text.
+ * Binary OFF is refused (OpenMesh's reader, once the other at hand, hung
+ * on hostile binary counts as it did on text).
  *
  * Line breaks are significant: a vertex or a face ends with its line, which
  * is what lets a colour have 3 or 4 components and a face carry a colour

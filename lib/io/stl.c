@@ -1,17 +1,25 @@
 /*
- * stl.c - native binary STL: a reader that welds identical positions with a
- * hash table so that the triangle soup becomes an indexed mesh, and a
- * writer.
+ * stl.c - native STL, binary and ASCII: two readers that weld identical
+ * positions with one hash table so that the triangle soup becomes an
+ * indexed mesh, and the binary writer (ASCII STL is written with the other
+ * text formats, in meshio.c).
  *
- *   80-byte header, u32 triangle count, then per triangle 50 bytes:
- *   f32 normal[3], f32 v0[3], v1[3], v2[3], u16 attribute byte count.
+ * Binary: an 80-byte header, u32 triangle count, then per triangle 50
+ * bytes: f32 normal[3], f32 v0[3], v1[3], v2[3], u16 attribute byte count.
  *
- * ASCII STL is parsed by OpenMesh, which reads a bad number as 0 (or as
- * the largest float) and takes a cut-off file for a whole one: it is
- * checked here first, word by word against the grammar
+ * ASCII: read word by word against the grammar
  *   solid NAME (facet normal N N N outer loop (vertex X Y Z)x3 endloop
  *   endfacet)* endsolid NAME, any number of solids,
- * with every number finite and the keywords in any case.
+ * with every number a whole word and finite, and the keywords in any case.
+ * A bad number or a cut-off file is refused with its line (OpenMesh, which
+ * parsed ASCII STL before, read a bad number as 0 and took a cut-off file
+ * for a whole one).
+ *
+ * Both readers keep every facet, degenerate ones too (OpenMesh dropped
+ * those from ASCII), and weld through the same code, so that the binary
+ * and the ASCII form of the same triangles read to the same mesh: the same
+ * vertices in order of first use, the same triangles. Facet normals are
+ * checked but not kept: they are derived from the corners.
  */
 #include "meshio.h"
 
@@ -37,28 +45,155 @@ hash_pos(const uint32_t b[3])
 	return h;
 }
 
+/*
+ * The welding both readers share: corners go in one at a time, in file
+ * order; a position not seen before becomes the next vertex. Equal means
+ * bit for bit, after -0 is made +0.
+ */
+struct weld {
+	uint64_t *table; /* hash high bits << 32 | vertex, or all ones */
+	size_t cap;      /* slots in table, a power of two */
+	float *pos;      /* nv vertices, room for pos_cap */
+	size_t nv, pos_cap;
+	uint32_t *tri; /* nc corners, room for tri_cap */
+	size_t nc, tri_cap;
+};
+
+/* Room for `triangles` (a count, or a guess: the arrays grow past it).
+ * 0, or -1 out of memory with w empty. */
 static int
-grow(uint64_t **table, size_t *cap, const float *pos, size_t nv)
+weld_init(struct weld *w, size_t triangles)
 {
-	size_t nc = *cap * 2, mask = nc - 1;
+	memset(w, 0, sizeof(*w));
+	/*
+	 * A closed mesh has about half as many vertices as triangles: start the
+	 * table at twice that and double it as it fills, which keeps the pages
+	 * touched (and faulted in) to what the mesh needs. The vertex array
+	 * has room for a vertex per corner, the most there can be, and only
+	 * the pages filled are touched.
+	 */
+	w->cap = 1024;
+	while (w->cap < triangles)
+		w->cap <<= 1;
+	w->pos_cap = triangles * 3 > 3 ? triangles * 3 : 3;
+	w->tri_cap = w->pos_cap;
+	w->table = malloc(w->cap * sizeof(*w->table));
+	w->pos = malloc(w->pos_cap * 3 * sizeof(float));
+	w->tri = malloc(w->tri_cap * sizeof(uint32_t));
+	if (w->table == NULL || w->pos == NULL || w->tri == NULL) {
+		free(w->table);
+		free(w->pos);
+		free(w->tri);
+		memset(w, 0, sizeof(*w));
+		return -1;
+	}
+	memset(w->table, 0xff, w->cap * sizeof(*w->table));
+	return 0;
+}
+
+static void
+weld_free(struct weld *w)
+{
+	free(w->table);
+	free(w->pos);
+	free(w->tri);
+	memset(w, 0, sizeof(*w));
+}
+
+/* Double the table, every vertex put in again. */
+static int
+weld_grow(struct weld *w)
+{
+	size_t nc = w->cap * 2, mask = nc - 1;
 	uint64_t *t = malloc(nc * sizeof(*t));
 
 	if (t == NULL)
 		return -1;
 	memset(t, 0xff, nc * sizeof(*t));
-	for (size_t i = 0; i < nv; i++) {
+	for (size_t i = 0; i < w->nv; i++) {
 		uint32_t b[3];
-		memcpy(b, pos + 3 * i, sizeof(b));
+		memcpy(b, w->pos + 3 * i, sizeof(b));
 		uint64_t h = hash_pos(b);
 		size_t s = (size_t)h & mask;
 		while (t[s] != UINT64_MAX)
 			s = (s + 1) & mask;
 		t[s] = (h & 0xffffffff00000000u) | (uint32_t)i;
 	}
-	free(*table);
-	*table = t;
-	*cap = nc;
+	free(w->table);
+	w->table = t;
+	w->cap = nc;
 	return 0;
+}
+
+/* Double the room of an array (n elements of size bytes): 0, or -1. */
+static int
+weld_room(void **a, size_t *n, size_t size)
+{
+	void *b = *n > SIZE_MAX / 2 / size ? NULL : realloc(*a, *n * 2 * size);
+
+	if (b == NULL)
+		return -1;
+	*a = b;
+	*n *= 2;
+	return 0;
+}
+
+/* The next corner, at the finite position v: 0, or -1 out of memory. The
+ * caller keeps the corners (and so the vertices) within uint32_t. */
+static int
+weld_corner(struct weld *w, const float v[3])
+{
+	float p[3];
+	uint32_t b[3];
+
+	if (2 * w->nv >= w->cap && weld_grow(w) != 0)
+		return -1;
+	if (w->nc == w->tri_cap && weld_room((void **)&w->tri, &w->tri_cap, sizeof(uint32_t)) != 0)
+		return -1;
+	for (int k = 0; k < 3; k++) {
+		p[k] = v[k] == 0.0f ? 0.0f : v[k]; /* weld -0 with +0 */
+		memcpy(&b[k], &p[k], 4);
+	}
+	uint64_t h = hash_pos(b);
+	uint64_t tag = h & 0xffffffff00000000u;
+	size_t mask = w->cap - 1, s = (size_t)h & mask;
+	for (;;) {
+		uint64_t e = w->table[s];
+		uint32_t i = (uint32_t)e;
+		if (e == UINT64_MAX) {
+			if (w->nv == w->pos_cap &&
+			    weld_room((void **)&w->pos, &w->pos_cap, 3 * sizeof(float)) != 0)
+				return -1;
+			w->table[s] = tag | (uint32_t)w->nv;
+			memcpy(w->pos + 3 * w->nv, p, sizeof(p));
+			w->tri[w->nc++] = (uint32_t)w->nv++;
+			return 0;
+		}
+		if ((e & 0xffffffff00000000u) == tag &&
+		    memcmp(w->pos + 3 * (size_t)i, p, sizeof(p)) == 0) {
+			w->tri[w->nc++] = i;
+			return 0;
+		}
+		s = (s + 1) & mask;
+	}
+}
+
+/* The welded mesh, into m (w is emptied): its vertices and triangles, the
+ * arrays cut to size. */
+static void
+weld_done(struct weld *w, struct vdt_mesh *m)
+{
+	float *pos = w->nv ? realloc(w->pos, w->nv * 3 * sizeof(float)) : NULL;
+	uint32_t *tri = w->nc ? realloc(w->tri, w->nc * sizeof(uint32_t)) : NULL;
+
+	memset(m, 0, sizeof(*m));
+	m->positions = pos ? pos : w->pos;
+	m->vertex_count = w->nv;
+	m->triangles = tri ? tri : w->tri;
+	m->triangle_count = w->nc / 3;
+	w->pos = NULL;
+	w->tri = NULL;
+	weld_free(w);
 }
 
 int
@@ -66,10 +201,7 @@ vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
              struct vdt_err *err)
 {
 	uint32_t count;
-	uint64_t *table = NULL; /* hash high bits << 32 | vertex, or all ones */
-	size_t cap, nv = 0;
-	float *pos = NULL;
-	uint32_t *tri = NULL;
+	struct weld w;
 
 	memset(m, 0, sizeof(*m));
 	if (len < 84)
@@ -83,36 +215,12 @@ vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 	if ((uint64_t)count * 3 > UINT32_MAX)
 		return vdt_err_set(err, VDT_EFORMAT, "binary STL has too many triangles (%lu)",
 		                   (unsigned long)count);
-
-	/*
-	 * A closed mesh has about half as many vertices as triangles: start the
-	 * table at twice that and double it as it fills, which keeps the pages
-	 * touched (and faulted in) to what the mesh needs.
-	 */
-	cap = 1024;
-	while (cap < (size_t)count)
-		cap <<= 1;
-	table = malloc(cap * sizeof(*table));
-	pos = malloc((size_t)count * 9 * sizeof(float));
-	tri = malloc((size_t)count * 3 * sizeof(uint32_t));
-	if (table == NULL || pos == NULL || tri == NULL) {
-		free(table);
-		free(pos);
-		free(tri);
+	if (weld_init(&w, count) != 0)
 		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %lu triangles", (unsigned long)count);
-	}
-	memset(table, 0xff, cap * sizeof(*table));
 
 	const unsigned char *p = buf + 84;
 	for (size_t t = 0; t < count; t++, p += 50)
 		for (int c = 0; c < 3; c++) {
-			if (2 * nv >= cap && grow(&table, &cap, pos, nv) != 0) {
-				free(table);
-				free(pos);
-				free(tri);
-				return vdt_err_set(err, VDT_ENOMEM, "out of memory welding STL vertices");
-			}
-			uint32_t b[3];
 			float v[3];
 
 			for (int k = 0; k < 3; k++) {
@@ -120,43 +228,18 @@ vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 				/* Named by its record, as vdt-cluster's reader names it:
 				 * a welded vertex number is nowhere in the file. */
 				if (!isfinite(v[k])) {
-					free(table);
-					free(pos);
-					free(tri);
+					weld_free(&w);
 					return vdt_err_set(err, VDT_EINVAL,
 					                   "triangle %zu: non-finite coordinate",
 					                   t);
 				}
-				if (v[k] == 0.0f)
-					v[k] = 0.0f; /* weld -0 with +0 */
-				memcpy(&b[k], &v[k], 4);
 			}
-			uint64_t h = hash_pos(b);
-			uint64_t tag = h & 0xffffffff00000000u;
-			size_t mask = cap - 1, s = (size_t)h & mask;
-			for (;;) {
-				uint64_t e = table[s];
-				uint32_t i = (uint32_t)e;
-				if (e == UINT64_MAX) {
-					table[s] = tag | (uint32_t)nv;
-					memcpy(pos + 3 * nv, v, sizeof(v));
-					tri[3 * t + c] = (uint32_t)nv++;
-					break;
-				}
-				if ((e & 0xffffffff00000000u) == tag &&
-				    memcmp(pos + 3 * (size_t)i, v, sizeof(v)) == 0) {
-					tri[3 * t + c] = i;
-					break;
-				}
-				s = (s + 1) & mask;
+			if (weld_corner(&w, v) != 0) {
+				weld_free(&w);
+				return vdt_err_set(err, VDT_ENOMEM, "out of memory welding STL vertices");
 			}
 		}
-	free(table);
-	float *shrunk = realloc(pos, nv * 3 * sizeof(float));
-	m->positions = shrunk ? shrunk : pos;
-	m->vertex_count = nv;
-	m->triangles = tri;
-	m->triangle_count = count;
+	weld_done(&w, m);
 	return 0;
 }
 
@@ -206,26 +289,31 @@ vdt_stl_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err)
 	return 0;
 }
 
-/* ---- ASCII STL: checked here, parsed by OpenMesh ---- */
+/* ---- ASCII STL ---- */
 
 struct stl_text {
 	const char *p, *end;
 	size_t line;
 };
 
+/* A blank: space, or \t \n \v \f \r (9 to 13). */
+static int
+stl_blank(char c)
+{
+	return c == ' ' || (unsigned char)(c - '\t') <= '\r' - '\t';
+}
+
 /* The next word (run of non-blank bytes) into *w, *wl; 0 at the end. */
 static int
 stl_word(struct stl_text *t, const char **w, size_t *wl)
 {
-	while (t->p < t->end && (*t->p == ' ' || *t->p == '\t' || *t->p == '\r' || *t->p == '\n' ||
-	                         *t->p == '\f' || *t->p == '\v')) {
+	while (t->p < t->end && stl_blank(*t->p)) {
 		if (*t->p == '\n')
 			t->line++;
 		t->p++;
 	}
 	*w = t->p;
-	while (t->p < t->end && !(*t->p == ' ' || *t->p == '\t' || *t->p == '\r' ||
-	                          *t->p == '\n' || *t->p == '\f' || *t->p == '\v'))
+	while (t->p < t->end && !stl_blank(*t->p))
 		t->p++;
 	*wl = (size_t)(t->p - *w);
 	return *wl > 0;
@@ -278,68 +366,107 @@ stl_expect(struct stl_text *t, const char *key, struct vdt_err *err)
 	return 0;
 }
 
-/* Three finite numbers, each a whole word. */
+/* Three finite numbers, each a whole word, into x. */
 static int
-stl_numbers(struct stl_text *t, const char *what, struct vdt_err *err)
+stl_numbers(struct stl_text *t, const char *what, float x[3], struct vdt_err *err)
 {
 	const char *w, *q;
 	size_t wl;
-	float x;
 
 	for (int k = 0; k < 3; k++) {
 		if (!stl_word(t, &w, &wl))
 			return vdt_err_set(err, VDT_EFORMAT, "line %zu: ends inside a %s", t->line, what);
-		q = vdt_text_parse_float(w, w + wl, &x);
+		q = vdt_text_parse_float(w, w + wl, &x[k]);
 		if (q != w + wl)
 			return vdt_err_set(err, VDT_EFORMAT, "line %zu: '%.*s' is not a number (in a %s)",
 			                   t->line, (int)(wl > 32 ? 32 : wl), w, what);
-		if (!isfinite(x))
+		if (!isfinite(x[k]))
 			return vdt_err_set(err, VDT_EFORMAT, "line %zu: %s coordinate '%.*s' is not finite",
 			                   t->line, what, (int)(wl > 32 ? 32 : wl), w);
 	}
 	return 0;
 }
 
-int
-vdt_stl_ascii_check(const unsigned char *buf, size_t len, struct vdt_err *err)
+/* One facet, after its word "facet", its corners welded into w. */
+static int
+stl_facet(struct stl_text *t, struct weld *w, struct vdt_err *err)
 {
-	struct stl_text t = {(const char *)buf, (const char *)buf + len, 1};
-	const char *w;
+	const char *word;
+	size_t wl;
+	float x[3];
+	int rc;
+
+	if ((rc = stl_expect(t, "normal", err)) != 0 || (rc = stl_numbers(t, "normal", x, err)) != 0 ||
+	    (rc = stl_expect(t, "outer", err)) != 0 || (rc = stl_expect(t, "loop", err)) != 0)
+		return rc;
+	for (int k = 0; k < 3; k++) {
+		if ((rc = stl_expect(t, "vertex", err)) != 0 ||
+		    (rc = stl_numbers(t, "vertex", x, err)) != 0)
+			return rc;
+		if (weld_corner(w, x) != 0)
+			return vdt_err_set(err, VDT_ENOMEM, "out of memory welding STL vertices");
+	}
+	if (!stl_word(t, &word, &wl))
+		return vdt_err_set(err, VDT_EFORMAT, "line %zu: ends inside a facet", t->line);
+	if (stl_is(word, wl, "vertex"))
+		return vdt_err_set(err, VDT_EFORMAT, "line %zu: a facet of more than 3 vertices",
+		                   t->line);
+	if (!stl_is(word, wl, "endloop"))
+		return stl_unexpected(t, word, wl, "'endloop'", err);
+	return stl_expect(t, "endfacet", err);
+}
+
+/* Every solid of the text into w: 0, or the first fault. */
+static int
+stl_solids(struct stl_text *t, struct weld *w, struct vdt_err *err)
+{
+	const char *word;
 	size_t wl;
 	int rc;
 
-	while (stl_word(&t, &w, &wl)) {
-		if (!stl_is(w, wl, "solid"))
-			return stl_unexpected(&t, w, wl, "'solid'", err);
-		stl_line_end(&t);
+	while (stl_word(t, &word, &wl)) {
+		if (!stl_is(word, wl, "solid"))
+			return stl_unexpected(t, word, wl, "'solid'", err);
+		stl_line_end(t);
 		for (;;) {
-			if (!stl_word(&t, &w, &wl))
+			if (!stl_word(t, &word, &wl))
 				return vdt_err_set(err, VDT_EFORMAT, "line %zu: ends before 'endsolid'",
-				                   t.line);
-			if (stl_is(w, wl, "endsolid")) {
-				stl_line_end(&t);
+				                   t->line);
+			if (stl_is(word, wl, "endsolid")) {
+				stl_line_end(t);
 				break;
 			}
-			if (!stl_is(w, wl, "facet"))
-				return stl_unexpected(&t, w, wl, "'facet' or 'endsolid'", err);
-			if ((rc = stl_expect(&t, "normal", err)) != 0 ||
-			    (rc = stl_numbers(&t, "normal", err)) != 0 ||
-			    (rc = stl_expect(&t, "outer", err)) != 0 || (rc = stl_expect(&t, "loop", err)) != 0)
-				return rc;
-			for (int k = 0; k < 3; k++)
-				if ((rc = stl_expect(&t, "vertex", err)) != 0 ||
-				    (rc = stl_numbers(&t, "vertex", err)) != 0)
-					return rc;
-			if (!stl_word(&t, &w, &wl))
-				return vdt_err_set(err, VDT_EFORMAT, "line %zu: ends inside a facet", t.line);
-			if (stl_is(w, wl, "vertex"))
+			if (!stl_is(word, wl, "facet"))
+				return stl_unexpected(t, word, wl, "'facet' or 'endsolid'", err);
+			if (w->nc / 3 >= UINT32_MAX / 3)
 				return vdt_err_set(err, VDT_EFORMAT,
-				                   "line %zu: a facet of more than 3 vertices", t.line);
-			if (!stl_is(w, wl, "endloop"))
-				return stl_unexpected(&t, w, wl, "'endloop'", err);
-			if ((rc = stl_expect(&t, "endfacet", err)) != 0)
+				                   "line %zu: ASCII STL has too many triangles (more than %lu)",
+				                   t->line, (unsigned long)(UINT32_MAX / 3));
+			if ((rc = stl_facet(t, w, err)) != 0)
 				return rc;
 		}
 	}
+	return 0;
+}
+
+int
+vdt_stl_ascii_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
+                   struct vdt_err *err)
+{
+	struct stl_text t = {(const char *)buf, (const char *)buf + len, 1};
+	struct weld w;
+	int rc;
+
+	memset(m, 0, sizeof(*m));
+	/* Writers lay a facet out in 200 to 300 bytes (vdt's take about
+	 * 210): a guess to start from, which the arrays grow past when the
+	 * numbers are short. */
+	if (weld_init(&w, len / 256) != 0)
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	if ((rc = stl_solids(&t, &w, err)) != 0) {
+		weld_free(&w);
+		return rc;
+	}
+	weld_done(&w, m);
 	return 0;
 }
