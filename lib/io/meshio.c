@@ -102,17 +102,6 @@ is_text(const unsigned char *buf, size_t n)
 	return 1;
 }
 
-static int
-find(const unsigned char *buf, size_t n, const char *s)
-{
-	size_t l = strlen(s);
-
-	for (size_t i = 0; i + l <= n; i++)
-		if (memcmp(buf + i, s, l) == 0)
-			return 1;
-	return 0;
-}
-
 /*
  * The first word of OFF files, after blank and comment lines: the prefixes
  * ST, C, N, 4 and n, each at most once and in any order, then OFF (then
@@ -192,6 +181,60 @@ is_obj(const unsigned char *buf, size_t n)
 	return 0;
 }
 
+/* PLY's first line: "ply", then blanks at most. */
+static int
+ply_magic(const unsigned char *buf, size_t n)
+{
+	size_t i = 3;
+
+	if (!has_prefix(buf, n, "ply"))
+		return 0;
+	while (i < n && (buf[i] == ' ' || buf[i] == '\t' || buf[i] == '\r'))
+		i++;
+	return i < n && buf[i] == '\n';
+}
+
+/* Whether a PLY header's format line (in buf[0..n)) names a format that
+ * starts with kind: "format", blanks, kind. */
+static int
+ply_format(const unsigned char *buf, size_t n, const char *kind)
+{
+	size_t k = strlen(kind);
+
+	for (size_t i = 0; i + 8 <= n; i++) {
+		if (memcmp(buf + i, "\nformat", 7) != 0 || (buf[i + 7] != ' ' && buf[i + 7] != '\t'))
+			continue;
+		size_t j = i + 7;
+		while (j < n && (buf[j] == ' ' || buf[j] == '\t'))
+			j++;
+		return j + k <= n && memcmp(buf + j, kind, k) == 0;
+	}
+	return 0;
+}
+
+/* A byte order mark of UTF-16 or UTF-32. */
+static int
+wide_text(const unsigned char *buf, size_t n)
+{
+	return n >= 2 && ((buf[0] == 0xff && buf[1] == 0xfe) || (buf[0] == 0xfe && buf[1] == 0xff) ||
+	                  (n >= 4 && buf[0] == 0 && buf[1] == 0 && buf[2] == 0xfe && buf[3] == 0xff));
+}
+
+int
+vdt_format_wide(const unsigned char *buf, size_t n)
+{
+	return wide_text(buf, n);
+}
+
+int
+vdt_format_unknown(const unsigned char *buf, size_t n, struct vdt_err *err)
+{
+	if (wide_text(buf, n))
+		return vdt_err_set(err, VDT_EFORMAT, "unknown format: text in UTF-%d (save it as UTF-8)",
+		                   buf[0] == 0 || (n >= 4 && buf[2] == 0 && buf[3] == 0) ? 32 : 16);
+	return vdt_err_set(err, VDT_EFORMAT, "unknown format");
+}
+
 size_t
 vdt_bom_length(const unsigned char *buf, size_t n)
 {
@@ -213,14 +256,18 @@ vdt_format_detect(const unsigned char *buf, size_t n)
 		return VDT_FMT_VDT;
 	if (has_prefix(buf, n, "DRACO"))
 		return VDT_FMT_DRC;
-	if (has_prefix(buf, n, "ply\n") || has_prefix(buf, n, "ply\r\n")) {
+	if (ply_magic(buf, n)) {
 		size_t l = n < 512 ? n : 512;
-		if (find(buf, l, "\nformat ascii"))
+		if (ply_format(buf, l, "ascii"))
 			return VDT_FMT_PLY_ASCII;
-		if (find(buf, l, "\nformat binary_"))
+		if (ply_format(buf, l, "binary_"))
 			return VDT_FMT_PLY;
 		return VDT_FMT_AUTO;
 	}
+	/* Text in UTF-16 or UTF-32 (by its byte order mark): no format of ours,
+	 * whatever its size (vdt_format_unknown says so). */
+	if (wide_text(buf, n))
+		return VDT_FMT_AUTO;
 	/* A binary STL is recognised for sure by its size: 84 + 50 count. */
 	if (n >= 84) {
 		uint32_t c = (uint32_t)buf[80] | (uint32_t)buf[81] << 8 |
@@ -264,7 +311,7 @@ vdt_input_limit_error(const unsigned char *head, struct vdt_err *err)
 	if (vdt_format_detect(head, VDT_DETECT_BYTES) == VDT_FMT_STL)
 		return vdt_err_set(err, VDT_EFORMAT, "not a binary STL: it goes on past its %" PRIu32
 		                   " triangles", vdt_get_u32le(head + 80));
-	return vdt_err_set(err, VDT_EFORMAT, "unknown format");
+	return vdt_format_unknown(head, VDT_DETECT_BYTES, err);
 }
 
 /* The mesh and the other chunks (to extra, if given) of a decoded stream,
@@ -342,7 +389,7 @@ vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
 	if (f == VDT_FMT_AUTO && name != NULL) {
 		enum vdt_format hint = vdt_format_from_path(name);
 		/* Only text formats can hide from detection (long comments). */
-		if (hint == VDT_FMT_OBJ || hint == VDT_FMT_OFF)
+		if ((hint == VDT_FMT_OBJ || hint == VDT_FMT_OFF) && !wide_text(buf, len))
 			f = hint;
 	}
 	if (f != VDT_FMT_AUTO) { /* a text format: the mark is no part of it */
@@ -373,7 +420,7 @@ vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
 		 * STL keeps. */
 		rc = vdt_stl_ascii_read(buf, len, m, err);
 		break;
-	default: return vdt_err_set(err, VDT_EFORMAT, "unknown format");
+	default: return vdt_format_unknown(buf, len, err);
 	}
 	if (rc == 0)
 		rc = vdt_mesh_validate(m, err);

@@ -116,8 +116,10 @@ vdt_plyhead_parse(const unsigned char *buf, size_t len, struct vdt_plyhead *h,
 		pos += ll + 1;
 		lineno++;
 		if (lineno == 1) {
-			if (!(ll >= 3 && memcmp(line, "ply", 3) == 0 &&
-			      (ll == 3 || (ll == 4 && line[3] == '\r'))))
+			size_t k = 3;
+			while (k < ll && (line[k] == ' ' || line[k] == '\t' || line[k] == '\r'))
+				k++;
+			if (!(ll >= 3 && memcmp(line, "ply", 3) == 0 && k == ll))
 				return vdt_err_set(err, VDT_EFORMAT, "not a PLY file");
 			continue;
 		}

@@ -898,3 +898,25 @@ PY
 	run "$BIN/vdt-qslim" -v --record -r 0.05 "$SAMPLES/sphere.off" -o "$TMP/rec.vdt"
 	[[ "$output" == *" fitted=0 "* ]]
 }
+
+@test "text saved in UTF-16 is named as such, whatever its name, status 2" {
+	printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' | iconv -f UTF-8 -t UTF-16 >"$TMP/w.obj"
+	for tool in vdt-qslim vdt-cluster; do
+		run "$BIN/$tool" "$TMP/w.obj" -o "$TMP/o.off"
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == *"w.obj"*"text in UTF-16 (save it as UTF-8)"* ]]
+		[ ! -e "$TMP/o.off" ]
+	done
+	run sh -c "'$BIN/vdt-qslim' -o '$TMP/o.off' <'$TMP/w.obj'"
+	[ "$status" -eq 2 ]
+	[[ "$output" == *"UTF-16"* ]]
+}
+
+@test "a PLY header with blanks after 'ply' and in its format line is read" {
+	printf 'ply \r\nformat   ascii 1.0\r\nelement vertex 3\r\nproperty float x\r\nproperty float y\r\nproperty float z\r\nelement face 1\r\nproperty list uchar int vertex_indices\r\nend_header\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n' >"$TMP/b.ply"
+	"$BIN/vdt-qslim" -q -r 1 "$TMP/b.ply" -o "$TMP/q.off"
+	[ "$(off_faces "$TMP/q.off")" -eq 1 ]
+	"$BIN/vdt-cluster" -q -g 2 "$TMP/b.ply" -o "$TMP/c.off"
+	[ "$(off_faces "$TMP/c.off")" -eq 1 ]
+}
