@@ -342,3 +342,21 @@ refuse_one_file_for_two(const char *oa, const char *a, const char *ob, const cha
 		usage_error("%s '%s' and %s '%s' are one file: one would overwrite the other", oa,
 		            strcmp(a, "-") == 0 ? "<stdout>" : a, ob, strcmp(b, "-") == 0 ? "<stdout>" : b);
 }
+
+const char *
+attr_names(unsigned mask, int words, char buf[64])
+{
+	static const char *const name[2][3] = {{"normals", "uvs", "colors"},
+	                                       {"normals", "texture coordinates", "colours"}};
+	const char *have[3];
+	int n = 0;
+
+	for (int i = 0; i < 3; i++)
+		if (mask & (1u << i))
+			have[n++] = name[words][i];
+	buf[0] = 0;
+	for (int i = 0; i < n; i++)
+		snprintf(buf + strlen(buf), 64 - strlen(buf), "%s%s",
+		         i == 0 ? "" : !words ? "," : i == n - 1 ? " and " : ", ", have[i]);
+	return n ? buf : "none";
+}

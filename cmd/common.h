@@ -69,6 +69,10 @@ void output_is_input(const char *out, const char *in) __attribute__((noreturn));
 /* An input operand as messages name it: "<stdin>" for - (or NULL). */
 const char *input_name(const char *path);
 
+/* The attributes of mask (VDT_ATTR_*), as -v names them ("normals,uvs")
+ * or, with words, as notes do ("normals and texture coordinates"); "none". */
+const char *attr_names(unsigned mask, int words, char buf[64]);
+
 /*
  * Report a library error about a file: "progname: cannot read 'f': msg".
  * `what` is the verb phrase ("cannot read", "cannot write"). Returns the exit

@@ -100,26 +100,6 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		cl->ch.dims[0] = 256;
 }
 
-/* The attributes of mask (VDT_ATTR_*), as -v names them ("normals,uvs")
- * or in words ("normals and texture coordinates"); "none". */
-static const char *
-attr_names(unsigned mask, int words, char buf[64])
-{
-	static const char *const name[2][3] = {{"normals", "uvs", "colors"},
-	                                       {"normals", "texture coordinates", "colours"}};
-	const char *have[3];
-	int n = 0;
-
-	for (int i = 0; i < 3; i++)
-		if (mask & (1u << i))
-			have[n++] = name[words][i];
-	buf[0] = 0;
-	for (int i = 0; i < n; i++)
-		snprintf(buf + strlen(buf), 64 - strlen(buf), "%s%s",
-		         i == 0 ? "" : !words ? "," : i == n - 1 ? " and " : ", ", have[i]);
-	return n ? buf : "none";
-}
-
 static int
 run(struct cmdline *cl)
 {

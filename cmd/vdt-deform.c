@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "../lib/animtarget.h"
+#include "../lib/bytes.h"
 #include "../lib/deform.h"
 #include "../lib/io/anim.h"
 #include "../lib/io/meshio.h"
@@ -145,6 +146,53 @@ statistics(struct cmdline *cl, const struct vdt_mesh *in, const struct vdt_frame
 }
 
 /*
+ * What an MD2 model at path has that vdt_md2_read leaves: a normal for
+ * every vertex of every frame (an index into the format's table: there
+ * always), and texture coordinates when its header counts some. 0 for
+ * any other file, and for standard input, which is read already.
+ */
+static unsigned
+md2_attrs(const char *path)
+{
+	unsigned char h[32];
+	size_t n;
+	FILE *f;
+
+	if (strcmp(path, "-") == 0 || (f = fopen(path, "rb")) == NULL)
+		return 0;
+	n = fread(h, 1, sizeof(h), f);
+	fclose(f);
+	if (n < sizeof(h) || !vdt_md2_sniff(h, n))
+		return 0;
+	return VDT_ATTR_NORMALS | (vdt_get_u32le(h + 28) > 0 ? VDT_ATTR_UVS : 0);
+}
+
+/*
+ * Unless -q, a note when the input has normals, texture coordinates or
+ * colours: the frames written have positions alone. What the first
+ * operand has (the frames share its vertices); a skinned model's are not
+ * read at all, so whether it has some is not known here.
+ */
+static void
+note_attributes(const struct cmdline *cl, const struct vdt_mesh *in)
+{
+	unsigned attrs = vdt_mesh_attrs(in);
+	char names[64];
+
+	if (cl->quiet)
+		return;
+	if (attrs == 0)
+		attrs = md2_attrs(cl->in[0]);
+	if (attrs != 0)
+		fprintf(stderr, "%s: note: '%s' has %s, which vdt-deform does not keep\n", progname,
+		        input_name(cl->in[0]), attr_names(attrs, 1, names));
+	else if (vdt_assimp_handles(cl->in[0]))
+		fprintf(stderr, "%s: note: '%s' is a skinned model, read for its positions alone: "
+		        "its normals, texture coordinates and colours, if any, are not kept\n",
+		        progname, input_name(cl->in[0]));
+}
+
+/*
  * No file written may be one read: a pattern for -o naming the input
  * frames would replace the animation with its simplification. Compared
  * once the frames are read, when their number is known.
@@ -227,6 +275,7 @@ run(struct cmdline *cl)
 		rc = fail("cannot write", bad ? bad : cl->out, &err);
 		goto out;
 	}
+	note_attributes(cl, &in);
 	if (!r.reached_target && !cl->quiet)
 		fprintf(stderr, "%s: some frames stopped above the target: no further valid "
 		        "contraction\n", progname);

@@ -615,3 +615,41 @@ PY
 	"$BIN/vdt-deform" -q -t 1 "$TMP/g1.off" "$TMP/g2.off" -o "$TMP/out%d.off"
 	[ -s "$TMP/out0.off" ] && [ -s "$TMP/out1.off" ]
 }
+
+@test "vdt-deform names the normals, texture coordinates and colours it does not keep, for every input" {
+	"$MKANIM" -d bend -n 3 "$SAMPLES/sphere-uv.obj" -o "$TMP/in/%03d.obj"
+	"$MKANIM" -d bend -n 3 "$SAMPLES/sphere-uv.obj" -o "$TMP/anim.vdt"
+	# a mesh, a pattern, a list of files, a stream with FRMS
+	for in in "$SAMPLES/sphere-uv.obj" "$TMP/in/%03d.obj" "$TMP/in/000.obj $TMP/in/001.obj" \
+	    "$TMP/anim.vdt"; do
+		rm -f "$TMP"/out/*
+		run "$BIN/vdt-deform" -r 0.2 $in -o "$TMP/out/%03d.obj"
+		[ "$status" -eq 0 ]
+		[ "$output" = "vdt-deform: note: '${in%% *}' has normals and texture coordinates, which vdt-deform does not keep" ]
+		! grep -q '^v[tn] ' "$TMP"/out/*.obj || false
+		run "$BIN/vdt-deform" -q -r 0.2 $in -o "$TMP/out/%03d.obj"
+		[ "$status" -eq 0 ]
+		[ -z "$output" ]
+	done
+	run "$BIN/vdt-deform" -r 0.2 -o "$TMP/out/s.off" < "$SAMPLES/sphere-uv.obj"
+	[ "$output" = "vdt-deform: note: '<stdin>' has normals and texture coordinates, which vdt-deform does not keep" ]
+	printf 'v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nv 1 1 0 1 1 1\nf 1 2 3\nf 3 2 4\n' > "$TMP/c.obj"
+	run "$BIN/vdt-deform" -t 1 "$TMP/c.obj" -o "$TMP/out/c.obj"
+	[ "$status" -eq 0 ]
+	[ "$output" = "vdt-deform: note: '$TMP/c.obj' has colours, which vdt-deform does not keep" ]
+	# positions alone: nothing to say
+	run "$BIN/vdt-deform" -r 0.2 "$SAMPLES/sphere.off" -o "$TMP/out/p.off"
+	[ "$status" -eq 0 ]
+	[ -z "$output" ]
+	# an MD2 model has a normal per vertex and texture coordinates, which
+	# its reader leaves; a skinned model's are not read at all
+	[ -r "$MD2" ] || skip "assimp-testmodels is not installed"
+	run "$BIN/vdt-deform" -r 0.5 "$MD2" -o "$TMP/out/m.vdt"
+	[ "$status" -eq 0 ]
+	[ "$output" = "vdt-deform: note: '$MD2' has normals and texture coordinates, which vdt-deform does not keep" ]
+	run "$BIN/vdt-deform" -r 0.5 --frames 2 "$WALK" -o "$TMP/out/w.vdt"
+	[ "$status" -eq 0 ]
+	[ "$output" = "vdt-deform: note: '$WALK' is a skinned model, read for its positions alone: its normals, texture coordinates and colours, if any, are not kept" ]
+	run "$BIN/vdt-deform" -q -r 0.5 --frames 2 "$WALK" -o "$TMP/out/w.vdt"
+	[ -z "$output" ]
+}
