@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "../lib/io/meshio.h"
@@ -125,6 +126,22 @@ frame_name(char name[4096], const char *pattern, size_t i)
 }
 
 /*
+ * The format of the mesh written to name: by its extension; a vdt
+ * stream, as on standard output, for a device, FIFO or socket whose name
+ * gives none (/dev/null), written in place: there is no -F to name one.
+ */
+static enum vdt_format
+mesh_format(const char *name)
+{
+	enum vdt_format f = vdt_output_format(name, VDT_FMT_AUTO);
+	struct stat st;
+
+	if (f == VDT_FMT_AUTO && stat(name, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode))
+		f = VDT_FMT_VDT;
+	return f;
+}
+
+/*
  * Refuse before anything is written what would fail or lose frames later:
  * several views into one file, an output of no known format, a reference
  * image that is not there. Returns the exit status.
@@ -160,8 +177,7 @@ check_outputs(const struct cmdline *cl, size_t nviews)
 			                        frame_name(b, cl->mesh_out, i));
 	if (cl->out && vdt_image_writable(frame_name(a, cl->out, 0), &err) != 0)
 		return fail("cannot write", a, &err);
-	if (cl->mesh_out && strcmp(cl->mesh_out, "-") != 0 &&
-	    vdt_format_from_path(frame_name(a, cl->mesh_out, 0)) == VDT_FMT_AUTO) {
+	if (cl->mesh_out && mesh_format(frame_name(a, cl->mesh_out, 0)) == VDT_FMT_AUTO) {
 		vdt_err_set(&err, VDT_EINVAL, "unknown output format (give a known extension)");
 		return fail("cannot write", a, &err);
 	}
@@ -190,6 +206,8 @@ run(struct cmdline *cl)
 	double start = vdt_seconds(), read_s, render_s = 0, write_s = 0;
 	char name[4096];
 	int rc = EXIT_OK;
+	unsigned lost;
+	char names[64];
 
 	if (vdt_read(cl->in, &m, &extra, &err) != 0)
 		return fail("cannot read", cl->in, &err);
@@ -241,9 +259,11 @@ run(struct cmdline *cl)
 		    vdt_image_write_staged(frame_name(name, cl->out, i), R.r.width, R.r.height, 3,
 		                           R.r.rgb, &done, &err) != 0)
 			rc = fail("cannot write", name, &err);
-		if (rc == EXIT_OK && cl->mesh_out &&
-		    vdt_write(frame_name(name, cl->mesh_out, i), R.drawn, NULL, &wo, &err) != 0)
-			rc = fail("cannot write", name, &err);
+		if (rc == EXIT_OK && cl->mesh_out) {
+			wo.format = mesh_format(frame_name(name, cl->mesh_out, i));
+			if (vdt_write(name, R.drawn, NULL, &wo, &err) != 0)
+				rc = fail("cannot write", name, &err);
+		}
 		t3 = vdt_seconds();
 		write_s += t3 - t2;
 		if (rc == EXIT_OK && cl->compare &&
@@ -263,6 +283,14 @@ run(struct cmdline *cl)
 		vdt_written_remove(&done); /* leave nothing behind */
 	else if (vdt_written_commit(&done, &err) != 0)
 		rc = fail("cannot write", cl->out ? cl->out : cl->mesh_out, &err);
+	/* A tree's nodes have positions and normals alone (vdt_front_mesh):
+	 * the input's texture coordinates and colours are not the merged
+	 * vertices'. */
+	lost = R.t.node_count ? vdt_mesh_attrs(&m) & (VDT_ATTR_UVS | VDT_ATTR_COLORS) : 0;
+	if (rc == EXIT_OK && cl->mesh_out && lost && !cl->quiet)
+		fprintf(stderr, "%s: note: '%s' has %s, which --mesh-out does not write: the "
+		        "tree holds positions and normals alone\n", progname, input_name(cl->in),
+		        attr_names(lost, 1, names));
 	if (cl->verbose && rc == EXIT_OK)
 		fprintf(stderr, "%s: frames=%zu in_vertices=%zu in_triangles=%zu read_s=%.3f render_s=%.3f "
 		        "write_s=%.3f peak_mb=%.1f\n", progname, nviews, m.vertex_count,

@@ -128,6 +128,124 @@ vdt_render_adapt(struct vdt_render *R, const struct vdt_camera *c)
 	}
 }
 
+#define NONE VDT_VTREE_NONE
+#define UNSET (VDT_VTREE_NONE - 1)
+
+/* Do all the leaves under node x lie at one position, bit for bit?
+ * stack holds node_count entries. */
+static int
+one_point(const struct vdt_vtree *t, uint32_t x, uint32_t *stack)
+{
+	const float *p = NULL;
+	size_t top = 0;
+
+	stack[top++] = x;
+	while (top > 0) {
+		uint32_t y = stack[--top];
+		if (y >= t->leaf_count) {
+			stack[top++] = t->child[2 * (y - t->leaf_count)];
+			stack[top++] = t->child[2 * (y - t->leaf_count) + 1];
+		} else if (p == NULL) {
+			p = t->pos + 3 * (size_t)y;
+		} else if (memcmp(p, t->pos + 3 * (size_t)y, 3 * sizeof(float)) != 0) {
+			return 0;
+		}
+	}
+	return 1;
+}
+
+/*
+ * Seam copies: vertices of the input at one position with different
+ * normals (the edges of a flat-shaded cube), leaves of the tree that its
+ * first collapses merge at no distance, so that no threshold splits them
+ * again, into a node whose normal is the mean of theirs, one that none
+ * of them had. Where the input gave its normals, each vertex of the
+ * front's mesh whose node stands for copies of one point alone becomes
+ * one vertex for each normal of the copies its corners come from, with
+ * that normal: the front then shows and writes the input's normals at
+ * its seams, as the whole mesh does. Where the input gave none, the
+ * copies' normals were the tree's estimates of one surface from each
+ * side, and their mean is the better one.
+ */
+static int
+split_seams(struct vdt_render *R, struct vdt_err *err)
+{
+	const struct vdt_vtree *t = &R->t;
+	struct vdt_mesh *fm = &R->fm, out = {0};
+	size_t nv = fm->vertex_count, nt = fm->triangle_count, cap = nv + 3 * nt, extra = 0;
+	uint32_t *stack = NULL, *leaf = NULL, *next = NULL, *from = NULL, *node_of = NULL;
+	int any = 0, rc = 0;
+
+	if (R->m->normals == NULL)
+		return 0;
+	stack = malloc((t->node_count + 1) * sizeof(uint32_t));
+	leaf = malloc((cap + 1) * sizeof(uint32_t));
+	next = malloc((cap + 1) * sizeof(uint32_t));
+	if (stack == NULL || leaf == NULL || next == NULL)
+		goto nomem;
+	for (size_t v = 0; v < nv; v++) {
+		uint32_t x = R->node_of[v];
+		leaf[v] = x >= t->leaf_count && one_point(t, x, stack) ? UNSET : NONE;
+		next[v] = NONE;
+		any |= leaf[v] == UNSET;
+	}
+	if (!any)
+		goto out;
+	if ((from = malloc((cap + 1) * sizeof(uint32_t))) == NULL)
+		goto nomem;
+	/* The active triangles, in mesh order as vdt_front_mesh lists them:
+	 * the leaf of each corner is the mesh's. */
+	for (size_t f = 0, i = 0; f < t->triangle_count; f++) {
+		if (R->F.tri_pos[f] == NONE)
+			continue;
+		for (int j = 0; j < 3; j++) {
+			uint32_t *c = fm->triangles + 3 * i + j, w = *c, l = R->m->triangles[3 * f + j];
+			if (leaf[w] == NONE)
+				continue;
+			while (leaf[w] != UNSET && memcmp(t->normal + 3 * (size_t)leaf[w],
+			                                   t->normal + 3 * (size_t)l, 3 * sizeof(float)) != 0) {
+				if (next[w] == NONE) {
+					uint32_t u = (uint32_t)(nv + extra++);
+					next[w] = u;
+					from[u] = *c;
+					next[u] = NONE;
+					leaf[u] = UNSET;
+				}
+				w = next[w];
+			}
+			leaf[w] = l;
+			*c = w;
+		}
+		i++;
+	}
+	if (vdt_mesh_alloc(&out, nv + extra, nt, VDT_ATTR_NORMALS, err) != 0 ||
+	    (node_of = malloc((nv + extra + 1) * sizeof(uint32_t))) == NULL)
+		goto nomem;
+	memcpy(out.triangles, fm->triangles, 3 * nt * sizeof(uint32_t));
+	for (size_t w = 0; w < nv + extra; w++) {
+		size_t v = w < nv ? w : from[w];
+		memcpy(out.positions + 3 * w, fm->positions + 3 * v, 3 * sizeof(float));
+		memcpy(out.normals + 3 * w, leaf[w] == NONE ? fm->normals + 3 * v
+		                                            : t->normal + 3 * (size_t)leaf[w],
+		       3 * sizeof(float));
+		node_of[w] = R->node_of[v];
+	}
+	vdt_mesh_free(fm);
+	*fm = out;
+	free(R->node_of);
+	R->node_of = node_of;
+	goto out;
+nomem:
+	vdt_mesh_free(&out);
+	rc = vdt_err_set(err, VDT_ENOMEM, "out of memory for the front's seams");
+out:
+	free(stack);
+	free(leaf);
+	free(next);
+	free(from);
+	return rc;
+}
+
 int
 vdt_render_draw(struct vdt_render *R, const struct vdt_camera *c, const unsigned char bg[3],
                 struct vdt_err *err)
@@ -141,7 +259,8 @@ vdt_render_draw(struct vdt_render *R, const struct vdt_camera *c, const unsigned
 	R->node_of = NULL;
 	R->colors = NULL;
 	if (R->t.node_count) {
-		if ((rc = vdt_front_mesh(&R->F, 1, &R->fm, &R->node_of, err)) != 0)
+		if ((rc = vdt_front_mesh(&R->F, 1, &R->fm, &R->node_of, err)) != 0 ||
+		    (rc = split_seams(R, err)) != 0)
 			return rc;
 		R->drawn = &R->fm;
 	} else {

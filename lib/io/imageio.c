@@ -7,7 +7,8 @@
  * with the target's permissions, and renamed over the target on success;
  * through a symbolic link to what it names, and in place to a device or
  * FIFO (vdt_output_target). The writer is picked by the target's
- * extension, so the temporary name needs none.
+ * extension, so the temporary name needs none; standard output, and a
+ * device or FIFO whose name has none, get PNG.
  */
 #include <dlfcn.h>
 #include <errno.h>
@@ -16,6 +17,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "imagemod.h"
@@ -94,12 +96,27 @@ from_module(int code, const char *msg, struct vdt_err *err)
 	}
 }
 
-/* The name a writer is picked by: "-" (standard output) is PNG, which
- * is encoded in memory. */
+/*
+ * The name a writer is picked by (the module loaded): path's own
+ * extension, or PNG, which is encoded in memory, for standard output
+ * ("-") and for a device, FIFO or socket whose name has no extension a
+ * writer knows (/dev/null, /dev/stdout on a pipe): written in place,
+ * its name is no file type to keep. A regular file, or a name with
+ * nothing there yet, keeps its own: an unknown extension stays an error
+ * there, not a PNG under a name that says otherwise.
+ */
 static const char *
 writer_name(const char *path)
 {
-	return strcmp(path, "-") == 0 ? "-.png" : path;
+	struct stat st;
+	char msg[512];
+
+	if (strcmp(path, "-") == 0)
+		return "-.png";
+	if (stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode) &&
+	    mod.writer(path, msg, sizeof(msg)) == VDT_IMG_NO_WRITER)
+		return "-.png";
+	return path;
 }
 
 /* Bytes of an image are no more for a terminal than a binary mesh is. */

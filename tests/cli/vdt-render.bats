@@ -388,3 +388,115 @@ path3() {
 	[ "$status" -eq 0 ]
 	[ "$(off_faces "$TMP/s.off")" -gt 0 ]
 }
+
+# A flat-shaded unit cube in OBJ: eight positions, a normal per side and
+# texture coordinates, so 24 vertices once split at its seams.
+flat_cube() {
+	{
+		printf 'v %s\n' '0 0 0' '1 0 0' '1 1 0' '0 1 0' '0 0 1' '1 0 1' '1 1 1' '0 1 1'
+		printf 'vt %s\n' '0 0' '1 0' '1 1' '0 1'
+		printf 'vn %s\n' '0 0 -1' '0 0 1' '0 -1 0' '0 1 0' '-1 0 0' '1 0 0'
+		n=0
+		for q in '1 4 3 2' '5 6 7 8' '1 2 6 5' '4 8 7 3' '1 5 8 4' '2 3 7 6'; do
+			n=$((n + 1))
+			set -- $q
+			printf 'f %s/1/%d %s/2/%d %s/3/%d\n' "$1" $n "$2" $n "$3" $n
+			printf 'f %s/1/%d %s/3/%d %s/4/%d\n' "$1" $n "$3" $n "$4" $n
+		done
+	} > "$TMP/cube.obj"
+}
+
+# The faces of an OFF mesh with normals (NOFF) as the lines of their
+# corners' vertices, sorted: the mesh whatever its vertices' numbering.
+noff_faces() {
+	awk 'NR == 2 { nv = $1 } NR > 2 && NR <= nv + 2 { v[NR - 3] = $0 }
+		NR > nv + 2 { print v[$2] " | " v[$3] " | " v[$4] }' "$1" | sort
+}
+
+@test "vdt-render --mesh-out keeps the input's normals at seams: a flat-shaded cube at any threshold" {
+	flat_cube
+	"$BIN/vdt-build" -q "$TMP/cube.obj" -o "$TMP/c.vdt"
+	"$BIN/vdt-render" -q --full --eye 2,3,4 --size 64x64 "$TMP/c.vdt" --mesh-out "$TMP/full.off" \
+		-o "$TMP/full.png"
+	[ "$(head -1 "$TMP/full.off")" = NOFF ]
+	[ "$(off_vertices "$TMP/full.off")" -eq 24 ]
+	# the seam copies merge first, at no distance, so no threshold splits
+	# them: they were written as 8 vertices with the mean of their normals
+	for p in 1 0.001; do
+		run "$BIN/vdt-render" -q -p $p --eye 2,3,4 --size 64x64 "$TMP/c.vdt" \
+			--mesh-out "$TMP/p.off" -o "$TMP/p.png" --compare "$TMP/full.png"
+		[ "$status" -eq 0 ]
+		[ "$output" = "frame=0 rmse=0.0000 psnr=inf" ]
+		[ "$(off_vertices "$TMP/p.off")" -eq 24 ]
+		[ "$(noff_faces "$TMP/p.off")" = "$(noff_faces "$TMP/full.off")" ]
+	done
+	# every normal written is one of the six the input gave
+	[ "$(awk 'NR > 2 && NR <= 26 { print $4, $5, $6 }' "$TMP/p.off" | sort -u | wc -l)" -eq 6 ]
+}
+
+@test "vdt-render says which of the input's attributes --mesh-out does not write" {
+	flat_cube
+	"$BIN/vdt-build" -q "$TMP/cube.obj" -o "$TMP/c.vdt"
+	run "$BIN/vdt-render" "$TMP/c.vdt" --mesh-out "$TMP/m.obj"
+	[ "$status" -eq 0 ]
+	[ "$output" = "vdt-render: note: '$TMP/c.vdt' has texture coordinates, which --mesh-out does not write: the tree holds positions and normals alone" ]
+	grep -q '^vn ' "$TMP/m.obj"
+	! grep -q '^vt ' "$TMP/m.obj" || false
+	run "$BIN/vdt-render" -q "$TMP/c.vdt" --mesh-out "$TMP/m.obj"
+	[ -z "$output" ]
+	# no note for an image alone, nor for a tree of positions alone
+	run "$BIN/vdt-render" --size 16x16 "$TMP/c.vdt" -o "$TMP/m.png"
+	[ -z "$output" ]
+	tree
+	run "$BIN/vdt-render" "$TMP/t.vdt" --mesh-out "$TMP/t.obj"
+	[ -z "$output" ]
+	# colours, and both
+	printf 'v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nv 1 1 0 1 1 1\nf 1 2 3\nf 3 2 4\n' > "$TMP/c.obj"
+	"$BIN/vdt-build" -q "$TMP/c.obj" -o "$TMP/col.vdt"
+	run "$BIN/vdt-render" "$TMP/col.vdt" --mesh-out "$TMP/col.ply"
+	[[ "$output" == *"'$TMP/col.vdt' has colours, which --mesh-out does not write"* ]]
+	"$BIN/vdt-qslim" -q -r 1 "$SAMPLES/sphere-uv.obj" -o "$TMP/s.obj"
+	sed -i 's/^v \(.*\)$/v \1 0.5 0.5 0.5/' "$TMP/s.obj"
+	"$BIN/vdt-build" -q "$TMP/s.obj" -o "$TMP/s.vdt"
+	run "$BIN/vdt-render" "$TMP/s.vdt" --mesh-out "$TMP/s.ply"
+	[[ "$output" == *"has texture coordinates and colours, which"* ]]
+	# --full on a mesh with no tree writes it as read, with them all
+	run "$BIN/vdt-render" --full "$TMP/cube.obj" --mesh-out "$TMP/f.obj"
+	[ "$status" -eq 0 ]
+	[ -z "$output" ]
+	[ "$(grep -c '^vt ' "$TMP/f.obj")" -eq 24 ]
+}
+
+@test "vdt-render writes PNG, and a mesh stream, to a device or FIFO whose name gives no format" {
+	tree
+	run "$BIN/vdt-render" --size 16x16 "$TMP/t.vdt" -o /dev/null
+	[ "$status" -eq 0 ]
+	[ -z "$output" ]
+	run "$BIN/vdt-render" --size 16x16 "$TMP/t.vdt" --mesh-out /dev/null
+	[ "$status" -eq 0 ]
+	[ -z "$output" ]
+	"$BIN/vdt-render" --size 16x16 "$TMP/t.vdt" -o - > "$TMP/std.png"
+	"$BIN/vdt-render" --size 16x16 "$TMP/t.vdt" -o /dev/stdout | cat > "$TMP/dev.png"
+	cmp "$TMP/std.png" "$TMP/dev.png"
+	[ "$(head -c 4 "$TMP/dev.png" | od -An -c | tr -d ' ')" = '211PNG' ]
+	mkfifo "$TMP/fifo"
+	timeout 20 cat "$TMP/fifo" > "$TMP/got" &
+	run "$BIN/vdt-render" --size 16x16 "$TMP/t.vdt" -o "$TMP/fifo"
+	wait
+	[ "$status" -eq 0 ]
+	cmp "$TMP/std.png" "$TMP/got"
+	timeout 20 cat "$TMP/fifo" > "$TMP/got" &
+	run "$BIN/vdt-render" --size 16x16 "$TMP/t.vdt" --mesh-out "$TMP/fifo"
+	wait
+	[ "$status" -eq 0 ]
+	[ "$(head -c 4 "$TMP/got" | od -An -c | tr -d ' ')" = '211VDT' ]
+	# a regular file, there or not, still needs a known extension
+	: > "$TMP/plain"
+	for o in "-o $TMP/plain" "-o $TMP/new" "--mesh-out $TMP/plain" "--mesh-out $TMP/new"; do
+		run "$BIN/vdt-render" --size 16x16 "$TMP/t.vdt" $o
+		[ "$status" -eq 2 ]
+		one_line
+		[ ! -s "$TMP/plain" ]
+		[ ! -e "$TMP/new" ]
+	done
+}
