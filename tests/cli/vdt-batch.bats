@@ -476,8 +476,9 @@ SH
 	wait "$pid" || st=$?
 	[ "$st" -eq 143 ]
 	sleep 0.5
-	# nothing of the run goes on behind its back
-	! pgrep -f "$TMP/out/.vdt-batch" || false
+	# nothing of the run goes on behind its back: neither make nor the
+	# steps nor the tools (which name $TMP/in or $TMP/out)
+	! pgrep -f "$TMP/" || false
 	run "$BATCH" -q -o "$TMP/out" "$TMP/in"
 	[ "$status" -eq 0 ]
 	[ -s "$TMP/out/bunny.lod4.ply" ]
@@ -490,7 +491,9 @@ SH
 	cp "$SAMPLES/plate.off" "$TMP/in/b.off"
 	run "$BATCH" --ratios 20 -F vdt --recipe lod,tree -o "$TMP/out" "$TMP/in"
 	[ "$status" -eq 1 ]
-	[[ "$output" == *"a.lod1.off: cannot take part"*"output name shared with another model"* ]]
+	# each is named with the output and the other model
+	[[ "$output" == *"vdt-batch: a.lod1.off: cannot take part: its output a.lod1.vdt would also be one of a.off"* ]]
+	[[ "$output" == *"vdt-batch: a.off: cannot take part: its output a.lod1.vdt would also be one of a.lod1.off"* ]]
 	[[ "$output" == *"failed: a.lod1.off a.off"* ]]
 	[ ! -e "$TMP/out/a.lod1.vdt" ] && [ ! -e "$TMP/out/a.vdt" ]
 	[ -s "$TMP/out/b.lod1.vdt" ] && [ -s "$TMP/out/b.vdt" ]
@@ -522,4 +525,219 @@ SH
 	one_line
 	[[ "$output" == *"the labels recipe needs vdt-silhouette, not found in $TMP/bin" ]]
 	[ ! -e "$TMP/out" ]
+}
+
+@test "vdt-batch: ^C (SIGINT) stops make and the tools at once, with status 130, and leaves no temporary file" {
+	F="$SAMPLES/fetched/dragon.ply"
+	[ -r "$F" ] || skip "samples/fetched/dragon.ply is missing (make samples)"
+	# a background job of a shell ignores SIGINT, and a script started so
+	# cannot trap it: the batch is started with it back, as from a terminal
+	envp=$(command -v env)
+	"$envp" --default-signal=INT true 2>/dev/null || skip "env has no --default-signal"
+	mkdir -p "$TMP/in" "$TMP/fake"
+	for m in a b c; do cp "$F" "$TMP/in/$m.ply"; done
+	# the same with an env without --default-signal, where vdt-batch passes
+	# ^C on as SIGTERM
+	printf '#!/bin/sh\ncase $1 in --default-signal*) exit 125 ;; esac\nexec %s "$@"\n' "$envp" > "$TMP/fake/env"
+	chmod +x "$TMP/fake/env"
+	for path in "$PATH" "$TMP/fake:$PATH"; do
+		rm -rf "$TMP/out" "$TMP/tmp"
+		mkdir "$TMP/tmp"
+		PATH=$path TMPDIR="$TMP/tmp" "$envp" --default-signal=INT \
+			"$BATCH" -q -j 2 -o "$TMP/out" "$TMP/in" & pid=$!
+		# when two levels are being written
+		for _ in $(seq 400); do
+			[ "$(pgrep -f "vdt-qslim .*-o $TMP/out/" | wc -l)" -ge 2 ] && break
+			sleep 0.05
+		done
+		sleep 0.3
+		kill -INT "$pid"
+		for _ in $(seq 50); do
+			kill -0 "$pid" 2>/dev/null || break
+			sleep 0.1
+		done
+		if kill -0 "$pid" 2>/dev/null; then
+			# still running 5 s later: stop all of it, and fail
+			kill -KILL $(pgrep -f "$TMP/") 2>/dev/null || :
+			wait "$pid" || :
+			echo "vdt-batch went on after SIGINT" >&2
+			false
+		fi
+		st=0
+		wait "$pid" || st=$?
+		[ "$st" -eq 130 ]
+		# nothing of the run goes on, and no temporary file is left
+		for _ in $(seq 20); do
+			pgrep -f "$TMP/" >/dev/null || break
+			sleep 0.1
+		done
+		! pgrep -f "$TMP/" || false
+		[ -z "$(find "$TMP/out" -name '.*' ! -name .vdt-batch ! -path '*/.vdt-batch/*')" ]
+		[ -z "$(ls -A "$TMP/tmp")" ]
+	done
+}
+
+@test "vdt-batch: a name with a backtick, a newline or another character special to sh or make cannot take part, and runs nothing" {
+	mkdir -p "$TMP/in" "$TMP/bin"
+	printf '#!/bin/sh\ntouch "%s/ran"\n' "$TMP" > "$TMP/bin/vdtpwn"
+	chmod +x "$TMP/bin/vdtpwn"
+	nl='
+'
+	n=0
+	for m in 'y`vdtpwn`' "a${nl}b" "a'b" 'a"b' 'a;b' 'a&b' 'a|b' 'a<b' 'a>b' 'a(b' 'a)b' \
+		'a*b' 'a?b' 'a[b]' 'a#b' 'a%b' 'a$b' 'a=b' 'a:b' 'a\b' 'a b' "a	b" "a$(printf '\001')b"; do
+		cp "$SAMPLES/torus.off" "$TMP/in/$m.off"
+		n=$((n + 1))
+	done
+	# letters outside ASCII, and the other characters, are fine
+	good='ünï{c,d}~!^+,@ąćŁ-_.x'
+	cp "$SAMPLES/torus.off" "$TMP/in/$good.off"
+	cd "$TMP"
+	PATH="$TMP/bin:$PATH" run "$BATCH" --ratios 50 --samples 1000 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 1 ]
+	[ ! -e "$TMP/ran" ]
+	[ "$(printf '%s\n' "$output" | grep -c ': cannot take part: a name with blanks or characters special to sh or make (')" -eq "$n" ]
+	[[ "$output" == *"vdt-batch: y\`vdtpwn\`.off: cannot take part: "*" ('\`')"* ]]
+	[[ "$output" == *"vdt-batch: a?b.off: cannot take part: "*" (a newline)"* ]]
+	[[ "$output" == *"vdt-batch: a?b.off: cannot take part: "*" (a control character)"* ]]
+	# nothing else is made, neither of them nor of halves of their names
+	[ "$(ls "$TMP/out")" = "$good.lod1.ply" ]
+	printf '%s\n' "$output" | grep -q "^  $good.lod1.ply  *1152 "
+	# nor with such a directory path
+	mkdir "$TMP/o\`vdtpwn\`"
+	PATH="$TMP/bin:$PATH" run "$BATCH" -q --ratios 50 -o "$TMP/o\`vdtpwn\`" "$TMP/in"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"a directory path with blanks or characters special to sh or make ('\`')"* ]]
+	[ ! -e "$TMP/ran" ]
+}
+
+@test "vdt-batch: a failed model is named with its own tool's message, not that of a model whose name begins like it" {
+	mkdir -p "$TMP/in"
+	head -c 3000 "$SAMPLES/torus.off" > "$TMP/in/a.off"
+	: > "$TMP/in/a.b.off"
+	run "$BATCH" --ratios 50 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 1 ]
+	[[ "$output" == *"vdt-batch: a.off failed: vdt-cluster: cannot read '$TMP/in/a.off': truncated"* ]]
+	[[ "$output" == *"vdt-batch: a.b.off failed: vdt-cluster: cannot read '$TMP/in/a.b.off': empty"* ]]
+	printf '%s\n' "$output" | grep -q "^  FAILED: vdt-cluster: cannot read '$TMP/in/a.off'"
+}
+
+@test "vdt-batch: models that share a stem take part, their outputs named after their whole name" {
+	mkdir -p "$TMP/in/sub"
+	cp "$SAMPLES/torus.off" "$TMP/in/t.off"
+	"$BIN/vdt-qslim" -q -r 1 "$SAMPLES/plate.off" -o "$TMP/in/t.ply"
+	cp "$SAMPLES/sphere.off" "$TMP/in/sub/t.off"   # in another directory: its own stem
+	run "$BATCH" -v --ratios 50 --recipe lod,tree --samples 1000 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+	[ "$(cd "$TMP/out" && find . -type f ! -path './.vdt-batch/*' | LC_ALL=C sort | tr '\n' ' ')" = \
+		"./sub/t.lod1.ply ./sub/t.vdt ./t.off.lod1.ply ./t.off.vdt ./t.ply.lod1.ply ./t.ply.vdt " ]
+	printf '%s\n' "$output" | grep -q '^  t.off.lod1.ply  *1152 '
+	printf '%s\n' "$output" | grep -q '^  t.ply.lod1.ply  *1344 '
+	printf '%s\n' "$output" | grep -q '^  t.lod1.ply  *2560 '
+	[ "$(printf '%s\n' "$output" | grep -c 'status=ok$')" -eq 3 ]
+}
+
+@test "vdt-batch follows symbolic links to models and directories, names loops and links to nothing, and skips its output tree through a link" {
+	mkdir -p "$TMP/in/sub" "$TMP/elsewhere/deep"
+	cp "$SAMPLES/torus.off" "$TMP/in/"
+	cp "$SAMPLES/plate.off" "$TMP/elsewhere/"
+	cp "$SAMPLES/sphere.off" "$TMP/elsewhere/deep/"
+	ln -s ../../elsewhere/plate.off "$TMP/in/sub/linked.off"
+	ln -s ../elsewhere/deep "$TMP/in/dir"
+	ln -s .. "$TMP/in/sub/loop"
+	ln -s nowhere.off "$TMP/in/gone.off"
+	ln -s ../out "$TMP/in/results"
+	run "$BATCH" --ratios 50 --samples 1000 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 1 ]
+	[ -s "$TMP/out/torus.lod1.ply" ]
+	[ -s "$TMP/out/sub/linked.lod1.ply" ]
+	[ -s "$TMP/out/dir/sphere.lod1.ply" ]
+	printf '%s\n' "$output" | grep -q '^  linked.lod1.ply  *1344 '
+	[[ "$output" == *"vdt-batch: gone.off: cannot take part: a symbolic link that leads to no file"* ]]
+	printf '%s\n' "$output" | grep -q "^vdt-batch: find: .*sub/loop.*loop"
+	printf '%s\n' "$output" | grep -q '^vdt-batch: failed: gone.off$'
+	# the outputs, reached again through in/results, are not models
+	rm "$TMP/in/gone.off"
+	run "$BATCH" -v --ratios 50 --samples 1000 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+	[ "$(printf '%s\n' "$output" | grep -c 'status=ok$')" -eq 3 ]
+	! printf '%s\n' "$output" | grep -q 'results' || false
+	[ ! -e "$TMP/out/results" ]
+}
+
+@test "vdt-batch: an input replaced by another older than its outputs (cp -p, or the same size and time) is made again" {
+	mkdir -p "$TMP/in"
+	cp "$SAMPLES/torus.off" "$SAMPLES/sphere.off" "$TMP/in/"
+	"$BATCH" -q --ratios 50 --samples 1000 -o "$TMP/out" "$TMP/in"
+	ls -l --time-style=full-iso "$TMP/out/sphere.lod1.ply" "$TMP/out/.vdt-batch/sphere.off."* > "$TMP/before"
+	cp "$SAMPLES/plate.off" "$TMP/plate.off"
+	touch -d 2001-01-01 "$TMP/plate.off"
+	cp -p "$TMP/plate.off" "$TMP/in/torus.off"
+	run "$BATCH" -v --ratios 50 --samples 1000 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+	[ "$(printf '%s\n' "$output" | grep -c ' done (')" -eq 1 ]
+	printf '%s\n' "$output" | grep -q 'torus.lod1.ply done ('
+	# the table shows the new input and the level made from it
+	printf '%s\n' "$output" | grep -q '^torus.off  *2688  *76.3K$'
+	printf '%s\n' "$output" | grep -q '^  torus.lod1.ply  *1344 '
+	# another file of the same size and time (a new inode)
+	sed '3s/[0-9]/7/' "$TMP/in/torus.off" > "$TMP/new.off"
+	[ "$(wc -c < "$TMP/new.off")" -eq "$(wc -c < "$TMP/in/torus.off")" ]
+	touch -r "$TMP/in/torus.off" "$TMP/new.off"
+	mv "$TMP/new.off" "$TMP/in/torus.off"
+	run "$BATCH" -v --ratios 50 --samples 1000 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+	[ "$(printf '%s\n' "$output" | grep -c ' done (')" -eq 1 ]
+	printf '%s\n' "$output" | grep -q 'torus.lod1.ply done ('
+	# the other model, and its stamps (its identity, sphere.off.id, too),
+	# were left alone
+	ls -l --time-style=full-iso "$TMP/out/sphere.lod1.ply" "$TMP/out/.vdt-batch/sphere.off."* | cmp - "$TMP/before"
+	grep -q '/sphere.off.id$' "$TMP/before"
+}
+
+@test "vdt-batch: a re-run with nothing to do is quick (no process per output)" {
+	mkdir -p "$TMP/in"
+	"$BIN/vdt-qslim" -q -t 64 "$SAMPLES/torus.off" -o "$TMP/small.off"
+	for i in $(seq 24); do cp "$TMP/small.off" "$TMP/in/m$i.off"; done
+	"$BATCH" -q -j 4 --ratios 50 --samples 1000 -o "$TMP/out" "$TMP/in"
+	start=$(date +%s%N)
+	run "$BATCH" -v --ratios 50 --samples 1000 -o "$TMP/out" "$TMP/in"
+	ms=$((($(date +%s%N) - start) / 1000000))
+	[ "$status" -eq 0 ]
+	[ "$(printf '%s\n' "$output" | grep -c '^  m[0-9]*\.lod1\.ply  *32 ')" -eq 24 ]
+	[ "$(printf '%s\n' "$output" | grep -c 'status=ok$')" -eq 24 ]
+	echo "re-run: $ms ms" >&3
+	[ "$ms" -lt 3000 ]
+}
+
+@test "vdt-batch: a model, an input or an output directory whose name begins with - is a name, not an option" {
+	mkdir -p "$TMP/w/-in/-sub"
+	cp "$SAMPLES/torus.off" "$TMP/w/-in/-t.off"
+	cp "$SAMPLES/plate.off" "$TMP/w/-in/-sub/-p.off"
+	cd "$TMP/w"
+	run "$BATCH" --ratios 50 --samples 1000 -o -out -- -in
+	[ "$status" -eq 0 ]
+	[[ "$output" != *"option"* ]]
+	[ -s "$TMP/w/-out/-t.lod1.ply" ]
+	[ -s "$TMP/w/-out/-sub/-p.lod1.ply" ]
+	printf '%s\n' "$output" | grep -q '^-t.off  *2304 '
+	printf '%s\n' "$output" | grep -q '^  -t.lod1.ply  *1152 '
+	printf '%s\n' "$output" | grep -q '^  -p.lod1.ply  *1344 '
+}
+
+@test "vdt-batch --recipe labels,tree: the tree is built from the labelled stream, and the labels have a row" {
+	mkdir -p "$TMP/in"
+	cp "$SAMPLES/torus.off" "$TMP/in/"
+	run "$BATCH" -v --recipe labels,tree -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+	[ "$(chunk_types "$TMP/out/torus.vdt")" = "MESH VTRE LABL END " ]
+	"$BIN/vdt-build" --check "$TMP/out/torus.vdt"
+	printf '%s\n' "$output" | grep -q '^  torus.vdl  *- '
+	printf '%s\n' "$output" | grep -q '^  torus.vdt  *- '
+	printf '%s\n' "$output" | grep -q 'model=torus.off .* vdl_bytes=[0-9][0-9]* .* tree_vdt_bytes=[0-9][0-9]* .*status=ok$'
+	# the labels alone are a recipe too
+	run "$BATCH" -q --recipe labels -o "$TMP/out2" "$TMP/in"
+	[ "$status" -eq 0 ]
+	[ "$(chunk_types "$TMP/out2/torus.vdl")" = "MESH LABL END " ]
 }
