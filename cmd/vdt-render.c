@@ -208,6 +208,7 @@ run(struct cmdline *cl)
 	int rc = EXIT_OK;
 	unsigned lost;
 	char names[64];
+	int over_budget = 0; /* said once */
 
 	if (vdt_read(cl->in, &m, &extra, &err) != 0)
 		return fail("cannot read", cl->in, &err);
@@ -252,6 +253,14 @@ run(struct cmdline *cl)
 				rc = fail("cannot write", frame_name(name, cl->mesh_out, i), &err);
 			else if (!cl->quiet)
 				fprintf(stderr, "%s: %s\n", progname, err.msg);
+		}
+		/* (the tree's roots are the least it can show) */
+		if (rc == EXIT_OK && cl->o.budget > 0 && R.drawn->triangle_count > cl->o.budget &&
+		    !over_budget && !cl->quiet) {
+			fprintf(stderr, "%s: note: frame %zu has %zu triangles, more than the budget of "
+			        "%lu (-t): the coarsest front of this tree has that many\n", progname, i,
+			        R.drawn->triangle_count, (unsigned long)cl->o.budget);
+			over_budget = 1;
 		}
 		/* Frames stay staged until all are written: a failed run
 		 * replaces none of what their names held. */

@@ -500,3 +500,16 @@ noff_faces() {
 		[ ! -e "$TMP/new" ]
 	done
 }
+
+@test "vdt-render notes a budget below the coarsest front, which it shows" {
+	"$BIN/vdt-build" -q "$SAMPLES/torus.off" -o "$TMP/t.vdt"
+	run "$BIN/vdt-render" -t 1 --mesh-out "$TMP/m.off" "$TMP/t.vdt"
+	[ "$status" -eq 0 ]
+	one_line
+	[[ "$output" == *"note: frame 0 has"*"more than the budget of 1 (-t)"* ]]
+	[ "$(off_faces "$TMP/m.off")" -gt 1 ]
+	run "$BIN/vdt-render" -q -t 1 --mesh-out "$TMP/m.off" "$TMP/t.vdt"
+	[ -z "$output" ]
+	run "$BIN/vdt-render" -t 1000 --mesh-out "$TMP/m.off" "$TMP/t.vdt"
+	[ -z "$output" ]
+}
