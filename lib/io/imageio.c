@@ -17,6 +17,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -36,6 +37,43 @@ static struct {
 } mod;
 static pthread_once_t mod_once = PTHREAD_ONCE_INIT;
 
+/*
+ * Address space the module takes as it loads. OpenImageIO's static
+ * initialisers throw when an address-space limit (ulimit -v) leaves less,
+ * and the process aborts inside dlopen (measured on vdt-render, which
+ * has 31 MB mapped by then: limits of 400-460 MB crashed, from 465 MB it
+ * worked, so about 425 MB of room); with a margin, such a limit is
+ * refused before dlopen instead. (What an image then takes fails as any
+ * allocation does, cleanly.)
+ */
+#define MODULE_ROOM_MB 448
+
+/* Whether an address-space limit leaves room to load the module; else
+ * the reason, into why. */
+static int
+room_to_load(char *why, size_t n)
+{
+	struct rlimit rl;
+	unsigned long pages = 0;
+	FILE *f;
+
+	if (getrlimit(RLIMIT_AS, &rl) != 0 || rl.rlim_cur == RLIM_INFINITY)
+		return 1;
+	if ((f = fopen("/proc/self/statm", "r")) != NULL) {
+		if (fscanf(f, "%lu", &pages) != 1)
+			pages = 0;
+		fclose(f);
+	}
+	unsigned long long used = (unsigned long long)pages * (unsigned long long)sysconf(_SC_PAGESIZE);
+	unsigned long long limit = (unsigned long long)rl.rlim_cur;
+	if (limit > used && (limit - used) >> 20 >= MODULE_ROOM_MB)
+		return 1;
+	snprintf(why, n, "cannot load the image module %s: the address-space limit (ulimit -v) "
+	         "leaves %llu MB, and it takes about %d", VDT_IMAGE_MODULE,
+	         limit > used ? (limit - used) >> 20 : 0, MODULE_ROOM_MB);
+	return 0;
+}
+
 /* dlopen the first of: beside this program, in ../lib/vdt from it (an
  * installed tree), where the build left it. */
 static void
@@ -44,6 +82,9 @@ load(void)
 	char exe[PATH_MAX], path[PATH_MAX + 64];
 	void *h = NULL;
 	ssize_t n = readlink("/proc/self/exe", exe, sizeof(exe) - 1);
+
+	if (!room_to_load(mod.why, sizeof(mod.why)))
+		return;
 
 	if (n > 0) {
 		exe[n] = '\0';

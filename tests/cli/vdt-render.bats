@@ -513,3 +513,21 @@ noff_faces() {
 	run "$BIN/vdt-render" -t 1000 --mesh-out "$TMP/m.off" "$TMP/t.vdt"
 	[ -z "$output" ]
 }
+
+@test "vdt-render under an address-space limit too small for the image module says so, status 1" {
+	# (AddressSanitizer reserves more address space than any limit allows)
+	nm "$BIN/vdt-render" 2>/dev/null | grep -q __asan_init && skip "sanitized build"
+	"$BIN/vdt-build" -q "$SAMPLES/torus.off" -o "$TMP/t.vdt"
+	# OpenImageIO aborted the process inside dlopen at 400-460 MB
+	for kb in 300000 400000 420000 440000 460000 480000; do
+		status=0
+		output=$(sh -c "ulimit -v $kb; '$BIN/vdt-render' --size 64x48 '$TMP/t.vdt' -o '$TMP/t.png'" 2>&1) || status=$?
+		[ "$status" -eq 0 ] || [ "$status" -eq 1 ]
+		[ "$status" -eq 0 ] || [[ "$output" == *"address-space limit (ulimit -v)"* ]]
+	done
+	rm -f "$TMP/t.png"
+	status=0
+	output=$(sh -c "ulimit -v 300000; '$BIN/vdt-render' --size 64x48 '$TMP/t.vdt' -o '$TMP/t.png'" 2>&1) || status=$?
+	[ "$status" -eq 1 ]
+	[ ! -e "$TMP/t.png" ]
+}
