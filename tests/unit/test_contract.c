@@ -534,6 +534,21 @@ given_quadrics_drive_placement(void **state)
 	vdt_mesh_free(&m);
 }
 
+/* s and a copy of it moved dx along x, as one mesh, into m. */
+static void
+side_by_side(const struct vdt_mesh *s, float dx, struct vdt_mesh *m)
+{
+	vdt_mesh_alloc(m, 2 * s->vertex_count, 2 * s->triangle_count, 0, NULL);
+	memcpy(m->positions, s->positions, 12 * s->vertex_count);
+	for (size_t i = 0; i < s->vertex_count; i++) {
+		memcpy(m->positions + 3 * (s->vertex_count + i), s->positions + 3 * i, 12);
+		m->positions[3 * (s->vertex_count + i)] += dx;
+	}
+	memcpy(m->triangles, s->triangles, 12 * s->triangle_count);
+	for (size_t i = 0; i < 3 * s->triangle_count; i++)
+		m->triangles[3 * s->triangle_count + i] = s->triangles[i] + (uint32_t)s->vertex_count;
+}
+
 /* Two spheres 0.01 apart join through virtual pairs when asked to. */
 static void
 aggregation_joins_parts(void **state)
@@ -546,15 +561,7 @@ aggregation_joins_parts(void **state)
 
 	(void)state;
 	shape_icosphere(&s, 1);
-	vdt_mesh_alloc(&m, 2 * s.vertex_count, 2 * s.triangle_count, 0, NULL);
-	memcpy(m.positions, s.positions, 12 * s.vertex_count);
-	for (size_t i = 0; i < s.vertex_count; i++) {
-		memcpy(m.positions + 3 * (s.vertex_count + i), s.positions + 3 * i, 12);
-		m.positions[3 * (s.vertex_count + i)] += 2.01f;
-	}
-	memcpy(m.triangles, s.triangles, 12 * s.triangle_count);
-	for (size_t i = 0; i < 3 * s.triangle_count; i++)
-		m.triangles[3 * s.triangle_count + i] = s.triangles[i] + (uint32_t)s.vertex_count;
+	side_by_side(&s, 2.01f, &m);
 	vdt_qslim_defaults(&o);
 	o.target_triangles = 8;
 	o.aggregate = 0.05;
@@ -591,15 +598,7 @@ virtual_pairs_zip_a_gap_shut(void **state)
 
 	(void)state;
 	shape_grid(&g, 8);
-	vdt_mesh_alloc(&m, 2 * g.vertex_count, 2 * g.triangle_count, 0, NULL);
-	memcpy(m.positions, g.positions, 12 * g.vertex_count);
-	for (size_t i = 0; i < g.vertex_count; i++) {
-		memcpy(m.positions + 3 * (g.vertex_count + i), g.positions + 3 * i, 12);
-		m.positions[3 * (g.vertex_count + i)] += 1.000001f;
-	}
-	memcpy(m.triangles, g.triangles, 12 * g.triangle_count);
-	for (size_t i = 0; i < 3 * g.triangle_count; i++)
-		m.triangles[3 * g.triangle_count + i] = g.triangles[i] + (uint32_t)g.vertex_count;
+	side_by_side(&g, 1.000001f, &m);
 	vdt_qslim_defaults(&o);
 	o.target_ratio = 0.5;
 	o.aggregate = 1e-5;
