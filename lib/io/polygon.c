@@ -3,10 +3,11 @@
  *
  * Ear clipping: a corner whose two neighbours it can be cut off with (it
  * turns the polygon's way, and no corner left that turns the other way
- * lies in the triangle) is cut off, until three corners remain. Every
- * simple polygon has such a corner; one that is not simple, or that
- * rounding leaves without, gets its most convex corner cut off instead,
- * so that the n - 2 triangles always come out.
+ * lies in the triangle) is cut off, until three corners remain; a corner
+ * repeated goes at once, in a triangle of no area. Every simple polygon
+ * has such a corner; one that is not simple, or that rounding leaves
+ * without, gets its most convex corner cut off instead, so that the
+ * n - 2 triangles always come out, in O(n^2) time at most.
  */
 #include "polygon.h"
 
@@ -131,13 +132,30 @@ ear(const double *q, const uint32_t *ring, uint32_t a, uint32_t i, uint32_t c)
 	return 1;
 }
 
+/* The nearest corner before (step n - 1) or after (step 1) corner k, of
+ * the n, not at its position: k itself if none is. */
+static uint32_t
+apart(const double *q, size_t n, size_t k, size_t step)
+{
+	size_t j = (k + step) % n;
+
+	while (j != k && same(q, (uint32_t)j, (uint32_t)k))
+		j = (j + step) % n;
+	return (uint32_t)j;
+}
+
+/* Ear tests per corner, at most: each scans the ring, so that a polygon
+ * without ears to speak of (one that crosses itself) costs O(n^2), not
+ * O(n^3), before the most convex corners are cut off instead. */
+#define EAR_TESTS 8
+
 int
 vdt_polygon_triangulate(struct vdt_polygon *s, const double *p, size_t n, uint32_t *tri)
 {
-	size_t left = n, out = 0, misses = 0;
+	size_t left = n, out = 0, misses = 0, tests = 0;
 	uint32_t i = 0;
 	double *q;
-	int convex = 1;
+	int convex = 1, stuck = 0;
 
 	fan(n, tri);
 	if (n <= 3 || n > VDT_POLYGON_EAR_MAX)
@@ -149,9 +167,11 @@ vdt_polygon_triangulate(struct vdt_polygon *s, const double *p, size_t n, uint32
 		memmove(q, p, 3 * n * sizeof(*q));
 	if (flatten(q, n, q) != 0)
 		return 0;
-	for (size_t k = 0; k < n && convex; k++)
-		convex = turn(q, (uint32_t)((k + n - 1) % n), (uint32_t)k,
-		              (uint32_t)((k + 1) % n)) >= 0;
+	/* (a repeated corner turns neither way: look past it) */
+	for (size_t k = 0; k < n && convex; k++) {
+		uint32_t a = apart(q, n, k, n - 1), c = apart(q, n, k, 1);
+		convex = a == k || turn(q, a, (uint32_t)k, c) >= 0;
+	}
 	if (convex)
 		return 0;
 
@@ -162,9 +182,13 @@ vdt_polygon_triangulate(struct vdt_polygon *s, const double *p, size_t n, uint32
 	}
 	while (left > 3) {
 		uint32_t a = ring[2 * i], c = ring[2 * i + 1];
-		if (misses == left) { /* no ear: cut off the most convex corner */
+		if (same(q, a, i) || same(q, i, c)) {
+			/* a repeated corner goes in a triangle of no area */
+		} else if (stuck || misses == left || tests >= EAR_TESTS * n) {
+			/* no ear: cut off the most convex corner */
 			double best = -INFINITY;
 			uint32_t x = i, start = i;
+			stuck = 1;
 			do {
 				double t = turn(q, ring[2 * x], x, ring[2 * x + 1]);
 				if (t > best) {
@@ -175,7 +199,7 @@ vdt_polygon_triangulate(struct vdt_polygon *s, const double *p, size_t n, uint32
 			} while (x != start);
 			a = ring[2 * i];
 			c = ring[2 * i + 1];
-		} else if (!ear(q, ring, a, i, c)) {
+		} else if (tests++, !ear(q, ring, a, i, c)) {
 			i = c;
 			misses++;
 			continue;

@@ -177,6 +177,27 @@ stars_and_jagged_rings(void **state)
 	vdt_polygon_free(&s);
 }
 
+/*
+ * An L whose reflex corner (1,1) is listed twice: each copy turns neither
+ * way, which must not pass for convex (the fan folds); the repeat goes in
+ * a triangle of no area, the rest cover the L once.
+ */
+static void
+repeated_reflex_corner_is_seen(void **state)
+{
+	static const double xy[14] = {2, 0, 2, 1, 1, 1, 1, 1, 1, 2, 0, 2, 0, 0};
+	double p[21];
+	uint32_t tri[15];
+	struct vdt_polygon s = {0};
+
+	(void)state;
+	place(xy, 7, ox, ex, ey, p);
+	assert_int_equal(vdt_polygon_triangulate(&s, p, 7, tri), 0);
+	assert_false(is_fan(tri, 7));
+	covers(xy, 7, tri);
+	vdt_polygon_free(&s);
+}
+
 /* Polygons no cut can mend still give n - 2 triangles on their corners:
  * collinear corners (no area), a repeated corner, a crossed quad (a bow
  * tie), a figure of eight; a concave polygon past VDT_POLYGON_EAR_MAX
@@ -273,6 +294,7 @@ main(void)
 	        cmocka_unit_test(convex_keeps_the_fan),
 	        cmocka_unit_test(notch_is_cut_into_ears),
 	        cmocka_unit_test(stars_and_jagged_rings),
+	        cmocka_unit_test(repeated_reflex_corner_is_seen),
 	        cmocka_unit_test(degenerate_polygons_give_n_minus_2),
 	        cmocka_unit_test(refan_mends_a_reader_fan),
 	};
