@@ -59,7 +59,7 @@ struct vdt_tsource {
 	uint64_t poly_n, poly_k;
 	enum vdt_ply_type poly_type;
 	struct vdt_polygon pscratch;
-	uint32_t *ptri; /* its triangles (polygon.h), corners 0..n-1 */
+	uint32_t *ptri; /* its triangles (polygon.h), as vertex numbers */
 	size_t ptri_cap;
 
 	/* STL and vdt: triangle cursor */
@@ -367,15 +367,34 @@ ply_poly_corner(const struct vdt_tsource *s, uint64_t k)
 }
 
 /*
- * The triangles of the polygon just started into s->ptri (polygon.h),
- * every corner checked first. A triangle, or a polygon past
- * VDT_POLYGON_EAR_MAX corners, is fanned as it is read instead.
+ * Vertex v of a PLY source (ctx) as the whole-file reader has it, in
+ * floats, for vdt_polygon_refan: both then cut a polygon alike. (The
+ * float goes through memory: GCC 12.2 at -O2 vectorised the rounding of
+ * the double path into the float path's, which needs none, and left two
+ * of the three coordinates unrounded.)
+ */
+static void
+ply_float_corner(const void *ctx, uint32_t v, double p[3])
+{
+	double d[3];
+
+	ply_corner(ctx, v, d);
+	for (int k = 0; k < 3; k++) {
+		volatile float f = (float)d[k];
+		p[k] = f;
+	}
+}
+
+/*
+ * The triangles of the polygon just started into s->ptri, as vertex
+ * numbers (polygon.h), every corner checked first. A triangle, or a
+ * polygon past VDT_POLYGON_EAR_MAX corners, is fanned as it is read
+ * instead.
  */
 static int
 ply_polygon(struct vdt_tsource *s, struct vdt_err *err)
 {
 	size_t n = (size_t)s->poly_n;
-	double *p;
 
 	if (n == 3 || n > VDT_POLYGON_EAR_MAX)
 		return 0;
@@ -386,19 +405,24 @@ ply_polygon(struct vdt_tsource *s, struct vdt_err *err)
 		s->ptri = t;
 		s->ptri_cap = 3 * (n - 2);
 	}
-	if ((p = malloc(3 * n * sizeof(*p))) == NULL)
-		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
 	for (size_t k = 0; k < n; k++) {
 		int64_t v = ply_poly_corner(s, k);
-		if (v < 0 || (uint64_t)v >= s->vcount) {
-			free(p);
+		if (v < 0 || (uint64_t)v >= s->vcount)
 			return bad_index(s, v, err);
-		}
-		ply_corner(s, (uint64_t)v, p + 3 * k);
+		if (k == 0)
+			s->ptri[0] = (uint32_t)v;
+		else if (k == 1)
+			s->ptri[1] = (uint32_t)v;
+		else
+			s->ptri[3 * (k - 2) + 2] = (uint32_t)v;
 	}
-	int rc = vdt_polygon_triangulate(&s->pscratch, p, n, s->ptri);
-	free(p);
-	return rc != 0 ? vdt_err_set(err, VDT_ENOMEM, "out of memory") : 0;
+	for (size_t j = 1; j < n - 2; j++) { /* the fan, from its corners */
+		s->ptri[3 * j] = s->ptri[0];
+		s->ptri[3 * j + 1] = s->ptri[3 * j - 1];
+	}
+	if (vdt_polygon_refan(&s->pscratch, ply_float_corner, s, s->ptri, n, NULL, 0) != 0)
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	return 0;
 }
 
 /* Start the next face record: set s->poly, poly_n, poly_k. */
@@ -463,15 +487,15 @@ ply_triangles(struct vdt_tsource *s, double *tri, uint32_t *ids, size_t max, siz
 			if ((rc = ply_next_face(s, err)) != 0)
 				return rc;
 		}
-		/* Triangle poly_k - 2 of the polygon's (ply_polygon), or of its
+		/* Triangle poly_k - 2 of the polygon (ply_polygon), or of its
 		 * fan: (0, k-1, k). */
 		{
 			int own = s->poly_n > 3 && s->poly_n <= VDT_POLYGON_EAR_MAX;
 			const uint32_t *t = own ? s->ptri + 3 * (s->poly_k - 2) : NULL;
 			int64_t v[3] = {
-			        ply_poly_corner(s, own ? t[0] : 0),
-			        ply_poly_corner(s, own ? t[1] : s->poly_k - 1),
-			        ply_poly_corner(s, own ? t[2] : s->poly_k),
+			        own ? t[0] : ply_poly_corner(s, 0),
+			        own ? t[1] : ply_poly_corner(s, s->poly_k - 1),
+			        own ? t[2] : ply_poly_corner(s, s->poly_k),
 			};
 			for (int j = 0; j < 3; j++) {
 				if (v[j] < 0 || (uint64_t)v[j] >= s->vcount)

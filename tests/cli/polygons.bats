@@ -120,3 +120,28 @@ both_cover() {
 	run "$BIN/vdt-qslim" -q -r 1 -F obj "$TMP/q.obj" -o -
 	[[ "$output" == *"f 1 2 3"*"f 1 3 4"* ]]
 }
+
+@test "a binary PLY polygon in doubles is cut alike by vdt-qslim and vdt-cluster" {
+	# (1, 1 - 1e-9) is a reflex corner in doubles and on the edge in
+	# floats, which both readers keep the positions in
+	python3 - "$TMP/d.ply" <<'PY'
+import struct, sys
+v = [(0, 0, 0), (2, 0, 0), (2, 1, 0), (1.5, 1, 0), (1, 1 - 1e-9, 0), (0.5, 1, 0), (0, 1, 0)]
+h = ("ply\nformat binary_little_endian 1.0\nelement vertex 7\nproperty double x\n"
+     "property double y\nproperty double z\nelement face 1\n"
+     "property list uchar int vertex_indices\nend_header\n")
+with open(sys.argv[1], "wb") as f:
+    f.write(h.encode())
+    for p in v:
+        f.write(struct.pack("<3d", *p))
+    f.write(struct.pack("<B7i", 7, *range(7)))
+PY
+	"$BIN/vdt-qslim" -q -r 1 -F obj "$TMP/d.ply" -o "$TMP/q.obj"
+	"$BIN/vdt-cluster" -q -s 1e-6 -F obj "$TMP/d.ply" -o "$TMP/c.obj"
+	# the triangles as sets of corner positions
+	tris() {
+		awk '/^v / { p[++n] = $2 "," $3 } /^f / { print p[$2] " " p[$3] " " p[$4] }' "$1" |
+			while read -r a b c; do printf '%s\n' "$a" "$b" "$c" | sort | tr '\n' ' '; echo; done | sort
+	}
+	[ "$(tris "$TMP/q.obj")" = "$(tris "$TMP/c.obj")" ]
+}
