@@ -212,24 +212,17 @@ ply_format(const unsigned char *buf, size_t n, const char *kind)
 	return 0;
 }
 
-/* A byte order mark of UTF-16 or UTF-32. */
-static int
-wide_text(const unsigned char *buf, size_t n)
+int
+vdt_format_wide(const unsigned char *buf, size_t n)
 {
 	return n >= 2 && ((buf[0] == 0xff && buf[1] == 0xfe) || (buf[0] == 0xfe && buf[1] == 0xff) ||
 	                  (n >= 4 && buf[0] == 0 && buf[1] == 0 && buf[2] == 0xfe && buf[3] == 0xff));
 }
 
 int
-vdt_format_wide(const unsigned char *buf, size_t n)
-{
-	return wide_text(buf, n);
-}
-
-int
 vdt_format_unknown(const unsigned char *buf, size_t n, struct vdt_err *err)
 {
-	if (wide_text(buf, n))
+	if (vdt_format_wide(buf, n))
 		return vdt_err_set(err, VDT_EFORMAT, "unknown format: text in UTF-%d (save it as UTF-8)",
 		                   buf[0] == 0 || (n >= 4 && buf[2] == 0 && buf[3] == 0) ? 32 : 16);
 	return vdt_err_set(err, VDT_EFORMAT, "unknown format");
@@ -264,10 +257,6 @@ vdt_format_detect(const unsigned char *buf, size_t n)
 			return VDT_FMT_PLY;
 		return VDT_FMT_AUTO;
 	}
-	/* Text in UTF-16 or UTF-32 (by its byte order mark): no format of ours,
-	 * whatever its size (vdt_format_unknown says so). */
-	if (wide_text(buf, n))
-		return VDT_FMT_AUTO;
 	/* A binary STL is recognised for sure by its size: 84 + 50 count. */
 	if (n >= 84) {
 		uint32_t c = (uint32_t)buf[80] | (uint32_t)buf[81] << 8 |
@@ -275,6 +264,11 @@ vdt_format_detect(const unsigned char *buf, size_t n)
 		if (c > 0 && (uint64_t)c * 50 + 84 == n)
 			return VDT_FMT_STL;
 	}
+	/* Text in UTF-16 or UTF-32 (by its byte order mark, which a binary
+	 * STL's free header may also begin with: sized as one, it is one):
+	 * no format of ours (vdt_format_unknown says so). */
+	if (vdt_format_wide(buf, n))
+		return VDT_FMT_AUTO;
 	if (has_prefix_ci(buf, n, "solid")) { /* its keywords in any case, as the reader takes them */
 		size_t l = n < 512 ? n : 512;
 		if (!is_text(buf, l))
@@ -389,7 +383,7 @@ vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
 	if (f == VDT_FMT_AUTO && name != NULL) {
 		enum vdt_format hint = vdt_format_from_path(name);
 		/* Only text formats can hide from detection (long comments). */
-		if ((hint == VDT_FMT_OBJ || hint == VDT_FMT_OFF) && !wide_text(buf, len))
+		if ((hint == VDT_FMT_OBJ || hint == VDT_FMT_OFF) && !vdt_format_wide(buf, len))
 			f = hint;
 	}
 	if (f != VDT_FMT_AUTO) { /* a text format: the mark is no part of it */

@@ -80,8 +80,10 @@ size_t vdt_bom_length(const unsigned char *buf, size_t n);
 enum vdt_format vdt_format_detect(const unsigned char *buf, size_t n);
 
 /* VDT_EFORMAT "unknown format" for buf[0..n), with what it is where that is
- * known (text in UTF-16 or UTF-32, vdt_format_wide). */
+ * known (text in UTF-16 or UTF-32). */
 int vdt_format_unknown(const unsigned char *buf, size_t n, struct vdt_err *err);
+
+/* Whether buf starts with a byte order mark of UTF-16 or UTF-32. */
 int vdt_format_wide(const unsigned char *buf, size_t n);
 
 /*

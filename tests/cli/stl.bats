@@ -141,3 +141,15 @@ four|line 14: a facet of more than 3 vertices
 END
 	done
 }
+
+@test "a binary STL whose free header begins like a UTF-16 mark is read as the STL it is" {
+	python3 - "$TMP/h.stl" <<'PY'
+import struct, sys
+tri = struct.pack("<12fH", 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0)
+open(sys.argv[1], "wb").write(b"\xfe\xff" + b" " * 78 + struct.pack("<I", 1) + tri)
+PY
+	"$BIN/vdt-qslim" -q -r 1 "$TMP/h.stl" -o "$TMP/q.off"
+	[ "$(off_faces "$TMP/q.off")" -eq 1 ]
+	"$BIN/vdt-cluster" -q -g 2 "$TMP/h.stl" -o "$TMP/c.off"
+	[ "$(off_faces "$TMP/c.off")" -eq 1 ]
+}
