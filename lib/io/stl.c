@@ -380,7 +380,9 @@ stl_numbers(struct stl_text *t, const char *what, float x[3], struct vdt_err *er
 		if (q != w + wl)
 			return vdt_err_set(err, VDT_EFORMAT, "line %zu: '%.*s' is not a number (in a %s)",
 			                   t->line, (int)(wl > 32 ? 32 : wl), w, what);
-		if (!isfinite(x[k]))
+		/* (a facet's normal is dropped, as binary STL's is: some
+		 * writers give a degenerate facet a normal of NaNs) */
+		if (!isfinite(x[k]) && strcmp(what, "normal") != 0)
 			return vdt_err_set(err, VDT_EFORMAT, "line %zu: %s coordinate '%.*s' is not finite",
 			                   t->line, what, (int)(wl > 32 ? 32 : wl), w);
 	}
