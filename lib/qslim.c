@@ -2468,16 +2468,25 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	co.rank = seam;
 	/* Without the attribute terms, a vertex keeps the input's attribute
 	 * sets at its position (build_output): of two on seams, the one where
-	 * more meet survives (a corner of a flat-shaded cube, not a vertex of
-	 * its edge that the corner joins). */
+	 * more sets meet survives (a corner of a flat-shaded cube, not a
+	 * vertex of its edge that the corner joins); a seam still outranks a
+	 * vertex off one (valid_fn), whose copies, if any, are all alike. */
 	if (c.pin_seams && c.at == NULL) {
-		if ((wedges = calloc(nw ? nw : 1, 1)) == NULL) {
+		if (input_lists(canon, n, nw, &wstart, &wlist) != 0 ||
+		    (wedges = calloc(nw ? nw : 1, 1)) == NULL) {
 			free(seam);
 			goto nomem;
 		}
-		for (size_t i = 0; i < n; i++)
-			if (wedges[canon[i]] < UINT8_MAX)
-				wedges[canon[i]]++;
+		for (size_t v = 0; v < nw; v++) {
+			unsigned sets = 0;
+			for (uint32_t j = wstart[v]; j < wstart[v + 1] && sets < UINT8_MAX; j++) {
+				uint32_t k = wstart[v];
+				while (k < j && !same_attrs(in, wlist[k], wlist[j]))
+					k++;
+				sets += k == j;
+			}
+			wedges[v] = (uint8_t)(seam[v] && sets < 2 ? 2 : seam[v] ? sets : 1);
+		}
 		co.rank = wedges;
 	}
 	co.virtual_pairs = vpairs;
@@ -2565,7 +2574,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	/* (after the order by source: the backs come last) */
 	if (nbacks > 0 && add_backs(&r, backs, nbacks, in, canon, &bk) != 0)
 		goto nomem;
-	if (c.at == NULL && input_lists(canon, n, nw, &wstart, &wlist) != 0)
+	if (c.at == NULL && wstart == NULL && input_lists(canon, n, nw, &wstart, &wlist) != 0)
 		goto nomem;
 	rc = c.at ? build_output_attr(in, &c, &r, &bk, out, err)
 	          : build_output(in, canon, wstart, wlist, dups, ndups, &r, &bk, out, err);
