@@ -238,7 +238,6 @@ obj_free(struct obj *o)
 	vdt_polygon_free(&o->poly);
 }
 
-/* First pass: count the statements that define indexable elements. */
 /* Text read between calls of the visitor's read_to, at least. */
 #define READ_STEP ((size_t)8 << 20)
 
@@ -254,6 +253,7 @@ read_to(const struct obj *o, const struct reader *r, const char *buf, size_t *to
 	}
 }
 
+/* First pass: count the statements that define indexable elements. */
 static int
 count(const char *buf, size_t len, struct obj *o, struct vdt_err *err)
 {
@@ -492,6 +492,23 @@ bad:
 	                   face, quote(r->p, r->end, q));
 }
 
+/* The polygon of k corners whose fan starts at triangle t, triangulated
+ * (polygon.h), its corners' vt and vn numbers with it. */
+static int
+refan(struct obj *o, size_t t, size_t k, struct vdt_err *err)
+{
+	uint32_t *more[2] = {NULL, NULL};
+
+	if (o->tri_t != NULL) {
+		more[0] = o->tri_t + 3 * t;
+		more[1] = o->tri_n + 3 * t;
+	}
+	if (vdt_polygon_refan(&o->poly, vdt_polygon_floats, o->pos, o->tri_v + 3 * t, k, more,
+	                      o->tri_t ? 2 : 0) != 0)
+		return vdt_err_set(err, VDT_ENOMEM, "cannot triangulate a face of %zu corners", k);
+	return 0;
+}
+
 /*
  * The fan of k corners just made: triangulated now (polygon.h) if every
  * corner's position has been read; else noted, to be triangulated once
@@ -506,21 +523,11 @@ polygon(struct obj *o, size_t k, struct vdt_err *err)
 		               : 0;
 
 	size_t t = o->tri_count - (k - 2);
-	uint32_t *fan = o->tri_v + 3 * t, *more[2] = {NULL, NULL};
 	int ready = 1;
-	if (o->tri_t != NULL) {
-		more[0] = o->tri_t + 3 * t;
-		more[1] = o->tri_n + 3 * t;
-	}
 	for (size_t j = 0; j < 3 * (k - 2); j++)
-		ready &= fan[j] < o->have_v;
-	if (ready) {
-		if (vdt_polygon_refan(&o->poly, vdt_polygon_floats, o->pos, fan, k, more,
-		                      o->tri_t ? 2 : 0) != 0)
-			return vdt_err_set(err, VDT_ENOMEM,
-			                   "cannot triangulate a face of %zu corners", k);
-		return 0;
-	}
+		ready &= o->tri_v[3 * t + j] < o->have_v;
+	if (ready)
+		return refan(o, t, k, err);
 	if (o->nlater == o->later_cap) {
 		size_t cap = o->later_cap ? 2 * o->later_cap : 64;
 		uint64_t *l = realloc(o->later, cap * sizeof(*l));
@@ -537,19 +544,11 @@ polygon(struct obj *o, size_t k, struct vdt_err *err)
 static int
 mend_later(struct obj *o, struct vdt_err *err)
 {
-	for (size_t i = 0; i < o->nlater; i++) {
-		size_t t = (size_t)(o->later[i] >> 20), k = (size_t)(o->later[i] & 0xfffff);
-		uint32_t *more[2] = {NULL, NULL};
-		if (o->tri_t != NULL) {
-			more[0] = o->tri_t + 3 * t;
-			more[1] = o->tri_n + 3 * t;
-		}
-		if (vdt_polygon_refan(&o->poly, vdt_polygon_floats, o->pos, o->tri_v + 3 * t, k,
-		                      more, o->tri_t ? 2 : 0) != 0)
-			return vdt_err_set(err, VDT_ENOMEM,
-			                   "cannot triangulate a face of %zu corners", k);
-	}
-	return 0;
+	int rc = 0;
+
+	for (size_t i = 0; i < o->nlater && rc == 0; i++)
+		rc = refan(o, (size_t)(o->later[i] >> 20), (size_t)(o->later[i] & 0xfffff), err);
+	return rc;
 }
 
 static int
@@ -808,9 +807,9 @@ face_normals(struct vdt_mesh *m, const uint32_t *n)
 	}
 	for (size_t i = 0; i < m->vertex_count; i++) {
 		float *x = m->normals + 3 * i;
-		double l = sqrt((double)x[0] * x[0] + (double)x[1] * x[1] + (double)x[2] * x[2]);
 		if (n[i] != NONE)
 			continue;
+		double l = sqrt((double)x[0] * x[0] + (double)x[1] * x[1] + (double)x[2] * x[2]);
 		if (l > 0 && isfinite(l)) {
 			for (int a = 0; a < 3; a++)
 				x[a] = (float)(x[a] / l);
