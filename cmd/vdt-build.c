@@ -110,9 +110,12 @@ check(struct cmdline *cl)
 	if (vdt_read(cl->check, &m, &extra, &err) != 0)
 		return fail("cannot read", cl->check, &err);
 	if ((rc = vdt_vtree_decode_chunk(&extra, &m, &t, &err)) != 0 ||
-	    (rc = labels_fit(&extra, &m, &err)) != 0 ||
 	    (rc = vdt_vtree_summarize(&t, &m, &s, &err)) != 0) {
 		rc = fail("invalid tree in", cl->check, &err);
+		goto out;
+	}
+	if ((rc = labels_fit(&extra, &m, &err)) != 0) {
+		rc = fail("labels that do not fit the mesh in", cl->check, &err);
 		goto out;
 	}
 	if (cl->verbose) {
