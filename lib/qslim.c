@@ -1705,6 +1705,9 @@ build_output(const struct vdt_mesh *in, const uint32_t *canon,
 		free(src);
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory building the output");
 	}
+	/* (with attributes, the first of the copies alike: a soup's corners
+	 * weld; without, a corner keeps the input vertex it started from) */
+	unsigned attrs = vdt_mesh_attrs(in);
 	memset(index, 0xff, in->vertex_count * sizeof(*index));
 	for (size_t t = 0; t < r->triangle_count; t++)
 		for (int k = 0; k < 3; k++) {
@@ -1717,7 +1720,9 @@ build_output(const struct vdt_mesh *in, const uint32_t *canon,
 			if (w0 != NONE) {
 				double best = INFINITY;
 				for (uint32_t j = wstart[v]; j < wstart[v + 1]; j++) {
-					double d = wlist[j] == w0 ? -1 : attr_distance(in, wlist[j], w0);
+					double d = wlist[j] == w0 || (attrs && same_attrs(in, wlist[j], w0))
+					                   ? -1
+					                   : attr_distance(in, wlist[j], w0);
 					if (d < best) {
 						best = d;
 						pick = wlist[j];

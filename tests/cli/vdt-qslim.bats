@@ -922,3 +922,17 @@ PY
 	"$BIN/vdt-cluster" -q -g 2 "$TMP/b.ply" -o "$TMP/c.off"
 	[ "$(off_faces "$TMP/c.off")" -eq 1 ]
 }
+
+@test "vdt-qslim --attribute-weight 0 welds a soup's identical copies into one vertex" {
+	# every face of the textured sphere with its own copies of its corners
+	awk '/^v / { v[++nv] = $0 } /^vt / { t[++nt] = $0 } /^vn / { n[++nn] = $0 }
+		/^f / { printf "f"; for (i = 2; i <= NF; i++) { split($i, c, "/")
+			print v[c[1]] > "/dev/stderr"; if (c[2] != "") print t[c[2]] > "/dev/stderr"
+			if (c[3] != "") print n[c[3]] > "/dev/stderr"; k++; printf " %d/%d%s", k, k, c[3] != "" ? "/" k : "" }
+			printf "\n" }' "$SAMPLES/sphere-uv.obj" 2>"$TMP/attrs" >"$TMP/faces"
+	cat "$TMP/attrs" "$TMP/faces" >"$TMP/soup.obj"
+	"$BIN/vdt-qslim" -q -t 400 --attribute-weight 0 -F ply-ascii "$TMP/soup.obj" -o "$TMP/o.ply"
+	# no two vertices alike in position and attributes
+	awk '/^end_header/ { body = 1; next } body && NF > 4 && $1 != 3 { print }' "$TMP/o.ply" >"$TMP/rows"
+	[ "$(sort "$TMP/rows" | uniq -d | wc -l)" -eq 0 ]
+}
