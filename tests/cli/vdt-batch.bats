@@ -741,3 +741,20 @@ SH
 	[ "$status" -eq 0 ]
 	[ "$(chunk_types "$TMP/out2/torus.vdl")" = "MESH LABL END " ]
 }
+
+@test "vdt-batch: a second run into an output directory in use stops at once, writing nothing" {
+	mkdir -p "$TMP/in"
+	cp "$SAMPLES/fetched/dragon-res2.ply" "$SAMPLES/torus.off" "$TMP/in/"
+	"$BATCH" -q -j 1 -o "$TMP/out" "$TMP/in" >"$TMP/first" 2>&1 &
+	first=$!
+	# (until the first holds the lock: its state directory has a Makefile)
+	for _ in $(seq 100); do [ -e "$TMP/out/.vdt-batch/Makefile" ] && break; sleep 0.1; done
+	run "$BATCH" -q -j 1 --ratios 30 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 1 ]
+	[[ "$output" == *"another vdt-batch is writing into"* ]]
+	wait "$first"
+	# the first run's outputs are its own (50% first), and a rerun with
+	# its options makes nothing again
+	run "$BATCH" -v -j 1 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+}
