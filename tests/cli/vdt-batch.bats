@@ -758,3 +758,13 @@ SH
 	run "$BATCH" -v -j 1 -o "$TMP/out" "$TMP/in"
 	[ "$status" -eq 0 ]
 }
+
+@test "vdt-batch takes -qv together, as its synopsis writes it" {
+	mkdir -p "$TMP/in"
+	cp "$SAMPLES/torus.off" "$TMP/in/"
+	run "$BATCH" -qv --ratios 50 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"model=torus.off"* ]]
+	run "$BATCH" -vq --ratios 50 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+}
