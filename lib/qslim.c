@@ -1525,11 +1525,8 @@ attr_setup(struct ctx *c, const struct vdt_mesh *in, const struct vdt_mesh *w,
 	return at;
 }
 
-/*
- * The input vertex that corner k of output face t stands for: its source
- * face's corner, or for a back added by add_backs (faces from bk->first
- * on, when the input's faces were at hand) the vertex it names.
- */
+/* A double-sided face's pair and its back's corners (add_backs,
+ * back_attributes). */
 struct back {
 	uint64_t pair; /* front << 32 | back, input faces */
 	float p[9];    /* the back's corners as the input had them */
@@ -1550,6 +1547,11 @@ by_pair(const void *a, const void *b)
 	return (x > y) - (x < y);
 }
 
+/*
+ * The input vertex that corner k of output face t stands for: its source
+ * face's corner, or for a back added by add_backs (faces from bk->first
+ * on, when the input's faces were at hand) the vertex it names.
+ */
 static uint32_t
 corner_vertex(const struct vdt_mesh *in, const struct vdt_contract_result *r,
               const struct back_corners *bk, size_t t, int k)
@@ -2053,6 +2055,19 @@ add_backs(struct vdt_contract_result *r, const uint64_t *backs, size_t nbacks,
 	return 0;
 }
 
+/* The values of dim per vertex in a at corners c, mixed by the weights w,
+ * into x (and into out, if given). */
+static void
+mix(const float *a, int dim, const uint32_t c[3], const double w[3], double *x, float *out)
+{
+	for (int k = 0; k < dim; k++) {
+		x[k] = w[0] * a[(size_t)dim * c[0] + k] + w[1] * a[(size_t)dim * c[1] + k] +
+		       w[2] * a[(size_t)dim * c[2] + k];
+		if (out != NULL)
+			out[k] = (float)x[k];
+	}
+}
+
 /*
  * The attributes of the backs' vertices where the vertices are now: on
  * the input's back faces that went to the same slot, the point nearest
@@ -2097,23 +2112,16 @@ back_attributes(const struct vdt_mesh *in, const struct back_corners *bk, struct
 			if (pick == NONE)
 				continue;
 			const uint32_t *bc = in->triangles + 3 * (size_t)(uint32_t)bk->pos[pick].pair;
-			for (int k = 0; out->uvs && k < 2; k++)
-				out->uvs[2 * (size_t)o + k] = (float)(w[0] * in->uvs[2 * (size_t)bc[0] + k] +
-				                                      w[1] * in->uvs[2 * (size_t)bc[1] + k] +
-				                                      w[2] * in->uvs[2 * (size_t)bc[2] + k]);
-			for (int k = 0; out->colors && k < 4; k++)
-				out->colors[4 * (size_t)o + k] = (float)(w[0] * in->colors[4 * (size_t)bc[0] + k] +
-				                                         w[1] * in->colors[4 * (size_t)bc[1] + k] +
-				                                         w[2] * in->colors[4 * (size_t)bc[2] + k]);
+			double x[4];
+			if (out->uvs)
+				mix(in->uvs, 2, bc, w, x, out->uvs + 2 * (size_t)o);
+			if (out->colors)
+				mix(in->colors, 4, bc, w, x, out->colors + 4 * (size_t)o);
 			if (out->normals) {
-				double n[3], l;
-				for (int k = 0; k < 3; k++)
-					n[k] = w[0] * in->normals[3 * (size_t)bc[0] + k] +
-					       w[1] * in->normals[3 * (size_t)bc[1] + k] +
-					       w[2] * in->normals[3 * (size_t)bc[2] + k];
-				l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+				mix(in->normals, 3, bc, w, x, NULL);
+				double l = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
 				for (int k = 0; l > 1e-6 && k < 3; k++)
-					out->normals[3 * (size_t)o + k] = (float)(n[k] / l);
+					out->normals[3 * (size_t)o + k] = (float)(x[k] / l);
 			}
 		}
 	free(done);
@@ -2221,7 +2229,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	uint32_t *pforest = NULL; /* the input's parts, when some may go */
 	uint64_t *backs = NULL;   /* double-sided faces: front << 32 | back */
 	uint8_t *twice = NULL;    /* per engine face: a front (counts twice) */
-	uint8_t *wedges = NULL;   /* input vertices at each position, to 255 */
+	uint8_t *wedges = NULL;   /* rank: attribute sets at each position */
 	struct back_corners bk = {0};
 	size_t nbacks = 0;
 	size_t nw, nvp = 0, ndups = 0;
@@ -2331,17 +2339,15 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	/* The fronts count twice toward the target (their backs come back),
 	 * in the engine's faces; the pairs in the input's, by front. */
 	if (nbacks > 0) {
-		if ((twice = calloc(T, 1)) == NULL)
+		/* (each back's corners where the input had them, for its
+		 * attributes at the end: the engine moves the vertices) */
+		struct back *b = malloc(nbacks * sizeof(*b));
+		if ((twice = calloc(T, 1)) == NULL || b == NULL) {
+			free(b);
 			goto nomem;
+		}
 		for (size_t i = 0; i < nbacks; i++)
 			twice[backs[i] >> 32] = 1;
-	}
-	/* (each back's corners where the input had them, for its attributes
-	 * at the end: the engine moves the vertices) */
-	if (nbacks > 0) {
-		struct back *b = malloc(nbacks * sizeof(*b));
-		if (b == NULL)
-			goto nomem;
 		for (size_t i = 0; i < nbacks; i++) {
 			uint32_t t = (uint32_t)backs[i];
 			b[i].pair = forder == NULL ? backs[i]
