@@ -212,8 +212,9 @@ ply_format(const unsigned char *buf, size_t n, const char *kind)
 	return 0;
 }
 
-int
-vdt_format_wide(const unsigned char *buf, size_t n)
+/* Whether buf starts with a byte order mark of UTF-16 or UTF-32. */
+static int
+wide(const unsigned char *buf, size_t n)
 {
 	return n >= 2 && ((buf[0] == 0xff && buf[1] == 0xfe) || (buf[0] == 0xfe && buf[1] == 0xff) ||
 	                  (n >= 4 && buf[0] == 0 && buf[1] == 0 && buf[2] == 0xfe && buf[3] == 0xff));
@@ -222,7 +223,7 @@ vdt_format_wide(const unsigned char *buf, size_t n)
 int
 vdt_format_unknown(const unsigned char *buf, size_t n, struct vdt_err *err)
 {
-	if (vdt_format_wide(buf, n))
+	if (wide(buf, n))
 		return vdt_err_set(err, VDT_EFORMAT, "unknown format: text in UTF-%d (save it as UTF-8)",
 		                   buf[0] == 0 || (n >= 4 && buf[2] == 0 && buf[3] == 0) ? 32 : 16);
 	return vdt_err_set(err, VDT_EFORMAT, "unknown format");
@@ -267,7 +268,7 @@ vdt_format_detect(const unsigned char *buf, size_t n)
 	/* Text in UTF-16 or UTF-32 (by its byte order mark, which a binary
 	 * STL's free header may also begin with: sized as one, it is one):
 	 * no format of ours (vdt_format_unknown says so). */
-	if (vdt_format_wide(buf, n))
+	if (wide(buf, n))
 		return VDT_FMT_AUTO;
 	if (has_prefix_ci(buf, n, "solid")) { /* its keywords in any case, as the reader takes them */
 		size_t l = n < 512 ? n : 512;
@@ -287,13 +288,24 @@ vdt_format_detect(const unsigned char *buf, size_t n)
 
 #define STL_SLACK 65536 /* bytes after a binary STL's triangles, at most */
 
+enum vdt_format
+vdt_format_guess(const unsigned char *buf, size_t n, enum vdt_format hint)
+{
+	enum vdt_format f = vdt_format_detect(buf, n);
+
+	/* Only text formats can hide from detection (long comments). */
+	if (f == VDT_FMT_AUTO && (hint == VDT_FMT_OBJ || hint == VDT_FMT_OFF) && !wide(buf, n))
+		return hint;
+	return f;
+}
+
 uint64_t
 vdt_input_limit(const unsigned char *head, enum vdt_format hint)
 {
-	enum vdt_format f = vdt_format_detect(head, VDT_DETECT_BYTES);
+	enum vdt_format f = vdt_format_guess(head, VDT_DETECT_BYTES, hint);
 
 	if (f == VDT_FMT_AUTO)
-		return hint == VDT_FMT_OBJ || hint == VDT_FMT_OFF ? UINT64_MAX : 0;
+		return 0;
 	if (f == VDT_FMT_STL)
 		return 84 + 50 * (uint64_t)vdt_get_u32le(head + 80) + STL_SLACK;
 	return UINT64_MAX;
@@ -379,13 +391,7 @@ vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
 		memset(extra, 0, sizeof(*extra));
 	if (len == 0)
 		return vdt_err_set(err, VDT_EFORMAT, "empty input");
-	f = vdt_format_detect(buf, len);
-	if (f == VDT_FMT_AUTO && name != NULL) {
-		enum vdt_format hint = vdt_format_from_path(name);
-		/* Only text formats can hide from detection (long comments). */
-		if ((hint == VDT_FMT_OBJ || hint == VDT_FMT_OFF) && !vdt_format_wide(buf, len))
-			f = hint;
-	}
+	f = vdt_format_guess(buf, len, name != NULL ? vdt_format_from_path(name) : VDT_FMT_AUTO);
 	if (f != VDT_FMT_AUTO) { /* a text format: the mark is no part of it */
 		size_t b = vdt_bom_length(buf, len);
 		buf += b;

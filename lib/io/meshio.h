@@ -79,12 +79,14 @@ size_t vdt_bom_length(const unsigned char *buf, size_t n);
 
 enum vdt_format vdt_format_detect(const unsigned char *buf, size_t n);
 
+/* The format of buf[0..n) by its content, else the hint (the name's) when
+ * that is a text format that can hide from detection (OBJ, OFF) and buf
+ * is no UTF-16 or UTF-32 text; else VDT_FMT_AUTO. */
+enum vdt_format vdt_format_guess(const unsigned char *buf, size_t n, enum vdt_format hint);
+
 /* VDT_EFORMAT "unknown format" for buf[0..n), with what it is where that is
  * known (text in UTF-16 or UTF-32). */
 int vdt_format_unknown(const unsigned char *buf, size_t n, struct vdt_err *err);
-
-/* Whether buf starts with a byte order mark of UTF-16 or UTF-32. */
-int vdt_format_wide(const unsigned char *buf, size_t n);
 
 /*
  * Read a mesh from path ("-" for stdin). The format is detected from the

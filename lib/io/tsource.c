@@ -997,10 +997,7 @@ setup(struct vdt_tsource *s, enum vdt_format hint, struct vdt_err *err)
 
 	if (s->len == 0)
 		return vdt_err_set(err, VDT_EFORMAT, "empty input");
-	s->format = vdt_format_detect(s->buf, s->len);
-	if (s->format == VDT_FMT_AUTO && (hint == VDT_FMT_OBJ || hint == VDT_FMT_OFF) &&
-	    !vdt_format_wide(s->buf, s->len))
-		s->format = hint;
+	s->format = vdt_format_guess(s->buf, s->len, hint);
 	if (s->format != VDT_FMT_AUTO) { /* a text format: the mark is no part of it */
 		size_t b = vdt_bom_length(s->buf, s->len);
 		s->buf += b;
