@@ -11,7 +11,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "../lib/io/meshio.h"
@@ -126,22 +125,6 @@ frame_name(char name[4096], const char *pattern, size_t i)
 }
 
 /*
- * The format of the mesh written to name: by its extension; a vdt
- * stream, as on standard output, for a device, FIFO or socket whose name
- * gives none (/dev/null), written in place: there is no -F to name one.
- */
-static enum vdt_format
-mesh_format(const char *name)
-{
-	enum vdt_format f = vdt_output_format(name, VDT_FMT_AUTO);
-	struct stat st;
-
-	if (f == VDT_FMT_AUTO && stat(name, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode))
-		f = VDT_FMT_VDT;
-	return f;
-}
-
-/*
  * Refuse before anything is written what would fail or lose frames later:
  * several views into one file, an output of no known format, a reference
  * image that is not there. Returns the exit status.
@@ -177,7 +160,7 @@ check_outputs(const struct cmdline *cl, size_t nviews)
 			                        frame_name(b, cl->mesh_out, i));
 	if (cl->out && vdt_image_writable(frame_name(a, cl->out, 0), &err) != 0)
 		return fail("cannot write", a, &err);
-	if (cl->mesh_out && mesh_format(frame_name(a, cl->mesh_out, 0)) == VDT_FMT_AUTO) {
+	if (cl->mesh_out && vdt_output_format(frame_name(a, cl->mesh_out, 0), VDT_FMT_AUTO) == VDT_FMT_AUTO) {
 		vdt_err_set(&err, VDT_EINVAL, "unknown output format (give a known extension)");
 		return fail("cannot write", a, &err);
 	}
@@ -268,11 +251,9 @@ run(struct cmdline *cl)
 		    vdt_image_write_staged(frame_name(name, cl->out, i), R.r.width, R.r.height, 3,
 		                           R.r.rgb, &done, &err) != 0)
 			rc = fail("cannot write", name, &err);
-		if (rc == EXIT_OK && cl->mesh_out) {
-			wo.format = mesh_format(frame_name(name, cl->mesh_out, i));
-			if (vdt_write(name, R.drawn, NULL, &wo, &err) != 0)
-				rc = fail("cannot write", name, &err);
-		}
+		if (rc == EXIT_OK && cl->mesh_out &&
+		    vdt_write(frame_name(name, cl->mesh_out, i), R.drawn, NULL, &wo, &err) != 0)
+			rc = fail("cannot write", name, &err);
 		t3 = vdt_seconds();
 		write_s += t3 - t2;
 		if (rc == EXIT_OK && cl->compare &&

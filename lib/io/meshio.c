@@ -1217,9 +1217,18 @@ write_stream(FILE *f, const struct vdt_mesh *m, const struct vdt_chunks *extra,
 enum vdt_format
 vdt_output_format(const char *path, enum vdt_format given)
 {
+	enum vdt_format f;
+	struct stat st;
+
 	if (given != VDT_FMT_AUTO)
 		return given;
-	return strcmp(path, "-") == 0 ? VDT_FMT_VDT : vdt_format_from_path(path);
+	if (strcmp(path, "-") == 0)
+		return VDT_FMT_VDT;
+	f = vdt_format_from_path(path);
+	/* (a device or FIFO, written in place, is named for itself: /dev/null) */
+	if (f == VDT_FMT_AUTO && stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode))
+		f = VDT_FMT_VDT;
+	return f;
 }
 
 int
@@ -1228,21 +1237,23 @@ vdt_write(const char *path, const struct vdt_mesh *m,
           struct vdt_err *err)
 {
 	enum vdt_format f = opts ? opts->format : VDT_FMT_AUTO;
-	int to_stdout = strcmp(path, "-") == 0;
 	struct vdt_output o;
 	int rc;
 
 	if ((f = vdt_output_format(path, f)) == VDT_FMT_AUTO)
 		return vdt_err_set(err, VDT_EINVAL, "unknown output format (give a known extension)");
-	if (to_stdout && vdt_format_is_binary(f) && isatty(STDOUT_FILENO))
-		return vdt_err_set(err, VDT_EINVAL, "refusing to write binary %s to a terminal",
-		                   f == VDT_FMT_VDT ? "vdt stream" : vdt_format_name(f));
 	rc = vdt_mesh_validate(m, err);
 	if (rc != 0)
 		return rc;
 	rc = vdt_output_open(&o, path, err);
 	if (rc != 0)
 		return rc;
+	/* (standard output, or a device written in place: /dev/tty) */
+	if (vdt_format_is_binary(f) && isatty(fileno(o.f))) {
+		vdt_output_abort(&o);
+		return vdt_err_set(err, VDT_EINVAL, "refusing to write binary %s to a terminal",
+		                   f == VDT_FMT_VDT ? "vdt stream" : vdt_format_name(f));
+	}
 	switch (f) {
 	case VDT_FMT_VDT: rc = write_stream(o.f, m, extra, err); break;
 	case VDT_FMT_PLY: rc = vdt_ply_write(o.f, m, err); break;

@@ -47,8 +47,9 @@ enum vdt_format vdt_format_from_path(const char *path);
 
 /*
  * The format an output goes out in: `given` unless VDT_FMT_AUTO, else the
- * one path's extension gives, else the vdt stream for "-" (stdout);
- * VDT_FMT_AUTO when none is known. vdt_write decides by it.
+ * vdt stream for "-" (stdout), else the one path's extension gives, else
+ * the vdt stream for a device or FIFO (/dev/null: as stdout, written in
+ * place); VDT_FMT_AUTO when none is known. vdt_write decides by it.
  */
 enum vdt_format vdt_output_format(const char *path, enum vdt_format given);
 

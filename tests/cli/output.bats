@@ -256,3 +256,23 @@ load helpers
 	[ "$output" = "vdt-build: cannot build a tree of '$TMP/big.off': the bounding box's diagonal 4.12311e+38 is past 3.2e+32, the largest the tree's 32-bit distances hold" ]
 	[ ! -e "$TMP/b.vdt" ]
 }
+
+@test "a device or FIFO named with no extension takes the vdt stream, as - does; a terminal is refused" {
+	run "$BIN/vdt-qslim" -r 0.5 "$SAMPLES/torus.off" -o /dev/null
+	[ "$status" -eq 0 ]
+	[ -z "$output" ]
+	mkfifo "$TMP/pipe"
+	head -c 8 "$TMP/pipe" >"$TMP/head" &
+	"$BIN/vdt-qslim" -q -r 0.5 "$SAMPLES/torus.off" -o "$TMP/pipe" || :
+	wait
+	"$BIN/vdt-qslim" -q -r 0.5 "$SAMPLES/torus.off" -o - | head -c 8 >"$TMP/want"
+	cmp "$TMP/head" "$TMP/want"
+	# a regular file of no known extension is still refused
+	run "$BIN/vdt-qslim" -r 0.5 "$SAMPLES/torus.off" -o "$TMP/out.xyz"
+	[ "$status" -eq 2 ]
+	if command -v script >/dev/null; then
+		run script -qec "$BIN/vdt-qslim -r 0.5 $SAMPLES/torus.off -o /dev/tty" /dev/null
+		[ "$status" -eq 2 ]
+		[[ "$output" == *"refusing to write binary vdt stream to a terminal"* ]]
+	fi
+}
