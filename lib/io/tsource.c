@@ -592,6 +592,21 @@ struct obj_spool {
 	const struct vdt_tsource *s; /* the text's mapping */
 };
 
+/* A spool: a temporary file (scratch_file) to write, then map. */
+static int
+spool_open(FILE **f, struct vdt_err *err)
+{
+	int fd = scratch_file(err);
+
+	if (fd < 0)
+		return fd;
+	if ((*f = fdopen(fd, "w+")) == NULL) {
+		close(fd);
+		return vdt_err_set(err, VDT_ESYSTEM, "%s", strerror(errno));
+	}
+	return 0;
+}
+
 static int
 spool_put(FILE *f, const unsigned char *b, struct vdt_err *err)
 {
@@ -629,16 +644,10 @@ spool_polygon(void *ctx, uint64_t first, size_t corners, struct vdt_err *err)
 {
 	struct obj_spool *o = ctx;
 	unsigned char b[12];
-	int fd;
+	int rc;
 
-	if (o->poly == NULL) {
-		if ((fd = scratch_file(err)) < 0)
-			return fd;
-		if ((o->poly = fdopen(fd, "w+")) == NULL) {
-			close(fd);
-			return vdt_err_set(err, VDT_ESYSTEM, "%s", strerror(errno));
-		}
-	}
+	if (o->poly == NULL && (rc = spool_open(&o->poly, err)) != 0)
+		return rc;
 	vdt_put_u64le(b, first);
 	vdt_put_u32le(b + 8, (uint32_t)corners);
 	return spool_put(o->poly, b, err);
@@ -780,19 +789,10 @@ obj_open(struct vdt_tsource *s, struct vdt_err *err)
 {
 	struct obj_spool o = {NULL, NULL, NULL, 0, 0, s};
 	struct vdt_obj_visit visit = {spool_vertex, spool_triangle, &o, spool_polygon, spool_read_to};
-	int fd[2] = {-1, -1}, rc;
+	int rc;
 
-	for (int i = 0; i < 2; i++)
-		if ((fd[i] = scratch_file(err)) < 0) {
-			rc = fd[i];
-			goto out;
-		}
-	if ((o.pos = fdopen(fd[0], "w+")) == NULL || (o.tri = fdopen(fd[1], "w+")) == NULL) {
-		rc = vdt_err_set(err, VDT_ESYSTEM, "%s", strerror(errno));
-		goto out;
-	}
-	fd[0] = fd[1] = -1;
-	if ((rc = vdt_obj_scan(s->buf, s->len, &visit, &s->attrs, err)) != 0)
+	if ((rc = spool_open(&o.pos, err)) != 0 || (rc = spool_open(&o.tri, err)) != 0 ||
+	    (rc = vdt_obj_scan(s->buf, s->len, &visit, &s->attrs, err)) != 0)
 		goto out;
 	if (s->mapped) /* the text is read: its pages need not stay */
 		drop_range(s->buf, s->buf + s->len);
@@ -814,9 +814,6 @@ obj_open(struct vdt_tsource *s, struct vdt_err *err)
 		fclose(o.poly);
 	return 0;
 out:
-	for (int i = 0; i < 2; i++)
-		if (fd[i] >= 0)
-			close(fd[i]);
 	if (o.pos != NULL)
 		fclose(o.pos);
 	if (o.tri != NULL)
