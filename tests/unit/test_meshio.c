@@ -351,6 +351,68 @@ test_draco_extreme_ranges(void **state)
 	}
 }
 
+/*
+ * What Draco output rounds, as vdt-qslim(1) says: normals to 10 bits
+ * (within about 0.003), texture coordinates to 12 bits of their range. A
+ * grid whose normals and UVs vary at every vertex; Draco may reorder
+ * vertices, so each read one is matched by its position.
+ */
+static void
+test_draco_attribute_rounding(void **state)
+{
+	struct vdt_mesh m, r;
+	struct vdt_write_opts o = {.format = VDT_FMT_DRC};
+	struct vdt_err err = {0};
+	const char *path = tmp_path("q.drc");
+	int n = 8;
+	double worst_n = 0, worst_t = 0;
+
+	(void)state;
+	assert_int_equal(vdt_mesh_alloc(&m, (size_t)(n + 1) * (n + 1), 2 * (size_t)n * n,
+	                                 VDT_ATTR_NORMALS | VDT_ATTR_UVS, NULL), 0);
+	for (int j = 0, v = 0; j <= n; j++)
+		for (int i = 0; i <= n; i++, v++) {
+			double a = 0.37 * v, b = 0.11 * v, l;
+			float *p = m.positions + 3 * v, *nr = m.normals + 3 * v, *t = m.uvs + 2 * v;
+			p[0] = (float)i;
+			p[1] = (float)j;
+			p[2] = 0;
+			nr[0] = (float)(cos(a) * sin(b + 0.3));
+			nr[1] = (float)(sin(a) * sin(b + 0.3));
+			nr[2] = (float)cos(b + 0.3);
+			l = sqrt(nr[0] * nr[0] + nr[1] * nr[1] + nr[2] * nr[2]);
+			for (int k = 0; k < 3; k++)
+				nr[k] = (float)(nr[k] / l);
+			t[0] = (float)fmod(0.618 * v, 1.0);
+			t[1] = (float)fmod(0.414 * v, 1.0);
+		}
+	for (int j = 0, f = 0; j < n; j++)
+		for (int i = 0; i < n; i++, f += 2) {
+			uint32_t a = (uint32_t)(j * (n + 1) + i), c = a + (uint32_t)n + 1;
+			uint32_t q[6] = {a, a + 1, c + 1, a, c + 1, c};
+			memcpy(m.triangles + 3 * f, q, sizeof(q));
+		}
+	if (vdt_write(path, &m, NULL, &o, &err) != 0 || vdt_read(path, &r, NULL, &err) != 0)
+		fail_msg("%s", err.msg);
+	assert_int_equal(r.vertex_count, m.vertex_count);
+	for (size_t i = 0; i < r.vertex_count; i++) {
+		size_t j = 0;
+		while (j < m.vertex_count &&
+		       !(fabsf(m.positions[3 * j] - r.positions[3 * i]) < 1e-3f &&
+		         fabsf(m.positions[3 * j + 1] - r.positions[3 * i + 1]) < 1e-3f))
+			j++;
+		assert_true(j < m.vertex_count);
+		for (int k = 0; k < 3; k++)
+			worst_n = fmax(worst_n, fabs(m.normals[3 * j + k] - r.normals[3 * i + k]));
+		for (int k = 0; k < 2; k++)
+			worst_t = fmax(worst_t, fabs(m.uvs[2 * j + k] - r.uvs[2 * i + k]));
+	}
+	assert_true(worst_n > 0 && worst_n < 0.004); /* rounded, and within the bound */
+	assert_true(worst_t > 0 && worst_t < 2.5e-4);
+	vdt_mesh_free(&m);
+	vdt_mesh_free(&r);
+}
+
 static void
 test_roundtrip_attributes(void **state)
 {
@@ -849,6 +911,7 @@ main(void)
 		cmocka_unit_test(test_detect),
 		cmocka_unit_test(test_roundtrip_plain),
 		cmocka_unit_test(test_draco_extreme_ranges),
+		cmocka_unit_test(test_draco_attribute_rounding),
 		cmocka_unit_test(test_roundtrip_attributes),
 		cmocka_unit_test(test_chain),
 		cmocka_unit_test(test_obj_seam),
