@@ -653,3 +653,11 @@ PY
 	run "$BIN/vdt-deform" -q -r 0.5 --frames 2 "$WALK" -o "$TMP/out/w.vdt"
 	[ -z "$output" ]
 }
+
+@test "vdt-deform makes no directory: a pattern into a missing one is refused, nothing written" {
+	run "$BIN/vdt-deform" -r 0.5 "$SAMPLES/torus.off" -o "$TMP/none/%03d.off"
+	[ "$status" -eq 1 ]
+	one_line
+	[[ "$output" == *"none/000.off"*"No such file or directory" ]]
+	[ ! -e "$TMP/none" ]
+}
