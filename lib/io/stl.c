@@ -332,12 +332,27 @@ stl_is(const char *w, size_t wl, const char *key)
 	return 1;
 }
 
-/* Skip the rest of the line (a solid's name). */
+/*
+ * Skip a solid's name: the rest of the line, which may hold blanks, but
+ * not from a word `stop` on it, where a file written on one line goes on.
+ */
 static void
-stl_line_end(struct stl_text *t)
+stl_name(struct stl_text *t, const char *stop, const char *stop2)
 {
-	while (t->p < t->end && *t->p != '\n')
-		t->p++;
+	for (;;) {
+		while (t->p < t->end && *t->p != '\n' && stl_blank(*t->p))
+			t->p++;
+		if (t->p == t->end || *t->p == '\n')
+			return;
+		const char *w = t->p;
+		while (t->p < t->end && !stl_blank(*t->p))
+			t->p++;
+		size_t wl = (size_t)(t->p - w);
+		if (stl_is(w, wl, stop) || (stop2 && stl_is(w, wl, stop2))) {
+			t->p = w;
+			return;
+		}
+	}
 }
 
 /* The word w[0..wl) where want was expected. */
@@ -429,13 +444,13 @@ stl_solids(struct stl_text *t, struct weld *w, struct vdt_err *err)
 	while (stl_word(t, &word, &wl)) {
 		if (!stl_is(word, wl, "solid"))
 			return stl_unexpected(t, word, wl, "'solid'", err);
-		stl_line_end(t);
+		stl_name(t, "facet", "endsolid");
 		for (;;) {
 			if (!stl_word(t, &word, &wl))
 				return vdt_err_set(err, VDT_EFORMAT, "line %zu: ends before 'endsolid'",
 				                   t->line);
 			if (stl_is(word, wl, "endsolid")) {
-				stl_line_end(t);
+				stl_name(t, "solid", NULL);
 				break;
 			}
 			if (!stl_is(word, wl, "facet"))

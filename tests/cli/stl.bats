@@ -97,6 +97,22 @@ degenerate_sphere() {
 	[ "$(off_vertices "$TMP/mixed.off")" -eq 4 ]
 }
 
+@test "vdt-qslim reads an ASCII STL written on one line, its solids named or not" {
+	printf '%s\n' 'solid a' 'facet normal 0 0 1' 'outer loop' 'vertex 0 0 0' 'vertex 1 0 0' \
+		'vertex 1 1 0' 'endloop' 'endfacet' 'endsolid a' 'solid' 'facet normal 0 0 1' \
+		'outer loop' 'vertex 0 0 1' 'vertex 1 0 1' 'vertex 1 1 1' 'endloop' 'endfacet' \
+		'endsolid' > "$TMP/lines.stl"
+	tr '\n' ' ' < "$TMP/lines.stl" > "$TMP/one.stl"
+	"$BIN/vdt-qslim" -r 1 "$TMP/lines.stl" -o "$TMP/lines.ply"
+	run "$BIN/vdt-qslim" -r 1 "$TMP/one.stl" -o "$TMP/one.ply"
+	[ "$status" -eq 0 ]
+	cmp "$TMP/lines.ply" "$TMP/one.ply"
+	# a name of several words still ends at the line
+	printf 'solid part 7 of 9\nfacet normal 0 0 1 outer loop vertex 0 0 0 vertex 1 0 0 vertex 1 1 0 endloop endfacet endsolid part 7 of 9\n' > "$TMP/named.stl"
+	"$BIN/vdt-qslim" -r 1 -F off "$TMP/named.stl" -o "$TMP/named.off"
+	[ "$(off_faces "$TMP/named.off")" -eq 1 ]
+}
+
 @test "vdt-cluster reads ASCII STL as it reads the binary, degenerate facets too" {
 	degenerate_obj
 	degenerate_sphere
