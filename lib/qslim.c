@@ -269,6 +269,17 @@ hash_free(struct hash *h)
 
 #define WELD_AHEAD 16 /* positions */
 
+/* Whether a[0..n) == b[0..n) as numbers: -0 is 0, which a mirrored
+ * half of a model writes along its mirror plane. (No NaN gets here.) */
+static int
+same_floats(const float *a, const float *b, int n)
+{
+	for (int k = 0; k < n; k++)
+		if (a[k] != b[k])
+			return 0;
+	return 1;
+}
+
 /*
  * Weld vertices with bit-identical positions: canon[i] is the welded id of
  * input vertex i, ids numbered in order of first appearance. Returns the
@@ -304,8 +315,8 @@ weld(const struct vdt_mesh *m, uint32_t *canon, uint32_t *first)
 				break;
 			}
 			if (h.key[s] == key &&
-			    memcmp(m->positions + 3 * (size_t)first[h.val[s]],
-			           m->positions + 3 * i, 3 * sizeof(float)) == 0) {
+			    same_floats(m->positions + 3 * (size_t)first[h.val[s]],
+			                m->positions + 3 * i, 3)) {
 				canon[i] = h.val[s];
 				break;
 			}
@@ -984,9 +995,9 @@ attr_values(const struct vdt_mesh *in, const struct attr *at, size_t i, double *
 static int
 same_attrs(const struct vdt_mesh *in, size_t a, size_t b)
 {
-	return (!in->uvs || !memcmp(in->uvs + 2 * a, in->uvs + 2 * b, 2 * sizeof(float))) &&
-	       (!in->normals || !memcmp(in->normals + 3 * a, in->normals + 3 * b, 3 * sizeof(float))) &&
-	       (!in->colors || !memcmp(in->colors + 4 * a, in->colors + 4 * b, 4 * sizeof(float)));
+	return (!in->uvs || same_floats(in->uvs + 2 * a, in->uvs + 2 * b, 2)) &&
+	       (!in->normals || same_floats(in->normals + 3 * a, in->normals + 3 * b, 3)) &&
+	       (!in->colors || same_floats(in->colors + 4 * a, in->colors + 4 * b, 4));
 }
 
 /* q -= sign * sum_j (G_j.p + D_j)^2 / W, for the wedge sums x. */

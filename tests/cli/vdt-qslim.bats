@@ -883,6 +883,20 @@ PY
 	[[ "$output" == *" welded=1 dropped=1 "* ]]
 }
 
+@test "vdt-qslim welds -0 with 0, as a mirrored half of a model writes them" {
+	# an octahedron whose x < 0 half has its own copies of the four
+	# vertices on the plane x = 0, written with -0 there
+	printf 'OFF\n10 8 0\n1 0 0\n0 1 0\n0 0 1\n0 -1 0\n0 0 -1\n-1 0 0\n-0 1 0\n-0 0 1\n-0 -1 0\n-0 0 -1\n3 0 1 2\n3 0 2 3\n3 0 3 4\n3 0 4 1\n3 5 7 6\n3 5 8 7\n3 5 9 8\n3 5 6 9\n' >"$TMP/mirror.off"
+	run "$BIN/vdt-qslim" -v -t 4 "$TMP/mirror.off" -o "$TMP/out.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *" welded=4 "* ]]
+	# closed: a tetrahedron (its corners at four positions), not two
+	# open halves
+	[[ "$output" == *" out_triangles=4 "* ]]
+	[ "$(awk 'NR == 2 { nv = $1 } NR > 2 && NR <= 2 + nv { print $1 + 0, $2 + 0, $3 + 0 }' \
+		"$TMP/out.off" | sort -u | wc -l)" -eq 4 ]
+}
+
 @test "vdt-qslim fits smooth vertices to the input unless --no-fit, and -v counts them" {
 	run "$BIN/vdt-qslim" -v -r 0.05 "$SAMPLES/sphere.off" -o "$TMP/fit.off"
 	[ "$status" -eq 0 ]
