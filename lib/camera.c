@@ -47,8 +47,11 @@ vdt_camera_setup(struct vdt_camera *c, const struct vdt_view *v, const struct vd
 	c->v = *v;
 	for (int i = 0; i < 3; i++)
 		c->fwd[i] = v->at[i] - v->eye[i];
-	if (!(norm(c->fwd) > 0))
+	double dist = norm(c->fwd);
+	if (!(dist > 0))
 		return vdt_err_set(err, VDT_EINVAL, "the eye and the point looked at coincide");
+	if (!(dist < INFINITY))
+		return vdt_err_set(err, VDT_EINVAL, "the eye is too far from the point looked at");
 	cross(c->fwd, v->up, c->right);
 	if (!(norm(c->right) > 1e-12))
 		return vdt_err_set(err, VDT_EINVAL, "the up vector is zero or along the view direction");

@@ -84,6 +84,9 @@ vdt_raster_triangle(struct vdt_raster *r, const double s[3][3], const float col[
 	}
 	double minx = fmin(p0[0], fmin(p1[0], p2[0])), maxx = fmax(p0[0], fmax(p1[0], p2[0]));
 	double miny = fmin(p0[1], fmin(p1[1], p2[1])), maxy = fmax(p0[1], fmax(p1[1], p2[1]));
+	/* (off the image: its bounds, however far, never meet an int) */
+	if (!(maxx >= 0 && minx <= r->width && maxy >= 0 && miny <= r->height))
+		return;
 	int x0 = (int)fmax(0, floor(minx - 0.5)), x1 = (int)fmin(r->width - 1, ceil(maxx));
 	int y0 = (int)fmax(0, floor(miny - 0.5)), y1 = (int)fmin(r->height - 1, ceil(maxy));
 	int o0 = owns(p1, p2), o1 = owns(p2, p0), o2 = owns(p0, p1);

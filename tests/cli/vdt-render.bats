@@ -72,6 +72,19 @@ tree() {
 	[ ! -e "$TMP/x0.png" ]
 }
 
+@test "vdt-render draws past a triangle billions of pixels off the image, and names an eye too far" {
+	# zoomed in on one triangle, the other lies ~3e9 pixels to the right
+	printf 'OFF\n6 2 0\n-1 -1 0\n1 -1 0\n0 1 0\n1000 0 0\n1001 0 0\n1000 1 0\n3 0 1 2\n3 3 4 5\n' > "$TMP/two.off"
+	run timeout 60 "$BIN/vdt-render" --full --eye 0,0,10 --at 0,0,0 --fov 0.001 \
+		"$TMP/two.off" -o "$TMP/zoom.png"
+	[ "$status" -eq 0 ]
+	run "$BIN/vdt-render" --full --eye 0,0,1e300 "$TMP/two.off" -o "$TMP/far.png"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"eye is too far"* ]]
+	[ ! -e "$TMP/far.png" ]
+}
+
 @test "vdt-render: an unwritable output is status 1, as in every tool; a missing reference 2" {
 	tree
 	run "$BIN/vdt-render" "$TMP/t.vdt" -o "$TMP/no/such/dir/x.png"
