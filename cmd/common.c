@@ -186,6 +186,13 @@ parse_vec3(const char *opt, const char *s, int nonzero, double out[3])
 	}
 	if (nonzero && out[0] == 0 && out[1] == 0 && out[2] == 0)
 		usage_error("%s must be a non-zero direction X,Y,Z, not '%s'", opt, s);
+	if (nonzero) {
+		/* a direction: scaled to a largest |component| of 1, whose
+		 * length a square root can take (1e-300,0,0 has none) */
+		double m = fmax(fabs(out[0]), fmax(fabs(out[1]), fabs(out[2])));
+		for (int i = 0; i < 3; i++)
+			out[i] /= m;
+	}
 }
 
 double

@@ -106,8 +106,9 @@ unsigned long parse_count(const char *opt, const char *s, unsigned long min,
 double parse_real(const char *opt, const char *s, double min, double max);
 
 /*
- * Parse a vector "X,Y,Z" into out[3]; with nonzero, also refuse the zero
- * vector (a direction). Calls usage_error naming the option on junk.
+ * Parse a vector "X,Y,Z" into out[3]; with nonzero, a direction: refuse
+ * the zero vector and scale it to a largest |component| of 1. Calls
+ * usage_error naming the option on junk.
  */
 void parse_vec3(const char *opt, const char *s, int nonzero, double out[3]);
 

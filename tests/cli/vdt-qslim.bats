@@ -459,6 +459,20 @@ load helpers
 	done
 }
 
+@test "vdt-qslim and vdt-silhouette take --view along a direction of any length" {
+	"$BIN/vdt-silhouette" -q -a 30 -r 64 "$SAMPLES/torus.off" -o "$TMP/t.vdl"
+	"$BIN/vdt-qslim" -q -r 0.2 --view 0.3,0.2,1 "$TMP/t.vdl" -o "$TMP/unit.off"
+	for v in 3e-300,2e-300,1e-299 3e300,2e300,1e301; do
+		run "$BIN/vdt-qslim" -q -r 0.2 --view $v "$TMP/t.vdl" -o "$TMP/v.off"
+		[ "$status" -eq 0 ]
+		cmp "$TMP/unit.off" "$TMP/v.off"
+	done
+	"$BIN/vdt-silhouette" -a 30 -r 64 --view 0.3,0.2,1 "$SAMPLES/torus.off" > "$TMP/unit.txt"
+	run "$BIN/vdt-silhouette" -a 30 -r 64 --view 3e-300,2e-300,1e-299 "$SAMPLES/torus.off" -o "$TMP/v.txt"
+	[ "$status" -eq 0 ]
+	cmp "$TMP/unit.txt" "$TMP/v.txt"
+}
+
 @test "vdt-qslim does not load OpenImageIO (its libraries cost ~130 MB at start-up)" {
 	command -v ldd >/dev/null || skip "no ldd"
 	run ldd "$BIN/vdt-qslim"
