@@ -124,6 +124,10 @@ vdt_cameras_parse(struct vdt_cameras *c, const char *text, size_t len,
 		}
 		while (isspace((unsigned char)*q))
 			q++;
+		/* (scaled first, so that any finite direction has a length) */
+		double m = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2])));
+		for (int k = 0; k < 3 && m > 0 && m < INFINITY; k++)
+			v[k] /= m;
 		double n = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
 		if (*q != 0 || !(n > 0 && n < INFINITY)) {
 			vdt_cameras_free(c);

@@ -49,6 +49,12 @@ load helpers
 	printf '# two\n0 0 1\n1 0 0\n' > "$TMP/cams"
 	run "$BIN/vdt-silhouette" -c "$TMP/cams" -r 32 --view 0,0,1 "$SAMPLES/sphere.off"
 	[ "$status" -eq 0 ]
+	# directions of any length, as long as they have one
+	printf '0 0 1e-300\n1e300 0 0\n' > "$TMP/scaled"
+	"$BIN/vdt-silhouette" -c "$TMP/cams" -r 32 "$SAMPLES/sphere.off" -o "$TMP/a.vdl"
+	run "$BIN/vdt-silhouette" -c "$TMP/scaled" -r 32 "$SAMPLES/sphere.off" -o "$TMP/b.vdl"
+	[ "$status" -eq 0 ]
+	cmp "$TMP/a.vdl" "$TMP/b.vdl"
 }
 
 @test "vdt-silhouette rejects bad options and input with status 2 and one line" {
