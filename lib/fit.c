@@ -306,6 +306,7 @@ vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triang
 	struct vdt_bbox box;
 	double centre[3];
 	vdt_mesh_bbox_faces(&view, &box);
+	vdt_mesh_bulk_box(&view, &box, &box);
 	double diag = vdt_bbox_diagonal(&box);
 	for (int k = 0; k < 3; k++)
 		centre[k] = 0.5 * (box.min[k] + box.max[k]);

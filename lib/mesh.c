@@ -253,6 +253,41 @@ vdt_bbox_diagonal(const struct vdt_bbox *box)
 	return sqrt(s);
 }
 
+static int
+by_value(const void *a, const void *b)
+{
+	float x = *(const float *)a, y = *(const float *)b;
+
+	return (x > y) - (x < y);
+}
+
+#define BULK_SAMPLES 4096
+
+void
+vdt_mesh_bulk_box(const struct vdt_mesh *m, const struct vdt_bbox *box, struct vdt_bbox *bulk)
+{
+	float s[BULK_SAMPLES];
+	size_t corners = 3 * m->triangle_count, step, n = 0;
+	struct vdt_bbox b;
+
+	*bulk = *box;
+	if (corners == 0)
+		return;
+	step = corners / BULK_SAMPLES + 1;
+	for (int k = 0; k < 3; k++) {
+		n = 0;
+		for (size_t c = 0; c < corners && n < BULK_SAMPLES; c += step)
+			s[n++] = m->positions[3 * (size_t)m->triangles[c] + k];
+		qsort(s, n, sizeof(s[0]), by_value);
+		b.min[k] = s[n / 100];
+		b.max[k] = s[n - 1 - n / 100];
+	}
+	/* (a bulk of no extent, a plane's corners say, is no frame) */
+	double d = vdt_bbox_diagonal(&b);
+	if (d > 0 && vdt_bbox_diagonal(box) > VDT_BULK_STRETCH * d)
+		*bulk = b;
+}
+
 int
 vdt_mesh_copy(struct vdt_mesh *dst, const struct vdt_mesh *src, struct vdt_err *err)
 {

@@ -120,6 +120,19 @@ void vdt_mesh_bbox_faces(const struct vdt_mesh *m, struct vdt_bbox *box);
 double vdt_bbox_diagonal(const struct vdt_bbox *box);
 
 /*
+ * The box to sum quadrics about: *box (the surface's), unless a few far
+ * faces stretch it more than VDT_BULK_STRETCH times past the bulk of the
+ * surface (a stray triangle a million model sizes away), when it is the
+ * box of the 1st to 99th percentiles of a sample of the corners. A plane
+ * quadric holds squared offsets from its origin: about a far centre the
+ * bulk's errors cancel to rounding, and in units of a far diagonal its
+ * costs leave float's range. Deterministic; m must have triangles.
+ */
+#define VDT_BULK_STRETCH 1000
+void vdt_mesh_bulk_box(const struct vdt_mesh *m, const struct vdt_bbox *box,
+                       struct vdt_bbox *bulk);
+
+/*
  * Deep copy src into dst (dst is overwritten, not freed first).
  * Returns 0 or VDT_ENOMEM.
  */

@@ -2339,9 +2339,11 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	if (!c.q || !border || !locked)
 		goto nomem;
 
+	struct vdt_bbox bulk;
+	vdt_mesh_bulk_box(&w, box, &bulk);
 	for (int k = 0; k < 3; k++)
-		c.centre[k] = 0.5 * (box->min[k] + box->max[k]);
-	c.unit = vdt_quadric_unit(vdt_bbox_diagonal(box));
+		c.centre[k] = 0.5 * (bulk.min[k] + bulk.max[k]);
+	c.unit = vdt_quadric_unit(vdt_bbox_diagonal(&bulk));
 	c.max_error = o->max_error < INFINITY ? o->max_error * o->max_error : INFINITY;
 	dead = vdt_calloc_huge(T + 1, 1);
 	if (dead == NULL || build_quadrics(&w, o, canon, n, &c, border, dead, &stats->nonmanifold,

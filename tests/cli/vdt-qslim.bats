@@ -897,6 +897,21 @@ PY
 	[[ "$output" == *" welded=1 dropped=1 "* ]]
 }
 
+@test "vdt-qslim keeps its error bound on a model with one face a million sizes away" {
+	# the sphere and a stray triangle at 1e7: about a centre between the
+	# two, the sphere's plane offsets cancel to rounding
+	awk 'NR == 2 { nv = $1; $1 += 3; $2 += 1 } { print }
+		NR == 2 + nv { print "1e7 1e7 1e7"; print "1.01e7 1e7 1e7"; print "1e7 1.01e7 1e7" }
+		END { print 3, nv, nv + 1, nv + 2 }' "$SAMPLES/sphere.off" > "$TMP/far.off"
+	run "$BIN/vdt-qslim" -v -e 0.01 "$TMP/far.off" -o "$TMP/out.off"
+	[ "$status" -eq 0 ]
+	# as without it (268 triangles, error 0.0099); it was 27 and 0
+	n=$(printf '%s\n' "$output" | tr ' ' '\n' | sed -n 's/^out_triangles=//p')
+	e=$(printf '%s\n' "$output" | tr ' ' '\n' | sed -n 's/^error=//p')
+	[ "$n" -gt 200 ]
+	awk -v e="$e" 'BEGIN { exit !(e > 0.009 && e <= 0.01) }'
+}
+
 @test "vdt-qslim welds -0 with 0, as a mirrored half of a model writes them" {
 	# an octahedron whose x < 0 half has its own copies of the four
 	# vertices on the plane x = 0, written with -0 there
