@@ -1,6 +1,7 @@
 #include "mesh.h"
 #include "mem.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -166,7 +167,11 @@ vdt_mesh_float_step(const struct vdt_mesh *m)
 
 	for (size_t i = 0; i < 3 * m->vertex_count; i++)
 		big = fmaxf(big, fabsf(m->positions[i]));
-	return m->vertex_count > 0 ? (double)nextafterf(big, INFINITY) - big : 0;
+	if (m->vertex_count == 0)
+		return 0;
+	/* (at FLT_MAX the step below it: there is none above) */
+	return big < FLT_MAX ? (double)nextafterf(big, INFINITY) - big
+	                     : (double)big - nextafterf(big, 0);
 }
 
 int

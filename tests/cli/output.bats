@@ -221,6 +221,13 @@ load helpers
 	# where a model's size is, nothing
 	run "$BIN/vdt-qslim" "$SAMPLES/sphere.off" -o "$TMP/out.off"
 	[ "$output" = "" ]
+	# at float's largest, the step there (there is none above it)
+	awk 'FNR == 2 { nv = $1 } FNR > 2 && FNR <= 2 + nv && NR == FNR { mx = $1 > mx ? $1 : mx }
+		NR == FNR { next }
+		FNR > 2 && FNR <= 2 + nv { printf "%.9g %.9g %.9g\n", ($1 - mx) * 1e34 + 3.40282347e38, $2 * 1e34, $3 * 1e34; next }
+		{ print }' "$SAMPLES/sphere.off" "$SAMPLES/sphere.off" > "$TMP/max.off"
+	run "$BIN/vdt-qslim" "$TMP/max.off" -o "$TMP/out.off"
+	[[ "${lines[0]}" == "vdt-qslim: note: '$TMP/max.off' reaches 3.4"*"e+38 from the origin, where 32-bit floats step by 2.02824e+31: "* ]]
 }
 
 @test "OpenImageIO is loaded at the first image, not at start-up" {
