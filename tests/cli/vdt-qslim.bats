@@ -831,16 +831,21 @@ PY
 }
 
 @test "vdt-qslim -a however small still pairs vertices closer than it" {
-	# Two tetrahedra touching at the origin, one corner +0, the other -0:
-	# two vertices at distance 0, closer than any -a. A tiny -a once put
-	# them more grid cells out than an integer holds (undefined; no pair).
-	printf 'OFF\n8 8 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n-0 -0 -0\n-1 0 0\n0 -1 0\n0 0 -1\n' > "$TMP/touch.off"
+	# Two tetrahedra touching at the origin, their corners there one
+	# float's least step apart (1.4e-45), closer than any -a in model
+	# units. A tiny -a once put them more grid cells out than an integer
+	# holds (undefined; no pair).
+	printf 'OFF\n8 8 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1e-45 0 0\n-1 0 0\n0 -1 0\n0 0 -1\n' > "$TMP/touch.off"
 	printf '3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n3 4 5 6\n3 4 7 5\n3 4 6 7\n3 5 7 6\n' >> "$TMP/touch.off"
-	for a in 0.001 1e-30 1e-300%; do
+	for a in 0.001 1e-30; do
 		run "$BIN/vdt-qslim" -t 4 -a "$a" "$TMP/touch.off" -o "$TMP/out.off"
 		[ "$status" -eq 0 ]
 		[ "$(off_vertices "$TMP/out.off")" -eq 7 ]
 	done
+	# 1e-300% of the diagonal is closer still: no pair, and no fault
+	run "$BIN/vdt-qslim" -t 4 -a 1e-300% "$TMP/touch.off" -o "$TMP/out.off"
+	[ "$status" -eq 0 ]
+	[ "$(off_vertices "$TMP/out.off")" -eq 8 ]
 }
 
 @test "vdt-qslim quotes a bound in percent as given" {
