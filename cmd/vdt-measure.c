@@ -88,11 +88,12 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	}
 }
 
+/* The colour mesh, staged in *stage until the report is written too. */
 static int
 write_colors(const struct cmdline *cl, const struct vdt_mesh *a, const float *e,
-             struct vdt_err *err)
+             struct vdt_written *stage, struct vdt_err *err)
 {
-	struct vdt_write_opts w = {.format = VDT_FMT_PLY};
+	struct vdt_write_opts w = {.format = VDT_FMT_PLY, .stage = stage};
 	struct vdt_mesh c = *a; /* shares a's arrays: never freed */
 	float max = 0;
 	int rc = vdt_err_set(err, VDT_ENOMEM, "out of memory");
@@ -146,16 +147,21 @@ run(const struct cmdline *cl)
 		goto out;
 	}
 	vdt_report_write(o.f, &r, (enum vdt_report_format)cl->format, cl->m.one_sided);
-	/* The colours before the report is committed: all or nothing. */
-	if (cl->color && write_colors(cl, &a, verr, &err) != 0) {
+	/* The colours staged before the report is committed, and renamed
+	 * into place after it: a failure of either replaces neither. */
+	struct vdt_written colors = {0};
+	if (cl->color && write_colors(cl, &a, verr, &colors, &err) != 0) {
 		vdt_output_abort(&o);
 		rc = fail("cannot write", cl->color, &err);
 		goto out;
 	}
 	if (vdt_output_commit(&o, &err) != 0) {
-		if (cl->color && strcmp(cl->color, "-") != 0)
-			remove(cl->color);
+		vdt_written_remove(&colors);
 		rc = fail("cannot write", cl->out, &err);
+		goto out;
+	}
+	if (vdt_written_commit(&colors, &err) != 0) {
+		rc = fail("cannot write", cl->color, &err);
 		goto out;
 	}
 	if (cl->verbose)

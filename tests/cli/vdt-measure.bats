@@ -186,6 +186,23 @@ assert len(d["ab_hausdorff_at"]) == 3 and len(d["ba_hausdorff_at"]) == 3'
 	[ ! -e "$TMP/no/err.ply" ]
 }
 
+@test "vdt-measure -c: a report that cannot be written leaves the colour file as it was" {
+	[ -w /dev/full ] || skip "no /dev/full"
+	echo precious > "$TMP/err.ply"
+	mkdir "$TMP/elsewhere"
+	echo old > "$TMP/elsewhere/target.ply"
+	ln -s elsewhere/target.ply "$TMP/link.ply"
+	for c in "$TMP/err.ply" "$TMP/link.ply"; do
+		run "$BIN/vdt-measure" -n 1000 -c "$c" -o /dev/full "$SQ" "$UP"
+		[ "$status" -eq 1 ]
+		one_line
+	done
+	[ "$(cat "$TMP/err.ply")" = precious ]
+	[ -L "$TMP/link.ply" ]
+	[ "$(cat "$TMP/elsewhere/target.ply")" = old ]
+	[ "$(ls -A "$TMP" | grep -c '^\.')" -eq 0 ]
+}
+
 @test "vdt-measure -v: one key=value line of statistics" {
 	"$BIN/vdt-measure" -v -F kv -n 1000 "$SQ" "$UP" > "$TMP/out" 2> "$TMP/err"
 	[ "$(wc -l < "$TMP/err")" -eq 1 ]
