@@ -291,6 +291,16 @@ stat_operand(const char *path, int fd, struct stat *st)
 	return strcmp(path, "-") == 0 ? fstat(fd, st) : stat(path, st);
 }
 
+int
+names_stdout(const char *path)
+{
+	struct stat a, b;
+
+	return strcmp(path, "-") == 0 ||
+	       (stat(path, &a) == 0 && fstat(STDOUT_FILENO, &b) == 0 && a.st_dev == b.st_dev &&
+	        a.st_ino == b.st_ino && !S_ISCHR(a.st_mode));
+}
+
 long
 output_over_input(const char *const *in, size_t nin, const char *const *out, size_t nout,
                   size_t *which)
@@ -343,7 +353,9 @@ refuse_one_file_for_two(const char *oa, const char *a, const char *ob, const cha
 	struct stat sa, sb;
 	int ea = stat_operand(a, STDOUT_FILENO, &sa) == 0, eb = stat_operand(b, STDOUT_FILENO, &sb) == 0;
 
-	if (ea && eb && !(S_ISREG(sa.st_mode) && S_ISREG(sb.st_mode)))
+	/* (/dev/null twice holds nothing to overwrite; one pipe twice, or
+	 * standard output twice, would hold both outputs run together) */
+	if (ea && eb && S_ISCHR(sa.st_mode) && S_ISCHR(sb.st_mode))
 		return;
 	if (strcmp(a, b) == 0 || (ea && eb && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino))
 		usage_error("%s '%s' and %s '%s' are one file: one would overwrite the other", oa,

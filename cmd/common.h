@@ -106,6 +106,13 @@ unsigned long parse_count(const char *opt, const char *s, unsigned long min,
 double parse_real(const char *opt, const char *s, double min, double max);
 
 /*
+ * Whether output to path lands on standard output: "-", or a name of the
+ * file, pipe or socket it is (/dev/stdout). A terminal or /dev/null is
+ * not counted: there two writers only show side by side.
+ */
+int names_stdout(const char *path);
+
+/*
  * Parse a vector "X,Y,Z" into out[3]; with nonzero, a direction: refuse
  * the zero vector and scale it to a largest |component| of 1. Calls
  * usage_error naming the option on junk.

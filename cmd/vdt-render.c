@@ -217,6 +217,13 @@ run(struct cmdline *cl)
 	}
 	if ((rc = check_outputs(cl, nviews)) != EXIT_OK)
 		goto out;
+	/* --compare's lines on standard output, unless an image or mesh goes
+	 * there: then on standard error, not inside it */
+	char name0[4096];
+	FILE *report = (cl->out && names_stdout(frame_name(name0, cl->out, 0))) ||
+	                               (cl->mesh_out && names_stdout(frame_name(name0, cl->mesh_out, 0)))
+	                       ? stderr
+	                       : stdout;
 	for (size_t i = 0; i < nviews && rc == EXIT_OK; i++) {
 		double t0 = vdt_seconds(), t1, t2, t3, rmse;
 		vdt_camera_setup(&cam, &views[i], &box, NULL);
@@ -260,7 +267,8 @@ run(struct cmdline *cl)
 		    vdt_render_compare(&R, frame_name(name, cl->compare, i), &rmse, &err) != 0)
 			rc = fail("cannot compare with", name, &err) ? EXIT_USAGE : 0;
 		else if (rc == EXIT_OK && cl->compare)
-			printf("frame=%zu rmse=%.4f psnr=%.2f\n", i, rmse, rmse > 0 ? 20 * log10(255 / rmse) : INFINITY);
+			fprintf(report, "frame=%zu rmse=%.4f psnr=%.2f\n", i, rmse,
+			        rmse > 0 ? 20 * log10(255 / rmse) : INFINITY);
 		if (cl->verbose && rc == EXIT_OK)
 			fprintf(stderr, "%s: frame=%zu active=%zu triangles=%zu visited=%zu splits=%zu "
 			        "collapses=%zu forced=%zu refused=%zu updated=%zu tau=%.4g labels=%d "

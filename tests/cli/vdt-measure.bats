@@ -203,6 +203,15 @@ assert len(d["ab_hausdorff_at"]) == 3 and len(d["ba_hausdorff_at"]) == 3'
 	[ "$(ls -A "$TMP" | grep -c '^\.')" -eq 0 ]
 }
 
+@test "vdt-measure: the report and -c both on one pipe are refused" {
+	run bash -c '"$1" -n 1000 -c - "$2" "$3" | cat > "$4"' _ "$BIN/vdt-measure" "$SQ" "$UP" "$TMP/both"
+	[ ! -s "$TMP/both" ]
+	[[ "$output" == "vdt-measure: -o '<stdout>' and -c '<stdout>' are one file"* ]]
+	# /dev/null twice holds nothing to mix
+	run "$BIN/vdt-measure" -n 1000 -c /dev/null -o /dev/null "$SQ" "$UP"
+	[ "$status" -eq 0 ]
+}
+
 @test "vdt-measure -v: one key=value line of statistics" {
 	"$BIN/vdt-measure" -v -F kv -n 1000 "$SQ" "$UP" > "$TMP/out" 2> "$TMP/err"
 	[ "$(wc -l < "$TMP/err")" -eq 1 ]

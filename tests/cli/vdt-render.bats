@@ -126,6 +126,21 @@ tree() {
 	[ "$output" = "frame=0 rmse=0.0000 psnr=inf" ]
 }
 
+@test "vdt-render: two outputs on one pipe are refused; --compare's lines leave a piped image alone" {
+	tree
+	"$BIN/vdt-render" --size 32x32 "$TMP/t.vdt" -o "$TMP/a.png"
+	run bash -c '"$1" --size 32x32 "$2" -o - --mesh-out - | cat > "$3"' _ "$BIN/vdt-render" "$TMP/t.vdt" "$TMP/both"
+	[ ! -s "$TMP/both" ]
+	[[ "$output" == *"are one file"* ]]
+	# the image alone on the pipe, the comparison on standard error
+	"$BIN/vdt-render" --size 32x32 "$TMP/t.vdt" --compare "$TMP/a.png" -o - 2> "$TMP/err" | cat > "$TMP/piped.png"
+	cmp "$TMP/a.png" "$TMP/piped.png"
+	grep -q '^frame=0 rmse=0.0000 ' "$TMP/err"
+	# and on standard output when the image is a file
+	run "$BIN/vdt-render" --size 32x32 "$TMP/t.vdt" --compare "$TMP/a.png" -o "$TMP/b.png"
+	[[ "$output" == "frame=0 rmse=0.0000 "* ]]
+}
+
 @test "vdt-render --compare takes a reference per frame along a path" {
 	tree
 	for i in 0 1 2; do echo "$((3 + i)) 1 $((8 - i)) 0 0 0 0 1 0"; done > "$TMP/p.txt"
