@@ -14,6 +14,25 @@
 
 const char *progname = "vdt";
 
+static int reported; /* a failure has its line on stderr already */
+
+/*
+ * At exit: what went to standard output through stdio (--help, -V, a
+ * report, --compare's lines) got there, or status 1 and one line, as any
+ * other write error. (A failure already reported said so: not again.)
+ */
+static void
+close_stdout(void)
+{
+	int bad = fflush(stdout) != 0, e = errno;
+
+	if ((bad || ferror(stdout)) && !reported) {
+		fprintf(stderr, "%s: cannot write '<stdout>': %s\n", progname,
+		        bad ? strerror(e) : "write error");
+		_exit(EXIT_WORK);
+	}
+}
+
 void
 cmd_init(char **argv)
 {
@@ -23,6 +42,7 @@ cmd_init(char **argv)
 	 * name as ours. */
 	if (argv[0] != NULL)
 		progname = argv[0] = slash ? slash + 1 : argv[0];
+	atexit(close_stdout);
 #ifdef M_MMAP_THRESHOLD
 	/* Large arrays from mmap, given back to the system when freed. glibc
 	 * raises the threshold to the size of each mmapped block freed, and
@@ -96,6 +116,7 @@ fail(const char *what, const char *file, const struct vdt_err *err)
 	const char *name = input_name(file);
 
 	progress_done();
+	reported = 1;
 	if (strncmp(what, "cannot write", 12) == 0 && strcmp(file ? file : "-", "-") == 0)
 		name = "<stdout>";
 	fprintf(stderr, "%s: %s '%s': %s\n", progname, what, name,

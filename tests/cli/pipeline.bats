@@ -62,6 +62,28 @@ load helpers
 	done
 }
 
+@test "every tool: text on a full standard output is status 1 and one line" {
+	[ -w /dev/full ] || skip "no /dev/full"
+	for t in vdt-qslim vdt-cluster vdt-build vdt-render vdt-deform vdt-silhouette vdt-measure; do
+		for o in --help -V; do
+			run bash -c '"$1" "$2" > /dev/full' _ "$BIN/$t" "$o"
+			[ "$status" -eq 1 ]
+			one_line
+			[[ "$output" == "$t: cannot write '<stdout>': "* ]]
+		done
+	done
+	# a report, and --compare's lines
+	run bash -c '"$1" "$2" "$2" > /dev/full' _ "$BIN/vdt-measure" "$SAMPLES/sphere.off"
+	[ "$status" -eq 1 ]
+	one_line
+	"$BIN/vdt-build" -q "$SAMPLES/torus.off" -o "$TMP/t.vdt"
+	"$BIN/vdt-render" --size 16x16 "$TMP/t.vdt" -o "$TMP/a.png"
+	run bash -c '"$1" --size 16x16 "$2" --compare "$3" -o "$4" > /dev/full' _ \
+		"$BIN/vdt-render" "$TMP/t.vdt" "$TMP/a.png" "$TMP/b.png"
+	[ "$status" -eq 1 ]
+	one_line
+}
+
 @test "every tool writes its own chunks first, then those it passes on, as read" {
 	# the golden stream: MESH, QUAD and an unknown XTRA chunk
 	g="$DATA/golden-v1.vdt"
