@@ -107,7 +107,28 @@ exit_status(int code)
 const char *
 input_name(const char *path)
 {
-	return path == NULL || strcmp(path, "-") == 0 ? "<stdin>" : path;
+	/* a few at a time: one message may name two files */
+	static char ring[4][1024];
+	static int next;
+	char *b = ring[next++ % 4];
+	size_t n = 0;
+
+	if (path == NULL || strcmp(path, "-") == 0)
+		return "<stdin>";
+	if (strcspn(path, "\x01\x02\x03\x04\x05\x06\x07\b\t\n\v\f\r\x0e\x0f\x10\x11\x12"
+	                  "\x13\x14\x15\x16\x17\x18\x19\x1a\x1b\x1c\x1d\x1e\x1f\x7f") ==
+	    strlen(path))
+		return path;
+	/* a control character shown as \ooo, so that the message stays one
+	 * line (a name longer than the buffer is cut, with "...") */
+	const unsigned char *p = (const unsigned char *)path;
+	for (; *p && n + 8 < sizeof(ring[0]); p++)
+		if (*p < 0x20 || *p == 0x7f)
+			n += (size_t)snprintf(b + n, 5, "\\%03o", *p);
+		else
+			b[n++] = (char)*p;
+	strcpy(b + n, *p ? "..." : "");
+	return b;
 }
 
 int

@@ -84,6 +84,19 @@ load helpers
 	one_line
 }
 
+@test "every tool: a file name with a newline is named in one line" {
+	nl=$'a\nb.off'
+	for t in vdt-qslim vdt-cluster vdt-build vdt-render vdt-silhouette; do
+		run "$BIN/$t" "$TMP/$nl" -o "$TMP/out.vdt"
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == *"'$TMP/a\\012b.off'"* ]]
+	done
+	run "$BIN/vdt-measure" "$TMP/$nl" "$SAMPLES/sphere.off"
+	[ "$status" -eq 2 ]
+	one_line
+}
+
 @test "every tool writes its own chunks first, then those it passes on, as read" {
 	# the golden stream: MESH, QUAD and an unknown XTRA chunk
 	g="$DATA/golden-v1.vdt"
