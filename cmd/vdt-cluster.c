@@ -17,7 +17,8 @@ struct cmdline {
 	struct vdt_write_opts w;
 	struct vdt_cluster_choice ch;
 	double size, memory_mb, ratio;
-	int size_pct, decoupled, quiet, verbose, choices;
+	int size_pct, decoupled, quiet, verbose;
+	unsigned choices; /* which of -s, -g, -t, -r were given (bits) */
 };
 
 static void
@@ -48,6 +49,7 @@ parse_dims(const char *s, uint32_t d[3])
 	}
 	if (n == 1 || p != NULL)
 		usage_error("-g takes N or NXxNYxNZ, not '%s'", s);
+	d[0] = d[1] = d[2] = 0; /* (N alone: a cube, whatever an earlier -g said) */
 	for (int i = 0; i < 3 && tok[i]; i++)
 		d[i] = (uint32_t)parse_count("-g", tok[i], 1, VDT_CLUSTER_MAX_DIM - 1);
 }
@@ -74,12 +76,12 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 			cl->size = parse_bound("-s", optarg, &cl->size_pct);
 			if (!(cl->size > 0))
 				usage_error("-s must be positive, not %s", optarg);
-			cl->choices++;
+			cl->choices |= 1;
 			break;
-		case 'g': parse_dims(optarg, cl->ch.dims); cl->choices++; break;
+		case 'g': parse_dims(optarg, cl->ch.dims); cl->choices |= 2; break;
 		case 'm': cl->memory_mb = parse_real("-m", optarg, 1, 1e9); break;
-		case 't': cl->ch.target = parse_count("-t", optarg, 1, 4294967295UL); cl->choices++; break;
-		case 'r': cl->ratio = parse_real("-r", optarg, 1e-9, 1); cl->choices++; break;
+		case 't': cl->ch.target = parse_count("-t", optarg, 1, 4294967295UL); cl->choices |= 4; break;
+		case 'r': cl->ratio = parse_real("-r", optarg, 1e-9, 1); cl->choices |= 8; break;
 		case O_DECOUPLED: cl->decoupled = 1; break;
 		case 'o': cl->out = optarg; break;
 		case 'F':
@@ -94,7 +96,8 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	cl->in = input_operand(argc, argv, cl->in);
 	cl->w.format = output_format(cl->out, cl->w.format);
 	refuse_output_over_input(cl->in, cl->out);
-	if (cl->choices > 1)
+	/* (one of them twice: the last, as any option) */
+	if (cl->choices & (cl->choices - 1))
 		usage_error("-s, -g, -t and -r each choose the grid: give one");
 	if (cl->choices == 0 && cl->memory_mb == 0)
 		cl->ch.dims[0] = 256;

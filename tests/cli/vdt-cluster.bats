@@ -56,6 +56,16 @@ same_refusal() {
 	run "$BIN/vdt-cluster" -v -g 10x5x3 "$SAMPLES/torus.off" -o "$TMP/out.ply"
 	[ "$status" -eq 0 ]
 	[[ "$output" == *"grid=10x5x3"* ]]
+	# given twice, the last, whole, as any option (a Makefile's default
+	# then the user's); two different choices of the grid stay refused
+	run "$BIN/vdt-cluster" -v -g 10x5x3 -g 4 "$SAMPLES/torus.off" -o "$TMP/out.ply"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"grid=4x4x4"* ]]
+	run "$BIN/vdt-cluster" -v -t 100 -t 20 "$SAMPLES/torus.off" -o "$TMP/out.ply"
+	[ "$status" -eq 0 ]
+	run "$BIN/vdt-cluster" -g 4 -t 20 "$SAMPLES/torus.off" -o "$TMP/out.ply"
+	[ "$status" -eq 2 ]
+	[[ "$output" == *"give one"* ]]
 }
 
 @test "vdt-cluster -s in model units and in percent of the diagonal" {
