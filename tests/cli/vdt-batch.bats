@@ -54,6 +54,22 @@ tree() { # a tree with a subdirectory and a corrupted model
 	cmp "$TMP/t.ply" "$TMP/out/torus.lod2.ply"
 }
 
+@test "vdt-batch: times are the same numbers under a locale with a decimal comma" {
+	command -v localedef >/dev/null && [ -e /usr/share/i18n/locales/de_DE ] ||
+		skip "no locale sources to build de_DE from"
+	mkdir -p "$TMP/locale" "$TMP/in"
+	localedef -i de_DE -f UTF-8 "$TMP/locale/de_DE.UTF-8" 2>/dev/null || :
+	[ -e "$TMP/locale/de_DE.UTF-8" ] || skip "localedef failed"
+	cp "$SAMPLES/torus.off" "$TMP/in/"
+	# (awk there reads "1733400000.25" as 1733400000 and prints "0,00")
+	run env LOCPATH="$TMP/locale" LC_ALL=de_DE.UTF-8 "$BATCH" -v -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+	[[ "$output" != *","[0-9][0-9]* ]]
+	n=$(cat "$TMP/out/.vdt-batch/"*.rec | grep -c ' time=[0-9]*\.[0-9][0-9]$')
+	[ "$n" -eq "$(cat "$TMP/out/.vdt-batch/"*.rec | wc -l)" ]
+	[ "$n" -gt 0 ]
+}
+
 @test "vdt-batch: a re-run makes nothing; touching one input remakes only its outputs" {
 	tree
 	rm "$TMP/in/sub/broken.off"
