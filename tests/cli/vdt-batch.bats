@@ -33,6 +33,25 @@ tree() { # a tree with a subdirectory and a corrupted model
 	run "$BATCH" --version
 	[ "$status" -eq 0 ]
 	[[ "$output" == "vdt-batch "* ]]
+	# two directories, or none
+	run "$BATCH" "$SAMPLES" "$SAMPLES"
+	[ "$status" -eq 2 ]
+	[[ "$output" == *"expected one input directory"* ]]
+	run "$BATCH" -q
+	[ "$status" -eq 2 ]
+}
+
+@test "vdt-batch takes its options after the directory too, as the tools do" {
+	mkdir -p "$TMP/in"
+	cp "$SAMPLES/torus.off" "$TMP/in/"
+	run "$BATCH" "$TMP/in" -q --ratios=50 -o "$TMP/out"
+	[ "$status" -eq 0 ]
+	[ "$output" = "" ]
+	[ "$(ls "$TMP/out")" = "torus.lod1.ply" ]
+	# after --, operands only
+	run "$BATCH" -o "$TMP/out2" -- "$TMP/in" -q
+	[ "$status" -eq 2 ]
+	[[ "$output" == *"expected one input directory"* ]]
 }
 
 @test "vdt-batch -j 2: mirrored LOD chain, summary, the broken model named with status 1" {
