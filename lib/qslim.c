@@ -616,6 +616,14 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 	 * sign), simplified as its front, its back given back at the end
 	 * (front << 32 | back, in w's faces). */
 	vdt_topo_drop_repeats(w->triangles, nt, start, fan, dead, o->quadrics != NULL);
+	/* A face that welding left with a repeated vertex (an STL facet
+	 * whose corners coincide) has no area and holds no edge: as a third
+	 * face of its edge it would make manifold input look non-manifold. */
+	for (size_t t = 0; t < nt; t++) {
+		const uint32_t *v = w->triangles + 3 * t;
+		if (!dead[t] && (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]))
+			dead[t] = 1;
+	}
 	*backs = NULL;
 	*nbacks = 0;
 	/* Every pair first (front << 32 | back), then which are double-sided. */

@@ -251,6 +251,15 @@ load helpers
 	[[ "$output" == *" topology=keep "* ]]
 	run "$BIN/vdt-qslim" -v --topology free -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/d.off"
 	[[ "$output" == *" topology=free "* ]]
+	# a face with a repeated corner (an STL facet whose corners coincide)
+	# holds no edge: the sphere stays manifold
+	{ sed -n 1p "$SAMPLES/sphere.off"; echo "2562 5121 0"
+	  sed -n '3,$p' "$SAMPLES/sphere.off"
+	  set -- $(sed -n 2565p "$SAMPLES/sphere.off"); echo "3 $2 $3 $3"; } > "$TMP/degen.off"
+	run "$BIN/vdt-qslim" -v -r 0.5 "$TMP/degen.off" -o "$TMP/e.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *" dropped=1 "* ]]
+	[[ "$output" == *" nonmanifold=0 topology=keep "* ]]
 }
 
 @test "vdt-qslim with labels and --error-factor 0 keeps the contour of the view" {
