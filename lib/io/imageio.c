@@ -149,13 +149,14 @@ from_module(int code, const char *msg, struct vdt_err *err)
 static const char *
 writer_name(const char *path)
 {
-	struct stat st;
-	char msg[512];
+	char msg[512], *target;
+	int special = 0;
 
 	if (strcmp(path, "-") == 0)
 		return "-.png";
-	if (stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode) &&
-	    mod.writer(path, msg, sizeof(msg)) == VDT_IMG_NO_WRITER)
+	/* (and /dev/stdout to a regular file: written in place, as "-") */
+	free(target = vdt_output_target(path, &special));
+	if (target != NULL && special && mod.writer(path, msg, sizeof(msg)) == VDT_IMG_NO_WRITER)
 		return "-.png";
 	return path;
 }
@@ -169,7 +170,13 @@ refuse_terminal(const char *path, struct vdt_err *err)
 	return 0;
 }
 
-/* A writer of its own file (SGI here), by name: never "-". */
+/*
+ * A writer of its own file (SGI here), by name: never "-". It writes the
+ * temporary file, which is then renamed over the target, or staged as
+ * vdt_output_stage stages (renamed at once, the frames of a run that
+ * failed later were taken back, and the user's files they replaced with
+ * them).
+ */
 static int
 write_own_file(const char *path, int w, int h, int c, const unsigned char *px,
                struct vdt_written *stage, struct vdt_err *err)
@@ -177,9 +184,15 @@ write_own_file(const char *path, int w, int h, int c, const unsigned char *px,
 	char msg[512] = "", *tmp = NULL;
 	int special = 0, rc;
 	char *dst = vdt_output_target(path, &special);
+	struct stat st;
 
 	if (dst == NULL)
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+	/* (said now, as vdt_output_open says it, not at the commit) */
+	if (!special && stat(dst, &st) == 0 && S_ISDIR(st.st_mode)) {
+		free(dst);
+		return vdt_err_set(err, VDT_EIO, "%s", strerror(EISDIR));
+	}
 	if (!special) {
 		int fd = vdt_output_temp(dst, &tmp);
 		if (fd == -2) {
@@ -193,22 +206,23 @@ write_own_file(const char *path, int w, int h, int c, const unsigned char *px,
 		}
 		close(fd); /* the writer opens it again by name */
 	}
+	/* (a device or FIFO is written in place: nothing to stage or take back) */
 	rc = from_module(mod.write_file(writer_name(path), special ? dst : tmp, w, h, c, px, msg,
 	                                sizeof(msg)), msg, err);
-	if (rc == 0 && !special && rename(tmp, dst) != 0) {
+	if (rc == 0 && !special && stage != NULL)
+		rc = vdt_written_stage(stage, tmp, dst, err);
+	else if (rc == 0 && !special && rename(tmp, dst) != 0) {
 		int e = errno;
 		rc = vdt_err_set(err, VDT_EIO, "cannot rename the temporary file: %s", strerror(e));
 	}
 	if (rc != 0 && !special)
 		remove(tmp);
-	/* (gone or renamed by now: a signal need not remove it any more) */
+	/* (gone, renamed or staged by now: its own note goes) */
 	if (!special)
 		vdt_output_temp_done(tmp);
 	free(tmp);
 	free(dst);
-	/* (a writer of its own file cannot be staged: what it replaced is
-	 * gone, and what it wrote goes with a failed run) */
-	return rc == 0 && stage ? vdt_written_add(stage, path, err) : rc;
+	return rc;
 }
 
 int

@@ -2,12 +2,15 @@
  * meshio.c - format names, detection from content, dispatch to the codecs,
  * and atomic output (temporary file beside the target, renamed on commit).
  */
+#define _GNU_SOURCE /* program_invocation_short_name, for the SIGBUS handler */
 #include "meshio.h"
 
 #include <errno.h>
 #include <inttypes.h>
+#include <limits.h>
 #include <math.h>
 #include <fcntl.h>
+#include <pthread.h>
 #include <signal.h>
 #include <stdatomic.h>
 #include <stdlib.h>
@@ -520,8 +523,10 @@ vdt_read(const char *path, struct vdt_mesh *m, struct vdt_chunks *extra,
 
 		if (p != MAP_FAILED) {
 			close(fd);
+			vdt_input_watch(p, len, path);
 			madvise(p, len, MADV_SEQUENTIAL);
 			rc = vdt_read_memory(p, len, path, m, extra, err);
+			vdt_input_unwatch(p);
 			munmap(p, len);
 			return rc;
 		}
@@ -598,6 +603,87 @@ vdt_read_rest(int fd, unsigned char *buf, size_t len, size_t cap, const char *na
 	return rc;
 }
 
+/* The name the symbolic link *cur holds, in place of *cur (NULL out of
+ * memory): 1; or 0 when *cur is no symbolic link (or cannot be read). */
+static int
+follow_link(char **cur)
+{
+	char buf[4096], *next;
+	struct stat st;
+	ssize_t n;
+
+	if (lstat(*cur, &st) != 0 || !S_ISLNK(st.st_mode) ||
+	    (n = readlink(*cur, buf, sizeof(buf) - 1)) < 0)
+		return 0;
+	buf[n] = 0;
+	const char *slash = strrchr(*cur, '/');
+	size_t dl = buf[0] == '/' || slash == NULL ? 0 : (size_t)(slash + 1 - *cur);
+	if ((next = malloc(dl + (size_t)n + 1)) != NULL) {
+		memcpy(next, *cur, dl);
+		memcpy(next + dl, buf, (size_t)n + 1);
+	}
+	free(*cur);
+	*cur = next;
+	return 1;
+}
+
+/* Whether dir is this process's directory of descriptors: /proc/PID/fd
+ * or /proc/PID/task/TID/fd (/dev/fd, /proc/self/fd, /proc/thread-self/fd). */
+static int
+descriptor_dir(const char *dir)
+{
+	char *real = realpath(dir, NULL), own[64];
+	const char *rest;
+	int yes = 0;
+
+	if (real == NULL)
+		return 0;
+	snprintf(own, sizeof(own), "/proc/%ld/", (long)getpid());
+	if (strncmp(real, own, strlen(own)) == 0) {
+		rest = real + strlen(own);
+		size_t tid = strncmp(rest, "task/", 5) == 0 ? strspn(rest + 5, "0123456789") : 0;
+		if (tid > 0 && rest[5 + tid] == '/')
+			rest += 5 + tid + 1;
+		yes = strcmp(rest, "fd") == 0;
+	}
+	free(real);
+	return yes;
+}
+
+/*
+ * The descriptor of this process that path names, itself or through
+ * symbolic links, as /dev/stdout, /dev/fd/N and /proc/self/fd/N do (open
+ * or not); else -1. Such a name is written in place, where the
+ * descriptor is, as "-" is: the kernel follows it to the file it has
+ * open, and replacing that file lost what `tool -o /dev/stdout >> log`
+ * appended to, and what a shell wrote around the output.
+ */
+static int
+named_descriptor(const char *path)
+{
+	char *cur = strdup(path);
+	int fd = -1;
+
+	for (int hops = 0; cur != NULL && hops < 40; hops++) {
+		char *slash = strrchr(cur, '/');
+		size_t digits = slash ? strspn(slash + 1, "0123456789") : 0;
+
+		if (digits > 0 && digits < 10 && slash[1 + digits] == '\0') {
+			*slash = '\0';
+			int yes = descriptor_dir(slash == cur ? "/" : cur);
+			*slash = '/';
+			if (yes) {
+				fd = atoi(slash + 1);
+				break;
+			}
+		}
+		if (!follow_link(&cur))
+			break;
+	}
+	free(cur);
+	return fd;
+}
+
 char *
 vdt_output_target(const char *path, int *special)
 {
@@ -605,6 +691,10 @@ vdt_output_target(const char *path, int *special)
 	char *cur;
 
 	*special = 0;
+	if (named_descriptor(path) >= 0) {
+		*special = 1;
+		return strdup(path);
+	}
 	if (stat(path, &st) == 0) {
 		/* A device, FIFO or socket (also through /dev/stdout and the
 		 * like, which the kernel follows) is written in place. */
@@ -619,23 +709,8 @@ vdt_output_target(const char *path, int *special)
 	/* Nothing there: a symbolic link's target to be created, followed by
 	 * hand (realpath cannot name what does not exist yet), or path. */
 	cur = strdup(path);
-	for (int hops = 0; cur != NULL && hops < 40; hops++) {
-		char buf[4096], *next;
-		ssize_t n;
-
-		if (lstat(cur, &st) != 0 || !S_ISLNK(st.st_mode) ||
-		    (n = readlink(cur, buf, sizeof(buf) - 1)) < 0)
-			break;
-		buf[n] = 0;
-		const char *slash = strrchr(cur, '/');
-		size_t dl = buf[0] == '/' || slash == NULL ? 0 : (size_t)(slash + 1 - cur);
-		if ((next = malloc(dl + (size_t)n + 1)) != NULL) {
-			memcpy(next, cur, dl);
-			memcpy(next + dl, buf, (size_t)n + 1);
-		}
-		free(cur);
-		cur = next;
-	}
+	for (int hops = 0; cur != NULL && hops < 40 && follow_link(&cur); hops++)
+		;
 	return cur;
 }
 
@@ -699,12 +774,11 @@ struct vdt_wnode {
 
 static struct vdt_written *written_sets[WRITTEN_SLOTS];
 
+/* Remove the temporary files and the runs' files written (in a signal
+ * handler: unlink only). */
 static void
-cleanup_on_signal(int sig)
+remove_on_signal(void)
 {
-	int e = errno;
-	struct sigaction dfl;
-
 	for (int i = 0; i < PENDING_SLOTS; i++)
 		if (atomic_load(&pending[i].state) == LIVE)
 			unlink(pending[i].path);
@@ -714,6 +788,15 @@ cleanup_on_signal(int sig)
 		     n = n->next)
 			unlink(n->path);
 	}
+}
+
+static void
+cleanup_on_signal(int sig)
+{
+	int e = errno;
+	struct sigaction dfl;
+
+	remove_on_signal();
 	memset(&dfl, 0, sizeof(dfl));
 	dfl.sa_handler = SIG_DFL;
 	sigemptyset(&dfl.sa_mask);
@@ -745,6 +828,111 @@ cleanup_install(void)
 	}
 }
 
+/* Hold the signals above back (until pthread_sigmask(SIG_SETMASK, old)),
+ * where one would leave a file the handler does not know of yet, or
+ * part of a set of files renamed. */
+static void
+hold_signals(sigset_t *old)
+{
+	sigset_t set;
+
+	sigemptyset(&set);
+	for (size_t k = 0; k < sizeof(cleanup_signals) / sizeof(cleanup_signals[0]); k++)
+		sigaddset(&set, cleanup_signals[k]);
+	pthread_sigmask(SIG_BLOCK, &set, old);
+}
+
+/*
+ * The inputs mapped (vdt_input_watch): a file that another process cuts
+ * short under its mapping raises SIGBUS at the first page past its new
+ * end, which killed the tool with "Bus error" and no word of the file.
+ * A slot is FREE, FILLING, LIVE as a pending one is.
+ */
+#define WATCH_SLOTS 4
+
+static struct {
+	atomic_int state;
+	const unsigned char *addr;
+	size_t len;
+	char path[PENDING_PATH];
+} watched[WATCH_SLOTS];
+
+static struct sigaction bus_before; /* SIGBUS's action before ours */
+
+static void
+cut_short(int sig, siginfo_t *si, void *ctx)
+{
+	const unsigned char *a = si->si_addr;
+
+	(void)ctx;
+	/* (si_code > 0: raised by the kernel, at si_addr; kill(2) is <= 0) */
+	for (int i = 0; si->si_code > 0 && i < WATCH_SLOTS; i++) {
+		if (atomic_load(&watched[i].state) != LIVE || a < watched[i].addr ||
+		    (size_t)(a - watched[i].addr) >= watched[i].len)
+			continue;
+		const char *part[] = {program_invocation_short_name, ": cannot read '",
+		                      watched[i].path,
+		                      "': the file was cut short while being read\n"};
+		char line[PENDING_PATH + 256];
+		size_t n = 0;
+		for (size_t k = 0; k < sizeof(part) / sizeof(part[0]); k++) {
+			size_t l = strlen(part[k]);
+			l = l < sizeof(line) - n ? l : sizeof(line) - n;
+			memcpy(line + n, part[k], l);
+			n += l;
+		}
+		if (write(STDERR_FILENO, line, n) < 0) {
+			/* nowhere to say it */
+		}
+		remove_on_signal();
+		_exit(2); /* bad input (vdt(7)) */
+	}
+	/* Not in an input: a fault as any other, to its former action. */
+	sigaction(sig, &bus_before, NULL);
+	raise(sig);
+}
+
+void
+vdt_input_watch(const void *p, size_t len, const char *path)
+{
+	static atomic_flag done = ATOMIC_FLAG_INIT;
+	size_t n = strlen(path);
+
+	if (!atomic_flag_test_and_set(&done)) {
+		struct sigaction sa;
+		memset(&sa, 0, sizeof(sa));
+		sa.sa_sigaction = cut_short;
+		sa.sa_flags = SA_SIGINFO;
+		sigemptyset(&sa.sa_mask);
+		for (size_t k = 0; k < sizeof(cleanup_signals) / sizeof(cleanup_signals[0]); k++)
+			sigaddset(&sa.sa_mask, cleanup_signals[k]);
+		sigaction(SIGBUS, &sa, &bus_before);
+	}
+	if (n >= PENDING_PATH)
+		n = PENDING_PATH - 1;
+	for (int i = 0; i < WATCH_SLOTS; i++) {
+		int expect = FREE;
+		if (atomic_compare_exchange_strong(&watched[i].state, &expect, FILLING)) {
+			watched[i].addr = p;
+			watched[i].len = len;
+			memcpy(watched[i].path, path, n);
+			watched[i].path[n] = 0;
+			atomic_store(&watched[i].state, LIVE);
+			return;
+		}
+	}
+}
+
+void
+vdt_input_unwatch(const void *p)
+{
+	for (int i = 0; p != NULL && i < WATCH_SLOTS; i++)
+		if (atomic_load(&watched[i].state) == LIVE && watched[i].addr == p) {
+			atomic_store(&watched[i].state, FREE);
+			return;
+		}
+}
+
 static void
 pending_add(const char *path)
 {
@@ -773,27 +961,51 @@ vdt_output_temp_done(const char *tmp)
 		}
 }
 
+/* The longest name the directory of target (its first dl bytes) holds. */
+static size_t
+name_max(const char *target, size_t dl)
+{
+	char *dir = dl ? strndup(target, dl) : NULL;
+	long n = dl && dir == NULL ? -1 : pathconf(dl ? dir : ".", _PC_NAME_MAX);
+
+	free(dir);
+	return n > 0 ? (size_t)n : NAME_MAX;
+}
+
 int
 vdt_output_temp(const char *target, char **tmp)
 {
 	const char *slash = strrchr(target, '/'), *base = slash ? slash + 1 : target;
-	size_t dl = (size_t)(base - target);
-	int fd;
+	size_t dl = (size_t)(base - target), bl = strlen(base), room = name_max(target, dl);
+	sigset_t old;
+	int fd, e;
 
-	/* A hidden name in the same directory, so that rename is atomic. */
-	if ((*tmp = malloc(dl + strlen(base) + 16)) == NULL)
+	/* A hidden name in the same directory, so that rename is atomic:
+	 * .NAME.XXXXXX, NAME cut short (between characters) where that would
+	 * pass the longest name the directory holds, which NAME may reach. */
+	if (bl + 8 > room) {
+		bl = room > 8 ? room - 8 : 0;
+		while (bl > 0 && (base[bl] & 0xc0) == 0x80)
+			bl--;
+	}
+	if ((*tmp = malloc(dl + bl + 9)) == NULL)
 		return -2;
 	memcpy(*tmp, target, dl);
-	sprintf(*tmp + dl, ".%s.XXXXXX", base);
-	if ((fd = mkstemp(*tmp)) < 0) {
-		int e = errno;
+	sprintf(*tmp + dl, ".%.*s.XXXXXX", (int)bl, base);
+	/* No signal between its making and the handler's knowing of it. */
+	hold_signals(&old);
+	if ((fd = mkstemp(*tmp)) >= 0) {
+		keep_mode(fd, target);
+		pending_add(*tmp);
+	}
+	e = errno;
+	pthread_sigmask(SIG_SETMASK, &old, NULL);
+	if (fd < 0) {
 		free(*tmp);
 		*tmp = NULL;
 		errno = e;
 		return -1;
 	}
-	keep_mode(fd, target);
-	pending_add(*tmp);
 	return fd;
 }
 
@@ -877,29 +1089,38 @@ release_temp(struct vdt_output *o, int rc)
 int
 vdt_output_stage(struct vdt_output *o, struct vdt_written *w, struct vdt_err *err)
 {
-	struct vdt_wnode *n;
 	int rc;
 
 	if (o->f == NULL)
 		return vdt_err_set(err, VDT_EINVAL, "output is not open");
 	if (o->tmp == NULL) /* stdout, a device, a FIFO: written in place */
 		return vdt_output_commit(o, err);
-	if ((rc = close_temp(o, err)) != 0)
-		return release_temp(o, rc);
-	if ((n = malloc(sizeof(*n) + strlen(o->tmp) + 1)) == NULL ||
-	    (n->target = strdup(o->path)) == NULL) {
+	if ((rc = close_temp(o, err)) == 0)
+		rc = vdt_written_stage(w, o->tmp, o->path, err);
+	/* (noted in w before the temporary file's own note goes) */
+	return release_temp(o, rc);
+}
+
+int
+vdt_written_stage(struct vdt_written *w, const char *tmp, const char *target, struct vdt_err *err)
+{
+	struct vdt_wnode *n;
+
+	if ((n = malloc(sizeof(*n) + strlen(tmp) + 1)) == NULL ||
+	    (n->target = strdup(target)) == NULL) {
 		free(n);
-		return release_temp(o, vdt_err_set(err, VDT_ENOMEM, "out of memory"));
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
 	}
-	strcpy(n->path, o->tmp);
-	written_push(w, n); /* before the temporary file's own note goes */
-	return release_temp(o, 0);
+	strcpy(n->path, tmp);
+	written_push(w, n);
+	return 0;
 }
 
 int
 vdt_written_commit(struct vdt_written *w, struct vdt_err *err)
 {
 	struct vdt_wnode **order = malloc((w->count ? w->count : 1) * sizeof(*order));
+	sigset_t old;
 	size_t n = 0;
 	int rc = 0;
 
@@ -909,6 +1130,10 @@ vdt_written_commit(struct vdt_written *w, struct vdt_err *err)
 	}
 	for (struct vdt_wnode *x = w->head; x; x = x->next)
 		order[n++] = x;
+	/* No signal from the first rename to the last, which left some
+	 * files new and the rest old; and none until w is off the handler's
+	 * list, which would remove the files renamed. */
+	hold_signals(&old);
 	/* in the order written (the list is newest first) */
 	while (n-- > 0 && rc == 0)
 		if (order[n]->target && rename(order[n]->path, order[n]->target) != 0) {
@@ -922,6 +1147,7 @@ vdt_written_commit(struct vdt_written *w, struct vdt_err *err)
 			unlink(order[i]->path);
 	free(order);
 	vdt_written_free(w);
+	pthread_sigmask(SIG_SETMASK, &old, NULL);
 	return rc;
 }
 
@@ -983,8 +1209,18 @@ vdt_output_open(struct vdt_output *o, const char *path, struct vdt_err *err)
 		return output_fail(o, -1, err, VDT_EIO, "", EISDIR);
 	if (special) {
 		/* A device, FIFO or socket: written in place, as there is no
-		 * file to replace (and replacing /dev/null would be a crime). */
-		if ((fd = open(o->path, O_WRONLY | O_CLOEXEC)) < 0 || (o->f = fdopen(fd, "wb")) == NULL)
+		 * file to replace (and replacing /dev/null would be a crime).
+		 * A descriptor of ours by name, where it is, as "-" is (opened
+		 * again, a file would be written from its start). */
+		int n = named_descriptor(o->path);
+		if (n == STDOUT_FILENO) {
+			free(o->path);
+			o->path = NULL;
+			o->f = stdout;
+			return 0;
+		}
+		fd = n >= 0 ? fcntl(n, F_DUPFD_CLOEXEC, 0) : open(o->path, O_WRONLY | O_CLOEXEC);
+		if (fd < 0 || (o->f = fdopen(fd, "wb")) == NULL)
 			return output_fail(o, fd, err, VDT_EIO, "", errno);
 		return 0;
 	}
@@ -1225,8 +1461,11 @@ vdt_output_format(const char *path, enum vdt_format given)
 	if (strcmp(path, "-") == 0)
 		return VDT_FMT_VDT;
 	f = vdt_format_from_path(path);
-	/* (a device or FIFO, written in place, is named for itself: /dev/null) */
-	if (f == VDT_FMT_AUTO && stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode))
+	/* (a device or FIFO, written in place, is named for itself: /dev/null;
+	 * a descriptor by name, /dev/stdout, is as "-") */
+	if (f == VDT_FMT_AUTO &&
+	    ((stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode)) ||
+	     named_descriptor(path) >= 0))
 		f = VDT_FMT_VDT;
 	return f;
 }

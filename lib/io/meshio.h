@@ -49,7 +49,8 @@ enum vdt_format vdt_format_from_path(const char *path);
  * The format an output goes out in: `given` unless VDT_FMT_AUTO, else the
  * vdt stream for "-" (stdout), else the one path's extension gives, else
  * the vdt stream for a device or FIFO (/dev/null: as stdout, written in
- * place); VDT_FMT_AUTO when none is known. vdt_write decides by it.
+ * place) or a descriptor by name (/dev/stdout, /dev/fd/N: as "-");
+ * VDT_FMT_AUTO when none is known. vdt_write decides by it.
  */
 enum vdt_format vdt_output_format(const char *path, enum vdt_format given);
 
@@ -91,7 +92,8 @@ int vdt_format_unknown(const unsigned char *buf, size_t n, struct vdt_err *err);
 
 /*
  * Read a mesh from path ("-" for stdin). The format is detected from the
- * content. If the input is a vdt stream, its MESH chunk becomes *m and every
+ * content. A regular file is mapped, watched by vdt_input_watch while it
+ * is read. If the input is a vdt stream, its MESH chunk becomes *m and every
  * other chunk is appended, in order, to *extra (if extra is NULL they are
  * dropped). The mesh is validated (vdt_mesh_validate) before returning.
  * Messages name the file: "cannot read 'x.ply': face 12 uses vertex 9001 of
@@ -152,8 +154,12 @@ struct vdt_output {
 /*
  * Where output to path lands: the file that path names through any
  * symbolic links (which may not exist yet), or path itself; *special is
- * set when that is a device, FIFO or socket, to be written in place
- * rather than replaced. Returns a malloc'd name, NULL out of memory.
+ * set when that is a device, FIFO or socket, or a descriptor of this
+ * process by name (/dev/stdout, /dev/fd/N, /proc/self/fd/N, open or not),
+ * to be written in place rather than replaced: vdt_output_open writes
+ * such a descriptor where it is, standard output as it writes "-",
+ * appending where the descriptor's offset is. Returns a malloc'd name,
+ * NULL out of memory.
  */
 char *vdt_output_target(const char *path, int *special);
 
@@ -189,9 +195,22 @@ int vdt_written_add(struct vdt_written *w, const char *path, struct vdt_err *err
 int vdt_output_stage(struct vdt_output *o, struct vdt_written *w, struct vdt_err *err);
 
 /*
+ * The same for a temporary file from vdt_output_temp that something else
+ * wrote and closed (an image writer of its own file): tmp is noted in w,
+ * to be renamed over target (as vdt_output_target gives it) at commit.
+ * The caller then calls vdt_output_temp_done(tmp), and on failure
+ * (VDT_ENOMEM) removes tmp itself.
+ */
+int vdt_written_stage(struct vdt_written *w, const char *tmp, const char *target,
+                      struct vdt_err *err);
+
+/*
  * Rename every staged file of w over its target, in the order written,
  * then empty w: the run succeeded. A rename that fails (VDT_EIO) leaves
  * the targets renamed before it and removes the staged files after it.
+ * The signals of vdt_output_temp are held back until w is empty: one
+ * that comes while the files are renamed ends the process after the
+ * last, all of them replaced and none removed.
  */
 int vdt_written_commit(struct vdt_written *w, struct vdt_err *err);
 
@@ -205,8 +224,11 @@ void vdt_written_free(struct vdt_written *w);
 /*
  * Create the hidden temporary file to be renamed over target (a regular
  * file's name, as vdt_output_target gives it): .NAME.XXXXXX beside it
- * (mkstemp), with the permissions of the file it replaces and its owner
- * where this process may give it, or 0666 less the umask for a new file.
+ * (mkstemp), NAME cut short where the whole would be longer than a name
+ * in that directory may be (pathconf _PC_NAME_MAX, which the target's
+ * own name may reach), with the permissions of the file it replaces and
+ * its owner where this process may give it, or 0666 less the umask for
+ * a new file.
  * Returns its descriptor with the malloc'ed name in *tmp; -1 (errno set)
  * or -2 (out of memory) with *tmp NULL. Used by vdt_output_open and by
  * the image writer.
@@ -214,7 +236,9 @@ void vdt_written_free(struct vdt_written *w);
  * Until vdt_output_temp_done(*tmp), a signal that ends the process
  * (SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE, SIGXFSZ) removes the file
  * first: the first call catches those of them left at their default
- * action, and the handler then lets the signal go on to it.
+ * action, and the handler then lets the signal go on to it. They are
+ * held back while the file is made, so that none comes before the
+ * handler knows of it.
  */
 int vdt_output_temp(const char *target, char **tmp);
 
@@ -224,6 +248,21 @@ void vdt_output_temp_done(const char *tmp);
 int vdt_output_open(struct vdt_output *o, const char *path, struct vdt_err *err);
 int vdt_output_commit(struct vdt_output *o, struct vdt_err *err);
 void vdt_output_abort(struct vdt_output *o);
+
+/*
+ * While the file named path is mapped at [p, p + len) and read there: if
+ * another process cuts it short, the first touch past its new end raises
+ * SIGBUS, which ends the process with status 2 and the one line
+ * "PROGRAM: cannot read 'path': the file was cut short while being read"
+ * on standard error (PROGRAM: the basename of argv[0], as the tools name
+ * themselves), after removing the temporary and staged files as the
+ * signals of vdt_output_temp do. The exception to "the library never
+ * exits": no reader can go on, and the handler cannot return. A SIGBUS
+ * elsewhere goes to the action it had before. The first call installs
+ * the handler; vdt_input_unwatch(p) before munmap. Up to 4 at once.
+ */
+void vdt_input_watch(const void *p, size_t len, const char *path);
+void vdt_input_unwatch(const void *p);
 
 /*
  * Reading a pipe in two steps, for callers that look at its first bytes
@@ -342,7 +381,9 @@ int vdt_draco_write(FILE *f, const struct vdt_mesh *m, int position_bits,
 int vdt_image_write(const char *path, int width, int height, int channels,
                     const unsigned char *pixels, struct vdt_err *err);
 /* The same, the file left staged in `stage` (non-NULL) as
- * vdt_output_stage leaves it, for vdt_written_commit. */
+ * vdt_output_stage leaves it, for vdt_written_commit, whatever the
+ * format (also those OpenImageIO writes to a file itself, .sgi .fits
+ * .heic ...). */
 int vdt_image_write_staged(const char *path, int width, int height, int channels,
                            const unsigned char *pixels, struct vdt_written *stage,
                            struct vdt_err *err);

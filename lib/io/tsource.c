@@ -1069,7 +1069,7 @@ vdt_tsource_open(struct vdt_tsource **ts, const char *path, struct vdt_err *err)
 	struct stat st;
 	size_t len;
 	void *map = NULL;
-	int rc;
+	int rc, spooled = 0;
 
 	*ts = NULL;
 	if (fd < 0)
@@ -1091,12 +1091,18 @@ vdt_tsource_open(struct vdt_tsource **ts, const char *path, struct vdt_err *err)
 			close(fd);
 		fd = sp;
 		is_stdin = 0;
+		spooled = 1;
 	}
 	if (len > 0 && (rc = map_fd(fd, len, &map, err)) != 0)
 		goto done;
+	/* (a spool file is ours, unlinked: nothing cuts it short) */
+	if (map != NULL && !spooled)
+		vdt_input_watch(map, len, path);
 	if ((rc = open_memory(&s, map, len, hint, map != NULL, err)) != 0) {
-		if (map)
+		if (map) {
+			vdt_input_unwatch(map);
 			munmap(map, len);
+		}
 		goto done;
 	}
 	s->map = map;
@@ -1116,8 +1122,10 @@ vdt_tsource_close(struct vdt_tsource *ts)
 	free(ts->pass);
 	free(ts->ptri);
 	vdt_polygon_free(&ts->pscratch);
-	if (ts->map)
+	if (ts->map) {
+		vdt_input_unwatch(ts->map);
 		munmap(ts->map, ts->map_len);
+	}
 	if (ts->pos_map)
 		munmap(ts->pos_map, ts->pos_len);
 	if (ts->tri_map)

@@ -283,3 +283,88 @@ load helpers
 		[[ "$output" == *"refusing to write binary vdt stream to a terminal"* ]]
 	fi
 }
+
+@test "-o /dev/stdout, /dev/fd/N, /proc/self/fd/N write where the descriptor is, as - does, not over its file" {
+	# (followed to a regular file, a new one was renamed over it: what
+	# >> appended to, and what the shell wrote around the output, lost)
+	"$BIN/vdt-qslim" -q -r 0.3 "$SAMPLES/sphere.off" -o "$TMP/b.ply"
+	"$BIN/vdt-qslim" -q -F obj -r 0.3 "$SAMPLES/sphere.off" -o - >"$TMP/want.obj"
+	{ echo header; cat "$TMP/want.obj"; echo footer; } >"$TMP/want-all.obj"
+	for o in /dev/stdout /dev/fd/1 /proc/self/fd/1; do
+		printf 'earlier\n' >"$TMP/log.txt"
+		"$BIN/vdt-measure" -q -F kv -n 1000 -o "$o" "$SAMPLES/sphere.off" "$TMP/b.ply" >>"$TMP/log.txt"
+		[ "$(head -n 1 "$TMP/log.txt")" = earlier ]
+		[[ "$(sed -n 2p "$TMP/log.txt")" == hausdorff=* ]]
+		[ "$(wc -l <"$TMP/log.txt")" -eq 2 ]
+		(echo header; "$BIN/vdt-qslim" -q -F obj -r 0.3 "$SAMPLES/sphere.off" -o "$o"; echo footer) >"$TMP/all.obj"
+		cmp "$TMP/want-all.obj" "$TMP/all.obj"
+	done
+	# another descriptor than standard output
+	(echo header >&3; "$BIN/vdt-qslim" -q -F obj -r 0.3 "$SAMPLES/sphere.off" -o /dev/fd/3; echo footer >&3) 3>"$TMP/three.obj"
+	cmp "$TMP/want-all.obj" "$TMP/three.obj"
+	# with no -F, the vdt stream, as for -; an image, PNG
+	"$BIN/vdt-qslim" -q -r 0.3 "$SAMPLES/sphere.off" -o /dev/stdout >"$TMP/a.vdt"
+	"$BIN/vdt-qslim" -q -r 0.3 "$SAMPLES/sphere.off" >"$TMP/b.vdt"
+	cmp "$TMP/a.vdt" "$TMP/b.vdt"
+	"$BIN/vdt-build" -q "$SAMPLES/sphere.off" -o "$TMP/t.vdt"
+	printf 'earlier\n' >"$TMP/img"
+	"$BIN/vdt-render" -q --size 32x24 "$TMP/t.vdt" -o /dev/stdout >>"$TMP/img"
+	"$BIN/vdt-render" -q --size 32x24 "$TMP/t.vdt" -o - >"$TMP/want.png"
+	{ printf 'earlier\n'; cat "$TMP/want.png"; } | cmp - "$TMP/img"
+	[ "$(ls -A "$TMP" | grep -c '^\.')" -eq 0 ]
+	# still refused when it is the input, as - is
+	cp "$SAMPLES/sphere.off" "$TMP/s.off"
+	for o in /dev/stdout -; do
+		run sh -c "'$BIN/vdt-qslim' -r 0.5 '$TMP/s.off' -o $o >>'$TMP/s.off'"
+		[ "$status" -eq 2 ]
+		[[ "$output" == *"is the input"* ]]
+		cmp "$SAMPLES/sphere.off" "$TMP/s.off"
+	done
+}
+
+@test "vdt-render frames OpenImageIO writes itself (.sgi) are staged: a failed run replaces none of them" {
+	# (renamed into place one by one, then taken back: the user's files gone)
+	"$BIN/vdt-build" -q "$SAMPLES/sphere.off" -o "$TMP/t.vdt"
+	"$BIN/vdt-render" -q --size 32x24 "$TMP/t.vdt" -o "$TMP/probe.sgi" || skip "no SGI writer"
+	printf '0 0 3 0 0 0 0 1 0\n3 0 0 0 0 0 0 1 0\n0 3 0 0 0 0 0 0 1\n' >"$TMP/path.txt"
+	mkdir "$TMP/fr" "$TMP/fr/2.sgi" # frame 2 cannot be written
+	echo OLD >"$TMP/fr/0.sgi"
+	echo OLD >"$TMP/fr/1.sgi"
+	run "$BIN/vdt-render" --size 32x24 --path "$TMP/path.txt" "$TMP/t.vdt" -o "$TMP/fr/%d.sgi"
+	[ "$status" -eq 1 ]
+	[ "$(cat "$TMP/fr/0.sgi")" = OLD ]
+	[ "$(cat "$TMP/fr/1.sgi")" = OLD ]
+	[ "$(ls -A "$TMP/fr" | grep -c '^\.')" -eq 0 ]
+	one_line
+	[ "$output" = "vdt-render: cannot write '$TMP/fr/2.sgi': Is a directory" ]
+	# and a run that succeeds replaces them all, with SGI images
+	rmdir "$TMP/fr/2.sgi"
+	"$BIN/vdt-render" -q --size 32x24 --path "$TMP/path.txt" "$TMP/t.vdt" -o "$TMP/fr/%d.sgi"
+	for i in 0 1 2; do
+		[ "$(head -c 2 "$TMP/fr/$i.sgi" | od -An -tx1 | tr -d ' ')" = 01da ]
+	done
+	[ "$(ls -A "$TMP/fr" | grep -c '^\.')" -eq 0 ]
+}
+
+@test "an output name of 255 bytes, the longest a directory holds, is written and replaced" {
+	# (the hidden temporary name beside it was 8 bytes longer: "File name too long")
+	n=$(printf 'a%.0s' $(seq 251)).off
+	[ "${#n}" -eq 255 ]
+	run "$BIN/vdt-qslim" -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/$n"
+	[ "$status" -eq 0 ]
+	[ "$(head -n 1 "$TMP/$n")" = OFF ]
+	chmod 600 "$TMP/$n"
+	run "$BIN/vdt-qslim" -r 0.3 "$SAMPLES/sphere.off" -o "$TMP/$n"
+	[ "$status" -eq 0 ]
+	[ "$(stat -c %a "$TMP/$n")" = 600 ]
+	# frames, staged, too; and a name of two-byte characters
+	"$BIN/vdt-build" -q "$SAMPLES/sphere.off" -o "$TMP/t.vdt"
+	printf '0 0 3 0 0 0 0 1 0\n3 0 0 0 0 0 0 1 0\n' >"$TMP/path.txt"
+	p=$(printf 'b%.0s' $(seq 249))%d.png
+	"$BIN/vdt-render" -q --size 32x24 --path "$TMP/path.txt" "$TMP/t.vdt" -o "$TMP/$p"
+	[ -s "$TMP/${p%\%d.png}1.png" ]
+	u=$(printf '\303\251%.0s' $(seq 125)).off
+	"$BIN/vdt-qslim" -q -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/$u"
+	[ "$(head -n 1 "$TMP/$u")" = OFF ]
+	[ "$(ls -A "$TMP" | grep -c '^\.')" -eq 0 ]
+}
