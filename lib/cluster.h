@@ -73,6 +73,7 @@ struct vdt_cluster_sample {
 	uint32_t res[VDT_CLUSTER_LEVELS];          /* 1, 2, 4, ... cells */
 	uint64_t occupied[VDT_CLUSTER_LEVELS];     /* occupied at res[i] */
 	uint64_t vertices;                         /* positions sampled */
+	uint64_t mid[3]; /* of those, in the middle quarter of the box, per axis */
 };
 struct vdt_cluster_sampler;
 int vdt_cluster_sampler_new(struct vdt_cluster_sampler **s,
