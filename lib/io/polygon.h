@@ -16,7 +16,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#define VDT_POLYGON_EAR_MAX 4096
+/* (every face the readers take: OBJ's and OFF's most corners; cutting
+ * one of 65536 takes about 5 s, a fan of it folds half its triangles) */
+#define VDT_POLYGON_EAR_MAX 65536
 
 /* Scratch, grown as polygons need; zero it before first use. */
 struct vdt_polygon {

@@ -115,6 +115,21 @@ both_cover() {
 	awk -v a="$area2" -v b="$got" 'BEGIN { d = a - b; exit !(b != "bad" && d * d < 1e-6) }'
 }
 
+@test "a concave face of 10000 corners, and of 65536, the most a face may have, is cut without folds" {
+	for n in 10000 65536; do
+		awk -v n=$n 'BEGIN { pi = atan2(0, -1); print "OFF"; print n, 1, 0
+			for (i = 0; i < n; i++) { r = i % 2 ? 6 : 10
+				printf "%.9g %.9g 0\n", r * cos(2 * pi * i / n), r * sin(2 * pi * i / n) }
+			printf "%d", n; for (i = 0; i < n; i++) printf " %d", i; printf "\n" }' >"$TMP/s.off"
+		"$BIN/vdt-qslim" -q -r 1 -F off "$TMP/s.off" -o "$TMP/q.off"
+		# every triangle turns the polygon's way (a fan folds half of them)
+		awk 'NR == 2 { nv = $1; nf = $2; next } NR > 2 && NR <= 2 + nv { x[NR - 3] = $1; y[NR - 3] = $2; next }
+			NR > 2 + nv { s = (x[$3] - x[$2]) * (y[$4] - y[$2]) - (y[$3] - y[$2]) * (x[$4] - x[$2])
+				if (s < 0) bad++; n++ }
+			END { exit !(bad == 0 && n == nf && nf == nv - 2) }' "$TMP/q.off"
+	done
+}
+
 @test "a convex polygon keeps its fan" {
 	printf 'v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n' >"$TMP/q.obj"
 	run "$BIN/vdt-qslim" -q -r 1 -F obj "$TMP/q.obj" -o -
