@@ -181,6 +181,16 @@ run(struct cmdline *cl)
 	if (attrs && !cl->quiet)
 		fprintf(stderr, "%s: note: '%s' has %s, which clustering does not keep (vdt-qslim "
 		        "alone keeps them)\n", progname, input_name(cl->in), attr_names(attrs, 1, names));
+	/* -t and -r name the final count, which vdt-qslim cannot reach from
+	 * fewer: many parts smaller than a cell vanish (50000 tetrahedra at
+	 * -t 1000 left 51 triangles). */
+	double aim = cl->ch.target > 0 ? (double)cl->ch.target
+	                               : floor(cl->ratio * (double)st.triangles_in + 0.5);
+	if (!cl->quiet && aim > 0 && (double)st.triangles_out < aim &&
+	    (double)st.triangles_in > aim)
+		fprintf(stderr, "%s: note: '%s': clustering left %zu triangles, fewer than the %.0f "
+		        "asked for: parts smaller than a cell vanish (-s or -g give finer cells)\n",
+		        progname, input_name(cl->in), st.triangles_out, aim);
 	if (cl->verbose)
 		fprintf(stderr, "%s: in_triangles=%llu in_attributes=%s streamed=%d cells=%zu boundary_cells=%zu "
 		        "out_vertices=%zu out_triangles=%zu grid=%ux%ux%u cell_size=%.6g "

@@ -719,6 +719,25 @@ PY
 	awk -v h="$h" 'BEGIN { exit !(h < 0.01) }'
 }
 
+@test "vdt-cluster -t says so when the parts, smaller than its cells, leave fewer triangles" {
+	# 27000 small tetrahedra on a 30^3 lattice: at -t 1000 the cells are
+	# larger than the tetrahedra, most of which vanish (236 triangles)
+	awk 'BEGIN { N = 30; print "OFF"; print 4 * N * N * N, 4 * N * N * N, 0
+		for (i = 0; i < N; i++) for (j = 0; j < N; j++) for (k = 0; k < N; k++) {
+			print i, j, k; print i + 0.1, j, k; print i, j + 0.1, k; print i, j, k + 0.1 }
+		for (t = 0; t < N * N * N; t++) { a = 4 * t
+			print 3, a, a + 2, a + 1; print 3, a, a + 1, a + 3; print 3, a, a + 3, a + 2; print 3, a + 1, a + 2, a + 3 } }' > "$TMP/tets.off"
+	run "$BIN/vdt-cluster" -t 1000 "$TMP/tets.off" -o "$TMP/t.ply"
+	[ "$status" -eq 0 ]
+	one_line
+	[[ "$output" == "vdt-cluster: note: '$TMP/tets.off': clustering left "*" triangles, fewer than the 1000 asked for: "* ]]
+	run "$BIN/vdt-cluster" -q -t 1000 "$TMP/tets.off" -o "$TMP/t.ply"
+	[ "$output" = "" ]
+	# a target the model cannot reach is no such case
+	run "$BIN/vdt-cluster" -t 100000 "$SAMPLES/sphere.off" -o "$TMP/s.ply"
+	[ "$output" = "" ]
+}
+
 @test "vdt-cluster short of memory says so, with status 1 (not bad input)" {
 	# (AddressSanitizer reserves more address space than any limit allows)
 	nm "$BIN/vdt-cluster" 2>/dev/null | grep -q __asan_init && skip "sanitized build"
