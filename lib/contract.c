@@ -329,11 +329,29 @@ list_merge(struct pool *p, struct list *lists, size_t n, uint32_t keep, uint32_t
 	return 0;
 }
 
+/* Four entries, compared at once (GCC's and Clang's vector extension). */
+typedef uint32_t u32x4 __attribute__((vector_size(16)));
+#define LIST_SCAN 16
+
+/* Remove x, the first of it, from l, keeping the order. A long list (the
+ * apex of a fan loses a face at most contractions around it) is looked
+ * through LIST_SCAN entries at a time with vector compares first. */
 static void
 list_remove(struct pool *p, struct list *l, uint32_t x)
 {
-	uint32_t *d = p->data + l->off;
-	for (uint32_t i = 0; i < l->len; i++)
+	uint32_t *d = p->data + l->off, i = 0;
+
+	if (l->len > 4 * LIST_SCAN) {
+		u32x4 xs = {x, x, x, x};
+		for (; i + LIST_SCAN <= l->len; i += LIST_SCAN) {
+			u32x4 q[4];
+			memcpy(q, d + i, sizeof(q));
+			u32x4 hit = (q[0] == xs) | (q[1] == xs) | (q[2] == xs) | (q[3] == xs);
+			if ((hit[0] | hit[1] | hit[2] | hit[3]) != 0)
+				break;
+		}
+	}
+	for (; i < l->len; i++)
 		if (d[i] == x) {
 			memmove(d + i, d + i + 1, (l->len - i - 1) * sizeof(*d));
 			l->len--;
@@ -1011,7 +1029,10 @@ enum { FAN_EVAL, FAN_NOTE, FAN_NOTED };
 /*
  * Fans of up to FAN_LOCAL faces find a neighbour listed already through a
  * small hash on the stack, of FAN_HASH entries (a power of two, at least
- * twice the neighbours, 2 per face); longer ones search the list.
+ * twice the neighbours, 2 per face); longer ones through a table of
+ * 2^fan_bits(faces) entries on the heap (fan_add_big), or, when there is
+ * no memory for it, by a search of the list: a vertex that has gathered
+ * thousands of faces (the apex of a fan) would spend the square of that.
  */
 #define FAN_LOCAL 32
 #define FAN_HASH 128
@@ -1049,6 +1070,46 @@ fan_add(const struct engine *e, uint8_t *hash, struct vcost *out, uint32_t *n, u
 }
 
 /*
+ * fan_add for a fan over FAN_LOCAL faces, through big, a table of 2^bits
+ * entries that holds one plus the index in out of the neighbour there, 0
+ * where none; by a search of out when big is NULL.
+ */
+static uint32_t
+fan_add_big(const struct engine *e, uint32_t *big, int bits, struct vcost *out, uint32_t *n,
+            uint32_t x, size_t slot, int how)
+{
+	uint32_t h, mask = (1u << bits) - 1;
+
+	if (big == NULL)
+		return fan_add(e, NULL, out, n, x, slot, how);
+	for (h = fan_slot(x, bits); big[h] != 0; h = (h + 1) & mask)
+		if (out[big[h] - 1].x == x)
+			return big[h] - 1;
+	big[h] = *n + 1;
+	out[*n].x = x;
+	if (how == FAN_NOTED)
+		out[*n].cost = e->ecost[slot];
+	else
+		prefetch_vertex(e, x);
+	return (*n)++;
+}
+
+/* The index in out of x, listed by fan_add_big through big (or, NULL, by
+ * a search of out). */
+static uint32_t
+fan_index(const struct vcost *out, const uint32_t *big, int bits, uint32_t x)
+{
+	uint32_t s = 0, mask = (1u << bits) - 1;
+
+	for (uint32_t h = fan_slot(x, bits); big != NULL && big[h] != 0; h = (h + 1) & mask)
+		if (out[big[h] - 1].x == x)
+			return big[h] - 1;
+	while (out[s].x != x)
+		s++;
+	return s;
+}
+
+/*
  * The distinct neighbours of v (only those above it with upper) and the
  * costs of their pairs, into out in fan order; their number. Reads the
  * engine only, so threads may run it at once; out holds 2 * v's faces.
@@ -1064,7 +1125,8 @@ fan_costs(struct engine *e, uint32_t v, int upper, int how, struct vcost *out)
 	const uint32_t *faces = e->tpool.data + l->off;
 	uint8_t hash[FAN_HASH], at[2 * FAN_LOCAL];
 	uint32_t slot[2 * FAN_LOCAL]; /* the note of each, with FAN_NOTE */
-	int local = l->len <= FAN_LOCAL;
+	int local = l->len <= FAN_LOCAL, bits = local ? 0 : fan_bits(l->len);
+	uint32_t *big = local ? NULL : calloc((size_t)1 << bits, sizeof(*big));
 	double pos[3];
 	uint32_t n = 0;
 
@@ -1077,26 +1139,35 @@ fan_costs(struct engine *e, uint32_t v, int upper, int how, struct vcost *out)
 		const uint32_t *t = e->tri + 3 * face;
 		int kv = t[0] == v ? 0 : t[1] == v ? 1 : 2;
 		uint32_t x1 = t[next[kv]], x2 = t[prev[kv]], s1 = NONE, s2 = NONE;
-		if (!upper || x1 > v)
-			s1 = fan_add(e, local ? hash : NULL, out, &n, x1, 3 * face + kv, how);
-		if (!upper || x2 > v)
-			s2 = fan_add(e, local ? hash : NULL, out, &n, x2, 3 * face + prev[kv], how);
-		if (local) {
-			at[2 * f] = (uint8_t)s1;
-			at[2 * f + 1] = (uint8_t)s2;
-			slot[2 * f] = (uint32_t)(3 * face + kv);
-			slot[2 * f + 1] = (uint32_t)(3 * face + prev[kv]);
+		if (!local) {
+			if (!upper || x1 > v)
+				fan_add_big(e, big, bits, out, &n, x1, 3 * face + kv, how);
+			if (!upper || x2 > v)
+				fan_add_big(e, big, bits, out, &n, x2, 3 * face + prev[kv], how);
+			continue;
 		}
+		if (!upper || x1 > v)
+			s1 = fan_add(e, hash, out, &n, x1, 3 * face + kv, how);
+		if (!upper || x2 > v)
+			s2 = fan_add(e, hash, out, &n, x2, 3 * face + prev[kv], how);
+		at[2 * f] = (uint8_t)s1;
+		at[2 * f + 1] = (uint8_t)s2;
+		slot[2 * f] = (uint32_t)(3 * face + kv);
+		slot[2 * f + 1] = (uint32_t)(3 * face + prev[kv]);
 	}
-	if (how == FAN_NOTED)
+	if (how == FAN_NOTED) {
+		free(big);
 		return n;
+	}
 	/* Costed once all are listed, so that their data is on its way. */
 	for (uint32_t s = 0; s < n; s++) {
 		uint32_t x = out[s].x;
 		out[s].cost = (float)(x < v ? eval_pair(e, x, v, pos) : eval_pair(e, v, x, pos));
 	}
-	if (how == FAN_EVAL)
+	if (how == FAN_EVAL) {
+		free(big);
 		return n;
+	}
 	for (uint32_t i = 0; local && i < 2 * l->len; i++) {
 		if (at[i] >= n) /* not listed: below v, with upper */
 			continue;
@@ -1110,14 +1181,13 @@ fan_costs(struct engine *e, uint32_t v, int upper, int how, struct vcost *out)
 		int kv = t[0] == v ? 0 : t[1] == v ? 1 : 2;
 		for (int j = 0; j < 2; j++) {
 			int kx = j == 0 ? next[kv] : prev[kv];
-			uint32_t x = t[kx], s = 0;
+			uint32_t x = t[kx];
 			if (x < v && (upper || (e->vflag[x] & V_KEPT)))
 				continue;
-			while (out[s].x != x)
-				s++;
-			e->ecost[3 * face + (j == 0 ? kv : kx)] = out[s].cost;
+			e->ecost[3 * face + (j == 0 ? kv : kx)] = out[fan_index(out, big, bits, x)].cost;
 		}
 	}
+	free(big);
 	return n;
 }
 

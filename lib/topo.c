@@ -3,6 +3,7 @@
 #include "mem.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 int
 vdt_topo_fans(size_t nv, const uint32_t *tri, size_t nt, uint32_t **start, uint32_t **fan)
@@ -41,19 +42,128 @@ vdt_topo_same_face(const uint32_t *a, const uint32_t *b)
 	return 0;
 }
 
+/* Fans longer than this are not searched for each of their faces'
+ * repeats (the square of a fan's size at the apex of a cone): their faces
+ * are sorted by their vertices instead (struct rep). */
+#define TOPO_SCAN 64
+
+/* A face at a vertex of a long fan: its vertices in increasing order, its
+ * number, and its place among those faces in face order. */
+struct rep {
+	uint32_t v[3], t, j;
+};
+
+static int
+rep_cmp(const void *p, const void *q)
+{
+	const struct rep *a = p, *b = q;
+
+	for (int k = 0; k < 3; k++)
+		if (a->v[k] != b->v[k])
+			return a->v[k] < b->v[k] ? -1 : 1;
+	return a->t < b->t ? -1 : a->t > b->t;
+}
+
+static inline uint32_t
+min3(const uint32_t *v)
+{
+	return v[0] < v[1] ? (v[0] < v[2] ? v[0] : v[2]) : (v[1] < v[2] ? v[1] : v[2]);
+}
+
+static inline int
+same_vertices(const struct rep *a, const struct rep *b)
+{
+	return a->v[0] == b->v[0] && a->v[1] == b->v[1] && a->v[2] == b->v[2];
+}
+
+/*
+ * The faces whose smallest vertex has a fan over TOPO_SCAN, sorted by
+ * their vertices then number into *rep, and for the j-th of them in face
+ * order, (*group)[j] the place in *rep of the first on the same vertices,
+ * whose j is from then on where the live ones of them may start. Their
+ * number (nothing allocated when there are none), or SIZE_MAX when memory
+ * runs out.
+ */
+static size_t
+long_fan_faces(const uint32_t *tri, size_t nt, const uint32_t *start, struct rep **rep,
+               uint32_t **group)
+{
+	size_t n = 0, j = 0;
+
+	*rep = NULL;
+	*group = NULL;
+	for (size_t t = 0; t < nt; t++) {
+		uint32_t m = min3(tri + 3 * t);
+		n += start[m + 1] - start[m] > TOPO_SCAN;
+	}
+	if (n == 0)
+		return 0;
+	struct rep *r = malloc(n * sizeof(*r));
+	uint32_t *g = malloc(n * sizeof(*g));
+	if (r == NULL || g == NULL) {
+		free(r);
+		free(g);
+		return SIZE_MAX;
+	}
+	for (size_t t = 0; t < nt; t++) {
+		const uint32_t *v = tri + 3 * t;
+		uint32_t m = min3(v);
+		if (start[m + 1] - start[m] <= TOPO_SCAN)
+			continue;
+		uint32_t hi = v[0] > v[1] ? v[0] : v[1];
+		hi = hi > v[2] ? hi : v[2];
+		uint32_t mid = (uint32_t)((uint64_t)v[0] + v[1] + v[2] - m - hi);
+		r[j] = (struct rep){{m, mid, hi}, (uint32_t)t, (uint32_t)j};
+		j++;
+	}
+	qsort(r, n, sizeof(*r), rep_cmp);
+	for (size_t i = 0, first = 0; i < n; i++) {
+		if (!same_vertices(&r[i], &r[first]))
+			first = i;
+		g[r[i].j] = (uint32_t)first;
+	}
+	for (size_t i = 0; i < n; i++)
+		if (i == 0 || !same_vertices(&r[i], &r[i - 1]))
+			r[i].j = (uint32_t)i;
+	*rep = r;
+	*group = g;
+	return n;
+}
+
 size_t
 vdt_topo_drop_repeats(const uint32_t *tri, size_t nt, const uint32_t *start,
                       const uint32_t *fan, uint8_t *dead, int fins)
 {
-	size_t n = 0;
+	struct rep *r;
+	uint32_t *group;
+	size_t n = 0, j = 0, nr = long_fan_faces(tri, nt, start, &r, &group);
 
 	/* A repeat shares its smallest vertex with the earlier face: look
 	 * only in that vertex's fan, at faces before this one, and only at
-	 * those whose corners sum to the same. */
+	 * those whose corners sum to the same. In a long fan the earlier
+	 * face is the first live one on the same vertices, found in r past
+	 * those found marked before (a face, once marked, stays marked). */
 	for (size_t t = 0; t < nt; t++) {
 		const uint32_t *v = tri + 3 * t;
-		uint32_t m = v[0] < v[1] ? (v[0] < v[2] ? v[0] : v[2]) : (v[1] < v[2] ? v[1] : v[2]);
+		uint32_t m = min3(v);
 		uint64_t sum = (uint64_t)v[0] + v[1] + v[2];
+		if (nr != SIZE_MAX && start[m + 1] - start[m] > TOPO_SCAN) {
+			struct rep *head = &r[group[j++]];
+			uint32_t i = head->j;
+			while (i < nr && same_vertices(&r[i], head) && dead[r[i].t])
+				i++;
+			head->j = i;
+			if (i < nr && same_vertices(&r[i], head) && r[i].t < t) {
+				int same = vdt_topo_same_face(v, tri + 3 * (size_t)r[i].t);
+				dead[t] = same < 0 && !fins ? VDT_TOPO_BACK : 1;
+				n++;
+				if (same < 0 && fins) {
+					dead[r[i].t] = 1;
+					n++;
+				}
+			}
+			continue;
+		}
 		for (uint32_t i = start[m]; i < start[m + 1] && fan[i] < t; i++) {
 			const uint32_t *u = tri + 3 * (size_t)fan[i];
 			if ((uint64_t)u[0] + u[1] + u[2] != sum)
@@ -70,6 +180,8 @@ vdt_topo_drop_repeats(const uint32_t *tri, size_t nt, const uint32_t *start,
 			}
 		}
 	}
+	free(r);
+	free(group);
 	return n;
 }
 
@@ -78,7 +190,7 @@ vdt_topo_back_of(const uint32_t *tri, uint32_t t, const uint32_t *start, const u
                  const uint8_t *dead)
 {
 	const uint32_t *v = tri + 3 * (size_t)t;
-	uint32_t m = v[0] < v[1] ? (v[0] < v[2] ? v[0] : v[2]) : (v[1] < v[2] ? v[1] : v[2]);
+	uint32_t m = min3(v);
 
 	for (uint32_t i = start[m]; i < start[m + 1] && fan[i] < t; i++)
 		if (!dead[fan[i]] && vdt_topo_same_face(v, tri + 3 * (size_t)fan[i]) < 0)
@@ -111,7 +223,9 @@ open_push(struct open_list *l, uint32_t t, uint32_t a, uint32_t b)
 
 /*
  * Edge (v,x), x > v, is open when x appears in one live face of v's fan
- * only; fans larger than the scratch table fall back to a scan.
+ * only; fans larger than the scratch table count their neighbours in a
+ * hash table (struct nb_table), or, when there is no memory for one, scan
+ * the fan for each.
  */
 long
 vdt_topo_open_edges(size_t nv, const uint32_t *tri, const uint32_t *start,
@@ -121,12 +235,83 @@ vdt_topo_open_edges(size_t nv, const uint32_t *tri, const uint32_t *start,
 	return vdt_topo_open_edges_in(0, nv, tri, start, fan, dead, edges, nonmanifold);
 }
 
+/*
+ * The neighbours above v of a long fan: for each, the live faces of the fan
+ * (as entries of it: a face with v twice is two) that hold it, and the
+ * first of those; found through slot, 2^bits entries of one plus the index
+ * in nb, 0 where none.
+ */
+struct nb_table {
+	uint32_t *slot;
+	uint32_t (*nb)[3]; /* x, faces, first */
+	int bits;
+};
+
+static uint32_t *
+nb_find(struct nb_table *h, uint32_t x)
+{
+	uint32_t mask = (1u << h->bits) - 1, i = (x * 2654435761u) >> (32 - h->bits);
+
+	while (h->slot[i] != 0 && h->nb[h->slot[i] - 1][0] != x)
+		i = (i + 1) & mask;
+	return &h->slot[i];
+}
+
+/* Count the neighbours above v of the fan fan[b..e) into h, made room for
+ * (at least twice as many slots as a fan of e - b faces can have
+ * neighbours): 0, or -1 when memory runs out. */
+static int
+nb_count(struct nb_table *h, size_t v, const uint32_t *tri, const uint32_t *fan, uint32_t b,
+         uint32_t e, const uint8_t *dead)
+{
+	int bits = 4;
+	uint32_t n = 0;
+
+	while (((size_t)1 << bits) < 4 * (size_t)(e - b))
+		bits++;
+	if (bits > h->bits) {
+		uint32_t *slot = malloc(((size_t)1 << bits) * sizeof(*slot));
+		uint32_t(*nb)[3] = malloc(((size_t)1 << bits) / 2 * sizeof(*nb));
+		if (slot == NULL || nb == NULL) {
+			free(slot);
+			free(nb);
+			return -1;
+		}
+		free(h->slot);
+		free(h->nb);
+		h->slot = slot;
+		h->nb = nb;
+		h->bits = bits;
+	}
+	memset(h->slot, 0, ((size_t)1 << h->bits) * sizeof(*h->slot));
+	for (uint32_t i = b; i < e; i++) {
+		const uint32_t *tv = tri + 3 * (size_t)fan[i];
+		if (dead && dead[fan[i]])
+			continue;
+		for (int k = 0; k < 3; k++) {
+			uint32_t x = tv[k];
+			if (x <= v || (k > 0 && x == tv[0]) || (k > 1 && x == tv[1]))
+				continue;
+			uint32_t *s = nb_find(h, x);
+			if (*s == 0) {
+				h->nb[n][0] = x;
+				h->nb[n][1] = 0;
+				h->nb[n][2] = i;
+				*s = ++n;
+			}
+			h->nb[*s - 1][1]++;
+		}
+	}
+	return 0;
+}
+
 long
 vdt_topo_open_edges_in(size_t lo, size_t hi, const uint32_t *tri, const uint32_t *start,
                        const uint32_t *fan, const uint8_t *dead, uint32_t **edges,
                        size_t *nonmanifold)
 {
 	struct open_list l = {NULL, 0, 0};
+	struct nb_table h = {NULL, NULL, 0};
 	uint32_t seen[64 * 2];
 	size_t nm = 0; /* stored once: threads' counts may share a line */
 
@@ -134,6 +319,25 @@ vdt_topo_open_edges_in(size_t lo, size_t hi, const uint32_t *tri, const uint32_t
 	*nonmanifold = 0;
 	for (size_t v = lo; v < hi; v++) {
 		uint32_t n = 0, b = start[v], e = start[v + 1];
+		if (e - b > 32 && nb_count(&h, v, tri, fan, b, e, dead) == 0) {
+			/* as the scan below: per corner, so twice for a face
+			 * that holds x twice */
+			for (uint32_t i = b; i < e; i++) {
+				const uint32_t *tv = tri + 3 * (size_t)fan[i];
+				if (dead && dead[fan[i]])
+					continue;
+				for (int k = 0; k < 3; k++) {
+					if (tv[k] <= v)
+						continue;
+					const uint32_t *c = h.nb[*nb_find(&h, tv[k]) - 1];
+					if (c[1] == 1 && open_push(&l, fan[i], (uint32_t)v, tv[k]) != 0)
+						goto nomem;
+					if (c[1] > 2 && c[2] == i)
+						nm++;
+				}
+			}
+			continue;
+		}
 		for (uint32_t i = b; i < e; i++) {
 			const uint32_t *tv = tri + 3 * (size_t)fan[i];
 			if (dead && dead[fan[i]])
@@ -177,10 +381,14 @@ vdt_topo_open_edges_in(size_t lo, size_t hi, const uint32_t *tri, const uint32_t
 				nm++;
 		}
 	}
+	free(h.slot);
+	free(h.nb);
 	*edges = l.e;
 	*nonmanifold = nm;
 	return (long)l.n;
 nomem:
+	free(h.slot);
+	free(h.nb);
 	free(l.e);
 	return -1;
 }
