@@ -615,15 +615,16 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 	 * volume, both dropped; on a model, a double-sided face (a leaf, a
 	 * sign), simplified as its front, its back given back at the end
 	 * (front << 32 | back, in w's faces). */
-	vdt_topo_drop_repeats(w->triangles, nt, start, fan, dead, o->quadrics != NULL);
 	/* A face that welding left with a repeated vertex (an STL facet
 	 * whose corners coincide) has no area and holds no edge: as a third
-	 * face of its edge it would make manifold input look non-manifold. */
+	 * face of its edge it would make manifold input look non-manifold.
+	 * (Before the repeats, so that none of them is a front.) */
 	for (size_t t = 0; t < nt; t++) {
 		const uint32_t *v = w->triangles + 3 * t;
-		if (!dead[t] && (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]))
+		if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2])
 			dead[t] = 1;
 	}
+	vdt_topo_drop_repeats(w->triangles, nt, start, fan, dead, o->quadrics != NULL);
 	*backs = NULL;
 	*nbacks = 0;
 	/* Every pair first (front << 32 | back), then which are double-sided. */
@@ -631,6 +632,10 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 	for (size_t t = 0; o->quadrics == NULL && t < nt; t++)
 		if (dead[t] == VDT_TOPO_BACK) {
 			uint32_t f = vdt_topo_back_of(w->triangles, (uint32_t)t, start, fan, dead);
+			if (f == NONE) { /* (no live front: not a back after all) */
+				dead[t] = 1;
+				continue;
+			}
 			if ((*nbacks & (*nbacks - 1)) == 0) {
 				uint64_t *b = realloc(*backs, 2 * (*nbacks ? *nbacks : 1) * sizeof(*b));
 				if (b == NULL)
