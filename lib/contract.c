@@ -21,6 +21,7 @@
 #include <unistd.h>
 
 #include "bytes.h"
+#include "hash.h"
 #include "mem.h"
 #include "sort.h"
 
@@ -532,17 +533,6 @@ pair_cost(struct engine *e, uint32_t p, double pos[3])
 	return 0;
 }
 
-/*
- * The slot of vertex x in an open-addressing table of 2^bits entries:
- * Fibonacci hashing, which takes the high bits of the product (its low
- * bits depend only on the low bits of x).
- */
-static inline uint32_t
-fan_slot(uint32_t x, int bits)
-{
-	return (x * 2654435761u) >> (32 - bits);
-}
-
 /* The bits of the table fan_neighbours takes for a list of `faces` faces:
  * at least twice the 2 * faces neighbours it may hold. */
 static int
@@ -576,7 +566,7 @@ fan_neighbours(const struct engine *e, uint32_t v, uint32_t *out, uint32_t *slot
 	for (uint32_t i = 0; i < l->len; i++) {
 		const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + i];
 		for (int k = 0; k < 3; k++) {
-			uint32_t x = t[k], h = fan_slot(x, bits);
+			uint32_t x = t[k], h = vdt_hash_slot(x, bits);
 			if (x == v)
 				continue;
 			while (slots[h] != 0 && out[2 * (slots[h] - 1)] != x)
@@ -597,7 +587,7 @@ fan_neighbours(const struct engine *e, uint32_t v, uint32_t *out, uint32_t *slot
 static uint32_t
 fan_has(const uint32_t *out, const uint32_t *slots, int bits, uint32_t x)
 {
-	uint32_t h = fan_slot(x, bits), mask = (1u << bits) - 1;
+	uint32_t h = vdt_hash_slot(x, bits), mask = (1u << bits) - 1;
 
 	while (slots[h] != 0) {
 		if (out[2 * (slots[h] - 1)] == x)
@@ -1048,7 +1038,7 @@ fan_add(const struct engine *e, uint8_t *hash, struct vcost *out, uint32_t *n, u
 	uint32_t s;
 
 	if (hash != NULL) {
-		uint32_t h = fan_slot(x, 7); /* log2 FAN_HASH */
+		uint32_t h = vdt_hash_slot(x, 7); /* log2 FAN_HASH */
 		while (hash[h] != 0 && out[hash[h] - 1].x != x)
 			h = (h + 1) & (FAN_HASH - 1);
 		if (hash[h] != 0)
@@ -1082,7 +1072,7 @@ fan_add_big(const struct engine *e, uint32_t *big, int bits, struct vcost *out, 
 
 	if (big == NULL)
 		return fan_add(e, NULL, out, n, x, slot, how);
-	for (h = fan_slot(x, bits); big[h] != 0; h = (h + 1) & mask)
+	for (h = vdt_hash_slot(x, bits); big[h] != 0; h = (h + 1) & mask)
 		if (out[big[h] - 1].x == x)
 			return big[h] - 1;
 	big[h] = *n + 1;
@@ -1101,7 +1091,7 @@ fan_index(const struct vcost *out, const uint32_t *big, int bits, uint32_t x)
 {
 	uint32_t s = 0, mask = (1u << bits) - 1;
 
-	for (uint32_t h = fan_slot(x, bits); big != NULL && big[h] != 0; h = (h + 1) & mask)
+	for (uint32_t h = vdt_hash_slot(x, bits); big != NULL && big[h] != 0; h = (h + 1) & mask)
 		if (out[big[h] - 1].x == x)
 			return big[h] - 1;
 	while (out[s].x != x)

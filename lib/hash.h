@@ -21,6 +21,17 @@ vdt_hash_mix(uint64_t x)
 }
 
 /*
+ * The slot of a 32-bit key x in an open-addressing table of 2^bits entries
+ * (1 <= bits <= 32): Fibonacci hashing, which takes the high bits of the
+ * product (its low bits depend only on the low bits of x).
+ */
+static inline uint32_t
+vdt_hash_slot(uint32_t x, int bits)
+{
+	return (x * 2654435761u) >> (32 - bits);
+}
+
+/*
  * The key of a position, by its bits, -0 as +0 (the same point): what
  * welding compares positions by, and vdt-cluster tells edges by.
  */

@@ -1,5 +1,6 @@
 /* topo.c - fan tables and repeated faces (see topo.h). */
 #include "topo.h"
+#include "hash.h"
 #include "mem.h"
 
 #include <stdlib.h>
@@ -130,6 +131,19 @@ long_fan_faces(const uint32_t *tri, size_t nt, const uint32_t *start, struct rep
 	return n;
 }
 
+/* Mark face t, a repeat of earlier face f (same < 0: its reverse), as
+ * vdt_topo_drop_repeats says; the number of faces marked. */
+static size_t
+mark_repeat(uint8_t *dead, size_t t, uint32_t f, int same, int fins)
+{
+	dead[t] = same < 0 && !fins ? VDT_TOPO_BACK : 1;
+	if (same < 0 && fins) {
+		dead[f] = 1;
+		return 2;
+	}
+	return 1;
+}
+
 size_t
 vdt_topo_drop_repeats(const uint32_t *tri, size_t nt, const uint32_t *start,
                       const uint32_t *fan, uint8_t *dead, int fins)
@@ -153,15 +167,9 @@ vdt_topo_drop_repeats(const uint32_t *tri, size_t nt, const uint32_t *start,
 			while (i < nr && same_vertices(&r[i], head) && dead[r[i].t])
 				i++;
 			head->j = i;
-			if (i < nr && same_vertices(&r[i], head) && r[i].t < t) {
-				int same = vdt_topo_same_face(v, tri + 3 * (size_t)r[i].t);
-				dead[t] = same < 0 && !fins ? VDT_TOPO_BACK : 1;
-				n++;
-				if (same < 0 && fins) {
-					dead[r[i].t] = 1;
-					n++;
-				}
-			}
+			if (i < nr && same_vertices(&r[i], head) && r[i].t < t)
+				n += mark_repeat(dead, t, r[i].t,
+				                 vdt_topo_same_face(v, tri + 3 * (size_t)r[i].t), fins);
 			continue;
 		}
 		for (uint32_t i = start[m]; i < start[m + 1] && fan[i] < t; i++) {
@@ -170,12 +178,7 @@ vdt_topo_drop_repeats(const uint32_t *tri, size_t nt, const uint32_t *start,
 				continue;
 			int same = dead[fan[i]] ? 0 : vdt_topo_same_face(v, u);
 			if (same != 0) {
-				dead[t] = same < 0 && !fins ? VDT_TOPO_BACK : 1;
-				n++;
-				if (same < 0 && fins) {
-					dead[fan[i]] = 1;
-					n++;
-				}
+				n += mark_repeat(dead, t, fan[i], same, fins);
 				break;
 			}
 		}
@@ -250,7 +253,7 @@ struct nb_table {
 static uint32_t *
 nb_find(struct nb_table *h, uint32_t x)
 {
-	uint32_t mask = (1u << h->bits) - 1, i = (x * 2654435761u) >> (32 - h->bits);
+	uint32_t mask = (1u << h->bits) - 1, i = vdt_hash_slot(x, h->bits);
 
 	while (h->slot[i] != 0 && h->nb[h->slot[i] - 1][0] != x)
 		i = (i + 1) & mask;
