@@ -77,6 +77,22 @@ is_fan(const uint32_t *tri, size_t n)
 
 static const double ox[3] = {0, 0, 0}, ex[3] = {1, 0, 0}, ey[3] = {0, 1, 0};
 
+/* The concave polygon xy (n <= 8 corners) on z = 0 is cut into ears, not
+ * fanned, which cover it once. */
+static void
+cut_into_ears(const double *xy, size_t n)
+{
+	double p[24];
+	uint32_t tri[18];
+	struct vdt_polygon s = {0};
+
+	place(xy, n, ox, ex, ey, p);
+	assert_int_equal(vdt_polygon_triangulate(&s, p, n, tri), 0);
+	assert_false(is_fan(tri, n));
+	covers(xy, n, tri);
+	vdt_polygon_free(&s);
+}
+
 /* A convex hexagon keeps its fan, in any plane. */
 static void
 convex_keeps_the_fan(void **state)
@@ -114,16 +130,9 @@ static void
 notch_is_cut_into_ears(void **state)
 {
 	static const double xy[10] = {0, 0, 4, 0, 4, 4, 2, 1, 0, 4};
-	double p[15];
-	uint32_t tri[9];
-	struct vdt_polygon s = {0};
 
 	(void)state;
-	place(xy, 5, ox, ex, ey, p);
-	assert_int_equal(vdt_polygon_triangulate(&s, p, 5, tri), 0);
-	assert_false(is_fan(tri, 5));
-	covers(xy, 5, tri);
-	vdt_polygon_free(&s);
+	cut_into_ears(xy, 5);
 }
 
 /*
@@ -186,16 +195,9 @@ static void
 repeated_reflex_corner_is_seen(void **state)
 {
 	static const double xy[14] = {2, 0, 2, 1, 1, 1, 1, 1, 1, 2, 0, 2, 0, 0};
-	double p[21];
-	uint32_t tri[15];
-	struct vdt_polygon s = {0};
 
 	(void)state;
-	place(xy, 7, ox, ex, ey, p);
-	assert_int_equal(vdt_polygon_triangulate(&s, p, 7, tri), 0);
-	assert_false(is_fan(tri, 7));
-	covers(xy, 7, tri);
-	vdt_polygon_free(&s);
+	cut_into_ears(xy, 7);
 }
 
 /* Polygons no cut can mend still give n - 2 triangles on their corners:
