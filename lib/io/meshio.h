@@ -293,7 +293,11 @@ int vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
  * The per-format codecs vdt_read_memory and vdt_write dispatch to; callers
  * normally use those two. Readers fill *m (left empty on failure) but do not
  * run vdt_mesh_validate; writers write m to f and return 0, VDT_EIO or
- * VDT_ENOMEM (f is not closed).
+ * VDT_ENOMEM (f is not closed). A text reader refuses a number it holds
+ * that is finite but beyond a float's range ("1e39") as VDT_EFORMAT, and
+ * the PLY reader a double coordinate so as VDT_EINVAL, naming it "out of
+ * float range" with its line or vertex: the check of the mesh would call
+ * the infinity it became non-finite.
  *
  * vdt_ply_read: PLY, ASCII or binary of either byte order (ply.c, native);
  *   polygons are triangulated (polygon.h), elements other than vertex and face and
@@ -308,8 +312,9 @@ int vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
  * vdt_stl_ascii_read: ASCII STL, any number of solids, keywords in any
  *   case (stl.c, native); welded as vdt_stl_read welds, so that both forms
  *   of the same triangles read to the same mesh. Every facet is kept,
- *   degenerate ones too. A fault of grammar or a number that is not one or
- *   not finite is VDT_EFORMAT, its message naming the line.
+ *   degenerate ones too. A fault of grammar or a number that is not one,
+ *   not finite or beyond a float's range is VDT_EFORMAT, its message naming
+ *   the line.
  * vdt_off_read: ASCII OFF and its NOFF, COFF, STOFF, 4OFF variants (off.c,
  *   native); polygons are triangulated, face colours skipped. Binary OFF
  *   is refused (VDT_EFORMAT).

@@ -297,6 +297,10 @@ read_values(struct reader *r, float *v, size_t max, size_t *n, const char *what,
 		if (e == NULL || !at_token_end(e, r->end))
 			return vdt_err_set(err, VDT_EFORMAT, "line %zu: bad number '%s'", r->line,
 			                   quote(r->p, r->end, q));
+		if (vdt_text_beyond_float(r->p, e, v[*n]))
+			return vdt_err_set(err, VDT_EFORMAT,
+			                   "line %zu: %s value '%s' is out of float range", r->line,
+			                   what, quote(r->p, r->end, q));
 		r->p = e;
 		(*n)++;
 		skip_blank(r);

@@ -245,12 +245,14 @@ read_vertices(struct reader *r, const struct layout *l, struct vdt_mesh *m,
 
 	for (size_t i = 0; i < m->vertex_count; i++) {
 		float v[MAX_VALUES];
-		size_t n = 0, k;
+		size_t n = 0, k, line;
 
 		if (!next_token(r))
 			return vdt_err_set(err, VDT_EFORMAT, "truncated: expected %zu vertices, found %zu",
 			                   m->vertex_count, i);
 		while (!at_eol(r)) {
+			const char *at = r->p;
+
 			if (n == MAX_VALUES)
 				return vdt_err_set(err, VDT_EFORMAT,
 				                   "vertex %zu has more than %d values on line %zu", i,
@@ -258,6 +260,10 @@ read_vertices(struct reader *r, const struct layout *l, struct vdt_mesh *m,
 			if (parse_float(&r->p, r->end, &v[n]) != 0)
 				return vdt_err_set(err, VDT_EFORMAT, "vertex %zu has a bad value '%s' on line %zu",
 				                   i, quote(r->p, r->end, q), r->line);
+			if (vdt_text_beyond_float(at, r->p, v[n]))
+				return vdt_err_set(err, VDT_EFORMAT,
+				                   "vertex %zu has a value '%s' out of float range on line %zu", i,
+				                   quote(at, r->end, q), r->line);
 			n++;
 			skip_blank(r);
 		}
@@ -265,12 +271,21 @@ read_vertices(struct reader *r, const struct layout *l, struct vdt_mesh *m,
 			return vdt_err_set(err, VDT_EFORMAT,
 			                   "vertex %zu has too few values on line %zu (%zu of %zu)", i,
 			                   r->line, n, need);
+		line = r->line;
 		end_line(r);
 
 		/* Geomview's order: position, normal, colour, texture coordinate. */
 		if (l->four) {
-			for (k = 0; k < 3; k++)
-				m->positions[3 * i + k] = v[k] / v[3];
+			for (k = 0; k < 3; k++) {
+				float x = v[k] / v[3];
+
+				/* finite over finite and nonzero, yet past FLT_MAX */
+				if (isinf(x) && isfinite(v[k]) && isfinite(v[3]) && v[3] != 0)
+					return vdt_err_set(err, VDT_EFORMAT,
+					                   "vertex %zu has a coordinate over w out of float range on line %zu",
+					                   i, line);
+				m->positions[3 * i + k] = x;
+			}
 			k = 4;
 		} else {
 			memcpy(m->positions + 3 * i, v, 3 * sizeof(float));

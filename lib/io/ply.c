@@ -127,9 +127,14 @@ read_vertices(const struct vdt_plyhead *h, const struct vdt_ply_element *e,
 		}
 	} else {
 		for (size_t i = 0; i < n; i++)
-			for (int k = 0; k < 3; k++)
-				pos[3 * i + k] = (float)vdt_plyhead_scalar(p + i * recsize + off[A_X + k],
-				                                   type[A_X + k], be);
+			for (int k = 0; k < 3; k++) {
+				double d = vdt_plyhead_scalar(p + i * recsize + off[A_X + k],
+				                              type[A_X + k], be);
+
+				if ((rc = vdt_plyhead_check_coordinate(d, i, err)) != 0)
+					return rc;
+				pos[3 * i + k] = (float)d;
+			}
 	}
 	if (m->normals)
 		for (size_t i = 0; i < n; i++)
@@ -293,15 +298,18 @@ struct where {
 
 /*
  * The next value, of type `type`, across line breaks. Integer types must be
- * written as integers within their range; float types may be any number.
+ * written as integers within their range; float types may be any number,
+ * read as the nearest float, but one that is held (a vertex's position or
+ * attribute) not a finite number beyond a float's range.
  */
 static int
-text_value(struct text *t, enum vdt_ply_type type, const struct where *w, double *out,
+text_value(struct text *t, enum vdt_ply_type type, int held, const struct where *w, double *out,
            struct vdt_err *err)
 {
 	const char *q;
 	char s[24];
 	size_t n = 0;
+	int big = 0;
 
 	while (t->p < t->end && is_space(*t->p))
 		t->line += *t->p++ == '\n';
@@ -315,6 +323,8 @@ text_value(struct text *t, enum vdt_ply_type type, const struct where *w, double
 		float f;
 
 		q = vdt_text_parse_float(t->p, t->end, &f);
+		big = held && q != NULL && (q == t->end || is_space(*q)) &&
+		      vdt_text_beyond_float(t->p, q, f);
 		*out = f;
 	} else {
 		static const long long lo[] = {0, -128, 0, -32768, 0, -2147483648LL, 0};
@@ -328,7 +338,7 @@ text_value(struct text *t, enum vdt_ply_type type, const struct where *w, double
 			                   vdt_ply_type_name(type));
 		*out = (double)i;
 	}
-	if (q == NULL || (q < t->end && !is_space(*q))) {
+	if (q == NULL || (q < t->end && !is_space(*q)) || big) {
 		/* Quoted for a message: printable ASCII only, at most 16 bytes. */
 		for (q = t->p; q < t->end && !is_space(*q) && n < 16; q++)
 			s[n++] = *q >= 0x20 && *q < 0x7f ? *q : '?';
@@ -337,6 +347,11 @@ text_value(struct text *t, enum vdt_ply_type type, const struct where *w, double
 			n += 3;
 		}
 		s[n] = '\0';
+		if (big)
+			return vdt_err_set(
+			        err, VDT_EFORMAT,
+			        "PLY line %zu: number '%s' in %s %llu is out of float range",
+			        t->line, s, w->e->name, (unsigned long long)w->r);
 		return vdt_err_set(err, VDT_EFORMAT, "PLY line %zu: bad number '%s' in %s %llu", t->line,
 		                   s, w->e->name, (unsigned long long)w->r);
 	}
@@ -389,13 +404,13 @@ text_skip(struct text *t, const struct vdt_ply_element *e, struct vdt_err *err)
 			int64_t c = 1;
 
 			if (pr->count_type != VDT_PLY_NONE) {
-				if ((rc = text_value(t, pr->count_type, &w, &d, err)) != 0)
+				if ((rc = text_value(t, pr->count_type, 0, &w, &d, err)) != 0)
 					return rc;
 				c = as_int(d);
 			}
 			/* Each value takes a byte: a huge count ends at the end of the data. */
 			for (int64_t k = 0; k < c; k++)
-				if ((rc = text_value(t, pr->type, &w, &d, err)) != 0)
+				if ((rc = text_value(t, pr->type, 0, &w, &d, err)) != 0)
 					return rc;
 		}
 		if ((rc = text_end_record(t, &w, err)) != 0)
@@ -443,7 +458,7 @@ text_vertices(struct text *t, const struct vdt_ply_element *e, struct vdt_mesh *
 		for (size_t i = 0; i < e->prop_count; i++) {
 			double d;
 
-			if ((rc = text_value(t, e->props[i].type, &w, &d, err)) != 0)
+			if ((rc = text_value(t, e->props[i].type, slot[i] >= 0, &w, &d, err)) != 0)
 				return rc;
 			if (slot[i] >= 0)
 				val[slot[i]] = d;
@@ -488,7 +503,7 @@ text_faces(struct text *t, const struct vdt_ply_element *e, struct vdt_mesh *m, 
 			int64_t c = 1, first = 0, prev = 0;
 
 			if (pr->count_type != VDT_PLY_NONE) {
-				if ((rc = text_value(t, pr->count_type, &w, &d, err)) != 0)
+				if ((rc = text_value(t, pr->count_type, 0, &w, &d, err)) != 0)
 					goto fail;
 				c = as_int(d);
 			}
@@ -500,7 +515,7 @@ text_faces(struct text *t, const struct vdt_ply_element *e, struct vdt_mesh *m, 
 			for (int64_t k = 0; k < c; k++) {
 				int64_t v;
 
-				if ((rc = text_value(t, pr->type, &w, &d, err)) != 0)
+				if ((rc = text_value(t, pr->type, 0, &w, &d, err)) != 0)
 					goto fail;
 				if (i != li)
 					continue;

@@ -271,6 +271,15 @@ vdt_plyhead_scalar(const unsigned char *p, enum vdt_ply_type t, int be)
 	}
 }
 
+int
+vdt_plyhead_check_coordinate(double d, uint64_t v, struct vdt_err *err)
+{
+	if (isfinite(d) && isinf((float)d))
+		return vdt_err_set(err, VDT_EINVAL, "vertex %llu: coordinate %g out of float range",
+		                   (unsigned long long)v, d);
+	return 0;
+}
+
 int64_t
 vdt_plyhead_int(const unsigned char *p, enum vdt_ply_type t, int be)
 {

@@ -398,8 +398,10 @@ stl_numbers(struct stl_text *t, const char *what, float x[3], struct vdt_err *er
 		/* (a facet's normal is dropped, as binary STL's is: some
 		 * writers give a degenerate facet a normal of NaNs) */
 		if (!isfinite(x[k]) && strcmp(what, "normal") != 0)
-			return vdt_err_set(err, VDT_EFORMAT, "line %zu: %s coordinate '%.*s' is not finite",
-			                   t->line, what, (int)(wl > 32 ? 32 : wl), w);
+			return vdt_err_set(err, VDT_EFORMAT, "line %zu: %s coordinate '%.*s' is %s",
+			                   t->line, what, (int)(wl > 32 ? 32 : wl), w,
+			                   vdt_text_beyond_float(w, q, x[k]) ? "out of float range"
+			                                                     : "not finite");
 	}
 	return 0;
 }

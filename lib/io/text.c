@@ -201,3 +201,14 @@ vdt_text_parse_float(const char *p, const char *end, float *out)
 	*out = slow_float(start, p);
 	return p;
 }
+
+int
+vdt_text_beyond_float(const char *p, const char *end, float f)
+{
+	if (!isinf(f))
+		return 0;
+	if (p < end && (*p == '-' || *p == '+'))
+		p++;
+	/* a number has a digit or a point first; "inf" a letter */
+	return p < end && (is_digit(*p) || *p == '.');
+}

@@ -29,4 +29,12 @@ const char *vdt_text_parse_int(const char *p, const char *end, long long *out);
  */
 const char *vdt_text_parse_float(const char *p, const char *end, float *out);
 
+/*
+ * Whether f, read by vdt_text_parse_float from p to end, is an infinity only
+ * because the number written there is beyond a float's range ("1e39",
+ * "-4e38"): 1, or 0 for anything else, "inf" included. Such a number is
+ * finite: the readers name it as out of range, not as not finite.
+ */
+int vdt_text_beyond_float(const char *p, const char *end, float f);
+
 #endif

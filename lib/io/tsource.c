@@ -345,6 +345,12 @@ ply_vertices(struct vdt_tsource *s, double *xyz, size_t max, size_t *n, struct v
 		if (!(isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2])))
 			return vdt_err_set(err, VDT_EINVAL, "vertex %" PRIu64 ": non-finite coordinate",
 			                   s->vcur);
+		for (int a = 0; a < 3; a++) {
+			int rc = vdt_plyhead_check_coordinate(p[a], s->vcur, err);
+
+			if (rc != 0)
+				return rc;
+		}
 	}
 	*n = k;
 	if (s->map)

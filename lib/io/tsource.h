@@ -99,7 +99,9 @@ void vdt_tsource_rewind(struct vdt_tsource *ts);
  * Next batch of at most `max` vertex positions (3 doubles each) into xyz;
  * *n is 0 at the end. For STL the corners of the records are the vertices.
  * A non-finite coordinate is VDT_EINVAL with a message naming the record
- * ("vertex 12: non-finite coordinate", "triangle 7: ...", "line 30: ...").
+ * ("vertex 12: non-finite coordinate", "triangle 7: ...", "line 30: ..."),
+ * as is a PLY double beyond a float's range ("vertex 12: coordinate 1e+39
+ * out of float range").
  */
 int vdt_tsource_vertices(struct vdt_tsource *ts, double *xyz, size_t max,
                          size_t *n, struct vdt_err *err);

@@ -154,3 +154,30 @@ load helpers
 	cat "$TMP/s.vdq" | "$BIN/vdt-qslim" -q -r 0.5 -o "$TMP/q.off"
 	[ "$(off_faces "$TMP/d.off")" -gt 0 ] && [ "$(off_faces "$TMP/q.off")" -gt 0 ]
 }
+
+@test "every reader names a coordinate beyond a float's range as such, not as non-finite" {
+	printf 'OFF\n3 1 0\n0 0 0\n1e39 0 0\n0 1 0\n3 0 1 2\n' > "$TMP/a.off"
+	printf 'v 0 0 0\nv 1e39 0 0\nv 0 1 0\nf 1 2 3\n' > "$TMP/a.obj"
+	printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1e39 0 0\n0 1 0\n3 0 1 2\n' > "$TMP/a.ply"
+	printf 'solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1e39 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n' > "$TMP/a.stl"
+	python3 - "$TMP/d.ply" <<'PY'
+import struct, sys
+h = b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+open(sys.argv[1], 'wb').write(h + struct.pack('<9d', 0, 0, 0, 1e39, 0, 0, 0, 1, 0) + struct.pack('<B3i', 3, 0, 1, 2))
+PY
+	for f in a.off a.obj a.ply a.stl d.ply; do
+		case $f in
+		a.off) want="vertex 1 has a value '1e39' out of float range on line 4" ;;
+		a.obj) want="line 2: vertex value '1e39' is out of float range" ;;
+		a.ply) want="PLY line 11: number '1e39' in vertex 1 is out of float range" ;;
+		a.stl) want="line 5: vertex coordinate '1e39' is out of float range" ;;
+		d.ply) want="vertex 1: coordinate 1e+39 out of float range" ;;
+		esac
+		for t in "vdt-qslim out.ply" "vdt-cluster out.ply" "vdt-build out.vdt" "vdt-render out.png"; do
+			run "$BIN/${t% *}" "$TMP/$f" -o "$TMP/${t#* }"
+			[ "$status" -eq 2 ]
+			[ "$output" = "${t% *}: cannot read '$TMP/$f': $want" ]
+			[ ! -e "$TMP/${t#* }" ]
+		done
+	done
+}

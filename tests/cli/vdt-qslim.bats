@@ -547,7 +547,7 @@ PY
 		[ ! -e "$TMP/out.off" ]
 	done <<'END'
 nan|line 6: vertex coordinate 'nan' is not finite
-huge|line 6: vertex coordinate '1e999' is not finite
+huge|line 6: vertex coordinate '1e999' is out of float range
 junk|line 6: '1x' is not a number (in a vertex)
 four|line 7: a facet of more than 3 vertices
 open|line 9: ends before 'endsolid'

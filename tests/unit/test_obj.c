@@ -489,6 +489,17 @@ test_validated(void **state)
 	        vdt_read_memory((const unsigned char *)col, sizeof(col) - 1, NULL, &m, NULL, &err),
 	        VDT_EINVAL);
 	assert_string_equal(err.msg, "line 2: vertex has a non-finite colour");
+	/* A number past FLT_MAX is finite, and named as it is. */
+	static const char big[] = "v 0 0 0\nv 1e39 0 0\nv 0 1 0\nf 1 2 3\n";
+	assert_int_equal(
+	        vdt_read_memory((const unsigned char *)big, sizeof(big) - 1, NULL, &m, NULL, &err),
+	        VDT_EFORMAT);
+	assert_string_equal(err.msg, "line 2: vertex value '1e39' is out of float range");
+	static const char bigvn[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 -.5e39 1\nf 1//1 2//1 3//1\n";
+	assert_int_equal(vdt_read_memory((const unsigned char *)bigvn, sizeof(bigvn) - 1, NULL, &m,
+	                                 NULL, &err),
+	                 VDT_EFORMAT);
+	assert_string_equal(err.msg, "line 4: normal value '-.5e39' is out of float range");
 	assert_int_equal(vdt_read_memory((const unsigned char *)empty, sizeof(empty) - 1, NULL, &m,
 	                                 NULL, &err),
 	                 VDT_EINVAL);

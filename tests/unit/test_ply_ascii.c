@@ -222,6 +222,10 @@ test_reject(void **state)
 	             "4000000000 face records cannot fit");
 	expect_error(HEAD(3, 1) "0 0 0\n1 x 0\n0 1 0\n3 0 1 2\n", VDT_EFORMAT,
 	             "PLY line 11: bad number 'x' in vertex 1");
+	expect_error(HEAD(3, 1) "0 0 0\n1e39 0 0\n0 1 0\n3 0 1 2\n", VDT_EFORMAT,
+	             "PLY line 11: number '1e39' in vertex 1 is out of float range");
+	expect_error(HEAD(3, 1) "0 0 0\n1e39x 0 0\n0 1 0\n3 0 1 2\n", VDT_EFORMAT,
+	             "PLY line 11: bad number '1e39x' in vertex 1");
 	expect_error(HEAD(3, 1) "0 0 0\n1 0 0\n0 1 0\n3 0 1 2.0\n", VDT_EFORMAT,
 	             "bad number '2.0' in face 0");
 	expect_error(HEAD(3, 1) "0 0 0\n1 0 0\n0 1 0\n256 0 1 2\n", VDT_EFORMAT,

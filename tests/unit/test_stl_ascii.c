@@ -279,7 +279,11 @@ test_reject(void **state)
 	expect_error(HEAD "vertex 0 1 nan\n" TAIL, VDT_EFORMAT,
 	             "line 13: vertex coordinate 'nan' is not finite");
 	expect_error(HEAD "vertex 0 1 1e999\n" TAIL, VDT_EFORMAT,
-	             "line 13: vertex coordinate '1e999' is not finite");
+	             "line 13: vertex coordinate '1e999' is out of float range");
+	expect_error(HEAD "vertex 0 -1e39 0\n" TAIL, VDT_EFORMAT,
+	             "line 13: vertex coordinate '-1e39' is out of float range");
+	expect_error(HEAD "vertex 0 1 INF\n" TAIL, VDT_EFORMAT,
+	             "line 13: vertex coordinate 'INF' is not finite");
 	expect_error(HEAD "vertex 0 1 -inf\n" TAIL, VDT_EFORMAT,
 	             "line 13: vertex coordinate '-inf' is not finite");
 	expect_error(HEAD "vertex 0 1 1x\n" TAIL, VDT_EFORMAT,
