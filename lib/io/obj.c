@@ -409,14 +409,16 @@ read_vn(struct reader *r, struct obj *o, struct vdt_err *err)
 }
 
 /*
- * Turn the index i of a corner into a 0-based one: positive ones count from
- * the first element of the file (later ones included), negative ones back
- * from the last one read so far.
+ * Turn the index i of a corner, read at `at`, into a 0-based one: positive
+ * ones count from the first element of the file (later ones included),
+ * negative ones back from the last one read so far.
  */
 static int
-resolve(const struct reader *r, size_t face, const char *what, long long i, size_t have,
-        size_t total, uint32_t *out, struct vdt_err *err)
+resolve(const struct reader *r, size_t face, const char *what, const char *at, long long i,
+        size_t have, size_t total, uint32_t *out, struct vdt_err *err)
 {
+	char shown[VDT_TEXT_INT_SHOWN];
+
 	if (i > 0 && (unsigned long long)i <= total) {
 		*out = (uint32_t)(i - 1);
 		return 0;
@@ -428,8 +430,8 @@ resolve(const struct reader *r, size_t face, const char *what, long long i, size
 	if (i == 0)
 		return vdt_err_set(err, VDT_EINVAL, "line %zu: face %zu uses %s 0 (indices start at 1)",
 		                   r->line, face, what);
-	return vdt_err_set(err, VDT_EINVAL, "line %zu: face %zu uses %s %lld of %zu", r->line, face,
-	                   what, i, i > 0 ? total : have);
+	return vdt_err_set(err, VDT_EINVAL, "line %zu: face %zu uses %s %s of %zu", r->line, face,
+	                   what, vdt_text_int_shown(at, r->end, i, shown), i > 0 ? total : have);
 }
 
 /* Room for at least want triangles, or twice the present room if more. */
@@ -474,16 +476,18 @@ read_corner(struct reader *r, struct obj *o, size_t face, uint32_t c[3], struct 
 	c[1] = c[2] = NONE;
 	if ((e = vdt_text_parse_int(r->p, r->end, &i)) == NULL)
 		goto bad;
-	if ((rc = resolve(r, face, "vertex", i, o->have_v, o->nv, &c[0], err)) != 0)
+	if ((rc = resolve(r, face, "vertex", r->p, i, o->have_v, o->nv, &c[0], err)) != 0)
 		return rc;
 	for (int a = 1; a < 3 && e < r->end && *e == '/'; a++) {
-		e++;
+		const char *at = ++e;
+
 		if (e == r->end || *e == '/' || at_token_end(e, r->end))
 			continue;
 		if ((e = vdt_text_parse_int(e, r->end, &i)) == NULL)
 			goto bad;
-		rc = a == 1 ? resolve(r, face, "texture coordinate", i, o->have_t, o->nt, &c[1], err)
-		            : resolve(r, face, "normal", i, o->have_n, o->nn, &c[2], err);
+		rc = a == 1 ? resolve(r, face, "texture coordinate", at, i, o->have_t, o->nt, &c[1],
+		                      err)
+		            : resolve(r, face, "normal", at, i, o->have_n, o->nn, &c[2], err);
 		if (rc != 0)
 			return rc;
 	}

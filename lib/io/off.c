@@ -164,6 +164,7 @@ static int
 read_count(struct reader *r, const char *what, long long *out, struct vdt_err *err)
 {
 	const char *tok;
+	char shown[VDT_TEXT_INT_SHOWN];
 
 	if (!next_token(r))
 		return bad_header(r, what, err);
@@ -172,6 +173,10 @@ read_count(struct reader *r, const char *what, long long *out, struct vdt_err *e
 		r->p = tok;
 		return bad_header(r, what, err);
 	}
+	if (*out == VDT_TEXT_SATURATE)
+		return vdt_err_set(err, VDT_EFORMAT,
+		                   "%s %s on line %zu of the OFF header is too large", what,
+		                   vdt_text_int_shown(tok, r->end, *out, shown), r->line);
 	return 0;
 }
 
@@ -186,6 +191,7 @@ read_header(struct reader *r, struct layout *l, long long *nv, long long *nf,
 {
 	const char *w;
 	long long dim;
+	char shown[VDT_TEXT_INT_SHOWN];
 	int rc;
 
 	memset(l, 0, sizeof(*l));
@@ -220,10 +226,15 @@ read_header(struct reader *r, struct layout *l, long long *nv, long long *nf,
 	    at_token_end(r->p + 6, r->end))
 		return vdt_err_set(err, VDT_EFORMAT, "binary OFF is not supported");
 	if (l->ndim) {
-		if (!next_token(r) || parse_int(&r->p, r->end, &dim) != 0)
+		if (!next_token(r))
+			return bad_header(r, "dimension", err);
+		w = r->p;
+		if (parse_int(&r->p, r->end, &dim) != 0)
 			return bad_header(r, "dimension", err);
 		if (dim != 3)
-			return vdt_err_set(err, VDT_EFORMAT, "nOFF of dimension %lld is not supported", dim);
+			return vdt_err_set(err, VDT_EFORMAT,
+			                   "nOFF of dimension %s is not supported",
+			                   vdt_text_int_shown(w, r->end, dim, shown));
 	}
 	rc = read_count(r, "vertex count", nv, err);
 	if (rc == 0)
@@ -323,22 +334,26 @@ read_faces(struct reader *r, size_t nf, struct vdt_mesh *m, struct vdt_polygon *
            struct vdt_err *err)
 {
 	size_t nv = m->vertex_count, nt = 0, cap = nf > 0 ? nf : 1;
-	char q[24];
+	const char *tok;
+	char q[24], shown[VDT_TEXT_INT_SHOWN];
 
 	for (size_t f = 0; f < nf; f++) {
 		long long k, first = 0, prev = 0;
 
 		if (!next_token(r))
 			return vdt_err_set(err, VDT_EFORMAT, "truncated: expected %zu faces, found %zu", nf, f);
+		tok = r->p;
 		if (parse_int(&r->p, r->end, &k) != 0)
 			return vdt_err_set(err, VDT_EFORMAT,
 			                   "face %zu has a bad vertex count '%s' on line %zu", f,
 			                   quote(r->p, r->end, q), r->line);
 		if (k < 3)
-			return vdt_err_set(err, VDT_EFORMAT, "face %zu has %lld vertices", f, k);
+			return vdt_err_set(err, VDT_EFORMAT, "face %zu has %s vertices", f,
+			                   vdt_text_int_shown(tok, r->end, k, shown));
 		if (k > MAX_FACE_VERTICES)
-			return vdt_err_set(err, VDT_EFORMAT, "face %zu has %lld vertices, more than %d", f, k,
-			                   MAX_FACE_VERTICES);
+			return vdt_err_set(
+			        err, VDT_EFORMAT, "face %zu has %s vertices, more than %d", f,
+			        vdt_text_int_shown(tok, r->end, k, shown), MAX_FACE_VERTICES);
 		for (long long j = 0; j < k; j++) {
 			long long v;
 
@@ -347,12 +362,15 @@ read_faces(struct reader *r, size_t nf, struct vdt_mesh *m, struct vdt_polygon *
 				return vdt_err_set(err, VDT_EFORMAT,
 				                   "face %zu has too few vertex indices on line %zu (%lld of %lld)",
 				                   f, r->line, j, k);
+			tok = r->p;
 			if (parse_int(&r->p, r->end, &v) != 0)
 				return vdt_err_set(err, VDT_EFORMAT,
 				                   "face %zu has a bad vertex index '%s' on line %zu", f,
 				                   quote(r->p, r->end, q), r->line);
 			if (v < 0 || (unsigned long long)v >= nv)
-				return vdt_err_set(err, VDT_EINVAL, "face %zu uses vertex %lld of %zu", f, v, nv);
+				return vdt_err_set(err, VDT_EINVAL,
+				                   "face %zu uses vertex %s of %zu", f,
+				                   vdt_text_int_shown(tok, r->end, v, shown), nv);
 			if (j == 0) {
 				first = v;
 			} else if (j >= 2) {

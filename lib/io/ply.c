@@ -245,10 +245,15 @@ read_faces(const struct vdt_plyhead *h, const struct vdt_ply_element *e,
 			int64_t v = vdt_plyhead_int(q + (size_t)k * is, lp->type, be);
 
 			if (v < 0 || (uint64_t)v >= nv) {
+				double d = vdt_plyhead_scalar(q + (size_t)k * is, lp->type, be);
+				char shown[32];
+
 				free(t);
 				vdt_polygon_free(&poly);
-				return vdt_err_set(err, VDT_EINVAL, "face %llu uses vertex %lld of %zu",
-				                   (unsigned long long)f, (long long)v, nv);
+				return vdt_err_set(err, VDT_EINVAL,
+				                   "face %llu uses vertex %s of %zu",
+				                   (unsigned long long)f,
+				                   vdt_plyhead_shown(d, lp->type, shown), nv);
 			}
 			if (k == 0)
 				first = v;
@@ -307,7 +312,7 @@ text_value(struct text *t, enum vdt_ply_type type, int held, const struct where 
            struct vdt_err *err)
 {
 	const char *q;
-	char s[24];
+	char s[VDT_TEXT_INT_SHOWN];
 	size_t n = 0;
 	int big = 0;
 
@@ -333,8 +338,10 @@ text_value(struct text *t, enum vdt_ply_type type, int held, const struct where 
 
 		q = vdt_text_parse_int(t->p, t->end, &i);
 		if (q != NULL && (q == t->end || is_space(*q)) && (i < lo[type] || i > hi[type]))
-			return vdt_err_set(err, VDT_EFORMAT, "PLY line %zu: %s %llu has %lld, out of range for %s",
-			                   t->line, w->e->name, (unsigned long long)w->r, i,
+			return vdt_err_set(err, VDT_EFORMAT,
+			                   "PLY line %zu: %s %llu has %s, out of range for %s",
+			                   t->line, w->e->name, (unsigned long long)w->r,
+			                   vdt_text_int_shown(t->p, t->end, i, s),
 			                   vdt_ply_type_name(type));
 		*out = (double)i;
 	}
@@ -521,8 +528,12 @@ text_faces(struct text *t, const struct vdt_ply_element *e, struct vdt_mesh *m, 
 					continue;
 				v = as_int(d);
 				if (v < 0 || (uint64_t)v >= nv) {
-					rc = vdt_err_set(err, VDT_EINVAL, "face %llu uses vertex %lld of %zu",
-					                 (unsigned long long)w.r, (long long)v, nv);
+					char shown[32];
+
+					rc = vdt_err_set(err, VDT_EINVAL,
+					                 "face %llu uses vertex %s of %zu",
+					                 (unsigned long long)w.r,
+					                 vdt_plyhead_shown(d, pr->type, shown), nv);
 					goto fail;
 				}
 				if (k == 0) {

@@ -1,7 +1,9 @@
 /* plyhead.c - the layout of a PLY file (see plyhead.h). */
 #include "plyhead.h"
 
+#include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -169,9 +171,15 @@ vdt_plyhead_parse(const unsigned char *buf, size_t len, struct vdt_plyhead *h,
 			num[wl[2]] = '\0';
 			if (num[0] < '0' || num[0] > '9')
 				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: bad element count", lineno);
+			errno = 0;
 			c = strtoull(num, &end, 10);
 			if (*end != '\0')
 				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: bad element count", lineno);
+			if (errno == ERANGE)
+				return vdt_err_set(
+				        err, VDT_EFORMAT,
+				        "PLY header line %zu: element count %s is too large",
+				        lineno, num);
 			e = &h->elements[h->element_count++];
 			memcpy(e->name, w[1], wl[1]);
 			e->name[wl[1]] = '\0';
@@ -288,6 +296,14 @@ vdt_plyhead_int(const unsigned char *p, enum vdt_ply_type t, int be)
 		return isfinite(d) && d >= -1e18 && d <= 1e18 ? (int64_t)d : -1;
 	}
 	return t == VDT_PLY_NONE ? -1 : integer(p, t, be);
+}
+
+const char *
+vdt_plyhead_shown(double d, enum vdt_ply_type t, char out[32])
+{
+	/* every integer type is exact in a double */
+	snprintf(out, 32, t == VDT_PLY_F32 || t == VDT_PLY_F64 ? "%.9g" : "%.0f", d);
+	return out;
 }
 
 size_t

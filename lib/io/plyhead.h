@@ -84,6 +84,13 @@ int vdt_plyhead_check_coordinate(double d, uint64_t v, struct vdt_err *err);
  */
 int64_t vdt_plyhead_int(const unsigned char *p, enum vdt_ply_type t, int be);
 
+/*
+ * A list index d, read as a value of type t, as a message shows it: an
+ * integer type's value, a float type's as it is ("1e+30", "nan", "2.5"),
+ * not the -1 vdt_plyhead_int makes of it. Returns out.
+ */
+const char *vdt_plyhead_shown(double d, enum vdt_ply_type t, char out[32]);
+
 /* Bytes of one record of e at p (at most avail), or 0 if it does not fit. */
 size_t vdt_plyhead_record_size(const struct vdt_ply_element *e, const unsigned char *p,
                                size_t avail, int be);

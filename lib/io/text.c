@@ -38,6 +38,31 @@ vdt_text_parse_int(const char *p, const char *end, long long *out)
 	return p;
 }
 
+const char *
+vdt_text_int_shown(const char *p, const char *end, long long v, char out[VDT_TEXT_INT_SHOWN])
+{
+	size_t n = 0;
+
+	if (v != VDT_TEXT_SATURATE && v != -VDT_TEXT_SATURATE) {
+		snprintf(out, VDT_TEXT_INT_SHOWN, "%lld", v);
+		return out;
+	}
+	if (v < 0)
+		out[n++] = '-';
+	if (p < end && (*p == '-' || *p == '+'))
+		p++;
+	while (p + 1 < end && *p == '0' && is_digit(p[1]))
+		p++;
+	for (size_t d = 0; p < end && is_digit(*p) && d < 40; p++, d++)
+		out[n++] = *p;
+	if (p < end && is_digit(*p)) {
+		memcpy(out + n, "...", 3);
+		n += 3;
+	}
+	out[n] = '\0';
+	return out;
+}
+
 /*
  * "nan", "inf" or "infinity", any case, already past the sign. The longer
  * word is tried first, so that "infinity" is not read as "inf" + "inity".

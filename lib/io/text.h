@@ -21,6 +21,18 @@
  */
 const char *vdt_text_parse_int(const char *p, const char *end, long long *out);
 
+/* Room for vdt_text_int_shown's text. */
+#define VDT_TEXT_INT_SHOWN 48
+
+/*
+ * The integer v that vdt_text_parse_int read at p, for a message: v in
+ * decimal, or, when it was saturated, the number as written (its sign and
+ * digits, leading zeros dropped, at most 40 digits then "..."), so that no
+ * message shows the saturation bound as the file's number. Returns out.
+ */
+const char *vdt_text_int_shown(const char *p, const char *end, long long v,
+                               char out[VDT_TEXT_INT_SHOWN]);
+
 /*
  * A decimal floating-point number at p ("-1.5e3", ".5", "7.", "nan", "inf",
  * "infinity", any case) as the nearest float, correctly rounded. Returns the

@@ -358,18 +358,29 @@ ply_vertices(struct vdt_tsource *s, double *xyz, size_t max, size_t *n, struct v
 	return 0;
 }
 
+/* The index at `at`, of type t, names no vertex. */
 static int
-bad_index(struct vdt_tsource *s, int64_t v, struct vdt_err *err)
+bad_index(struct vdt_tsource *s, const unsigned char *at, enum vdt_ply_type t, struct vdt_err *err)
 {
-	return vdt_err_set(err, VDT_EFORMAT, "face %" PRIu64 " uses vertex %" PRId64 " of %" PRIu64,
-	                   s->fidx, v, s->vcount);
+	char shown[32];
+
+	return vdt_err_set(err, VDT_EFORMAT, "face %" PRIu64 " uses vertex %s of %" PRIu64, s->fidx,
+	                   vdt_plyhead_shown(vdt_plyhead_scalar(at, t, s->be), t, shown),
+	                   s->vcount);
+}
+
+/* Where corner k of the polygon being read lies. */
+static const unsigned char *
+ply_poly_at(const struct vdt_tsource *s, uint64_t k)
+{
+	return s->poly + k * vdt_ply_type_size[s->poly_type];
 }
 
 /* Corner k of the polygon being read (checked by ply_polygon). */
 static int64_t
 ply_poly_corner(const struct vdt_tsource *s, uint64_t k)
 {
-	return vdt_plyhead_int(s->poly + k * vdt_ply_type_size[s->poly_type], s->poly_type, s->be);
+	return vdt_plyhead_int(ply_poly_at(s, k), s->poly_type, s->be);
 }
 
 /*
@@ -414,7 +425,7 @@ ply_polygon(struct vdt_tsource *s, struct vdt_err *err)
 	for (size_t k = 0; k < n; k++) {
 		int64_t v = ply_poly_corner(s, k);
 		if (v < 0 || (uint64_t)v >= s->vcount)
-			return bad_index(s, v, err);
+			return bad_index(s, ply_poly_at(s, k), s->poly_type, err);
 		if (k == 0)
 			s->ptri[0] = (uint32_t)v;
 		else if (k == 1)
@@ -471,8 +482,9 @@ ply_triangles(struct vdt_tsource *s, double *tri, uint32_t *ids, size_t max, siz
 			uint32_t a = vdt_get_u32le(s->fcur + 1), b = vdt_get_u32le(s->fcur + 5),
 			         c = vdt_get_u32le(s->fcur + 9);
 			if (a >= s->vcount || b >= s->vcount || c >= s->vcount) {
-				uint32_t bad = a >= s->vcount ? a : b >= s->vcount ? b : c;
-				return bad_index(s, s->face.props[0].type == VDT_PLY_I32 ? (int64_t)(int32_t)bad : (int64_t)bad, err);
+				int j = a >= s->vcount ? 0 : b >= s->vcount ? 1 : 2;
+				return bad_index(s, s->fcur + 1 + 4 * j, s->face.props[0].type,
+				                 err);
 			}
 			ply_corner(s, a, tri + 9 * k);
 			ply_corner(s, b, tri + 9 * k + 3);
@@ -498,14 +510,16 @@ ply_triangles(struct vdt_tsource *s, double *tri, uint32_t *ids, size_t max, siz
 		{
 			int own = s->poly_n > 3 && s->poly_n <= VDT_POLYGON_EAR_MAX;
 			const uint32_t *t = own ? s->ptri + 3 * (s->poly_k - 2) : NULL;
+			const uint64_t c[3] = {0, s->poly_k - 1, s->poly_k};
 			int64_t v[3] = {
-			        own ? t[0] : ply_poly_corner(s, 0),
-			        own ? t[1] : ply_poly_corner(s, s->poly_k - 1),
-			        own ? t[2] : ply_poly_corner(s, s->poly_k),
+			        own ? t[0] : ply_poly_corner(s, c[0]),
+			        own ? t[1] : ply_poly_corner(s, c[1]),
+			        own ? t[2] : ply_poly_corner(s, c[2]),
 			};
 			for (int j = 0; j < 3; j++) {
 				if (v[j] < 0 || (uint64_t)v[j] >= s->vcount)
-					return bad_index(s, v[j], err);
+					return bad_index(s, ply_poly_at(s, c[j]), s->poly_type,
+					                 err);
 				ply_corner(s, (uint64_t)v[j], tri + 9 * k + 3 * j);
 				if (ids)
 					ids[3 * k + j] = (uint32_t)v[j];

@@ -516,6 +516,47 @@ target_rule(void **state)
 }
 
 /*
+ * A float index that names no vertex is shown as the file has it, by the
+ * streamed source and the whole-file reader alike, not as the -1 it
+ * becomes: a triangle (0 1 1e30) and a quad (0 1 2 nan).
+ */
+static void
+ply_float_index(void **state)
+{
+	const char *hdr = "ply\nformat binary_little_endian 1.0\n"
+	                  "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+	                  "element face 1\nproperty list uchar float vertex_indices\nend_header\n";
+	const float xyz[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+	const float idx[2][4] = {{0, 1, 1e30f}, {0, 1, 2, NAN}};
+	const char *want[2] = {"face 0 uses vertex 1.00000002e+30 of 3",
+	                       "face 0 uses vertex nan of 3"};
+	unsigned char buf[512], *p;
+	struct vdt_tsource *ts;
+	struct vdt_mesh m;
+	struct vdt_err err = {0};
+	double tri[18];
+	size_t n;
+
+	(void)state;
+	for (int f = 0; f < 2; f++) {
+		memcpy(buf, hdr, strlen(hdr));
+		p = buf + strlen(hdr);
+		for (int k = 0; k < 9; k++, p += 4)
+			vdt_put_f32le(p, xyz[k]);
+		*p++ = (unsigned char)(3 + f);
+		for (int k = 0; k < 3 + f; k++, p += 4)
+			vdt_put_f32le(p, idx[f][k]);
+		assert_int_equal(vdt_tsource_open_memory(&ts, buf, (size_t)(p - buf), NULL), 0);
+		assert_int_equal(vdt_tsource_triangles(ts, tri, 2, &n, &err), VDT_EFORMAT);
+		assert_string_equal(err.msg, want[f]);
+		vdt_tsource_close(ts);
+		assert_int_equal(vdt_read_memory(buf, (size_t)(p - buf), NULL, &m, NULL, &err),
+		                 VDT_EINVAL);
+		assert_string_equal(err.msg, want[f]);
+	}
+}
+
+/*
  * A binary PLY with double coordinates in an unusual order, an extra
  * property, a quad and a little-endian uint index list: read in place.
  *
@@ -1003,26 +1044,27 @@ int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
-		cmocka_unit_test(two_cells_one_triangle),
-		cmocka_unit_test(quadrics_are_exact_sums),
-		cmocka_unit_test(quadrics_sum_every_corner),
-		cmocka_unit_test(triangle_soup_welds),
-		cmocka_unit_test(output_triangles_are_unique),
-		cmocka_unit_test(boundary_edges_are_kept),
-		cmocka_unit_test(thin_part_rim_is_no_boundary),
-		cmocka_unit_test(closed_meshes_have_no_boundary),
-		cmocka_unit_test(target_rule),
-		cmocka_unit_test(ply_any_layout),
-		cmocka_unit_test(memory_limit),
-		cmocka_unit_test(no_area_is_bad_input),
-		cmocka_unit_test(sampler_cap_costs_nothing),
-		cmocka_unit_test(sampler_grows_past_its_start),
-		cmocka_unit_test(non_finite_corners),
-		cmocka_unit_test(header_box),
-		cmocka_unit_test(corner_box),
-		cmocka_unit_test(vertex_numbers_change_nothing),
-		cmocka_unit_test(header_box_never_changes_the_result),
-		cmocka_unit_test(ply_ends_on_a_list_count),
+	        cmocka_unit_test(two_cells_one_triangle),
+	        cmocka_unit_test(quadrics_are_exact_sums),
+	        cmocka_unit_test(quadrics_sum_every_corner),
+	        cmocka_unit_test(triangle_soup_welds),
+	        cmocka_unit_test(output_triangles_are_unique),
+	        cmocka_unit_test(boundary_edges_are_kept),
+	        cmocka_unit_test(thin_part_rim_is_no_boundary),
+	        cmocka_unit_test(closed_meshes_have_no_boundary),
+	        cmocka_unit_test(target_rule),
+	        cmocka_unit_test(ply_any_layout),
+	        cmocka_unit_test(ply_float_index),
+	        cmocka_unit_test(memory_limit),
+	        cmocka_unit_test(no_area_is_bad_input),
+	        cmocka_unit_test(sampler_cap_costs_nothing),
+	        cmocka_unit_test(sampler_grows_past_its_start),
+	        cmocka_unit_test(non_finite_corners),
+	        cmocka_unit_test(header_box),
+	        cmocka_unit_test(corner_box),
+	        cmocka_unit_test(vertex_numbers_change_nothing),
+	        cmocka_unit_test(header_box_never_changes_the_result),
+	        cmocka_unit_test(ply_ends_on_a_list_count),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

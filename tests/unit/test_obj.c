@@ -381,6 +381,10 @@ test_reject(void **state)
 	expect_error(WITH("f 1 2 9\n"), VDT_EINVAL, "line 6: face 0 uses vertex 9 of 3");
 	expect_error(WITH("f 1 2 3\nf 1 2 -4\n"), VDT_EINVAL, "line 7: face 1 uses vertex -4 of 3");
 	expect_error(WITH("f 1 2 0\n"), VDT_EINVAL, "face 0 uses vertex 0");
+	expect_error(WITH("f 1 2 99999999999999999999\n"), VDT_EINVAL,
+	             "line 6: face 0 uses vertex 99999999999999999999 of 3");
+	expect_error(WITH("f 1//1 2//1 3//-1000000000000000000000\n"), VDT_EINVAL,
+	             "line 6: face 0 uses normal -1000000000000000000000 of 1");
 	expect_error(WITH("f 1/2 2/1 3/1\n"), VDT_EINVAL, "face 0 uses texture coordinate 2 of 1");
 	expect_error(WITH("f 1/0 2/1 3/1\n"), VDT_EINVAL, "face 0 uses texture coordinate 0");
 	expect_error(WITH("f 1//1 2//-2 3//1\n"), VDT_EINVAL, "face 0 uses normal -2 of 1");

@@ -250,7 +250,20 @@ test_reject(void **state)
 	expect_error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n", VDT_EFORMAT,
 	             "face 0 has 2 vertices");
 	expect_error("OFF\n5000000000 1 0\n0 0 0\n", VDT_EFORMAT, "too many vertices (5000000000)");
-	expect_error("OFF\n3 99999999999999999999999 0\n0 0 0\n", VDT_EFORMAT, "truncated: 3 vertices");
+	/* a number past the integers' saturation is shown as written */
+	expect_error("OFF\n3 99999999999999999999999 0\n0 0 0\n", VDT_EFORMAT,
+	             "face count 99999999999999999999999 on line 2 of the OFF header is too large");
+	expect_error("OFF\n0099999999999999999999 1 0\n0 0 0\n", VDT_EFORMAT,
+	             "vertex count 99999999999999999999 on line 2 of the OFF header is too large");
+	expect_error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 18446744073709551616\n", VDT_EINVAL,
+	             "face 0 uses vertex 18446744073709551616 of 3");
+	expect_error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 -99999999999999999999\n", VDT_EINVAL,
+	             "face 0 uses vertex -99999999999999999999 of 3");
+	expect_error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n1000000000000000000000 0 1 2\n", VDT_EFORMAT,
+	             "face 0 has 1000000000000000000000 vertices, more than 65536");
+	expect_error(
+	        "nOFF\n1000000000000000000000000000000000000000000000000 3 1 0\n", VDT_EFORMAT,
+	        "nOFF of dimension 1000000000000000000000000000000000000000... is not supported");
 	expect_error("OFF\n3 1 0\n0 0 0\n1 0\n0 1 0\n3 0 1 2\n" PAD, VDT_EFORMAT,
 	             "vertex 1 has too few values on line 4 (2 of 3)");
 	expect_error("NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0\n3 0 1 2\n" PAD, VDT_EFORMAT,

@@ -242,6 +242,16 @@ test_reject(void **state)
 	             "face 0 uses vertex 3 of 3");
 	expect_error(HEAD(3, 1) "0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n", VDT_EINVAL,
 	             "face 0 uses vertex -1 of 3");
+	/* shown as written: not the integers' saturation, not the -1 of a
+	 * float that is no index */
+	expect_error(HEAD(3, 1) "0 0 0\n1 0 0\n0 1 0\n3 0 1 99999999999999999999\n", VDT_EFORMAT,
+	             "PLY line 13: face 0 has 99999999999999999999, out of range for int");
+	expect_error("ply\nformat ascii 1.0\nelement vertex 3\n" XYZ "element face 1\n"
+	             "property list uchar double vertex_indices\nend_header\n"
+	             "0 0 0\n1 0 0\n0 1 0\n3 0 1 1e30\n",
+	             VDT_EINVAL, "face 0 uses vertex 1.00000002e+30 of 3");
+	expect_error(HEAD(99999999999999999999, 1) "0 0 0\n", VDT_EFORMAT,
+	             "PLY header line 3: element count 99999999999999999999 is too large");
 	expect_error("ply\nformat ascii 1.0\nelement face 1\n" FACES "element vertex 3\n" XYZ
 	             "end_header\n3 0 1 2\n0 0 0\n1 0 0\n0 1 0\n",
 	             VDT_EFORMAT, "face element comes before the vertex element");
