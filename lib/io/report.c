@@ -17,18 +17,23 @@ vdt_report_write(FILE *f, const struct vdt_measure_result *r, enum vdt_report_fo
 	const struct vdt_dist_stats sym = {.max = r->max, .mean = r->mean, .rms = r->rms};
 	const struct vdt_dist_stats *rows[3] = {&r->ab, &r->ba, &sym};
 	double pct = r->diag > 0 ? 100 / r->diag : 0;
-	double v[14] = {r->max, r->max * pct, r->mean, r->mean * pct, r->rms, r->rms * pct,
-	                r->ab.max, r->ab.rms, r->ba.max, r->ba.rms,
-	                (double)(r->ab.vertex_samples + r->ab.face_samples +
-	                         r->ba.vertex_samples + r->ba.face_samples),
-	                (double)r->normals.flipped, (double)r->normals.faces, r->diag};
+	/* the counts (keys 10 to 12) as the integers they are, not doubles */
+	size_t samples = r->ab.vertex_samples + r->ab.face_samples + r->ba.vertex_samples +
+	                 r->ba.face_samples;
+	size_t counts[3] = {samples, r->normals.flipped, r->normals.faces};
+	double v[14] = {r->max,    r->max * pct, r->mean,   r->mean * pct, r->rms, r->rms * pct,
+	                r->ab.max, r->ab.rms,    r->ba.max, r->ba.rms,     0,      0,
+	                0,         r->diag};
 
-	if (fmt != VDT_REPORT_TEXT) { /* counts are exact below 2^53 */
+	if (fmt != VDT_REPORT_TEXT) {
 		int json = fmt == VDT_REPORT_JSON;
 		for (int i = 0; i < 14; i++) {
 			fprintf(f, json ? "%s\"%s\": " : "%s%s=",
 			        i ? (json ? ", " : " ") : (json ? "{" : ""), keys[i]);
-			fprintf(f, i >= 10 && i <= 12 ? "%.0f" : "%.6g", v[i]);
+			if (i >= 10 && i <= 12)
+				fprintf(f, "%zu", counts[i - 10]);
+			else
+				fprintf(f, "%.6g", v[i]);
 		}
 		for (int i = 0; i < 2; i++) {
 			const double *p = i ? r->ba.max_at : r->ab.max_at;
@@ -43,8 +48,8 @@ vdt_report_write(FILE *f, const struct vdt_measure_result *r, enum vdt_report_fo
 		fprintf(f, "%-10s %12.6g (%6.4f%%) %12.6g (%6.4f%%) %12.6g (%6.4f%%)\n", names[i],
 		       rows[i]->max, rows[i]->max * pct, rows[i]->mean, rows[i]->mean * pct,
 		       rows[i]->rms, rows[i]->rms * pct);
-	fprintf(f, "diagonal of A %.6g, %.0f samples, %zu of %zu faces of B flipped\n", r->diag,
-	       v[10], r->normals.flipped, r->normals.faces);
+	fprintf(f, "diagonal of A %.6g, %zu samples, %zu of %zu faces of B flipped\n", r->diag,
+	        samples, r->normals.flipped, r->normals.faces);
 	fprintf(f, "farthest: A->B at (%.6g, %.6g, %.6g)", r->ab.max_at[0], r->ab.max_at[1],
 	        r->ab.max_at[2]);
 	if (!one_sided)

@@ -22,7 +22,7 @@ enum vdt_report_format {
 /*
  * Write the report of r to f in format fmt. Distances come with their
  * share of the diagonal of A in percent (0 when the diagonal is 0); counts
- * are written as integers, exact below 2^53. The table has the row A->B
+ * are written as the integers they are. The table has the row A->B
  * alone when one_sided, else the rows A->B, B->A and symmetric; its last
  * line, and the last two keys, give the samples where the Hausdorff
  * distance of each direction is reached (on A for A->B, on B for B->A). Write

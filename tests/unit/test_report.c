@@ -8,6 +8,7 @@
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include <cmocka.h>
 
@@ -132,15 +133,37 @@ zero_diagonal(void **state)
 	free(s);
 }
 
+/* Counts are integers, exact past 2^53, where a double would round them. */
+static void
+large_counts(void **state)
+{
+	struct vdt_measure_result r = result;
+	char *s;
+
+	(void)state;
+	r.ab.face_samples = ((size_t)1 << 53) - 4; /* 3 + this + 2: 2^53 + 1 samples */
+	r.ba.face_samples = 0;
+	r.normals.faces = ((size_t)1 << 53) + 1;
+	s = report(&r, VDT_REPORT_KV, 0);
+	assert_string_equal(s, "hausdorff=0.5 hausdorff_pct=5 mean=0.1 mean_pct=1 rms=0.2 "
+	                       "rms_pct=2 ab_hausdorff=0.5 ab_rms=0.2 ba_hausdorff=0.25 "
+	                       "ba_rms=0.1 samples=9007199254740993 flipped=1 "
+	                       "faces=9007199254740993 diag=10 "
+	                       "ab_hausdorff_at=1,2,3 ba_hausdorff_at=-0.5,0,4\n");
+	free(s);
+	s = report(&r, VDT_REPORT_TEXT, 1);
+	assert_non_null(strstr(s, "diagonal of A 10, 9007199254740993 samples, 1 of "
+	                          "9007199254740993 faces of B flipped\n"));
+	free(s);
+}
+
 int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
-		cmocka_unit_test(text_table),
-		cmocka_unit_test(one_sided_table),
-		cmocka_unit_test(kv_line),
-		cmocka_unit_test(json_object),
-		cmocka_unit_test(zero_diagonal),
+	        cmocka_unit_test(text_table),    cmocka_unit_test(one_sided_table),
+	        cmocka_unit_test(kv_line),       cmocka_unit_test(json_object),
+	        cmocka_unit_test(zero_diagonal), cmocka_unit_test(large_counts),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
