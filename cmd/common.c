@@ -177,9 +177,10 @@ parse_count(const char *opt, const char *s, unsigned long min, unsigned long max
 	if (s == NULL || *s == '\0' || *s == '-' || *s == '+' || *s == ' ')
 		usage_error("invalid value '%s' for %s", s ? s : "", opt);
 	v = strtoul(s, &end, 10);
-	if (errno != 0 || *end != '\0')
+	if ((errno != 0 && errno != ERANGE) || *end != '\0')
 		usage_error("invalid value '%s' for %s", s, opt);
-	if (v < min || v > max)
+	/* a number past unsigned long is as out of range as one past max */
+	if (errno == ERANGE || v < min || v > max)
 		usage_error("%s must be between %lu and %lu, not %s", opt, min, max, s);
 	return v;
 }

@@ -275,3 +275,17 @@ assert len(d["ab_hausdorff_at"]) == 3 and len(d["ba_hausdorff_at"]) == 3'
 	[ "$status" -eq 2 ]
 	one_line
 }
+
+@test "a count past any integer gives the range it must lie in, as a smaller one does" {
+	for t in "vdt-measure -n 1 4294967296" "vdt-qslim -t 1 4294967295" "vdt-render -t 1 4000000000"; do
+		set -- $t
+		for n in 4294967297 99999999999999999999999; do
+			case $1 in vdt-measure) run "$BIN/$1" "$2" "$n" "$SQ" "$UP" ;;
+			*) run "$BIN/$1" "$2" "$n" "$SQ" -o "$TMP/out" ;;
+			esac
+			[ "$status" -eq 2 ]
+			[ "$output" = "$1: $2 must be between $3 and $4, not $n" ]
+		done
+	done
+	[ ! -e "$TMP/out" ]
+}
