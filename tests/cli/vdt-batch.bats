@@ -803,3 +803,13 @@ SH
 	run "$BATCH" -vq --ratios 50 -o "$TMP/out" "$TMP/in"
 	[ "$status" -eq 0 ]
 }
+
+@test "vdt-batch: a level's target past 2^31 triangles is passed on as the integer it is" {
+	# a count of 2^32 - 1 (from the count step) at 50%: awk printed the
+	# target as 2.14748e+09, which vdt-qslim refused
+	printf '4294967295\nnone\n' > "$TMP/n"
+	run "$BATCH" --step lod "$SAMPLES/torus.off" "$TMP/n" 50 "$TMP/o/t.off" "$TMP/o/t.log" "$TMP/o/t.time"
+	[ "$status" -eq 0 ]
+	[ ! -e "$TMP/o/t.log" ]
+	[ -s "$TMP/o/t.off" ]
+}
