@@ -813,3 +813,79 @@ SH
 	[ ! -e "$TMP/o/t.log" ]
 	[ -s "$TMP/o/t.off" ]
 }
+
+# mount_small DIR KB: a file system of KB kilobytes at DIR (a tmpfs; root
+# alone may mount one, else the test is skipped), unmounted by teardown.
+mount_small() {
+	[ "$(id -u)" -eq 0 ] || skip "not root"
+	mkdir -p "$1"
+	mount -t tmpfs -o "size=${2}k" tmpfs "$1" 2>/dev/null || skip "cannot mount a tmpfs"
+	printf '%s\n' "$1" >>"$TMP/mounts"
+}
+
+teardown() {
+	if [ -f "$TMP/mounts" ]; then
+		while read -r m; do umount "$m"; done <"$TMP/mounts"
+	fi
+	rm -rf "$TMP"
+}
+
+@test "vdt-batch: a summary that cannot be written is status 1 and one line" {
+	[ -w /dev/full ] || skip "no /dev/full"
+	mkdir -p "$TMP/in"
+	cp "$SAMPLES/torus.off" "$TMP/in/"
+	for v in "" -v; do
+		run bash -c '"$1" $2 --ratios 50 --samples 1000 -o "$3" "$4" >/dev/full' _ \
+			"$BATCH" "$v" "$TMP/out" "$TMP/in"
+		[ "$status" -eq 1 ]
+		[ "${lines[0]}" = "vdt-batch: cannot write '<stdout>': No space left on device" ]
+		if [ -n "$v" ]; then # -v's line still comes, after it
+			[ "${#lines[@]}" -eq 2 ]
+			[[ "${lines[1]}" == "vdt-batch: model=torus.off "* ]]
+		else
+			one_line
+		fi
+	done
+	# and a failed model is still named
+	head -c 300 "$SAMPLES/sphere.off" >"$TMP/in/broken.off"
+	run bash -c '"$1" --ratios 50 --samples 1000 -o "$2" "$3" >/dev/full' _ "$BATCH" "$TMP/out" "$TMP/in"
+	[ "$status" -eq 1 ]
+	[ "$(printf '%s\n' "$output" | grep -cv '^vdt-batch: ')" -eq 0 ]
+	[ "$(printf '%s\n' "$output" | grep -c "^vdt-batch: cannot write '<stdout>'")" -eq 1 ]
+	printf '%s\n' "$output" | grep -q '^vdt-batch: broken.off failed: vdt-cluster: cannot read '
+}
+
+@test "vdt-batch: an output tree on a read-only file system is status 1 and one line" {
+	mkdir -p "$TMP/in"
+	cp "$SAMPLES/torus.off" "$TMP/in/"
+	mount_small "$TMP/ro" 1024
+	"$BATCH" -q --ratios 50 --samples 1000 -o "$TMP/ro/out" "$TMP/in"
+	mount -o remount,ro "$TMP/ro"
+	run "$BATCH" -q --ratios 50 --samples 1000 -o "$TMP/ro/out" "$TMP/in"
+	[ "$status" -eq 1 ]
+	[ "$output" = "vdt-batch: cannot write '$TMP/ro/out/.vdt-batch/lock': Read-only file system" ]
+	run "$BATCH" -q --ratios 50 --samples 1000 -o "$TMP/ro/new" "$TMP/in"
+	[ "$status" -eq 1 ]
+	[ "$output" = "vdt-batch: cannot create directory '$TMP/ro/new': Read-only file system" ]
+}
+
+@test "vdt-batch: a full disk, whichever write it stops, is status 1 and lines of its own" {
+	mkdir -p "$TMP/in"
+	"$BIN/vdt-qslim" -q -t 64 "$SAMPLES/torus.off" -o "$TMP/in/small.off"
+	mount_small "$TMP/disk" 256
+	# the state files, the Makefile, the steps' records, the levels:
+	# each in turn is the write that finds the disk full
+	failed=0
+	for free in $(seq 0 4 56); do
+		rm -rf "$TMP/disk/out" "$TMP/disk/fill"
+		avail=$(df -k --output=avail "$TMP/disk" | tail -n 1)
+		[ "$avail" -le "$free" ] || head -c "$((avail - free))k" /dev/zero >"$TMP/disk/fill"
+		run "$BATCH" -q --ratios 50 --samples 1000 -o "$TMP/disk/out" "$TMP/in"
+		echo "free ${free}k: status $status: $output"
+		[ "$status" -eq 0 ] || [ "$status" -eq 1 ]
+		[ "$status" -eq 0 ] || failed=$((failed + 1))
+		[ "$status" -eq 0 ] || [ -n "$output" ]
+		[ -z "$output" ] || [ "$(printf '%s\n' "$output" | grep -cv '^vdt-batch: ')" -eq 0 ]
+	done
+	[ "$failed" -gt 5 ]
+}
