@@ -1,6 +1,7 @@
 #include "common.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <malloc.h>
 #include <math.h>
 #include <stdarg.h>
@@ -62,9 +63,7 @@ output_format(const char *path, enum vdt_format given)
 		usage_error("cannot tell the output format from '%s': give a known extension or -F",
 		            path);
 	/* (as vdt_write would, but before the input is read and worked on) */
-	if (strcmp(path, "-") == 0 && vdt_format_is_binary(f) && isatty(STDOUT_FILENO))
-		usage_error("refusing to write binary %s to a terminal: give -o or a pipe",
-		            f == VDT_FMT_VDT ? "vdt stream" : vdt_format_name(f));
+	refuse_binary(path, f);
 	return f;
 }
 
@@ -342,6 +341,40 @@ names_stdout(const char *path)
 	return strcmp(path, "-") == 0 ||
 	       (stat(path, &a) == 0 && fstat(STDOUT_FILENO, &b) == 0 && a.st_dev == b.st_dev &&
 	        a.st_ino == b.st_ino && !S_ISCHR(a.st_mode));
+}
+
+int
+names_terminal(const char *path)
+{
+	struct stat st;
+	int fd, tty;
+
+	if (strcmp(path, "-") == 0)
+		return isatty(STDOUT_FILENO);
+	if (stat(path, &st) != 0 || !S_ISCHR(st.st_mode))
+		return 0;
+	/* (as the writer opens it, but neither taking it as the controlling
+	 * terminal nor waiting on it) */
+	if ((fd = open(path, O_WRONLY | O_NOCTTY | O_NONBLOCK)) < 0)
+		return 0;
+	tty = isatty(fd);
+	close(fd);
+	return tty;
+}
+
+void
+refuse_terminal(const char *path, const char *what)
+{
+	if (names_terminal(path))
+		usage_error("refusing to write binary %s to a terminal: give a file or a pipe",
+		            what);
+}
+
+void
+refuse_binary(const char *path, enum vdt_format f)
+{
+	if (vdt_format_is_binary(f))
+		refuse_terminal(path, f == VDT_FMT_VDT ? "vdt stream" : vdt_format_name(f));
 }
 
 long

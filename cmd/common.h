@@ -92,8 +92,9 @@ void note_float_precision(const char *path, const struct vdt_mesh *m, int quiet)
 int exit_status(int code);
 
 /*
- * vdt_output_format of path and -F's format; a name that gives none is a
- * usage error, found before any work is done.
+ * vdt_output_format of path and -F's format; a name that gives none, or a
+ * binary format for a terminal (refuse_binary), is a usage error, found
+ * before any work is done.
  */
 enum vdt_format output_format(const char *path, enum vdt_format given);
 
@@ -111,6 +112,22 @@ double parse_real(const char *opt, const char *s, double min, double max);
  * not counted: there two writers only show side by side.
  */
 int names_stdout(const char *path);
+
+/*
+ * Whether output to path lands on a terminal: "-" when standard output is
+ * one, or a name of a terminal (/dev/stdout or /proc/self/fd/1 on one,
+ * /dev/tty), which is opened to be asked.
+ */
+int names_terminal(const char *path);
+
+/*
+ * A usage error, before any work, when what, bytes no terminal should get
+ * ("vdt stream", "ply", "image"), would go to a terminal by path.
+ */
+void refuse_terminal(const char *path, const char *what);
+
+/* refuse_terminal when f is a binary mesh format (vdt_format_is_binary). */
+void refuse_binary(const char *path, enum vdt_format f);
 
 /*
  * Parse a vector "X,Y,Z" into out[3]; with nonzero, a direction: refuse

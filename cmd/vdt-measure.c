@@ -79,8 +79,10 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	cl->b = argv[optind + 1];
 	if (strcmp(cl->a, "-") == 0 && strcmp(cl->b, "-") == 0)
 		usage_error("A and B cannot both be standard input");
-	if (cl->color)
+	if (cl->color) {
 		refuse_one_file_for_two("-o", cl->out, "-c", cl->color);
+		refuse_binary(cl->color, VDT_FMT_PLY); /* (before the measuring) */
+	}
 	for (int k = 0; k < 2; k++) {
 		refuse_output_over_input(k ? cl->b : cl->a, cl->out);
 		if (cl->color)

@@ -45,6 +45,14 @@ pattern(const char *opt, const char *s)
 	return s;
 }
 
+/* Frame i's name under a pattern with at most one %d (vdt_render_pattern_ok). */
+static const char *
+frame_name(char name[4096], const char *pattern, size_t i)
+{
+	snprintf(name, 4096, pattern, (int)i);
+	return name;
+}
+
 static void
 parse_cmdline(int argc, char **argv, struct cmdline *cl)
 {
@@ -65,7 +73,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		{"help", 0, NULL, 'h'}, {"version", 0, NULL, 'V'}, {NULL, 0, NULL, 0},
 	};
 	int c;
-	char *end;
+	char *end, name[4096];
 
 	memset(cl, 0, sizeof(*cl));
 	cl->in = "-";
@@ -114,14 +122,13 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	cl->in = input_operand(argc, argv, cl->in);
 	if (cl->out == NULL && cl->mesh_out == NULL)
 		usage_error("nothing to write: give -o IMAGE or --mesh-out PATTERN");
-}
-
-/* Frame i's name under a pattern with at most one %d (vdt_render_pattern_ok). */
-static const char *
-frame_name(char name[4096], const char *pattern, size_t i)
-{
-	snprintf(name, 4096, pattern, (int)i);
-	return name;
+	/* (as vdt_image_write and vdt_write would, but before the tree is read) */
+	if (cl->out)
+		refuse_terminal(frame_name(name, cl->out, 0), "image");
+	if (cl->mesh_out) {
+		frame_name(name, cl->mesh_out, 0);
+		refuse_binary(name, vdt_output_format(name, VDT_FMT_AUTO));
+	}
 }
 
 /*

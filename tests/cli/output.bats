@@ -118,7 +118,7 @@ load helpers
 	if command -v script >/dev/null; then
 		run script -qec "$BIN/vdt-render --size 64x48 $TMP/t.vdt -o -" /dev/null
 		[ "$status" -eq 2 ]
-		[[ "$output" == *"refusing to write a binary image to a terminal"* ]]
+		[[ "$output" == *"refusing to write binary image to a terminal"* ]]
 	fi
 }
 
@@ -183,7 +183,7 @@ load helpers
 	[ -s "$TMP/g2.off" ]
 }
 
-@test "vdt-build and vdt-silhouette refuse a terminal for their stream before reading" {
+@test "the mesh tools refuse a terminal for their stream before reading, by any of its names" {
 	if ! command -v script >/dev/null; then skip "no script(1)"; fi
 	# the input is missing: refused first, it is not even looked at
 	# (they built the tree or the labels, then refused)
@@ -191,6 +191,15 @@ load helpers
 		run script -qec "$BIN/$t $TMP/missing.off" /dev/null
 		[ "$status" -eq 2 ]
 		[[ "$output" == "$t: refusing to write binary vdt stream to a terminal"* ]]
+	done
+	# and so do the others, for any name of the terminal (they were
+	# refused only at the end, once the work was done)
+	for t in vdt-build vdt-silhouette vdt-qslim vdt-cluster; do
+		for o in /dev/stdout /dev/tty; do
+			run script -qec "$BIN/$t $TMP/missing.off -o $o" /dev/null
+			[ "$status" -eq 2 ]
+			[[ "$output" == "$t: refusing to write binary vdt stream to a terminal"* ]]
+		done
 	done
 }
 

@@ -289,3 +289,14 @@ assert len(d["ab_hausdorff_at"]) == 3 and len(d["ba_hausdorff_at"]) == 3'
 	done
 	[ ! -e "$TMP/out" ]
 }
+
+@test "vdt-measure refuses -c for a terminal before measuring" {
+	command -v script >/dev/null || skip "no script(1)"
+	for c in - /dev/stdout; do
+		run script -qec "'$BIN/vdt-measure' -o '$TMP/r.txt' -c $c '$TMP/missing.off' '$SQ'" /dev/null
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == "vdt-measure: refusing to write binary ply to a terminal"* ]]
+	done
+	[ ! -e "$TMP/r.txt" ]
+}

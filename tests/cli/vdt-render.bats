@@ -559,3 +559,25 @@ noff_faces() {
 	[ "$status" -eq 1 ]
 	[ ! -e "$TMP/t.png" ]
 }
+
+@test "vdt-render refuses an image or a binary mesh for a terminal at once, by any name" {
+	command -v script >/dev/null || skip "no script(1)"
+	# the tree is missing: the refusal comes first, before it is read
+	# (-o /dev/stdout wrote the PNG's bytes into the terminal; -o -
+	# was refused once the tree was read)
+	for o in "-o -" "-o /dev/stdout" "-o /proc/self/fd/1" "-o /dev/tty" "--mesh-out -" \
+		"--mesh-out /dev/stdout" "--mesh-out $TMP/m.obj -o /dev/stdout"; do
+		run script -qec "'$BIN/vdt-render' '$TMP/missing.vdt' $o" /dev/null
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == "vdt-render: refusing to write binary "*" to a terminal: give a file or a pipe"* ]]
+	done
+	# a pipe or /dev/null is not refused
+	"$BIN/vdt-build" -q "$SAMPLES/torus.off" -o "$TMP/t.vdt"
+	run script -qec "'$BIN/vdt-render' --size 16x16 '$TMP/t.vdt' -o /dev/stdout | cat >'$TMP/a.png'" /dev/null
+	[ "$status" -eq 0 ]
+	run script -qec "'$BIN/vdt-render' --size 16x16 '$TMP/t.vdt' -o /dev/null" /dev/null
+	[ "$status" -eq 0 ]
+	"$BIN/vdt-render" --size 16x16 "$TMP/t.vdt" -o "$TMP/b.png"
+	cmp "$TMP/a.png" "$TMP/b.png"
+}
