@@ -12,6 +12,10 @@
  *   The nearest-first traversal with squared-distance pruning is the usual
  *   branch-and-bound of closest-point queries (as in CGAL's AABB_tree and
  *   Embree's point queries).
+ *   T. L. Kay, J. T. Kajiya, "Ray tracing complex scenes", SIGGRAPH 1986,
+ *     section 3: bounding volumes as slabs, the space between two parallel
+ *     planes. Here a node whose box is loose about long thin triangles
+ *     also gets one slab, square to them, in a direction of its own.
  */
 #include "bvh.h"
 
@@ -33,8 +37,30 @@ enum {
 	 * cheap to bin and is then queried many times over its size.
 	 */
 	SAH_MESH_MAX = 65536,
-	STACK_MAX = 128 /* SAH_DEPTH + 32 median levels + margin */
+	STACK_MAX = 128, /* SAH_DEPTH + 32 median levels + margin */
+	/*
+	 * A node is tried for a slab when its box's half surface area exceeds
+	 * SLAB_TRY times the area of its triangles (about 2 for a triangle in
+	 * an axis plane, 5 for a tilted one, the inverse of the angle for a
+	 * wedge of a fan), and keeps it when the slab is SLAB_GAIN times
+	 * thinner than the box across it. With 8 and 2, the dragon's tree
+	 * would have slabs over 2% of its area, for nothing.
+	 */
+	SLAB_TRY = 16,
+	SLAB_GAIN = 4
 };
+
+/* Share of a mesh's area that its slabs must cover to be kept: see slabs(). */
+#define SLAB_SHARE (1.0 / 64)
+
+/*
+ * Relative widening of slabs: at build over the node's coordinates, since
+ * a closest point is computed a few ulps off its triangle; at query over
+ * the query's, for the rounding of dir . p. Far above both roundings, far
+ * below anything that matters to pruning.
+ */
+#define SLAB_MARGIN 0x1p-30
+#define SLAB_SLACK 0x1p-32
 
 static double
 dot3(const double a[3], const double b[3])
@@ -417,9 +443,10 @@ build_node(struct build *b, size_t first, size_t n, int depth,
 
 	memcpy(node->lo, bb->lo, sizeof(bb->lo));
 	memcpy(node->hi, bb->hi, sizeof(bb->hi));
+	node->slab = 0;
 	if (n <= LEAF_MAX) {
 		node->index = (uint32_t)first;
-		node->count = (uint32_t)n;
+		node->count = (uint16_t)n;
 		return self;
 	}
 	nl = split(b->prims + first, n, depth, b->sah, cb, bb2, cb2);
@@ -428,6 +455,205 @@ build_node(struct build *b, size_t first, size_t n, int depth,
 	                                  &bb2[1], &cb2[1]);
 	b->nodes[self].count = 0;
 	return self;
+}
+
+/* ---- slabs ---- */
+
+/* What a subtree's slab is made from. */
+struct span {
+	size_t first, end; /* its slots */
+	double area;       /* of its triangles */
+	double dir[3];     /* sum of their across directions, see across() */
+	double slabbed;    /* area of its triangles under a node with a slab */
+};
+
+static void
+cross3(double r[3], const double a[3], const double b[3])
+{
+	r[0] = a[1] * b[2] - a[2] * b[1];
+	r[1] = a[2] * b[0] - a[0] * b[2];
+	r[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/*
+ * The area of a triangle, and if d is not NULL the direction across it into
+ * d: in its plane, square to its longest edge and as long as that edge (the
+ * long edges weigh most). A triangle of no area has no such direction: 0.
+ */
+static double
+across(const float *c, double d[3])
+{
+	double a[3] = {c[0], c[1], c[2]}, b[3] = {c[3], c[4], c[5]}, cc[3] = {c[6], c[7], c[8]};
+	double ab[3], bc[3], ca[3], n[3], len;
+	const double *e;
+
+	sub3(ab, b, a);
+	sub3(bc, cc, b);
+	cross3(n, ab, bc);
+	len = sqrt(dot3(n, n));
+	if (d == NULL)
+		return len / 2;
+	if (!(len > 0)) {
+		d[0] = d[1] = d[2] = 0;
+		return 0;
+	}
+	sub3(ca, a, cc);
+	e = dot3(ab, ab) >= dot3(bc, bc) ? ab : bc;
+	e = dot3(e, e) >= dot3(ca, ca) ? e : ca;
+	cross3(d, n, e);
+	for (int i = 0; i < 3; i++)
+		d[i] /= len;
+	return len / 2;
+}
+
+/* Add d to sum, turned to agree with it: across directions have no sign. */
+static void
+add_across(double sum[3], const double d[3])
+{
+	double s = dot3(sum, d) < 0 ? -1 : 1;
+
+	for (int i = 0; i < 3; i++)
+		sum[i] += s * d[i];
+}
+
+/* Round x to a float below (down) or above it. */
+static float
+float_past(double x, int down)
+{
+	float f = (float)x;
+
+	if (down && f > x)
+		return nextafterf(f, -INFINITY);
+	if (!down && f < x)
+		return nextafterf(f, INFINITY);
+	return f;
+}
+
+static double
+node_area(const struct vdt_bvh_node *n)
+{
+	struct box b;
+
+	memcpy(b.lo, n->lo, sizeof(b.lo));
+	memcpy(b.hi, n->hi, sizeof(b.hi));
+	return box_area(&b);
+}
+
+/*
+ * First pass: mark the nodes of the subtree at node whose box is loose
+ * about their triangles (slab set, for now: to be tried); returns its area
+ * and adds the area under marked nodes to *loose.
+ */
+static double
+mark_loose(struct vdt_bvh *bvh, uint32_t node, double *loose)
+{
+	struct vdt_bvh_node *n = &bvh->nodes[node];
+	double area = 0, below = 0;
+
+	if (n->count > 0)
+		for (uint32_t s = n->index; s < n->index + n->count; s++)
+			area += across(bvh->corners + 9 * s, NULL);
+	else
+		area = mark_loose(bvh, node + 1, &below) + mark_loose(bvh, n->index, &below);
+	n->slab = node_area(n) > SLAB_TRY * area;
+	*loose += n->slab ? area : below;
+	return area;
+}
+
+/* The slab of node n across sp's direction, if it is worth one. */
+static int
+make_slab(const struct vdt_bvh *bvh, const struct vdt_bvh_node *n, const struct span *sp,
+          struct vdt_bvh_slab *slab)
+{
+	double len = sqrt(dot3(sp->dir, sp->dir)), lo = INFINITY, hi = -INFINITY;
+	double scale = 0, across_box = 0;
+	float u[3];
+
+	if (!(len > 0))
+		return 0;
+	/* shortened a little, so that the rounded direction stays within 1 */
+	for (int k = 0; k < 3; k++)
+		u[k] = (float)(sp->dir[k] / len * (1 - 0x1p-20));
+	for (size_t i = 3 * sp->first; i < 3 * sp->end; i++) {
+		const float *x = bvh->corners + 3 * i;
+		double t = (double)u[0] * x[0] + (double)u[1] * x[1] + (double)u[2] * x[2];
+
+		lo = t < lo ? t : lo;
+		hi = t > hi ? t : hi;
+	}
+	for (int k = 0; k < 3; k++) {
+		scale += fabs(u[k]) * fmax(fabs(n->lo[k]), fabs(n->hi[k]));
+		across_box += fabs(u[k]) * ((double)n->hi[k] - n->lo[k]);
+	}
+	if (!(SLAB_GAIN * (hi - lo) < across_box) || !(scale < FLT_MAX / 2))
+		return 0;
+	memcpy(slab->dir, u, sizeof(u));
+	slab->lo = float_past(lo - SLAB_MARGIN * scale, 1);
+	slab->hi = float_past(hi + SLAB_MARGIN * scale, 0);
+	return 1;
+}
+
+/*
+ * Second pass, bottom up: give each node the first pass marked its slab, or
+ * unmark it if a slab would not help. sp gets the subtree's span; its area
+ * and direction only where needed (under a marked node). Returns the
+ * number of slabs given.
+ */
+static size_t
+add_slabs(struct vdt_bvh *bvh, uint32_t node, int need, struct span *sp)
+{
+	struct vdt_bvh_node *n = &bvh->nodes[node];
+	size_t given = 0;
+
+	need |= n->slab;
+	if (n->count > 0) {
+		memset(sp, 0, sizeof(*sp));
+		sp->first = n->index;
+		sp->end = n->index + n->count;
+		for (size_t s = sp->first; need && s < sp->end; s++) {
+			double d[3];
+
+			sp->area += across(bvh->corners + 9 * s, d);
+			add_across(sp->dir, d);
+		}
+	} else {
+		struct span r;
+
+		given = add_slabs(bvh, node + 1, need, sp) + add_slabs(bvh, n->index, need, &r);
+		sp->end = r.end;
+		sp->area += r.area;
+		sp->slabbed += r.slabbed;
+		add_across(sp->dir, r.dir);
+	}
+	if (n->slab) {
+		n->slab = (uint16_t)make_slab(bvh, n, sp, &bvh->slabs[node]);
+		given += n->slab;
+		sp->slabbed = n->slab ? sp->area : sp->slabbed;
+	}
+	return given;
+}
+
+/*
+ * Slabs for the nodes whose box is loose. A tree has them only if they
+ * cover SLAB_SHARE of its area: queries land where the area is, and every
+ * query of a tree with slabs pays for looking whether a node has one.
+ * Without memory for them there are none: the answers are the same.
+ */
+static void
+slabs(struct vdt_bvh *bvh)
+{
+	double loose = 0, area = mark_loose(bvh, 0, &loose);
+	struct span root;
+
+	if (loose >= SLAB_SHARE * area)
+		bvh->slabs = malloc(bvh->node_count * sizeof(*bvh->slabs));
+	if (bvh->slabs != NULL && add_slabs(bvh, 0, 0, &root) > 0 &&
+	    root.slabbed >= SLAB_SHARE * area)
+		return;
+	for (size_t i = 0; i < bvh->node_count; i++)
+		bvh->nodes[i].slab = 0;
+	free(bvh->slabs);
+	bvh->slabs = NULL;
 }
 
 int
@@ -472,6 +698,7 @@ vdt_bvh_build(struct vdt_bvh *bvh, const struct vdt_mesh *m, struct vdt_err *err
 		memcpy(bvh->corners + 9 * s, b.prims[s].v, sizeof(b.prims[s].v));
 	}
 	free(b.prims);
+	slabs(bvh);
 	return 0;
 }
 
@@ -479,6 +706,7 @@ void
 vdt_bvh_free(struct vdt_bvh *bvh)
 {
 	free(bvh->nodes);
+	free(bvh->slabs);
 	free(bvh->order);
 	free(bvh->slot_of);
 	free(bvh->corners);
@@ -497,6 +725,37 @@ box_dist2(const struct vdt_bvh_node *n, const double p[3])
 		d += v * v;
 	}
 	return d;
+}
+
+/*
+ * Squared distance from p across slab s, if more than d; else d. slack is
+ * SLAB_SLACK times the size of p (see there).
+ */
+static double
+slab_dist2(const struct vdt_bvh_slab *s, const double p[3], double slack, double d)
+{
+	double t = s->dir[0] * p[0] + s->dir[1] * p[1] + s->dir[2] * p[2];
+	double g = (t < s->lo ? s->lo - t : t > s->hi ? t - s->hi : 0) - slack;
+
+	return g > 0 && g * g * (1 - SLAB_SLACK) > d ? g * g * (1 - SLAB_SLACK) : d;
+}
+
+/*
+ * Squared distance from p to node i: to its box, or across its slab if the
+ * tree has slabs (slabbed) and i one.
+ */
+static inline double
+node_dist2(const struct vdt_bvh *bvh, uint32_t i, const double p[3], int slabbed, double slack)
+{
+	double d = box_dist2(&bvh->nodes[i], p);
+
+	return slabbed && bvh->nodes[i].slab ? slab_dist2(&bvh->slabs[i], p, slack, d) : d;
+}
+
+static double
+slack_of(const double p[3])
+{
+	return SLAB_SLACK * (fabs(p[0]) + fabs(p[1]) + fabs(p[2]));
 }
 
 /* Squared distance from p to the box of a triangle: a lower bound. */
@@ -528,9 +787,10 @@ slot_closest(const struct vdt_bvh *bvh, size_t s, const double p[3], double q[3]
 	return vdt_closest_on_triangle(p, a, b, cc, q);
 }
 
-void
-vdt_bvh_closest(const struct vdt_bvh *bvh, const double p[3], size_t hint,
-                struct vdt_bvh_hit *hit)
+/* vdt_bvh_closest, for trees with slabs or without (slabbed: a constant). */
+static inline __attribute__((always_inline)) void
+closest(const struct vdt_bvh *bvh, const double p[3], size_t hint, struct vdt_bvh_hit *hit,
+        int slabbed)
 {
 	struct {
 		uint32_t node;
@@ -538,18 +798,20 @@ vdt_bvh_closest(const struct vdt_bvh *bvh, const double p[3], size_t hint,
 	} stack[STACK_MAX];
 	int sp = 0;
 	uint32_t node = 0, best_tri = UINT32_MAX;
-	double best = INFINITY, q[3];
+	double best = INFINITY, q[3], slack = slabbed ? slack_of(p) : 0;
+	size_t tests = 0;
 
 	if (hint < bvh->triangle_count) {
 		best = slot_closest(bvh, bvh->slot_of[hint], p, hit->point);
 		best_tri = (uint32_t)hint;
+		tests++;
 	}
 	/*
 	 * Boxes at exactly the best distance are still visited: a triangle
 	 * there may tie with a lower index, and the answer must not depend on
 	 * the hint or the visiting order.
 	 */
-	if (box_dist2(&bvh->nodes[0], p) > best)
+	if (node_dist2(bvh, 0, p, slabbed, slack) > best)
 		goto done;
 	for (;;) {
 		const struct vdt_bvh_node *n = &bvh->nodes[node];
@@ -563,7 +825,7 @@ vdt_bvh_closest(const struct vdt_bvh *bvh, const double p[3], size_t hint,
 				if (tri_box_dist2(bvh->corners + 9 * s, p) > best)
 					continue;
 				d = slot_closest(bvh, s, p, q);
-
+				tests++;
 				if (d < best || (d == best && t < best_tri)) {
 					best = d;
 					best_tri = t;
@@ -572,8 +834,8 @@ vdt_bvh_closest(const struct vdt_bvh *bvh, const double p[3], size_t hint,
 			}
 		} else {
 			uint32_t l = node + 1, r = n->index;
-			double dl = box_dist2(&bvh->nodes[l], p);
-			double dr = box_dist2(&bvh->nodes[r], p);
+			double dl = node_dist2(bvh, l, p, slabbed, slack);
+			double dr = node_dist2(bvh, r, p, slabbed, slack);
 
 			if (dr < dl) {
 				uint32_t t = l;
@@ -599,6 +861,18 @@ vdt_bvh_closest(const struct vdt_bvh *bvh, const double p[3], size_t hint,
 done:
 	hit->dist2 = best;
 	hit->triangle = best_tri;
+	hit->tests = tests;
+}
+
+void
+vdt_bvh_closest(const struct vdt_bvh *bvh, const double p[3], size_t hint,
+                struct vdt_bvh_hit *hit)
+{
+	/* two copies of the traversal, so that trees without slabs pay nothing */
+	if (bvh->slabs != NULL)
+		closest(bvh, p, hint, hit, 1);
+	else
+		closest(bvh, p, hint, hit, 0);
 }
 
 int
@@ -607,15 +881,17 @@ vdt_bvh_any_within(const struct vdt_bvh *bvh, const double p[3], double r2,
 {
 	uint32_t stack[STACK_MAX];
 	int sp = 0;
-	double q[3];
+	double q[3], slack = slack_of(p);
+	int slabbed = bvh->slabs != NULL;
 
 	if (bvh->node_count == 0)
 		return 0;
 	stack[sp++] = 0;
 	while (sp > 0) {
-		const struct vdt_bvh_node *n = &bvh->nodes[stack[--sp]];
+		uint32_t i = stack[--sp];
+		const struct vdt_bvh_node *n = &bvh->nodes[i];
 
-		if (box_dist2(n, p) > r2)
+		if (node_dist2(bvh, i, p, slabbed, slack) > r2)
 			continue;
 		if (n->count > 0) {
 			for (uint32_t s = n->index; s < n->index + n->count; s++)
@@ -625,7 +901,7 @@ vdt_bvh_any_within(const struct vdt_bvh *bvh, const double p[3], double r2,
 		} else {
 			assert(sp + 2 <= STACK_MAX);
 			stack[sp++] = n->index;
-			stack[sp++] = (uint32_t)(n - bvh->nodes) + 1;
+			stack[sp++] = i + 1;
 		}
 	}
 	return 0;

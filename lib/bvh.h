@@ -21,12 +21,29 @@
 struct vdt_bvh_node {
 	float lo[3], hi[3];
 	uint32_t index; /* leaf: first slot; inner node: its right child */
-	uint32_t count; /* leaf: number of slots (> 0); inner node: 0 */
+	uint16_t count; /* leaf: number of slots (> 0); inner node: 0 */
+	uint16_t slab;  /* 1: slabs[this node] bounds it too, see below */
 };                      /* an inner node's left child is the next node */
+
+/*
+ * A second bound of a node, for the long thin triangles that boxes bound
+ * badly (in a fan of slivers, the box of a sliver through the middle of a
+ * quadrant holds a quarter of the fan): dir . x lies in [lo, hi] for every
+ * point x of the node's triangles and |dir| <= 1, so that the gap of
+ * dir . p outside [lo, hi] is a lower bound on the distance from p to
+ * them. Widened for rounding, so that it never exceeds the distance a
+ * query computes. Only nodes with slab set have one; the other entries of
+ * slabs are undefined.
+ */
+struct vdt_bvh_slab {
+	float dir[3];
+	float lo, hi;
+};
 
 struct vdt_bvh {
 	size_t node_count;
 	struct vdt_bvh_node *nodes;
+	struct vdt_bvh_slab *slabs; /* by node, or NULL when no node has one */
 	size_t triangle_count;
 	uint32_t *order;   /* slot -> triangle of the mesh, leaf by leaf */
 	uint32_t *slot_of; /* triangle of the mesh -> slot */
@@ -37,12 +54,16 @@ struct vdt_bvh_hit {
 	double dist2;    /* squared distance from the query to point */
 	double point[3]; /* closest point of the mesh */
 	size_t triangle; /* triangle of the mesh that holds point */
+	size_t tests;    /* exact triangle tests it took: the query's cost */
 };
 
 /*
  * Build a BVH over the triangles of m (binned surface-area heuristic, median
- * split past a depth limit so that the depth stays bounded). The BVH copies
- * what it needs: m may be freed afterwards. Degenerate triangles are kept;
+ * split past a depth limit so that the depth stays bounded). Where long thin
+ * triangles leave boxes loose over much of the area (fans of slivers), the
+ * nodes there get slabs too (struct vdt_bvh_slab); ordinary surfaces get
+ * none and pay nothing for them. The BVH copies what it needs: m may be
+ * freed afterwards. Degenerate triangles are kept;
  * their closest points are found on their edges. Returns 0, VDT_EINVAL (no
  * triangles), VDT_ELIMIT (2^32 triangles or more) or VDT_ENOMEM; on failure
  * bvh is left empty.

@@ -261,6 +261,153 @@ test_bvh_matches_brute_force(void **state)
 	vdt_mesh_free(&s);
 }
 
+/*
+ * A fan of n slivers from the apex (0,0,h) to the unit circle in z = 0 (a
+ * cone, or with h = 0 a flat disc): triangle i joins the apex (vertex 0)
+ * to rim vertices 1 + i and 1 + (i + 1) % n, seen from above:
+ *
+ *            2
+ *           /
+ *      3---0---1        and so on round to n
+ *           \
+ *            n
+ *
+ * The box of a sliver through the middle of a quadrant holds a quarter of
+ * the fan, which a tree of boxes alone cannot prune. With tilt, the fan is
+ * turned out of the axis planes (x and z mixed 3:4, then y and z 5:12).
+ */
+static void
+fan(struct vdt_mesh *m, size_t n, double h, int tilt)
+{
+	assert_int_equal(vdt_mesh_alloc(m, n + 1, n, 0, NULL), 0);
+	for (size_t v = 0; v <= n; v++) {
+		double a = 2 * M_PI * (double)(v - 1) / (double)n;
+		double x = v ? cos(a) : 0, y = v ? sin(a) : 0, z = v ? 0 : h, t;
+
+		if (tilt) {
+			t = 0.6 * x - 0.8 * z;
+			z = 0.8 * x + 0.6 * z;
+			x = t;
+			t = (5 * y - 12 * z) / 13;
+			z = (12 * y + 5 * z) / 13;
+			y = t;
+		}
+		set_vertex(m, v, x, y, z);
+		if (v < n)
+			set_tri(m, v, 0, 1 + v, 1 + (v + 1) % n);
+	}
+}
+
+struct within {
+	const struct vdt_mesh *m;
+	size_t count;
+};
+
+static int
+count_within(void *ctx, size_t t)
+{
+	struct within *w = ctx;
+
+	assert_true(t < w->m->triangle_count);
+	w->count++;
+	return 0;
+}
+
+/*
+ * Fans answer as the brute force does: off the surface, on it, and on the
+ * edges and corners the slivers share, where distances tie and the lowest
+ * index must win; and any_within meets every triangle within reach.
+ */
+static void
+test_bvh_fan_matches_brute_force(void **state)
+{
+	(void)state;
+	for (int shape = 0; shape < 3; shape++) { /* disc, cone, tilted disc */
+		struct vdt_mesh m;
+		struct vdt_bvh bvh;
+		size_t prev = SIZE_MAX;
+
+		fan(&m, 1024, shape == 1, shape == 2);
+		assert_int_equal(vdt_bvh_build(&bvh, &m, NULL), 0);
+		assert_non_null(bvh.slabs);
+		for (int i = 0; i < 3000; i++) {
+			size_t t = (size_t)(rnd() * m.triangle_count), wt = 0;
+			double p[3], want, r1 = rnd(), r2 = rnd();
+			struct vdt_bvh_hit hit, hinted;
+			struct within w = {&m, 0};
+
+			for (int k = 0; k < 3; k++) {
+				double a = m.positions[3 * m.triangles[3 * t] + k];
+				double b = m.positions[3 * m.triangles[3 * t + 1] + k];
+				double c = m.positions[3 * m.triangles[3 * t + 2] + k];
+				if (i % 3 == 0) /* inside a sliver */
+					p[k] = a + sqrt(r1) * (b - a + r2 * (c - b));
+				else if (i % 3 == 1) /* on an edge two slivers share */
+					p[k] = a + r1 * (b - a);
+				else /* near the fan, or in its plane */
+					p[k] = 2.4 * rnd() - 1.2;
+			}
+			if (i % 3 == 2 && shape == 0)
+				p[2] = i % 2 ? 0 : 0.2 * rnd() - 0.1;
+			brute(&m, p, &want, &wt);
+			vdt_bvh_closest(&bvh, p, SIZE_MAX, &hit);
+			assert_true(hit.dist2 == want);
+			assert_int_equal(hit.triangle, wt);
+			vdt_bvh_closest(&bvh, p, prev, &hinted);
+			assert_true(hinted.dist2 == want);
+			assert_int_equal(hinted.triangle, wt);
+			assert_true(memcmp(hinted.point, hit.point, sizeof(hit.point)) == 0);
+			prev = (size_t)(rnd() * m.triangle_count);
+
+			vdt_bvh_any_within(&bvh, p, want + 1e-4, count_within, &w);
+			for (size_t u = 0; u < m.triangle_count; u++) {
+				double v[3][3], q[3];
+				for (int k = 0; k < 3; k++)
+					for (int j = 0; j < 3; j++)
+						v[k][j] = m.positions[3 * m.triangles[3 * u + k] + j];
+				w.count -= vdt_closest_on_triangle(p, v[0], v[1], v[2], q) <= want + 1e-4;
+			}
+			assert_int_equal(w.count, 0);
+		}
+		vdt_bvh_free(&bvh);
+		vdt_mesh_free(&m);
+	}
+}
+
+/*
+ * A query on a fan of 4096 slivers tests a few of them, not the thousand
+ * whose boxes hold it; an ordinary surface's tree has no slabs at all.
+ */
+static void
+test_bvh_fan_prunes(void **state)
+{
+	struct vdt_mesh m;
+	struct vdt_bvh bvh;
+	size_t sum = 0;
+
+	(void)state;
+	fan(&m, 4096, 0, 0);
+	assert_int_equal(vdt_bvh_build(&bvh, &m, NULL), 0);
+	for (int i = 0; i < 1000; i++) {
+		double r = 0.25 + 0.75 * rnd(), a = 2 * M_PI * rnd();
+		double p[3] = {r * cos(a), r * sin(a), 0};
+		struct vdt_bvh_hit hit;
+
+		vdt_bvh_closest(&bvh, p, SIZE_MAX, &hit);
+		sum += hit.tests;
+	}
+	/* about 30 on average; with boxes alone, 600 */
+	assert_true(sum < 64 * 1000);
+	vdt_bvh_free(&bvh);
+	vdt_mesh_free(&m);
+
+	sphere(&m, 12);
+	assert_int_equal(vdt_bvh_build(&bvh, &m, NULL), 0);
+	assert_null(bvh.slabs);
+	vdt_bvh_free(&bvh);
+	vdt_mesh_free(&m);
+}
+
 /* Every triangle at one place: the build must still terminate and answer. */
 static void
 test_bvh_coincident(void **state)
@@ -586,6 +733,8 @@ main(void)
 		cmocka_unit_test(test_triangle_degenerate),
 		cmocka_unit_test(test_bvh_matches_brute_force),
 		cmocka_unit_test(test_bvh_coincident),
+		cmocka_unit_test(test_bvh_fan_matches_brute_force),
+		cmocka_unit_test(test_bvh_fan_prunes),
 		cmocka_unit_test(test_sampling_area_proportional),
 		cmocka_unit_test(test_identical_is_zero),
 		cmocka_unit_test(test_parallel_squares),
