@@ -31,4 +31,18 @@
 int vdt_octree_pairs(const float *positions, size_t n, uint32_t **pairs,
                      size_t *count, struct vdt_err *err);
 
+/* How much work vdt_octree_pairs_stats did. */
+struct vdt_octree_stats {
+	size_t cells;  /* of the octree */
+	size_t visits; /* pairs of cells the closest-pair searches met */
+};
+
+/*
+ * vdt_octree_pairs, also filling *st (if not NULL; zeroed on failure). On
+ * meshes, scans and long strips alike, the searches meet a few pairs of
+ * cells per point, which a test can hold them to.
+ */
+int vdt_octree_pairs_stats(const float *positions, size_t n, uint32_t **pairs, size_t *count,
+                           struct vdt_octree_stats *st, struct vdt_err *err);
+
 #endif
