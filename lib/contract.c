@@ -95,6 +95,7 @@ struct engine {
 	const uint8_t *twice;   /* vdt_contract_opts.twice */
 	double cos_max, min_quality;
 	int allow_nonmanifold, keep_parts, keep_a_face;
+	size_t max_removed;     /* vdt_contract_opts.max_removed_faces */
 	const struct vdt_contract_ops *ops;
 
 	uint32_t *parent; /* the vertex each removed vertex merged into */
@@ -847,6 +848,24 @@ last_of_part(const struct engine *e, uint32_t a, uint32_t b)
 	return 1;
 }
 
+/* The faces that hold both a and b: those contracting them removes. */
+static size_t
+shared_faces(const struct engine *e, uint32_t a, uint32_t b)
+{
+	const struct list *l = &e->vt[a];
+	size_t shared = 0;
+
+	if (e->vt[b].len < l->len) { /* the shorter list */
+		l = &e->vt[b];
+		b = a;
+	}
+	for (uint32_t i = 0; i < l->len; i++) {
+		const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + i];
+		shared += t[0] == b || t[1] == b || t[2] == b;
+	}
+	return shared;
+}
+
 /* Whether contracting a and b would remove every live face: those they
  * share. (Counted only when there are few left: in a round of a pass on
  * several threads there are more, so that live_tris, read there without
@@ -854,16 +873,7 @@ last_of_part(const struct engine *e, uint32_t a, uint32_t b)
 static int
 last_faces(const struct engine *e, uint32_t a, uint32_t b)
 {
-	const struct list *la = &e->vt[a];
-	size_t shared = 0;
-
-	if (e->live_tris > la->len)
-		return 0;
-	for (uint32_t i = 0; i < la->len; i++) {
-		const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[la->off + i];
-		shared += t[0] == b || t[1] == b || t[2] == b;
-	}
-	return shared >= e->live_tris;
+	return e->live_tris <= e->vt[a].len && shared_faces(e, a, b) >= e->live_tris;
 }
 
 /* ---- pairs, whichever queue holds them ---- */
@@ -911,7 +921,9 @@ try_pair(struct engine *e, uint32_t u, uint32_t v, uint32_t *keep, uint32_t *gon
 	float fpos[3] = {(float)pos[0], (float)pos[1], (float)pos[2]};
 	return *cost < INFINITY && (e->allow_nonmanifold || link_ok(e, *keep, *gone)) &&
 	       !(e->keep_parts && last_of_part(e, *keep, *gone)) &&
-	       !(e->keep_a_face && last_faces(e, *keep, *gone)) && !duplicates(e, *keep, *gone) &&
+	       !(e->keep_a_face && last_faces(e, *keep, *gone)) &&
+	       !(e->max_removed && shared_faces(e, *keep, *gone) > e->max_removed) &&
+	       !duplicates(e, *keep, *gone) &&
 	       fan_ok(e, *keep, *gone, fpos) && fan_ok(e, *gone, *keep, fpos) &&
 	       (ops->valid == NULL || ops->valid(ops->ctx, *keep, *gone, pos));
 }
@@ -3187,6 +3199,7 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 	e.allow_nonmanifold = o->allow_nonmanifold;
 	e.keep_parts = o->keep_parts;
 	e.keep_a_face = o->keep_a_face;
+	e.max_removed = o->max_removed_faces;
 	e.rank = o->rank;
 	e.vq = !o->pair_queue && o->virtual_pair_count == 0;
 	e.passes = e.vq && o->passes;

@@ -21,6 +21,7 @@
  *    max_normal_angle, against its current normal and against its
  *    normal in the input (so that flips cannot accumulate);
  *  - no degenerate face; optionally no sliver below min_quality;
+ *  - optionally, no more faces removed at once than max_removed_faces;
  *  - the caller's own test, if any.
  * A pair that fails is set aside and re-examined when its neighbourhood
  * changes.
@@ -113,6 +114,17 @@ struct vdt_contract_opts {
 	 * it empty. Parts may still vanish.
 	 */
 	int keep_a_face;
+	/*
+	 * Nonzero: never contract a pair that would remove more faces at once
+	 * (those that hold both its vertices: an edge of many faces, which
+	 * the link test alone lets through with allow_nonmanifold) than
+	 * this, for a caller whose records count them in a small field
+	 * (vdt-build's tree, 255). Such a pair is set aside like one that
+	 * fails a validity test, and tried again when its neighbourhood
+	 * changes: once contractions around it have taken its count down.
+	 * 0 (the default): no cap.
+	 */
+	size_t max_removed_faces;
 	/*
 	 * The input surface the fold-over test compares each face's normal
 	 * with: face t of m stands for the triangle reference_triangles[3t..]

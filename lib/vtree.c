@@ -538,6 +538,7 @@ vdt_vtree_build(const struct vdt_mesh *m, const struct vdt_vtree_opts *o,
 	co.virtual_pairs = pairs;
 	co.virtual_pair_count = npairs;
 	co.allow_nonmanifold = 1;
+	co.max_removed_faces = VDT_VTREE_MAX_VANISH; /* what a node can record */
 	co.progress = o->progress;
 	struct vdt_contract_ops ops = {eq1_cost, eq1_merged, NULL, &B, 0, NULL, 0};
 	if ((rc = vdt_contract_run(m, &ops, &co, &res, err)) != 0)
@@ -797,9 +798,10 @@ vdt_vtree_encode(const struct vdt_vtree *t, unsigned char **data, uint64_t *leng
 	*data = NULL;
 	*length = 0;
 	for (size_t k = 0; k < internal; k++)
-		if (t->tri_first[k + 1] - t->tri_first[k] > 255)
-			return vdt_err_set(err, VDT_EINVAL, "node %zu removes %u triangles (255 at most)",
-			                   n + k, t->tri_first[k + 1] - t->tri_first[k]);
+		if (t->tri_first[k + 1] - t->tri_first[k] > VDT_VTREE_MAX_VANISH)
+			return vdt_err_set(err, VDT_EINVAL, "node %zu removes %u triangles (%d at most)",
+			                   n + k, t->tri_first[k + 1] - t->tri_first[k],
+			                   VDT_VTREE_MAX_VANISH);
 	if ((d = malloc(len)) == NULL)
 		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %llu bytes",
 		                   (unsigned long long)len);

@@ -28,6 +28,10 @@
 /* The largest bounding-box diagonal a tree takes: 2^-20 of the float
  * maximum, room for deviation bounds summed down any real tree. */
 #define VDT_VTREE_MAX_EXTENT 3.2e32
+/* The most triangles one collapse may remove: the VTRE chunk counts them
+ * in a byte. vdt_vtree_build puts off a collapse that would remove more
+ * (an edge of more faces) until others have taken the count down. */
+#define VDT_VTREE_MAX_VANISH 255
 
 enum vdt_vtree_place {
 	VDT_VTREE_PLACE_AVERAGE = 0, /* the pair's midpoint (the paper) */
@@ -99,8 +103,9 @@ int vdt_vtree_prepare(struct vdt_mesh *m, size_t *dropped, struct vdt_err *err);
  * leaves it: VDT_EINVAL otherwise) on the pair-contraction engine: cost
  * equation 1, dist = |v0 - v1| / ((1 + n0.n1) + eps), with vertex normals
  * from m (area-weighted face normals when m has none); edge collapses that
- * would turn a face by more than max_normal_angle are refused and the next
- * shortest tried. Fills *t (free with vdt_vtree_free) and *stats (may be
+ * would turn a face by more than max_normal_angle, or remove more than
+ * VDT_VTREE_MAX_VANISH triangles, are refused and the next shortest tried
+ * (the latter again once its neighbourhood has changed). Fills *t (free with vdt_vtree_free) and *stats (may be
  * NULL). Deterministic. Returns 0, VDT_EINVAL or VDT_ENOMEM; on failure *t
  * is empty.
  */
@@ -127,7 +132,7 @@ int vdt_vtree_validate(const struct vdt_vtree *t, const struct vdt_mesh *m,
 
 /*
  * VTRE chunk payload (vdt(5)). Encoding allocates *data; VDT_EINVAL if a
- * node has more than 255 vanishing triangles. Decoding needs the mesh of
+ * node has more than VDT_VTREE_MAX_VANISH vanishing triangles. Decoding needs the mesh of
  * the stream's MESH chunk (leaf positions are its positions), checks the
  * counts against the length before allocating, then runs
  * vdt_vtree_validate: VDT_EFORMAT for anything wrong, *t left empty.

@@ -140,6 +140,20 @@ load helpers
 	done
 }
 
+@test "vdt-build puts off an edge of more faces than a node can record (255)" {
+	# a book: 300 triangles on the spine 0-1, each with a corner of its own
+	awk 'BEGIN { n = 300; pi = atan2(0, -1); print "OFF"; print n + 2, n, 0
+		print "0 0 0"; print "0 0 1"
+		for (i = 0; i < n; i++) printf "%.9g %.9g 0.5\n", cos(2 * pi * i / n), sin(2 * pi * i / n)
+		for (i = 0; i < n; i++) print 3, 0, 1, i + 2 }' >"$TMP/book.off"
+	run "$BIN/vdt-build" -q "$TMP/book.off" -o "$TMP/b.vdt"
+	[ "$status" -eq 0 ]
+	[ -z "$output" ]
+	run "$BIN/vdt-build" --check "$TMP/b.vdt"
+	[ "$status" -eq 0 ]
+	[ -z "$output" ]
+}
+
 @test "vdt-build merges duplicate vertices and drops degenerate faces" {
 	# two triangles that should share an edge but repeat its vertices, and a
 	# face that repeats a vertex

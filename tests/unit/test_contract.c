@@ -720,6 +720,95 @@ nonmanifold_virtual_pair_is_opt_in(void **state)
 	vdt_contract_result_free(&r);
 }
 
+/*
+ * The most faces any one of r's contractions of m removed, replayed on a
+ * copy of m's faces: a face dies at the contraction that joins two of its
+ * corners, the others follow the vanishing vertex to its survivor.
+ */
+static size_t
+most_removed(const struct vdt_mesh *m, const struct vdt_contract_result *r)
+{
+	uint32_t *t = malloc(3 * m->triangle_count * sizeof(*t));
+	size_t most = 0;
+
+	assert_non_null(t);
+	memcpy(t, m->triangles, 3 * m->triangle_count * sizeof(*t));
+	for (size_t i = 0; i < r->record_count; i++) {
+		uint32_t keep = r->records[i].keep, gone = r->records[i].gone;
+		size_t removed = 0;
+		for (size_t f = 0; f < m->triangle_count; f++) {
+			uint32_t *c = t + 3 * f;
+			if (c[0] == UINT32_MAX)
+				continue;
+			int hk = c[0] == keep || c[1] == keep || c[2] == keep;
+			int hg = c[0] == gone || c[1] == gone || c[2] == gone;
+			if (hk && hg) {
+				c[0] = c[1] = c[2] = UINT32_MAX;
+				removed++;
+				continue;
+			}
+			for (int k = 0; k < 3; k++)
+				if (c[k] == gone)
+					c[k] = keep;
+		}
+		if (removed > most)
+			most = removed;
+	}
+	free(t);
+	return most;
+}
+
+/*
+ * A book: 12 pages (triangles) on one short spine, edge 0-1, each with a
+ * third corner of its own on a unit circle about it. The spine is the
+ * cheapest pair, and without the link test (allow_nonmanifold) it goes
+ * first, all 12 pages with it. max_removed_faces 5 puts it off, in every
+ * queue, until contractions of pages onto it have left 5.
+ *
+ *        2   3 ...            (pages fanned round the spine)
+ *         \ /
+ *     0 ---- 1                spine 0.1 long
+ */
+static void
+removed_faces_are_capped(void **state)
+{
+	enum { PAGES = 12, CAP = 5 };
+	float p[3 * (PAGES + 2)] = {0, 0, 0, 0.1f, 0, 0};
+	uint32_t t[3 * PAGES];
+	struct vdt_mesh m = {PAGES + 2, p, NULL, NULL, NULL, PAGES, t};
+
+	(void)state;
+	for (int i = 0; i < PAGES; i++) {
+		float a = 2 * (float)M_PI * (float)i / PAGES;
+		p[3 * (2 + i)] = 0.05f;
+		p[3 * (2 + i) + 1] = cosf(a);
+		p[3 * (2 + i) + 2] = sinf(a);
+		t[3 * i] = 0, t[3 * i + 1] = 1, t[3 * i + 2] = 2 + (uint32_t)i;
+	}
+	for (int mode = 0; mode < 3; mode++)
+		for (size_t cap = 0; cap <= CAP; cap += CAP) {
+			struct vdt_contract_opts o;
+			struct vdt_contract_result r;
+			vdt_contract_defaults(&o);
+			o.allow_nonmanifold = 1;
+			o.max_normal_angle = 180;
+			o.record = 1;
+			o.passes = mode == 1;
+			o.threads = 1;
+			o.pair_queue = mode == 2;
+			o.max_removed_faces = cap;
+			assert_int_equal(vdt_contract_run(&m, &length_ops, &o, &r, NULL), 0);
+			assert_int_equal(r.triangle_count, 0);
+			if (cap == 0) {
+				assert_int_equal(most_removed(&m, &r), PAGES);
+			} else {
+				assert_int_equal(most_removed(&m, &r), CAP);
+				assert_true(r.rejected > 0);
+			}
+			vdt_contract_result_free(&r);
+		}
+}
+
 /* Quadric cost for the queue comparison: the engine sees only callbacks. */
 struct qctx {
 	struct vdt_quadric *q;
@@ -1558,6 +1647,7 @@ main(void)
 		cmocka_unit_test(virtual_pairs_zip_a_gap_shut),
 		cmocka_unit_test(repeated_faces_are_dropped),
 		cmocka_unit_test(nonmanifold_virtual_pair_is_opt_in),
+		cmocka_unit_test(removed_faces_are_capped),
 		cmocka_unit_test(vertex_queue_matches_pair_queue),
 		cmocka_unit_test(passes_track_the_greedy_order),
 		cmocka_unit_test(passes_stop_at_the_bound),
