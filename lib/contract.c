@@ -637,6 +637,41 @@ has_boundary(const uint32_t *nb, long n)
 }
 
 /*
+ * What the link test reads of a vertex v: its neighbours and how many
+ * faces hold the edge to each (fan_neighbours, in nb through slots, a
+ * table of 2^bits entries), and whether one of those edges is a boundary
+ * (-1 until asked).
+ */
+struct link {
+	uint32_t v;
+	uint32_t *nb, *slots;
+	long n;
+	int bits, boundary;
+};
+
+/* v's link listing, in words (fan_words of v's faces). */
+static void
+link_fill(const struct engine *e, uint32_t v, uint32_t *words, struct link *l)
+{
+	size_t faces = e->vt[v].len;
+
+	l->v = v;
+	l->bits = fan_bits(faces);
+	l->nb = words;
+	l->slots = words + 4 * faces;
+	l->n = fan_neighbours(e, v, l->nb, l->slots);
+	l->boundary = -1;
+}
+
+static int
+link_boundary(struct link *l)
+{
+	if (l->boundary < 0)
+		l->boundary = has_boundary(l->nb, l->n);
+	return l->boundary;
+}
+
+/*
  * The link condition: link(a) ∩ link(b) == link(ab), with a dummy vertex
  * joined to every boundary vertex and edge so that open surfaces are covered.
  * For a virtual pair (no shared triangle) require that the two share no
@@ -645,48 +680,60 @@ has_boundary(const uint32_t *nb, long n)
  * by an edge of one face, the two faces running opposite ways along it.
  * A caller that accepts
  * non-manifold results skips the test (duplicates() still guards against
- * repeated faces).
+ * repeated faces). The test is the same either way round; it reads each
+ * neighbour of B once and looks it up in A, so that A may be a vertex of
+ * thousands of faces listed once for all its pairs (cheapest_valid).
  */
 static int
-link_ok(const struct engine *e, uint32_t a, uint32_t b)
+link_holds(const struct engine *e, struct link *A, struct link *B)
 {
-	uint32_t local[2 * (4 * LINK_STACK + 4 * LINK_STACK)]; /* 2 fan_words(LINK_STACK) */
-	size_t la = e->vt[a].len, lb = e->vt[b].len, need = fan_words(la) + fan_words(lb);
-	uint32_t *A = local, *big = NULL;
-	long common = 0, shared = 0, na, nb;
+	long common = 0, shared = fan_has(A->nb, A->slots, A->bits, B->v);
 
-	if (need > sizeof(local) / sizeof(local[0])) {
-		if ((big = malloc(need * sizeof(*big))) == NULL)
-			return 0;
-		A = big;
-	}
-	/* a's list and table, then b's */
-	int bits = fan_bits(la);
-	uint32_t *sa = A + 4 * la, *B = sa + ((size_t)1 << bits), *sb = B + 4 * lb;
-	na = fan_neighbours(e, a, A, sa);
-	nb = fan_neighbours(e, b, B, sb);
+	for (long i = 0; i < B->n; i++)
+		common += fan_has(A->nb, A->slots, A->bits, B->nb[2 * i]) != 0;
+	if (shared > 2)
+		return 0;
+	if (shared > 0)
+		return common + (link_boundary(A) && link_boundary(B)) == shared + (shared == 1);
+	if (common == 0)
+		return 1;
+	if (common > 2)
+		return 0;
 	/* (zip: a virtual pair may close a gap between two open rims that
 	 * meet at a neighbour, each rim's edge to it held by one face, the
 	 * two run opposite ways: the merged edge is then held by two faces,
 	 * consistently, as a seam welded shut) */
-	int zip = 1;
-	for (long i = 0; i < nb; i++) {
-		uint32_t x = B[2 * i], in_a = fan_has(A, sa, bits, x);
-		common += in_a != 0;
-		if (in_a != 0)
-			zip &= in_a == 1 && B[2 * i + 1] == 1 && runs_to(e, a, x) != runs_to(e, b, x);
+	for (long i = 0; i < B->n; i++) {
+		uint32_t x = B->nb[2 * i], in_a = fan_has(A->nb, A->slots, A->bits, x);
+		if (in_a != 0 && !(in_a == 1 && B->nb[2 * i + 1] == 1 &&
+		                   runs_to(e, A->v, x) != runs_to(e, B->v, x)))
+			return 0;
 	}
+	return 1;
+}
 
-	for (long i = 0; i < na; i++)
-		if (A[2 * i] == b)
-			shared = A[2 * i + 1];
-	int ok;
-	if (shared > 2)
-		ok = 0;
-	else if (shared == 0)
-		ok = common == 0 || (zip && common <= 2);
-	else
-		ok = common + (has_boundary(A, na) && has_boundary(B, nb)) == shared + (shared == 1);
+/* The link condition for pair (a, b); `known`, if not NULL, is the
+ * listing of one of them, made already. */
+static int
+link_ok(const struct engine *e, uint32_t a, uint32_t b, struct link *known)
+{
+	uint32_t local[2 * (4 * LINK_STACK + 4 * LINK_STACK)]; /* 2 fan_words(LINK_STACK) */
+	uint32_t other = known == NULL || known->v == a ? b : a, *words = local, *big = NULL;
+	size_t need = fan_words(e->vt[other].len) + (known ? 0 : fan_words(e->vt[a].len));
+	struct link la, lb;
+
+	if (need > sizeof(local) / sizeof(local[0])) {
+		if ((big = malloc(need * sizeof(*big))) == NULL)
+			return 0;
+		words = big;
+	}
+	if (known == NULL) {
+		link_fill(e, a, words, &la);
+		words += fan_words(e->vt[a].len);
+		known = &la;
+	}
+	link_fill(e, other, words, &lb);
+	int ok = link_holds(e, known, &lb);
 	free(big);
 	return ok;
 }
@@ -907,11 +954,12 @@ eval_pair(struct engine *e, uint32_t a, uint32_t b, double pos[3])
 
 /*
  * Whether pair (u, v) may be contracted now: every validity test of the
- * header. Fills keep, gone, the new position and the cost.
+ * header. Fills keep, gone, the new position and the cost. lu: u's link
+ * listing, or NULL to make it here.
  */
 static int
-try_pair(struct engine *e, uint32_t u, uint32_t v, uint32_t *keep, uint32_t *gone,
-         double pos[3], double *cost)
+try_pair(struct engine *e, uint32_t u, uint32_t v, struct link *lu, uint32_t *keep,
+         uint32_t *gone, double pos[3], double *cost)
 {
 	uint32_t a = u < v ? u : v, b = u < v ? v : u;
 	const struct vdt_contract_ops *ops = e->ops;
@@ -919,7 +967,7 @@ try_pair(struct engine *e, uint32_t u, uint32_t v, uint32_t *keep, uint32_t *gon
 	orient(e, a, b, keep, gone);
 	*cost = eval_pair(e, a, b, pos);
 	float fpos[3] = {(float)pos[0], (float)pos[1], (float)pos[2]};
-	return *cost < INFINITY && (e->allow_nonmanifold || link_ok(e, *keep, *gone)) &&
+	return *cost < INFINITY && (e->allow_nonmanifold || link_ok(e, *keep, *gone, lu)) &&
 	       !(e->keep_parts && last_of_part(e, *keep, *gone)) &&
 	       !(e->keep_a_face && last_faces(e, *keep, *gone)) &&
 	       !(e->max_removed && shared_faces(e, *keep, *gone) > e->max_removed) &&
@@ -1259,23 +1307,38 @@ by_cost(const void *p, const void *q)
 /*
  * Of v's pairs vn[0..n) (sorted here by cost), the cheapest that passes
  * the validity tests now: its partner into *x and cost into *c, or NONE
- * and INFINITY.
+ * and INFINITY. v's link listing is made once for all the pairs tried:
+ * on the rim of a fan of slivers (a big concave polygon cut into ears)
+ * nearly every pair of the hub fails the link test, and listing its
+ * thousands of neighbours for each made the search quadratic.
  */
 static void
 cheapest_valid(struct engine *e, uint32_t v, struct vcost *vn, long n, uint32_t *x, float *c)
 {
-	uint32_t keep, gone;
+	uint32_t local[4 * LINK_STACK + 4 * LINK_STACK]; /* fan_words(LINK_STACK) */
+	size_t need = fan_words(e->vt[v].len);
+	uint32_t keep, gone, *big = NULL;
 	double pos[3], cost;
+	struct link lv, *known = NULL;
 
 	*x = NONE;
 	*c = INFINITY;
 	qsort(vn, (size_t)n, sizeof(*vn), by_cost);
+	if (!e->allow_nonmanifold && n > 0) { /* (without memory, listed at each try) */
+		if (need > sizeof(local) / sizeof(local[0]))
+			big = malloc(need * sizeof(*big));
+		if (need <= sizeof(local) / sizeof(local[0]) || big != NULL) {
+			link_fill(e, v, big != NULL ? big : local, &lv);
+			known = &lv;
+		}
+	}
 	for (long i = 0; i < n && vn[i].cost < INFINITY; i++)
-		if (try_pair(e, v, vn[i].x, &keep, &gone, pos, &cost)) {
+		if (try_pair(e, v, vn[i].x, known, &keep, &gone, pos, &cost)) {
 			*x = vn[i].x;
 			*c = vn[i].cost;
-			return;
+			break;
 		}
+	free(big);
 }
 
 /*
@@ -1969,7 +2032,7 @@ pass_pair(struct engine *e, struct work *w, uint32_t v, struct vdt_contraction *
 	uint32_t keep, gone;
 	double pos[3];
 
-	if (!try_pair(e, v, e->best[v], &keep, &gone, pos, cost)) {
+	if (!try_pair(e, v, e->best[v], NULL, &keep, &gone, pos, cost)) {
 		e->vflag[v] |= V_REFUSED;
 		return 0;
 	}
@@ -3257,13 +3320,13 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 					goto nomem;
 				continue;
 			}
-			if (!try_pair(&e, p, e.best[p], &keep, &gone, pos, &c)) {
+			if (!try_pair(&e, p, e.best[p], NULL, &keep, &gone, pos, &c)) {
 				res->rejected++;
 				if (vertex_update(&e, p, 1) != 0)
 					goto nomem;
 				continue;
 			}
-		} else if (!try_pair(&e, e.pv[2 * p], e.pv[2 * p + 1], &keep, &gone, pos, &c)) {
+		} else if (!try_pair(&e, e.pv[2 * p], e.pv[2 * p + 1], NULL, &keep, &gone, pos, &c)) {
 			heap_remove(&e, p);
 			reject(&e, p);
 			res->rejected++;

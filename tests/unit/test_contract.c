@@ -1460,6 +1460,88 @@ long_fans_keep_the_link_condition(void **state)
 	}
 }
 
+/*
+ * Whether the n faces t form one disc, consistently oriented: every
+ * directed edge once, no vertex where two boundary edges start (a pinch,
+ * two discs meeting at a point) and Euler characteristic 1.
+ */
+static int
+is_disc(const uint32_t *t, size_t n)
+{
+	size_t ne = 3 * n, edges = 0, verts = 0;
+	int ok = 1;
+
+	for (size_t i = 0; i < ne && ok; i++) {
+		uint32_t a = t[i], b = t[i - i % 3 + (i + 1) % 3];
+		int fwd = 0, rev = 0, out = 0, seen = 0;
+		for (size_t j = 0; j < ne; j++) {
+			uint32_t c = t[j], d = t[j - j % 3 + (j + 1) % 3];
+			fwd += c == a && d == b;
+			rev += c == b && d == a;
+			seen += j < i && c == a;
+			if (c == a) { /* a boundary edge out of a: no reverse */
+				int back = 0;
+				for (size_t k = 0; k < ne; k++)
+					back |= t[k] == d && t[k - k % 3 + (k + 1) % 3] == a;
+				out += !back;
+			}
+		}
+		ok = fwd == 1 && out <= 1;
+		edges += rev == 0 || a < b; /* each undirected edge once */
+		verts += seen == 0;
+	}
+	return ok && (long)verts - (long)edges + (long)n == 1;
+}
+
+/*
+ * A half disc cut into a fan of 300 slivers about a hub on its rim, as the
+ * readers cut a big concave polygon: every pair of the hub but the two
+ * along the rim is a chord, which the link test refuses (contracting it
+ * would pinch the disc in two). The hub's pairs are the cheapest
+ * (apex_cost), so its search for its cheapest valid pair tries nearly all
+ * its neighbours, its own listing made once, at each contraction. The
+ * result is a disc in every queue.
+ *
+ *    2 . 4 . 6 ...   rim: radii 10 and 6 alternating, a half turn
+ *   1 \ | | /
+ *      \|/
+ *       0            hub, its faces (0, i, i + 1)
+ */
+static void
+hub_of_slivers_stays_a_disc(void **state)
+{
+	enum { N = 301 };
+	static const struct vdt_contract_ops ops = {apex_cost, NULL, NULL, NULL, 1, NULL, 0};
+	float p[3 * (N + 1)] = {0};
+	uint32_t t[3 * (N - 1)];
+	struct vdt_mesh m = {N + 1, p, NULL, NULL, NULL, N - 1, t};
+
+	(void)state;
+	for (int i = 0; i < N; i++) {
+		float a = (float)M_PI * (float)i / (N - 1), r = i % 2 ? 6.0f : 10.0f;
+		p[3 * (1 + i)] = r * cosf(a);
+		p[3 * (1 + i) + 1] = r * sinf(a);
+		if (i + 1 < N)
+			t[3 * i] = 0, t[3 * i + 1] = 1 + (uint32_t)i, t[3 * i + 2] = 2 + (uint32_t)i;
+	}
+	assert_true(is_disc(t, N - 1));
+	for (int mode = 0; mode < 3; mode++) {
+		struct vdt_contract_opts o;
+		struct vdt_contract_result r;
+		vdt_contract_defaults(&o);
+		o.target_triangles = 10;
+		o.max_normal_angle = 180;
+		o.passes = mode == 1;
+		o.pair_queue = mode == 2;
+		o.threads = 1;
+		assert_int_equal(vdt_contract_run(&m, &ops, &o, &r, NULL), 0);
+		assert_true(r.rejected > 0);
+		assert_true(r.triangle_count <= 10);
+		assert_true(is_disc(r.triangles, r.triangle_count));
+		vdt_contract_result_free(&r);
+	}
+}
+
 /* How many records the first pass made: progress is reported after each. */
 struct first_pass {
 	const struct vdt_contract_result *r;
@@ -1658,6 +1740,7 @@ main(void)
 		cmocka_unit_test(qslim_threads_do_not_matter),
 		cmocka_unit_test(passes_sort_past_the_claimable_keys),
 		cmocka_unit_test(long_fans_keep_the_link_condition),
+		cmocka_unit_test(hub_of_slivers_stays_a_disc),
 		cmocka_unit_test(first_pass_claims_cheapest_pairs),
 		cmocka_unit_test(run_jobs_runs_each_job_once),
 	};
