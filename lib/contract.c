@@ -76,6 +76,8 @@ struct engine {
 	size_t nv, nt;
 	float *pos;
 	uint32_t *tri;    /* 3 per triangle; tri[3t] == NONE when dead */
+	uint32_t *fpos;   /* 3 per triangle, or NULL: each corner's place in
+	                     its vertex's face list, if that is long (indexed) */
 	int16_t *tnormal; /* input unit normal per triangle, times 32767 */
 	uint8_t *vflag;
 	struct list *vt;  /* triangles around each vertex */
@@ -307,15 +309,18 @@ list_push(struct pool *p, struct list *lists, size_t n, uint32_t v, uint32_t x)
 
 /*
  * Append gone's list to keep's, in keep's region if it fits, else in gone's
- * (which is free from now on), else at the end of the pool.
+ * (which is free from now on), else at the end of the pool. In gone's,
+ * keep's entries follow gone's: *after = 1 (else 0).
  */
 static int
-list_merge(struct pool *p, struct list *lists, size_t n, uint32_t keep, uint32_t gone)
+list_merge(struct pool *p, struct list *lists, size_t n, uint32_t keep, uint32_t gone,
+           int *after)
 {
 	struct list *lk = &lists[keep], *lg = &lists[gone];
 	uint32_t len = lk->len + lg->len;
 
-	if (len > lk->cap && len <= lg->cap) {
+	*after = len > lk->cap && len <= lg->cap;
+	if (*after) {
 		memcpy(p->data + lg->off + lg->len, p->data + lk->off, lk->len * sizeof(uint32_t));
 		pool_holes(p, lk->cap);
 		lk->off = lg->off;
@@ -359,6 +364,89 @@ list_remove(struct pool *p, struct list *l, uint32_t x)
 			l->len--;
 			return;
 		}
+}
+
+/* ---- long face lists ----
+ *
+ * A face leaves the lists of its surviving corners when a contraction
+ * removes it. Found by a search, that is linear in a list's length, and
+ * the apex of a cone loses a face at most contractions around it: a cone
+ * of 400k faces spent most of its time searching. A list with room for
+ * LIST_INDEXED faces or more is indexed instead: fpos holds, for every
+ * corner of every face in such a list, the face's place there, and a face
+ * leaves by the list's last taking its place (the order of a vertex's
+ * faces changes no result). The index, 12 bytes a face, is made on the
+ * engine's own thread when the first list is that long, noting every
+ * such list; a list that grows that long on a pass's threads is indexed
+ * there if the index is made, else with the others when it is.
+ */
+#define LIST_INDEXED 1024
+
+static int
+indexed(const struct engine *e, uint32_t v)
+{
+	return e->fpos != NULL && e->vt[v].cap >= LIST_INDEXED;
+}
+
+/* Note the place of the i-th face of v's list. */
+static void
+index_at(struct engine *e, uint32_t v, uint32_t i)
+{
+	uint32_t t = e->tpool.data[e->vt[v].off + i];
+	const uint32_t *c = e->tri + 3 * (size_t)t;
+
+	e->fpos[3 * (size_t)t + (c[0] == v ? 0 : c[1] == v ? 1 : 2)] = i;
+}
+
+/* The same for each face of v's list from the i-th on. */
+static void
+index_from(struct engine *e, uint32_t v, uint32_t i)
+{
+	for (; i < e->vt[v].len; i++)
+		index_at(e, v, i);
+}
+
+/* Make the index, of every list long enough. */
+static int
+index_make(struct engine *e)
+{
+	if ((e->fpos = vdt_malloc_huge((3 * e->nt + 1) * sizeof(*e->fpos))) == NULL)
+		return -1;
+	for (size_t v = 0; v < e->nv; v++)
+		if (indexed(e, (uint32_t)v))
+			index_from(e, (uint32_t)v, 0);
+	return 0;
+}
+
+/* Remove face t, whose corner k is v, from v's list. */
+static void
+face_remove(struct engine *e, uint32_t v, uint32_t t, int k)
+{
+	struct list *l = &e->vt[v];
+	uint32_t i;
+
+	if (!indexed(e, v)) {
+		list_remove(&e->tpool, l, t);
+		return;
+	}
+	i = e->fpos[3 * (size_t)t + k];
+	if (i < --l->len) {
+		e->tpool.data[l->off + i] = e->tpool.data[l->off + l->len];
+		index_at(e, v, i);
+	}
+}
+
+/* After keep's list took gone's (`after` as list_merge, keep's length and
+ * room len and cap before): index it if long. */
+static int
+index_merged(struct engine *e, uint32_t keep, int after, uint32_t len, uint32_t cap)
+{
+	if (e->vt[keep].cap < LIST_INDEXED)
+		return 0;
+	if (e->fpos == NULL)
+		return e->tpool.shared ? 0 : index_make(e);
+	index_from(e, keep, after || cap < LIST_INDEXED ? 0 : len);
+	return 0;
 }
 
 /* ---- the indexed heap ----
@@ -1550,7 +1638,7 @@ contract(struct engine *e, struct work *w, uint32_t keep, uint32_t gone,
 		if (c[0] == keep || c[1] == keep || c[2] == keep) {
 			for (int k = 0; k < 3; k++)
 				if (c[k] != gone)
-					list_remove(&e->tpool, &e->vt[c[k]], t);
+					face_remove(e, c[k], t, k);
 			if (e->vq) {
 				if (w->wing_len == w->wing_cap) {
 					size_t cap = 2 * w->wing_cap + 8;
@@ -1575,7 +1663,10 @@ contract(struct engine *e, struct work *w, uint32_t keep, uint32_t gone,
 		e->tpool.data[lg->off + moved++] = t;
 	}
 	lg->len = moved;
-	if (list_merge(&e->tpool, e->vt, e->nv, keep, gone) != 0)
+	uint32_t klen = e->vt[keep].len, kcap = e->vt[keep].cap;
+	int after;
+	if (list_merge(&e->tpool, e->vt, e->nv, keep, gone, &after) != 0 ||
+	    index_merged(e, keep, after, klen, kcap) != 0)
 		return -1;
 
 	if (e->vq) {
@@ -2823,7 +2914,7 @@ face_run(void *arg)
 static void
 engine_shed(struct engine *e)
 {
-	void **p[] = {(void **)&e->tnormal, (void **)&e->vflag, (void **)&e->vt,
+	void **p[] = {(void **)&e->tnormal, (void **)&e->fpos, (void **)&e->vflag, (void **)&e->vt,
 	              (void **)&e->vp, (void **)&e->tpool.data, (void **)&e->ppool.data,
 	              (void **)&e->pv, (void **)&e->pflag, (void **)&e->heap,
 	              (void **)&e->hpos, (void **)&e->vrej, (void **)&e->best,
@@ -2844,6 +2935,7 @@ engine_free(struct engine *e)
 	free(e->pos);
 	free(e->tri);
 	free(e->tnormal);
+	free(e->fpos);
 	free(e->vflag);
 	free(e->vt);
 	free(e->vp);
@@ -2934,6 +3026,12 @@ engine_init(struct engine *e, const struct vdt_mesh *m, float *own_pos,
 			e->tpool.data[l->off + l->len++] = (uint32_t)t;
 		}
 	}
+	for (size_t v = 0; v < nv; v++)
+		if (e->vt[v].cap >= LIST_INDEXED) {
+			if (index_make(e) != 0)
+				goto nomem;
+			break;
+		}
 
 	if (e->vq) {
 		free(keys);

@@ -1406,15 +1406,17 @@ apex_cost(void *ctx, uint32_t a, uint32_t b, int fixed, const float pa[3], const
  * the two rim neighbours they share, so the apex takes the rim down to the
  * smallest closed surface in the greedy order, and neither order (passes
  * on two threads) makes it other than a closed manifold. (With the
- * fold-over test off: the faces swing about the axis.)
+ * fold-over test off: the faces swing about the axis.) At 1500 faces the
+ * apexes' lists are past LIST_INDEXED (1024): a face leaves them through
+ * the index, and the top apex's grows by the faces of each rim vertex.
  */
 static void
 long_fans_keep_the_link_condition(void **state)
 {
-	static const int sizes[] = {40, 400};
+	static const int sizes[] = {40, 400, 1500};
 	static const struct vdt_contract_ops ops = {apex_cost, NULL, NULL, NULL, 1, NULL, 0};
 	(void)state;
-	for (int z = 0; z < 2; z++) {
+	for (int z = 0; z < 3; z++) {
 		int n = sizes[z];
 		struct vdt_mesh m;
 		assert_int_equal(vdt_mesh_alloc(&m, (size_t)n + 2, 2 * (size_t)n, 0, NULL), 0);
