@@ -44,6 +44,10 @@ struct ctx {
 	struct attr *at;       /* attribute quadrics, or NULL */
 	double *scale;         /* per welded vertex error scale, or NULL */
 	double unit;           /* of the costs (vdt_quadric_unit) */
+	float *reach;          /* per welded vertex, the box (3 minima, 3
+	                          maxima) of the surface it stands for: its
+	                          faces, and those of the vertices merged
+	                          into it (place) */
 };
 
 void
@@ -141,22 +145,62 @@ scaled(const struct ctx *c, uint32_t a, uint32_t b, double e)
 }
 
 /*
- * Where the pair (pa, pb) goes under quadric q and the error there, in the
- * centred frame the quadrics live in: the end that must stay (fixed 0 or
- * 1), else the minimiser. The centred ends are left in p0 and p1.
+ * Where the pair (a at pa, b at pb) goes under quadric q and the error
+ * there, in the centred frame the quadrics live in: the end that must stay
+ * (fixed 0 or 1), else the minimiser if it lies in the box of the surface
+ * the two stand for (reach) widened by PLACE_MARGIN times its longest side
+ * on every side, else the best point on the segment. Nearly degenerate
+ * quadrics pass the conditioning test (vdt_quadric_optimize_within): on a
+ * noisy flat sheet through the two-layer vdt-cluster of before 7e45d4b, a
+ * pair 0.01 long had its minimum 4 model sizes away, and a rim vertex went
+ * a quarter of the model past the rim. The margin holds the minimisers of
+ * curved and creased surfaces, below their faces or out at the crease, and
+ * of lone triangles' boundary planes: a tenth of the side changed the
+ * output of the dragon through vdt-cluster, half those of triangle soups
+ * under -a 100%, the whole side none that we know of. The centred ends
+ * are left in p0 and p1.
  */
+#define PLACE_MARGIN 1.0
+
 static double
-place(const struct ctx *c, const struct vdt_quadric *q, int fixed, const float pa[3],
-      const float pb[3], double p0[3], double p1[3], double pos[3])
+place(const struct ctx *c, const struct vdt_quadric *q, int fixed, uint32_t a, uint32_t b,
+      const float pa[3], const float pb[3], double p0[3], double p1[3], double pos[3])
 {
+	const float *ra = c->reach + 6 * (size_t)a, *rb = c->reach + 6 * (size_t)b;
+	double lo[3], hi[3], side = 0;
+
 	for (int k = 0; k < 3; k++) {
 		p0[k] = pa[k] - c->centre[k];
 		p1[k] = pb[k] - c->centre[k];
 	}
-	if (fixed < 0)
-		return vdt_quadric_optimize(q, p0, p1, pos);
-	memcpy(pos, fixed ? p1 : p0, 3 * sizeof(double));
-	return vdt_quadric_eval(q, pos);
+	if (fixed >= 0) {
+		memcpy(pos, fixed ? p1 : p0, 3 * sizeof(double));
+		return vdt_quadric_eval(q, pos);
+	}
+	for (int k = 0; k < 3; k++) {
+		lo[k] = fmin(ra[k], rb[k]) - c->centre[k];
+		hi[k] = fmax(ra[3 + k], rb[3 + k]) - c->centre[k];
+		side = fmax(side, hi[k] - lo[k]);
+	}
+	for (int k = 0; k < 3; k++) {
+		lo[k] -= PLACE_MARGIN * side;
+		hi[k] += PLACE_MARGIN * side;
+	}
+	return vdt_quadric_optimize_within(q, p0, p1, lo, hi, pos);
+}
+
+/* Widen v's box (reach) by w's. (Not by where v goes: a placement out
+ * in the margin would widen the box the next one may leave.) */
+static void
+reach_merge(float *reach, uint32_t v, uint32_t w)
+{
+	float *r = reach + 6 * (size_t)v;
+	const float *s = reach + 6 * (size_t)w;
+
+	for (int k = 0; k < 3; k++) {
+		r[k] = fminf(r[k], s[k]);
+		r[3 + k] = fmaxf(r[3 + k], s[3 + k]);
+	}
 }
 
 static double
@@ -174,7 +218,7 @@ cost_fn(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	if (fixed < 0 && c->pin_seams && c->seam[a] != c->seam[b])
 		fixed = c->seam[b];
 	vdt_quadric_add(&q, &c->q[b]);
-	e = place(c, &q, fixed, pa, pb, p0, p1, pos);
+	e = place(c, &q, fixed, a, b, pa, pb, p0, p1, pos);
 	for (int k = 0; k < 3; k++)
 		pos[k] += c->centre[k];
 	if (c->scale)
@@ -221,6 +265,7 @@ merged_fn(void *vc, uint32_t keep, uint32_t gone, const double pos[3], double co
 	if (c->scale)
 		c->scale[keep] = fmin(c->scale[keep], c->scale[gone]);
 	vdt_quadric_add(&c->q[keep], &c->q[gone]);
+	reach_merge(c->reach, keep, gone);
 	for (int k = 0; k < 3; k++)
 		p[k] = pos[k] - c->centre[k];
 	if (c->q[keep].w > 0)
@@ -1254,7 +1299,7 @@ cost_attr(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 		return INFINITY;
 	for (long i = 0; i < n; i++)
 		groups += s.sm[i];
-	e = place(c, &q, fixed, pa, pb, p0, p1, pos);
+	e = place(c, &q, fixed, a, b, pa, pb, p0, p1, pos);
 	if (fixed < 0 && groups > 1 && off_segment(p0, p1, pos)) {
 		/* A seam edge (its two faces pair different wedges) whose
 		 * minimum lies farther from it than its length: the seam
@@ -1357,6 +1402,7 @@ merged_attr(void *vc, uint32_t keep, uint32_t gone, const double pos[3], double 
 
 	vdt_quadric_add(&c->q[keep], &c->q[gone]);
 	vdt_quadric_add(&at->qc[keep], &at->qc[gone]);
+	reach_merge(c->reach, keep, gone);
 	at->qr[keep] = qr;
 	for (int k = 0; k < 3; k++)
 		p[k] = pos[k] - c->centre[k];
@@ -2231,6 +2277,31 @@ give_up_parts(struct vdt_contract_result *r, size_t target)
 	return given;
 }
 
+/* The boxes of the vertices' faces (ctx.reach), or NULL out of memory. */
+static float *
+reach_boxes(const struct vdt_mesh *w)
+{
+	float *r = vdt_malloc_huge(6 * w->vertex_count * sizeof(*r) + 1);
+
+	if (r == NULL)
+		return NULL;
+	for (size_t v = 0; v < w->vertex_count; v++) {
+		memcpy(r + 6 * v, w->positions + 3 * v, 3 * sizeof(*r));
+		memcpy(r + 6 * v + 3, w->positions + 3 * v, 3 * sizeof(*r));
+	}
+	for (size_t t = 0; t < 3 * w->triangle_count; t++) {
+		float *b = r + 6 * (size_t)w->triangles[t];
+		const uint32_t *f = w->triangles + t / 3 * 3;
+		for (int i = 0; i < 3; i++)
+			for (int k = 0; k < 3; k++) {
+				float x = w->positions[3 * (size_t)f[i] + k];
+				b[k] = x < b[k] ? x : b[k];
+				b[3 + k] = x > b[3 + k] ? x : b[3 + k];
+			}
+	}
+	return r;
+}
+
 /* vdt_qslim with every distance option in model units. */
 static int
 simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox *box,
@@ -2412,6 +2483,8 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	stats->dropped = T - live - nbacks;
 	free(dead);
 	dead = NULL;
+	if ((c.reach = reach_boxes(&w)) == NULL)
+		goto nomem;
 	/* The engine drops the faces that welding left with a repeated
 	 * vertex (counted as dropped too): live faces that are all such
 	 * leave none either. */
@@ -2587,6 +2660,8 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	}
 	free(c.q); /* (the output needs no quadric) */
 	c.q = NULL;
+	free(c.reach);
+	c.reach = NULL;
 	stats->passes = r.passes;
 	stats->contractions = r.contractions;
 	stats->rejected = r.rejected;
@@ -2637,6 +2712,7 @@ done:
 	free(wstart);
 	free(wlist);
 	free(c.q);
+	free(c.reach);
 	free(c.scale);
 	attr_free(c.at);
 	free(border);

@@ -177,6 +177,22 @@ double vdt_quadric_optimize_segment(const struct vdt_quadric *q, const double p0
                                     const double p1[3], double v[3]);
 
 /*
+ * vdt_quadric_optimize with the minimiser of Q taken only inside the box
+ * [lo, hi]; outside it, the best point on the segment [p0, p1]. The
+ * conditioning test of vdt_quadric_minimum bounds the product of A's two
+ * smaller eigenvalues against the largest, not each: along a crease, or
+ * over a nearly flat patch (the summed planes of a cell of a noisy
+ * sheet), an eigenvalue can be 1e-4 of the largest or less and pass, and
+ * the minimiser then lies wherever the small terms of b along it put it,
+ * however far. The caller gives the box the surface Q stands for (with a
+ * margin): a point outside it is no place for the vertex, whatever Q says
+ * of it.
+ */
+double vdt_quadric_optimize_within(const struct vdt_quadric *q, const double p0[3],
+                                   const double p1[3], const double lo[3],
+                                   const double hi[3], double v[3]);
+
+/*
  * The minimiser of Q kept inside the box [lo, hi] (the grid cell of
  * vertex clustering: Garland & Shaffer section 3.2, Lindstrom's OoCS), found
  * from ref (a point in the box, such as the mean of the cell's vertices).

@@ -645,6 +645,63 @@ equal_costs_go_shortest_first(void **state)
 	vdt_mesh_free(&m);
 }
 
+/*
+ * Quadrics given for the 16 x 16 grid (as vdt-cluster's QUAD chunk) that
+ * are nearly degenerate: each is the plane z = 0 plus, at 1e-3 of its
+ * weight, the planes x = x0 and y = y0 of a point up to 10 model sizes
+ * from the vertex, as the noise of a flat cell leaves the directions along
+ * the surface. The system is well enough conditioned to be solved, and its
+ * minimisers lie anywhere: merged vertices went up to 3.6 model sizes off
+ * the sheet, where most then folded its faces (357 triangles left for 100
+ * asked). No vertex is on the input's boundary (BNDY all 0, the rim of a
+ * thin part clustering flattened), so nothing but the quadrics holds the
+ * rim. Every vertex must stay near the surface it stands for.
+ */
+static void
+nearly_degenerate_quadrics_keep_vertices_near_the_surface(void **state)
+{
+	enum { N = 16 };
+	struct vdt_mesh m, out;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+	struct vdt_quadric *q;
+	uint8_t *border;
+	uint32_t x = 2;
+
+	(void)state;
+	shape_grid(&m, N);
+	q = calloc(m.vertex_count, sizeof(*q));
+	border = calloc(m.vertex_count, 1);
+	assert_true(q && border);
+	for (size_t v = 0; v < m.vertex_count; v++) {
+		const double n[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+		struct vdt_quadric r;
+		vdt_quadric_plane(&q[v], n[2], 0, 1.0 / (N * N));
+		for (int k = 0; k < 2; k++) {
+			x = x * 1103515245u + 12345u;
+			double off = 10 * ((double)(x >> 8 & 0xffff) / 32768 - 1);
+			vdt_quadric_plane(&r, n[k], -(m.positions[3 * v + k] + off), 1e-3 / (N * N));
+			r.w = 0;
+			vdt_quadric_add(&q[v], &r);
+		}
+	}
+	vdt_qslim_defaults(&o);
+	o.target_triangles = 100;
+	o.quadrics = q;
+	o.input_border = border;
+	assert_int_equal(vdt_qslim(&m, &o, &out, NULL, NULL, &st, NULL), 0);
+	assert_true(st.reached_target);
+	for (size_t v = 0; v < out.vertex_count; v++) {
+		const float *p = out.positions + 3 * v;
+		assert_true(p[0] >= -0.1f && p[0] <= 1.1f && p[1] >= -0.1f && p[1] <= 1.1f);
+		assert_true(fabsf(p[2]) <= 0.1f);
+	}
+	free(border);
+	free(q);
+	vdt_mesh_free(&out);
+	vdt_mesh_free(&m);
+}
+
 static void
 virtual_pairs_match_brute_force(void **state)
 {
@@ -718,6 +775,7 @@ main(void)
 		cmocka_unit_test(area_floor_keeps_finely_tessellated_features),
 		cmocka_unit_test(area_floor_leaves_even_meshes_alone),
 		cmocka_unit_test(equal_costs_go_shortest_first),
+		cmocka_unit_test(nearly_degenerate_quadrics_keep_vertices_near_the_surface),
 		cmocka_unit_test(virtual_pairs_match_brute_force),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);

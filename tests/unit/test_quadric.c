@@ -81,6 +81,36 @@ singular_system_falls_back_to_segment(void **state)
 	NEAR(v[0], 2); /* the midpoint */
 }
 
+/*
+ * The planes z = 0 (weight 1) and x = 1000, y = 0 (weight 1e-3 each):
+ * conditioned well enough to solve, with the minimum (1000, 0, 0) far
+ * outside the box [-1, 2]^3 of the pair (0,0,0)-(1,0,0). Within that box
+ * the minimiser is refused for the segment's best point, (1, 0, 0); within
+ * a box that holds it, it stands.
+ */
+static void
+minimum_outside_the_box_falls_back_to_segment(void **state)
+{
+	struct vdt_quadric q, r;
+	double nx[3] = {1, 0, 0}, ny[3] = {0, 1, 0}, nz[3] = {0, 0, 1}, v[3];
+	double a[3] = {0, 0, 0}, b[3] = {1, 0, 0};
+	double lo[3] = {-1, -1, -1}, hi[3] = {2, 2, 2}, wide[3] = {2000, 2, 2};
+
+	(void)state;
+	vdt_quadric_plane(&q, nz, 0, 1);
+	vdt_quadric_plane(&r, nx, -1000, 1e-3);
+	vdt_quadric_add(&q, &r);
+	vdt_quadric_plane(&r, ny, 0, 1e-3);
+	vdt_quadric_add(&q, &r);
+	assert_int_equal(vdt_quadric_minimum(&q, v), 0);
+	NEAR(vdt_quadric_optimize_within(&q, a, b, lo, hi, v), 1e-3 * 999 * 999);
+	NEAR(v[0], 1);
+	NEAR(v[1], 0);
+	NEAR(v[2], 0);
+	NEAR(vdt_quadric_optimize_within(&q, a, b, lo, wide, v), 0);
+	NEAR(v[0], 1000);
+}
+
 static void
 transform_changes_frame_only(void **state)
 {
@@ -120,6 +150,7 @@ main(void)
 		cmocka_unit_test(triangle_weight_is_a_third_of_area),
 		cmocka_unit_test(three_planes_meet_at_their_corner),
 		cmocka_unit_test(singular_system_falls_back_to_segment),
+		cmocka_unit_test(minimum_outside_the_box_falls_back_to_segment),
 		cmocka_unit_test(transform_changes_frame_only),
 		cmocka_unit_test(boundary_plane_is_perpendicular),
 	};
