@@ -7,7 +7,8 @@
  *
  * Quadrics are Garland's area-weighted ones with perpendicular boundary
  * planes, built per frame exactly as vdt_qslim builds them (same terms,
- * same order, centred on the frame's bounding box), so that a frame
+ * same order, centred on the box of the frame's faces, or of the bulk of
+ * its surface when a few far faces stretch that box), so that a frame
  * simplified alone is vdt_qslim's result.
  *
  * Memory: the unified stage holds, for every frame used by the cost and
@@ -135,6 +136,8 @@ struct anim {
 	uint32_t *open;      /* open edges: face, a, b (the same every frame) */
 	size_t nopen;
 	uint8_t *locked;     /* on an edge of three or more faces */
+	double *frame;       /* 4 per frame: the centre of its quadrics and
+	                        the unit of its costs (frame_centre) */
 };
 
 static void
@@ -146,8 +149,31 @@ anim_free(struct anim *a)
 	free(a->fan);
 	free(a->open);
 	free(a->locked);
+	free(a->frame);
 }
 
+
+/*
+ * Frame f's centre and unit (frame_centre) into c[0..3], from the first nt
+ * of a's faces as vdt_qslim takes them (before repeated faces are dropped):
+ * the centre of the box of its faces, or of the bulk of its surface when a
+ * few far faces stretch that box (vdt_mesh_bulk_box), and the unit of that
+ * box's diagonal.
+ */
+static void
+frame_box(const struct anim *a, size_t nt, size_t f, double c[4])
+{
+	const struct vdt_mesh m = {.vertex_count = a->nv, .positions = a->pos + 3 * a->nv * f,
+	                           .triangle_count = nt, .triangles = a->tri};
+	struct vdt_bbox box;
+
+	vdt_mesh_bbox_faces(&m, &box);
+	if (nt > 0)
+		vdt_mesh_bulk_box(&m, &box, &box);
+	for (int k = 0; k < 3; k++)
+		c[k] = 0.5 * (box.min[k] + box.max[k]);
+	c[3] = vdt_quadric_unit(vdt_bbox_diagonal(&box));
+}
 
 /*
  * Weld vertices that coincide in every frame (vertices split only for
@@ -198,7 +224,8 @@ anim_build(struct anim *a, const struct vdt_mesh *m, const struct vdt_frames *fr
 	a->pos = malloc(3 * nw * a->nf * sizeof(float));
 	a->tri = malloc((3 * nt + 1) * sizeof(uint32_t));
 	a->locked = calloc(nw + 1, 1);
-	if (!a->pos || !a->tri || !a->locked)
+	a->frame = malloc(4 * a->nf * sizeof(*a->frame));
+	if (!a->pos || !a->tri || !a->locked || !a->frame)
 		goto out;
 	for (size_t f = 0; f < a->nf; f++)
 		for (size_t v = 0; v < nw; v++)
@@ -206,6 +233,8 @@ anim_build(struct anim *a, const struct vdt_mesh *m, const struct vdt_frames *fr
 			       3 * sizeof(float));
 	for (size_t i = 0; i < 3 * nt; i++)
 		a->tri[i] = res->canon[m->triangles[i]];
+	for (size_t f = 0; f < a->nf; f++)
+		frame_box(a, nt, f, a->frame + 4 * f);
 	if (vdt_topo_fans(nw, a->tri, nt, &fs, &fan) != 0)
 		goto out;
 	vdt_topo_drop_repeats(a->tri, nt, fs, fan, dead, 1);
@@ -238,20 +267,13 @@ out:
 
 /* ---- per-frame quadrics, in vdt_qslim's order ---- */
 
-/* The centre of frame f's box; returns the unit of its costs
- * (vdt_quadric_unit). */
+/* The centre frame f's quadrics are summed about, as vdt_qslim's
+ * (frame_box); returns the unit of its costs (vdt_quadric_unit). */
 static double
 frame_centre(const struct anim *a, size_t f, double c[3])
 {
-	struct vdt_mesh m = {0};
-	struct vdt_bbox box;
-
-	m.vertex_count = a->nv;
-	m.positions = a->pos + 3 * a->nv * f;
-	vdt_mesh_bbox(&m, &box);
-	for (int k = 0; k < 3; k++)
-		c[k] = 0.5 * (box.min[k] + box.max[k]);
-	return vdt_quadric_unit(vdt_bbox_diagonal(&box));
+	memcpy(c, a->frame + 4 * f, 3 * sizeof(double));
+	return a->frame[4 * f + 3];
 }
 
 static void
