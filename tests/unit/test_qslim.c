@@ -756,6 +756,14 @@ virtual_pairs_match_brute_force(void **state)
 		assert_int_equal(at, count);
 		free(pairs);
 	}
+	/* no point, or one: no pair */
+	for (size_t n = 0; n < 2; n++) {
+		uint32_t *pairs = (uint32_t *)p;
+		size_t count = 1;
+		assert_int_equal(vdt_qslim_virtual_pairs(p, n, 1e300, &pairs, &count), 0);
+		assert_null(pairs);
+		assert_int_equal(count, 0);
+	}
 	free(p);
 }
 
