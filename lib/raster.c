@@ -3,13 +3,15 @@
  * El-Sana & Varshney (EGWR 99, section 6 measures traversal against the
  * time to draw) with: half-space edge functions over the triangle's
  * bounding box, in double precision so that results do not depend on the
- * order of evaluation.
+ * order of evaluation, each row walked only over the run where every edge
+ * function can pass.
  */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "raster.h"
+#include "span.h"
 
 int
 vdt_raster_init(struct vdt_raster *r, int width, int height, struct vdt_err *err)
@@ -69,6 +71,35 @@ to8(double v)
 	return (unsigned char)(v < 0 ? 0 : v > 255 ? 255 : v);
 }
 
+/* One edge of a triangle along the row of pixel centres at py: the
+ * side of its crossing that the edge keeps (vdt_span_clip's dir) and
+ * the crossing's run per unit of y. */
+struct edge_row {
+	const double *a, *b;
+	double py, slope;
+	int owned, dir;
+};
+
+/* The pixel test below for this edge alone: its edge function at the
+ * pixel centre is positive, or zero on an edge the triangle owns (NaN
+ * passes, as it does there). */
+static inline int
+edge_keeps(const void *e, int x)
+{
+	const struct edge_row *r = e;
+	double w = edge(r->a, r->b, x + 0.5, r->py);
+	return !(w < 0 || (w == 0 && !r->owned));
+}
+
+/*
+ * Along a row the edge function is monotone in x whatever its rounding
+ * (px - a[0], its product with a constant and the difference with another
+ * constant each round monotonically), so each edge keeps a run of the row
+ * that ends at its crossing: vdt_span_clip finds that end by the pixel
+ * test itself. Corners beyond 1e150 pixels could make the products
+ * overflow (to inf, and inf - inf to NaN), where that argument would need
+ * more care: such triangles test their whole box, as they always did.
+ */
 void
 vdt_raster_triangle(struct vdt_raster *r, const double s[3][3], const float col[3][3])
 {
@@ -91,10 +122,27 @@ vdt_raster_triangle(struct vdt_raster *r, const double s[3][3], const float col[
 	int y0 = (int)fmax(0, floor(miny - 0.5)), y1 = (int)fmin(r->height - 1, ceil(maxy));
 	int o0 = owns(p1, p2), o1 = owns(p2, p0), o2 = owns(p0, p1);
 	double iz0 = 1 / p0[2], iz1 = 1 / p1[2], iz2 = 1 / p2[2];
+	int spans =
+	        x1 - x0 >= VDT_SPAN_MIN && fmax(-minx, maxx) < 1e150 && fmax(-miny, maxy) < 1e150;
+	const double *from[3] = {p1, p2, p0}, *to[3] = {p2, p0, p1};
+	const int own[3] = {o0, o1, o2};
+	struct edge_row e[3];
 
+	for (int k = 0; k < 3 && spans; k++) {
+		const double *a = from[k], *b = to[k];
+		double dy = b[1] - a[1];
+		e[k] = (struct edge_row){a, b, 0, dy != 0 ? (b[0] - a[0]) / dy : 0, own[k],
+		                         dy > 0 ? 1 : dy < 0 ? -1 : 0};
+	}
 	for (int y = y0; y <= y1; y++) {
 		double py = y + 0.5;
-		for (int x = x0; x <= x1; x++) {
+		int lo = x0, hi = x1;
+		for (int k = 0; k < 3 && spans; k++) {
+			double cross = e[k].a[0] + e[k].slope * (py - e[k].a[1]);
+			e[k].py = py;
+			vdt_span_clip(&lo, &hi, e[k].dir, cross - 0.5, edge_keeps, &e[k]);
+		}
+		for (int x = lo; x <= hi; x++) {
 			double px = x + 0.5;
 			double w0 = edge(p1, p2, px, py), w1 = edge(p2, p0, px, py),
 			       w2 = edge(p0, p1, px, py);
