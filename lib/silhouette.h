@@ -132,6 +132,22 @@ void vdt_sil_camera(const struct vdt_mesh *m, const double centre[3],
                     struct vdt_sil_work *w, uint8_t *labels);
 
 /*
+ * The mesh mapping of vdt_sil_camera (section 3.1.1): OR into cells (res
+ * x res, row-major, cell (X, Y) the square [X, X+1] x [Y, Y+1]) the bit
+ * VDT_SIL_OCCUPIED at every cell that one of count triangles overlaps at
+ * all, its border included, and VDT_SIL_CONTOUR too where the triangle has
+ * a vertex marked in silhouette (NULL: none). triangles index xy, two
+ * floats per vertex in cell units; a zero-area triangle marks the cells
+ * its longest edge meets. Corners must be finite and belong in [0, res]
+ * (vdt_sil_camera's frame keeps them there): the box of a triangle beyond
+ * is clamped to the grid, so one wholly outside marks border cells. Each
+ * row of a triangle costs the cells marked plus a few tests, however thin
+ * the triangle.
+ */
+void vdt_sil_map(uint8_t *cells, int res, const float *xy, const uint32_t *triangles,
+                 size_t count, const uint8_t *silhouette);
+
+/*
  * Distance transforms of a w x h binary image (nonzero: object) into dist:
  * each object pixel's distance to the nearest background pixel (centre to
  * centre, in pixels), 0 on background; INFINITY everywhere when there is
