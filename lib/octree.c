@@ -27,6 +27,7 @@
  * first, is still the one of the boxes of the coordinate axes.
  */
 #include "octree.h"
+#include "quadric.h"
 #include "sort.h"
 
 #include <float.h>
@@ -390,52 +391,6 @@ split(struct octree *o, uint32_t c, int depth)
 }
 
 /*
- * Diagonalise the symmetric a by Jacobi rotations: the eigenvectors go to
- * the rows of v (orthonormal, in no particular order).
- */
-static void
-jacobi3(double a[3][3], double v[3][3])
-{
-	for (int i = 0; i < 3; i++)
-		for (int j = 0; j < 3; j++)
-			v[i][j] = i == j;
-	for (int sweep = 0; sweep < 50; sweep++) {
-		double off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
-		double on = a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2];
-
-		if (!(off > 0x1p-100 * on))
-			return;
-		for (int p = 0; p < 2; p++)
-			for (int q = p + 1; q < 3; q++) {
-				double theta, t, c, s;
-
-				if (a[p][q] == 0)
-					continue;
-				/* the rotation in the plane pq that zeroes a[p][q] */
-				theta = (a[q][q] - a[p][p]) / (2 * a[p][q]);
-				t = (theta >= 0 ? 1 : -1) / (fabs(theta) + sqrt(theta * theta + 1));
-				c = 1 / sqrt(t * t + 1);
-				s = t * c;
-				for (int k = 0; k < 3; k++) { /* a = J^T a J */
-					double akp = a[k][p], akq = a[k][q];
-					a[k][p] = c * akp - s * akq;
-					a[k][q] = s * akp + c * akq;
-				}
-				for (int k = 0; k < 3; k++) {
-					double apk = a[p][k], aqk = a[q][k];
-					a[p][k] = c * apk - s * aqk;
-					a[q][k] = s * apk + c * aqk;
-				}
-				for (int k = 0; k < 3; k++) { /* rows of v: v = J^T v */
-					double vp = v[p][k], vq = v[q][k];
-					v[p][k] = c * vp - s * vq;
-					v[q][k] = s * vp + c * vq;
-				}
-			}
-	}
-}
-
-/*
  * The principal axes of the n points, and the margin for coordinates on
  * them. The covariance is taken about the first point, in one pass: any
  * frame is correct, this one only has to be near the best.
@@ -467,7 +422,11 @@ frame_of(struct octree *o, size_t n)
 	                    {xy * w - m[0] * m[1], yy * w - m[1] * m[1], yz * w - m[1] * m[2]},
 	                    {xz * w - m[0] * m[2], yz * w - m[1] * m[2], zz * w - m[2] * m[2]}};
 
-	jacobi3(cov, o->frame);
+	double e[3], axes[3][3];
+	vdt_eigen3(cov, e, axes);
+	for (int j = 0; j < 3; j++) /* an axis a row */
+		for (int k = 0; k < 3; k++)
+			o->frame[j][k] = axes[k][j];
 	for (int j = 0; j < 3; j++)
 		for (int k = 0; k < 3; k++)
 			o->spread[j][k] = fabs(o->frame[j][k]);

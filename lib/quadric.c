@@ -192,9 +192,8 @@ vdt_quadric_optimize_segment(const struct vdt_quadric *q, const double p0[3],
 	return best;
 }
 
-/* Eigen-decomposition of a symmetric 3x3 matrix by cyclic Jacobi rotations. */
-static void
-eigen3(double a[3][3], double e[3], double vec[3][3])
+void
+vdt_eigen3(double a[3][3], double e[3], double vec[3][3])
 {
 	for (int i = 0; i < 3; i++)
 		for (int j = 0; j < 3; j++)
@@ -254,7 +253,7 @@ vdt_quadric_optimize_box(const struct vdt_quadric *q, const double ref[3],
 	vdt_quadric_transform(&t, scale, r);
 	a[0][0] = t.a00, a[0][1] = a[1][0] = t.a01, a[0][2] = a[2][0] = t.a02;
 	a[1][1] = t.a11, a[1][2] = a[2][1] = t.a12, a[2][2] = t.a22;
-	eigen3(a, e, vec);
+	vdt_eigen3(a, e, vec);
 	for (int i = 0; i < 3; i++)
 		emax = e[i] > emax ? e[i] : emax;
 	for (int i = 0; i < 3; i++) {

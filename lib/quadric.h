@@ -207,4 +207,11 @@ double vdt_quadric_optimize_within(const struct vdt_quadric *q, const double p0[
 double vdt_quadric_optimize_box(const struct vdt_quadric *q, const double ref[3],
                                 const double lo[3], const double hi[3], double v[3]);
 
+/*
+ * Eigen-decomposition of the symmetric 3x3 matrix a by cyclic Jacobi
+ * rotations: the eigenvalues to e, eigenvector i to column i of vec
+ * (orthonormal, in no particular order). a is overwritten.
+ */
+void vdt_eigen3(double a[3][3], double e[3], double vec[3][3]);
+
 #endif
