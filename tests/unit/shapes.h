@@ -10,6 +10,23 @@
 
 #include "../../lib/mesh.h"
 
+/* A xorshift generator: the next number from the state *s (not 0). */
+static inline uint64_t
+shape_next(uint64_t *s)
+{
+	*s ^= *s << 13;
+	*s ^= *s >> 7;
+	*s ^= *s << 17;
+	return *s;
+}
+
+/* Uniform in [lo, hi), from the state *s. */
+static inline double
+shape_uniform(uint64_t *s, double lo, double hi)
+{
+	return lo + (hi - lo) * (double)(shape_next(s) >> 11) / 9007199254740992.0;
+}
+
 /*
  * A flat n x n grid of quads on z = 0 over [0,1]^2, two triangles each,
  * counter-clockwise seen from +z:

@@ -11,6 +11,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "shapes.h"
 #include "../../lib/raster.h"
 
 static const float white[3][3] = {{1, 1, 1}, {1, 1, 1}, {1, 1, 1}};
@@ -183,22 +184,6 @@ ref_triangle(struct vdt_raster *r, const double s[3][3], const float col[3][3])
 	}
 }
 
-static uint64_t
-next(uint64_t *s)
-{
-	*s ^= *s << 13;
-	*s ^= *s >> 7;
-	*s ^= *s << 17;
-	return *s;
-}
-
-/* Uniform in [lo, hi). */
-static double
-uniform(uint64_t *s, double lo, double hi)
-{
-	return lo + (hi - lo) * (double)(next(s) >> 11) / 9007199254740992.0;
-}
-
 /*
  * A triangle of kind k over a w x h image: 0 anywhere, off the image
  * too; 1 a sliver, its third corner near the line of the other two (up to
@@ -213,16 +198,16 @@ random_triangle(uint64_t *seed, int k, int w, int h, double s[3][3])
 	double sx = w, sy = h;
 
 	for (int i = 0; i < 3; i++) {
-		s[i][0] = uniform(seed, -sx, 2 * sx);
-		s[i][1] = uniform(seed, -sy, 2 * sy);
-		s[i][2] = uniform(seed, 0.5, 4);
+		s[i][0] = shape_uniform(seed, -sx, 2 * sx);
+		s[i][1] = shape_uniform(seed, -sy, 2 * sy);
+		s[i][2] = shape_uniform(seed, 0.5, 4);
 	}
 	switch (k) {
 	case 1: {
-		double t = uniform(seed, -0.2, 1.2), d = pow(10, uniform(seed, -9, 0.5));
-		double ang = uniform(seed, 0, 6.283185307179586);
-		s[1][0] = s[0][0] + uniform(seed, -1, 1) * 30 * sx;
-		s[1][1] = s[0][1] + uniform(seed, -1, 1) * 30 * sy;
+		double t = shape_uniform(seed, -0.2, 1.2), d = pow(10, shape_uniform(seed, -9, 0.5));
+		double ang = shape_uniform(seed, 0, 6.283185307179586);
+		s[1][0] = s[0][0] + shape_uniform(seed, -1, 1) * 30 * sx;
+		s[1][1] = s[0][1] + shape_uniform(seed, -1, 1) * 30 * sy;
 		s[2][0] = s[0][0] + t * (s[1][0] - s[0][0]) + d * cos(ang);
 		s[2][1] = s[0][1] + t * (s[1][1] - s[0][1]) + d * sin(ang);
 		break;
@@ -230,33 +215,33 @@ random_triangle(uint64_t *seed, int k, int w, int h, double s[3][3])
 	case 2:
 	case 3:
 		for (int i = 0; i < 3; i++) {
-			s[i][0] = floor(uniform(seed, -2, sx + 2)) + (k == 2 ? 0.5 : 0);
-			s[i][1] = floor(uniform(seed, -2, sy + 2)) + (k == 2 ? 0.5 : 0);
+			s[i][0] = floor(shape_uniform(seed, -2, sx + 2)) + (k == 2 ? 0.5 : 0);
+			s[i][1] = floor(shape_uniform(seed, -2, sy + 2)) + (k == 2 ? 0.5 : 0);
 		}
 		break;
 	case 4: {
-		double dx = floor(uniform(seed, -3, 4)), dy = floor(uniform(seed, -3, 4));
+		double dx = floor(shape_uniform(seed, -3, 4)), dy = floor(shape_uniform(seed, -3, 4));
 		for (int i = 1; i < 3; i++) {
-			double t = floor(uniform(seed, -5, 6));
+			double t = floor(shape_uniform(seed, -5, 6));
 			s[i][0] = s[0][0] + t * dx;
 			s[i][1] = s[0][1] + t * dy;
 		}
 		break;
 	}
 	case 5: {
-		double a = uniform(seed, 0, 6.283185307179586), da = pow(10, uniform(seed, -5, -1));
-		double rad = uniform(seed, 0.3, 3) * (sx + sy);
+		double a = shape_uniform(seed, 0, 6.283185307179586), da = pow(10, shape_uniform(seed, -5, -1));
+		double rad = shape_uniform(seed, 0.3, 3) * (sx + sy);
 		s[0][0] = sx / 2, s[0][1] = sy / 2;
 		s[1][0] = sx / 2 + rad * cos(a), s[1][1] = sy / 2 + rad * sin(a);
 		s[2][0] = sx / 2 + rad * cos(a + da), s[2][1] = sy / 2 + rad * sin(a + da);
 		break;
 	}
-	case 6: s[1][next(seed) % 2] = s[0][next(seed) % 2]; break;
+	case 6: s[1][shape_next(seed) % 2] = s[0][shape_next(seed) % 2]; break;
 	case 7:
-		s[1][0] = s[0][0] + uniform(seed, -3e9, 3e9);
-		s[2][0] = s[0][0] + uniform(seed, -3e9, 3e9);
+		s[1][0] = s[0][0] + shape_uniform(seed, -3e9, 3e9);
+		s[2][0] = s[0][0] + shape_uniform(seed, -3e9, 3e9);
 		break;
-	case 8: s[next(seed) % 3][next(seed) % 2] = uniform(seed, -1, 1) * 1e160; break;
+	case 8: s[shape_next(seed) % 3][shape_next(seed) % 2] = shape_uniform(seed, -1, 1) * 1e160; break;
 	}
 }
 
@@ -285,7 +270,7 @@ runs_match_the_whole_box(void **state)
 			random_triangle(&seed, n % 9, w, h, s);
 			for (int i = 0; i < 3; i++)
 				for (int c = 0; c < 3; c++)
-					col[i][c] = (float)uniform(&seed, 0, 1);
+					col[i][c] = (float)shape_uniform(&seed, 0, 1);
 			vdt_raster_clear(&got, (const unsigned char[3]){0, 0, 0});
 			vdt_raster_clear(&want, (const unsigned char[3]){0, 0, 0});
 			vdt_raster_triangle(&got, s, col);

@@ -612,22 +612,6 @@ ref_raster(uint8_t *cells, int res, const float *a, const float *b, const float 
 	}
 }
 
-static uint64_t
-next(uint64_t *s)
-{
-	*s ^= *s << 13;
-	*s ^= *s >> 7;
-	*s ^= *s << 17;
-	return *s;
-}
-
-/* Uniform in [lo, hi). */
-static double
-uniform(uint64_t *s, double lo, double hi)
-{
-	return lo + (hi - lo) * (double)(next(s) >> 11) / 9007199254740992.0;
-}
-
 /*
  * Many triangles on grids from 4 to 256 cells: anywhere (a little past
  * the grid too); slivers, the third corner near the line of the other
@@ -657,35 +641,35 @@ test_raster_matches_whole_box(void **state)
 			int kind = n % 7;
 			for (int i = 0; i < 3; i++)
 				for (int k = 0; k < 2; k++)
-					t[i][k] = (float)uniform(&seed, -2, res + 2);
+					t[i][k] = (float)shape_uniform(&seed, -2, res + 2);
 			if (kind == 1) {
-				double f = uniform(&seed, -0.2, 1.2), d = pow(10, uniform(&seed, -7, 0));
-				double ang = uniform(&seed, 0, 6.283185307179586);
+				double f = shape_uniform(&seed, -0.2, 1.2), d = pow(10, shape_uniform(&seed, -7, 0));
+				double ang = shape_uniform(&seed, 0, 6.283185307179586);
 				for (int k = 0; k < 2; k++)
 					t[2][k] = (float)(t[0][k] + f * (t[1][k] - t[0][k]) +
 					                  d * (k ? sin(ang) : cos(ang)));
 			} else if (kind == 2 || kind == 3) {
 				for (int i = 0; i < 3; i++)
 					for (int k = 0; k < 2; k++)
-						t[i][k] = (float)(floor(uniform(&seed, 0, res + 1)) +
+						t[i][k] = (float)(floor(shape_uniform(&seed, 0, res + 1)) +
 						                  (kind == 3 ? 0.5 : 0));
 			} else if (kind == 4) {
-				double dx = floor(uniform(&seed, -3, 4)), dy = floor(uniform(&seed, -3, 4));
+				double dx = floor(shape_uniform(&seed, -3, 4)), dy = floor(shape_uniform(&seed, -3, 4));
 				for (int i = 1; i < 3; i++) {
-					double f = floor(uniform(&seed, -4, 5)) / 2;
+					double f = floor(shape_uniform(&seed, -4, 5)) / 2;
 					t[i][0] = (float)(t[0][0] + f * dx);
 					t[i][1] = (float)(t[0][1] + f * dy);
 				}
 			} else if (kind == 5) {
-				double a = uniform(&seed, 0, 6.283185307179586);
-				double da = pow(10, uniform(&seed, -5, -1)), r = res * 0.45;
+				double a = shape_uniform(&seed, 0, 6.283185307179586);
+				double da = pow(10, shape_uniform(&seed, -5, -1)), r = res * 0.45;
 				t[0][0] = t[0][1] = (float)(res * 0.5);
 				t[1][0] = (float)(res * 0.5 + r * cos(a));
 				t[1][1] = (float)(res * 0.5 + r * sin(a));
 				t[2][0] = (float)(res * 0.5 + r * cos(a + da));
 				t[2][1] = (float)(res * 0.5 + r * sin(a + da));
 			} else if (kind == 6) {
-				t[1][next(&seed) % 2] = t[0][next(&seed) % 2];
+				t[1][shape_next(&seed) % 2] = t[0][shape_next(&seed) % 2];
 			}
 			/* a silhouette vertex on every other face, when given */
 			const uint8_t sil[3] = {0, 0, n % 2};
