@@ -218,6 +218,27 @@ brute(const struct vdt_mesh *m, const double p[3], double *best, size_t *bt)
 	}
 }
 
+/* The BVH finds the triangle brute force finds nearest to p, and a hint,
+ * even a bad one, changes nothing. Returns the squared distance. */
+static double
+closest_agrees(const struct vdt_bvh *bvh, const struct vdt_mesh *m, const double p[3],
+               size_t hint)
+{
+	struct vdt_bvh_hit hit, hinted;
+	double want;
+	size_t wt = 0;
+
+	brute(m, p, &want, &wt);
+	vdt_bvh_closest(bvh, p, SIZE_MAX, &hit);
+	assert_true(hit.dist2 == want);
+	assert_int_equal(hit.triangle, wt);
+	vdt_bvh_closest(bvh, p, hint, &hinted);
+	assert_true(hinted.dist2 == want);
+	assert_int_equal(hinted.triangle, wt);
+	assert_true(memcmp(hinted.point, hit.point, sizeof(hit.point)) == 0);
+	return want;
+}
+
 /* A sphere plus a soup of random triangles, queried from random points. */
 static void
 test_bvh_matches_brute_force(void **state)
@@ -241,19 +262,8 @@ test_bvh_matches_brute_force(void **state)
 	}
 	assert_int_equal(vdt_bvh_build(&bvh, &m, NULL), 0);
 	for (int i = 0; i < 3000; i++) {
-		double p[3] = {6 * rnd() - 3, 6 * rnd() - 3, 6 * rnd() - 3}, want;
-		size_t wt = 0;
-		struct vdt_bvh_hit hit, hinted;
-
-		brute(&m, p, &want, &wt);
-		vdt_bvh_closest(&bvh, p, SIZE_MAX, &hit);
-		assert_true(hit.dist2 == want);
-		assert_int_equal(hit.triangle, wt);
-		/* a hint, even a bad one, changes nothing */
-		vdt_bvh_closest(&bvh, p, prev, &hinted);
-		assert_true(hinted.dist2 == want);
-		assert_int_equal(hinted.triangle, wt);
-		assert_true(memcmp(hinted.point, hit.point, sizeof(hit.point)) == 0);
+		double p[3] = {6 * rnd() - 3, 6 * rnd() - 3, 6 * rnd() - 3};
+		closest_agrees(&bvh, &m, p, prev);
 		prev = (size_t)(rnd() * m.triangle_count);
 	}
 	vdt_bvh_free(&bvh);
@@ -331,9 +341,8 @@ test_bvh_fan_matches_brute_force(void **state)
 		assert_int_equal(vdt_bvh_build(&bvh, &m, NULL), 0);
 		assert_non_null(bvh.slabs);
 		for (int i = 0; i < 3000; i++) {
-			size_t t = (size_t)(rnd() * m.triangle_count), wt = 0;
+			size_t t = (size_t)(rnd() * m.triangle_count);
 			double p[3], want, r1 = rnd(), r2 = rnd();
-			struct vdt_bvh_hit hit, hinted;
 			struct within w = {&m, 0};
 
 			for (int k = 0; k < 3; k++) {
@@ -349,14 +358,7 @@ test_bvh_fan_matches_brute_force(void **state)
 			}
 			if (i % 3 == 2 && shape == 0)
 				p[2] = i % 2 ? 0 : 0.2 * rnd() - 0.1;
-			brute(&m, p, &want, &wt);
-			vdt_bvh_closest(&bvh, p, SIZE_MAX, &hit);
-			assert_true(hit.dist2 == want);
-			assert_int_equal(hit.triangle, wt);
-			vdt_bvh_closest(&bvh, p, prev, &hinted);
-			assert_true(hinted.dist2 == want);
-			assert_int_equal(hinted.triangle, wt);
-			assert_true(memcmp(hinted.point, hit.point, sizeof(hit.point)) == 0);
+			want = closest_agrees(&bvh, &m, p, prev);
 			prev = (size_t)(rnd() * m.triangle_count);
 
 			vdt_bvh_any_within(&bvh, p, want + 1e-4, count_within, &w);
