@@ -27,6 +27,17 @@ shape_uniform(uint64_t *s, double lo, double hi)
 	return lo + (hi - lo) * (double)(shape_next(s) >> 11) / 9007199254740992.0;
 }
 
+/* Uniform in [0, 1), from a sequence of its own in each test file (an
+ * LCG like nothing in the library: test data must not share its bugs). */
+static uint64_t shape_rnd_state = 12345;
+
+static inline double
+shape_rnd(void)
+{
+	shape_rnd_state = shape_rnd_state * 6364136223846793005ULL + 1442695040888963407ULL;
+	return (double)(shape_rnd_state >> 11) * 0x1.0p-53;
+}
+
 /*
  * A flat n x n grid of quads on z = 0 over [0,1]^2, two triangles each,
  * counter-clockwise seen from +z:

@@ -12,6 +12,7 @@
 
 #include <cmocka.h>
 
+#include "shapes.h"
 #include "../../lib/bvh.h"
 #include "../../lib/measure.h"
 #include "../../lib/mesh.h"
@@ -22,15 +23,6 @@
 
 /* ---- fixtures ---- */
 
-/* Same generator as nothing in the library: test data must not share bugs. */
-static uint64_t rng_state = 12345;
-
-static double
-rnd(void)
-{
-	rng_state = rng_state * 6364136223846793005ULL + 1442695040888963407ULL;
-	return (double)(rng_state >> 11) * 0x1.0p-53;
-}
 
 static void
 set_vertex(struct vdt_mesh *m, size_t v, double x, double y, double z)
@@ -255,16 +247,16 @@ test_bvh_matches_brute_force(void **state)
 	memcpy(m.triangles, s.triangles, 3 * s.triangle_count * sizeof(uint32_t));
 	for (size_t i = 0; i < extra; i++) {
 		size_t v = s.vertex_count + 3 * i;
-		double cx = 4 * rnd() - 2, cy = 4 * rnd() - 2, cz = 4 * rnd() - 2;
+		double cx = 4 * shape_rnd() - 2, cy = 4 * shape_rnd() - 2, cz = 4 * shape_rnd() - 2;
 		for (int k = 0; k < 3; k++)
-			set_vertex(&m, v + k, cx + 0.3 * rnd(), cy + 0.3 * rnd(), cz + 0.3 * rnd());
+			set_vertex(&m, v + k, cx + 0.3 * shape_rnd(), cy + 0.3 * shape_rnd(), cz + 0.3 * shape_rnd());
 		set_tri(&m, s.triangle_count + i, v, v + 1, v + 2);
 	}
 	assert_int_equal(vdt_bvh_build(&bvh, &m, NULL), 0);
 	for (int i = 0; i < 3000; i++) {
-		double p[3] = {6 * rnd() - 3, 6 * rnd() - 3, 6 * rnd() - 3};
+		double p[3] = {6 * shape_rnd() - 3, 6 * shape_rnd() - 3, 6 * shape_rnd() - 3};
 		closest_agrees(&bvh, &m, p, prev);
-		prev = (size_t)(rnd() * m.triangle_count);
+		prev = (size_t)(shape_rnd() * m.triangle_count);
 	}
 	vdt_bvh_free(&bvh);
 	vdt_mesh_free(&m);
@@ -341,8 +333,8 @@ test_bvh_fan_matches_brute_force(void **state)
 		assert_int_equal(vdt_bvh_build(&bvh, &m, NULL), 0);
 		assert_non_null(bvh.slabs);
 		for (int i = 0; i < 3000; i++) {
-			size_t t = (size_t)(rnd() * m.triangle_count);
-			double p[3], want, r1 = rnd(), r2 = rnd();
+			size_t t = (size_t)(shape_rnd() * m.triangle_count);
+			double p[3], want, r1 = shape_rnd(), r2 = shape_rnd();
 			struct within w = {&m, 0};
 
 			for (int k = 0; k < 3; k++) {
@@ -354,12 +346,12 @@ test_bvh_fan_matches_brute_force(void **state)
 				else if (i % 3 == 1) /* on an edge two slivers share */
 					p[k] = a + r1 * (b - a);
 				else /* near the fan, or in its plane */
-					p[k] = 2.4 * rnd() - 1.2;
+					p[k] = 2.4 * shape_rnd() - 1.2;
 			}
 			if (i % 3 == 2 && shape == 0)
-				p[2] = i % 2 ? 0 : 0.2 * rnd() - 0.1;
+				p[2] = i % 2 ? 0 : 0.2 * shape_rnd() - 0.1;
 			want = closest_agrees(&bvh, &m, p, prev);
-			prev = (size_t)(rnd() * m.triangle_count);
+			prev = (size_t)(shape_rnd() * m.triangle_count);
 
 			vdt_bvh_any_within(&bvh, p, want + 1e-4, count_within, &w);
 			for (size_t u = 0; u < m.triangle_count; u++) {
@@ -391,7 +383,7 @@ test_bvh_fan_prunes(void **state)
 	fan(&m, 4096, 0, 0);
 	assert_int_equal(vdt_bvh_build(&bvh, &m, NULL), 0);
 	for (int i = 0; i < 1000; i++) {
-		double r = 0.25 + 0.75 * rnd(), a = 2 * M_PI * rnd();
+		double r = 0.25 + 0.75 * shape_rnd(), a = 2 * M_PI * shape_rnd();
 		double p[3] = {r * cos(a), r * sin(a), 0};
 		struct vdt_bvh_hit hit;
 

@@ -11,17 +11,9 @@
 
 #include <cmocka.h>
 
+#include "shapes.h"
 #include "../../lib/octree.h"
 
-/* Same generator as nothing in the library: test data must not share bugs. */
-static uint64_t rng_state = 12345;
-
-static double
-rnd(void)
-{
-	rng_state = rng_state * 6364136223846793005ULL + 1442695040888963407ULL;
-	return (double)(rng_state >> 11) * 0x1.0p-53;
-}
 
 /* Turn (x, y, z) out of the axis planes: x and z mixed 3:4, then y and z 5:12. */
 static void
@@ -110,7 +102,7 @@ pairs_as_recorded(void **state)
 	q = malloc(3 * 4000 * sizeof(float));
 	assert_non_null(q);
 	for (size_t i = 0; i < 3 * 4000; i++)
-		q[i] = (float)rnd();
+		q[i] = (float)shape_rnd();
 	expect(q, 4000, 9732, 0x70b7b6eaa8de58c4ULL);
 	for (size_t i = 0; i < 3 * 4000; i++) /* 20 x 20 x 10, spacing 1 */
 		q[i] = (float)((i % 3 == 0 ? i / 3 % 20 : i % 3 == 1 ? i / 60 % 20 : i / 1200));
