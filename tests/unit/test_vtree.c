@@ -427,11 +427,35 @@ chunks_and_summary(void **state)
 	vdt_chunks_free(&c);
 }
 
+/* A node removing more triangles than the format records is refused by
+ * the encoder, named (the builder's cap keeps its own trees under it). */
+static void
+encoder_refuses_too_many_vanishing(void **state)
+{
+	struct vdt_mesh m;
+	struct vdt_vtree t;
+	struct vdt_err err = {0};
+	unsigned char *d = NULL;
+	uint64_t len = 0;
+
+	(void)state;
+	shape_icosphere(&m, 3);
+	build(&m, 0.1, &t);
+	assert_true(t.triangle_count > VDT_VTREE_MAX_VANISH + 1);
+	t.tri_first[1] = t.tri_first[0] + VDT_VTREE_MAX_VANISH + 1;
+	assert_int_equal(vdt_vtree_encode(&t, &d, &len, &err), VDT_EINVAL);
+	assert_null(d);
+	assert_non_null(strstr(err.msg, " removes 256 triangles (255 at most)"));
+	vdt_vtree_free(&t);
+	vdt_mesh_free(&m);
+}
+
 int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(square_tree_is_exact),
+		cmocka_unit_test(encoder_refuses_too_many_vanishing),
 		cmocka_unit_test(cones_are_tight),
 		cmocka_unit_test(two_parts_merge_through_an_octree_pair),
 		cmocka_unit_test(eps_prefers_geometry_or_topology),
