@@ -181,7 +181,9 @@ run(struct cmdline *cl)
 		rc = fail("cannot write", cl->out, &err);
 		goto out;
 	}
-	if (!st.reached_target && !cl->quiet)
+	/* With -e alone the bound is the target: stopping at it is no news. */
+	if (!st.reached_target && (cl->q.target_triangles || cl->q.target_ratio > 0) &&
+	    !cl->quiet)
 		fprintf(stderr, "%s: stopped at %zu triangles: no further contraction within the "
 		        "bound and validity tests\n", progname, out.triangle_count);
 	/* Virtual pairs live in the queue of all pairs, which has no passes. */

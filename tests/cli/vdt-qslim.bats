@@ -63,6 +63,17 @@ load helpers
 	[ "$(off_faces "$TMP/out.off")" -gt 52 ]
 }
 
+@test "vdt-qslim -e alone says nothing of stopping at its bound; with -r it does" {
+	# the bound is the only target: a batch run with -e got a warning on
+	# every model
+	run "$BIN/vdt-qslim" -e 0.05% "$SAMPLES/sphere.off" -o "$TMP/out.off"
+	[ "$status" -eq 0 ]
+	[ -z "$output" ]
+	[ "$(off_faces "$TMP/out.off")" -lt 5120 ]
+	run "$BIN/vdt-qslim" -e 0.05% -r 0.01 "$SAMPLES/sphere.off" -o "$TMP/out.off"
+	[[ "$output" == *"stopped at"* ]]
+}
+
 @test "vdt-qslim -e 0 takes what costs nothing and reports no error" {
 	# a plate's flat faces merge at no error; rounding is not reported as one
 	run "$BIN/vdt-qslim" -v -e 0 "$SAMPLES/plate.off" -o "$TMP/out.off"
