@@ -54,6 +54,24 @@ cmd_init(char **argv)
 #endif
 }
 
+void
+refuse_unwritable(const char *path)
+{
+	struct vdt_output o;
+	struct vdt_err err = {0};
+	int special;
+	char *target;
+
+	if (strcmp(path, "-") == 0 || (target = vdt_output_target(path, &special)) == NULL)
+		return;
+	free(target);
+	if (special)
+		return;
+	if (vdt_output_open(&o, path, &err) != 0)
+		exit(fail("cannot write", path, &err));
+	vdt_output_abort(&o);
+}
+
 enum vdt_format
 output_format(const char *path, enum vdt_format given)
 {

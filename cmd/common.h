@@ -99,6 +99,16 @@ int exit_status(int code);
 enum vdt_format output_format(const char *path, enum vdt_format given);
 
 /*
+ * Exit, with vdt_write's status and line, when the file path cannot be
+ * made (a directory by that name, or a directory missing or closed to
+ * us), but before the input is read and worked on: vdt-qslim -a 100% on
+ * the dragon took 8 s to say so. A device or FIFO is left to the writer
+ * (opening a FIFO waits for its reader), and so is a race: the writer
+ * still reports what goes wrong later.
+ */
+void refuse_unwritable(const char *path);
+
+/*
  * Checked parsers for option arguments; each calls usage_error naming the
  * option on junk ("12x", "-1", "", out of range).
  */

@@ -101,6 +101,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		usage_error("-s, -g, -t and -r each choose the grid: give one");
 	if (cl->choices == 0 && cl->memory_mb == 0)
 		cl->ch.dims[0] = 256;
+	refuse_unwritable(cl->out);
 }
 
 static int

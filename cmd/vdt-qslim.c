@@ -141,6 +141,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		            "give -F vdt or a .vdt name", vdt_format_name(cl->w.format));
 	if (cl->q.target_triangles == 0 && cl->q.target_ratio == 0 && !(cl->q.max_error < INFINITY))
 		cl->q.target_ratio = 0.5;
+	refuse_unwritable(cl->out);
 }
 
 static int

@@ -53,6 +53,18 @@ load helpers
 	[ ! -e "$TMP/out.ply" ]
 }
 
+@test "vdt-cluster and vdt-qslim say an output they cannot make before reading a pipe" {
+	# both ends waited for the whole pipe and the work, then failed to write
+	for t in vdt-cluster vdt-qslim; do
+		run sh -c "'$BIN/$t' -o '$TMP/none/out.vdt' < /dev/null"
+		[ "$status" -eq 1 ]
+		[[ "$output" == "$t: cannot write '$TMP/none/out.vdt': cannot create a temporary file"* ]]
+	done
+	run sh -c "'$BIN/vdt-cluster' -q -g 8 '$SAMPLES/sphere.off' | '$BIN/vdt-qslim' -q -o '$TMP/none/out.ply'"
+	[ "$status" -eq 1 ]
+	[ ! -e "$TMP/none" ]
+}
+
 @test "every tool: a second input operand is refused with status 2 and one line" {
 	for t in vdt-qslim vdt-cluster vdt-render vdt-silhouette; do
 		run "$BIN/$t" "$SAMPLES/sphere.off" "$SAMPLES/torus.off"

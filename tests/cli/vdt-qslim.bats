@@ -74,6 +74,22 @@ load helpers
 	[[ "$output" == *"stopped at"* ]]
 }
 
+@test "vdt-qslim: an output it cannot make is said before the input is read" {
+	# (it was said after the work: the dragon with -a 100% took 8 s; here
+	# the input is an empty pipe, whose reading would fail first)
+	mkdir "$TMP/dir.off"
+	run sh -c "'$BIN/vdt-qslim' -o '$TMP/dir.off' < /dev/null"
+	[ "$status" -eq 1 ]
+	[ "$output" = "vdt-qslim: cannot write '$TMP/dir.off': Is a directory" ]
+	run sh -c "'$BIN/vdt-qslim' -o '$TMP/none/out.off' < /dev/null"
+	[ "$status" -eq 1 ]
+	one_line
+	[[ "$output" == *"cannot write '$TMP/none/out.off': cannot create a temporary file"* ]]
+	# nothing left beside it, and a good run still writes
+	"$BIN/vdt-qslim" -q -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/ok.off"
+	[ "$(ls -A "$TMP" | tr '\n' ' ')" = "dir.off ok.off " ]
+}
+
 @test "vdt-qslim -e 0 takes what costs nothing and reports no error" {
 	# a plate's flat faces merge at no error; rounding is not reported as one
 	run "$BIN/vdt-qslim" -v -e 0 "$SAMPLES/plate.off" -o "$TMP/out.off"
