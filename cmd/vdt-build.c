@@ -80,6 +80,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	if (cl->check == NULL) {
 		output_format(cl->out, VDT_FMT_VDT); /* (a terminal, before the work) */
 		refuse_output_over_input(cl->in, cl->out);
+		refuse_unwritable(cl->out);
 	} else if (out_given)
 		usage_error("--check writes nothing: -o has no use with it");
 }

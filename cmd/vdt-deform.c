@@ -106,6 +106,14 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	cl->in = optind < argc ? argv + optind : std_in;
 	cl->nin = optind < argc ? (size_t)(argc - optind) : 1;
 	output_format(cl->out, cl->w.format);
+	if (vdt_anim_is_pattern(cl->out)) { /* (its first frame's directory) */
+		char *first = vdt_anim_format(cl->out, 0);
+		if (first != NULL)
+			refuse_unwritable(first);
+		free(first);
+	} else {
+		refuse_unwritable(cl->out);
+	}
 	if (targets == 0)
 		cl->d.target_ratio = 0.1;
 	if (cl->start != SIZE_MAX && !(cl->nin == 1 && vdt_anim_is_pattern(cl->in[0])))

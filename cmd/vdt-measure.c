@@ -88,6 +88,9 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		if (cl->color)
 			refuse_output_over_input(k ? cl->b : cl->a, cl->color);
 	}
+	refuse_unwritable(cl->out);
+	if (cl->color)
+		refuse_unwritable(cl->color);
 }
 
 /* The colour mesh, staged in *stage until the report is written too. */

@@ -105,6 +105,7 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	refuse_output_over_input(cl->in, cl->out);
 	if (cl->cameras)
 		refuse_output_over_input(cl->cameras, cl->out);
+	refuse_unwritable(cl->out);
 }
 
 static int

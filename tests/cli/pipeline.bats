@@ -53,12 +53,21 @@ load helpers
 	[ ! -e "$TMP/out.ply" ]
 }
 
-@test "vdt-cluster and vdt-qslim say an output they cannot make before reading a pipe" {
-	# both ends waited for the whole pipe and the work, then failed to write
-	for t in vdt-cluster vdt-qslim; do
+@test "every tool says an output it cannot make before reading a pipe" {
+	# each waited for the whole pipe and the work, then failed to write
+	for t in vdt-cluster vdt-qslim vdt-build vdt-silhouette vdt-deform; do
 		run sh -c "'$BIN/$t' -o '$TMP/none/out.vdt' < /dev/null"
 		[ "$status" -eq 1 ]
 		[[ "$output" == "$t: cannot write '$TMP/none/out.vdt': cannot create a temporary file"* ]]
+	done
+	# vdt-deform's frames by their first; vdt-measure's report and colours
+	run sh -c "'$BIN/vdt-deform' -o '$TMP/none/%03d.obj' < /dev/null"
+	[ "$status" -eq 1 ]
+	[[ "$output" == *"cannot write '$TMP/none/000.obj'"* ]]
+	for o in -o -c; do
+		run sh -c "'$BIN/vdt-measure' $o '$TMP/none/r.ply' - '$SAMPLES/sphere.off' < /dev/null"
+		[ "$status" -eq 1 ]
+		[[ "$output" == "vdt-measure: cannot write '$TMP/none/r.ply'"* ]]
 	done
 	run sh -c "'$BIN/vdt-cluster' -q -g 8 '$SAMPLES/sphere.off' | '$BIN/vdt-qslim' -q -o '$TMP/none/out.ply'"
 	[ "$status" -eq 1 ]
