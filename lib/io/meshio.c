@@ -443,6 +443,8 @@ slurp(int fd, enum vdt_format hint, int sniff, unsigned char *b, size_t n, size_
       unsigned char **out, size_t *len, struct vdt_err *err)
 {
 	uint64_t limit = 0; /* vdt_input_limit, once known */
+	struct vdt_stl_scan stl = {0};
+	int binary_stl = 0;
 
 	for (;;) {
 		ssize_t r;
@@ -468,10 +470,14 @@ slurp(int fd, enum vdt_format hint, int sniff, unsigned char *b, size_t n, size_
 			break;
 		n += (size_t)r;
 		if (sniff && n >= VDT_DETECT_BYTES) {
-			if (limit == 0)
+			if (limit == 0) {
 				limit = vdt_input_limit(b, hint);
-			if (n > limit) {
-				int rc = vdt_input_limit_error(b, err);
+				binary_stl = vdt_format_guess(b, VDT_DETECT_BYTES, hint) == VDT_FMT_STL;
+			}
+			int rc = n > limit ? vdt_input_limit_error(b, err) : 0;
+			if (rc == 0 && binary_stl)
+				rc = vdt_stl_scan(&stl, b + stl.at, n - (size_t)stl.at, err);
+			if (rc != 0) {
 				free(b);
 				return rc;
 			}

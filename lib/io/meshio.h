@@ -361,6 +361,22 @@ int vdt_ply_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err);
 void vdt_ply_bbox_comment(FILE *f, const struct vdt_mesh *m);
 int vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
                  struct vdt_err *err);
+
+/*
+ * A binary STL read from a pipe, checked as its bytes come (fed in order,
+ * from its first, in pieces of any size): every coordinate of its records
+ * must be finite, as vdt_stl_read requires. Bytes of no format are taken
+ * for a binary STL (vdt_format_detect), whose count then announces up to
+ * billions of triangles: the reader waited for all of them before saying
+ * no, and for ever on /dev/urandom. 0, or VDT_EINVAL with vdt_stl_read's
+ * message at the first record that fails. Start from a zeroed scan.
+ */
+struct vdt_stl_scan {
+	uint64_t at;               /* bytes fed */
+	uint32_t count;            /* the header's, once fed */
+	unsigned char rec[50];     /* the header's count, then each record */
+};
+int vdt_stl_scan(struct vdt_stl_scan *s, const unsigned char *p, size_t n, struct vdt_err *err);
 int vdt_stl_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err);
 int vdt_off_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
                  struct vdt_err *err);

@@ -196,6 +196,47 @@ weld_done(struct weld *w, struct vdt_mesh *m)
 	weld_free(w);
 }
 
+/* Whether the 9 coordinates of a 50-byte record are finite. */
+static int
+record_finite(const unsigned char *r)
+{
+	for (int k = 0; k < 9; k++)
+		if (!isfinite(vdt_get_f32le(r + 12 + 4 * k)))
+			return 0;
+	return 1;
+}
+
+static int
+non_finite(uint64_t t, struct vdt_err *err)
+{
+	/* Named by its record, as vdt-cluster's reader names it: a welded
+	 * vertex number is nowhere in the file. */
+	return vdt_err_set(err, VDT_EINVAL, "triangle %llu: non-finite coordinate",
+	                   (unsigned long long)t);
+}
+
+int
+vdt_stl_scan(struct vdt_stl_scan *s, const unsigned char *p, size_t n, struct vdt_err *err)
+{
+	for (size_t i = 0; i < n; i++, s->at++) {
+		if (s->at < 80)
+			continue;
+		if (s->at < 84) {
+			s->rec[s->at - 80] = p[i];
+			if (s->at == 83)
+				s->count = vdt_get_u32le(s->rec);
+			continue;
+		}
+		uint64_t t = (s->at - 84) / 50, o = (s->at - 84) % 50;
+		if (t >= s->count) /* (past the triangles: vdt_stl_read's to judge) */
+			return 0;
+		s->rec[o] = p[i];
+		if (o == 49 && !record_finite(s->rec))
+			return non_finite(t, err);
+	}
+	return 0;
+}
+
 int
 vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
              struct vdt_err *err)
@@ -219,26 +260,22 @@ vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %lu triangles", (unsigned long)count);
 
 	const unsigned char *p = buf + 84;
-	for (size_t t = 0; t < count; t++, p += 50)
+	for (size_t t = 0; t < count; t++, p += 50) {
+		if (!record_finite(p)) {
+			weld_free(&w);
+			return non_finite(t, err);
+		}
 		for (int c = 0; c < 3; c++) {
 			float v[3];
 
-			for (int k = 0; k < 3; k++) {
+			for (int k = 0; k < 3; k++)
 				v[k] = vdt_get_f32le(p + 12 + 12 * c + 4 * k);
-				/* Named by its record, as vdt-cluster's reader names it:
-				 * a welded vertex number is nowhere in the file. */
-				if (!isfinite(v[k])) {
-					weld_free(&w);
-					return vdt_err_set(err, VDT_EINVAL,
-					                   "triangle %zu: non-finite coordinate",
-					                   t);
-				}
-			}
 			if (weld_corner(&w, v) != 0) {
 				weld_free(&w);
 				return vdt_err_set(err, VDT_ENOMEM, "out of memory welding STL vertices");
 			}
 		}
+	}
 	weld_done(&w, m);
 	return 0;
 }

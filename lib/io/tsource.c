@@ -161,6 +161,8 @@ spool(int in, enum vdt_format hint, size_t *len, struct vdt_err *err)
 {
 	unsigned char b[1 << 16], head[VDT_DETECT_BYTES];
 	uint64_t limit = UINT64_MAX; /* vdt_input_limit, once known */
+	struct vdt_stl_scan stl = {0};
+	int binary_stl = 0, rc;
 	size_t total = 0;
 	int fd = scratch_file(err);
 
@@ -178,15 +180,26 @@ spool(int in, enum vdt_format hint, size_t *len, struct vdt_err *err)
 		}
 		if (r == 0)
 			break;
+		size_t k = 0; /* of b, in head (scanned with it) */
 		if (total < VDT_DETECT_BYTES) {
-			size_t k = VDT_DETECT_BYTES - total < (size_t)r ? VDT_DETECT_BYTES - total : (size_t)r;
+			k = VDT_DETECT_BYTES - total < (size_t)r ? VDT_DETECT_BYTES - total : (size_t)r;
 			memcpy(head + total, b, k);
-			if (total + k == VDT_DETECT_BYTES)
+			if (total + k == VDT_DETECT_BYTES) {
 				limit = vdt_input_limit(head, hint);
+				binary_stl = vdt_format_guess(head, VDT_DETECT_BYTES, hint) == VDT_FMT_STL;
+				if (binary_stl && (rc = vdt_stl_scan(&stl, head, VDT_DETECT_BYTES, err)) != 0) {
+					close(fd);
+					return rc;
+				}
+			}
 		}
 		if (total + (size_t)r > limit) {
 			close(fd);
 			return vdt_input_limit_error(head, err);
+		}
+		if (binary_stl && (rc = vdt_stl_scan(&stl, b + k, (size_t)r - k, err)) != 0) {
+			close(fd);
+			return rc;
 		}
 		while (w < r) {
 			ssize_t k = write(fd, b + w, (size_t)(r - w));

@@ -602,6 +602,14 @@ END
 		run bash -c "timeout 60 '$BIN/$tool' -o '$TMP/out.off' < /dev/zero"
 		[ "$status" -eq 2 ]
 		[[ "$output" == *"not a binary STL: it goes on past its 0 triangles" ]]
+		# random bytes are taken for a binary STL of billions of
+		# triangles: they were read to the last of them, for ever from
+		# /dev/urandom, before the first non-finite number was found
+		for src in "/dev/urandom" "- < /dev/urandom"; do
+			run bash -c "timeout 60 '$BIN/$tool' -o '$TMP/out.off' $src"
+			[ "$status" -eq 2 ]
+			[[ "$output" == *": triangle "*": non-finite coordinate" ]]
+		done
 	done
 	[ ! -e "$TMP/out.off" ]
 }

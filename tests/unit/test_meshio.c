@@ -316,6 +316,51 @@ test_roundtrip_plain(void **state)
 	roundtrip(VDT_FMT_DRC, "a.drc", 0, 0, 0);
 }
 
+/*
+ * vdt_stl_scan fed a binary STL in pieces of every size from 1 byte up
+ * finds the record vdt_stl_read finds (a NaN in triangle 5 of 9, in its
+ * last corner), and nothing in a good one or in bytes past the triangles,
+ * which are vdt_stl_read's to judge (a second STL, say).
+ */
+static void
+test_stl_scan(void **state)
+{
+	enum { T = 9, N = 84 + 50 * T };
+	unsigned char b[N + 60];
+	struct vdt_mesh m;
+	struct vdt_err err;
+	float nan = NAN;
+
+	(void)state;
+	memset(b, 0, sizeof(b));
+	vdt_put_u32le(b + 80, T);
+	for (int t = 0; t < T; t++)
+		for (int k = 0; k < 9; k++)
+			vdt_put_f32le(b + 84 + 50 * t + 12 + 4 * k, (float)(t + k % 4));
+	for (size_t i = N; i < sizeof(b); i++)
+		b[i] = 0xff; /* NaNs past the triangles */
+	for (int bad = 0; bad < 2; bad++) {
+		if (bad)
+			vdt_put_f32le(b + 84 + 50 * 5 + 12 + 4 * 8, nan);
+		for (size_t piece = 1; piece <= sizeof(b); piece++) {
+			struct vdt_stl_scan s = {0};
+			int rc = 0;
+			memset(&err, 0, sizeof(err));
+			for (size_t at = 0; at < sizeof(b) && rc == 0; at += piece)
+				rc = vdt_stl_scan(&s, b + at, at + piece < sizeof(b) ? piece : sizeof(b) - at, &err);
+			assert_int_equal(rc, bad ? VDT_EINVAL : 0);
+			if (bad)
+				assert_string_equal(err.msg, "triangle 5: non-finite coordinate");
+		}
+		memset(&err, 0, sizeof(err));
+		assert_int_equal(vdt_stl_read(b, N, &m, &err), bad ? VDT_EINVAL : 0);
+		if (bad)
+			assert_string_equal(err.msg, "triangle 5: non-finite coordinate");
+		else
+			vdt_mesh_free(&m);
+	}
+}
+
 /* Positions (and UVs) whose range Draco cannot quantise, past the float
  * maximum or near the smallest normal float, are kept as they are: the
  * encoder crashed on the first and put every vertex on one point for the
@@ -910,6 +955,7 @@ main(void)
 		cmocka_unit_test(test_staged_outputs),
 		cmocka_unit_test(test_detect),
 		cmocka_unit_test(test_roundtrip_plain),
+		cmocka_unit_test(test_stl_scan),
 		cmocka_unit_test(test_draco_extreme_ranges),
 		cmocka_unit_test(test_draco_attribute_rounding),
 		cmocka_unit_test(test_roundtrip_attributes),
