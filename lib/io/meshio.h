@@ -363,6 +363,14 @@ int vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
                  struct vdt_err *err);
 
 /*
+ * 0 when what follows the triangles of the binary STL buf[0..len) (whose
+ * count they fit in) may be let be, as padding; VDT_EFORMAT when it is a
+ * second binary STL, which `cat a.stl b.stl` makes: read as the first
+ * alone, the second was lost unsaid.
+ */
+int vdt_stl_rest(const unsigned char *buf, size_t len, struct vdt_err *err);
+
+/*
  * A binary STL read from a pipe, checked as its bytes come (fed in order,
  * from its first, in pieces of any size): every coordinate of its records
  * must be finite, as vdt_stl_read requires. Bytes of no format are taken

@@ -238,6 +238,22 @@ vdt_stl_scan(struct vdt_stl_scan *s, const unsigned char *p, size_t n, struct vd
 }
 
 int
+vdt_stl_rest(const unsigned char *buf, size_t len, struct vdt_err *err)
+{
+	uint64_t count = vdt_get_u32le(buf + 80), rest = len - 84 - 50 * count;
+
+	if (rest >= 84) {
+		uint32_t c2 = vdt_get_u32le(buf + (len - rest) + 80);
+		if (c2 > 0 && 84 + 50 * (uint64_t)c2 == rest)
+			return vdt_err_set(err, VDT_EFORMAT,
+			                   "two binary STLs one after the other (%lu and %lu triangles): "
+			                   "give one",
+			                   (unsigned long)count, (unsigned long)c2);
+	}
+	return 0;
+}
+
+int
 vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
              struct vdt_err *err)
 {
@@ -256,6 +272,8 @@ vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 	if ((uint64_t)count * 3 > UINT32_MAX)
 		return vdt_err_set(err, VDT_EFORMAT, "binary STL has too many triangles (%lu)",
 		                   (unsigned long)count);
+	if (vdt_stl_rest(buf, len, err) != 0)
+		return VDT_EFORMAT;
 	if (weld_init(&w, count) != 0)
 		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %lu triangles", (unsigned long)count);
 

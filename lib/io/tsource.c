@@ -564,6 +564,8 @@ stl_open(struct vdt_tsource *s, struct vdt_err *err)
 		return vdt_err_set(err, VDT_EFORMAT,
 		                   "STL header announces %" PRIu32 " triangles, the file holds %zu",
 		                   c, (s->len - 84) / 50);
+	if (vdt_stl_rest(s->buf, s->len, err) != 0)
+		return VDT_EFORMAT;
 	s->tri_hint = c;
 	s->tbase = s->buf + 84;
 	return 0;

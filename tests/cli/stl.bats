@@ -169,3 +169,22 @@ PY
 	"$BIN/vdt-cluster" -q -g 2 "$TMP/h.stl" -o "$TMP/c.off"
 	[ "$(off_faces "$TMP/c.off")" -eq 1 ]
 }
+
+@test "vdt-qslim and vdt-cluster refuse two binary STLs one after the other, not read the first alone" {
+	# (small: a pipe's reader lets only 64 KB follow an STL's triangles)
+	"$BIN/vdt-qslim" -q -t 80 "$SAMPLES/sphere.off" -o "$TMP/s.stl"
+	cat "$TMP/s.stl" "$TMP/s.stl" > "$TMP/two.stl"
+	(cat "$TMP/s.stl"; head -c 100 /dev/zero) > "$TMP/pad.stl"
+	n=$(( ($(stat -c %s "$TMP/s.stl") - 84) / 50 ))
+	for t in "vdt-qslim -r 0.5" "vdt-cluster -g 8"; do
+		for src in "'$TMP/two.stl'" "- < '$TMP/two.stl'"; do
+			run sh -c "$BIN/$t -o '$TMP/out.off' $src"
+			[ "$status" -eq 2 ]
+			[[ "$output" == *": two binary STLs one after the other ($n and $n triangles): give one" ]]
+			[ ! -e "$TMP/out.off" ]
+		done
+		# bytes after the triangles that are no STL are still let be
+		$BIN/$t -q "$TMP/pad.stl" -o "$TMP/out.off"
+		rm "$TMP/out.off"
+	done
+}
