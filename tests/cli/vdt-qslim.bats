@@ -85,6 +85,12 @@ load helpers
 	[ "$status" -eq 1 ]
 	one_line
 	[[ "$output" == *"cannot write '$TMP/none/out.off': cannot create a temporary file"* ]]
+	# a name too long for the directory (the temporary file's is cut to
+	# fit: only the rename at the end failed)
+	long=$(printf '%0300d.off' 0)
+	run sh -c "'$BIN/vdt-qslim' -o '$TMP/$long' < /dev/null"
+	[ "$status" -eq 1 ]
+	[ "$output" = "vdt-qslim: cannot write '$TMP/$long': File name too long" ]
 	# nothing left beside it, and a good run still writes
 	"$BIN/vdt-qslim" -q -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/ok.off"
 	[ "$(ls -A "$TMP" | tr '\n' ' ')" = "dir.off ok.off " ]
