@@ -295,9 +295,10 @@ int vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
  * run vdt_mesh_validate; writers write m to f and return 0, VDT_EIO or
  * VDT_ENOMEM (f is not closed). A text reader refuses a number it holds
  * that is finite but beyond a float's range ("1e39") as VDT_EFORMAT, and
- * the PLY reader a double coordinate so as VDT_EINVAL, naming it "out of
- * float range" with its line or vertex: the check of the mesh would call
- * the infinity it became non-finite.
+ * the PLY reader a double coordinate, normal, texture coordinate or colour
+ * so as VDT_EINVAL, naming it "out of float range" with its line or
+ * vertex: the check of the mesh would call the infinity it became
+ * non-finite.
  *
  * vdt_ply_read: PLY, ASCII or binary of either byte order (ply.c, native);
  *   polygons are triangulated (polygon.h), elements other than vertex and face and

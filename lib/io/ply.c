@@ -79,6 +79,35 @@ color_value(double v, enum vdt_ply_type t)
 	}
 }
 
+/*
+ * Values a .. a+n-1 of vertex i's binary record r into out as floats
+ * (colours scaled to [0,1]). One beyond a float's range is refused, named
+ * by vdt_plyhead_check_float, not left as an infinity for the check of the
+ * mesh to call non-finite; only an infinity is looked at, so that the
+ * common value costs no call.
+ */
+static int
+get_floats(const unsigned char *r, const size_t *off, const enum vdt_ply_type *type, int a, int n,
+           int be, size_t i, float *out, struct vdt_err *err)
+{
+	static const char *what[A_COUNT] = {
+	        [A_X] = "coordinate",
+	        [A_NX] = "normal",
+	        [A_U] = "texture coordinate",
+	        [A_R] = "colour",
+	};
+	int rc;
+
+	for (int k = 0; k < n; k++) {
+		double d = vdt_plyhead_scalar(r + off[a + k], type[a + k], be);
+
+		out[k] = (float)(a == A_R ? color_value(d, type[a + k]) : d);
+		if (isinf(out[k]) && (rc = vdt_plyhead_check_float(d, i, what[a], err)) != 0)
+			return rc;
+	}
+	return 0;
+}
+
 static int
 read_vertices(const struct vdt_plyhead *h, const struct vdt_ply_element *e,
               const unsigned char *p, size_t recsize, struct vdt_mesh *m,
@@ -127,35 +156,28 @@ read_vertices(const struct vdt_plyhead *h, const struct vdt_ply_element *e,
 		}
 	} else {
 		for (size_t i = 0; i < n; i++)
-			for (int k = 0; k < 3; k++) {
-				double d = vdt_plyhead_scalar(p + i * recsize + off[A_X + k],
-				                              type[A_X + k], be);
-
-				if ((rc = vdt_plyhead_check_coordinate(d, i, err)) != 0)
-					return rc;
-				pos[3 * i + k] = (float)d;
-			}
+			if ((rc = get_floats(p + i * recsize, off, type, A_X, 3, be, i, pos + 3 * i,
+			                     err)) != 0)
+				return rc;
 	}
 	if (m->normals)
 		for (size_t i = 0; i < n; i++)
-			for (int k = 0; k < 3; k++)
-				m->normals[3 * i + k] = (float)vdt_plyhead_scalar(
-					p + i * recsize + off[A_NX + k], type[A_NX + k], be);
+			if ((rc = get_floats(p + i * recsize, off, type, A_NX, 3, be, i,
+			                     m->normals + 3 * i, err)) != 0)
+				return rc;
 	if (m->uvs)
 		for (size_t i = 0; i < n; i++)
-			for (int k = 0; k < 2; k++)
-				m->uvs[2 * i + k] = (float)vdt_plyhead_scalar(
-					p + i * recsize + off[A_U + k], type[A_U + k], be);
+			if ((rc = get_floats(p + i * recsize, off, type, A_U, 2, be, i,
+			                     m->uvs + 2 * i, err)) != 0)
+				return rc;
 	if (m->colors)
-		for (size_t i = 0; i < n; i++)
-			for (int k = 0; k < 4; k++) {
-				double c = 1.0;
-				if (k < 3 || have[A_A])
-					c = color_value(vdt_plyhead_scalar(p + i * recsize + off[A_R + k],
-					                           type[A_R + k], be),
-					                type[A_R + k]);
-				m->colors[4 * i + k] = (float)c;
-			}
+		for (size_t i = 0; i < n; i++) {
+			if ((rc = get_floats(p + i * recsize, off, type, A_R, have[A_A] ? 4 : 3, be,
+			                     i, m->colors + 4 * i, err)) != 0)
+				return rc;
+			if (!have[A_A])
+				m->colors[4 * i + 3] = 1;
+		}
 	return 0;
 }
 

@@ -280,11 +280,11 @@ vdt_plyhead_scalar(const unsigned char *p, enum vdt_ply_type t, int be)
 }
 
 int
-vdt_plyhead_check_coordinate(double d, uint64_t v, struct vdt_err *err)
+vdt_plyhead_check_float(double d, uint64_t v, const char *what, struct vdt_err *err)
 {
 	if (isfinite(d) && isinf((float)d))
-		return vdt_err_set(err, VDT_EINVAL, "vertex %llu: coordinate %g out of float range",
-		                   (unsigned long long)v, d);
+		return vdt_err_set(err, VDT_EINVAL, "vertex %llu: %s %g out of float range",
+		                   (unsigned long long)v, what, d);
 	return 0;
 }
 

@@ -71,11 +71,13 @@ uint64_t vdt_plyhead_u64(const unsigned char *p, int be);
 double vdt_plyhead_scalar(const unsigned char *p, enum vdt_ply_type t, int be);
 
 /*
- * A coordinate of vertex v as read (a double property may hold any
- * double): VDT_EINVAL naming the vertex and the number when it is finite
- * but beyond a float's range, where positions are held, else 0.
+ * A value of vertex v as read (a double property may hold any double),
+ * held as a float: VDT_EINVAL naming the vertex, what the value is
+ * ("coordinate", "normal", ...) and the number when it is finite but
+ * beyond a float's range ("vertex 3: normal 1e+300 out of float range"),
+ * else 0.
  */
-int vdt_plyhead_check_coordinate(double d, uint64_t v, struct vdt_err *err);
+int vdt_plyhead_check_float(double d, uint64_t v, const char *what, struct vdt_err *err);
 
 /*
  * An integer list count or index. Signed values are returned sign-extended

@@ -359,7 +359,7 @@ ply_vertices(struct vdt_tsource *s, double *xyz, size_t max, size_t *n, struct v
 			return vdt_err_set(err, VDT_EINVAL, "vertex %" PRIu64 ": non-finite coordinate",
 			                   s->vcur);
 		for (int a = 0; a < 3; a++) {
-			int rc = vdt_plyhead_check_coordinate(p[a], s->vcur, err);
+			int rc = vdt_plyhead_check_float(p[a], s->vcur, "coordinate", err);
 
 			if (rc != 0)
 				return rc;

@@ -1,0 +1,169 @@
+/*
+ * test_ply_binary.c - the native binary PLY reader's refusals, in both
+ * byte orders: each names the fault and its vertex or face as the file
+ * has it, not as what it turned into (an infinity, a rounded index, a
+ * record that seemed cut short).
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <stdio.h>
+#include <string.h>
+
+#include "../../lib/bytes.h"
+#include "../../lib/io/meshio.h"
+
+#define XYZ "property float x\nproperty float y\nproperty float z\n"
+
+struct ply {
+	unsigned char b[1024];
+	size_t n;
+	int be;
+};
+
+/* A header of the elements given, for byte order be. */
+static void
+head(struct ply *p, int be, const char *elements)
+{
+	p->be = be;
+	p->n = (size_t)snprintf((char *)p->b, sizeof(p->b),
+	                        "ply\nformat binary_%s_endian 1.0\n%send_header\n",
+	                        be ? "big" : "little", elements);
+}
+
+/*
+ * Values, every one passed as a double, of the types named one letter
+ * each: c char, C uchar, s short, i int, f float, d double.
+ */
+static void
+put(struct ply *p, const char *types, ...)
+{
+	va_list ap;
+
+	va_start(ap, types);
+	for (const char *t = types; *t != '\0'; t++) {
+		double v = va_arg(ap, double);
+		unsigned char q[8];
+		size_t w;
+
+		switch (*t) {
+		case 'c':
+			q[0] = (unsigned char)(int8_t)v;
+			w = 1;
+			break;
+		case 'C':
+			q[0] = (unsigned char)v;
+			w = 1;
+			break;
+		case 's':
+			vdt_put_u16le(q, (uint16_t)(int16_t)v);
+			w = 2;
+			break;
+		case 'i':
+			vdt_put_u32le(q, (uint32_t)(int32_t)v);
+			w = 4;
+			break;
+		case 'f':
+			vdt_put_f32le(q, (float)v);
+			w = 4;
+			break;
+		default:
+			vdt_put_f64le(q, v);
+			w = 8;
+			break;
+		}
+		assert_true(p->n + w <= sizeof(p->b));
+		for (size_t k = 0; k < w; k++)
+			p->b[p->n + k] = q[p->be ? w - 1 - k : k];
+		p->n += w;
+	}
+	va_end(ap);
+}
+
+/* Reading p fails with code and exactly the message want; *m stays empty. */
+static void
+expect_error(const struct ply *p, int code, const char *want)
+{
+	struct vdt_mesh m;
+	struct vdt_err err = {0};
+	int rc = vdt_read_memory(p->b, p->n, NULL, &m, NULL, &err);
+
+	if (rc != code)
+		fail_msg("expected %d, got %d (%s)", code, rc, err.msg);
+	assert_string_equal(err.msg, want);
+	assert_null(m.positions);
+	assert_null(m.triangles);
+}
+
+/*
+ * A double beyond a float's range in a normal, a texture coordinate or a
+ * colour of vertex 1 of the triangle
+ *
+ *   2
+ *   | \
+ *   0 - 1
+ *
+ * is named as such, as a coordinate is: the number is finite, and the
+ * check of the mesh called the infinity it became non-finite. 3e38 still
+ * reads.
+ */
+static void
+test_beyond_float(void **state)
+{
+	static const struct {
+		const char *props;
+		int n;
+		const char *want;
+	} c[] = {
+	        {"property double nx\nproperty double ny\nproperty double nz\n", 3,
+	         "vertex 1: normal -1e+300 out of float range"},
+	        {"property double s\nproperty double t\n", 2,
+	         "vertex 1: texture coordinate -1e+300 out of float range"},
+	        {"property double red\nproperty double green\nproperty double blue\n", 3,
+	         "vertex 1: colour -1e+300 out of float range"},
+	        {"property double red\nproperty double green\nproperty double blue\n"
+	         "property double alpha\n",
+	         4, "vertex 1: colour -1e+300 out of float range"},
+	};
+	char elements[512];
+	(void)state;
+
+	for (size_t i = 0; i < sizeof(c) / sizeof(c[0]); i++)
+		for (int be = 0; be < 4; be++) {
+			double bad = be < 2 ? -1e300 : 3e38;
+			struct vdt_mesh m;
+			struct ply p;
+
+			snprintf(elements, sizeof(elements),
+			         "element vertex 3\n" XYZ "%s"
+			         "element face 1\nproperty list uchar int vertex_indices\n",
+			         c[i].props);
+			head(&p, be % 2, elements);
+			for (int v = 0; v < 3; v++) {
+				put(&p, "fff", v == 1 ? 1.0 : 0.0, v == 2 ? 1.0 : 0.0, 0.0);
+				for (int k = 0; k < c[i].n; k++)
+					put(&p, "d", v == 1 && k == 1 ? bad : 0.5);
+			}
+			put(&p, "Ciii", 3.0, 0.0, 1.0, 2.0);
+			if (bad < 0) {
+				expect_error(&p, VDT_EINVAL, c[i].want);
+				continue;
+			}
+			assert_int_equal(vdt_read_memory(p.b, p.n, NULL, &m, NULL, NULL), 0);
+			assert_int_equal(m.triangle_count, 1);
+			vdt_mesh_free(&m);
+		}
+}
+
+int
+main(void)
+{
+	const struct CMUnitTest tests[] = {
+	        cmocka_unit_test(test_beyond_float),
+	};
+
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
