@@ -248,8 +248,8 @@ read_faces(const struct vdt_plyhead *h, const struct vdt_ply_element *e,
 					if (v < 0 || (uint64_t)v >= nv) {
 						free(t);
 						vdt_polygon_free(&poly);
-						return vdt_err_set(err, VDT_EINVAL, "face %llu uses vertex %lld of %zu",
-						                   (unsigned long long)f, (long long)v, nv);
+						return vdt_plyhead_bad_index((double)v, lp->type, f,
+						                             nv, VDT_EINVAL, err);
 					}
 					t[3 * nt + k] = (uint32_t)v;
 				}
@@ -267,15 +267,11 @@ read_faces(const struct vdt_plyhead *h, const struct vdt_ply_element *e,
 			int64_t v = vdt_plyhead_int(q + (size_t)k * is, lp->type, be);
 
 			if (v < 0 || (uint64_t)v >= nv) {
-				double d = vdt_plyhead_scalar(q + (size_t)k * is, lp->type, be);
-				char shown[32];
-
 				free(t);
 				vdt_polygon_free(&poly);
-				return vdt_err_set(err, VDT_EINVAL,
-				                   "face %llu uses vertex %s of %zu",
-				                   (unsigned long long)f,
-				                   vdt_plyhead_shown(d, lp->type, shown), nv);
+				return vdt_plyhead_bad_index(
+				        vdt_plyhead_scalar(q + (size_t)k * is, lp->type, be),
+				        lp->type, f, nv, VDT_EINVAL, err);
 			}
 			if (k == 0)
 				first = v;
@@ -412,13 +408,6 @@ text_end_record(struct text *t, const struct where *w, struct vdt_err *err)
 	return 0;
 }
 
-/* A list count or index from a value of an integer or float type. */
-static int64_t
-as_int(double d)
-{
-	return isfinite(d) && d >= -1e18 && d <= 1e18 ? (int64_t)d : -1;
-}
-
 /* Every record of e read and dropped, lists included. */
 static int
 text_skip(struct text *t, const struct vdt_ply_element *e, struct vdt_err *err)
@@ -435,7 +424,7 @@ text_skip(struct text *t, const struct vdt_ply_element *e, struct vdt_err *err)
 			if (pr->count_type != VDT_PLY_NONE) {
 				if ((rc = text_value(t, pr->count_type, 0, &w, &d, err)) != 0)
 					return rc;
-				c = as_int(d);
+				c = vdt_plyhead_whole(d);
 			}
 			/* Each value takes a byte: a huge count ends at the end of the data. */
 			for (int64_t k = 0; k < c; k++)
@@ -534,7 +523,7 @@ text_faces(struct text *t, const struct vdt_ply_element *e, struct vdt_mesh *m, 
 			if (pr->count_type != VDT_PLY_NONE) {
 				if ((rc = text_value(t, pr->count_type, 0, &w, &d, err)) != 0)
 					goto fail;
-				c = as_int(d);
+				c = vdt_plyhead_whole(d);
 			}
 			if (i == li && c < 3) {
 				rc = vdt_err_set(err, VDT_EFORMAT, "face %llu has %lld vertices",
@@ -548,14 +537,10 @@ text_faces(struct text *t, const struct vdt_ply_element *e, struct vdt_mesh *m, 
 					goto fail;
 				if (i != li)
 					continue;
-				v = as_int(d);
+				v = vdt_plyhead_whole(d);
 				if (v < 0 || (uint64_t)v >= nv) {
-					char shown[32];
-
-					rc = vdt_err_set(err, VDT_EINVAL,
-					                 "face %llu uses vertex %s of %zu",
-					                 (unsigned long long)w.r,
-					                 vdt_plyhead_shown(d, pr->type, shown), nv);
+					rc = vdt_plyhead_bad_index(d, pr->type, w.r, nv, VDT_EINVAL,
+					                           err);
 					goto fail;
 				}
 				if (k == 0) {

@@ -291,11 +291,15 @@ vdt_plyhead_check_float(double d, uint64_t v, const char *what, struct vdt_err *
 int64_t
 vdt_plyhead_int(const unsigned char *p, enum vdt_ply_type t, int be)
 {
-	if (t == VDT_PLY_F32 || t == VDT_PLY_F64) {
-		double d = vdt_plyhead_scalar(p, t, be);
-		return isfinite(d) && d >= -1e18 && d <= 1e18 ? (int64_t)d : -1;
-	}
+	if (t == VDT_PLY_F32 || t == VDT_PLY_F64)
+		return vdt_plyhead_whole(vdt_plyhead_scalar(p, t, be));
 	return t == VDT_PLY_NONE ? -1 : integer(p, t, be);
+}
+
+int64_t
+vdt_plyhead_whole(double d)
+{
+	return d >= -1e18 && d <= 1e18 && d == floor(d) ? (int64_t)d : -1;
 }
 
 const char *
@@ -304,6 +308,20 @@ vdt_plyhead_shown(double d, enum vdt_ply_type t, char out[32])
 	/* every integer type is exact in a double */
 	snprintf(out, 32, t == VDT_PLY_F32 || t == VDT_PLY_F64 ? "%.9g" : "%.0f", d);
 	return out;
+}
+
+int
+vdt_plyhead_bad_index(double d, enum vdt_ply_type t, uint64_t f, uint64_t nv, int code,
+                      struct vdt_err *err)
+{
+	char shown[32];
+
+	vdt_plyhead_shown(d, t, shown);
+	if (isfinite(d) && d != floor(d))
+		return vdt_err_set(err, code, "face %llu has a non-integer vertex index %s",
+		                   (unsigned long long)f, shown);
+	return vdt_err_set(err, code, "face %llu uses vertex %s of %llu", (unsigned long long)f,
+	                   shown, (unsigned long long)nv);
 }
 
 size_t

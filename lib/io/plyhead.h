@@ -81,10 +81,14 @@ int vdt_plyhead_check_float(double d, uint64_t v, const char *what, struct vdt_e
 
 /*
  * An integer list count or index. Signed values are returned sign-extended
- * so that a negative index is reported as such; a float, when it is a
- * whole number in range, else -1.
+ * so that a negative index is reported as such; a float as
+ * vdt_plyhead_whole gives it.
  */
 int64_t vdt_plyhead_int(const unsigned char *p, enum vdt_ply_type t, int be);
+
+/* A list count or index read from a float type: d when it is a whole
+ * number within 1e18 of 0, else -1 (2.5 is no index, not 2). */
+int64_t vdt_plyhead_whole(double d);
 
 /*
  * A list index d, read as a value of type t, as a message shows it: an
@@ -92,6 +96,16 @@ int64_t vdt_plyhead_int(const unsigned char *p, enum vdt_ply_type t, int be);
  * not the -1 vdt_plyhead_int makes of it. Returns out.
  */
 const char *vdt_plyhead_shown(double d, enum vdt_ply_type t, char out[32]);
+
+/*
+ * The refusal of index d (read as type t) of face f, which names none of
+ * the nv vertices: code (the whole-file reader's VDT_EINVAL, the streamed
+ * source's VDT_EFORMAT) with "face 3 has a non-integer vertex index 2.5",
+ * or "face 3 uses vertex 9001 of 8000" (shown as vdt_plyhead_shown shows
+ * it). Returns code.
+ */
+int vdt_plyhead_bad_index(double d, enum vdt_ply_type t, uint64_t f, uint64_t nv, int code,
+                          struct vdt_err *err);
 
 /* Bytes of one record of e at p (at most avail), or 0 if it does not fit. */
 size_t vdt_plyhead_record_size(const struct vdt_ply_element *e, const unsigned char *p,

@@ -375,11 +375,8 @@ ply_vertices(struct vdt_tsource *s, double *xyz, size_t max, size_t *n, struct v
 static int
 bad_index(struct vdt_tsource *s, const unsigned char *at, enum vdt_ply_type t, struct vdt_err *err)
 {
-	char shown[32];
-
-	return vdt_err_set(err, VDT_EFORMAT, "face %" PRIu64 " uses vertex %s of %" PRIu64, s->fidx,
-	                   vdt_plyhead_shown(vdt_plyhead_scalar(at, t, s->be), t, shown),
-	                   s->vcount);
+	return vdt_plyhead_bad_index(vdt_plyhead_scalar(at, t, s->be), t, s->fidx, s->vcount,
+	                             VDT_EFORMAT, err);
 }
 
 /* Where corner k of the polygon being read lies. */

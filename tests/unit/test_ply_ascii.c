@@ -250,6 +250,26 @@ test_reject(void **state)
 	             "property list uchar double vertex_indices\nend_header\n"
 	             "0 0 0\n1 0 0\n0 1 0\n3 0 1 1e30\n",
 	             VDT_EINVAL, "face 0 uses vertex 1.00000002e+30 of 3");
+	/* a float index that is no whole number names no vertex: not the
+	 * one below it; 2.0 names vertex 2 */
+	{
+		struct vdt_mesh m;
+
+		read_ok("ply\nformat ascii 1.0\nelement vertex 3\n" XYZ "element face 1\n"
+		        "property list uchar float vertex_indices\nend_header\n"
+		        "0 0 0\n1 0 0\n0 1 0\n3 0 1 2.0\n",
+		        &m);
+		assert_int_equal(m.triangles[2], 2);
+		vdt_mesh_free(&m);
+	}
+	expect_error("ply\nformat ascii 1.0\nelement vertex 3\n" XYZ "element face 2\n"
+	             "property list uchar float vertex_indices\nend_header\n"
+	             "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2.5\n",
+	             VDT_EINVAL, "face 1 has a non-integer vertex index 2.5");
+	expect_error("ply\nformat ascii 1.0\nelement vertex 3\n" XYZ "element face 1\n"
+	             "property list uchar double vertex_indices\nend_header\n"
+	             "0 0 0\n1 0 0\n0 1 0\n3 0 1 -0.5\n",
+	             VDT_EINVAL, "face 0 has a non-integer vertex index -0.5");
 	expect_error(HEAD(99999999999999999999, 1) "0 0 0\n", VDT_EFORMAT,
 	             "PLY header line 3: element count 99999999999999999999 is too large");
 	expect_error("ply\nformat ascii 1.0\nelement face 1\n" FACES "element vertex 3\n" XYZ

@@ -158,11 +158,54 @@ test_beyond_float(void **state)
 		}
 }
 
+/*
+ * A float or double index that is not a whole number is refused with its
+ * face, not cut to the vertex below it: in the quad 0 1 3 2.5 (face 1),
+ * 2.5 named vertex 2. 2.0 names vertex 2.
+ *
+ *   2 --- 3
+ *   | \   |
+ *   0 --- 1
+ */
+static void
+test_index_not_integer(void **state)
+{
+	static const char *types[2] = {"float", "double"};
+	(void)state;
+
+	for (int i = 0; i < 8; i++) {
+		int be = i & 1, dbl = i >> 1 & 1, bad = i >> 2;
+		const char *it = dbl ? "Cddd" : "Cfff", *it4 = dbl ? "Cdddd" : "Cffff";
+		char elements[256];
+		struct vdt_mesh m;
+		struct vdt_err err = {0};
+		struct ply p;
+
+		snprintf(elements, sizeof(elements),
+		         "element vertex 4\n" XYZ
+		         "element face 2\nproperty list uchar %s vertex_indices\n",
+		         types[dbl]);
+		head(&p, be, elements);
+		put(&p, "ffffffffffff", 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0);
+		put(&p, it, 3.0, 0.0, 1.0, 2.0);
+		put(&p, it4, 4.0, 0.0, 1.0, 3.0, bad ? 2.5 : 2.0);
+		if (bad) {
+			expect_error(&p, VDT_EINVAL, "face 1 has a non-integer vertex index 2.5");
+			continue;
+		}
+		if (vdt_read_memory(p.b, p.n, NULL, &m, NULL, &err) != 0)
+			fail_msg("%s", err.msg);
+		assert_int_equal(m.triangle_count, 3);
+		vdt_mesh_free(&m);
+	}
+}
+
 int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
 	        cmocka_unit_test(test_beyond_float),
+	        cmocka_unit_test(test_index_not_integer),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
