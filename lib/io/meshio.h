@@ -302,7 +302,8 @@ int vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
  *
  * vdt_ply_read: PLY, ASCII or binary of either byte order (ply.c, native);
  *   polygons are triangulated (polygon.h), elements other than vertex and face and
- *   unknown properties are skipped.
+ *   unknown properties are skipped. A negative list count, or a float index
+ *   that is not a whole number, is refused with its record (plyhead.h).
  * vdt_obj_read: Wavefront OBJ (obj.c, native): v (with optional vertex
  *   colours), vt, vn and f; polygons are triangulated. Vertices are
  *   split where the (v, vt, vn) triples of corners differ: one vertex per

@@ -347,6 +347,10 @@ read_faces(struct reader *r, size_t nf, struct vdt_mesh *m, struct vdt_polygon *
 			return vdt_err_set(err, VDT_EFORMAT,
 			                   "face %zu has a bad vertex count '%s' on line %zu", f,
 			                   quote(r->p, r->end, q), r->line);
+		if (k < 0)
+			return vdt_err_set(err, VDT_EFORMAT,
+			                   "face %zu has a negative vertex count '%s' on line %zu",
+			                   f, vdt_text_int_shown(tok, r->end, k, shown), r->line);
 		if (k < 3)
 			return vdt_err_set(err, VDT_EFORMAT, "face %zu has %s vertices", f,
 			                   vdt_text_int_shown(tok, r->end, k, shown));

@@ -207,10 +207,14 @@ read_faces(const struct vdt_plyhead *h, const struct vdt_ply_element *e,
 		size_t rs = vdt_plyhead_record_size(e, p + o, avail - o, be);
 		size_t lo = 0;
 		int64_t c;
+		int rc;
 
-		if (rs == 0)
+		if (rs == 0) {
+			if ((rc = vdt_plyhead_record_fault(e, f, p + o, avail - o, be, err)) != 0)
+				return rc;
 			return vdt_err_set(err, VDT_EFORMAT, "PLY file is truncated in face %llu of %llu",
 			                   (unsigned long long)f, (unsigned long long)e->count);
+		}
 		lo = vdt_plyhead_list_offset(e, li, p + o, be);
 		c = vdt_plyhead_int(p + o + lo, lp->count_type, be);
 		if (c < 3)
@@ -408,6 +412,22 @@ text_end_record(struct text *t, const struct where *w, struct vdt_err *err)
 	return 0;
 }
 
+/* The count of list pr in record w, refused when negative as a binary
+ * one is. */
+static int
+text_count(struct text *t, const struct vdt_ply_prop *pr, const struct where *w, int64_t *c,
+           struct vdt_err *err)
+{
+	double d;
+	int rc;
+
+	if ((rc = text_value(t, pr->count_type, 0, w, &d, err)) != 0 ||
+	    (rc = vdt_plyhead_check_count(d, w->e, pr, w->r, err)) != 0)
+		return rc;
+	*c = (int64_t)d;
+	return 0;
+}
+
 /* Every record of e read and dropped, lists included. */
 static int
 text_skip(struct text *t, const struct vdt_ply_element *e, struct vdt_err *err)
@@ -421,11 +441,9 @@ text_skip(struct text *t, const struct vdt_ply_element *e, struct vdt_err *err)
 			const struct vdt_ply_prop *pr = &e->props[i];
 			int64_t c = 1;
 
-			if (pr->count_type != VDT_PLY_NONE) {
-				if ((rc = text_value(t, pr->count_type, 0, &w, &d, err)) != 0)
-					return rc;
-				c = vdt_plyhead_whole(d);
-			}
+			if (pr->count_type != VDT_PLY_NONE &&
+			    (rc = text_count(t, pr, &w, &c, err)) != 0)
+				return rc;
 			/* Each value takes a byte: a huge count ends at the end of the data. */
 			for (int64_t k = 0; k < c; k++)
 				if ((rc = text_value(t, pr->type, 0, &w, &d, err)) != 0)
@@ -520,11 +538,9 @@ text_faces(struct text *t, const struct vdt_ply_element *e, struct vdt_mesh *m, 
 			const struct vdt_ply_prop *pr = &e->props[i];
 			int64_t c = 1, first = 0, prev = 0;
 
-			if (pr->count_type != VDT_PLY_NONE) {
-				if ((rc = text_value(t, pr->count_type, 0, &w, &d, err)) != 0)
-					goto fail;
-				c = vdt_plyhead_whole(d);
-			}
+			if (pr->count_type != VDT_PLY_NONE &&
+			    (rc = text_count(t, pr, &w, &c, err)) != 0)
+				goto fail;
 			if (i == li && c < 3) {
 				rc = vdt_err_set(err, VDT_EFORMAT, "face %llu has %lld vertices",
 				                 (unsigned long long)w.r, (long long)c);
@@ -709,7 +725,13 @@ vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 			for (uint64_t r = 0; r < e->count; r++) {
 				rs = vdt_plyhead_record_size(e, buf + pos, len - pos, h->big_endian);
 				if (rs == 0) {
-					rc = vdt_err_set(err, VDT_EFORMAT, "PLY file is truncated in element '%s'", e->name);
+					rc = vdt_plyhead_record_fault(e, r, buf + pos, len - pos,
+					                              h->big_endian, err);
+					if (rc == 0)
+						rc = vdt_err_set(
+						        err, VDT_EFORMAT,
+						        "PLY file is truncated in element '%s'",
+						        e->name);
 					goto out;
 				}
 				pos += rs;

@@ -324,11 +324,18 @@ vdt_plyhead_bad_index(double d, enum vdt_ply_type t, uint64_t f, uint64_t nv, in
 	                   shown, (unsigned long long)nv);
 }
 
-size_t
-vdt_plyhead_record_size(const struct vdt_ply_element *e, const unsigned char *p, size_t avail, int be)
+/*
+ * vdt_plyhead_record_size, and where it stopped at a negative list count:
+ * that list's index in e->props in *bad and the count's offset in *at;
+ * *bad is e->prop_count otherwise.
+ */
+static inline size_t
+record_walk(const struct vdt_ply_element *e, const unsigned char *p, size_t avail, int be,
+            size_t *bad, size_t *at)
 {
 	size_t off = 0;
 
+	*bad = e->prop_count;
 	for (size_t i = 0; i < e->prop_count; i++) {
 		const struct vdt_ply_prop *pr = &e->props[i];
 
@@ -343,13 +350,49 @@ vdt_plyhead_record_size(const struct vdt_ply_element *e, const unsigned char *p,
 			if (off + cs > avail)
 				return 0;
 			c = vdt_plyhead_int(p + off, pr->count_type, be);
+			if (c < 0) {
+				*bad = i;
+				*at = off;
+				return 0;
+			}
 			off += cs;
-			if (c < 0 || (uint64_t)c > (avail - off) / vdt_ply_type_size[pr->type])
+			if ((uint64_t)c > (avail - off) / vdt_ply_type_size[pr->type])
 				return 0;
 			off += (size_t)c * vdt_ply_type_size[pr->type];
 		}
 	}
 	return off;
+}
+
+size_t
+vdt_plyhead_record_size(const struct vdt_ply_element *e, const unsigned char *p, size_t avail,
+                        int be)
+{
+	size_t bad, at;
+
+	return record_walk(e, p, avail, be, &bad, &at);
+}
+
+int
+vdt_plyhead_check_count(double d, const struct vdt_ply_element *e, const struct vdt_ply_prop *pr,
+                        uint64_t r, struct vdt_err *err)
+{
+	if (d >= 0)
+		return 0;
+	return vdt_err_set(err, VDT_EFORMAT, "%s %llu has a negative count %.0f in list '%s'",
+	                   e->name, (unsigned long long)r, d, pr->name);
+}
+
+int
+vdt_plyhead_record_fault(const struct vdt_ply_element *e, uint64_t r, const unsigned char *p,
+                         size_t avail, int be, struct vdt_err *err)
+{
+	size_t bad, at;
+
+	if (record_walk(e, p, avail, be, &bad, &at) != 0 || bad == e->prop_count)
+		return 0;
+	return vdt_plyhead_check_count(vdt_plyhead_scalar(p + at, e->props[bad].count_type, be), e,
+	                               &e->props[bad], r, err);
 }
 
 int

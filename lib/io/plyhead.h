@@ -107,9 +107,29 @@ const char *vdt_plyhead_shown(double d, enum vdt_ply_type t, char out[32]);
 int vdt_plyhead_bad_index(double d, enum vdt_ply_type t, uint64_t f, uint64_t nv, int code,
                           struct vdt_err *err);
 
-/* Bytes of one record of e at p (at most avail), or 0 if it does not fit. */
+/* Bytes of one record of e at p (at most avail), or 0 if it does not fit
+ * or a list count in it is negative (vdt_plyhead_record_fault). */
 size_t vdt_plyhead_record_size(const struct vdt_ply_element *e, const unsigned char *p,
                                size_t avail, int be);
+
+/*
+ * The count d of list pr in record r of element e (of an integer type:
+ * the header takes no other): VDT_EFORMAT when it is negative, as a signed
+ * type's may be ("face 3 has a negative count -3 in list
+ * 'vertex_indices'"), else 0 (a count too large for the data left is the
+ * reader's "truncated").
+ */
+int vdt_plyhead_check_count(double d, const struct vdt_ply_element *e,
+                            const struct vdt_ply_prop *pr, uint64_t r, struct vdt_err *err);
+
+/*
+ * Why record r of e at p does not fit in avail bytes, once
+ * vdt_plyhead_record_size found so: the refusal of vdt_plyhead_check_count
+ * of a list count in it, or 0 when the bytes run out first (the reader's
+ * "truncated").
+ */
+int vdt_plyhead_record_fault(const struct vdt_ply_element *e, uint64_t r, const unsigned char *p,
+                             size_t avail, int be, struct vdt_err *err);
 
 /* Whether e's records all have one size (no lists): 1 and *size, else 0. */
 int vdt_plyhead_fixed_size(const struct vdt_ply_element *e, size_t *size);

@@ -234,6 +234,11 @@ ply_skip(const struct vdt_tsource *s, const struct vdt_ply_element *e, size_t *a
 	}
 	for (uint64_t r = 0; r < e->count; r++) {
 		size_t k = vdt_plyhead_record_size(e, s->buf + *at, s->len - *at, s->be);
+		int rc;
+
+		if (k == 0 && (rc = vdt_plyhead_record_fault(e, r, s->buf + *at, s->len - *at,
+		                                             s->be, err)) != 0)
+			return rc;
 		if (k == 0)
 			return vdt_err_set(err, VDT_EFORMAT, "PLY file is truncated in element '%s'", e->name);
 		*at += k;
@@ -460,7 +465,11 @@ ply_next_face(struct vdt_tsource *s, struct vdt_err *err)
 	const struct vdt_ply_prop *lp = &e->props[s->list_prop];
 	const unsigned char *p = s->fcur;
 	size_t size = vdt_plyhead_record_size(e, p, (size_t)(s->fend - p), s->be), lo;
+	int rc;
 
+	if (size == 0 &&
+	    (rc = vdt_plyhead_record_fault(e, s->fidx, p, (size_t)(s->fend - p), s->be, err)) != 0)
+		return rc;
 	if (size == 0)
 		return vdt_err_set(err, VDT_EFORMAT, "PLY file is truncated in face %" PRIu64
 		                   " of %" PRIu64, s->fidx, s->fcount);

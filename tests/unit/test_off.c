@@ -281,7 +281,10 @@ test_reject(void **state)
 	expect_error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0 1 2 3 4 5 6 7 8 9 10 11 12 13 14\n3 0 1 2\n",
 	             VDT_EFORMAT, "vertex 2 has more than 16 values on line 5");
 	expect_error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n" PAD, VDT_EFORMAT, "face 0 has 2 vertices");
-	expect_error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n-3 0 1 2\n", VDT_EFORMAT, "face 0 has -3 vertices");
+	expect_error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n-3 0 1 2\n", VDT_EFORMAT,
+	             "face 0 has a negative vertex count '-3' on line 6");
+	expect_error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n-99999999999999999999 0 1 2\n", VDT_EFORMAT,
+	             "face 0 has a negative vertex count '-99999999999999999999' on line 6");
 	expect_error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n70000 0 1 2\n", VDT_EFORMAT,
 	             "face 0 has 70000 vertices, more than 65536");
 	expect_error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2\n", VDT_EFORMAT,

@@ -238,6 +238,17 @@ test_reject(void **state)
 	expect_error(HEAD(3, 1) "0 0 0\n1 0\n0 1 0\n3 0 1 2\n", VDT_EFORMAT,
 	             "PLY line 11: vertex 1 has fewer values than its header declares");
 	expect_error(HEAD(3, 1) "0 0 0\n1 0 0\n0 1 0\n2 0 1\n", VDT_EFORMAT, "face 0 has 2 vertices");
+	/* a negative count is named so, not by what it did to the values
+	 * after it */
+	expect_error("ply\nformat ascii 1.0\nelement vertex 3\n" XYZ "element face 2\n"
+	             "property list char int vertex_indices\nend_header\n"
+	             "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n-3 0 1 2\n",
+	             VDT_EFORMAT, "face 1 has a negative count -3 in list 'vertex_indices'");
+	expect_error("ply\nformat ascii 1.0\nelement vertex 3\n" XYZ
+	             "element junk 1\nproperty list short int values\n"
+	             "element face 1\n" FACES "end_header\n"
+	             "0 0 0\n1 0 0\n0 1 0\n-2 5 5\n3 0 1 2\n",
+	             VDT_EFORMAT, "junk 0 has a negative count -2 in list 'values'");
 	expect_error(HEAD(3, 1) "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", VDT_EINVAL,
 	             "face 0 uses vertex 3 of 3");
 	expect_error(HEAD(3, 1) "0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n", VDT_EINVAL,

@@ -200,12 +200,63 @@ test_index_not_integer(void **state)
 	}
 }
 
+/*
+ * A negative list count, of a signed type, is named as such with its
+ * record, not as a file cut short (the record seemed not to fit): face
+ * 1's vertex_indices, and a list in an element that is skipped.
+ */
+static void
+test_negative_count(void **state)
+{
+	static const struct {
+		const char *list, *count;
+		double c;
+		const char *want;
+	} c[] = {
+	        {"char", "c", -3, "face 1 has a negative count -3 in list 'vertex_indices'"},
+	        {"short", "s", -3, "face 1 has a negative count -3 in list 'vertex_indices'"},
+	        {"int", "i", -2147483648.0,
+	         "face 1 has a negative count -2147483648 in list 'vertex_indices'"},
+	};
+	char elements[256], types[8];
+	(void)state;
+
+	for (size_t i = 0; i < sizeof(c) / sizeof(c[0]); i++)
+		for (int be = 0; be < 2; be++) {
+			struct ply p;
+
+			snprintf(elements, sizeof(elements),
+			         "element vertex 3\n" XYZ
+			         "element face 2\nproperty list %s int vertex_indices\n",
+			         c[i].list);
+			head(&p, be, elements);
+			put(&p, "fffffffff", 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0);
+			snprintf(types, sizeof(types), "%siii", c[i].count);
+			put(&p, types, 3.0, 0.0, 1.0, 2.0);
+			put(&p, types, c[i].c, 0.0, 1.0, 2.0);
+			expect_error(&p, VDT_EFORMAT, c[i].want);
+		}
+	for (int be = 0; be < 2; be++) {
+		struct ply p;
+
+		head(&p, be,
+		     "element vertex 3\n" XYZ "element junk 2\nproperty list char uchar values\n"
+		     "element face 1\nproperty list uchar int vertex_indices\n");
+		put(&p, "fffffffff", 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0);
+		put(&p, "cC", 1.0, 7.0);
+		put(&p, "cC", -1.0, 7.0);
+		put(&p, "Ciii", 3.0, 0.0, 1.0, 2.0);
+		expect_error(&p, VDT_EFORMAT, "junk 1 has a negative count -1 in list 'values'");
+	}
+}
+
 int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
 	        cmocka_unit_test(test_beyond_float),
 	        cmocka_unit_test(test_index_not_integer),
+	        cmocka_unit_test(test_negative_count),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
