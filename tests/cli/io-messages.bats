@@ -1,0 +1,93 @@
+#!/usr/bin/env bats
+# The readers' refusals as a user sees them: status 2, one line naming the
+# file and the fault with its vertex or face, no output left behind; the
+# whole-file reader (vdt-qslim, vdt-build) and the streamed one
+# (vdt-cluster on a binary PLY) in the same words.
+
+load helpers
+
+# refused FILE WANT TOOL [OPTION...]: TOOL refuses FILE with exactly WANT
+# after the file's name, and leaves no output.
+refused() {
+	local file=$1 want=$2 tool=$3
+
+	shift 3
+	run "$BIN/$tool" -q "$@" "$file" -o "$TMP/out.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[ "$output" = "$tool: cannot read '$file': $want" ]
+	[ ! -e "$TMP/out.vdt" ]
+}
+
+# binary_ply ORDER COUNT INDEX FACE1 OUT: the square's 4 vertices, then
+# faces (0 1 2) and FACE1 (its count and indices), binary of ORDER (< or
+# >), the list's count and index types as struct letter:PLY name.
+binary_ply() {
+	python3 - "$@" <<'PY'
+import struct, sys
+bo, count, index, face1, out = sys.argv[1:]
+(cs, cn), (ist, iname) = count.split(":"), index.split(":")
+h = ("ply\nformat binary_%s_endian 1.0\nelement vertex 4\nproperty float x\n"
+     "property float y\nproperty float z\nelement face 2\n"
+     "property list %s %s vertex_indices\nend_header\n"
+     % ("little" if bo == "<" else "big", cn, iname))
+b = h.encode() + struct.pack(bo + "12f", 0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0)
+for face in ("3 0 1 2", face1):
+    n, *v = face.split()
+    conv = float if ist in "fd" else int
+    b += struct.pack(bo + cs, int(n)) + struct.pack(bo + ist * len(v), *map(conv, v))
+open(out, "wb").write(b)
+PY
+}
+
+@test "a PLY normal, texture coordinate or colour beyond a float's range is named as such" {
+	python3 - "$TMP" <<'PY'
+import struct, sys
+for name, props in (("n", "nx ny nz"), ("uv", "s t"), ("c", "red green blue")):
+    p = props.split()
+    h = ("ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty float x\n"
+         "property float y\nproperty float z\n"
+         + "".join("property double %s\n" % q for q in p)
+         + "element face 1\nproperty list uchar int vertex_indices\nend_header\n")
+    b = h.encode()
+    for i, xyz in enumerate(((0, 0, 0), (1, 0, 0), (0, 1, 0))):
+        b += struct.pack(">3f", *xyz)
+        b += struct.pack(">%dd" % len(p), *(1e300 if i == 1 and k == 0 else 0.5
+                                            for k in range(len(p))))
+    b += struct.pack(">B3i", 3, 0, 1, 2)
+    open("%s/%s.ply" % (sys.argv[1], name), "wb").write(b)
+PY
+	for t in "vdt-qslim -r 0.5" vdt-build; do
+		refused "$TMP/n.ply" "vertex 1: normal 1e+300 out of float range" $t
+		refused "$TMP/uv.ply" "vertex 1: texture coordinate 1e+300 out of float range" $t
+		refused "$TMP/c.ply" "vertex 1: colour 1e+300 out of float range" $t
+	done
+}
+
+@test "a float PLY index that is not a whole number is refused with its face; 2.0 is taken" {
+	printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 2\nproperty list uchar float vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 2.5\n' > "$TMP/a.ply"
+	binary_ply '>' B:uchar d:double "3 1 3 2.5" "$TMP/b.ply"
+	binary_ply '<' B:uchar f:float "4 1 3 2.5 0" "$TMP/q.ply"
+	for t in "vdt-qslim -r 0.5" "vdt-cluster -g 8"; do
+		for f in a b q; do
+			refused "$TMP/$f.ply" "face 1 has a non-integer vertex index 2.5" $t
+		done
+	done
+	binary_ply '<' B:uchar d:double "3 1 3 2.0" "$TMP/ok.ply"
+	"$BIN/vdt-qslim" -q -r 0.5 "$TMP/ok.ply" -o "$TMP/ok-q.ply"
+	"$BIN/vdt-cluster" -q -g 8 "$TMP/ok.ply" -o "$TMP/ok-c.ply"
+	[ -s "$TMP/ok-q.ply" ] && [ -s "$TMP/ok-c.ply" ]
+}
+
+@test "a negative PLY or OFF vertex count is named as such with its face, not as a file cut short" {
+	printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 2\nproperty list char int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n-3 1 3 2\n' > "$TMP/a.ply"
+	binary_ply '<' b:char i:int "-3 1 3 2" "$TMP/b.ply"
+	binary_ply '>' h:short i:int "-3 1 3 2" "$TMP/s.ply"
+	for t in "vdt-qslim -r 0.5" "vdt-cluster -g 8"; do
+		for f in a b s; do
+			refused "$TMP/$f.ply" "face 1 has a negative count -3 in list 'vertex_indices'" $t
+		done
+	done
+	printf 'OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n-3 1 3 2\n' > "$TMP/a.off"
+	refused "$TMP/a.off" "face 1 has a negative vertex count '-3' on line 8" vdt-qslim -r 0.5
+}
