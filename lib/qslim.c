@@ -507,16 +507,39 @@ mean_area(const struct vdt_mesh *w, const uint8_t *dead, int t)
 }
 
 static void
-face_quadrics(const struct vdt_mesh *w, struct ctx *c, const uint8_t *dead, double floor, int t)
+face_quadrics(const struct vdt_mesh *w, struct ctx *c, const uint8_t *dead, double mean,
+              double floor, int t)
 {
 	struct fq_job job[VDT_CONTRACT_MAX_THREADS];
 	size_t nv = w->vertex_count;
-	double min_area = floor > 0 ? floor * mean_area(w, dead, t) : 0;
+	double min_area = floor * mean;
 
 	for (int k = 0; k < t; k++)
 		job[k] = (struct fq_job){w, c, dead, min_area, (uint32_t)(nv * (size_t)k / (size_t)t),
 		                         (uint32_t)(nv * (size_t)(k + 1) / (size_t)t)};
 	vdt_run_jobs(fq_run, job, sizeof(job[0]), t);
+}
+
+/*
+ * The area floor of a corner (vdt_quadric_corner_floor): a vertex whose
+ * planes point three ways weighs at least as much as a fan of as many
+ * faces of the mean area, as Garland and Heckbert's unweighted planes weigh
+ * it. A corner of small faces otherwise costs next to nothing to cut off,
+ * however far it stands out: on the shark, the tip of a pyramid of three
+ * faces of 1/50 to 1/100 of the mean area stood 0.0064 (0.37% of the
+ * diagonal) off its tenth of the faces, the largest error there. Creases,
+ * of which scans and models have many, keep the face floor alone.
+ */
+static void
+corner_floor(struct vdt_quadric *q, size_t nv, const uint32_t *start, const uint32_t *fan,
+             const uint8_t *dead, double mean)
+{
+	for (size_t v = 0; v < nv; v++) {
+		size_t faces = 0;
+		for (uint32_t i = start[v]; i < start[v + 1]; i++)
+			faces += !dead[fan[i]];
+		vdt_quadric_corner_floor(&q[v], (double)faces * mean / 3);
+	}
 }
 
 /* The open edges of a range of vertices (vdt_topo_open_edges_in). */
@@ -727,7 +750,9 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 			vdt_quadric_add(&c->q[canon[i]], &q);
 		}
 	} else {
-		face_quadrics(w, c, dead, o->area_floor, threads);
+		double mean = o->area_floor > 0 ? mean_area(w, dead, threads) : 0;
+		face_quadrics(w, c, dead, mean, o->area_floor, threads);
+		corner_floor(c->q, nv, start, fan, dead, mean);
 	}
 
 	/* Open edges of a clustered intermediate are mostly the rims of thin

@@ -67,7 +67,8 @@ struct vdt_qslim_opts {
 	                             NULL: every open edge gets them */
 	double area_floor;        /* a face smaller than this fraction of
 	                             the mean face area weighs as one of
-	                             that size in the fundamental quadrics
+	                             that size in the fundamental quadrics,
+	                             and a corner as a fan of mean faces
 	                             (0: each face its own area; not used
 	                             with quadrics given) */
 	double attribute_weight;  /* of attribute errors against distances
@@ -104,6 +105,13 @@ struct vdt_qslim_opts {
  * faces are all about one size are not touched.
  */
 #define VDT_QSLIM_AREA_FLOOR 0.1
+
+/*
+ * With the floor, a corner (a vertex whose face planes point three ways:
+ * the tip of a spike, the corner of a box; vdt_quadric_corner_floor)
+ * weighs at least as much as a fan of as many faces of the mean area, its
+ * planes in their shares: as its planes would unweighted.
+ */
 
 /*
  * The boundary planes weigh w times the squared length of their edge, a face

@@ -109,6 +109,22 @@ vdt_quadric_scale(struct vdt_quadric *q, double s)
 	q->w *= s;
 }
 
+int
+vdt_quadric_corner_floor(struct vdt_quadric *q, double least)
+{
+	double t = vdt_quadric_trace(q);
+
+	if (!(t > 0) || t >= least)
+		return 0;
+	double det = q->a00 * (q->a11 * q->a22 - q->a12 * q->a12) -
+	             q->a01 * (q->a01 * q->a22 - q->a12 * q->a02) +
+	             q->a02 * (q->a01 * q->a12 - q->a11 * q->a02);
+	if (!(det > VDT_QUADRIC_CORNER_DET * t * t * t))
+		return 0;
+	vdt_quadric_scale(q, least / t);
+	return 1;
+}
+
 void
 vdt_quadric_transform(struct vdt_quadric *q, double s, const double t[3])
 {

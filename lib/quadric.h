@@ -99,6 +99,20 @@ vdt_quadric_trace(const struct vdt_quadric *q)
 }
 
 /*
+ * The area floor of a corner: if the planes of q point three ways (the tip
+ * of a spike or pyramid, the corner of a box), the determinant of A above
+ * VDT_QUADRIC_CORNER_DET times the cube of its trace, and its planes weigh
+ * less than least in all, scale q to weigh least; its planes keep their
+ * shares, so its smallest point stays where it was. A crease (planes of
+ * two ways) or a flat vertex has a determinant of 0 and is left alone.
+ * Returns 1 if q was scaled.
+ */
+int vdt_quadric_corner_floor(struct vdt_quadric *q, double least);
+
+/* That of the tip of a three-sided pyramid whose faces rise 20 degrees. */
+#define VDT_QUADRIC_CORNER_DET 0.003
+
+/*
  * What to add to the cost of contracting pa and pb, whose merged quadric's
  * A has trace t (the summed weights of its planes), so that among pairs of
  * equal cost the shorter goes first. On a plane, a cylinder or a cone a

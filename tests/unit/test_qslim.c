@@ -605,6 +605,85 @@ area_floor_leaves_even_meshes_alone(void **state)
 }
 
 /*
+ * A bowl of 20 x 20 cells, one triangle of which (off its bottom) holds a
+ * tiny three-sided pyramid of height h on a copy of itself shrunk to
+ * `shrink` (its faces 1/100 to 1/60 of the mean area), as the shark's scan
+ * has one.
+ */
+static void
+pyramid_on_bowl(struct vdt_mesh *m, double shrink, double h)
+{
+	const int n = 20, nv = (n + 1) * (n + 1);
+	uint32_t a = (n / 2 - 1) * (n + 1) + n / 2 - 1, b = a + 1, d = a + n + 2;
+	uint32_t e = nv, f = nv + 1, g = nv + 2, tip = nv + 3;
+
+	shape_grid(m, n);
+	for (int v = 0; v < nv; v++) {
+		float *p = m->positions + 3 * v;
+		p[2] = (float)bowl(p[0], p[1]);
+	}
+	struct vdt_mesh o = *m;
+	vdt_mesh_alloc(m, (size_t)nv + 4, o.triangle_count + 8, 0, NULL);
+	memcpy(m->positions, o.positions, 3 * (size_t)nv * sizeof(float));
+	/* (a, b, d) goes: a ring of six faces and the pyramid take its place */
+	uint32_t *t = m->triangles;
+	for (size_t i = 0; i < o.triangle_count; i++) {
+		const uint32_t *c = o.triangles + 3 * i;
+		if (c[0] != a || c[1] != b || c[2] != d) {
+			memcpy(t, c, 3 * sizeof(*t));
+			t += 3;
+		}
+	}
+	const uint32_t ring[9][3] = {{a, b, f}, {a, f, e}, {b, d, g}, {b, g, f}, {d, a, e},
+	                             {d, e, g}, {e, f, tip}, {f, g, tip}, {g, e, tip}};
+	memcpy(t, ring, sizeof(ring));
+	m->triangle_count = o.triangle_count - 1 + 9;
+	float *p = m->positions;
+	const uint32_t corner[3] = {a, b, d};
+	for (int k = 0; k < 3; k++) {
+		double cen = (p[3 * a + k] + p[3 * b + k] + p[3 * d + k]) / 3;
+		for (int i = 0; i < 3; i++)
+			p[3 * (e + i) + k] = (float)(cen + shrink * (p[3 * corner[i] + k] - cen));
+		p[3 * tip + k] = (float)(cen + (k == 2 ? h : 0));
+	}
+	vdt_mesh_free(&o);
+}
+
+/*
+ * The tip of a tiny pyramid weighs as its three planes would unweighted
+ * (vdt_quadric_corner_floor): the bowl to half its faces keeps it where it
+ * stands. With the face floor alone its faces weigh a tenth of a mean
+ * face's and it is flattened among the first; with no floor, too. Fails
+ * if corners are not found, or not weighed up.
+ */
+static void
+corner_floor_keeps_a_tiny_pyramid(void **state)
+{
+	const double h = 0.01;
+	struct vdt_mesh m, a, b;
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+
+	(void)state;
+	pyramid_on_bowl(&m, 0.1, h);
+	assert_int_equal(m.triangle_count, 808);
+	assert_true(above_bowl(&m) > 0.99 * h);
+	vdt_qslim_defaults(&o);
+	o.target_triangles = 400;
+	o.fit = 0;
+	assert_int_equal(vdt_qslim(&m, &o, &a, NULL, NULL, &st, NULL), 0);
+	o.area_floor = 0;
+	assert_int_equal(vdt_qslim(&m, &o, &b, NULL, NULL, &st, NULL), 0);
+	assert_int_equal(a.triangle_count, 400);
+	assert_int_equal(b.triangle_count, 400);
+	assert_true(above_bowl(&a) > 0.99 * h);
+	assert_true(above_bowl(&b) < 0.1 * h);
+	vdt_mesh_free(&a);
+	vdt_mesh_free(&b);
+	vdt_mesh_free(&m);
+}
+
+/*
  * Virtual pairs against a brute force search: for each point, the 8
  * nearest of the points above it closer than d, ties by number. The
  * points lie on a small lattice (many ties and coincident points) and in
@@ -782,6 +861,7 @@ main(void)
 		cmocka_unit_test(large_meshes_keep_their_numbers),
 		cmocka_unit_test(area_floor_keeps_finely_tessellated_features),
 		cmocka_unit_test(area_floor_leaves_even_meshes_alone),
+		cmocka_unit_test(corner_floor_keeps_a_tiny_pyramid),
 		cmocka_unit_test(equal_costs_go_shortest_first),
 		cmocka_unit_test(nearly_degenerate_quadrics_keep_vertices_near_the_surface),
 		cmocka_unit_test(virtual_pairs_match_brute_force),

@@ -142,6 +142,52 @@ boundary_plane_is_perpendicular(void **state)
 	NEAR(vdt_quadric_eval(&q, v), 10 * 4 * 0.25);
 }
 
+/*
+ * The corner floor: the tip of a three-sided pyramid whose faces rise 30
+ * degrees through (0, 0, 1), its planes of weight 0.01 each, is scaled to
+ * weigh 0.3 and keeps its smallest point; a crease of the same planes but
+ * one, a corner that weighs enough already, and one whose faces rise 15
+ * degrees (below VDT_QUADRIC_CORNER_DET) are left alone.
+ */
+static void
+corner_floor_scales_corners_only(void **state)
+{
+	const double pi = 3.14159265358979323846;
+	struct vdt_quadric tip, crease, gentle;
+	double v[3] = {9, 9, 9};
+
+	(void)state;
+	vdt_quadric_zero(&tip);
+	vdt_quadric_zero(&crease);
+	vdt_quadric_zero(&gentle);
+	for (int k = 0; k < 3; k++) {
+		double phi = 2 * pi * k / 3, r = 30 * pi / 180, g = 15 * pi / 180;
+		double n[3] = {sin(r) * cos(phi), sin(r) * sin(phi), cos(r)};
+		double m[3] = {sin(g) * cos(phi), sin(g) * sin(phi), cos(g)};
+		struct vdt_quadric q;
+		vdt_quadric_plane(&q, n, -n[2], 0.01); /* through (0, 0, 1) */
+		vdt_quadric_add(&tip, &q);
+		if (k < 2)
+			vdt_quadric_add(&crease, &q);
+		vdt_quadric_plane(&q, m, -m[2], 0.01);
+		vdt_quadric_add(&gentle, &q);
+	}
+	struct vdt_quadric heavy = tip, c = crease, s = gentle;
+	assert_int_equal(vdt_quadric_corner_floor(&tip, 0.3), 1);
+	NEAR(vdt_quadric_trace(&tip), 0.3);
+	NEAR(tip.w, 0.3);
+	assert_int_equal(vdt_quadric_minimum(&tip, v), 0);
+	NEAR(v[0] + 1, 1);
+	NEAR(v[1] + 1, 1);
+	NEAR(v[2], 1);
+	assert_int_equal(vdt_quadric_corner_floor(&crease, 0.3), 0);
+	assert_memory_equal(&crease, &c, sizeof(c));
+	assert_int_equal(vdt_quadric_corner_floor(&heavy, 0.03), 0);
+	NEAR(vdt_quadric_trace(&heavy), 0.03);
+	assert_int_equal(vdt_quadric_corner_floor(&gentle, 0.3), 0);
+	assert_memory_equal(&gentle, &s, sizeof(s));
+}
+
 int
 main(void)
 {
@@ -153,6 +199,7 @@ main(void)
 		cmocka_unit_test(minimum_outside_the_box_falls_back_to_segment),
 		cmocka_unit_test(transform_changes_frame_only),
 		cmocka_unit_test(boundary_plane_is_perpendicular),
+		cmocka_unit_test(corner_floor_scales_corners_only),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
