@@ -318,7 +318,8 @@ frame_quadrics(const struct anim *a, size_t f, const double c[3], double bw, dou
 	const float *pos = a->pos + 3 * a->nv * f;
 	const struct vdt_mesh frame = {.vertex_count = a->nv, .positions = (float *)pos,
 	                               .triangle_count = a->nt, .triangles = a->tri};
-	double min_area = floor > 0 ? floor * vdt_mesh_mean_area(&frame, NULL) : 0;
+	double mean = floor > 0 ? vdt_mesh_mean_area(&frame, NULL) : 0;
+	double min_area = floor * mean;
 
 	for (size_t v = 0; v < a->nv; v++)
 		memset(&q[v * stride], 0, sizeof(*q));
@@ -332,6 +333,15 @@ frame_quadrics(const struct anim *a, size_t f, const double c[3], double bw, dou
 		if (vdt_quadric_triangle_floor(&tq, p[0], p[1], p[2], min_area) == 0)
 			for (int i = 0; i < 3; i++)
 				qd_add(&q[v[i] * stride], &tq);
+	}
+	/* vdt_qslim's floor of corners */
+	for (size_t v = 0; mean > 0 && v < a->nv; v++) {
+		struct vdt_quadric vq;
+		qd_get(&q[v * stride], &vq);
+		if (vdt_quadric_corner_floor(&vq, (double)(a->fstart[v + 1] - a->fstart[v]) * mean / 3)) {
+			memset(&q[v * stride], 0, sizeof(q[0]));
+			qd_add(&q[v * stride], &vq);
+		}
 	}
 	for (size_t k = 0; k < a->nopen; k++)
 		add_boundary(q, stride, pos, c, a->tri + 3 * (size_t)a->open[3 * k], a->open[3 * k + 1],

@@ -102,16 +102,11 @@ struct vdt_qslim_opts {
  * than the rest (a scanner's close-up, a thin ridge, a spike of small
  * faces) costs next to nothing to flatten, however far it stands out. With
  * the floor its faces weigh at least a tenth of a mean face; meshes whose
- * faces are all about one size are not touched.
+ * faces are all about one size are not touched. A corner (planes of three
+ * ways: the tip of a spike, the corner of a box; vdt_quadric_corner_floor)
+ * weighs at least as a fan of as many mean faces, as unweighted planes do.
  */
 #define VDT_QSLIM_AREA_FLOOR 0.1
-
-/*
- * With the floor, a corner (a vertex whose face planes point three ways:
- * the tip of a spike, the corner of a box; vdt_quadric_corner_floor)
- * weighs at least as much as a fan of as many faces of the mean area, its
- * planes in their shares: as its planes would unweighted.
- */
 
 /*
  * The boundary planes weigh w times the squared length of their edge, a face
