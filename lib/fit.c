@@ -227,10 +227,32 @@ take(struct arena *a, size_t n, size_t size)
 	return p;
 }
 
+/*
+ * Whether the moves make face c (in slots) a sliver, as the contractions
+ * judge one (vdt_contract_opts.min_quality): below q and below what it was
+ * before them (old, for the moved corners).
+ */
+static int
+sliver(const float *pos, const uint32_t *c, const uint32_t *idx, const double *delta,
+       const float *old, double q)
+{
+	const float *now[3], *was[3];
+
+	if (!(q > 0))
+		return 0;
+	for (int k = 0; k < 3; k++) {
+		uint32_t v = idx[c[k]];
+		now[k] = pos + 3 * (size_t)c[k];
+		was[k] = delta[v] != 0 ? old + 3 * (size_t)v : now[k];
+	}
+	double qn = vdt_triangle_quality(now[0], now[1], now[2]);
+	return qn < q && qn < vdt_triangle_quality(was[0], was[1], was[2]);
+}
+
 int
 vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triangle_count,
-               const uint32_t *final, const uint8_t *fixed, int threads, void *scratch,
-               size_t scratch_bytes, struct vdt_fit_stats *stats)
+               const uint32_t *final, const uint8_t *fixed, double min_quality, int threads,
+               void *scratch, size_t scratch_bytes, struct vdt_fit_stats *stats)
 {
 	uint32_t *idx, *vstart, *vface, *slot;
 	double *vn, *delta, *cap;
@@ -419,7 +441,8 @@ vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triang
 			vdt_mesh_face_cross(&view, fi, n);
 			double l = sqrt(dot3(n, n));
 			const float *m = ff[fi].n;
-			if (l > 0 && n[0] * m[0] + n[1] * m[1] + n[2] * m[2] > FIT_TURN_COS * l)
+			if (l > 0 && n[0] * m[0] + n[1] * m[1] + n[2] * m[2] > FIT_TURN_COS * l &&
+			    !sliver(pos, tri + 3 * fi, idx, delta, old, min_quality))
 				continue;
 			for (int k = 0; k < 3; k++) {
 				uint32_t v = idx[tf[k]];

@@ -26,8 +26,9 @@ struct vdt_fit_stats {
  * quadrics placed well), vertices on an open or non-manifold fan, those
  * that replaced no other (they lie on the input) and those with fixed[v]
  * set stay where they are. A move is at most a fifth of the vertex's mean
- * edge length, and one that would turn a face by more than 30 degrees is
- * undone.
+ * edge length, and one that would turn a face by more than 30 degrees, or
+ * make it a sliver (quality below min_quality, and below its own before:
+ * vdt_triangle_quality; 0: no test), is undone.
  *
  * pos: the positions of the slots of the mesh being simplified,
  * slot_count of them (3 floats each): the live vertices' are changed in
@@ -44,7 +45,7 @@ struct vdt_fit_stats {
  * (nothing moved).
  */
 int vdt_fit_normal(float *pos, size_t slot_count, const uint32_t *tri, size_t triangle_count,
-                   const uint32_t *final, const uint8_t *fixed, int threads, void *scratch,
-                   size_t scratch_bytes, struct vdt_fit_stats *stats);
+                   const uint32_t *final, const uint8_t *fixed, double min_quality,
+                   int threads, void *scratch, size_t scratch_bytes, struct vdt_fit_stats *stats);
 
 #endif

@@ -123,6 +123,27 @@ vdt_mesh_validate(const struct vdt_mesh *m, struct vdt_err *err)
 	return 0;
 }
 
+double
+vdt_triangle_quality(const float *a, const float *b, const float *c)
+{
+	const float *p[3] = {a, b, c};
+	double e1[3], e2[3], n[3], s = 0;
+
+	for (int k = 0; k < 3; k++) {
+		e1[k] = (double)b[k] - a[k];
+		e2[k] = (double)c[k] - a[k];
+	}
+	n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+	n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+	n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+	for (int i = 0; i < 3; i++)
+		for (int k = 0; k < 3; k++) {
+			double d = (double)p[(i + 1) % 3][k] - p[i][k];
+			s += d * d;
+		}
+	return s > 0 ? 2 * sqrt(3.0) * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) / s : 0;
+}
+
 void
 vdt_mesh_face_cross(const struct vdt_mesh *m, size_t t, double n[3])
 {

@@ -77,6 +77,14 @@ int vdt_mesh_validate(const struct vdt_mesh *m, struct vdt_err *err);
 void vdt_mesh_face_cross(const struct vdt_mesh *m, size_t t, double n[3]);
 
 /*
+ * The quality of the triangle (a, b, c), 4 sqrt(3) area / (sum of its
+ * squared edges): 1 for an equilateral one, 0 for one of no area (or no
+ * size). The sliver measure of vdt_contract_opts.min_quality and of the
+ * fit.
+ */
+double vdt_triangle_quality(const float *a, const float *b, const float *c);
+
+/*
  * How far apart 32-bit floats are at m's largest coordinate (in size: the
  * rounding of every position read or computed there); 0 for no vertex.
  */

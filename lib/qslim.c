@@ -2704,7 +2704,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 			locked[v] |= (border[v] & 1) | (c.scale != NULL && c.scale[v] < 1);
 		/* (the quadrics are done with: the fit's scratch) */
 		if (vdt_fit_normal(r.positions, r.vertex_count, r.triangles, r.triangle_count, r.final,
-		                   locked, o->threads, c.q, nw * sizeof(*c.q), &fs) != 0)
+		                   locked, o->min_quality, o->threads, c.q, nw * sizeof(*c.q), &fs) != 0)
 			goto nomem;
 		stats->fitted = fs.moved;
 	}

@@ -96,6 +96,27 @@ load helpers
 	[ "$(ls -A "$TMP" | tr '\n' ' ')" = "dir.off ok.off " ]
 }
 
+@test "vdt-qslim --min-quality binds the fit after the contractions too" {
+	# the fit took a face of the bumpy sphere of 100000 faces, to a tenth,
+	# to 0.4995
+	"$BATS_TEST_DIRNAME/../../build/rel/scripts/mkshapes" big -n 100000 -o "$TMP/b.ply"
+	"$BIN/vdt-qslim" -q -r 0.1 --min-quality 0.5 "$TMP/b.ply" -o "$TMP/q.off"
+	min=$(awk 'NR == 2 { nv = $1; next }
+		NR > 2 && NR <= 2 + nv { x[NR - 3] = $1; y[NR - 3] = $2; z[NR - 3] = $3; next }
+		NR > 2 + nv && NF >= 4 {
+			a = $2; b = $3; c = $4
+			ux = x[b] - x[a]; uy = y[b] - y[a]; uz = z[b] - z[a]
+			vx = x[c] - x[a]; vy = y[c] - y[a]; vz = z[c] - z[a]
+			wx = x[c] - x[b]; wy = y[c] - y[b]; wz = z[c] - z[b]
+			nx = uy * vz - uz * vy; ny = uz * vx - ux * vz; nz = ux * vy - uy * vx
+			s = ux * ux + uy * uy + uz * uz + vx * vx + vy * vy + vz * vz + wx * wx + wy * wy + wz * wz
+			q = 2 * sqrt(3) * sqrt(nx * nx + ny * ny + nz * nz) / s
+			if (m == "" || q < m) m = q
+		}
+		END { print m }' "$TMP/q.off")
+	awk -v m="$min" 'BEGIN { exit !(m >= 0.4999) }'
+}
+
 @test "vdt-qslim -e 0 takes what costs nothing and reports no error" {
 	# a plate's flat faces merge at no error; rounding is not reported as one
 	run "$BIN/vdt-qslim" -v -e 0 "$SAMPLES/plate.off" -o "$TMP/out.off"

@@ -229,7 +229,7 @@ fit_undoes_a_move_that_turns_a_face(void **state)
 		float pos[24] = {0, 0, 0, 1, h, 0, -1, h, 0, 0, -1, 0}, was[24];
 		memcpy(pos + 12, gone, sizeof(gone));
 		memcpy(was, pos, sizeof(pos));
-		assert_int_equal(vdt_fit_normal(pos, 8, tri, 3, final, NULL, 2, NULL, 0, &st), 0);
+		assert_int_equal(vdt_fit_normal(pos, 8, tri, 3, final, NULL, 0, 2, NULL, 0, &st), 0);
 		assert_true(pos[0] == 0 && pos[1] == 0);
 		assert_memory_equal(pos + 3, was + 3, 21 * sizeof(float));
 		if (sliver) {
@@ -248,7 +248,7 @@ fit_undoes_a_move_that_turns_a_face(void **state)
 	float pos[24] = {0, 0, 0, 1, 0.5f, 0, -1, 0.5f, 0, 0, -1, 0};
 	memcpy(pos + 12, gone, sizeof(gone));
 	final[4] = 4;
-	assert_int_equal(vdt_fit_normal(pos, 8, tri, 3, final, NULL, 1, NULL, 0, &st), 0);
+	assert_int_equal(vdt_fit_normal(pos, 8, tri, 3, final, NULL, 0, 1, NULL, 0, &st), 0);
 	assert_int_equal(st.moved, 0);
 	assert_true(pos[2] == 0);
 }
@@ -279,7 +279,7 @@ fit_takes_big_fans_alike(void **state)
 		final[n + 1] = 0;
 		pos[3 * (n + 1)] = 0.1f;
 		pos[3 * (n + 1) + 2] = 0.3f;
-		assert_int_equal(vdt_fit_normal(pos, (size_t)n + 2, tri, (size_t)n, final, NULL, 1,
+		assert_int_equal(vdt_fit_normal(pos, (size_t)n + 2, tri, (size_t)n, final, NULL, 0, 1,
 		                                NULL, 0, &st),
 		                 0);
 		assert_int_equal(st.moved, 1);
