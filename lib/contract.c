@@ -29,12 +29,14 @@
 
 /* V_CHECKED: the queued pair passed the validity tests (the cheapest had
  * not); V_STALE: the key is a lower bound, recompute on reaching the top;
- * V_NOALT: the second cheapest pair is not known. */
+ * V_NOALT: the second cheapest pair is not known; V_UNSURE (with
+ * V_CHECKED, and the bit of V_DIRTY, which only passes use): all but the
+ * fan test of a hub at its other end (cheapest_valid). */
 enum { V_DEAD = 1, V_LOCKED = 2, V_CHECKED = 4, V_STALE = 8, V_NOALT = 16 };
 /* In passes: V_DIRTY: the neighbourhood changed, find the cheapest pair
  * again; V_REFUSED: the cheapest pair failed a test, find the cheapest
  * valid one. */
-enum { V_DIRTY = 32, V_REFUSED = 64, V_KEPT = 128 };
+enum { V_DIRTY = 32, V_REFUSED = 64, V_KEPT = 128, V_UNSURE = V_DIRTY };
 enum { P_DEAD = 1, P_REJECTED = 2 };
 
 struct list {
@@ -78,6 +80,14 @@ struct engine {
 	uint32_t *tri;    /* 3 per triangle; tri[3t] == NONE when dead */
 	uint32_t *fpos;   /* 3 per triangle, or NULL: each corner's place in
 	                     its vertex's face list, if that is long (indexed) */
+	uint32_t *refuse; /* with fpos, per vertex: the face that last failed
+	                     its fan test, if its list is indexed (fan_ok) */
+	uint32_t *touched; /* with fpos, per vertex: the clock of the last
+	                      contraction it took part in (adjacent) */
+	uint64_t *hubnb;  /* with fpos, per vertex: its last adjacency test
+	                     with another hub (adjacent) */
+	uint32_t clock;   /* contractions made, or in passes rounds */
+	size_t faces_read; /* vdt_contract_result.faces_read */
 	int16_t *tnormal; /* input unit normal per triangle, times 32767 */
 	uint8_t *vflag;
 	struct list *vt;  /* triangles around each vertex */
@@ -265,6 +275,20 @@ pool_holes_flush(struct pool *p)
 	thread_holes = 0;
 }
 
+/*
+ * The faces the validity tests read (vdt_contract_result.faces_read), counted
+ * per thread the same way and added to the engine's count at the end of
+ * each job (read_flush).
+ */
+static _Thread_local size_t thread_read;
+
+static void
+read_flush(struct engine *e)
+{
+	__atomic_fetch_add(&e->faces_read, thread_read, __ATOMIC_RELAXED);
+	thread_read = 0;
+}
+
 /* Room for `need` entries in v's list: moved to the end of the pool if it must grow. */
 static int
 list_grow(struct pool *p, struct list *lists, size_t n, uint32_t v, uint32_t need)
@@ -406,12 +430,19 @@ index_from(struct engine *e, uint32_t v, uint32_t i)
 		index_at(e, v, i);
 }
 
-/* Make the index, of every list long enough. */
+/* Make the index, of every list long enough, and the notes kept for them
+ * (refuse, touched, hubnb). */
 static int
 index_make(struct engine *e)
 {
-	if ((e->fpos = vdt_malloc_huge((3 * e->nt + 1) * sizeof(*e->fpos))) == NULL)
+	e->fpos = vdt_malloc_huge((3 * e->nt + 1) * sizeof(*e->fpos));
+	e->refuse = malloc((e->nv + 1) * sizeof(*e->refuse));
+	e->touched = calloc(e->nv + 1, sizeof(*e->touched));
+	e->hubnb = malloc((e->nv + 1) * sizeof(*e->hubnb));
+	if (e->fpos == NULL || e->refuse == NULL || e->touched == NULL || e->hubnb == NULL)
 		return -1;
+	memset(e->refuse, 0xff, (e->nv + 1) * sizeof(*e->refuse)); /* NONE */
+	memset(e->hubnb, 0xff, (e->nv + 1) * sizeof(*e->hubnb));   /* of vertex NONE */
 	for (size_t v = 0; v < e->nv; v++)
 		if (indexed(e, (uint32_t)v))
 			index_from(e, (uint32_t)v, 0);
@@ -652,6 +683,7 @@ fan_neighbours(const struct engine *e, uint32_t v, uint32_t *out, uint32_t *slot
 	long n = 0;
 
 	memset(slots, 0, ((size_t)mask + 1) * sizeof(*slots));
+	thread_read += l->len;
 	for (uint32_t i = 0; i < l->len; i++) {
 		const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + i];
 		for (int k = 0; k < 3; k++) {
@@ -673,7 +705,7 @@ fan_neighbours(const struct engine *e, uint32_t v, uint32_t *out, uint32_t *slot
 
 /* How many faces hold the edge to x, of the neighbours fan_neighbours
  * listed in out through slots, a table of 2^bits entries: 0 if x is none. */
-static uint32_t
+static inline uint32_t
 fan_has(const uint32_t *out, const uint32_t *slots, int bits, uint32_t x)
 {
 	uint32_t h = vdt_hash_slot(x, bits), mask = (1u << bits) - 1;
@@ -710,6 +742,51 @@ fan_words(size_t faces)
 	return 4 * faces + ((size_t)1 << fan_bits(faces));
 }
 
+/*
+ * A vertex of this many faces or more is a hub (the apex of a fan): the
+ * tests of a pair with one read as little of it as they can, since it is
+ * tried with each of its neighbours in turn, at each change around it.
+ */
+#define HUB 256
+
+/*
+ * Whether a face holds both a and b (a != b), from the shorter of their
+ * lists. Two hubs keep the answer in hubnb, at the slot of the lower
+ * number: (clock << 33) | (answer << 32) | the higher. It holds while
+ * neither has taken part in a contraction since (touched): only a
+ * contraction with a or b as an end makes or removes a face with both.
+ * (The costing threads of a pass may write a slot at once: any value
+ * written is a true note, and one 64-bit store.)
+ */
+static int
+adjacent(const struct engine *e, uint32_t a, uint32_t b)
+{
+	const struct list *l = &e->vt[a];
+	uint64_t *note = NULL;
+	uint32_t lo = a < b ? a : b, hi = a < b ? b : a;
+	int found = 0;
+
+	if (e->hubnb != NULL && l->len >= HUB && e->vt[b].len >= HUB && e->clock < 1u << 31) {
+		uint64_t n = __atomic_load_n(&e->hubnb[lo], __ATOMIC_RELAXED);
+		note = &e->hubnb[lo];
+		if ((uint32_t)n == hi && n >> 33 >= e->touched[lo] && n >> 33 >= e->touched[hi])
+			return (int)(n >> 32 & 1);
+	}
+	if (e->vt[b].len < l->len) {
+		l = &e->vt[b];
+		b = a;
+	}
+	for (uint32_t i = 0; i < l->len && !found; i++) {
+		const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + i];
+		found = t[0] == b || t[1] == b || t[2] == b;
+		thread_read++;
+	}
+	if (note != NULL)
+		__atomic_store_n(note, (uint64_t)e->clock << 33 | (uint64_t)found << 32 | hi,
+		                 __ATOMIC_RELAXED);
+	return found;
+}
+
 /* Face lists up to this long have their link test's scratch on the stack
  * (8 KB); longer ones (a vertex that has gathered a flat region of a CAD
  * model can have thousands of faces) allocate it. */
@@ -738,7 +815,7 @@ struct link {
 };
 
 /* v's link listing, in words (fan_words of v's faces). */
-static void
+static inline void
 link_fill(const struct engine *e, uint32_t v, uint32_t *words, struct link *l)
 {
 	size_t faces = e->vt[v].len;
@@ -800,16 +877,52 @@ link_holds(const struct engine *e, struct link *A, struct link *B)
 	return 1;
 }
 
-/* The link condition for pair (a, b); `known`, if not NULL, is the
- * listing of one of them, made already. */
+/*
+ * link_holds of a hub, not listed, and B, listed, found from B's side: the
+ * faces the two share from B's list, and which of B's neighbours share a
+ * face with the hub from theirs (adjacent). -1 where that cannot tell
+ * (the hub's boundary is asked, or a virtual pair's zip): list the hub.
+ */
+static int
+link_hub(const struct engine *e, uint32_t hub, struct link *B)
+{
+	const struct list *l = &e->vt[B->v];
+	long shared = 0, common = 0;
+
+	for (uint32_t i = 0; i < l->len; i++) {
+		const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + i];
+		shared += t[0] == hub || t[1] == hub || t[2] == hub;
+	}
+	thread_read += l->len;
+	if (shared > 2)
+		return 0;
+	for (long i = 0; i < B->n; i++)
+		common += B->nb[2 * i] != hub && adjacent(e, hub, B->nb[2 * i]);
+	if (shared > 0)
+		return link_boundary(B) ? -1 : common == shared + (shared == 1);
+	return common == 0 ? 1 : common > 2 ? 0 : -1;
+}
+
+/*
+ * The link condition for pair (a, b); `known`, if not NULL, is the
+ * listing of one of them, made already. Of a hub and a vertex of few
+ * faces, the latter is listed, and the hub only if link_hub cannot tell.
+ * (The test is the same whichever is listed first.)
+ */
 static int
 link_ok(const struct engine *e, uint32_t a, uint32_t b, struct link *known)
 {
 	uint32_t local[2 * (4 * LINK_STACK + 4 * LINK_STACK)]; /* 2 fan_words(LINK_STACK) */
-	uint32_t other = known == NULL || known->v == a ? b : a, *words = local, *big = NULL;
-	size_t need = fan_words(e->vt[other].len) + (known ? 0 : fan_words(e->vt[a].len));
+	uint32_t *words = local, *big = NULL;
 	struct link la, lb;
 
+	if (known == NULL && e->vt[a].len >= HUB && e->vt[b].len < HUB) {
+		uint32_t t = a;
+		a = b;
+		b = t;
+	}
+	uint32_t other = known == NULL || known->v == a ? b : a;
+	size_t need = fan_words(e->vt[other].len) + (known ? 0 : fan_words(e->vt[a].len));
 	if (need > sizeof(local) / sizeof(local[0])) {
 		if ((big = malloc(need * sizeof(*big))) == NULL)
 			return 0;
@@ -820,8 +933,11 @@ link_ok(const struct engine *e, uint32_t a, uint32_t b, struct link *known)
 		words += fan_words(e->vt[a].len);
 		known = &la;
 	}
-	link_fill(e, other, words, &lb);
-	int ok = link_holds(e, known, &lb);
+	int ok = e->vt[other].len >= HUB && e->vt[known->v].len < HUB ? link_hub(e, other, known) : -1;
+	if (ok < 0) {
+		link_fill(e, other, words, &lb);
+		ok = link_holds(e, known, &lb);
+	}
 	free(big);
 	return ok;
 }
@@ -858,68 +974,136 @@ within_angle(double dot, double la2, double lb2, double c)
 }
 
 /*
- * No face around `v` (other than those with `other`) may degenerate, turn
- * by more than the fold-over angle against its current and its input
- * normal, or (optionally) become a sliver when v moves to pos. With the
- * face's other corners x, y fixed, both normals share the edge y - x.
+ * Face t around `v` must not degenerate, turn by more than the fold-over
+ * angle against its current and its input normal, or (optionally) become
+ * a sliver when v moves to pos. With the face's other corners x, y fixed,
+ * both normals share the edge y - x.
+ */
+static inline __attribute__((always_inline)) int
+face_ok(const struct engine *e, uint32_t v, uint32_t t, const float pos[3])
+{
+	const uint32_t *c = e->tri + 3 * (size_t)t;
+	/* rotate so that c[k] == v comes first: (v, x, y) */
+	int k = c[0] == v ? 0 : c[1] == v ? 1 : 2;
+	const float *pv = e->pos + 3 * (size_t)v;
+	const float *px = e->pos + 3 * (size_t)c[(k + 1) % 3];
+	const float *py = e->pos + 3 * (size_t)c[(k + 2) % 3];
+	double ed[3], a0[3], a1[3], n0[3], n1[3];
+	for (int j = 0; j < 3; j++) {
+		ed[j] = (double)py[j] - px[j];
+		a0[j] = (double)px[j] - pv[j];
+		a1[j] = (double)px[j] - pos[j];
+	}
+	/* n = (x - v) x (y - v) = (x - v) x (y - x) */
+	n0[0] = a0[1] * ed[2] - a0[2] * ed[1];
+	n0[1] = a0[2] * ed[0] - a0[0] * ed[2];
+	n0[2] = a0[0] * ed[1] - a0[1] * ed[0];
+	n1[0] = a1[1] * ed[2] - a1[2] * ed[1];
+	n1[1] = a1[2] * ed[0] - a1[0] * ed[2];
+	n1[2] = a1[0] * ed[1] - a1[1] * ed[0];
+	double l0 = dot3(n0, n0), l1 = dot3(n1, n1);
+	/* squared edge lengths of the new face, for its quality */
+	double s = dot3(ed, ed) + dot3(a1, a1);
+	double b[3] = {(double)py[0] - pos[0], (double)py[1] - pos[1], (double)py[2] - pos[2]};
+	s += dot3(b, b);
+	/* quality 2 sqrt(3) |n| / s > 1e-6, squared */
+	if (!(12 * l1 > 1e-12 * s * s))
+		return 0;
+	if (!within_angle(dot3(n0, n1), l0, l1, e->cos_max))
+		return 0;
+	const int16_t *qn = e->tnormal + 3 * (size_t)t;
+	double tn[3] = {qn[0] / 32767.0, qn[1] / 32767.0, qn[2] / 32767.0};
+	if (!within_angle(dot3(tn, n1), 1, l1, e->cos_max))
+		return 0;
+	if (e->min_quality > 0) {
+		const float *q[3] = {pos, px, py};
+		double qual = quality(q[0], q[1], q[2], n1);
+		if (qual < e->min_quality && qual < quality(pv, px, py, n0))
+			return 0;
+	}
+	return 1;
+}
+
+/* Whether face t is still at v and lacks `other`. */
+static int
+face_at(const struct engine *e, uint32_t t, uint32_t v, uint32_t other)
+{
+	const uint32_t *c = e->tri + 3 * (size_t)t;
+
+	return (c[0] == v || c[1] == v || c[2] == v) && c[0] != other && c[1] != other &&
+	       c[2] != other;
+}
+
+/*
+ * No face around `v` other than those with `other` may fail face_ok when
+ * v moves to pos. A long list (the apex of a fan, tried with each of its
+ * neighbours in turn) keeps the face that failed last, in refuse, and
+ * tries it first: it most often fails again, and the test ends there
+ * instead of reading thousands of faces. (Shared by the threads of a
+ * pass's costing, each of which may write it: any face it holds is a
+ * face of the mesh, a hint only.)
  */
 static int
 fan_ok(struct engine *e, uint32_t v, uint32_t other, const float pos[3])
 {
 	const struct list *l = &e->vt[v];
+	uint32_t *refuse = indexed(e, v) ? &e->refuse[v] : NULL;
 
+	if (refuse != NULL) {
+		uint32_t t = __atomic_load_n(refuse, __ATOMIC_RELAXED);
+		thread_read++;
+		if (t != NONE && face_at(e, t, v, other) && !face_ok(e, v, t, pos))
+			return 0;
+	}
 	for (uint32_t i = 0; i < l->len; i++) {
 		uint32_t t = e->tpool.data[l->off + i];
 		const uint32_t *c = e->tri + 3 * (size_t)t;
 		if (c[0] == other || c[1] == other || c[2] == other)
 			continue;
-		/* rotate so that c[k] == v comes first: (v, x, y) */
-		int k = c[0] == v ? 0 : c[1] == v ? 1 : 2;
-		const float *pv = e->pos + 3 * (size_t)v;
-		const float *px = e->pos + 3 * (size_t)c[(k + 1) % 3];
-		const float *py = e->pos + 3 * (size_t)c[(k + 2) % 3];
-		double ed[3], a0[3], a1[3], n0[3], n1[3];
-		for (int j = 0; j < 3; j++) {
-			ed[j] = (double)py[j] - px[j];
-			a0[j] = (double)px[j] - pv[j];
-			a1[j] = (double)px[j] - pos[j];
-		}
-		/* n = (x - v) x (y - v) = (x - v) x (y - x) */
-		n0[0] = a0[1] * ed[2] - a0[2] * ed[1];
-		n0[1] = a0[2] * ed[0] - a0[0] * ed[2];
-		n0[2] = a0[0] * ed[1] - a0[1] * ed[0];
-		n1[0] = a1[1] * ed[2] - a1[2] * ed[1];
-		n1[1] = a1[2] * ed[0] - a1[0] * ed[2];
-		n1[2] = a1[0] * ed[1] - a1[1] * ed[0];
-		double l0 = dot3(n0, n0), l1 = dot3(n1, n1);
-		/* squared edge lengths of the new face, for its quality */
-		double s = dot3(ed, ed) + dot3(a1, a1);
-		double b[3] = {(double)py[0] - pos[0], (double)py[1] - pos[1], (double)py[2] - pos[2]};
-		s += dot3(b, b);
-		/* quality 2 sqrt(3) |n| / s > 1e-6, squared */
-		if (!(12 * l1 > 1e-12 * s * s))
+		if (!face_ok(e, v, t, pos)) {
+			thread_read += i + 1;
+			if (refuse != NULL)
+				__atomic_store_n(refuse, t, __ATOMIC_RELAXED);
 			return 0;
-		if (!within_angle(dot3(n0, n1), l0, l1, e->cos_max))
-			return 0;
-		const int16_t *qn = e->tnormal + 3 * (size_t)t;
-		double tn[3] = {qn[0] / 32767.0, qn[1] / 32767.0, qn[2] / 32767.0};
-		if (!within_angle(dot3(tn, n1), 1, l1, e->cos_max))
-			return 0;
-		if (e->min_quality > 0) {
-			const float *q[3] = {pos, px, py};
-			double qual = quality(q[0], q[1], q[2], n1);
-			if (qual < e->min_quality && qual < quality(pv, px, py, n0))
-				return 0;
 		}
 	}
+	thread_read += l->len;
 	return 1;
 }
 
-/* Would contracting gone into keep give two faces on the same three vertices? */
+/* Whether a face has corners a, b and c: sought in a's list or, if a is
+ * a hub, in the shortest of their lists. */
+static int
+face_of(const struct engine *e, uint32_t a, uint32_t b, uint32_t c)
+{
+	if (e->vt[a].len >= HUB) {
+		uint32_t x = a;
+		a = e->vt[b].len < e->vt[a].len ? b : a;
+		a = e->vt[c].len < e->vt[a].len ? c : a;
+		b = a == b ? x : b;
+		c = a == c ? x : c;
+	}
+	const struct list *l = &e->vt[a];
+	uint32_t i = 0;
+	int found = 0;
+
+	for (; i < l->len && !found; i++) {
+		const uint32_t *s = e->tri + 3 * (size_t)e->tpool.data[l->off + i];
+		found = (s[0] == b || s[1] == b || s[2] == b) && (s[0] == c || s[1] == c || s[2] == c);
+	}
+	thread_read += i;
+	return found;
+}
+
+/* Would contracting gone into keep give two faces on the same three
+ * vertices: a face at gone but not keep, and one at keep, on the same
+ * other two? The same either way round: asked of the shorter list. */
 static int
 duplicates(struct engine *e, uint32_t keep, uint32_t gone)
 {
-	const struct list *lg = &e->vt[gone], *lk = &e->vt[keep];
+	if (e->vt[gone].len > e->vt[keep].len)
+		return duplicates(e, gone, keep);
+	const struct list *lg = &e->vt[gone];
 
 	for (uint32_t i = 0; i < lg->len; i++) {
 		const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[lg->off + i];
@@ -935,15 +1119,8 @@ duplicates(struct engine *e, uint32_t keep, uint32_t gone)
 					y = t[k];
 			}
 		}
-		if (has_keep)
-			continue;
-		for (uint32_t j = 0; j < lk->len; j++) {
-			const uint32_t *s = e->tri + 3 * (size_t)e->tpool.data[lk->off + j];
-			int hx = s[0] == x || s[1] == x || s[2] == x;
-			int hy = s[0] == y || s[1] == y || s[2] == y;
-			if (hx && hy)
-				return 1;
-		}
+		if (!has_keep && face_of(e, keep, x, y))
+			return 1;
 	}
 	return 0;
 }
@@ -1042,12 +1219,16 @@ eval_pair(struct engine *e, uint32_t a, uint32_t b, double pos[3])
 
 /*
  * Whether pair (u, v) may be contracted now: every validity test of the
- * header. Fills keep, gone, the new position and the cost. lu: u's link
- * listing, or NULL to make it here.
+ * header, 1 if it passes them, 0 if not. Fills keep, gone, the new
+ * position and the cost. lu: u's link listing, or NULL to make it here.
+ * With a hub at one end, the few faces of the other are tested first:
+ * they refuse most such pairs. With `unsure`, a pair with a hub that
+ * passes the tests but the hub's fan test and the caller's, which are
+ * not made, gives 2.
  */
 static int
-try_pair(struct engine *e, uint32_t u, uint32_t v, struct link *lu, uint32_t *keep,
-         uint32_t *gone, double pos[3], double *cost)
+try_pair(struct engine *e, uint32_t u, uint32_t v, struct link *lu, int unsure,
+         uint32_t *keep, uint32_t *gone, double pos[3], double *cost)
 {
 	uint32_t a = u < v ? u : v, b = u < v ? v : u;
 	const struct vdt_contract_ops *ops = e->ops;
@@ -1055,12 +1236,20 @@ try_pair(struct engine *e, uint32_t u, uint32_t v, struct link *lu, uint32_t *ke
 	orient(e, a, b, keep, gone);
 	*cost = eval_pair(e, a, b, pos);
 	float fpos[3] = {(float)pos[0], (float)pos[1], (float)pos[2]};
-	return *cost < INFINITY && (e->allow_nonmanifold || link_ok(e, *keep, *gone, lu)) &&
-	       !(e->keep_parts && last_of_part(e, *keep, *gone)) &&
-	       !(e->keep_a_face && last_faces(e, *keep, *gone)) &&
-	       !(e->max_removed && shared_faces(e, *keep, *gone) > e->max_removed) &&
-	       !duplicates(e, *keep, *gone) &&
-	       fan_ok(e, *keep, *gone, fpos) && fan_ok(e, *gone, *keep, fpos) &&
+	uint32_t few = e->vt[a].len < e->vt[b].len ? a : b, many = few == a ? b : a;
+	int hub = e->vt[many].len >= HUB;
+	/* (the tests only read: their order changes no answer) */
+	if (!(*cost < INFINITY) || (hub && !fan_ok(e, few, many, fpos)))
+		return 0;
+	if (!((e->allow_nonmanifold || link_ok(e, *keep, *gone, lu)) &&
+	      !(e->keep_parts && last_of_part(e, *keep, *gone)) &&
+	      !(e->keep_a_face && last_faces(e, *keep, *gone)) &&
+	      !(e->max_removed && shared_faces(e, *keep, *gone) > e->max_removed) &&
+	      !duplicates(e, *keep, *gone) && (hub || fan_ok(e, few, many, fpos))))
+		return 0;
+	if (hub && unsure)
+		return 2;
+	return fan_ok(e, many, few, fpos) &&
 	       (ops->valid == NULL || ops->valid(ops->ctx, *keep, *gone, pos));
 }
 
@@ -1399,9 +1588,19 @@ by_cost(const void *p, const void *q)
  * on the rim of a fan of slivers (a big concave polygon cut into ears)
  * nearly every pair of the hub fails the link test, and listing its
  * thousands of neighbours for each made the search quadratic.
+ *
+ * With `unsure`, a pair with a hub is taken on all but the hub's fan
+ * test (try_pair), which would read its thousands of faces at each
+ * search of each of its neighbours; returns 1 if the pair taken is such.
+ * The vertex queue tests the pair in full anyway when it reaches the top
+ * and, if it fails, searches again with every test (vertex_update): the
+ * contractions are those of a search in full, as the pair's key is no
+ * more than that search's, and the vertex's data unchanged until it
+ * comes to the top or its neighbourhood changes, which searches again.
  */
-static void
-cheapest_valid(struct engine *e, uint32_t v, struct vcost *vn, long n, uint32_t *x, float *c)
+static int
+cheapest_valid(struct engine *e, uint32_t v, struct vcost *vn, long n, int unsure, uint32_t *x,
+               float *c)
 {
 	uint32_t local[4 * LINK_STACK + 4 * LINK_STACK]; /* fan_words(LINK_STACK) */
 	size_t need = fan_words(e->vt[v].len);
@@ -1420,18 +1619,21 @@ cheapest_valid(struct engine *e, uint32_t v, struct vcost *vn, long n, uint32_t 
 			known = &lv;
 		}
 	}
-	for (long i = 0; i < n && vn[i].cost < INFINITY; i++)
-		if (try_pair(e, v, vn[i].x, known, &keep, &gone, pos, &cost)) {
+	int found = 0;
+	for (long i = 0; i < n && vn[i].cost < INFINITY && !found; i++)
+		if ((found = try_pair(e, v, vn[i].x, known, unsure, &keep, &gone, pos, &cost)) != 0) {
 			*x = vn[i].x;
 			*c = vn[i].cost;
-			break;
 		}
 	free(big);
+	return found == 2;
 }
 
 /*
  * Make v's queue entry its cheapest pair, or with valid_only its cheapest
- * pair that passes the validity tests now; with none, v leaves the queue.
+ * pair that passes the validity tests now, 1 taking a pair with a hub on
+ * all but the hub's fan test, 2 on every test (cheapest_valid); with none,
+ * v leaves the queue.
  */
 static int
 vertex_update(struct engine *e, uint32_t v, int valid_only)
@@ -1445,10 +1647,11 @@ vertex_update(struct engine *e, uint32_t v, int valid_only)
 		for (long i = 0; i < n; i++)
 			if (e->vn[i].cost < INFINITY)
 				top2_add(&t, e->vn[i].x, e->vn[i].cost);
-		e->vflag[v] &= (uint8_t)~(V_CHECKED | V_STALE | V_NOALT);
+		e->vflag[v] &= (uint8_t)~(V_CHECKED | V_STALE | V_NOALT | V_UNSURE);
 	} else {
-		cheapest_valid(e, v, e->vn, n, &t.x1, &t.c1);
-		e->vflag[v] = (uint8_t)((e->vflag[v] | V_CHECKED | V_NOALT) & ~V_STALE);
+		int unsure = cheapest_valid(e, v, e->vn, n, valid_only == 1, &t.x1, &t.c1);
+		e->vflag[v] = (uint8_t)((e->vflag[v] | V_CHECKED | V_NOALT) & ~(V_STALE | V_UNSURE));
+		e->vflag[v] |= unsure ? V_UNSURE : 0;
 	}
 	e->alt[v] = t.x2;
 	e->altc[v] = t.c2;
@@ -1524,26 +1727,22 @@ vertex_merged(struct engine *e, uint32_t keep, uint32_t gone)
 			e->altc[x] = c;
 		}
 	}
-	e->vflag[keep] &= (uint8_t)~(V_CHECKED | V_STALE | V_NOALT);
+	e->vflag[keep] &= (uint8_t)~(V_CHECKED | V_STALE | V_NOALT | V_UNSURE);
 	e->alt[keep] = t.x2;
 	e->altc[keep] = t.c2;
 	vertex_set(e, keep, t.x1, t.c1);
 
 	/* A corner of a removed face may have lost its edge to keep. */
 	for (size_t i = 0; i < e->work.wing_len; i++) {
-		uint32_t w = e->work.wing[i], adjacent = 0;
+		uint32_t w = e->work.wing[i];
 		int s_hit = e->alt[w] == keep || e->alt[w] == gone;
 		if ((e->vflag[w] & (V_DEAD | V_STALE)) ||
 		    (e->best[w] != keep && e->best[w] != gone && !s_hit))
 			continue;
-		const struct list *l = &e->vt[w];
-		for (uint32_t j = 0; j < l->len && !adjacent; j++) {
-			const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + j];
-			adjacent = t[0] == keep || t[1] == keep || t[2] == keep;
-		}
-		if (!adjacent && s_hit)
+		int near = adjacent(e, w, keep);
+		if (!near && s_hit)
 			e->vflag[w] |= V_NOALT;
-		if ((!adjacent && e->best[w] == keep) || e->best[w] == gone)
+		if ((!near && e->best[w] == keep) || e->best[w] == gone)
 			e->vflag[w] |= V_STALE;
 	}
 	return 0;
@@ -1628,6 +1827,8 @@ contract(struct engine *e, struct work *w, uint32_t keep, uint32_t gone,
 	for (int k = 0; k < 3; k++)
 		e->pos[3 * (size_t)keep + k] = (float)dpos[k];
 	w->wing_len = 0;
+	if (e->touched != NULL)
+		e->touched[keep] = e->touched[gone] = e->clock + 1;
 
 	/* Triangles: those with both die, the rest move to keep (first
 	 * gathered at the front of gone's list). */
@@ -1765,6 +1966,7 @@ contract_now(struct engine *e, uint32_t keep, uint32_t gone, const double dpos[3
 	int rc = contract(e, &e->work, keep, gone, dpos, cost);
 
 	work_apply(e, &e->work);
+	e->clock++;
 	return rc;
 }
 
@@ -1815,7 +2017,7 @@ pass_best_of(struct engine *e, uint32_t v, struct vcost *vn, long n)
 	float bc = INFINITY;
 
 	if (e->vflag[v] & V_REFUSED) {
-		cheapest_valid(e, v, vn, n, &bx, &bc);
+		cheapest_valid(e, v, vn, n, 0, &bx, &bc);
 	} else {
 		for (long i = 0; i < n; i++)
 			if (cheaper(vn[i].cost, vn[i].x, bc, bx)) {
@@ -1980,6 +2182,7 @@ pjob_run(void *arg)
 		if (j->first)
 			first_take(j->e, begin, end);
 	}
+	read_flush(j->e);
 	return NULL;
 }
 
@@ -2123,7 +2326,7 @@ pass_pair(struct engine *e, struct work *w, uint32_t v, struct vdt_contraction *
 	uint32_t keep, gone;
 	double pos[3];
 
-	if (!try_pair(e, v, e->best[v], NULL, &keep, &gone, pos, cost)) {
+	if (!try_pair(e, v, e->best[v], NULL, 0, &keep, &gone, pos, cost)) {
 		e->vflag[v] |= V_REFUSED;
 		return 0;
 	}
@@ -2467,6 +2670,7 @@ prun_contract(void *arg)
 			prun_keep(r, i, made, &c, cost);
 	}
 	pool_holes_flush(&e->tpool);
+	read_flush(e);
 	return NULL;
 }
 
@@ -2847,6 +3051,7 @@ run_passes(struct engine *e, const struct vdt_contract_opts *o,
 			i += (size_t)rc;
 		if (rc < 0 || pass_serial(e, o, res, rec_cap, e->keys + i, m - i, &t) != 0)
 			return -1;
+		e->clock++;
 		did = t.did;
 		refused = t.refused;
 		res->contractions += t.did;
@@ -2914,7 +3119,8 @@ face_run(void *arg)
 static void
 engine_shed(struct engine *e)
 {
-	void **p[] = {(void **)&e->tnormal, (void **)&e->fpos, (void **)&e->vflag, (void **)&e->vt,
+	void **p[] = {(void **)&e->tnormal, (void **)&e->fpos, (void **)&e->refuse,
+	              (void **)&e->touched, (void **)&e->hubnb, (void **)&e->vflag, (void **)&e->vt,
 	              (void **)&e->vp, (void **)&e->tpool.data, (void **)&e->ppool.data,
 	              (void **)&e->pv, (void **)&e->pflag, (void **)&e->heap,
 	              (void **)&e->hpos, (void **)&e->vrej, (void **)&e->best,
@@ -2936,6 +3142,9 @@ engine_free(struct engine *e)
 	free(e->tri);
 	free(e->tnormal);
 	free(e->fpos);
+	free(e->refuse);
+	free(e->touched);
+	free(e->hubnb);
 	free(e->vflag);
 	free(e->vt);
 	free(e->vp);
@@ -3352,6 +3561,7 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 		free(own_tri);
 		return bad;
 	}
+	thread_read = 0; /* (left by a run that failed) */
 	e.ops = ops;
 	e.cos_max = cos_degrees(o->max_normal_angle);
 	if (o->max_normal_angle >= 180)
@@ -3418,13 +3628,14 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 					goto nomem;
 				continue;
 			}
-			if (!try_pair(&e, p, e.best[p], NULL, &keep, &gone, pos, &c)) {
+			if (!try_pair(&e, p, e.best[p], NULL, 0, &keep, &gone, pos, &c)) {
 				res->rejected++;
-				if (vertex_update(&e, p, 1) != 0)
+				/* (a pair taken unsure failed: search on every test) */
+				if (vertex_update(&e, p, e.vflag[p] & V_UNSURE ? 2 : 1) != 0)
 					goto nomem;
 				continue;
 			}
-		} else if (!try_pair(&e, e.pv[2 * p], e.pv[2 * p + 1], NULL, &keep, &gone, pos, &c)) {
+		} else if (!try_pair(&e, e.pv[2 * p], e.pv[2 * p + 1], NULL, 0, &keep, &gone, pos, &c)) {
 			heap_remove(&e, p);
 			reject(&e, p);
 			res->rejected++;
@@ -3448,6 +3659,8 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 			                            (start_tris - o->target_triangles));
 	}
 finish:
+	read_flush(&e);
+	res->faces_read = e.faces_read;
 	res->reached_target = done(&e, o);
 	engine_shed(&e);
 

@@ -1544,6 +1544,62 @@ hub_of_slivers_stays_a_disc(void **state)
 	}
 }
 
+/*
+ * Two hubs, each joined to every vertex of a ring of n (2n faces; the
+ * ring wavers in and out so that its pairs cost something), simplified
+ * with quadrics to a tenth. Every contraction on the ring is next to both
+ * hubs, and every search for a ring vertex's cheapest valid pair may try
+ * its pairs with them: the tests must not read a hub's thousands of faces
+ * at each (faces_read, a count of work, not a time: quadratic, it was
+ * several hundred faces per vertex at n = 20000, and growing with n).
+ *
+ *          hub 0 (above)
+ *        /  |   \
+ *   r0 - r1 - r2 - ... - r(n-1) - r0      and hub 1 below
+ */
+static void
+hubs_are_not_read_at_each_try(void **state)
+{
+	enum { N = 20000 };
+	struct vdt_mesh m;
+
+	(void)state;
+	assert_int_equal(vdt_mesh_alloc(&m, N + 2, 2 * N, 0, NULL), 0);
+	memset(m.positions, 0, 6 * sizeof(float));
+	m.positions[2] = 0.2f;
+	m.positions[5] = -0.2f;
+	for (uint32_t i = 0; i < N; i++) {
+		double phi = 2 * M_PI * i / N, r = 1 + 0.01 * (i % 3);
+		float *p = m.positions + 3 * (size_t)(2 + i);
+		p[0] = (float)(r * cos(phi)), p[1] = (float)(r * sin(phi)), p[2] = 0;
+		uint32_t a = 2 + i, b = 2 + (i + 1) % N, *t = m.triangles + 6 * (size_t)i;
+		t[0] = 0, t[1] = a, t[2] = b;
+		t[3] = 1, t[4] = b, t[5] = a;
+	}
+	for (int passes = 0; passes < 2; passes++) {
+		struct qctx c = {face_quadrics(&m)};
+		struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0};
+		struct vdt_contract_opts o;
+		struct vdt_contract_result r;
+		vdt_contract_defaults(&o);
+		o.target_triangles = 2 * N / 10;
+		o.passes = passes;
+		o.threads = 2;
+		assert_int_equal(vdt_contract_run(&m, &ops, &o, &r, NULL), 0);
+		assert_true(r.reached_target);
+		struct vdt_mesh out = {r.vertex_count, r.positions, NULL, NULL, NULL,
+		                       r.triangle_count, r.triangles};
+		assert_true(shape_closed_manifold(&out));
+		/* (passes still read a hub's fan in full for each pair with
+		 * it that passes, about 460 faces a vertex here, where they read
+		 * 2400 before) */
+		assert_true(r.faces_read < (passes ? 600 : 100) * (size_t)N);
+		vdt_contract_result_free(&r);
+		free(c.q);
+	}
+	vdt_mesh_free(&m);
+}
+
 /* How many records the first pass made: progress is reported after each. */
 struct first_pass {
 	const struct vdt_contract_result *r;
@@ -1743,6 +1799,7 @@ main(void)
 		cmocka_unit_test(passes_sort_past_the_claimable_keys),
 		cmocka_unit_test(long_fans_keep_the_link_condition),
 		cmocka_unit_test(hub_of_slivers_stays_a_disc),
+		cmocka_unit_test(hubs_are_not_read_at_each_try),
 		cmocka_unit_test(first_pass_claims_cheapest_pairs),
 		cmocka_unit_test(run_jobs_runs_each_job_once),
 	};
