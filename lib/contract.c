@@ -87,7 +87,7 @@ struct engine {
 	uint64_t *hubnb;  /* with fpos, per vertex: its last adjacency test
 	                     with another hub (adjacent) */
 	uint32_t clock;   /* contractions made, or in passes rounds */
-	size_t faces_read; /* vdt_contract_result.faces_read */
+	size_t entries_read; /* vdt_contract_result.entries_read */
 	int16_t *tnormal; /* input unit normal per triangle, times 32767 */
 	uint8_t *vflag;
 	struct list *vt;  /* triangles around each vertex */
@@ -95,6 +95,8 @@ struct engine {
 	struct pool tpool, ppool;
 
 	uint32_t *pv;     /* 2 per pair */
+	uint32_t *ppos;   /* 2 per pair, or NULL: its place in each end's pair
+	                     list, if that is long (pair_indexed) */
 	uint8_t *pflag;
 	size_t np;
 
@@ -276,16 +278,16 @@ pool_holes_flush(struct pool *p)
 }
 
 /*
- * The faces the validity tests read (vdt_contract_result.faces_read), counted
- * per thread the same way and added to the engine's count at the end of
- * each job (read_flush).
+ * The list entries the validity tests and list_remove read
+ * (vdt_contract_result.entries_read), counted per thread the same way and
+ * added to the engine's count at the end of each job (read_flush).
  */
 static _Thread_local size_t thread_read;
 
 static void
 read_flush(struct engine *e)
 {
-	__atomic_fetch_add(&e->faces_read, thread_read, __ATOMIC_RELAXED);
+	__atomic_fetch_add(&e->entries_read, thread_read, __ATOMIC_RELAXED);
 	thread_read = 0;
 }
 
@@ -386,8 +388,9 @@ list_remove(struct pool *p, struct list *l, uint32_t x)
 		if (d[i] == x) {
 			memmove(d + i, d + i + 1, (l->len - i - 1) * sizeof(*d));
 			l->len--;
-			return;
+			break;
 		}
+	thread_read += i;
 }
 
 /* ---- long face lists ----
@@ -477,6 +480,81 @@ index_merged(struct engine *e, uint32_t keep, int after, uint32_t len, uint32_t 
 	if (e->fpos == NULL)
 		return e->tpool.shared ? 0 : index_make(e);
 	index_from(e, keep, after || cap < LIST_INDEXED ? 0 : len);
+	return 0;
+}
+
+/*
+ * The same for the pair queue's lists (vdt-build, virtual pairs): a pair
+ * that turns out a duplicate leaves the list of its other end, and a
+ * hub's list is as long as its valence. ppos holds, for each end of each
+ * pair in a list with room for LIST_INDEXED or more, the pair's place
+ * there (8 bytes a pair, made when the first list is that long); the
+ * order of a vertex's pairs changes no result.
+ */
+static int
+pair_indexed(const struct engine *e, uint32_t v)
+{
+	return e->ppos != NULL && e->vp[v].cap >= LIST_INDEXED;
+}
+
+/* Note the place of the i-th pair of v's list. */
+static void
+pair_index_at(struct engine *e, uint32_t v, uint32_t i)
+{
+	uint32_t p = e->ppool.data[e->vp[v].off + i];
+
+	e->ppos[2 * (size_t)p + (e->pv[2 * (size_t)p] != v)] = i;
+}
+
+/* The same for each pair of v's list from the i-th on. */
+static void
+pair_index_from(struct engine *e, uint32_t v, uint32_t i)
+{
+	for (; i < e->vp[v].len; i++)
+		pair_index_at(e, v, i);
+}
+
+static int
+pair_index_make(struct engine *e)
+{
+	if ((e->ppos = vdt_malloc_huge((2 * e->np + 1) * sizeof(*e->ppos))) == NULL)
+		return -1;
+	for (size_t v = 0; v < e->nv; v++)
+		if (pair_indexed(e, (uint32_t)v))
+			pair_index_from(e, (uint32_t)v, 0);
+	return 0;
+}
+
+/* Remove pair p from v's list. */
+static void
+pair_remove(struct engine *e, uint32_t v, uint32_t p)
+{
+	struct list *l = &e->vp[v];
+
+	if (!pair_indexed(e, v)) {
+		list_remove(&e->ppool, l, p);
+		return;
+	}
+	uint32_t i = e->ppos[2 * (size_t)p + (e->pv[2 * (size_t)p] != v)];
+	if (i < --l->len) {
+		e->ppool.data[l->off + i] = e->ppool.data[l->off + l->len];
+		pair_index_at(e, v, i);
+	}
+}
+
+/* Append pair p, one of whose ends is v, to v's list. */
+static int
+pair_push(struct engine *e, uint32_t v, uint32_t p)
+{
+	uint32_t cap = e->vp[v].cap;
+
+	if (list_push(&e->ppool, e->vp, e->nv, v, p) != 0)
+		return -1;
+	if (e->vp[v].cap < LIST_INDEXED)
+		return 0;
+	if (e->ppos == NULL)
+		return pair_index_make(e);
+	pair_index_from(e, v, cap < LIST_INDEXED ? 0 : e->vp[v].len - 1);
 	return 0;
 }
 
@@ -1901,14 +1979,14 @@ contract(struct engine *e, struct work *w, uint32_t keep, uint32_t gone,
 		if (dup) {
 			heap_remove(e, p);
 			e->pflag[p] = P_DEAD;
-			list_remove(&e->ppool, &e->vp[other], p);
+			pair_remove(e, other, p);
 			continue;
 		}
 		if (v[0] == gone)
 			v[0] = keep;
 		else
 			v[1] = keep;
-		if (list_push(&e->ppool, e->vp, e->nv, keep, p) != 0)
+		if (pair_push(e, keep, p) != 0)
 			return -1;
 		pg = &e->vp[gone];
 	}
@@ -3122,7 +3200,7 @@ engine_shed(struct engine *e)
 	void **p[] = {(void **)&e->tnormal, (void **)&e->fpos, (void **)&e->refuse,
 	              (void **)&e->touched, (void **)&e->hubnb, (void **)&e->vflag, (void **)&e->vt,
 	              (void **)&e->vp, (void **)&e->tpool.data, (void **)&e->ppool.data,
-	              (void **)&e->pv, (void **)&e->pflag, (void **)&e->heap,
+	              (void **)&e->pv, (void **)&e->ppos, (void **)&e->pflag, (void **)&e->heap,
 	              (void **)&e->hpos, (void **)&e->vrej, (void **)&e->best,
 	              (void **)&e->alt, (void **)&e->altc,
 	              (void **)&e->vn, (void **)&e->vk, (void **)&e->work.wing,
@@ -3151,6 +3229,7 @@ engine_free(struct engine *e)
 	free(e->tpool.data);
 	free(e->ppool.data);
 	free(e->pv);
+	free(e->ppos);
 	free(e->pflag);
 	free(e->heap);
 	free(e->hpos);
@@ -3345,6 +3424,12 @@ engine_init(struct engine *e, const struct vdt_mesh *m, float *own_pos,
 		for (int k = 0; k < 2; k++) {
 			struct list *l = &e->vp[e->pv[2 * p + k]];
 			e->ppool.data[l->off + l->len++] = (uint32_t)p;
+		}
+	for (size_t v = 0; v < nv; v++)
+		if (e->vp[v].cap >= LIST_INDEXED) {
+			if (pair_index_make(e) != 0)
+				goto nomem;
+			break;
 		}
 
 flags:
@@ -3660,7 +3745,7 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 	}
 finish:
 	read_flush(&e);
-	res->faces_read = e.faces_read;
+	res->entries_read = e.entries_read;
 	res->reached_target = done(&e, o);
 	engine_shed(&e);
 

@@ -208,9 +208,10 @@ struct vdt_contract_result {
 	double max_cost;       /* largest cost contracted */
 	int reached_target;    /* 1 if the triangle/vertex target was met */
 	size_t rejected;       /* pops refused by a validity test */
-	size_t faces_read;     /* faces the validity tests read: their work,
-	                          which a vertex of many faces must not make
-	                          quadratic */
+	size_t entries_read;   /* face and pair list entries the validity
+	                          tests and the lists' updates read: their
+	                          work, which a vertex of many faces must not
+	                          make quadratic */
 	int passes;            /* 1 if contracted in passes (asked for, and
 	                          no pair queue), 0 one pair at a time */
 	size_t shared;         /* passes: claimed pairs shared among threads */
