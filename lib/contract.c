@@ -675,20 +675,6 @@ len3(const double a[3])
 	return sqrt(dot3(a, a));
 }
 
-/* Twice the quality measure 4 sqrt(3) A / (sum of squared edges), in [0,1]. */
-static double
-quality(const float *a, const float *b, const float *c, const double n[3])
-{
-	double s = 0;
-	const float *p[3] = {a, b, c};
-	for (int i = 0; i < 3; i++)
-		for (int k = 0; k < 3; k++) {
-			double d = (double)p[(i + 1) % 3][k] - p[i][k];
-			s += d * d;
-		}
-	return s > 0 ? 2 * sqrt(3.0) * len3(n) / s : 0;
-}
-
 /* Set a pair aside after a failed test, or bring it back. */
 static void
 reject(struct engine *e, uint32_t p)
@@ -1095,8 +1081,8 @@ face_ok(const struct engine *e, uint32_t v, uint32_t t, const float pos[3])
 		return 0;
 	if (e->min_quality > 0) {
 		const float *q[3] = {pos, px, py};
-		double qual = quality(q[0], q[1], q[2], n1);
-		if (qual < e->min_quality && qual < quality(pv, px, py, n0))
+		double qual = vdt_triangle_quality(q[0], q[1], q[2]);
+		if (qual < e->min_quality && qual < vdt_triangle_quality(pv, px, py))
 			return 0;
 	}
 	return 1;
