@@ -82,6 +82,11 @@ struct engine {
 	                     its vertex's face list, if that is long (indexed) */
 	uint32_t *refuse; /* with fpos, per vertex: the face that last failed
 	                     its fan test, if its list is indexed (fan_ok) */
+	double *safe;     /* with fpos, per vertex: how far it may move with
+	                     every face of its list but the first few passing
+	                     face_ok, 0 if not known (safe_make) */
+	uint32_t *sfront; /* with fpos, per vertex: how many those first few
+	                     are, and SAFE_WANTED */
 	uint32_t *touched; /* with fpos, per vertex: the clock of the last
 	                      contraction it took part in (adjacent) */
 	uint64_t *hubnb;  /* with fpos, per vertex: its last adjacency test
@@ -434,15 +439,18 @@ index_from(struct engine *e, uint32_t v, uint32_t i)
 }
 
 /* Make the index, of every list long enough, and the notes kept for them
- * (refuse, touched, hubnb). */
+ * (refuse, safe, sfront, touched, hubnb). */
 static int
 index_make(struct engine *e)
 {
 	e->fpos = vdt_malloc_huge((3 * e->nt + 1) * sizeof(*e->fpos));
 	e->refuse = malloc((e->nv + 1) * sizeof(*e->refuse));
+	e->safe = calloc(e->nv + 1, sizeof(*e->safe));
+	e->sfront = calloc(e->nv + 1, sizeof(*e->sfront));
 	e->touched = calloc(e->nv + 1, sizeof(*e->touched));
 	e->hubnb = malloc((e->nv + 1) * sizeof(*e->hubnb));
-	if (e->fpos == NULL || e->refuse == NULL || e->touched == NULL || e->hubnb == NULL)
+	if (e->fpos == NULL || e->refuse == NULL || e->safe == NULL || e->sfront == NULL ||
+	    e->touched == NULL || e->hubnb == NULL)
 		return -1;
 	memset(e->refuse, 0xff, (e->nv + 1) * sizeof(*e->refuse)); /* NONE */
 	memset(e->hubnb, 0xff, (e->nv + 1) * sizeof(*e->hubnb));   /* of vertex NONE */
@@ -1088,6 +1096,137 @@ face_ok(const struct engine *e, uint32_t v, uint32_t t, const float pos[3])
 	return 1;
 }
 
+/*
+ * How far v may move, in any direction, with face t (one of its own)
+ * still passing face_ok: a lower bound, 0 where none is sure. Moving v by
+ * d changes the face's normal n = (x - v) x (y - x) by d x (y - x), so by
+ * at most u |n| while |d| <= u |n| / |y - x|, turning it by at most
+ * asin(u). With u at most half the sine of the fold-over angle, and half
+ * the sine of what the face has left of it against its input normal, and
+ * 1/2, and |d| at most a quarter of each edge at v (so that the squared
+ * edges grow at most 1.5625 times), the quality falls at most to 0.32 of
+ * what it is, which must then be 1e-5 and 8 times min_quality at least.
+ * Such margins that rounding, in face_ok or here, cannot matter: a face
+ * near any limit gets no room, as does every face with a fold-over angle
+ * within 6 degrees of 0 or 180.
+ */
+static double
+face_safe(const struct engine *e, uint32_t v, uint32_t t)
+{
+	const uint32_t *c = e->tri + 3 * (size_t)t;
+	int k = c[0] == v ? 0 : c[1] == v ? 1 : 2;
+	const float *pv = e->pos + 3 * (size_t)v;
+	const float *px = e->pos + 3 * (size_t)c[(k + 1) % 3];
+	const float *py = e->pos + 3 * (size_t)c[(k + 2) % 3];
+	const int16_t *qn = e->tnormal + 3 * (size_t)t;
+	double ed[3], a[3], b[3], n[3], tn[3], tx[3], cmax = e->cos_max, u = 0.5;
+
+	for (int j = 0; j < 3; j++) {
+		ed[j] = (double)py[j] - px[j];
+		a[j] = (double)px[j] - pv[j];
+		b[j] = (double)py[j] - pv[j];
+		tn[j] = qn[j] / 32767.0;
+	}
+	n[0] = a[1] * ed[2] - a[2] * ed[1];
+	n[1] = a[2] * ed[0] - a[0] * ed[2];
+	n[2] = a[0] * ed[1] - a[1] * ed[0];
+	double ln = len3(n), le = len3(ed), la = len3(a), lb = len3(b), lt = len3(tn);
+	double q = 2 * sqrt(3.0) * ln / (dot3(ed, ed) + dot3(a, a) + dot3(b, b));
+	if (!(q >= 1e-5 && q >= 8 * e->min_quality && lt > 0.5))
+		return 0;
+	if (cmax >= -1) { /* (below: 180 degrees, no turn fails) */
+		double sm = sqrt(1 - cmax * cmax);
+		if (!(sm >= 0.1))
+			return 0;
+		if (cmax > 0)
+			u = sm / 2;
+		/* The input normal's test, as face_ok makes it (tn taken as a
+		 * unit vector): the angle phi to it at most theta, of cosine
+		 * cmax / |tn|; S and C the sine and cosine of theta - phi. */
+		double cp = cmax / lt, sp = sqrt(1 - cp * cp);
+		tx[0] = tn[1] * n[2] - tn[2] * n[1];
+		tx[1] = tn[2] * n[0] - tn[0] * n[2];
+		tx[2] = tn[0] * n[1] - tn[1] * n[0];
+		double co = dot3(tn, n) / (lt * ln), si = len3(tx) / (lt * ln);
+		double S = sp * co - cp * si, C = cp * co + sp * si;
+		double u3 = C <= 0 ? (S >= 0 ? 0.5 : 0) : (S - 1e-6) / 2;
+		if (!(u3 > 0))
+			return 0;
+		u = fmin(u, u3);
+	}
+	return fmin(u * ln / le, fmin(la, lb) / 4);
+}
+
+/*
+ * A long list keeps how far its vertex may move with every face but the
+ * first few passing face_ok (safe, sfront): those few, the faces nearest
+ * a limit, which would keep the others' room small, are tested one by
+ * one (fan_ok). Made when the fan test reads the whole list and passes
+ * (safe_make); a contraction that changes a face of the list moves it to
+ * the front while there is room, else lowers the bound (contract_safe).
+ * The order of a vertex's faces changes no result.
+ */
+#define SAFE_FRONT 64           /* faces at the front, at most */
+#define SAFE_BINS 64            /* of room, by powers of two (safe_bin) */
+#define SAFE_WANTED 0x80000000u /* in sfront: a pass's costing wanted it
+                                   made (pass_safe) */
+
+/* Nonzero on the threads of a pass's costing, which may read the mesh
+ * but not reorder a list (safe_make). */
+static _Thread_local int thread_costing;
+
+static int
+safe_bin(double r)
+{
+	int x;
+
+	if (!(r > 0))
+		return 0;
+	frexp(r, &x);
+	x += SAFE_BINS - 16; /* room from 2^-48 to 2^15 apart */
+	return x < 1 ? 1 : x < SAFE_BINS ? x : SAFE_BINS - 1;
+}
+
+/* Swap the faces at places i and j of v's indexed list. */
+static void
+index_swap(struct engine *e, uint32_t v, uint32_t i, uint32_t j)
+{
+	uint32_t *d = e->tpool.data + e->vt[v].off, t = d[i];
+
+	d[i] = d[j];
+	d[j] = t;
+	index_at(e, v, i);
+	index_at(e, v, j);
+}
+
+/* Make v's safe and sfront (v's list indexed, and no other thread
+ * reading it): to the front go the faces whose room is below the largest
+ * power of two that leaves at most SAFE_FRONT / 2 of them; the least
+ * room of the rest is safe. */
+static void
+safe_make(struct engine *e, uint32_t v)
+{
+	const struct list *l = &e->vt[v];
+	uint32_t count[SAFE_BINS] = {0}, sum = 0, m = 0;
+	double least = INFINITY;
+	int b = 0;
+
+	for (uint32_t i = 0; i < l->len; i++)
+		count[safe_bin(face_safe(e, v, e->tpool.data[l->off + i]))]++;
+	while (b < SAFE_BINS && sum + count[b] <= SAFE_FRONT / 2)
+		sum += count[b++];
+	for (uint32_t i = 0; i < l->len; i++) {
+		double r = face_safe(e, v, e->tpool.data[l->off + i]);
+		if (safe_bin(r) < b)
+			index_swap(e, v, i, m++);
+		else
+			least = fmin(least, r);
+	}
+	thread_read += 2 * (size_t)l->len;
+	e->safe[v] = least;
+	e->sfront[v] = m;
+}
+
 /* Whether face t is still at v and lacks `other`. */
 static int
 face_at(const struct engine *e, uint32_t t, uint32_t v, uint32_t other)
@@ -1101,25 +1240,38 @@ face_at(const struct engine *e, uint32_t t, uint32_t v, uint32_t other)
 /*
  * No face around `v` other than those with `other` may fail face_ok when
  * v moves to pos. A long list (the apex of a fan, tried with each of its
- * neighbours in turn) keeps the face that failed last, in refuse, and
- * tries it first: it most often fails again, and the test ends there
- * instead of reading thousands of faces. (Shared by the threads of a
- * pass's costing, each of which may write it: any face it holds is a
- * face of the mesh, a hint only.)
+ * neighbours in turn) is read as little as can be:
+ *  - a move within the room its faces leave (safe_make) needs only the
+ *    few at the front of the list, those nearest a limit;
+ *  - else the face that failed last, kept in refuse, is tried first: it
+ *    most often fails again, and the test ends there;
+ *  - else the whole list.
+ * A whole list that passes has its room made, or on a pass's costing
+ * threads, which must not reorder it, wanted (pass_safe). (refuse is
+ * shared by the costing threads, each of which may write it: any face
+ * it holds is a face of the mesh, a hint only.)
  */
 static int
 fan_ok(struct engine *e, uint32_t v, uint32_t other, const float pos[3])
 {
 	const struct list *l = &e->vt[v];
-	uint32_t *refuse = indexed(e, v) ? &e->refuse[v] : NULL;
+	uint32_t *refuse = indexed(e, v) ? &e->refuse[v] : NULL, end = l->len;
+	int whole = 1;
 
 	if (refuse != NULL) {
+		const float *p = e->pos + 3 * (size_t)v;
+		double d[3] = {(double)pos[0] - p[0], (double)pos[1] - p[1], (double)pos[2] - p[2]};
 		uint32_t t = __atomic_load_n(refuse, __ATOMIC_RELAXED);
 		thread_read++;
-		if (t != NONE && face_at(e, t, v, other) && !face_ok(e, v, t, pos))
+		if (dot3(d, d) < e->safe[v] * e->safe[v]) {
+			end = __atomic_load_n(&e->sfront[v], __ATOMIC_RELAXED) & ~SAFE_WANTED;
+			end = end < l->len ? end : l->len;
+			whole = 0;
+		} else if (t != NONE && face_at(e, t, v, other) && !face_ok(e, v, t, pos)) {
 			return 0;
+		}
 	}
-	for (uint32_t i = 0; i < l->len; i++) {
+	for (uint32_t i = 0; i < end; i++) {
 		uint32_t t = e->tpool.data[l->off + i];
 		const uint32_t *c = e->tri + 3 * (size_t)t;
 		if (c[0] == other || c[1] == other || c[2] == other)
@@ -1131,7 +1283,11 @@ fan_ok(struct engine *e, uint32_t v, uint32_t other, const float pos[3])
 			return 0;
 		}
 	}
-	thread_read += l->len;
+	thread_read += end;
+	if (refuse != NULL && whole && thread_costing)
+		__atomic_fetch_or(&e->sfront[v], SAFE_WANTED, __ATOMIC_RELAXED);
+	else if (refuse != NULL && whole)
+		safe_make(e, v);
 	return 1;
 }
 
@@ -1882,6 +2038,53 @@ orphans(const struct engine *e, const struct work *w, uint32_t keep)
 	return n;
 }
 
+/*
+ * After a contraction into keep, which moved: the faces of its list are
+ * those whose corners changed (gone's, now keep's, and keep's own). Of
+ * each other corner with a bound (safe_make), such a face that leaves
+ * less room than the bound goes to the front of its list if there is
+ * room there, else lowers the bound. (A face removed leaves the others
+ * the room they had, and the front what it held but that face, and
+ * perhaps a face from the back.)
+ */
+static void
+contract_safe(struct engine *e, uint32_t keep)
+{
+	const struct list *l = &e->vt[keep];
+
+	e->safe[keep] = 0;
+	for (uint32_t i = 0; i < l->len; i++) {
+		uint32_t t = e->tpool.data[l->off + i];
+		const uint32_t *c = e->tri + 3 * (size_t)t;
+		for (int k = 0; k < 3; k++) {
+			uint32_t x = c[k], m = e->sfront[x] & ~SAFE_WANTED;
+			double r;
+			if (!(e->safe[x] > 0) || (r = face_safe(e, x, t)) >= e->safe[x])
+				continue;
+			if (!indexed(e, x) || m >= SAFE_FRONT)
+				e->safe[x] = r;
+			else if (e->fpos[3 * (size_t)t + k] >= m) {
+				index_swap(e, x, e->fpos[3 * (size_t)t + k], m);
+				e->sfront[x]++;
+			}
+		}
+	}
+}
+
+/* Before a pass's costing: make the bounds its last costing wanted. */
+static void
+pass_safe(struct engine *e)
+{
+	for (size_t i = 0; e->sfront != NULL && i < e->nlive; i++) {
+		uint32_t v = e->alt[i];
+		if (!(e->sfront[v] & SAFE_WANTED))
+			continue;
+		e->sfront[v] &= ~SAFE_WANTED;
+		if (indexed(e, v) && !(e->vflag[v] & V_DEAD))
+			safe_make(e, v);
+	}
+}
+
 static int
 contract(struct engine *e, struct work *w, uint32_t keep, uint32_t gone,
          const double dpos[3], double cost)
@@ -1933,6 +2136,8 @@ contract(struct engine *e, struct work *w, uint32_t keep, uint32_t gone,
 	if (list_merge(&e->tpool, e->vt, e->nv, keep, gone, &after) != 0 ||
 	    index_merged(e, keep, after, klen, kcap) != 0)
 		return -1;
+	if (e->safe != NULL)
+		contract_safe(e, keep);
 
 	if (e->vq) {
 		e->vflag[gone] |= V_DEAD;
@@ -2229,6 +2434,7 @@ pjob_run(void *arg)
 	const struct pjob *j = arg;
 	size_t begin, end, take = j->first ? PJOB_TAKE_FIRST : PJOB_TAKE;
 
+	thread_costing = 1;
 	while ((begin = __atomic_fetch_add(j->next, take, __ATOMIC_RELAXED)) < j->end) {
 		end = begin + take < j->end ? begin + take : j->end;
 		for (size_t i = begin; i < end; i++) {
@@ -2246,6 +2452,7 @@ pjob_run(void *arg)
 		if (j->first)
 			first_take(j->e, begin, end);
 	}
+	thread_costing = 0;
 	read_flush(j->e);
 	return NULL;
 }
@@ -3065,7 +3272,10 @@ run_passes(struct engine *e, const struct vdt_contract_opts *o,
 		/* The last pass's survivors cost their pairs again, then the
 		 * vertices whose pair went with them, or whose partner vanished
 		 * from a face it no longer shares with them. */
-		if (pass_recost(e, 1) != 0 || pass_recost(e, 0) != 0)
+		if (pass_recost(e, 1) != 0)
+			return -1;
+		pass_safe(e);
+		if (pass_recost(e, 0) != 0)
 			return -1;
 		/* (cost, vertex) keys, listed by vertex so that sorting on the
 		 * cost alone orders ties by vertex */
@@ -3184,7 +3394,8 @@ static void
 engine_shed(struct engine *e)
 {
 	void **p[] = {(void **)&e->tnormal, (void **)&e->fpos, (void **)&e->refuse,
-	              (void **)&e->touched, (void **)&e->hubnb, (void **)&e->vflag, (void **)&e->vt,
+	              (void **)&e->safe, (void **)&e->sfront, (void **)&e->touched,
+	              (void **)&e->hubnb, (void **)&e->vflag, (void **)&e->vt,
 	              (void **)&e->vp, (void **)&e->tpool.data, (void **)&e->ppool.data,
 	              (void **)&e->pv, (void **)&e->ppos, (void **)&e->pflag, (void **)&e->heap,
 	              (void **)&e->hpos, (void **)&e->vrej, (void **)&e->best,
@@ -3207,6 +3418,8 @@ engine_free(struct engine *e)
 	free(e->tnormal);
 	free(e->fpos);
 	free(e->refuse);
+	free(e->safe);
+	free(e->sfront);
 	free(e->touched);
 	free(e->hubnb);
 	free(e->vflag);
