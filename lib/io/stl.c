@@ -196,14 +196,17 @@ weld_done(struct weld *w, struct vdt_mesh *m)
 	weld_free(w);
 }
 
-/* Whether the 9 coordinates of a 50-byte record are finite. */
+/* The 9 coordinates of a 50-byte record into v: whether all are finite. */
 static int
-record_finite(const unsigned char *r)
+record_corners(const unsigned char *r, float v[9])
 {
-	for (int k = 0; k < 9; k++)
-		if (!isfinite(vdt_get_f32le(r + 12 + 4 * k)))
-			return 0;
-	return 1;
+	int finite = 1;
+
+	for (int k = 0; k < 9; k++) {
+		v[k] = vdt_get_f32le(r + 12 + 4 * k);
+		finite &= isfinite(v[k]) != 0;
+	}
+	return finite;
 }
 
 static int
@@ -218,6 +221,8 @@ non_finite(uint64_t t, struct vdt_err *err)
 int
 vdt_stl_scan(struct vdt_stl_scan *s, const unsigned char *p, size_t n, struct vdt_err *err)
 {
+	float v[9];
+
 	for (size_t i = 0; i < n; i++, s->at++) {
 		if (s->at < 80)
 			continue;
@@ -230,8 +235,15 @@ vdt_stl_scan(struct vdt_stl_scan *s, const unsigned char *p, size_t n, struct vd
 		uint64_t t = (s->at - 84) / 50, o = (s->at - 84) % 50;
 		if (t >= s->count) /* (past the triangles: vdt_stl_read's to judge) */
 			return 0;
+		if (o == 0 && n - i >= 50) { /* a whole record here: read in place */
+			if (!record_corners(p + i, v))
+				return non_finite(t, err);
+			i += 49;
+			s->at += 49;
+			continue;
+		}
 		s->rec[o] = p[i];
-		if (o == 49 && !record_finite(s->rec))
+		if (o == 49 && !record_corners(s->rec, v))
 			return non_finite(t, err);
 	}
 	return 0;
@@ -279,16 +291,13 @@ vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 
 	const unsigned char *p = buf + 84;
 	for (size_t t = 0; t < count; t++, p += 50) {
-		if (!record_finite(p)) {
+		float v[9];
+		if (!record_corners(p, v)) {
 			weld_free(&w);
 			return non_finite(t, err);
 		}
 		for (int c = 0; c < 3; c++) {
-			float v[3];
-
-			for (int k = 0; k < 3; k++)
-				v[k] = vdt_get_f32le(p + 12 + 12 * c + 4 * k);
-			if (weld_corner(&w, v) != 0) {
+			if (weld_corner(&w, v + 3 * c) != 0) {
 				weld_free(&w);
 				return vdt_err_set(err, VDT_ENOMEM, "out of memory welding STL vertices");
 			}
