@@ -303,9 +303,9 @@ vdt_format_guess(const unsigned char *buf, size_t n, enum vdt_format hint)
 }
 
 uint64_t
-vdt_input_limit(const unsigned char *head, enum vdt_format hint)
+vdt_input_limit(const unsigned char *head, enum vdt_format hint, enum vdt_format *format)
 {
-	enum vdt_format f = vdt_format_guess(head, VDT_DETECT_BYTES, hint);
+	enum vdt_format f = *format = vdt_format_guess(head, VDT_DETECT_BYTES, hint);
 
 	if (f == VDT_FMT_AUTO)
 		return 0;
@@ -444,7 +444,7 @@ slurp(int fd, enum vdt_format hint, int sniff, unsigned char *b, size_t n, size_
 {
 	uint64_t limit = 0; /* vdt_input_limit, once known */
 	struct vdt_stl_scan stl = {0};
-	int binary_stl = 0;
+	enum vdt_format f = VDT_FMT_AUTO;
 
 	for (;;) {
 		ssize_t r;
@@ -470,12 +470,10 @@ slurp(int fd, enum vdt_format hint, int sniff, unsigned char *b, size_t n, size_
 			break;
 		n += (size_t)r;
 		if (sniff && n >= VDT_DETECT_BYTES) {
-			if (limit == 0) {
-				limit = vdt_input_limit(b, hint);
-				binary_stl = vdt_format_guess(b, VDT_DETECT_BYTES, hint) == VDT_FMT_STL;
-			}
+			if (limit == 0)
+				limit = vdt_input_limit(b, hint, &f);
 			int rc = n > limit ? vdt_input_limit_error(b, err) : 0;
-			if (rc == 0 && binary_stl)
+			if (rc == 0 && f == VDT_FMT_STL)
 				rc = vdt_stl_scan(&stl, b + stl.at, n - (size_t)stl.at, err);
 			if (rc != 0) {
 				free(b);

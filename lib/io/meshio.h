@@ -61,10 +61,12 @@ enum vdt_format vdt_output_format(const char *path, enum vdt_format given);
  * (vdt_format_detect looks no further for text), the size a binary STL's
  * count allows (with some slack), or UINT64_MAX. Readers of pipes stop
  * there rather than take in an endless stream, and say why with
- * vdt_input_limit_error.
+ * vdt_input_limit_error. *format: the format head shows (as
+ * vdt_format_guess), which for a binary STL asks for vdt_stl_scan.
  */
 #define VDT_DETECT_BYTES 4096
-uint64_t vdt_input_limit(const unsigned char *head, enum vdt_format hint);
+uint64_t vdt_input_limit(const unsigned char *head, enum vdt_format hint,
+                         enum vdt_format *format);
 int vdt_input_limit_error(const unsigned char *head, struct vdt_err *err);
 
 /*

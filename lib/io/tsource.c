@@ -162,7 +162,8 @@ spool(int in, enum vdt_format hint, size_t *len, struct vdt_err *err)
 	unsigned char b[1 << 16], head[VDT_DETECT_BYTES];
 	uint64_t limit = UINT64_MAX; /* vdt_input_limit, once known */
 	struct vdt_stl_scan stl = {0};
-	int binary_stl = 0, rc;
+	enum vdt_format f = VDT_FMT_AUTO;
+	int rc;
 	size_t total = 0;
 	int fd = scratch_file(err);
 
@@ -185,9 +186,8 @@ spool(int in, enum vdt_format hint, size_t *len, struct vdt_err *err)
 			k = VDT_DETECT_BYTES - total < (size_t)r ? VDT_DETECT_BYTES - total : (size_t)r;
 			memcpy(head + total, b, k);
 			if (total + k == VDT_DETECT_BYTES) {
-				limit = vdt_input_limit(head, hint);
-				binary_stl = vdt_format_guess(head, VDT_DETECT_BYTES, hint) == VDT_FMT_STL;
-				if (binary_stl && (rc = vdt_stl_scan(&stl, head, VDT_DETECT_BYTES, err)) != 0) {
+				limit = vdt_input_limit(head, hint, &f);
+				if (f == VDT_FMT_STL && (rc = vdt_stl_scan(&stl, head, VDT_DETECT_BYTES, err)) != 0) {
 					close(fd);
 					return rc;
 				}
@@ -197,7 +197,7 @@ spool(int in, enum vdt_format hint, size_t *len, struct vdt_err *err)
 			close(fd);
 			return vdt_input_limit_error(head, err);
 		}
-		if (binary_stl && (rc = vdt_stl_scan(&stl, b + k, (size_t)r - k, err)) != 0) {
+		if (f == VDT_FMT_STL && (rc = vdt_stl_scan(&stl, b + k, (size_t)r - k, err)) != 0) {
 			close(fd);
 			return rc;
 		}
