@@ -64,21 +64,9 @@ refuse_unwritable(const char *path)
 
 	if (strcmp(path, "-") == 0 || (target = vdt_output_target(path, &special)) == NULL)
 		return;
-	/* A name too long for its directory: the temporary file's is cut to
-	 * fit, so only the rename at the end found it out. */
-	char *slash = strrchr(target, '/');
-	const char *dir = slash == NULL ? "." : slash == target ? "/" : target;
-	if (slash != NULL && slash != target)
-		*slash = 0;
-	long max = special ? -1 : pathconf(dir, _PC_NAME_MAX);
-	size_t len = strlen(slash ? slash + 1 : target);
 	free(target);
 	if (special)
 		return;
-	if (max > 0 && len > (size_t)max) {
-		vdt_err_set(&err, VDT_EIO, "%s", strerror(ENAMETOOLONG));
-		exit(fail("cannot write", path, &err));
-	}
 	if (vdt_output_open(&o, path, &err) != 0)
 		exit(fail("cannot write", path, &err));
 	vdt_output_abort(&o);

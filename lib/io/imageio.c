@@ -202,6 +202,8 @@ write_own_file(const char *path, int w, int h, int c, const unsigned char *px,
 		if (fd < 0) {
 			int e = errno;
 			free(dst);
+			if (fd == -3)
+				return vdt_err_set(err, VDT_EIO, "%s", strerror(ENAMETOOLONG));
 			return vdt_err_set(err, VDT_EIO, "cannot create a temporary file: %s", strerror(e));
 		}
 		close(fd); /* the writer opens it again by name */

@@ -987,6 +987,9 @@ vdt_output_temp(const char *target, char **tmp)
 	/* A hidden name in the same directory, so that rename is atomic:
 	 * .NAME.XXXXXX, NAME cut short (between characters) where that would
 	 * pass the longest name the directory holds, which NAME may reach. */
+	*tmp = NULL;
+	if (bl > room)
+		return -3;
 	if (bl + 8 > room) {
 		bl = room > 8 ? room - 8 : 0;
 		while (bl > 0 && (base[bl] & 0xc0) == 0x80)
@@ -1230,8 +1233,10 @@ vdt_output_open(struct vdt_output *o, const char *path, struct vdt_err *err)
 	}
 	if ((fd = vdt_output_temp(o->path, &o->tmp)) < 0)
 		return output_fail(o, -1, err, fd == -2 ? VDT_ENOMEM : VDT_EIO,
-		                   fd == -2 ? "out of memory" : "cannot create a temporary file",
-		                   fd == -2 ? 0 : errno);
+		                   fd == -2 ? "out of memory"
+		                   : fd == -3 ? ""
+		                              : "cannot create a temporary file",
+		                   fd == -2 ? 0 : fd == -3 ? ENAMETOOLONG : errno);
 	if ((o->f = fdopen(fd, "wb")) == NULL)
 		return output_fail(o, fd, err, VDT_EIO, "", errno);
 	return 0;

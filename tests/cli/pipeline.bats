@@ -60,6 +60,16 @@ load helpers
 		[ "$status" -eq 1 ]
 		[[ "$output" == "$t: cannot write '$TMP/none/out.vdt': cannot create a temporary file"* ]]
 	done
+	# a name too long for its directory, found when the temporary file is
+	# made, not at the rename after the work; images alike
+	long=$(printf '%0300d' 0)
+	run sh -c "'$BIN/vdt-cluster' -o '$TMP/$long.vdt' < /dev/null"
+	[ "$status" -eq 1 ]
+	[ "$output" = "vdt-cluster: cannot write '$TMP/$long.vdt': File name too long" ]
+	"$BIN/vdt-build" -q "$SAMPLES/sphere.off" -o "$TMP/s.vdt"
+	run "$BIN/vdt-render" --eye 0,0,3 "$TMP/s.vdt" -o "$TMP/$long.png"
+	[ "$status" -eq 1 ]
+	[ "$output" = "vdt-render: cannot write '$TMP/$long.png': File name too long" ]
 	# vdt-deform's frames by their first; vdt-measure's report and colours
 	run sh -c "'$BIN/vdt-deform' -o '$TMP/none/%03d.obj' < /dev/null"
 	[ "$status" -eq 1 ]
