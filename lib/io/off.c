@@ -455,6 +455,14 @@ vdt_off_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 		rc = read_faces(&r, (size_t)nf, m, &poly, err);
 		vdt_polygon_free(&poly);
 	}
+	/* More after the last face: the header's counts are too low, and
+	 * what they leave out would be lost without a word. */
+	if (rc == 0 && next_token(&r)) {
+		char q[24];
+		rc = vdt_err_set(err, VDT_EFORMAT,
+		                 "more data ('%s' on line %zu) after the %lld faces the header declares",
+		                 quote(r.p, r.end, q), r.line, nf);
+	}
 	if (rc == 0 && int_colors)
 		for (size_t i = 0; i < m->vertex_count; i++)
 			for (int c = 0; c < 4; c++)

@@ -633,11 +633,16 @@ read_ascii(const struct vdt_plyhead *h, const struct vdt_ply_element *ve, const 
 			if (m->positions == NULL)
 				return vdt_err_set(err, VDT_EFORMAT,
 				                   "PLY face element comes before the vertex element");
-			return text_faces(&t, e, m, err); /* nothing after the faces is needed */
+			rc = text_faces(&t, e, m, err);
 		} else {
 			rc = text_skip(&t, e, err);
 		}
 	}
+	/* More after the last record: the header's counts are too low, and
+	 * what they leave out would be lost without a word. */
+	if (rc == 0)
+		rc = vdt_plyhead_check_end(h, buf, len, (size_t)((const unsigned char *)t.p - buf),
+		                           t.line, err);
 	return rc;
 }
 
@@ -698,7 +703,7 @@ vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 			pos += (size_t)e->count * rs;
 		} else if (e == fe) {
 			struct vdt_mesh tm = *m;
-			size_t used;
+			size_t used = 0;
 
 			if (m->positions == NULL) {
 				/* Faces before vertices: rare; read them against a bound. */
@@ -737,9 +742,8 @@ vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 				pos += rs;
 			}
 		}
-		if (e == fe)
-			break; /* nothing after the faces is needed */
 	}
+	rc = vdt_plyhead_check_end(h, buf, len, pos, 0, err);
 out:
 	free(h);
 	if (rc != 0)

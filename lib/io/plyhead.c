@@ -2,6 +2,7 @@
 #include "plyhead.h"
 
 #include <errno.h>
+#include <inttypes.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -433,4 +434,32 @@ vdt_plyhead_list_offset(const struct vdt_ply_element *e, size_t li, const unsign
 		                (size_t)vdt_plyhead_int(p + lo, e->props[i].count_type, be) *
 		                    vdt_ply_type_size[e->props[i].type];
 	return lo;
+}
+
+int
+vdt_plyhead_check_end(const struct vdt_plyhead *h, const unsigned char *buf, size_t len,
+                      size_t pos, size_t line, struct vdt_err *err)
+{
+	const struct vdt_ply_element *last = NULL;
+	char what[VDT_PLY_MAX_NAME + 48] = "records";
+
+	for (size_t i = pos; i < len; i++) {
+		unsigned char c = buf[i];
+		line += c == '\n';
+		if (c == 0 || c == '\n' || c == '\r' || c == ' ' || c == '\t')
+			continue;
+		for (size_t k = 0; k < h->element_count; k++)
+			if (h->elements[k].prop_count > 0 && h->elements[k].count > 0)
+				last = &h->elements[k];
+		if (last != NULL)
+			snprintf(what, sizeof(what), "%" PRIu64 " %s records", last->count, last->name);
+		if (h->ascii)
+			return vdt_err_set(err, VDT_EFORMAT,
+			                   "PLY line %zu: more data after the %s the header declares",
+			                   line, what);
+		return vdt_err_set(err, VDT_EFORMAT,
+		                   "PLY file has %zu bytes more after the %s its header declares",
+		                   len - pos, what);
+	}
+	return 0;
 }

@@ -123,6 +123,17 @@ int vdt_plyhead_check_count(double d, const struct vdt_ply_element *e,
                             const struct vdt_ply_prop *pr, uint64_t r, struct vdt_err *err);
 
 /*
+ * Whether buf[pos..len), what follows the last record the header declares,
+ * holds nothing more: line ends, blanks and NUL padding are let be.
+ * Anything else means the header's counts are too low, and what they leave
+ * out would be lost without a word: VDT_EFORMAT naming the last element
+ * with records (and `line`, that of the first byte after pos, for ASCII;
+ * 0 for binary). Else 0.
+ */
+int vdt_plyhead_check_end(const struct vdt_plyhead *h, const unsigned char *buf, size_t len,
+                          size_t pos, size_t line, struct vdt_err *err);
+
+/*
  * Why record r of e at p does not fit in avail bytes, once
  * vdt_plyhead_record_size found so: the refusal of vdt_plyhead_check_count
  * of a list count in it, or 0 when the bytes run out first (the reader's

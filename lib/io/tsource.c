@@ -58,6 +58,10 @@ struct vdt_tsource {
 	const unsigned char *poly; /* polygon being triangulated */
 	uint64_t poly_n, poly_k;
 	enum vdt_ply_type poly_type;
+	/* the header, kept until what follows the faces is checked
+	 * (ply_end), and the element after them there */
+	struct vdt_plyhead *head;
+	size_t after_faces;
 	struct vdt_polygon pscratch;
 	uint32_t *ptri; /* its triangles (polygon.h), as vertex numbers */
 	size_t ptri_cap;
@@ -246,6 +250,21 @@ ply_skip(const struct vdt_tsource *s, const struct vdt_ply_element *e, size_t *a
 	return 0;
 }
 
+/* The elements h lists from `from` on walked over from at, and nothing
+ * more after them (vdt_plyhead_check_end), as the whole-file reader has
+ * it: records past the header's counts are refused, not dropped. */
+static int
+ply_end(const struct vdt_tsource *s, const struct vdt_plyhead *h, size_t from, size_t at,
+        struct vdt_err *err)
+{
+	int rc;
+
+	for (size_t i = from; i < h->element_count; i++)
+		if ((rc = ply_skip(s, &h->elements[i], &at, err)) != 0)
+			return rc;
+	return vdt_plyhead_check_end(h, s->buf, s->len, at, 0, err);
+}
+
 static int
 ply_open(struct vdt_tsource *s, struct vdt_err *err)
 {
@@ -323,10 +342,19 @@ ply_open(struct vdt_tsource *s, struct vdt_err *err)
 	s->fast_face = !s->be && fe->prop_count == 1 && fe->props[0].count_type == VDT_PLY_U8 &&
 	               (fe->props[0].type == VDT_PLY_I32 || fe->props[0].type == VDT_PLY_U32);
 	s->fcount = fe->count;
-	/* Faces end at the vertices when they come first. */
+	/* Faces end at the vertices when they come first, and the elements
+	 * after the vertices are checked now; else once the faces are read. */
 	s->fend = s->fbase < s->vbase ? s->vbase : s->buf + s->len;
 	s->tri_hint = fe->count;
-	rc = 0;
+	if (s->fbase < s->vbase) {
+		rc = ply_end(s, h, (size_t)(ve - h->elements) + 1,
+		             (size_t)(s->vbase - s->buf) + (size_t)ve->count * s->vstride, err);
+	} else {
+		s->head = h;
+		s->after_faces = (size_t)(fe - h->elements) + 1;
+		h = NULL;
+		rc = 0;
+	}
 out:
 	free(h);
 	return rc;
@@ -553,6 +581,15 @@ ply_triangles(struct vdt_tsource *s, double *tri, uint32_t *ids, size_t max, siz
 	*n = k;
 	if (s->map)
 		drop_behind(s, s->fcur, s->fbase);
+	if (s->head != NULL && s->poly == NULL && s->fidx == s->fcount) {
+		/* (kept on failure: a caller that reads again meets it again) */
+		rc = ply_end(s, s->head, s->after_faces, (size_t)(s->fcur - s->buf), err);
+		if (rc == 0) {
+			free(s->head);
+			s->head = NULL;
+		}
+		return rc;
+	}
 	return 0;
 }
 
@@ -1162,6 +1199,7 @@ vdt_tsource_close(struct vdt_tsource *ts)
 		return;
 	free(ts->pass);
 	free(ts->ptri);
+	free(ts->head);
 	vdt_polygon_free(&ts->pscratch);
 	if (ts->map) {
 		vdt_input_unwatch(ts->map);

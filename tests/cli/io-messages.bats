@@ -91,3 +91,25 @@ PY
 	printf 'OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n-3 1 3 2\n' > "$TMP/a.off"
 	refused "$TMP/a.off" "face 1 has a negative vertex count '-3' on line 8" vdt-qslim -r 0.5
 }
+
+@test "records past the header's counts are refused by both readers, not dropped" {
+	binary_ply '<' B:uchar i:int "3 1 3 2" "$TMP/b.ply"
+	sed -i 's/^element face 2$/element face 1/' "$TMP/b.ply"
+	for t in "vdt-qslim -r 0.5" "vdt-cluster -g 8"; do
+		refused "$TMP/b.ply" "PLY file has 13 bytes more after the 1 face records its header declares" $t
+	done
+	printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 2\n' > "$TMP/a.ply"
+	for t in "vdt-qslim -r 0.5" "vdt-cluster -g 8"; do
+		refused "$TMP/a.ply" "PLY line 15: more data after the 1 face records the header declares" $t
+	done
+	printf 'OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 2\n' > "$TMP/a.off"
+	refused "$TMP/a.off" "more data ('3' on line 8) after the 1 faces the header declares" vdt-qslim -r 0.5
+	# what may follow the data still reads: line ends, NUL padding, comments
+	printf '\n\0\0' >> "$TMP/b.ply"
+	sed -i 's/^element face 1$/element face 2/' "$TMP/b.ply"
+	run "$BIN/vdt-cluster" -q -g 8 "$TMP/b.ply" -o "$TMP/out.vdt"
+	[ "$status" -eq 0 ]
+	printf 'OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 2\n\n# the end\n' > "$TMP/a.off"
+	run "$BIN/vdt-qslim" -q -r 0.5 "$TMP/a.off" -o "$TMP/out.vdt"
+	[ "$status" -eq 0 ]
+}

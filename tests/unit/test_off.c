@@ -298,6 +298,11 @@ test_reject(void **state)
 	expect_error("OFF\n3 -1 0\n0 0 0\n", VDT_EFORMAT, "bad face count '-1' on line 2");
 	expect_error("OFF\n3", VDT_EFORMAT, "OFF header has no face count");
 	expect_error("OFF BINARY\n", VDT_EFORMAT, "binary OFF is not supported");
+	/* counts too low: the rest would be lost without a word */
+	expect_error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 2 1\n", VDT_EFORMAT,
+	             "more data ('3' on line 7) after the 1 faces the header declares");
+	expect_error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n\n# end\n  \x01x\n", VDT_EFORMAT,
+	             "more data ('?x' on line 9) after the 1 faces the header declares");
 	expect_error("nOFF 4\n3 1 0\n", VDT_EFORMAT, "nOFF of dimension 4 is not supported");
 	expect_error("OF\n3 1 0\n", VDT_EFORMAT, "not an OFF file");
 	expect_error("", VDT_EFORMAT, "not an OFF file");

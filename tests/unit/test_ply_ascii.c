@@ -178,7 +178,8 @@ test_attributes(void **state)
  * included: an element before the vertices, a property between x and y (a
  * double of no float's range), a
  * face property before the index list, vertex_index as its name, and an
- * element after the faces that is never read.
+ * element after the faces, which is read through (so that records past
+ * the header's counts are seen) but not kept.
  */
 static void
 test_skip(void **state)
@@ -194,12 +195,12 @@ test_skip(void **state)
 	        "property float y\nproperty float z\n"
 	        "element face 1\nproperty short flags\nproperty list ushort uint vertex_index\n"
 	        "property list uchar float more\n"
-	        "element edge 5\nproperty int vertex1\nproperty int vertex2\n"
+	        "element edge 2\nproperty int vertex1\nproperty int vertex2\n"
 	        "end_header\n"
 	        "3 0.5 0.25 1 7\n0 -8\n"
 	        "0 0.9 0 0\n1 0.8 0 0\n0 -1e300 1 0\n"
 	        "-3 3 2 1 0 2 1.5 2.5\n"
-	        "this part is never read\n",
+	        "0 1\n1 2\n",
 	        &m);
 	assert_floats(m.positions, p);
 	assert_memory_equal(m.triangles, t, sizeof(t));
@@ -238,6 +239,11 @@ test_reject(void **state)
 	expect_error(HEAD(3, 1) "0 0 0\n1 0\n0 1 0\n3 0 1 2\n", VDT_EFORMAT,
 	             "PLY line 11: vertex 1 has fewer values than its header declares");
 	expect_error(HEAD(3, 1) "0 0 0\n1 0 0\n0 1 0\n2 0 1\n", VDT_EFORMAT, "face 0 has 2 vertices");
+	/* counts too low: the rest would be lost without a word */
+	expect_error(HEAD(3, 1) "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n" "this is not an edge\n", VDT_EFORMAT,
+	             "PLY line 14: more data after the 1 face records the header declares");
+	expect_error(HEAD(3, 1) "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n\n 3 0 2 1\n", VDT_EFORMAT,
+	             "PLY line 15: more data after the 1 face records the header declares");
 	/* a negative count is named so, not by what it did to the values
 	 * after it */
 	expect_error("ply\nformat ascii 1.0\nelement vertex 3\n" XYZ "element face 2\n"

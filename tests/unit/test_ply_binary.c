@@ -250,6 +250,52 @@ test_negative_count(void **state)
 	}
 }
 
+/*
+ * Records after the last one the header declares (its counts too low)
+ * are refused, not dropped: a face, or an element after the faces cut
+ * short. Line ends and NUL padding after the data are let be, and an
+ * element after the faces is read past.
+ */
+static void
+test_more_than_declared(void **state)
+{
+	(void)state;
+	for (int be = 0; be < 2; be++) {
+		struct ply p;
+		struct vdt_mesh m;
+		struct vdt_err err = {0};
+
+		head(&p, be, "element vertex 3\n" XYZ
+		             "element face 1\nproperty list uchar int vertex_indices\n");
+		put(&p, "fffffffff", 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0);
+		put(&p, "Ciii", 3.0, 0.0, 1.0, 2.0);
+		size_t whole = p.n;
+		put(&p, "Ciii", 3.0, 0.0, 2.0, 1.0);
+		expect_error(&p, VDT_EFORMAT,
+		             "PLY file has 13 bytes more after the 1 face records its header declares");
+		p.n = whole;
+		put(&p, "CCCC", 10.0, 13.0, 0.0, 0.0);
+		assert_int_equal(vdt_read_memory(p.b, p.n, NULL, &m, NULL, &err), 0);
+		assert_int_equal(m.triangle_count, 1);
+		vdt_mesh_free(&m);
+
+		head(&p, be, "element vertex 3\n" XYZ
+		             "element face 1\nproperty list uchar int vertex_indices\n"
+		             "element edge 2\nproperty int vertex1\nproperty int vertex2\n");
+		put(&p, "fffffffff", 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0);
+		put(&p, "Ciii", 3.0, 0.0, 1.0, 2.0);
+		put(&p, "iii", 0.0, 1.0, 1.0);
+		expect_error(&p, VDT_EFORMAT, "PLY file is truncated in element 'edge'");
+		put(&p, "i", 2.0);
+		assert_int_equal(vdt_read_memory(p.b, p.n, NULL, &m, NULL, &err), 0);
+		assert_int_equal(m.triangle_count, 1);
+		vdt_mesh_free(&m);
+		put(&p, "ii", 2.0, 0.0);
+		expect_error(&p, VDT_EFORMAT,
+		             "PLY file has 8 bytes more after the 2 edge records its header declares");
+	}
+}
+
 int
 main(void)
 {
@@ -257,6 +303,7 @@ main(void)
 	        cmocka_unit_test(test_beyond_float),
 	        cmocka_unit_test(test_index_not_integer),
 	        cmocka_unit_test(test_negative_count),
+	        cmocka_unit_test(test_more_than_declared),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
