@@ -101,6 +101,14 @@ struct vdt_contract_opts {
 	 */
 	int allow_nonmanifold;
 	/*
+	 * With the link condition (allow_nonmanifold 0), nonzero: a hole
+	 * of three edges stays open, as the condition has it, so that the
+	 * count of boundaries never changes. 0 (the default): contracting
+	 * an edge of such a hole closes it, which leaves the surface a
+	 * manifold and spares the hole's vertices and faces (closes_hole).
+	 */
+	int keep_holes;
+	/*
 	 * Nonzero: never contract a pair whose faces are all the faces of
 	 * their connected part (an edge of a lone triangle, the middle edge
 	 * of a strip of two), so that no part of the mesh vanishes: a small

@@ -2658,6 +2658,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	co.allow_nonmanifold = o->topology == VDT_TOPOLOGY_FREE ||
 	                       (o->topology == VDT_TOPOLOGY_AUTO && stats->nonmanifold > 0);
 	stats->free_topology = co.allow_nonmanifold;
+	co.keep_holes = o->topology == VDT_TOPOLOGY_KEEP;
 	co.progress = o->progress;
 	co.passes = o->order == VDT_QSLIM_ORDER_PASSES ||
 	            (o->order == VDT_QSLIM_ORDER_AUTO && nw >= VDT_QSLIM_PASSES_MIN);

@@ -316,6 +316,33 @@ load helpers
 	[[ "$output" == *" nonmanifold=0 topology=keep "* ]]
 }
 
+# open_edges OFF: edges of one face in an OFF file (its vertex numbers).
+open_edges() {
+	awk 'NR == 2 { nv = $1; next }
+	NR > 2 + nv && NF >= 4 {
+		for (k = 2; k <= 4; k++) {
+			a = $k; b = k == 4 ? $2 : $(k + 1)
+			c[a < b ? a " " b : b " " a]++
+		}
+	}
+	END { n = 0; for (e in c) n += c[e] == 1; print n }' "$1"
+}
+
+@test "vdt-qslim closes small holes of a manifold unless --topology keep" {
+	# six single faces taken out of the sphere, far apart: holes of three edges
+	{ sed -n 1p "$SAMPLES/sphere.off"; echo "2562 5114 0"
+	  sed -n '3,2564p' "$SAMPLES/sphere.off"
+	  sed -n '2565,$p' "$SAMPLES/sphere.off" | awk 'NR % 1000 != 1'; } > "$TMP/holes.off"
+	[ "$(open_edges "$TMP/holes.off")" -eq 18 ]
+	run "$BIN/vdt-qslim" -v -r 0.02 -F off "$TMP/holes.off" -o "$TMP/a.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *" topology=keep "* ]]
+	[ "$(open_edges "$TMP/a.off")" -eq 0 ]
+	run "$BIN/vdt-qslim" -r 0.02 --topology keep -F off "$TMP/holes.off" -o "$TMP/b.off"
+	[ "$status" -eq 0 ]
+	[ "$(open_edges "$TMP/b.off")" -eq 18 ]
+}
+
 @test "vdt-qslim with labels and --error-factor 0 keeps the contour of the view" {
 	"$BIN/vdt-silhouette" -a 30 -r 64 "$SAMPLES/sphere.off" -o "$TMP/s.vdl"
 	"$BIN/vdt-qslim" -r 0.3 --view 0,0,1 --contour-distance 1 --error-factor 0 -F off "$TMP/s.vdl" -o "$TMP/l.off"

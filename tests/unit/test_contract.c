@@ -1463,6 +1463,48 @@ long_fans_keep_the_link_condition(void **state)
 }
 
 /*
+ * A hole of three edges closes: an icosphere with faces taken out, far
+ * apart (holes of three edges), contracted as far as it goes, ends a
+ * closed oriented manifold, a tetrahedron, in both orders and in the
+ * pair queue. The link condition alone (keep_holes) keeps each hole,
+ * with the three vertices around it, to the end.
+ */
+static void
+small_holes_close(void **state)
+{
+	struct vdt_mesh m;
+	struct vdt_contract_opts o;
+	struct vdt_contract_result r;
+
+	(void)state;
+	shape_icosphere(&m, 2); /* 320 faces */
+	size_t nt = 0;
+	for (size_t t = 0; t < m.triangle_count; t++)
+		if (t % 80 != 7)
+			memmove(m.triangles + 3 * nt++, m.triangles + 3 * t, 3 * sizeof(uint32_t));
+	assert_int_equal(nt, 316);
+	m.triangle_count = nt;
+	for (int mode = 0; mode < 3; mode++) {
+		vdt_contract_defaults(&o);
+		o.passes = mode == 1;
+		o.pair_queue = mode == 2;
+		assert_int_equal(vdt_contract_run(&m, &length_ops, &o, &r, NULL), 0);
+		struct vdt_mesh out = {r.vertex_count, r.positions, NULL, NULL, NULL,
+		                       r.triangle_count, r.triangles};
+		assert_int_equal(r.triangle_count, 4);
+		assert_true(shape_closed_manifold(&out));
+		vdt_contract_result_free(&r);
+	}
+	/* keep_holes: the link condition alone, the holes to the end */
+	vdt_contract_defaults(&o);
+	o.keep_holes = 1;
+	assert_int_equal(vdt_contract_run(&m, &length_ops, &o, &r, NULL), 0);
+	assert_true(r.triangle_count > 4);
+	vdt_contract_result_free(&r);
+	vdt_mesh_free(&m);
+}
+
+/*
  * Whether the n faces t form one disc, consistently oriented: every
  * directed edge once, no vertex where two boundary edges start (a pinch,
  * two discs meeting at a point) and Euler characteristic 1.
@@ -1801,6 +1843,7 @@ main(void)
 		cmocka_unit_test(qslim_threads_do_not_matter),
 		cmocka_unit_test(passes_sort_past_the_claimable_keys),
 		cmocka_unit_test(long_fans_keep_the_link_condition),
+		cmocka_unit_test(small_holes_close),
 		cmocka_unit_test(hub_of_slivers_stays_a_disc),
 		cmocka_unit_test(hubs_are_not_read_at_each_try),
 		cmocka_unit_test(first_pass_claims_cheapest_pairs),
