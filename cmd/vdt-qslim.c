@@ -184,9 +184,16 @@ run(struct cmdline *cl)
 	}
 	/* With -e alone the bound is the target: stopping at it is no news. */
 	if (!st.reached_target && (cl->q.target_triangles || cl->q.target_ratio > 0) &&
-	    !cl->quiet)
+	    !cl->quiet) {
 		fprintf(stderr, "%s: stopped at %zu triangles: no further contraction within the "
-		        "bound and validity tests\n", progname, out.triangle_count);
+		        "bound and validity tests", progname, out.triangle_count);
+		/* A scan's tiny tunnels: each keeps a dozen faces or more. */
+		if (st.handles > 0)
+			fprintf(stderr, " (the surface has %ld handle%s, which contractions that keep "
+			        "it a manifold cannot remove: --topology free can)", st.handles,
+			        st.handles == 1 ? "" : "s");
+		fputc('\n', stderr);
+	}
 	/* Virtual pairs live in the queue of all pairs, which has no passes. */
 	if (cl->q.order == VDT_QSLIM_ORDER_PASSES && !st.passes && st.contractions > 0 &&
 	    !cl->quiet)

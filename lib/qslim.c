@@ -2382,6 +2382,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 
 	memset(out, 0, sizeof(*out));
 	memset(stats, 0, sizeof(*stats));
+	stats->handles = -1;
 	if (records) {
 		*records = NULL;
 		*record_count = 0;
@@ -2717,6 +2718,9 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	stats->contractions = r.contractions;
 	stats->rejected = r.rejected;
 	stats->reached_target = r.reached_target;
+	stats->handles = r.reached_target || co.allow_nonmanifold
+	                         ? -1
+	                         : vdt_topo_handles(r.vertex_count, r.triangles, r.triangle_count);
 	stats->max_error = sqrt(c.worst);
 	for (size_t t = 0; fsrc && t < r.triangle_count; t++)
 		r.sources[t] = fsrc[r.sources[t]];

@@ -147,6 +147,9 @@ struct vdt_qslim_stats {
 	size_t parts_given_up; /* parts of which no face is left, to meet the target */
 	double error_pct;   /* max_error in percent of the input's
 	                       bounding-box diagonal (0 if that is 0) */
+	long handles;       /* when stopped early under the link condition,
+	                       the handles of the result (vdt_topo_handles),
+	                       which it keeps, each with a few faces; else -1 */
 };
 
 /*

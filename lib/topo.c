@@ -437,3 +437,53 @@ vdt_topo_parts(size_t nv, const uint32_t *tri, size_t nt)
 	free(used);
 	return parts;
 }
+
+long
+vdt_topo_handles(size_t nv, const uint32_t *tri, size_t nt)
+{
+	uint32_t *start = NULL, *fan = NULL, *edges = NULL, *up = NULL, *loop = NULL;
+	uint8_t *used = NULL;
+	size_t nm = 0;
+	long open = -1, handles = -1;
+
+	if (vdt_topo_fans(nv, tri, nt, &start, &fan) != 0)
+		return -1;
+	open = vdt_topo_open_edges(nv, tri, start, fan, NULL, &edges, &nm);
+	up = vdt_malloc_huge((nv ? nv : 1) * sizeof(*up));
+	loop = vdt_malloc_huge((nv ? nv : 1) * sizeof(*loop));
+	used = calloc(nv ? nv : 1, 1);
+	if (open < 0 || nm > 0 || up == NULL || loop == NULL || used == NULL)
+		goto out;
+	vdt_topo_part_forest(nv, tri, nt, up);
+	for (size_t v = 0; v < nv; v++)
+		loop[v] = (uint32_t)v;
+	for (long k = 0; k < open; k++) {
+		uint32_t a = vdt_topo_find(loop, edges[3 * k + 1]);
+		uint32_t b = vdt_topo_find(loop, edges[3 * k + 2]);
+		if (a != b)
+			loop[a > b ? a : b] = a < b ? a : b;
+	}
+	for (size_t i = 0; i < 3 * nt; i++)
+		used[tri[i]] = 1;
+	for (long k = 0; k < open; k++)
+		used[edges[3 * k + 1]] = used[edges[3 * k + 2]] = 3; /* on a loop */
+	long verts = 0, parts = 0, loops = 0;
+	for (size_t v = 0; v < nv; v++) {
+		verts += used[v] != 0;
+		parts += used[v] != 0 && up[v] == v;
+		loops += used[v] == 3 && loop[v] == v;
+	}
+	/* 2 E = 3 F + open edges */
+	long chi = verts - (3 * (long)nt + open) / 2 + (long)nt;
+	long twice = 2 * parts - loops - chi;
+	if (twice >= 0 && twice % 2 == 0)
+		handles = twice / 2;
+out:
+	free(start);
+	free(fan);
+	free(edges);
+	free(up);
+	free(loop);
+	free(used);
+	return handles;
+}

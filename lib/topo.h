@@ -79,6 +79,15 @@ vdt_topo_find(uint32_t *up, uint32_t v)
 size_t vdt_topo_parts(size_t nv, const uint32_t *tri, size_t nt);
 
 /*
+ * The handles (genus) of the faces tri[0..3 nt) over nv vertices, an
+ * oriented surface whose every edge one or two faces hold: from the
+ * Euler characteristic V - E + F = 2 P - 2 H - L of its P parts and L
+ * boundary loops (those of its open edges, joined where they meet).
+ * -1 when an edge has three faces or more, or memory runs out.
+ */
+long vdt_topo_handles(size_t nv, const uint32_t *tri, size_t nt);
+
+/*
  * The same as a union-find forest in up (nv entries, filled here): each
  * part's root is its lowest vertex, vdt_topo_find(up, v) the part of v.
  */

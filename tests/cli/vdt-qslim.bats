@@ -328,6 +328,18 @@ open_edges() {
 	END { n = 0; for (e in c) n += c[e] == 1; print n }' "$1"
 }
 
+@test "vdt-qslim stopped by the handles it keeps says so, and how to let them go" {
+	run "$BIN/vdt-qslim" -t 10 "$SAMPLES/torus.off" -o "$TMP/a.off"
+	[ "$status" -eq 0 ]
+	one_line
+	[[ "$output" == "vdt-qslim: stopped at "*" triangles: "*"(the surface has 1 handle, "*"--topology free can)" ]]
+	run "$BIN/vdt-qslim" -t 10 --topology free "$SAMPLES/torus.off" -o "$TMP/b.off"
+	[ "$status" -eq 0 ]
+	[ -z "$output" ]
+	run "$BIN/vdt-qslim" -t 10 "$SAMPLES/sphere.off" -o "$TMP/c.off"
+	[[ "$output" != *handle* ]]
+}
+
 @test "vdt-qslim closes small holes of a manifold unless --topology keep" {
 	# six single faces taken out of the sphere, far apart: holes of three edges
 	{ sed -n 1p "$SAMPLES/sphere.off"; echo "2562 5114 0"

@@ -143,6 +143,59 @@ parts_by_shared_vertices(void **state)
 	assert_int_equal(vdt_topo_parts(11, tri, 5), 2);
 }
 
+/* Faces of an n x m grid on a torus (wrapping both ways), or of its
+ * tube cut open at the ends (wrapping round only), into t: their number. */
+static size_t
+torus_faces(int n, int m, int closed, uint32_t *t)
+{
+	size_t k = 0;
+
+	for (int i = 0; i < n; i++)
+		for (int j = 0; j < m; j++) {
+			if (!closed && i == n - 1)
+				continue;
+			uint32_t a = (uint32_t)(i * m + j), b = (uint32_t)(i * m + (j + 1) % m);
+			uint32_t c = (uint32_t)((i + 1) % n * m + j), d = (uint32_t)((i + 1) % n * m + (j + 1) % m);
+			uint32_t f[6] = {a, b, d, a, d, c};
+			memcpy(t + 3 * k, f, sizeof(f));
+			k += 2;
+		}
+	return k;
+}
+
+/* Handles from the Euler characteristic: a torus has one, two tori two,
+ * a tube (two boundary loops) and a sphere none, a sphere less a face
+ * none; an edge of three faces has no answer. */
+static void
+handles_of_surfaces(void **state)
+{
+	uint32_t t[2 * 3 * 2 * 8 * 6];
+	struct vdt_mesh m;
+	(void)state;
+
+	size_t nt = torus_faces(8, 6, 1, t);
+	assert_int_equal(vdt_topo_handles(48, t, nt), 1);
+	for (size_t i = 0; i < 3 * nt; i++) /* a second torus beside it */
+		t[3 * nt + i] = t[i] + 48;
+	assert_int_equal(vdt_topo_handles(96, t, 2 * nt), 2);
+	nt = torus_faces(8, 6, 0, t);
+	assert_int_equal(vdt_topo_handles(48, t, nt), 0);
+	shape_icosphere(&m, 1);
+	assert_int_equal(vdt_topo_handles(m.vertex_count, m.triangles, m.triangle_count), 0);
+	assert_int_equal(vdt_topo_handles(m.vertex_count, m.triangles + 3, m.triangle_count - 1), 0);
+	/* a fin: a third face on the first face's first edge */
+	uint32_t *all = malloc((3 * m.triangle_count + 3) * sizeof(*all)), x = 0;
+	memcpy(all, m.triangles, 3 * m.triangle_count * sizeof(*all));
+	while (x == all[0] || x == all[1] || x == all[2])
+		x++;
+	all[3 * m.triangle_count] = all[0];
+	all[3 * m.triangle_count + 1] = all[1];
+	all[3 * m.triangle_count + 2] = x;
+	assert_int_equal(vdt_topo_handles(m.vertex_count, all, m.triangle_count + 1), -1);
+	free(all);
+	vdt_mesh_free(&m);
+}
+
 int
 main(void)
 {
@@ -151,6 +204,7 @@ main(void)
 		cmocka_unit_test(fin_and_dead_faces),
 		cmocka_unit_test(ranges_join_to_the_whole),
 		cmocka_unit_test(parts_by_shared_vertices),
+		cmocka_unit_test(handles_of_surfaces),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
