@@ -910,6 +910,7 @@ simplify_frame(const struct anim *a, size_t f, const struct vdt_contraction *rec
 		co.target_vertices = target;
 		co.max_normal_angle = o->max_normal_angle;
 		co.keep_parts = 1;
+		co.keep_holes = 1; /* an animated model's openings are meant */
 		/* fold-overs against the frame's input, as one run would */
 		co.reference_positions = a->pos + 3 * nv * f;
 		co.reference_triangles = s->ref;
@@ -1141,6 +1142,7 @@ vdt_deform(const struct vdt_mesh *m, const struct vdt_frames *fr,
 		co.target_vertices = target;
 		co.max_normal_angle = o->max_normal_angle;
 		co.keep_parts = 1;
+		co.keep_holes = 1; /* an animated model's openings are meant */
 		co.record = 1;
 		co.progress = o->progress;
 		if ((rc = vdt_contract_run(&um, &ops, &co, &ur, err)) != 0)
