@@ -22,6 +22,26 @@ off_faces() {
 	sed -n '2p' "$1" | awk '{print $2}'
 }
 
+# open_edges OFF: edges of one face in an OFF file (by its vertex numbers).
+open_edges() {
+	awk 'NR == 2 { nv = $1; next }
+	NR > 2 + nv && NF >= 4 {
+		for (k = 2; k <= 4; k++) {
+			a = $k; b = k == 4 ? $2 : $(k + 1)
+			c[a < b ? a " " b : b " " a]++
+		}
+	}
+	END { n = 0; for (e in c) n += c[e] == 1; print n }' "$1"
+}
+
+# holes_sphere OUT: the sample sphere with six single faces taken out,
+# far apart: six holes of three edges.
+holes_sphere() {
+	{ sed -n 1p "$SAMPLES/sphere.off"; echo "2562 5114 0"
+	  sed -n '3,2564p' "$SAMPLES/sphere.off"
+	  sed -n '2565,$p' "$SAMPLES/sphere.off" | awk 'NR % 1000 != 1'; } > "$1"
+}
+
 # Vertex count in the header of an OFF file.
 off_vertices() {
 	sed -n '2p' "$1" | awk '{print $1}'

@@ -104,20 +104,7 @@ setup() {
 }
 
 @test "vdt-deform keeps small holes open, as vdt-qslim --topology keep does" {
-	# six single faces taken out of the sphere: holes of three edges
-	{ sed -n 1p "$SAMPLES/sphere.off"; echo "2562 5114 0"
-	  sed -n '3,2564p' "$SAMPLES/sphere.off"
-	  sed -n '2565,$p' "$SAMPLES/sphere.off" | awk 'NR % 1000 != 1'; } > "$TMP/holes.off"
-	open_edges() {
-		awk 'NR == 2 { nv = $1; next }
-		NR > 2 + nv && NF >= 4 {
-			for (k = 2; k <= 4; k++) {
-				a = $k; b = k == 4 ? $2 : $(k + 1)
-				c[a < b ? a " " b : b " " a]++
-			}
-		}
-		END { n = 0; for (e in c) n += c[e] == 1; print n }' "$1"
-	}
+	holes_sphere "$TMP/holes.off"
 	"$BIN/vdt-deform" -t 100 "$TMP/holes.off" -o "$TMP/d.off"
 	[ "$(open_edges "$TMP/d.off")" -eq 18 ]
 	"$BIN/vdt-qslim" -q -t 100 "$TMP/holes.off" -o "$TMP/q.off"

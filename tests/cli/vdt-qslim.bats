@@ -316,18 +316,6 @@ load helpers
 	[[ "$output" == *" nonmanifold=0 topology=keep "* ]]
 }
 
-# open_edges OFF: edges of one face in an OFF file (its vertex numbers).
-open_edges() {
-	awk 'NR == 2 { nv = $1; next }
-	NR > 2 + nv && NF >= 4 {
-		for (k = 2; k <= 4; k++) {
-			a = $k; b = k == 4 ? $2 : $(k + 1)
-			c[a < b ? a " " b : b " " a]++
-		}
-	}
-	END { n = 0; for (e in c) n += c[e] == 1; print n }' "$1"
-}
-
 @test "vdt-qslim stopped by the handles it keeps says so, and how to let them go" {
 	run "$BIN/vdt-qslim" -t 10 "$SAMPLES/torus.off" -o "$TMP/a.off"
 	[ "$status" -eq 0 ]
@@ -341,10 +329,7 @@ open_edges() {
 }
 
 @test "vdt-qslim closes small holes of a manifold unless --topology keep" {
-	# six single faces taken out of the sphere, far apart: holes of three edges
-	{ sed -n 1p "$SAMPLES/sphere.off"; echo "2562 5114 0"
-	  sed -n '3,2564p' "$SAMPLES/sphere.off"
-	  sed -n '2565,$p' "$SAMPLES/sphere.off" | awk 'NR % 1000 != 1'; } > "$TMP/holes.off"
+	holes_sphere "$TMP/holes.off"
 	[ "$(open_edges "$TMP/holes.off")" -eq 18 ]
 	run "$BIN/vdt-qslim" -v -r 0.02 -F off "$TMP/holes.off" -o "$TMP/a.off"
 	[ "$status" -eq 0 ]
