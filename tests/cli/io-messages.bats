@@ -40,6 +40,15 @@ open(out, "wb").write(b)
 PY
 }
 
+# ascii_ply LIST FACES OUT: the square's 4 vertices as ASCII PLY, then
+# FACES (lines of a count and indices, \n between), the header's face
+# count that of FACES' lines unless FACECOUNT is set, the list's types LIST
+# ("uchar int").
+ascii_ply() {
+	local n=${FACECOUNT:-$(printf '%b\n' "$2" | wc -l)}
+	printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face %s\nproperty list %s vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n%b\n' "$n" "$1" "$2" > "$3"
+}
+
 @test "a PLY normal, texture coordinate or colour beyond a float's range is named as such" {
 	python3 - "$TMP" <<'PY'
 import struct, sys
@@ -65,7 +74,7 @@ PY
 }
 
 @test "a float PLY index that is not a whole number is refused with its face; 2.0 is taken" {
-	printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 2\nproperty list uchar float vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 2.5\n' > "$TMP/a.ply"
+	ascii_ply "uchar float" '3 0 1 2\n3 1 3 2.5' "$TMP/a.ply"
 	binary_ply '>' B:uchar d:double "3 1 3 2.5" "$TMP/b.ply"
 	binary_ply '<' B:uchar f:float "4 1 3 2.5 0" "$TMP/q.ply"
 	for t in "vdt-qslim -r 0.5" "vdt-cluster -g 8"; do
@@ -80,7 +89,7 @@ PY
 }
 
 @test "a negative PLY or OFF vertex count is named as such with its face, not as a file cut short" {
-	printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 2\nproperty list char int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n-3 1 3 2\n' > "$TMP/a.ply"
+	ascii_ply "char int" '3 0 1 2\n-3 1 3 2' "$TMP/a.ply"
 	binary_ply '<' b:char i:int "-3 1 3 2" "$TMP/b.ply"
 	binary_ply '>' h:short i:int "-3 1 3 2" "$TMP/s.ply"
 	for t in "vdt-qslim -r 0.5" "vdt-cluster -g 8"; do
@@ -98,7 +107,7 @@ PY
 	for t in "vdt-qslim -r 0.5" "vdt-cluster -g 8"; do
 		refused "$TMP/b.ply" "PLY file has 13 bytes more after the 1 face records its header declares" $t
 	done
-	printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 2\n' > "$TMP/a.ply"
+	FACECOUNT=1 ascii_ply "uchar int" '3 0 1 2\n3 1 3 2' "$TMP/a.ply"
 	for t in "vdt-qslim -r 0.5" "vdt-cluster -g 8"; do
 		refused "$TMP/a.ply" "PLY line 15: more data after the 1 face records the header declares" $t
 	done
