@@ -442,24 +442,24 @@ vdt_plyhead_check_end(const struct vdt_plyhead *h, const unsigned char *buf, siz
 {
 	const struct vdt_ply_element *last = NULL;
 	char what[VDT_PLY_MAX_NAME + 48] = "records";
+	size_t i = pos;
 
-	for (size_t i = pos; i < len; i++) {
-		unsigned char c = buf[i];
-		line += c == '\n';
-		if (c == 0 || c == '\n' || c == '\r' || c == ' ' || c == '\t')
-			continue;
-		for (size_t k = 0; k < h->element_count; k++)
-			if (h->elements[k].prop_count > 0 && h->elements[k].count > 0)
-				last = &h->elements[k];
-		if (last != NULL)
-			snprintf(what, sizeof(what), "%" PRIu64 " %s records", last->count, last->name);
-		if (h->ascii)
-			return vdt_err_set(err, VDT_EFORMAT,
-			                   "PLY line %zu: more data after the %s the header declares",
-			                   line, what);
+	for (; i < len && (buf[i] == 0 || buf[i] == '\n' || buf[i] == '\r' || buf[i] == ' ' ||
+	                   buf[i] == '\t');
+	     i++)
+		line += buf[i] == '\n';
+	if (i == len)
+		return 0;
+	for (size_t k = 0; k < h->element_count; k++)
+		if (h->elements[k].prop_count > 0 && h->elements[k].count > 0)
+			last = &h->elements[k];
+	if (last != NULL)
+		snprintf(what, sizeof(what), "%" PRIu64 " %s records", last->count, last->name);
+	if (h->ascii)
 		return vdt_err_set(err, VDT_EFORMAT,
-		                   "PLY file has %zu bytes more after the %s its header declares",
-		                   len - pos, what);
-	}
-	return 0;
+		                   "PLY line %zu: more data after the %s the header declares", line,
+		                   what);
+	return vdt_err_set(err, VDT_EFORMAT,
+	                   "PLY file has %zu byte%s more after the %s its header declares",
+	                   len - pos, len - pos == 1 ? "" : "s", what);
 }

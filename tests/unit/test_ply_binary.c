@@ -293,6 +293,12 @@ test_more_than_declared(void **state)
 		put(&p, "ii", 2.0, 0.0);
 		expect_error(&p, VDT_EFORMAT,
 		             "PLY file has 8 bytes more after the 2 edge records its header declares");
+		/* no element with records: the message names none */
+		head(&p, be, "element vertex 0\n" XYZ
+		             "element face 0\nproperty list uchar int vertex_indices\n");
+		put(&p, "C", 7.0);
+		expect_error(&p, VDT_EFORMAT,
+		             "PLY file has 1 byte more after the records its header declares");
 	}
 }
 
