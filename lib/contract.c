@@ -919,6 +919,8 @@ boundary_edges(const struct link *l)
 	return n;
 }
 
+static int face_of(const struct engine *e, uint32_t a, uint32_t b, uint32_t c);
+
 /*
  * Whether the boundary edge ab (A, B listed) is a side of a hole of three
  * edges, a b c, that contracting it closes: a and b on that hole alone
@@ -934,7 +936,7 @@ boundary_edges(const struct link *l)
 static int
 closes_hole(const struct engine *e, const struct link *A, const struct link *B)
 {
-	uint32_t c = NONE, x = NONE;
+	uint32_t c = NONE;
 
 	if (boundary_edges(A) != 2 || boundary_edges(B) != 2)
 		return 0;
@@ -946,15 +948,7 @@ closes_hole(const struct engine *e, const struct link *A, const struct link *B)
 			c = y;
 		}
 	}
-	if (c == NONE)
-		return 0;
-	const struct list *l = &e->vt[A->v];
-	for (uint32_t i = 0; i < l->len && x == NONE; i++) {
-		const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + i];
-		if (t[0] == B->v || t[1] == B->v || t[2] == B->v)
-			x = t[0] != A->v && t[0] != B->v ? t[0] : t[1] != A->v && t[1] != B->v ? t[1] : t[2];
-	}
-	if (x == c)
+	if (c == NONE || face_of(e, A->v, B->v, c))
 		return 0;
 	int dir = runs_to(e, A->v, B->v);
 	return runs_to(e, B->v, c) == dir && runs_to(e, c, A->v) == dir;
