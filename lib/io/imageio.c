@@ -12,7 +12,6 @@
  */
 #include <dlfcn.h>
 #include <errno.h>
-#include <limits.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -23,10 +22,7 @@
 
 #include "imagemod.h"
 #include "meshio.h"
-
-#ifndef VDT_IMAGE_MODULE_BUILT
-#define VDT_IMAGE_MODULE_BUILT ""
-#endif
+#include "module.h"
 
 static struct {
 	vdt_img_writer_fn *writer;
@@ -74,39 +70,16 @@ room_to_load(char *why, size_t n)
 	return 0;
 }
 
-/* dlopen the first of: beside this program, in ../lib/vdt from it (an
- * installed tree), where the build left it. */
+/* Open the module (vdt_module_open) and find its functions. */
 static void
 load(void)
 {
-	char exe[PATH_MAX], path[PATH_MAX + 64];
-	void *h = NULL;
-	ssize_t n = readlink("/proc/self/exe", exe, sizeof(exe) - 1);
+	void *h;
 
 	if (!room_to_load(mod.why, sizeof(mod.why)))
 		return;
-
-	if (n > 0) {
-		exe[n] = '\0';
-		char *slash = strrchr(exe, '/');
-		if (slash != NULL)
-			slash[1] = '\0';
-		snprintf(path, sizeof(path), "%s%s", exe, VDT_IMAGE_MODULE);
-		if ((h = dlopen(path, RTLD_NOW | RTLD_LOCAL)) == NULL) {
-			snprintf(path, sizeof(path), "%s../lib/vdt/%s", exe, VDT_IMAGE_MODULE);
-			h = dlopen(path, RTLD_NOW | RTLD_LOCAL);
-		}
-	}
-	if (h == NULL && VDT_IMAGE_MODULE_BUILT[0] != '\0') {
-		snprintf(path, sizeof(path), "%s", VDT_IMAGE_MODULE_BUILT);
-		h = dlopen(path, RTLD_NOW | RTLD_LOCAL);
-	}
-	if (h == NULL) {
-		const char *e = dlerror();
-		snprintf(mod.why, sizeof(mod.why), "cannot load the image module %s (beside the "
-		         "tool or in ../lib/vdt from it): %s", VDT_IMAGE_MODULE, e ? e : "not found");
+	if ((h = vdt_module_open(VDT_IMAGE_MODULE, "image", mod.why, sizeof(mod.why))) == NULL)
 		return;
-	}
 	*(void **)&mod.writer = dlsym(h, VDT_IMG_WRITER);
 	*(void **)&mod.encode = dlsym(h, VDT_IMG_ENCODE);
 	*(void **)&mod.write_file = dlsym(h, VDT_IMG_WRITE_FILE);
@@ -122,7 +95,7 @@ static int
 loaded(struct vdt_err *err)
 {
 	pthread_once(&mod_once, load);
-	return mod.writer ? 0 : vdt_err_set(err, VDT_EIO, "%s", mod.why);
+	return mod.writer ? 0 : vdt_err_set(err, VDT_ESYSTEM, "%s", mod.why);
 }
 
 static int

@@ -42,8 +42,7 @@ typedef int vdt_img_read_fn(const char *path, int *w, int *h, int *c, unsigned c
 /* An image read whole, as 8-bit (*px malloc'ed). */
 #define VDT_IMG_READ "vdt_img_read"
 
-/* The module's file name, found beside the tool, in ../lib/vdt from it,
- * or where the build left it (VDT_IMAGE_MODULE_BUILT). */
+/* The module's file name, found as module.h says. */
 #define VDT_IMAGE_MODULE "vdt-image.so"
 
 #endif

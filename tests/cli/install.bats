@@ -12,7 +12,7 @@ ROOT="$BATS_TEST_DIRNAME/../.."
 	[ -x "$p/bin/vdt-batch" ]
 	for t in "$ROOT"/bin/vdt-*; do
 		n=$(basename "$t")
-		[ "$n" != vdt-image.so ] || continue
+		[ "${n%.so}" = "$n" ] || continue
 		run "$p/bin/$n" --version
 		[ "$status" -eq 0 ]
 		[[ "$output" == "$n "* ]]
@@ -46,6 +46,11 @@ ROOT="$BATS_TEST_DIRNAME/../.."
 		ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0" \
 			strace -f -e trace=openat -o "$TMP/trace" "$p/bin/vdt-render" --size 32x24 "$TMP/t.vdt" -o "$TMP/t.png"
 		grep -q "\"$p/bin/../lib/vdt/vdt-image.so\".* = [0-9]" "$TMP/trace"
+		# and vdt-qslim the Draco module
+		ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0" \
+			strace -f -e trace=openat -o "$TMP/trace" "$p/bin/vdt-qslim" -q -r 0.5 "$SAMPLES/torus.off" -o "$TMP/t.drc"
+		grep -q "\"$p/bin/../lib/vdt/vdt-draco.so\".* = [0-9]" "$TMP/trace"
+		[ -s "$TMP/t.drc" ]
 	fi
 	make -s -C "$ROOT" uninstall DESTDIR="$TMP/d" PREFIX=/opt/vdt
 	[ -z "$(find "$TMP/d" -type f)" ]

@@ -10,6 +10,7 @@
 #include <cmocka.h>
 
 #include <dirent.h>
+#include <dlfcn.h>
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
@@ -21,6 +22,8 @@
 
 #include "../../lib/bytes.h"
 #include "../../lib/io/meshio.h"
+#include "../../lib/io/dracomod.h"
+#include "../../lib/io/module.h"
 
 static char dir[] = "/tmp/vdt-test-meshio.XXXXXX";
 
@@ -365,6 +368,28 @@ test_stl_scan(void **state)
  * maximum or near the smallest normal float, are kept as they are: the
  * encoder crashed on the first and put every vertex on one point for the
  * second. */
+/* A module is found where the build left it (this test is not beside the
+ * tools), answers to its interface version, and one that is nowhere says
+ * what was looked for. */
+static void
+test_module_open(void **state)
+{
+	char why[512] = "";
+	void *h = vdt_module_open(VDT_DRACO_MODULE, "Draco", why, sizeof(why));
+	vdt_drc_abi_fn *abi;
+
+	(void)state;
+	assert_non_null(h);
+	*(void **)&abi = dlsym(h, VDT_DRC_ABI_FN);
+	assert_non_null(abi);
+	assert_int_equal(abi(), VDT_DRC_ABI);
+	dlclose(h);
+	assert_null(vdt_module_open("vdt-nonesuch.so", "test", why, sizeof(why)));
+	assert_non_null(strstr(why, "cannot load the test module vdt-nonesuch.so (beside the tool or "
+	                            "in ../lib/vdt from it): "));
+	assert_non_null(strstr(why, "vdt-nonesuch.so: cannot open shared object file"));
+}
+
 static void
 test_draco_extreme_ranges(void **state)
 {
@@ -956,6 +981,7 @@ main(void)
 		cmocka_unit_test(test_detect),
 		cmocka_unit_test(test_roundtrip_plain),
 		cmocka_unit_test(test_stl_scan),
+		cmocka_unit_test(test_module_open),
 		cmocka_unit_test(test_draco_extreme_ranges),
 		cmocka_unit_test(test_draco_attribute_rounding),
 		cmocka_unit_test(test_roundtrip_attributes),

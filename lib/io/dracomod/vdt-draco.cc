@@ -1,5 +1,6 @@
 /*
- * draco.cc - the extern "C" face of Draco for .drc meshes: positions,
+ * vdt-draco.cc - vdt-draco.so, the extern "C" face of Draco for .drc
+ * meshes (dracomod.h): positions,
  * normals, texture coordinates and colours (8-bit RGBA) as attributes.
  * Draco may reorder vertices and faces (edgebreaker); the mesh it returns
  * is the same surface up to that order and the position quantisation.
@@ -18,7 +19,8 @@
 #include <memory>
 
 extern "C" {
-#include "meshio.h"
+#include "../dracomod.h"
+#include "../meshio.h"
 }
 
 namespace {
@@ -98,26 +100,27 @@ get_floats(const draco::PointAttribute *pa, draco::PointIndex p, int comps, floa
 }
 
 int
-read_mesh(const unsigned char *buf, size_t len, struct vdt_mesh *m, struct vdt_err *err)
+read_mesh(const vdt_drc_host *host, const unsigned char *buf, size_t len, struct vdt_mesh *m,
+          struct vdt_err *err)
 {
 	draco::DecoderBuffer db;
 	db.Init(reinterpret_cast<const char *>(buf), len);
 
 	auto type = draco::Decoder::GetEncodedGeometryType(&db);
 	if (!type.ok())
-		return vdt_err_set(err, VDT_EFORMAT, "bad Draco data: %s",
+		return host->err_set(err, VDT_EFORMAT, "bad Draco data: %s",
 		                   type.status().error_msg());
 	if (type.value() != draco::TRIANGULAR_MESH)
-		return vdt_err_set(err, VDT_EFORMAT, "Draco data holds a point cloud, not a mesh");
+		return host->err_set(err, VDT_EFORMAT, "Draco data holds a point cloud, not a mesh");
 	draco::Decoder dec;
 	auto res = dec.DecodeMeshFromBuffer(&db);
 	if (!res.ok())
-		return vdt_err_set(err, VDT_EFORMAT, "bad Draco data: %s", res.status().error_msg());
+		return host->err_set(err, VDT_EFORMAT, "bad Draco data: %s", res.status().error_msg());
 	std::unique_ptr<draco::Mesh> dm = std::move(res).value();
 
 	const draco::PointAttribute *pos = dm->GetNamedAttribute(draco::GeometryAttribute::POSITION);
 	if (pos == nullptr || pos->num_components() < 3)
-		return vdt_err_set(err, VDT_EFORMAT, "Draco mesh has no 3D positions");
+		return host->err_set(err, VDT_EFORMAT, "Draco mesh has no 3D positions");
 	const draco::PointAttribute *nrm = dm->GetNamedAttribute(draco::GeometryAttribute::NORMAL);
 	const draco::PointAttribute *tex = dm->GetNamedAttribute(draco::GeometryAttribute::TEX_COORD);
 	const draco::PointAttribute *col = dm->GetNamedAttribute(draco::GeometryAttribute::COLOR);
@@ -131,7 +134,7 @@ read_mesh(const unsigned char *buf, size_t len, struct vdt_mesh *m, struct vdt_e
 	size_t nv = dm->num_points(), nf = dm->num_faces();
 	unsigned attrs = (nrm ? VDT_ATTR_NORMALS : 0) | (tex ? VDT_ATTR_UVS : 0) |
 	                 (col ? VDT_ATTR_COLORS : 0);
-	int rc = vdt_mesh_alloc(m, nv, nf, attrs, err);
+	int rc = host->mesh_alloc(m, nv, nf, attrs, err);
 	if (rc != 0)
 		return rc;
 	for (size_t i = 0; i < nv; i++) {
@@ -147,8 +150,8 @@ read_mesh(const unsigned char *buf, size_t len, struct vdt_mesh *m, struct vdt_e
 				m->colors[4 * i + 3] = 1.0f;
 		}
 		if (!ok) {
-			vdt_mesh_free(m);
-			return vdt_err_set(err, VDT_EFORMAT, "Draco vertex %zu has unreadable attributes", i);
+			host->mesh_free(m);
+			return host->err_set(err, VDT_EFORMAT, "Draco vertex %zu has unreadable attributes", i);
 		}
 	}
 	for (size_t f = 0; f < nf; f++) {
@@ -160,7 +163,8 @@ read_mesh(const unsigned char *buf, size_t len, struct vdt_mesh *m, struct vdt_e
 }
 
 int
-write_mesh(FILE *f, const struct vdt_mesh *m, int bits, int speed, struct vdt_err *err)
+write_mesh(const vdt_drc_host *host, FILE *f, const struct vdt_mesh *m, int bits, int speed,
+           struct vdt_err *err)
 {
 	draco::Mesh dm;
 	size_t nv = m->vertex_count;
@@ -168,14 +172,14 @@ write_mesh(FILE *f, const struct vdt_mesh *m, int bits, int speed, struct vdt_er
 	if (bits <= 0)
 		bits = VDT_DRACO_POSITION_BITS;
 	if (bits > 30)
-		return vdt_err_set(err, VDT_EINVAL, "Draco position quantisation of %d bits is over 30", bits);
+		return host->err_set(err, VDT_EINVAL, "Draco position quantisation of %d bits is over 30", bits);
 	if (speed <= 0)
 		speed = VDT_DRACO_SPEED;
 	if (speed > 10)
 		speed = 10;
 	dm.set_num_points(uint32_t(nv));
 	if (add_float_attribute(dm, draco::GeometryAttribute::POSITION, 3, m->positions, nv) < 0)
-		return vdt_err_set(err, VDT_ENOMEM, "cannot add Draco positions");
+		return host->err_set(err, VDT_ENOMEM, "cannot add Draco positions");
 	if (m->normals)
 		add_float_attribute(dm, draco::GeometryAttribute::NORMAL, 3, m->normals, nv);
 	if (m->uvs)
@@ -210,38 +214,45 @@ write_mesh(FILE *f, const struct vdt_mesh *m, int bits, int speed, struct vdt_er
 	draco::EncoderBuffer eb;
 	draco::Status st = enc.EncodeMeshToBuffer(dm, &eb);
 	if (!st.ok())
-		return vdt_err_set(err, VDT_EINVAL, "Draco cannot encode the mesh: %s", st.error_msg());
+		return host->err_set(err, VDT_EINVAL, "Draco cannot encode the mesh: %s", st.error_msg());
 	if (fwrite(eb.data(), 1, eb.size(), f) != eb.size())
-		return vdt_err_set(err, VDT_EIO, "write error: %s", std::strerror(errno));
+		return host->err_set(err, VDT_EIO, "write error: %s", std::strerror(errno));
 	return 0;
 }
 
 } // namespace
 
 extern "C" int
-vdt_draco_read(const unsigned char *buf, size_t len, struct vdt_mesh *m, struct vdt_err *err)
+vdt_drc_abi(void)
+{
+	return VDT_DRC_ABI;
+}
+
+extern "C" int
+vdt_drc_read(const vdt_drc_host *host, const unsigned char *buf, size_t len, struct vdt_mesh *m,
+             struct vdt_err *err)
 {
 	std::memset(m, 0, sizeof(*m));
 	try {
-		return read_mesh(buf, len, m, err);
+		return read_mesh(host, buf, len, m, err);
 	} catch (const std::bad_alloc &) {
-		vdt_mesh_free(m);
-		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+		host->mesh_free(m);
+		return host->err_set(err, VDT_ENOMEM, "out of memory");
 	} catch (...) {
-		vdt_mesh_free(m);
-		return vdt_err_set(err, VDT_EFORMAT, "bad Draco data");
+		host->mesh_free(m);
+		return host->err_set(err, VDT_EFORMAT, "bad Draco data");
 	}
 }
 
 extern "C" int
-vdt_draco_write(FILE *f, const struct vdt_mesh *m, int position_bits, int speed,
-                struct vdt_err *err)
+vdt_drc_write(const vdt_drc_host *host, FILE *f, const struct vdt_mesh *m, int position_bits,
+              int speed, struct vdt_err *err)
 {
 	try {
-		return write_mesh(f, m, position_bits, speed, err);
+		return write_mesh(host, f, m, position_bits, speed, err);
 	} catch (const std::bad_alloc &) {
-		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
+		return host->err_set(err, VDT_ENOMEM, "out of memory");
 	} catch (...) {
-		return vdt_err_set(err, VDT_EINVAL, "Draco cannot encode the mesh");
+		return host->err_set(err, VDT_EINVAL, "Draco cannot encode the mesh");
 	}
 }

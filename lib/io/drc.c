@@ -1,0 +1,69 @@
+/*
+ * drc.c - Draco meshes through vdt-draco.so (dracomod.h), loaded at the
+ * first .drc read or written: the runs that never touch one map neither
+ * Draco nor the C++ runtime.
+ */
+#include <dlfcn.h>
+#include <pthread.h>
+#include <stdio.h>
+
+#include "dracomod.h"
+#include "meshio.h"
+#include "module.h"
+
+static struct {
+	vdt_drc_read_fn *read;
+	vdt_drc_write_fn *write;
+	char why[512]; /* when it could not be loaded */
+} mod;
+static pthread_once_t mod_once = PTHREAD_ONCE_INIT;
+
+static const struct vdt_drc_host host = {vdt_mesh_alloc, vdt_mesh_free, vdt_err_set};
+
+static void
+load(void)
+{
+	vdt_drc_abi_fn *abi;
+	void *h;
+
+	if ((h = vdt_module_open(VDT_DRACO_MODULE, "Draco", mod.why, sizeof(mod.why))) == NULL)
+		return;
+	*(void **)&abi = dlsym(h, VDT_DRC_ABI_FN);
+	*(void **)&mod.read = dlsym(h, VDT_DRC_READ);
+	*(void **)&mod.write = dlsym(h, VDT_DRC_WRITE);
+	if (!abi || !mod.read || !mod.write || abi() != VDT_DRC_ABI) {
+		snprintf(mod.why, sizeof(mod.why), "the Draco module %s is not of this build's "
+		         "version (interface %d wanted)", VDT_DRACO_MODULE, VDT_DRC_ABI);
+		mod.read = NULL;
+		mod.write = NULL;
+	}
+}
+
+static int
+loaded(struct vdt_err *err)
+{
+	pthread_once(&mod_once, load);
+	return mod.read ? 0 : vdt_err_set(err, VDT_ESYSTEM, "%s", mod.why);
+}
+
+int
+vdt_draco_read(const unsigned char *buf, size_t len, struct vdt_mesh *m, struct vdt_err *err)
+{
+	int rc;
+
+	*m = (struct vdt_mesh){0};
+	if ((rc = loaded(err)) != 0)
+		return rc;
+	return mod.read(&host, buf, len, m, err);
+}
+
+int
+vdt_draco_write(FILE *f, const struct vdt_mesh *m, int position_bits, int speed,
+                struct vdt_err *err)
+{
+	int rc = loaded(err);
+
+	if (rc != 0)
+		return rc;
+	return mod.write(&host, f, m, position_bits, speed, err);
+}
