@@ -18,7 +18,7 @@
 #include "../mesh.h"
 
 /* Raised when the table or a function's arguments change: a module of
- * another build is refused, not called. */
+ * another build is refused, not called (module.h). */
 #define VDT_DRC_ABI 1
 
 struct vdt_drc_host {
@@ -34,12 +34,11 @@ typedef int vdt_drc_read_fn(const struct vdt_drc_host *host, const unsigned char
 typedef int vdt_drc_write_fn(const struct vdt_drc_host *host, FILE *f,
                              const struct vdt_mesh *m, int position_bits, int speed,
                              struct vdt_err *err);
-typedef int vdt_drc_abi_fn(void);
 
 /* The functions' names in the module. */
+#define VDT_DRC_ABI_FN "vdt_drc_abi" /* int (void): VDT_DRC_ABI */
 #define VDT_DRC_READ "vdt_drc_read"
 #define VDT_DRC_WRITE "vdt_drc_write"
-#define VDT_DRC_ABI_FN "vdt_drc_abi"
 
 /* The module's file name, found as module.h says. */
 #define VDT_DRACO_MODULE "vdt-draco.so"

@@ -3,7 +3,6 @@
  * first .drc read or written: the runs that never touch one map neither
  * Draco nor the C++ runtime.
  */
-#include <dlfcn.h>
 #include <pthread.h>
 #include <stdio.h>
 
@@ -23,20 +22,11 @@ static const struct vdt_drc_host host = {vdt_mesh_alloc, vdt_mesh_free, vdt_err_
 static void
 load(void)
 {
-	vdt_drc_abi_fn *abi;
-	void *h;
+	static const char *const names[] = {VDT_DRC_READ, VDT_DRC_WRITE};
+	void **const fns[] = {(void **)&mod.read, (void **)&mod.write};
 
-	if ((h = vdt_module_open(VDT_DRACO_MODULE, "Draco", mod.why, sizeof(mod.why))) == NULL)
-		return;
-	*(void **)&abi = dlsym(h, VDT_DRC_ABI_FN);
-	*(void **)&mod.read = dlsym(h, VDT_DRC_READ);
-	*(void **)&mod.write = dlsym(h, VDT_DRC_WRITE);
-	if (!abi || !mod.read || !mod.write || abi() != VDT_DRC_ABI) {
-		snprintf(mod.why, sizeof(mod.why), "the Draco module %s is not of this build's "
-		         "version (interface %d wanted)", VDT_DRACO_MODULE, VDT_DRC_ABI);
-		mod.read = NULL;
-		mod.write = NULL;
-	}
+	vdt_module_bind(VDT_DRACO_MODULE, "Draco", VDT_DRC_ABI_FN, VDT_DRC_ABI, names, fns, 2,
+	                mod.why, sizeof(mod.why));
 }
 
 static int

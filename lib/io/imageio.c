@@ -10,7 +10,6 @@
  * extension, so the temporary name needs none; standard output, and a
  * device or FIFO whose name has none, get PNG.
  */
-#include <dlfcn.h>
 #include <errno.h>
 #include <pthread.h>
 #include <stdio.h>
@@ -74,21 +73,14 @@ room_to_load(char *why, size_t n)
 static void
 load(void)
 {
-	void *h;
+	static const char *const names[] = {VDT_IMG_WRITER, VDT_IMG_ENCODE, VDT_IMG_WRITE_FILE,
+	                                    VDT_IMG_READ};
+	void **const fns[] = {(void **)&mod.writer, (void **)&mod.encode, (void **)&mod.write_file,
+	                      (void **)&mod.read};
 
-	if (!room_to_load(mod.why, sizeof(mod.why)))
-		return;
-	if ((h = vdt_module_open(VDT_IMAGE_MODULE, "image", mod.why, sizeof(mod.why))) == NULL)
-		return;
-	*(void **)&mod.writer = dlsym(h, VDT_IMG_WRITER);
-	*(void **)&mod.encode = dlsym(h, VDT_IMG_ENCODE);
-	*(void **)&mod.write_file = dlsym(h, VDT_IMG_WRITE_FILE);
-	*(void **)&mod.read = dlsym(h, VDT_IMG_READ);
-	if (!mod.writer || !mod.encode || !mod.write_file || !mod.read) {
-		snprintf(mod.why, sizeof(mod.why), "the image module %s lacks a function",
-		         VDT_IMAGE_MODULE);
-		mod.writer = NULL;
-	}
+	if (room_to_load(mod.why, sizeof(mod.why)))
+		vdt_module_bind(VDT_IMAGE_MODULE, "image", VDT_IMG_ABI_FN, VDT_IMG_ABI, names, fns, 4,
+		                mod.why, sizeof(mod.why));
 }
 
 static int

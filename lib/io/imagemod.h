@@ -23,6 +23,10 @@ enum {
 	VDT_IMG_NOMEM = 5,
 };
 
+/* Raised when a function's arguments change: a module of another build
+ * is refused, not called (module.h). */
+#define VDT_IMG_ABI 1
+
 /* The module's functions, and their names in it. */
 typedef int vdt_img_writer_fn(const char *name, char *msg, size_t cap);
 typedef int vdt_img_encode_fn(const char *name, int w, int h, int c, const unsigned char *px,
@@ -32,6 +36,8 @@ typedef int vdt_img_write_file_fn(const char *name, const char *file, int w, int
 typedef int vdt_img_read_fn(const char *path, int *w, int *h, int *c, unsigned char **px,
                             char *msg, size_t cap);
 
+/* int (void): VDT_IMG_ABI. */
+#define VDT_IMG_ABI_FN "vdt_img_abi"
 /* Whether a writer exists for name (its extension picks it). */
 #define VDT_IMG_WRITER "vdt_img_writer"
 /* The image encoded in memory (*out malloc'ed), by name's writer; or

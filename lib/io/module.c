@@ -43,3 +43,30 @@ vdt_module_open(const char *file, const char *what, char *why, size_t cap)
 	}
 	return h;
 }
+
+int
+vdt_module_bind(const char *file, const char *what, const char *abi_name, int abi,
+                const char *const *names, void **const *fns, size_t n, char *why, size_t cap)
+{
+	void *h = vdt_module_open(file, what, why, cap);
+	int (*answer)(void) = NULL;
+	size_t found = 0;
+
+	for (size_t i = 0; i < n; i++)
+		*fns[i] = NULL;
+	if (h == NULL)
+		return -1;
+	*(void **)&answer = dlsym(h, abi_name);
+	if (answer != NULL && answer() == abi)
+		for (; found < n && (*fns[found] = dlsym(h, names[found])) != NULL; found++)
+			;
+	if (found < n) {
+		for (size_t i = 0; i < n; i++)
+			*fns[i] = NULL;
+		dlclose(h);
+		snprintf(why, cap, "the %s module %s is not of this build's version (interface %d "
+		         "wanted)", what, file, abi);
+		return -1;
+	}
+	return 0;
+}

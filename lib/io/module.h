@@ -18,4 +18,14 @@
  */
 void *vdt_module_open(const char *file, const char *what, char *why, size_t cap);
 
+/*
+ * vdt_module_open, then the module's functions: the one named abi_name
+ * must answer abi (a module of another build is refused, not called),
+ * then each of names[i] (n of them) goes into *fns[i]. Returns 0, or -1
+ * with why and every *fns[i] NULL.
+ */
+int vdt_module_bind(const char *file, const char *what, const char *abi_name, int abi,
+                    const char *const *names, void **const *fns, size_t n, char *why,
+                    size_t cap);
+
 #endif

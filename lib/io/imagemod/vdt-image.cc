@@ -67,6 +67,12 @@ write_all(OIIO::ImageOutput &out, const char *name, const OIIO::ImageSpec &spec,
 } // namespace
 
 extern "C" int
+vdt_img_abi(void)
+{
+	return VDT_IMG_ABI;
+}
+
+extern "C" int
 vdt_img_writer(const char *name, char *msg, size_t cap)
 {
 	try {
