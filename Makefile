@@ -23,14 +23,16 @@ override CPPFLAGS += -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE
 override CFLAGS += -std=c11 -Wall -Wextra -Werror -MMD -MP
 override CXXFLAGS += -std=c++17 -Wall -Wextra -Werror -MMD -MP \
 	-Wno-deprecated-declarations -Wno-deprecated-copy
-LDLIBS_VDT = -Wl,--as-needed -lassimp -lz -lm -lpthread -ldl
+LDLIBS_VDT = -Wl,--as-needed -lz -lm -lpthread -ldl
 # Modules the tools load at their first use (lib/io/module.h). OpenImageIO
 # at the first image: its libraries cost a third of a second and ~130 MB
 # at start-up. Draco at the first .drc mesh: with the C++ runtime, 2.7 MB
 # resident and 1.3 ms at every start (vdt-qslim --version: 4.7 MB, 2.5 ms
-# a run with them; 2.0 MB, 1.2 ms without).
+# a run with them; 2.0 MB, 1.2 ms without). Assimp at the first skinned
+# model: 5.8 MB and 2.6 ms of every start of vdt-deform.
 LDLIBS_vdt-image = -lOpenImageIO -lOpenImageIO_Util
 LDLIBS_vdt-draco = -ldraco
+LDLIBS_vdt-assimp = -lassimp
 
 ifeq ($(SANITIZE),1)
 VARIANT := san
@@ -63,7 +65,7 @@ MAN57 := $(sort $(wildcard man/*.5 man/*.7))
 .DELETE_ON_ERROR:
 .SECONDARY:
 
-MODULES := bin/vdt-image.so bin/vdt-draco.so
+MODULES := bin/vdt-image.so bin/vdt-draco.so bin/vdt-assimp.so
 
 all: $(TOOLS) $(MODULES) helpers
 
@@ -92,9 +94,10 @@ $(B)/%.o: %.cc
 
 # Where the build leaves the modules: the last place a tool looks.
 $(B)/lib/io/module.o: override CPPFLAGS += -DVDT_MODULE_BUILT_DIR='"$(CURDIR)/bin"'
-$(B)/lib/io/imagemod/%.o $(B)/lib/io/dracomod/%.o: override CXXFLAGS += -fPIC
+$(B)/lib/io/%.o: override CXXFLAGS += -fPIC
 bin/vdt-image.so: $(B)/lib/io/imagemod/vdt-image.o build/variant
 bin/vdt-draco.so: $(B)/lib/io/dracomod/vdt-draco.o build/variant
+bin/vdt-assimp.so: $(B)/lib/io/assimpmod/vdt-assimp.o build/variant
 $(MODULES):
 	@mkdir -p $(@D)
 	$(CXX) $(LDFLAGS) -shared -o $@ $< $(LDLIBS_$(basename $(@F)))
@@ -106,15 +109,15 @@ $(LIB): $(LIB_O)
 
 bin/%: $(B)/cmd/%.o $(COMMON_O) $(LIB) build/variant
 	@mkdir -p $(@D)
-	$(CXX) $(LDFLAGS) -o $@ $< $(COMMON_O) $(LIB) $(LDLIBS_VDT)
+	$(CC) $(LDFLAGS) -o $@ $< $(COMMON_O) $(LIB) $(LDLIBS_VDT)
 
 $(B)/tests/%: $(B)/tests/unit/%.o $(LIB)
 	@mkdir -p $(@D)
-	$(CXX) $(LDFLAGS) -o $@ $< $(LIB) -lcmocka $(LDLIBS_VDT)
+	$(CC) $(LDFLAGS) -o $@ $< $(LIB) -lcmocka $(LDLIBS_VDT)
 
 $(B)/scripts/%: $(B)/scripts/%.o $(LIB)
 	@mkdir -p $(@D)
-	$(CXX) $(LDFLAGS) -o $@ $< $(LIB) $(LDLIBS_VDT)
+	$(CC) $(LDFLAGS) -o $@ $< $(LIB) $(LDLIBS_VDT)
 
 # Comparison drivers for the bench: each links one peer library.
 BENCH_LIBS_meshopt = -lmeshoptimizer

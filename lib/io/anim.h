@@ -2,7 +2,7 @@
  * anim.h - reading animations whose frames share one connectivity: Quake
  * II MD2 keyframe models (native), skinned models of the formats Assimp
  * reads (.x, .fbx, .gltf, .glb, .dae, .smd, .iqm, .md5mesh, .mdl, .ms3d,
- * .b3d; assimp.cc),
+ * .b3d; vdt-assimp.cc),
  * a vdt stream with MESH and FRMS chunks, a list of mesh files, or a
  * printf pattern naming them.
  */
@@ -49,7 +49,7 @@ struct vdt_bake_opts {
  * Bake an animation of a skinned model (any format Assimp reads) into
  * frames by linear blend skinning: the one bo names, or the first that
  * moves a node; one frame at each key time of the animation, every
- * channel's together, or bo->fps frames a second (see assimp.cc). bo may
+ * channel's together, or bo->fps frames a second (see vdt-assimp.cc). bo may
  * be NULL. A model without an animation is one frame (an animation asked
  * for by name or number is then an error). The meshes of all
  * its nodes are joined into *m (frame 0's positions) in node order; their

@@ -51,6 +51,14 @@ ROOT="$BATS_TEST_DIRNAME/../.."
 			strace -f -e trace=openat -o "$TMP/trace" "$p/bin/vdt-qslim" -q -r 0.5 "$SAMPLES/torus.off" -o "$TMP/t.drc"
 		grep -q "\"$p/bin/../lib/vdt/vdt-draco.so\".* = [0-9]" "$TMP/trace"
 		[ -s "$TMP/t.drc" ]
+		# and vdt-deform the Assimp module
+		x=/usr/share/assimp/models/X/BCN_Epileptic.X
+		if [ -r "$x" ]; then
+			ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0" \
+				strace -f -e trace=openat -o "$TMP/trace" "$p/bin/vdt-deform" -q --frames 2 -r 0.5 "$x" -o "$TMP/x%d.off"
+			grep -q "\"$p/bin/../lib/vdt/vdt-assimp.so\".* = [0-9]" "$TMP/trace"
+			[ -s "$TMP/x1.off" ]
+		fi
 	fi
 	make -s -C "$ROOT" uninstall DESTDIR="$TMP/d" PREFIX=/opt/vdt
 	[ -z "$(find "$TMP/d" -type f)" ]

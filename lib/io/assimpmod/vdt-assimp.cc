@@ -1,5 +1,6 @@
 /*
- * assimp.cc - the extern "C" face of Assimp for skeletal animations:
+ * vdt-assimp.cc - vdt-assimp.so (assimpmod.h), the extern "C" face of
+ * Assimp for skeletal animations:
  * DirectX .x, FBX, glTF 2 (.gltf, .glb), COLLADA, Valve SMD, IQM,
  * MilkShape 3D and Blitz3D files whose meshes are skinned to bones that
  * an animation moves. Each frame is baked here, in the way every engine
@@ -36,17 +37,11 @@
 #include <string>
 #include <vector>
 
-#include <strings.h>
-
 extern "C" {
-#include "anim.h"
+#include "../assimpmod.h"
 }
 
 namespace {
-
-/* The file extensions read through Assimp, lower case. */
-const char *const exts[] = {".x",   ".fbx",     ".gltf", ".glb",  ".dae", ".smd",
-                            ".iqm", ".md5mesh", ".mdl",  ".ms3d", ".b3d"};
 
 /* A mesh of triangles where a node puts it, and the node of each of its
  * bones (the mesh's own node for a bone that names none), found once. */
@@ -157,7 +152,8 @@ globals(const aiNode *n, const aiMatrix4x4 &parent,
 /* The animation of s that bo names (NULL in *a if s has none and bo names
  * none): 0 or a status. */
 int
-pick(const aiScene *s, const struct vdt_bake_opts *bo, const aiAnimation **a, struct vdt_err *err)
+pick(const vdt_asm_host *host, const aiScene *s, const struct vdt_bake_opts *bo,
+     const aiAnimation **a, struct vdt_err *err)
 {
 	const char *want = bo ? bo->animation : nullptr;
 	char *end;
@@ -184,23 +180,23 @@ pick(const aiScene *s, const struct vdt_bake_opts *bo, const aiAnimation **a, st
 		for (unsigned i = 0; i < s->mNumAnimations && names.size() < 200; i++)
 			names += std::string(i ? ", " : "") + std::to_string(i) + " '" +
 			         s->mAnimations[i]->mName.C_Str() + "'";
-		return vdt_err_set(err, VDT_EINVAL, "has no animation '%s' (%u: %s)", want,
+		return host->err_set(err, VDT_EINVAL, "has no animation '%s' (%u: %s)", want,
 		                   s->mNumAnimations, s->mNumAnimations ? names.c_str() : "none");
 	}
 	if ((*a)->mNumChannels == 0)
-		return vdt_err_set(err, VDT_EINVAL, "animation '%s' moves no bone", want);
+		return host->err_set(err, VDT_EINVAL, "animation '%s' moves no bone", want);
 	return 0;
 }
 
 /* Frames of s's animation (pick) into *m and *fr (see the top of this
  * file); 0 or a status, with *m and *fr maybe half filled. */
 int
-bake(const aiScene *s, const struct vdt_bake_opts *bo, struct vdt_mesh *m, struct vdt_frames *fr,
-     struct vdt_err *err)
+bake(const vdt_asm_host *host, const aiScene *s, const struct vdt_bake_opts *bo,
+     struct vdt_mesh *m, struct vdt_frames *fr, struct vdt_err *err)
 {
 	/* Assimp stands a skeleton without a mesh in for the mesh. */
 	if (s->mFlags & AI_SCENE_FLAGS_INCOMPLETE)
-		return vdt_err_set(err, VDT_EINVAL, "has no mesh");
+		return host->err_set(err, VDT_EINVAL, "has no mesh");
 	std::vector<Instance> inst;
 	if (s->mRootNode)
 		collect(s, s->mRootNode, inst);
@@ -211,12 +207,12 @@ bake(const aiScene *s, const struct vdt_bake_opts *bo, struct vdt_mesh *m, struc
 			nt += i.mesh->mFaces[f].mNumIndices == 3;
 	}
 	if (nt == 0)
-		return vdt_err_set(err, VDT_EINVAL, "has no triangles");
+		return host->err_set(err, VDT_EINVAL, "has no triangles");
 	if (nv > UINT32_MAX)
-		return vdt_err_set(err, VDT_EINVAL, "has %zu vertices, more than 2^32", nv);
+		return host->err_set(err, VDT_EINVAL, "has %zu vertices, more than 2^32", nv);
 	const aiAnimation *a;
 	int rc;
-	if ((rc = pick(s, bo, &a, err)) != 0)
+	if ((rc = pick(host, s, bo, &a, err)) != 0)
 		return rc;
 	std::map<const aiNode *, const aiNodeAnim *> chan;
 	std::vector<double> times;
@@ -237,12 +233,12 @@ bake(const aiScene *s, const struct vdt_bake_opts *bo, struct vdt_mesh *m, struc
 	}
 	for (double t : times)
 		if (!std::isfinite(t))
-			return vdt_err_set(err, VDT_EINVAL, "animation '%s' has a key at a non-finite time",
+			return host->err_set(err, VDT_EINVAL, "animation '%s' has a key at a non-finite time",
 			                   a->mName.C_Str());
 	std::sort(times.begin(), times.end());
 	times.erase(std::unique(times.begin(), times.end()), times.end());
 	if (times.empty()) /* channels of nodes that are not there */
-		return vdt_err_set(err, VDT_EINVAL, "animation '%s' moves no node of the model",
+		return host->err_set(err, VDT_EINVAL, "animation '%s' moves no node of the model",
 		                   a->mName.C_Str());
 	if (a != nullptr && bo != nullptr && bo->fps > 0) {
 		/* Evenly in time instead; a file that does not say its rate is
@@ -251,7 +247,7 @@ bake(const aiScene *s, const struct vdt_bake_opts *bo, struct vdt_mesh *m, struc
 		double t0 = times.front(), span = times.back() - t0, step = tps / bo->fps;
 		double n = std::floor(span / step + 1e-9) + 1;
 		if (!(n <= 1e6))
-			return vdt_err_set(err, VDT_EINVAL,
+			return host->err_set(err, VDT_EINVAL,
 			                   "%g frames a second of animation '%s' make %.3g frames, "
 			                   "more than a million",
 			                   bo->fps, a->mName.C_Str(), n);
@@ -259,8 +255,8 @@ bake(const aiScene *s, const struct vdt_bake_opts *bo, struct vdt_mesh *m, struc
 		for (size_t i = 0; i < times.size(); i++)
 			times[i] = t0 + (double)i * step;
 	}
-	if ((rc = vdt_mesh_alloc(m, nv, nt, 0, err)) != 0 ||
-	    (rc = vdt_frames_alloc(fr, times.size(), nv, err)) != 0)
+	if ((rc = host->mesh_alloc(m, nv, nt, 0, err)) != 0 ||
+	    (rc = host->frames_alloc(fr, times.size(), nv, err)) != 0)
 		return rc;
 	/* The joined mesh's triangles. */
 	size_t v0 = 0, t = 0;
@@ -313,7 +309,7 @@ bake(const aiScene *s, const struct vdt_bake_opts *bo, struct vdt_mesh *m, struc
 				for (int k = 0; k < 3; k++) {
 					float x = (float)p[k];
 					if (!std::isfinite(x))
-						return vdt_err_set(err, VDT_EINVAL,
+						return host->err_set(err, VDT_EINVAL,
 						                   "frame %zu: vertex %zu has a non-finite coordinate", f,
 						                   v0 + v);
 					out[3 * (v0 + v) + k] = x;
@@ -328,26 +324,15 @@ bake(const aiScene *s, const struct vdt_bake_opts *bo, struct vdt_mesh *m, struc
 
 } // namespace
 
-/* The extension as vdt_format_from_path finds it: after the last dot of
- * the last component, a name that starts with its only dot (".x") having
- * none. */
 extern "C" int
-vdt_assimp_handles(const char *path)
+vdt_asm_abi(void)
 {
-	const char *base = strrchr(path, '/'), *dot;
-
-	base = base ? base + 1 : path;
-	if ((dot = strrchr(base, '.')) == nullptr || dot == base)
-		return 0;
-	for (const char *e : exts)
-		if (strcasecmp(dot, e) == 0)
-			return 1;
-	return 0;
+	return VDT_ASM_ABI;
 }
 
 extern "C" int
-vdt_assimp_read(const char *path, const struct vdt_bake_opts *bo, struct vdt_mesh *m,
-                struct vdt_frames *fr, struct vdt_err *err)
+vdt_asm_read(const vdt_asm_host *host, const char *path, const struct vdt_bake_opts *bo,
+             struct vdt_mesh *m, struct vdt_frames *fr, struct vdt_err *err)
 {
 	int rc;
 
@@ -358,7 +343,7 @@ vdt_assimp_read(const char *path, const struct vdt_bake_opts *bo, struct vdt_mes
 	/* Assimp's own word for a file it cannot open is vaguer than errno's. */
 	FILE *f = fopen(path, "rb");
 	if (f == nullptr)
-		return vdt_err_set(err, VDT_EIO, "%s", strerror(errno));
+		return host->err_set(err, VDT_EIO, "%s", strerror(errno));
 	fclose(f);
 	const aiScene *s = aiImportFile(path, aiProcess_ValidateDataStructure | aiProcess_Triangulate |
 	                                          aiProcess_SortByPType);
@@ -368,19 +353,19 @@ vdt_assimp_read(const char *path, const struct vdt_bake_opts *bo, struct vdt_mes
 			why.pop_back();
 		/* (Assimp catches its own exceptions, out of memory too) */
 		if (why.find("bad_alloc") != std::string::npos)
-			return vdt_err_set(err, VDT_ENOMEM, "out of memory");
-		return vdt_err_set(err, VDT_EFORMAT, "%s",
+			return host->err_set(err, VDT_ENOMEM, "out of memory");
+		return host->err_set(err, VDT_EFORMAT, "%s",
 		                   why.empty() ? "not a model Assimp reads" : why.c_str());
 	}
 	try {
-		rc = bake(s, bo, m, fr, err);
+		rc = bake(host, s, bo, m, fr, err);
 	} catch (const std::bad_alloc &) {
-		rc = vdt_err_set(err, VDT_ENOMEM, "out of memory");
+		rc = host->err_set(err, VDT_ENOMEM, "out of memory");
 	}
 	aiReleaseImport(s);
 	if (rc != 0) {
-		vdt_mesh_free(m);
-		vdt_frames_free(fr);
+		host->mesh_free(m);
+		host->frames_free(fr);
 	}
 	return rc;
 }
