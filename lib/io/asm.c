@@ -21,9 +21,6 @@ static struct {
 } mod;
 static pthread_once_t mod_once = PTHREAD_ONCE_INIT;
 
-static const struct vdt_asm_host host = {vdt_mesh_alloc, vdt_mesh_free, vdt_frames_alloc,
-                                         vdt_frames_free, vdt_err_set};
-
 static void
 load(void)
 {
@@ -60,5 +57,5 @@ vdt_assimp_read(const char *path, const struct vdt_bake_opts *bo, struct vdt_mes
 	pthread_once(&mod_once, load);
 	if (mod.read == NULL)
 		return vdt_err_set(err, VDT_ESYSTEM, "%s", mod.why);
-	return mod.read(&host, path, bo, m, fr, err);
+	return mod.read(&vdt_host, path, bo, m, fr, err);
 }

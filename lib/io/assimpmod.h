@@ -5,8 +5,7 @@
  * links them, so the tools load the module (asm.c) only when such a
  * model is read.
  *
- * The module calls nothing in libvdt by name: what it needs of it comes
- * in the host's table, and it shares only the types of anim.h. Its read
+ * What it needs of libvdt comes in the host's table (module.h). Its read
  * function follows vdt_assimp_read (anim.h).
  */
 #ifndef VDT_ASSIMPMOD_H
@@ -15,22 +14,12 @@
 #include <stddef.h>
 
 #include "anim.h"
+#include "module.h"
 
 /* Raised when the table or the function's arguments change (module.h). */
 #define VDT_ASM_ABI 1
 
-struct vdt_asm_host {
-	int (*mesh_alloc)(struct vdt_mesh *m, size_t vertex_count, size_t triangle_count,
-	                  unsigned attrs, struct vdt_err *err);
-	void (*mesh_free)(struct vdt_mesh *m);
-	int (*frames_alloc)(struct vdt_frames *fr, size_t frame_count, size_t vertex_count,
-	                    struct vdt_err *err);
-	void (*frames_free)(struct vdt_frames *fr);
-	int (*err_set)(struct vdt_err *err, int code, const char *fmt, ...)
-		__attribute__((format(printf, 3, 4)));
-};
-
-typedef int vdt_asm_read_fn(const struct vdt_asm_host *host, const char *path,
+typedef int vdt_asm_read_fn(const struct vdt_host *host, const char *path,
                             const struct vdt_bake_opts *bo, struct vdt_mesh *m,
                             struct vdt_frames *fr, struct vdt_err *err);
 

@@ -4,9 +4,8 @@
  * 1.3 ms at every start of a tool that links them, so the tools load the
  * module (drc.c) only when a .drc mesh is read or written.
  *
- * The module calls nothing in libvdt by name: what it needs of it comes
- * in the host's table, and it shares only the types of mesh.h and err.h.
- * Both functions follow vdt_draco_read and vdt_draco_write (meshio.h).
+ * What it needs of libvdt comes in the host's table (module.h). Both
+ * functions follow vdt_draco_read and vdt_draco_write (meshio.h).
  */
 #ifndef VDT_DRACOMOD_H
 #define VDT_DRACOMOD_H
@@ -14,24 +13,15 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "../err.h"
-#include "../mesh.h"
+#include "module.h"
 
 /* Raised when the table or a function's arguments change: a module of
  * another build is refused, not called (module.h). */
 #define VDT_DRC_ABI 1
 
-struct vdt_drc_host {
-	int (*mesh_alloc)(struct vdt_mesh *m, size_t vertex_count, size_t triangle_count,
-	                  unsigned attrs, struct vdt_err *err);
-	void (*mesh_free)(struct vdt_mesh *m);
-	int (*err_set)(struct vdt_err *err, int code, const char *fmt, ...)
-		__attribute__((format(printf, 3, 4)));
-};
-
-typedef int vdt_drc_read_fn(const struct vdt_drc_host *host, const unsigned char *buf,
+typedef int vdt_drc_read_fn(const struct vdt_host *host, const unsigned char *buf,
                             size_t len, struct vdt_mesh *m, struct vdt_err *err);
-typedef int vdt_drc_write_fn(const struct vdt_drc_host *host, FILE *f,
+typedef int vdt_drc_write_fn(const struct vdt_host *host, FILE *f,
                              const struct vdt_mesh *m, int position_bits, int speed,
                              struct vdt_err *err);
 

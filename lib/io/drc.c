@@ -17,8 +17,6 @@ static struct {
 } mod;
 static pthread_once_t mod_once = PTHREAD_ONCE_INIT;
 
-static const struct vdt_drc_host host = {vdt_mesh_alloc, vdt_mesh_free, vdt_err_set};
-
 static void
 load(void)
 {
@@ -44,7 +42,7 @@ vdt_draco_read(const unsigned char *buf, size_t len, struct vdt_mesh *m, struct 
 	*m = (struct vdt_mesh){0};
 	if ((rc = loaded(err)) != 0)
 		return rc;
-	return mod.read(&host, buf, len, m, err);
+	return mod.read(&vdt_host, buf, len, m, err);
 }
 
 int
@@ -55,5 +53,5 @@ vdt_draco_write(FILE *f, const struct vdt_mesh *m, int position_bits, int speed,
 
 	if (rc != 0)
 		return rc;
-	return mod.write(&host, f, m, position_bits, speed, err);
+	return mod.write(&vdt_host, f, m, position_bits, speed, err);
 }

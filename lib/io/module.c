@@ -9,6 +9,9 @@
 
 #include "module.h"
 
+const struct vdt_host vdt_host = {vdt_mesh_alloc, vdt_mesh_free, vdt_frames_alloc,
+                                  vdt_frames_free, vdt_err_set};
+
 /* The bin/ directory of the build, the last place looked in. */
 #ifndef VDT_MODULE_BUILT_DIR
 #define VDT_MODULE_BUILT_DIR ""

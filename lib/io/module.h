@@ -9,6 +9,30 @@
 
 #include <stddef.h>
 
+#include "../err.h"
+#include "../frames.h"
+#include "../mesh.h"
+
+/*
+ * What a module needs of libvdt, handed to each of its functions: a
+ * module calls nothing in the library by name (it is not linked against
+ * it), and shares only the types of mesh.h, frames.h and err.h. A
+ * module's interface number (vdt_module_bind) covers this table.
+ */
+struct vdt_host {
+	int (*mesh_alloc)(struct vdt_mesh *m, size_t vertex_count, size_t triangle_count,
+	                  unsigned attrs, struct vdt_err *err);
+	void (*mesh_free)(struct vdt_mesh *m);
+	int (*frames_alloc)(struct vdt_frames *fr, size_t frame_count, size_t vertex_count,
+	                    struct vdt_err *err);
+	void (*frames_free)(struct vdt_frames *fr);
+	int (*err_set)(struct vdt_err *err, int code, const char *fmt, ...)
+		__attribute__((format(printf, 3, 4)));
+};
+
+/* The table of this library. */
+extern const struct vdt_host vdt_host;
+
 /*
  * dlopen the module file (a bare name such as "vdt-draco.so") from the
  * first of: beside the running program, ../lib/vdt from it (an installed

@@ -152,7 +152,7 @@ globals(const aiNode *n, const aiMatrix4x4 &parent,
 /* The animation of s that bo names (NULL in *a if s has none and bo names
  * none): 0 or a status. */
 int
-pick(const vdt_asm_host *host, const aiScene *s, const struct vdt_bake_opts *bo,
+pick(const struct vdt_host *host, const aiScene *s, const struct vdt_bake_opts *bo,
      const aiAnimation **a, struct vdt_err *err)
 {
 	const char *want = bo ? bo->animation : nullptr;
@@ -191,7 +191,7 @@ pick(const vdt_asm_host *host, const aiScene *s, const struct vdt_bake_opts *bo,
 /* Frames of s's animation (pick) into *m and *fr (see the top of this
  * file); 0 or a status, with *m and *fr maybe half filled. */
 int
-bake(const vdt_asm_host *host, const aiScene *s, const struct vdt_bake_opts *bo,
+bake(const struct vdt_host *host, const aiScene *s, const struct vdt_bake_opts *bo,
      struct vdt_mesh *m, struct vdt_frames *fr, struct vdt_err *err)
 {
 	/* Assimp stands a skeleton without a mesh in for the mesh. */
@@ -331,7 +331,7 @@ vdt_asm_abi(void)
 }
 
 extern "C" int
-vdt_asm_read(const vdt_asm_host *host, const char *path, const struct vdt_bake_opts *bo,
+vdt_asm_read(const struct vdt_host *host, const char *path, const struct vdt_bake_opts *bo,
              struct vdt_mesh *m, struct vdt_frames *fr, struct vdt_err *err)
 {
 	int rc;

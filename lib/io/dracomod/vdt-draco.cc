@@ -100,7 +100,7 @@ get_floats(const draco::PointAttribute *pa, draco::PointIndex p, int comps, floa
 }
 
 int
-read_mesh(const vdt_drc_host *host, const unsigned char *buf, size_t len, struct vdt_mesh *m,
+read_mesh(const struct vdt_host *host, const unsigned char *buf, size_t len, struct vdt_mesh *m,
           struct vdt_err *err)
 {
 	draco::DecoderBuffer db;
@@ -163,7 +163,7 @@ read_mesh(const vdt_drc_host *host, const unsigned char *buf, size_t len, struct
 }
 
 int
-write_mesh(const vdt_drc_host *host, FILE *f, const struct vdt_mesh *m, int bits, int speed,
+write_mesh(const struct vdt_host *host, FILE *f, const struct vdt_mesh *m, int bits, int speed,
            struct vdt_err *err)
 {
 	draco::Mesh dm;
@@ -229,7 +229,7 @@ vdt_drc_abi(void)
 }
 
 extern "C" int
-vdt_drc_read(const vdt_drc_host *host, const unsigned char *buf, size_t len, struct vdt_mesh *m,
+vdt_drc_read(const struct vdt_host *host, const unsigned char *buf, size_t len, struct vdt_mesh *m,
              struct vdt_err *err)
 {
 	std::memset(m, 0, sizeof(*m));
@@ -245,7 +245,7 @@ vdt_drc_read(const vdt_drc_host *host, const unsigned char *buf, size_t len, str
 }
 
 extern "C" int
-vdt_drc_write(const vdt_drc_host *host, FILE *f, const struct vdt_mesh *m, int position_bits,
+vdt_drc_write(const struct vdt_host *host, FILE *f, const struct vdt_mesh *m, int position_bits,
               int speed, struct vdt_err *err)
 {
 	try {
