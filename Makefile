@@ -164,7 +164,12 @@ $(F)/%.o: %.cc
 	clang++ $(CPPFLAGS) -std=c++17 -Wall -Wno-deprecated-declarations $(FUZZ_FLAGS) -c -o $@ $<
 $(F)/fuzz_%: $(F)/tests/fuzz/fuzz_%.o $(FUZZ_LIB_O)
 	clang++ -fsanitize=fuzzer,address,undefined -o $@ $^ $(LDLIBS_VDT)
-fuzz: deps $(FUZZERS)
+# The Draco module beside the fuzzers, instrumented as they are: .drc data
+# is fuzzed through it as through a tool.
+$(F)/lib/io/dracomod/%.o: FUZZ_FLAGS += -fPIC
+$(F)/vdt-draco.so: $(F)/lib/io/dracomod/vdt-draco.o
+	clang++ -fsanitize=address,undefined -shared -o $@ $< $(LDLIBS_vdt-draco)
+fuzz: deps $(FUZZERS) $(F)/vdt-draco.so
 	@scripts/run-fuzz $(F) $(FUZZ_SECONDS)
 
 lint:
