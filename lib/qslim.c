@@ -22,6 +22,7 @@
 #include "fit.h"
 #include "hash.h"
 #include "mem.h"
+#include "progress.h"
 #include "sort.h"
 #include "topo.h"
 
@@ -2383,6 +2384,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	memset(out, 0, sizeof(*out));
 	memset(stats, 0, sizeof(*stats));
 	stats->handles = -1;
+	double t_start = vdt_seconds();
 	if (records) {
 		*records = NULL;
 		*record_count = 0;
@@ -2671,7 +2673,10 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	ops.concurrent = 1;
 	ops.vertex_data = c.at ? c.at->qc : c.q;
 	ops.vertex_stride = sizeof(*c.q);
+	double t_run = vdt_seconds();
+	stats->setup_s = t_run - t_start;
 	rc = vdt_contract_run_in_place(&w, &ops, &co, &r, err);
+	stats->contract_s = vdt_seconds() - t_run;
 	free(seam);
 	if (rc != 0)
 		goto fail;
@@ -2697,6 +2702,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	}
 	if (o->fit && records == NULL) { /* (a record must replay to the output) */
 		struct vdt_fit_stats fs;
+		double t_fit = vdt_seconds();
 		/* Open edges keep their planes' place, and vertices near the
 		 * contours of a view (an error scale below 1) where their
 		 * quadrics put them: the fit, which serves the distance to the
@@ -2709,6 +2715,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 		                   locked, o->min_quality, o->threads, c.q, nw * sizeof(*c.q), &fs) != 0)
 			goto nomem;
 		stats->fitted = fs.moved;
+		stats->fit_s = vdt_seconds() - t_fit;
 	}
 	free(c.q); /* (the output needs no quadric) */
 	c.q = NULL;

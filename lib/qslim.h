@@ -150,6 +150,9 @@ struct vdt_qslim_stats {
 	long handles;       /* when stopped early under the link condition,
 	                       the handles of the result (vdt_topo_handles),
 	                       which it keeps, each with a few faces; else -1 */
+	double setup_s;     /* seconds: welding, quadrics and the rest before */
+	double contract_s;  /* the contractions (the engine's run) */
+	double fit_s;       /* the fit after them (0 without) */
 };
 
 /*

@@ -53,6 +53,19 @@ load helpers
 	[ "$(off_vertices "$TMP/out.off")" -eq 2562 ]
 }
 
+@test "vdt-qslim -v times the phases, and splits simplify_s into setup, contractions and fit" {
+	for fit in "" --no-fit; do
+		run "$BIN/vdt-qslim" -v $fit -r 0.1 "$SAMPLES/sphere.off" -o "$TMP/out.off"
+		[ "$status" -eq 0 ]
+		line=$(printf '%s\n' "$output" | tail -n 1)
+		[[ "$line" =~ \ read_s=([0-9.]+)\ simplify_s=([0-9.]+)\ setup_s=([0-9.]+)\ contract_s=([0-9.]+)\ fit_s=([0-9.]+)\ write_s=([0-9.]+)\ peak_mb=[0-9.]+$ ]]
+		s=${BASH_REMATCH[2]} a=${BASH_REMATCH[3]} b=${BASH_REMATCH[4]} c=${BASH_REMATCH[5]}
+		# the parts within the whole, up to the rounding of four figures
+		awk -v s="$s" -v a="$a" -v b="$b" -v c="$c" 'BEGIN { exit !(a + b + c <= s + 0.002) }'
+		[ -z "$fit" ] || [ "$c" = 0.000 ]
+	done
+}
+
 @test "vdt-qslim -e stops within the bound and reports it with -v" {
 	run "$BIN/vdt-qslim" -v -e 0.05% -r 0.01 "$SAMPLES/sphere.off" -o "$TMP/out.off"
 	[ "$status" -eq 0 ]
