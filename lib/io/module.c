@@ -18,33 +18,50 @@ const struct vdt_host vdt_host = {vdt_mesh_alloc, vdt_mesh_free, vdt_frames_allo
 #endif
 
 void *
+vdt_module_open_in(const char *const *dirs, size_t n, const char *file, const char *what,
+                   char *why, size_t cap)
+{
+	char path[PATH_MAX + 64], first[512] = "";
+
+	for (size_t i = 0; i < n; i++) {
+		snprintf(path, sizeof(path), "%s%s", dirs[i], file);
+		void *h = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+		if (h != NULL)
+			return h;
+		/* (a file that is there but will not load says why) */
+		const char *e = dlerror();
+		if (first[0] == '\0' && access(path, F_OK) == 0)
+			snprintf(first, sizeof(first), "%.500s", e ? e : path);
+	}
+	if (first[0] != '\0')
+		snprintf(why, cap, "cannot load the %s module: %s", what, first);
+	else
+		snprintf(why, cap, "cannot find the %s module %s beside the tool or in ../lib/vdt "
+		         "from it", what, file);
+	return NULL;
+}
+
+void *
 vdt_module_open(const char *file, const char *what, char *why, size_t cap)
 {
-	char exe[PATH_MAX], path[PATH_MAX + 64];
-	void *h = NULL;
-	ssize_t n = readlink("/proc/self/exe", exe, sizeof(exe) - 1);
+	char exe[PATH_MAX], up[PATH_MAX + 16];
+	const char *dirs[3];
+	size_t n = 0;
+	ssize_t len = readlink("/proc/self/exe", exe, sizeof(exe) - 1);
 
-	if (n > 0) {
-		exe[n] = '\0';
+	if (len > 0) {
+		exe[len] = '\0';
 		char *slash = strrchr(exe, '/');
-		if (slash != NULL)
+		if (slash != NULL) {
 			slash[1] = '\0';
-		snprintf(path, sizeof(path), "%s%s", exe, file);
-		if ((h = dlopen(path, RTLD_NOW | RTLD_LOCAL)) == NULL) {
-			snprintf(path, sizeof(path), "%s../lib/vdt/%s", exe, file);
-			h = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+			snprintf(up, sizeof(up), "%s../lib/vdt/", exe);
+			dirs[n++] = exe;
+			dirs[n++] = up;
 		}
 	}
-	if (h == NULL && VDT_MODULE_BUILT_DIR[0] != '\0') {
-		snprintf(path, sizeof(path), "%s/%s", VDT_MODULE_BUILT_DIR, file);
-		h = dlopen(path, RTLD_NOW | RTLD_LOCAL);
-	}
-	if (h == NULL) {
-		const char *e = dlerror();
-		snprintf(why, cap, "cannot load the %s module %s (beside the tool or in "
-		         "../lib/vdt from it): %s", what, file, e ? e : "not found");
-	}
-	return h;
+	if (VDT_MODULE_BUILT_DIR[0] != '\0')
+		dirs[n++] = VDT_MODULE_BUILT_DIR "/";
+	return vdt_module_open_in(dirs, n, file, what, why, cap);
 }
 
 int

@@ -1,8 +1,9 @@
 /*
  * module.h - the tools' loadable modules: a C++ library some runs need
- * and most do not (OpenImageIO for images, Draco for .drc meshes) sits in
- * a shared object of its own, opened at its first use. A run that never
- * touches such a file maps none of it: no C++ runtime, no start-up cost.
+ * and most do not (OpenImageIO for images, Draco for .drc meshes, Assimp
+ * for skinned models) sits in a shared object of its own, opened at its
+ * first use. A run that never touches such a file maps none of it: no C++
+ * runtime, no start-up cost.
  */
 #ifndef VDT_MODULE_H
 #define VDT_MODULE_H
@@ -37,10 +38,16 @@ extern const struct vdt_host vdt_host;
  * dlopen the module file (a bare name such as "vdt-draco.so") from the
  * first of: beside the running program, ../lib/vdt from it (an installed
  * tree), the bin/ directory of the build that made this library. Returns
- * the handle, or NULL with why (cap bytes) saying what was looked for and
- * what the loader answered, naming the module as "the WHAT module".
+ * the handle, or NULL with why (cap bytes) naming the module as "the WHAT
+ * module": what the loader said of the first of those files that is there
+ * (a library it needs missing, say), else that it is in none of them.
  */
 void *vdt_module_open(const char *file, const char *what, char *why, size_t cap);
+
+/* vdt_module_open from the n directories dirs (each ending in '/'), in
+ * order. */
+void *vdt_module_open_in(const char *const *dirs, size_t n, const char *file, const char *what,
+                         char *why, size_t cap);
 
 /*
  * vdt_module_open, then the module's functions: the one named abi_name
