@@ -400,7 +400,7 @@ test_module_bind(void **state)
 static void
 test_module_unloadable(void **state)
 {
-	char tmp[] = "/tmp/vdt-test-module.XXXXXX", path[64], want[128], why[512] = "";
+	char tmp[64] = "/tmp/vdt-test-module.XXXXXX", path[96], want[160], why[512] = "";
 	FILE *f;
 	void *h;
 
