@@ -3,7 +3,6 @@
  * at the first such model read: the runs that read none map neither
  * Assimp nor the C++ runtime.
  */
-#include <pthread.h>
 #include <stdio.h>
 #include <string.h>
 #include <strings.h>
@@ -15,21 +14,12 @@
 static const char *const exts[] = {".x",   ".fbx",     ".gltf", ".glb",  ".dae", ".smd",
                                    ".iqm", ".md5mesh", ".mdl",  ".ms3d", ".b3d"};
 
-static struct {
-	vdt_asm_read_fn *read;
-	char why[512]; /* when it could not be loaded */
-} mod;
-static pthread_once_t mod_once = PTHREAD_ONCE_INIT;
-
-static void
-load(void)
-{
-	static const char *const names[] = {VDT_ASM_READ};
-	void **const fns[] = {(void **)&mod.read};
-
-	vdt_module_bind(VDT_ASSIMP_MODULE, "Assimp", VDT_ASM_ABI_FN, VDT_ASM_ABI, names, fns, 1,
-	                mod.why, sizeof(mod.why));
-}
+static vdt_asm_read_fn *read_fn;
+static const char *const names[] = {VDT_ASM_READ};
+static void **const fns[] = {(void **)&read_fn};
+static struct vdt_module mod = {.file = VDT_ASSIMP_MODULE, .what = "Assimp",
+                                .abi_name = VDT_ASM_ABI_FN, .abi = VDT_ASM_ABI,
+                                .names = names, .fns = fns, .n = 1};
 
 /* The extension as vdt_format_from_path finds it: after the last dot of
  * the last component, a name that starts with its only dot (".x") having
@@ -54,8 +44,8 @@ vdt_assimp_read(const char *path, const struct vdt_bake_opts *bo, struct vdt_mes
 {
 	memset(m, 0, sizeof(*m));
 	memset(fr, 0, sizeof(*fr));
-	pthread_once(&mod_once, load);
-	if (mod.read == NULL)
-		return vdt_err_set(err, VDT_ESYSTEM, "%s", mod.why);
-	return mod.read(&vdt_host, path, bo, m, fr, err);
+	int rc = vdt_module_ready(&mod, err);
+	if (rc != 0)
+		return rc;
+	return read_fn(&vdt_host, path, bo, m, fr, err);
 }

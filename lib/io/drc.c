@@ -3,36 +3,19 @@
  * first .drc read or written: the runs that never touch one map neither
  * Draco nor the C++ runtime.
  */
-#include <pthread.h>
 #include <stdio.h>
 
 #include "dracomod.h"
 #include "meshio.h"
 #include "module.h"
 
-static struct {
-	vdt_drc_read_fn *read;
-	vdt_drc_write_fn *write;
-	char why[512]; /* when it could not be loaded */
-} mod;
-static pthread_once_t mod_once = PTHREAD_ONCE_INIT;
-
-static void
-load(void)
-{
-	static const char *const names[] = {VDT_DRC_READ, VDT_DRC_WRITE};
-	void **const fns[] = {(void **)&mod.read, (void **)&mod.write};
-
-	vdt_module_bind(VDT_DRACO_MODULE, "Draco", VDT_DRC_ABI_FN, VDT_DRC_ABI, names, fns, 2,
-	                mod.why, sizeof(mod.why));
-}
-
-static int
-loaded(struct vdt_err *err)
-{
-	pthread_once(&mod_once, load);
-	return mod.read ? 0 : vdt_err_set(err, VDT_ESYSTEM, "%s", mod.why);
-}
+static vdt_drc_read_fn *read_fn;
+static vdt_drc_write_fn *write_fn;
+static const char *const names[] = {VDT_DRC_READ, VDT_DRC_WRITE};
+static void **const fns[] = {(void **)&read_fn, (void **)&write_fn};
+static struct vdt_module mod = {.file = VDT_DRACO_MODULE, .what = "Draco",
+                                .abi_name = VDT_DRC_ABI_FN, .abi = VDT_DRC_ABI,
+                                .names = names, .fns = fns, .n = 2};
 
 int
 vdt_draco_read(const unsigned char *buf, size_t len, struct vdt_mesh *m, struct vdt_err *err)
@@ -40,18 +23,18 @@ vdt_draco_read(const unsigned char *buf, size_t len, struct vdt_mesh *m, struct 
 	int rc;
 
 	*m = (struct vdt_mesh){0};
-	if ((rc = loaded(err)) != 0)
+	if ((rc = vdt_module_ready(&mod, err)) != 0)
 		return rc;
-	return mod.read(&vdt_host, buf, len, m, err);
+	return read_fn(&vdt_host, buf, len, m, err);
 }
 
 int
 vdt_draco_write(FILE *f, const struct vdt_mesh *m, int position_bits, int speed,
                 struct vdt_err *err)
 {
-	int rc = loaded(err);
+	int rc = vdt_module_ready(&mod, err);
 
 	if (rc != 0)
 		return rc;
-	return mod.write(&vdt_host, f, m, position_bits, speed, err);
+	return write_fn(&vdt_host, f, m, position_bits, speed, err);
 }

@@ -11,7 +11,6 @@
  * device or FIFO whose name has none, get PNG.
  */
 #include <errno.h>
-#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -28,9 +27,7 @@ static struct {
 	vdt_img_encode_fn *encode;
 	vdt_img_write_file_fn *write_file;
 	vdt_img_read_fn *read;
-	char why[512]; /* when it could not be loaded */
-} mod;
-static pthread_once_t mod_once = PTHREAD_ONCE_INIT;
+} fn;
 
 /*
  * Address space the module takes as it loads. OpenImageIO's static
@@ -69,26 +66,13 @@ room_to_load(char *why, size_t n)
 	return 0;
 }
 
-/* Open the module (vdt_module_open) and find its functions. */
-static void
-load(void)
-{
-	static const char *const names[] = {VDT_IMG_WRITER, VDT_IMG_ENCODE, VDT_IMG_WRITE_FILE,
-	                                    VDT_IMG_READ};
-	void **const fns[] = {(void **)&mod.writer, (void **)&mod.encode, (void **)&mod.write_file,
-	                      (void **)&mod.read};
-
-	if (room_to_load(mod.why, sizeof(mod.why)))
-		vdt_module_bind(VDT_IMAGE_MODULE, "image", VDT_IMG_ABI_FN, VDT_IMG_ABI, names, fns, 4,
-		                mod.why, sizeof(mod.why));
-}
-
-static int
-loaded(struct vdt_err *err)
-{
-	pthread_once(&mod_once, load);
-	return mod.writer ? 0 : vdt_err_set(err, VDT_ESYSTEM, "%s", mod.why);
-}
+static const char *const names[] = {VDT_IMG_WRITER, VDT_IMG_ENCODE, VDT_IMG_WRITE_FILE,
+                                    VDT_IMG_READ};
+static void **const fns[] = {(void **)&fn.writer, (void **)&fn.encode, (void **)&fn.write_file,
+                             (void **)&fn.read};
+static struct vdt_module mod = {.file = VDT_IMAGE_MODULE, .what = "image",
+                                .abi_name = VDT_IMG_ABI_FN, .abi = VDT_IMG_ABI,
+                                .names = names, .fns = fns, .n = 4, .room = room_to_load};
 
 static int
 from_module(int code, const char *msg, struct vdt_err *err)
@@ -121,7 +105,7 @@ writer_name(const char *path)
 		return "-.png";
 	/* (and /dev/stdout to a regular file: written in place, as "-") */
 	free(target = vdt_output_target(path, &special));
-	if (target != NULL && special && mod.writer(path, msg, sizeof(msg)) == VDT_IMG_NO_WRITER)
+	if (target != NULL && special && fn.writer(path, msg, sizeof(msg)) == VDT_IMG_NO_WRITER)
 		return "-.png";
 	return path;
 }
@@ -174,7 +158,7 @@ write_own_file(const char *path, int w, int h, int c, const unsigned char *px,
 		close(fd); /* the writer opens it again by name */
 	}
 	/* (a device or FIFO is written in place: nothing to stage or take back) */
-	rc = from_module(mod.write_file(writer_name(path), special ? dst : tmp, w, h, c, px, msg,
+	rc = from_module(fn.write_file(writer_name(path), special ? dst : tmp, w, h, c, px, msg,
 	                                sizeof(msg)), msg, err);
 	if (rc == 0 && !special && stage != NULL)
 		rc = vdt_written_stage(stage, tmp, dst, err);
@@ -198,9 +182,9 @@ vdt_image_writable(const char *path, struct vdt_err *err)
 	char msg[512] = "";
 	int rc;
 
-	if ((rc = refuse_terminal(path, err)) != 0 || (rc = loaded(err)) != 0)
+	if ((rc = refuse_terminal(path, err)) != 0 || (rc = vdt_module_ready(&mod, err)) != 0)
 		return rc;
-	return from_module(mod.writer(writer_name(path), msg, sizeof(msg)), msg, err);
+	return from_module(fn.writer(writer_name(path), msg, sizeof(msg)), msg, err);
 }
 
 int
@@ -224,9 +208,9 @@ vdt_image_write_staged(const char *path, int width, int height, int channels,
 	if (width <= 0 || height <= 0 || channels <= 0 || channels > 4)
 		return vdt_err_set(err, VDT_EINVAL, "bad image size %dx%d with %d channels", width,
 		                   height, channels);
-	if ((rc = refuse_terminal(path, err)) != 0 || (rc = loaded(err)) != 0)
+	if ((rc = refuse_terminal(path, err)) != 0 || (rc = vdt_module_ready(&mod, err)) != 0)
 		return rc;
-	rc = mod.encode(writer_name(path), width, height, channels, pixels, &bytes, &len, msg,
+	rc = fn.encode(writer_name(path), width, height, channels, pixels, &bytes, &len, msg,
 	                sizeof(msg));
 	if (rc == VDT_IMG_OWN_FILE)
 		return write_own_file(path, width, height, channels, pixels, stage, err);
@@ -254,8 +238,8 @@ vdt_image_read(const char *path, int *width, int *height, int *channels,
 	int rc;
 
 	*pixels = NULL;
-	if ((rc = loaded(err)) != 0)
+	if ((rc = vdt_module_ready(&mod, err)) != 0)
 		return rc;
-	return from_module(mod.read(path, width, height, channels, pixels, msg, sizeof(msg)), msg,
+	return from_module(fn.read(path, width, height, channels, pixels, msg, sizeof(msg)), msg,
 	                   err);
 }

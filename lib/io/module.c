@@ -3,6 +3,7 @@
  */
 #include <dlfcn.h>
 #include <limits.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
@@ -89,4 +90,22 @@ vdt_module_bind(const char *file, const char *what, const char *abi_name, int ab
 		return -1;
 	}
 	return 0;
+}
+
+int
+vdt_module_ready(struct vdt_module *m, struct vdt_err *err)
+{
+	static pthread_mutex_t lock = PTHREAD_MUTEX_INITIALIZER;
+	int ok;
+
+	pthread_mutex_lock(&lock);
+	if (!m->tried) {
+		m->tried = 1;
+		m->ok = (m->room == NULL || m->room(m->why, sizeof(m->why))) &&
+		        vdt_module_bind(m->file, m->what, m->abi_name, m->abi, m->names, m->fns, m->n,
+		                        m->why, sizeof(m->why)) == 0;
+	}
+	ok = m->ok;
+	pthread_mutex_unlock(&lock);
+	return ok ? 0 : vdt_err_set(err, VDT_ESYSTEM, "%s", m->why);
 }

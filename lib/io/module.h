@@ -59,4 +59,25 @@ int vdt_module_bind(const char *file, const char *what, const char *abi_name, in
                     const char *const *names, void **const *fns, size_t n, char *why,
                     size_t cap);
 
+/*
+ * A module bound at its first use: what vdt_module_bind takes, and room,
+ * which if not NULL may refuse to load it (0, with the reason in why).
+ * The rest is vdt_module_ready's; a static one with the first fields set
+ * is ready to use.
+ */
+struct vdt_module {
+	const char *file, *what, *abi_name;
+	int abi;
+	const char *const *names;
+	void **const *fns;
+	size_t n;
+	int (*room)(char *why, size_t cap);
+	int tried, ok;
+	char why[512];
+};
+
+/* Bind m at the first call (one thread at a time: later calls, from any
+ * thread, have the first's result): 0, or VDT_ESYSTEM with the reason. */
+int vdt_module_ready(struct vdt_module *m, struct vdt_err *err);
+
 #endif
