@@ -143,17 +143,10 @@ write_own_file(const char *path, int w, int h, int c, const unsigned char *px,
 		return vdt_err_set(err, VDT_EIO, "%s", strerror(EISDIR));
 	}
 	if (!special) {
-		int fd = vdt_output_temp(dst, &tmp);
-		if (fd == -2) {
-			free(dst);
-			return vdt_err_set(err, VDT_ENOMEM, "out of memory");
-		}
+		int fd = vdt_output_temp(dst, &tmp, err);
 		if (fd < 0) {
-			int e = errno;
 			free(dst);
-			if (fd == -3)
-				return vdt_err_set(err, VDT_EIO, "%s", strerror(ENAMETOOLONG));
-			return vdt_err_set(err, VDT_EIO, "cannot create a temporary file: %s", strerror(e));
+			return fd;
 		}
 		close(fd); /* the writer opens it again by name */
 	}

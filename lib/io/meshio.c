@@ -977,7 +977,7 @@ name_max(const char *target, size_t dl)
 }
 
 int
-vdt_output_temp(const char *target, char **tmp)
+vdt_output_temp(const char *target, char **tmp, struct vdt_err *err)
 {
 	const char *slash = strrchr(target, '/'), *base = slash ? slash + 1 : target;
 	size_t dl = (size_t)(base - target), bl = strlen(base), room = name_max(target, dl);
@@ -989,14 +989,14 @@ vdt_output_temp(const char *target, char **tmp)
 	 * pass the longest name the directory holds, which NAME may reach. */
 	*tmp = NULL;
 	if (bl > room)
-		return -3;
+		return vdt_err_set(err, VDT_EIO, "%s", strerror(ENAMETOOLONG));
 	if (bl + 8 > room) {
 		bl = room > 8 ? room - 8 : 0;
 		while (bl > 0 && (base[bl] & 0xc0) == 0x80)
 			bl--;
 	}
 	if ((*tmp = malloc(dl + bl + 9)) == NULL)
-		return -2;
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
 	memcpy(*tmp, target, dl);
 	sprintf(*tmp + dl, ".%.*s.XXXXXX", (int)bl, base);
 	/* No signal between its making and the handler's knowing of it. */
@@ -1010,8 +1010,7 @@ vdt_output_temp(const char *target, char **tmp)
 	if (fd < 0) {
 		free(*tmp);
 		*tmp = NULL;
-		errno = e;
-		return -1;
+		return vdt_err_set(err, VDT_EIO, "cannot create a temporary file: %s", strerror(e));
 	}
 	return fd;
 }
@@ -1183,8 +1182,9 @@ vdt_written_free(struct vdt_written *w)
 	memset(w, 0, sizeof(*w));
 }
 
-static int
-output_fail(struct vdt_output *o, int fd, struct vdt_err *err, int code, const char *what, int e)
+/* Close and remove what an output had opened, and zero it. */
+static void
+output_drop(struct vdt_output *o, int fd)
 {
 	if (fd >= 0)
 		close(fd);
@@ -1194,6 +1194,12 @@ output_fail(struct vdt_output *o, int fd, struct vdt_err *err, int code, const c
 	free(o->path);
 	free(o->tmp);
 	memset(o, 0, sizeof(*o));
+}
+
+static int
+output_fail(struct vdt_output *o, int fd, struct vdt_err *err, int code, const char *what, int e)
+{
+	output_drop(o, fd);
 	return vdt_err_set(err, code, "%s%s%s", what, *what && e ? ": " : "", e ? strerror(e) : "");
 }
 
@@ -1231,12 +1237,10 @@ vdt_output_open(struct vdt_output *o, const char *path, struct vdt_err *err)
 			return output_fail(o, fd, err, VDT_EIO, "", errno);
 		return 0;
 	}
-	if ((fd = vdt_output_temp(o->path, &o->tmp)) < 0)
-		return output_fail(o, -1, err, fd == -2 ? VDT_ENOMEM : VDT_EIO,
-		                   fd == -2 ? "out of memory"
-		                   : fd == -3 ? ""
-		                              : "cannot create a temporary file",
-		                   fd == -2 ? 0 : fd == -3 ? ENAMETOOLONG : errno);
+	if ((fd = vdt_output_temp(o->path, &o->tmp, err)) < 0) {
+		output_drop(o, -1);
+		return fd;
+	}
 	if ((o->f = fdopen(fd, "wb")) == NULL)
 		return output_fail(o, fd, err, VDT_EIO, "", errno);
 	return 0;

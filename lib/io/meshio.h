@@ -231,11 +231,11 @@ void vdt_written_free(struct vdt_written *w);
  * own name may reach), with the permissions of the file it replaces and
  * its owner where this process may give it, or 0666 less the umask for
  * a new file.
- * Returns its descriptor with the malloc'ed name in *tmp; -1 (errno set)
- * or -2 (out of memory) with *tmp NULL, -3 when the target's own name is
+ * Returns its descriptor with the malloc'ed name in *tmp, or with *tmp
+ * NULL and err set a negative status: VDT_ENOMEM, or VDT_EIO when the target's own name is
  * longer than the directory holds (which the rename would find only at
- * the end, after the work). Used by vdt_output_open and by the image
- * writer.
+ * the end, after the work) or mkstemp fails. Used by vdt_output_open and
+ * by the image writer.
  *
  * Until vdt_output_temp_done(*tmp), a signal that ends the process
  * (SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE, SIGXFSZ) removes the file
@@ -244,7 +244,7 @@ void vdt_written_free(struct vdt_written *w);
  * held back while the file is made, so that none comes before the
  * handler knows of it.
  */
-int vdt_output_temp(const char *target, char **tmp);
+int vdt_output_temp(const char *target, char **tmp, struct vdt_err *err);
 
 /* The temporary file tmp is renamed or removed: a signal leaves it be. */
 void vdt_output_temp_done(const char *tmp);

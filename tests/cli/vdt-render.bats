@@ -90,6 +90,7 @@ tree() {
 	run "$BIN/vdt-render" "$TMP/t.vdt" -o "$TMP/no/such/dir/x.png"
 	[ "$status" -eq 1 ]
 	one_line
+	[ "$output" = "vdt-render: cannot write '$TMP/no/such/dir/x.png': cannot create a temporary file: No such file or directory" ]
 	run "$BIN/vdt-render" "$TMP/t.vdt" --mesh-out "$TMP/no/such/dir/x.ply" -o "$TMP/x.png"
 	[ "$status" -eq 1 ]
 	one_line
