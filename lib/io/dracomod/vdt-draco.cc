@@ -66,7 +66,24 @@ quantisable(const float *data, int comps, size_t n, int bits)
 	       (range == 0 || range / float((1u << bits) - 1) >= FLT_MIN * float(1u << bits));
 }
 
-/* Read component values of point p as floats (integers normalised). */
+/* The first comps values of v as T, over div, into out (have: the
+ * attribute's own count, up to 16 read). */
+template <typename T>
+bool
+convert(const draco::PointAttribute *pa, draco::AttributeValueIndex v, int have, int comps,
+        float div, float *out)
+{
+	T tmp[16] = {};
+
+	if (!pa->ConvertValue<T>(v, int8_t(have < 16 ? have : 16), tmp))
+		return false;
+	for (int k = 0; k < comps && k < have; k++)
+		out[k] = float(tmp[k]) / div;
+	return true;
+}
+
+/* Read component values of point p as floats (integers normalised); a
+ * fourth component the attribute lacks is 1, any other 0. */
 bool
 get_floats(const draco::PointAttribute *pa, draco::PointIndex p, int comps, float *out)
 {
@@ -75,28 +92,11 @@ get_floats(const draco::PointAttribute *pa, draco::PointIndex p, int comps, floa
 
 	for (int k = 0; k < comps; k++)
 		out[k] = k == 3 ? 1.0f : 0.0f;
-	if (pa->data_type() == draco::DT_UINT8) {
-		uint8_t tmp[16] = {0};
-		if (!pa->ConvertValue<uint8_t>(v, int8_t(have < 16 ? have : 16), tmp))
-			return false;
-		for (int k = 0; k < comps && k < have; k++)
-			out[k] = tmp[k] / 255.0f;
-		return true;
+	switch (pa->data_type()) {
+	case draco::DT_UINT8: return convert<uint8_t>(pa, v, have, comps, 255.0f, out);
+	case draco::DT_UINT16: return convert<uint16_t>(pa, v, have, comps, 65535.0f, out);
+	default: return convert<float>(pa, v, have, comps, 1, out);
 	}
-	if (pa->data_type() == draco::DT_UINT16) {
-		uint16_t tmp[16] = {0};
-		if (!pa->ConvertValue<uint16_t>(v, int8_t(have < 16 ? have : 16), tmp))
-			return false;
-		for (int k = 0; k < comps && k < have; k++)
-			out[k] = tmp[k] / 65535.0f;
-		return true;
-	}
-	float tmp[16] = {0};
-	if (!pa->ConvertValue<float>(v, int8_t(have < 16 ? have : 16), tmp))
-		return false;
-	for (int k = 0; k < comps && k < have; k++)
-		out[k] = tmp[k];
-	return true;
 }
 
 int
