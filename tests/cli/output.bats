@@ -282,6 +282,19 @@ load helpers
 	[ "$status" -eq 1 ]
 	[ "$output" = "vdt-qslim: cannot write '$TMP/old.drc': the Draco module vdt-draco.so is not of this build's version (interface 1 wanted)" ]
 	[ ! -e "$TMP/old.drc" ]
+	# the image and Assimp modules the same way
+	"$BIN/vdt-build" -q "$SAMPLES/sphere.off" -o "$TMP/s.vdt"
+	cp "$BIN/vdt-render" "$BIN/vdt-deform" "$TMP/x/"
+	printf '%s\n' 'int vdt_img_abi(void) { return 0; }' 'int vdt_asm_abi(void) { return 0; }' > "$TMP/old2.c"
+	cc -shared -fPIC -o "$TMP/x/vdt-image.so" "$TMP/old2.c"
+	cp "$TMP/x/vdt-image.so" "$TMP/x/vdt-assimp.so"
+	run "$TMP/x/vdt-render" --size 32x24 "$TMP/s.vdt" -o "$TMP/old.png"
+	[ "$status" -eq 1 ]
+	[ "$output" = "vdt-render: cannot write '$TMP/old.png': the image module vdt-image.so is not of this build's version (interface 1 wanted)" ]
+	[ ! -e "$TMP/old.png" ]
+	run "$TMP/x/vdt-deform" -q -r 0.5 "$TMP/old.x" -o "$TMP/old%d.off"
+	[ "$status" -eq 1 ]
+	[ "$output" = "vdt-deform: cannot read '$TMP/old.x': the Assimp module vdt-assimp.so is not of this build's version (interface 1 wanted)" ]
 }
 
 @test "the limits the man pages state: --draco-bits 1-30, --samples from 100, vdt-build's largest box" {
