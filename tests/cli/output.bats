@@ -6,6 +6,17 @@
 
 load helpers
 
+# refused OUTPUT MESSAGE CMD...: CMD fails with status 1 (the installation
+# is at fault, not the input), says MESSAGE and leaves no OUTPUT
+refused() {
+	local out=$1 msg=$2
+	shift 2
+	run "$@"
+	[ "$status" -eq 1 ]
+	[ "$output" = "$msg" ]
+	[ ! -e "$out" ]
+}
+
 @test "-o through a symbolic link replaces the file it names and keeps the link" {
 	printf 'old\n' >"$TMP/real.off"
 	ln -s real.off "$TMP/link.off"
@@ -273,28 +284,21 @@ load helpers
 	printf '%s\n' 'int vdt_drc_abi(void) { return 0; }' \
 		'int vdt_drc_read(void) { return 0; }' 'int vdt_drc_write(void) { return 0; }' > "$TMP/old.c"
 	cc -shared -fPIC -o "$TMP/x/vdt-draco.so" "$TMP/old.c"
-	# (status 1: the installation is at fault, not the input)
-	run "$TMP/x/vdt-qslim" -q -r 0.5 "$TMP/s.drc" -o "$TMP/old.ply"
-	[ "$status" -eq 1 ]
-	[ "$output" = "vdt-qslim: cannot read '$TMP/s.drc': the Draco module vdt-draco.so is not of this build's version (interface 1 wanted)" ]
-	[ ! -e "$TMP/old.ply" ]
-	run "$TMP/x/vdt-qslim" -q -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/old.drc"
-	[ "$status" -eq 1 ]
-	[ "$output" = "vdt-qslim: cannot write '$TMP/old.drc': the Draco module vdt-draco.so is not of this build's version (interface 1 wanted)" ]
-	[ ! -e "$TMP/old.drc" ]
+	old="is not of this build's version (interface 1 wanted)"
+	refused "$TMP/old.ply" "vdt-qslim: cannot read '$TMP/s.drc': the Draco module vdt-draco.so $old" \
+		"$TMP/x/vdt-qslim" -q -r 0.5 "$TMP/s.drc" -o "$TMP/old.ply"
+	refused "$TMP/old.drc" "vdt-qslim: cannot write '$TMP/old.drc': the Draco module vdt-draco.so $old" \
+		"$TMP/x/vdt-qslim" -q -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/old.drc"
 	# the image and Assimp modules the same way
 	"$BIN/vdt-build" -q "$SAMPLES/sphere.off" -o "$TMP/s.vdt"
 	cp "$BIN/vdt-render" "$BIN/vdt-deform" "$TMP/x/"
 	printf '%s\n' 'int vdt_img_abi(void) { return 0; }' 'int vdt_asm_abi(void) { return 0; }' > "$TMP/old2.c"
 	cc -shared -fPIC -o "$TMP/x/vdt-image.so" "$TMP/old2.c"
 	cp "$TMP/x/vdt-image.so" "$TMP/x/vdt-assimp.so"
-	run "$TMP/x/vdt-render" --size 32x24 "$TMP/s.vdt" -o "$TMP/old.png"
-	[ "$status" -eq 1 ]
-	[ "$output" = "vdt-render: cannot write '$TMP/old.png': the image module vdt-image.so is not of this build's version (interface 1 wanted)" ]
-	[ ! -e "$TMP/old.png" ]
-	run "$TMP/x/vdt-deform" -q -r 0.5 "$TMP/old.x" -o "$TMP/old%d.off"
-	[ "$status" -eq 1 ]
-	[ "$output" = "vdt-deform: cannot read '$TMP/old.x': the Assimp module vdt-assimp.so is not of this build's version (interface 1 wanted)" ]
+	refused "$TMP/old.png" "vdt-render: cannot write '$TMP/old.png': the image module vdt-image.so $old" \
+		"$TMP/x/vdt-render" --size 32x24 "$TMP/s.vdt" -o "$TMP/old.png"
+	refused "$TMP/old0.off" "vdt-deform: cannot read '$TMP/old.x': the Assimp module vdt-assimp.so $old" \
+		"$TMP/x/vdt-deform" -q -r 0.5 "$TMP/old.x" -o "$TMP/old%d.off"
 }
 
 @test "the limits the man pages state: --draco-bits 1-30, --samples from 100, vdt-build's largest box" {
