@@ -45,6 +45,8 @@ struct ctx {
 	struct attr *at;       /* attribute quadrics, or NULL */
 	double *scale;         /* per welded vertex error scale, or NULL */
 	double unit;           /* of the costs (vdt_quadric_unit) */
+	double blade;          /* the share of their weight blades get
+	                          (blade_share) */
 	float *reach;          /* per welded vertex, the box (3 minima, 3
 	                          maxima) of the surface it stands for: its
 	                          faces, and those of the vertices merged
@@ -530,17 +532,178 @@ face_quadrics(const struct vdt_mesh *w, struct ctx *c, const uint8_t *dead, doub
  * faces of 1/50 to 1/100 of the mean area stood 0.0064 (0.37% of the
  * diagonal) off its tenth of the faces, the largest error there. Creases,
  * of which scans and models have many, keep the face floor alone.
+ *
+ * A blade is a vertex two of whose faces turn more than BLADE_COS apart:
+ * the rim of a part thinner than its faces are wide (a fin, a horn, a
+ * claw) or the tip of a spike. Its planes on the two sides are parallel,
+ * so that the part can shrink back along them at the cost of the few small
+ * faces that round the rim off: the dragon's back lost 0.0016 (0.6% of the
+ * diagonal) of a fin at a hundredth of its faces. A blade weighs at least
+ * BLADE_FLOOR times the corner's floor, and a plane across the rim (square
+ * to the sum of its faces' area normals, or where they cancel, to the way
+ * from its neighbours to it) holds the rim where it is with the corner's
+ * floor as weight. On the dragon at a tenth and a hundredth of the faces,
+ * the Hausdorff distance fell from 0.234% to 0.115% and from 0.595% to
+ * 0.434% (RMS the same and 1.6% up); over the 84 results of 11 models at
+ * 0.5% to 50% of their faces, by 1.8% in the geometric mean, RMS the same
+ * (+0.02%), most on thin parts: the low-resolution dragon at 30% and 50%,
+ * 47% and 38% less, RMS 3% up.
  */
-static void
-corner_floor(struct vdt_quadric *q, size_t nv, const uint32_t *start, const uint32_t *fan,
-             const uint8_t *dead, double mean)
+#define BLADE_COS (-0.5) /* 120 degrees */
+#define BLADE_FLOOR 4.0
+#define BLADE_FAN_MAX 64 /* faces whose normals are compared */
+
+/*
+ * Below a hundredth of the input's faces, a thin part is soon narrower
+ * than the output's faces, and what holds its rim is taken from the rest:
+ * on the dragon to 1000 faces with --topology free, the RMS error went
+ * from 0.49% to 0.87% of the diagonal, to 2000 faces up 4% to 10% with
+ * any weight on the rims however small, and the low-resolution dragon to
+ * 238 faces (a 200th) up 15% with a third of the weight. Blades weigh in
+ * full from a hundredth of the input's faces up, fade to nothing at a
+ * 200th, and weigh in full with an error bound alone.
+ */
+#define BLADE_FULL 0.01
+#define BLADE_NONE 0.005
+
+static double
+blade_share(size_t target, size_t faces)
 {
-	for (size_t v = 0; v < nv; v++) {
-		size_t faces = 0;
-		for (uint32_t i = start[v]; i < start[v + 1]; i++)
-			faces += !dead[fan[i]];
-		vdt_quadric_corner_floor(&q[v], (double)faces * mean / 3);
+	double r = faces ? (double)target / (double)faces : 1;
+
+	if (target == 0 || r >= BLADE_FULL)
+		return 1;
+	return r <= BLADE_NONE ? 0 : (r - BLADE_NONE) / (BLADE_FULL - BLADE_NONE);
+}
+
+/* Twice the area normal of face f. */
+static void
+face_cross(const struct vdt_mesh *w, uint32_t f, double x[3])
+{
+	const uint32_t *t = w->triangles + 3 * (size_t)f;
+	const float *a = w->positions + 3 * (size_t)t[0];
+	const float *b = w->positions + 3 * (size_t)t[1];
+	const float *c = w->positions + 3 * (size_t)t[2];
+	double e0[3], e1[3];
+
+	for (int m = 0; m < 3; m++) {
+		e0[m] = (double)b[m] - a[m];
+		e1[m] = (double)c[m] - a[m];
 	}
+	x[0] = e0[1] * e1[2] - e0[2] * e1[1];
+	x[1] = e0[2] * e1[0] - e0[0] * e1[2];
+	x[2] = e0[0] * e1[1] - e0[1] * e1[0];
+}
+
+/* Whether v is a blade; if so, the rim's outward direction in out. */
+static int
+blade(const struct vdt_mesh *w, const uint32_t *start, const uint32_t *fan, const uint8_t *dead,
+      size_t v, double out[3])
+{
+	double n[BLADE_FAN_MAX][4], x[3];
+	int k = 0, found = 0;
+
+	for (uint32_t i = start[v]; i < start[v + 1] && !found && k < BLADE_FAN_MAX; i++) {
+		if (dead[fan[i]])
+			continue;
+		face_cross(w, fan[i], x);
+		/* n_j.n_k < BLADE_COS (< 0), without the square roots */
+		double l2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+		for (int j = 0; j < k && !found; j++) {
+			double dot = n[j][0] * x[0] + n[j][1] * x[1] + n[j][2] * x[2];
+			found = dot < 0 && dot * dot > BLADE_COS * BLADE_COS * n[j][3] * l2;
+		}
+		n[k][0] = x[0];
+		n[k][1] = x[1];
+		n[k][2] = x[2];
+		n[k][3] = l2;
+		k++;
+	}
+	if (!found)
+		return 0;
+
+	double sum[3] = {0, 0, 0}, away[3] = {0, 0, 0}, area = 0, len;
+	const float *p = w->positions + 3 * v;
+	for (uint32_t i = start[v]; i < start[v + 1]; i++) {
+		if (dead[fan[i]])
+			continue;
+		const uint32_t *t = w->triangles + 3 * (size_t)fan[i];
+		face_cross(w, fan[i], x);
+		for (int m = 0; m < 3; m++) {
+			sum[m] += x[m];
+			away[m] += 3.0 * p[m] - w->positions[3 * (size_t)t[0] + m] -
+			           w->positions[3 * (size_t)t[1] + m] -
+			           w->positions[3 * (size_t)t[2] + m];
+		}
+		area += sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+	}
+	/* Where the sides cancel (a fold of two faces), the neighbours say. */
+	const double *d = sum;
+	len = sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
+	if (!(len > 0.2 * area)) {
+		d = away;
+		len = sqrt(away[0] * away[0] + away[1] * away[1] + away[2] * away[2]);
+		if (!(len > 0))
+			return 0;
+	}
+	for (int m = 0; m < 3; m++)
+		out[m] = d[m] / len;
+	return 1;
+}
+
+/* The floors of a range of vertices. */
+struct floor_job {
+	const struct vdt_mesh *w;
+	struct vdt_quadric *q;
+	const double *centre;
+	const uint32_t *start, *fan;
+	const uint8_t *dead;
+	double mean, share;
+	size_t lo, hi;
+};
+
+static void *
+floor_run(void *arg)
+{
+	const struct floor_job *j = arg;
+
+	for (size_t v = j->lo; v < j->hi; v++) {
+		size_t faces = 0;
+		for (uint32_t i = j->start[v]; i < j->start[v + 1]; i++)
+			faces += !j->dead[j->fan[i]];
+		double least = (double)faces * j->mean / 3, r[3], d = 0;
+		if (vdt_quadric_corner_floor(&j->q[v], least) || !(j->share > 0) ||
+		    !blade(j->w, j->start, j->fan, j->dead, v, r))
+			continue;
+		vdt_quadric_floor(&j->q[v], (1 + (BLADE_FLOOR - 1) * j->share) * least);
+		for (int k = 0; k < 3; k++)
+			d -= r[k] * (j->w->positions[3 * v + k] - j->centre[k]);
+		struct vdt_quadric rim;
+		vdt_quadric_plane(&rim, r, d, j->share * least);
+		vdt_quadric_add(&j->q[v], &rim);
+	}
+	return NULL;
+}
+
+static void
+vertex_floors(const struct vdt_mesh *w, struct ctx *c, const uint32_t *start, const uint32_t *fan,
+              const uint8_t *dead, double mean, int t)
+{
+	struct floor_job job[VDT_CONTRACT_MAX_THREADS];
+	size_t nv = w->vertex_count;
+
+	for (int k = 0; k < t; k++)
+		job[k] = (struct floor_job){.w = w,
+		                            .q = c->q,
+		                            .centre = c->centre,
+		                            .start = start,
+		                            .fan = fan,
+		                            .dead = dead,
+		                            .mean = mean,
+		                            .share = c->blade,
+		                            .lo = nv * (size_t)k / (size_t)t,
+		                            .hi = nv * (size_t)(k + 1) / (size_t)t};
+	vdt_run_jobs(floor_run, job, sizeof(job[0]), t);
 }
 
 /* The open edges of a range of vertices (vdt_topo_open_edges_in). */
@@ -753,7 +916,8 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 	} else {
 		double mean = o->area_floor > 0 ? mean_area(w, dead, threads) : 0;
 		face_quadrics(w, c, dead, mean, o->area_floor, threads);
-		corner_floor(c->q, nv, start, fan, dead, mean);
+		if (mean > 0)
+			vertex_floors(w, c, start, fan, dead, mean, threads);
 	}
 
 	/* Open edges of a clustered intermediate are mostly the rims of thin
@@ -2482,6 +2646,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 		c.centre[k] = 0.5 * (bulk.min[k] + bulk.max[k]);
 	c.unit = vdt_quadric_unit(vdt_bbox_diagonal(&bulk));
 	c.max_error = o->max_error < INFINITY ? o->max_error * o->max_error : INFINITY;
+	c.blade = blade_share(target, T);
 	dead = vdt_calloc_huge(T + 1, 1);
 	if (dead == NULL || build_quadrics(&w, o, canon, n, &c, border, dead, &stats->nonmanifold,
 	                                   &backs, &nbacks) != 0)

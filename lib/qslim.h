@@ -68,8 +68,11 @@ struct vdt_qslim_opts {
 	double area_floor;        /* a face smaller than this fraction of
 	                             the mean face area weighs as one of
 	                             that size in the fundamental quadrics,
-	                             and a corner as a fan of mean faces
-	                             (0: each face its own area; not used
+	                             a corner as a fan of mean faces, and
+	                             the sharp rim of a thin part four times
+	                             that, held by a plane across it, at a
+	                             target of a hundredth of the faces and
+	                             up (0: each face its own area; not used
 	                             with quadrics given) */
 	double attribute_weight;  /* of attribute errors against distances
 	                             (see vdt_qslim); 0: attributes are copied,

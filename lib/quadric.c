@@ -121,6 +121,16 @@ vdt_quadric_corner_floor(struct vdt_quadric *q, double least)
 	             q->a02 * (q->a01 * q->a12 - q->a11 * q->a02);
 	if (!(det > VDT_QUADRIC_CORNER_DET * t * t * t))
 		return 0;
+	return vdt_quadric_floor(q, least);
+}
+
+int
+vdt_quadric_floor(struct vdt_quadric *q, double least)
+{
+	double t = vdt_quadric_trace(q);
+
+	if (!(t > 0) || t >= least)
+		return 0;
 	vdt_quadric_scale(q, least / t);
 	return 1;
 }

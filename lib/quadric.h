@@ -109,6 +109,10 @@ vdt_quadric_trace(const struct vdt_quadric *q)
  */
 int vdt_quadric_corner_floor(struct vdt_quadric *q, double least);
 
+/* Scale q, if its planes weigh less than least in all (its trace), to
+ * weigh least; returns 1 if it was scaled. */
+int vdt_quadric_floor(struct vdt_quadric *q, double least);
+
 /* That of the tip of a three-sided pyramid whose faces rise 20 degrees. */
 #define VDT_QUADRIC_CORNER_DET 0.003
 
