@@ -658,19 +658,6 @@ heap_set(struct engine *e, uint32_t p, double cost)
 
 /* ---- geometry ---- */
 
-static void
-tri_normal(const float *a, const float *b, const float *c, double n[3])
-{
-	double u[3], v[3];
-	for (int k = 0; k < 3; k++) {
-		u[k] = (double)b[k] - a[k];
-		v[k] = (double)c[k] - a[k];
-	}
-	n[0] = u[1] * v[2] - u[2] * v[1];
-	n[1] = u[2] * v[0] - u[0] * v[2];
-	n[2] = u[0] * v[1] - u[1] * v[0];
-}
-
 static double
 dot3(const double a[3], const double b[3])
 {
@@ -3427,10 +3414,11 @@ face_run(void *arg)
 		if (o->reference_positions && o->reference_triangles) {
 			const uint32_t *r = o->reference_triangles + 3 * t;
 			const float *rp = o->reference_positions;
-			tri_normal(rp + 3 * (size_t)r[0], rp + 3 * (size_t)r[1], rp + 3 * (size_t)r[2], n);
+			vdt_triangle_cross(rp + 3 * (size_t)r[0], rp + 3 * (size_t)r[1],
+			                   rp + 3 * (size_t)r[2], n);
 		} else {
-			tri_normal(e->pos + 3 * (size_t)d[0], e->pos + 3 * (size_t)d[1],
-			           e->pos + 3 * (size_t)d[2], n);
+			vdt_triangle_cross(e->pos + 3 * (size_t)d[0], e->pos + 3 * (size_t)d[1],
+			                   e->pos + 3 * (size_t)d[2], n);
 		}
 		double l = len3(n);
 		for (int k = 0; k < 3; k++)

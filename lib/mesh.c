@@ -123,28 +123,13 @@ vdt_mesh_validate(const struct vdt_mesh *m, struct vdt_err *err)
 	return 0;
 }
 
-/* (b - a) x (c - a), in double precision. */
-static void
-corner_cross(const float *a, const float *b, const float *c, double n[3])
-{
-	double e1[3], e2[3];
-
-	for (int k = 0; k < 3; k++) {
-		e1[k] = (double)b[k] - a[k];
-		e2[k] = (double)c[k] - a[k];
-	}
-	n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-	n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-	n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-}
-
 double
 vdt_triangle_quality(const float *a, const float *b, const float *c)
 {
 	const float *p[3] = {a, b, c};
 	double n[3], s = 0;
 
-	corner_cross(a, b, c, n);
+	vdt_triangle_cross(a, b, c, n);
 	for (int i = 0; i < 3; i++)
 		for (int k = 0; k < 3; k++) {
 			double d = (double)p[(i + 1) % 3][k] - p[i][k];
@@ -161,7 +146,7 @@ vdt_mesh_face_cross(const struct vdt_mesh *m, size_t t, double n[3])
 	const float *b = m->positions + 3 * (size_t)v[1];
 	const float *c = m->positions + 3 * (size_t)v[2];
 
-	corner_cross(a, b, c, n);
+	vdt_triangle_cross(a, b, c, n);
 }
 
 double

@@ -36,6 +36,22 @@ struct vdt_bbox {
 	double min[3], max[3];
 };
 
+/* (b - a) x (c - a) of a triangle's corners, in double precision: its
+ * normal, of twice its area in length. */
+static inline void
+vdt_triangle_cross(const float *a, const float *b, const float *c, double n[3])
+{
+	double e1[3], e2[3];
+
+	for (int k = 0; k < 3; k++) {
+		e1[k] = (double)b[k] - a[k];
+		e2[k] = (double)c[k] - a[k];
+	}
+	n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+	n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+	n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+}
+
 /* A colour channel as every writer stores it: clamped to [0, 1] (readers
  * and filters can leave values outside). */
 static inline float

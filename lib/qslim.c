@@ -581,18 +581,9 @@ static void
 face_cross(const struct vdt_mesh *w, uint32_t f, double x[3])
 {
 	const uint32_t *t = w->triangles + 3 * (size_t)f;
-	const float *a = w->positions + 3 * (size_t)t[0];
-	const float *b = w->positions + 3 * (size_t)t[1];
-	const float *c = w->positions + 3 * (size_t)t[2];
-	double e0[3], e1[3];
 
-	for (int m = 0; m < 3; m++) {
-		e0[m] = (double)b[m] - a[m];
-		e1[m] = (double)c[m] - a[m];
-	}
-	x[0] = e0[1] * e1[2] - e0[2] * e1[1];
-	x[1] = e0[2] * e1[0] - e0[0] * e1[2];
-	x[2] = e0[0] * e1[1] - e0[1] * e1[0];
+	vdt_triangle_cross(w->positions + 3 * (size_t)t[0], w->positions + 3 * (size_t)t[1],
+	                   w->positions + 3 * (size_t)t[2], x);
 }
 
 /* Whether v is a blade; if so, the rim's outward direction in out. */
