@@ -534,6 +534,24 @@ above_bowl(const struct vdt_mesh *m)
 	return top;
 }
 
+/* m simplified to target faces with the default floors (into a) and with
+ * none (into b), fitted or not. */
+static void
+with_and_without_floors(const struct vdt_mesh *m, size_t target, int fit, struct vdt_mesh *a,
+                        struct vdt_mesh *b)
+{
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st;
+
+	vdt_qslim_defaults(&o);
+	assert_true(o.area_floor == VDT_QSLIM_AREA_FLOOR && o.area_floor > 0);
+	o.target_triangles = target;
+	o.fit = fit;
+	assert_int_equal(vdt_qslim(m, &o, a, NULL, NULL, &st, NULL), 0);
+	o.area_floor = 0;
+	assert_int_equal(vdt_qslim(m, &o, b, NULL, NULL, &st, NULL), 0);
+}
+
 /*
  * A spike of tiny faces on a coarse bowl: weighed by their areas alone,
  * flattening it costs next to nothing, and it goes before any of the bowl's
@@ -545,8 +563,6 @@ area_floor_keeps_finely_tessellated_features(void **state)
 {
 	const double h = 0.01, rho = 0.01;
 	struct vdt_mesh m, a, b;
-	struct vdt_qslim_opts o;
-	struct vdt_qslim_stats st;
 
 	(void)state;
 	shape_grid(&m, 40);
@@ -558,13 +574,8 @@ area_floor_keeps_finely_tessellated_features(void **state)
 		p[1] = (float)y;
 		p[2] = (float)(bowl(x, y) + (r < rho ? h * (1 - r / rho) : 0));
 	}
-	vdt_qslim_defaults(&o);
-	assert_true(o.area_floor == VDT_QSLIM_AREA_FLOOR && o.area_floor > 0);
-	o.target_triangles = 100;
-	o.fit = 0; /* which would lift the flattened spike's vertices a little */
-	assert_int_equal(vdt_qslim(&m, &o, &a, NULL, NULL, &st, NULL), 0);
-	o.area_floor = 0;
-	assert_int_equal(vdt_qslim(&m, &o, &b, NULL, NULL, &st, NULL), 0);
+	/* no fit, which would lift the flattened spike's vertices a little */
+	with_and_without_floors(&m, 100, 0, &a, &b);
 	/* an inner contraction takes two faces: from 101, 99 */
 	assert_true(a.triangle_count >= 99 && a.triangle_count <= 100);
 	assert_true(b.triangle_count >= 99 && b.triangle_count <= 100);
@@ -581,16 +592,10 @@ static void
 area_floor_leaves_even_meshes_alone(void **state)
 {
 	struct vdt_mesh m, a, b;
-	struct vdt_qslim_opts o;
-	struct vdt_qslim_stats st;
 
 	(void)state;
 	shape_icosphere(&m, 4);
-	vdt_qslim_defaults(&o);
-	o.target_triangles = 300;
-	assert_int_equal(vdt_qslim(&m, &o, &a, NULL, NULL, &st, NULL), 0);
-	o.area_floor = 0;
-	assert_int_equal(vdt_qslim(&m, &o, &b, NULL, NULL, &st, NULL), 0);
+	with_and_without_floors(&m, 300, 1, &a, &b);
 	assert_same_mesh(&a, &b);
 	/* and the floor does reach faces below it: one of a quarter of the
 	 * mean area, floored at the mean, weighs as four times its own */
@@ -662,19 +667,12 @@ corner_floor_keeps_a_tiny_pyramid(void **state)
 {
 	const double h = 0.01;
 	struct vdt_mesh m, a, b;
-	struct vdt_qslim_opts o;
-	struct vdt_qslim_stats st;
 
 	(void)state;
 	pyramid_on_bowl(&m, 0.1, h);
 	assert_int_equal(m.triangle_count, 808);
 	assert_true(above_bowl(&m) > 0.99 * h);
-	vdt_qslim_defaults(&o);
-	o.target_triangles = 400;
-	o.fit = 0;
-	assert_int_equal(vdt_qslim(&m, &o, &a, NULL, NULL, &st, NULL), 0);
-	o.area_floor = 0;
-	assert_int_equal(vdt_qslim(&m, &o, &b, NULL, NULL, &st, NULL), 0);
+	with_and_without_floors(&m, 400, 0, &a, &b);
 	assert_int_equal(a.triangle_count, 400);
 	assert_int_equal(b.triangle_count, 400);
 	assert_true(above_bowl(&a) > 0.99 * h);
@@ -756,17 +754,11 @@ static void
 blade_floor_keeps_a_thin_rim(void **state)
 {
 	struct vdt_mesh m, a, b;
-	struct vdt_qslim_opts o;
-	struct vdt_qslim_stats st;
 
 	(void)state;
 	discus(&m, 12, 48, 0.1);
 	assert_true(shape_closed_manifold(&m));
-	vdt_qslim_defaults(&o);
-	o.target_triangles = 100;
-	assert_int_equal(vdt_qslim(&m, &o, &a, NULL, NULL, &st, NULL), 0);
-	o.area_floor = 0;
-	assert_int_equal(vdt_qslim(&m, &o, &b, NULL, NULL, &st, NULL), 0);
+	with_and_without_floors(&m, 100, 1, &a, &b);
 	assert_int_equal(a.triangle_count, 100);
 	assert_int_equal(b.triangle_count, 100);
 	assert_true(rim_error(&m, &a) < 0.014);
@@ -777,11 +769,7 @@ blade_floor_keeps_a_thin_rim(void **state)
 
 	/* 9200 faces to 20 (a 460th): the floors change nothing */
 	discus(&m, 12, 200, 0.1);
-	vdt_qslim_defaults(&o);
-	o.target_triangles = 20;
-	assert_int_equal(vdt_qslim(&m, &o, &a, NULL, NULL, &st, NULL), 0);
-	o.area_floor = 0;
-	assert_int_equal(vdt_qslim(&m, &o, &b, NULL, NULL, &st, NULL), 0);
+	with_and_without_floors(&m, 20, 1, &a, &b);
 	assert_same_mesh(&a, &b);
 	vdt_mesh_free(&a);
 	vdt_mesh_free(&b);
