@@ -628,7 +628,8 @@ blade(const struct vdt_mesh *w, const uint32_t *start, const uint32_t *fan, cons
 		}
 		area += sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
 	}
-	/* Where the sides cancel (a fold of two faces), the neighbours say. */
+	/* Where the sides cancel (their sum under a fifth of their areas': a
+	 * fold of two faces), the neighbours say. */
 	const double *d = sum;
 	len = sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
 	if (!(len > 0.2 * area)) {
