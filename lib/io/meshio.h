@@ -232,10 +232,10 @@ void vdt_written_free(struct vdt_written *w);
  * its owner where this process may give it, or 0666 less the umask for
  * a new file.
  * Returns its descriptor with the malloc'ed name in *tmp, or with *tmp
- * NULL and err set a negative status: VDT_ENOMEM, or VDT_EIO when the target's own name is
- * longer than the directory holds (which the rename would find only at
- * the end, after the work) or mkstemp fails. Used by vdt_output_open and
- * by the image writer.
+ * NULL and err set a negative status: VDT_ENOMEM, or VDT_EIO when the
+ * target's own name is longer than the directory holds (which the rename
+ * would find only at the end, after the work) or mkstemp fails. Used by
+ * vdt_output_open and by the image writer.
  *
  * Until vdt_output_temp_done(*tmp), a signal that ends the process
  * (SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE, SIGXFSZ) removes the file

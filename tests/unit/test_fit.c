@@ -210,9 +210,9 @@ fit_leaves_creases_and_borders(void **state)
  * A flat fan of three faces round slot 0, with the vertices merged into it
  * (slots 4 to 7) above it: slot 0 moves up (less than its one point asks:
  * fit_weighs_staying_put), unless a face of its fan is a sliver that the
- * move would turn past 30 degrees; then it stays. Its neighbours, on the fan's open rim,
- * stay, and so do the merged vertices' slots. A vertex that replaced none
- * stays too.
+ * move would turn past 30 degrees; then it stays. Its neighbours, on the
+ * fan's open rim, stay, and so do the merged vertices' slots. A vertex
+ * that replaced none stays too.
  */
 static void
 fit_undoes_a_move_that_turns_a_face(void **state)
