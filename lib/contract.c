@@ -2512,12 +2512,17 @@ pass_cost(struct engine *e, size_t n, int upper, int how, int best)
 		e->poff[i] = total;
 		total += 2 * (size_t)e->vt[e->plist[i]].len;
 	}
-	if (total > e->pout_cap) { /* no slack: this is most of the passes' scratch */
+	if (total > e->pout_cap) {
+		/* No slack past the block's whole huge pages, as this is most of
+		 * the passes' scratch; but all of them: the batches' totals creep
+		 * up by a few pairs, and each new block is memory the kernel must
+		 * clear again. */
+		size_t bytes = vdt_huge_size(total * sizeof(*e->pout));
 		free(e->pout); /* (scratch: nothing to keep) */
 		e->pout_cap = 0;
-		if ((e->pout = vdt_malloc_huge(total * sizeof(*e->pout))) == NULL)
+		if ((e->pout = vdt_malloc_huge(bytes)) == NULL)
 			return -1;
-		e->pout_cap = total;
+		e->pout_cap = bytes / sizeof(*e->pout);
 	}
 	if ((size_t)t > n / 64 + 1)
 		t = (int)(n / 64 + 1);
