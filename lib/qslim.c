@@ -180,6 +180,11 @@ place(const struct ctx *c, const struct vdt_quadric *q, int fixed, uint32_t a, u
 		memcpy(pos, fixed ? p1 : p0, 3 * sizeof(double));
 		return vdt_quadric_eval(q, pos);
 	}
+	/* vdt_quadric_optimize_within, with the box made only for a minimiser
+	 * to test: where A is singular (a flat or cylindrical patch, many
+	 * pairs) the segment needs none. */
+	if (vdt_quadric_minimum(q, pos) != 0)
+		return vdt_quadric_optimize_segment(q, p0, p1, pos);
 	/* (comparisons, not fmin and fmax: calls into libm here, 2% of the
 	 * instructions on the fandisk; the boxes hold no NaN) */
 	for (int k = 0; k < 3; k++) {
@@ -192,7 +197,10 @@ place(const struct ctx *c, const struct vdt_quadric *q, int fixed, uint32_t a, u
 		lo[k] -= PLACE_MARGIN * side;
 		hi[k] += PLACE_MARGIN * side;
 	}
-	return vdt_quadric_optimize_within(q, p0, p1, lo, hi, pos);
+	if (pos[0] >= lo[0] && pos[0] <= hi[0] && pos[1] >= lo[1] && pos[1] <= hi[1] &&
+	    pos[2] >= lo[2] && pos[2] <= hi[2])
+		return vdt_quadric_eval(q, pos);
+	return vdt_quadric_optimize_segment(q, p0, p1, pos);
 }
 
 /* Widen v's box (reach) by w's. (Not by where v goes: a placement out
