@@ -712,6 +712,61 @@ vertex_floors(const struct vdt_mesh *w, struct ctx *c, const uint32_t *start, co
 	vdt_run_jobs(floor_run, job, sizeof(job[0]), t);
 }
 
+/*
+ * The box of each vertex's live faces (ctx.reach), from the faces around
+ * it, a range of vertices per job: each box is its own vertex's, so the
+ * jobs share nothing, and a box is a minimum and a maximum, the same in
+ * any order. A vertex of no face has its point for a box.
+ */
+struct reach_job {
+	const struct vdt_mesh *w;
+	const uint32_t *start, *fan;
+	const uint8_t *dead;
+	float *r;
+	size_t lo, hi;
+};
+
+static void *
+reach_run(void *arg)
+{
+	const struct reach_job *j = arg;
+	const float *pos = j->w->positions;
+
+	for (size_t v = j->lo; v < j->hi; v++) {
+		float *b = j->r + 6 * v;
+		memcpy(b, pos + 3 * v, 3 * sizeof(*b));
+		memcpy(b + 3, pos + 3 * v, 3 * sizeof(*b));
+		for (uint32_t i = j->start[v]; i < j->start[v + 1]; i++) {
+			if (j->dead[j->fan[i]])
+				continue;
+			const uint32_t *f = j->w->triangles + 3 * (size_t)j->fan[i];
+			for (int c = 0; c < 3; c++)
+				for (int k = 0; k < 3; k++) {
+					float x = pos[3 * (size_t)f[c] + k];
+					b[k] = x < b[k] ? x : b[k];
+					b[3 + k] = x > b[3 + k] ? x : b[3 + k];
+				}
+		}
+	}
+	return NULL;
+}
+
+static int
+reach_boxes(const struct vdt_mesh *w, struct ctx *c, const uint32_t *start, const uint32_t *fan,
+            const uint8_t *dead, int t)
+{
+	struct reach_job job[VDT_CONTRACT_MAX_THREADS];
+	size_t nv = w->vertex_count;
+
+	if ((c->reach = vdt_malloc_huge(6 * nv * sizeof(*c->reach) + 1)) == NULL)
+		return -1;
+	for (int k = 0; k < t; k++)
+		job[k] = (struct reach_job){w, start, fan, dead, c->reach, nv * (size_t)k / (size_t)t,
+		                            nv * (size_t)(k + 1) / (size_t)t};
+	vdt_run_jobs(reach_run, job, sizeof(job[0]), t);
+	return 0;
+}
+
 /* The open edges of a range of vertices (vdt_topo_open_edges_in). */
 struct oe_job {
 	const struct vdt_mesh *w;
@@ -939,6 +994,12 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 		}
 		for (size_t i = 0; i < nin; i++)
 			real[canon[i]] |= o->input_border[i] != 0;
+	}
+	if (reach_boxes(w, c, start, fan, dead, threads) != 0) {
+		free(real);
+		free(start);
+		free(fan);
+		return -1;
 	}
 	uint32_t *open;
 	long nopen = open_edges(w, start, fan, dead, threads, &open, nonmanifold);
@@ -2498,31 +2559,6 @@ give_up_parts(struct vdt_contract_result *r, size_t target)
 	return given;
 }
 
-/* The boxes of the vertices' faces (ctx.reach), or NULL out of memory. */
-static float *
-reach_boxes(const struct vdt_mesh *w)
-{
-	float *r = vdt_malloc_huge(6 * w->vertex_count * sizeof(*r) + 1);
-
-	if (r == NULL)
-		return NULL;
-	for (size_t v = 0; v < w->vertex_count; v++) {
-		memcpy(r + 6 * v, w->positions + 3 * v, 3 * sizeof(*r));
-		memcpy(r + 6 * v + 3, w->positions + 3 * v, 3 * sizeof(*r));
-	}
-	for (size_t t = 0; t < 3 * w->triangle_count; t++) {
-		float *b = r + 6 * (size_t)w->triangles[t];
-		const uint32_t *f = w->triangles + t / 3 * 3;
-		for (int i = 0; i < 3; i++)
-			for (int k = 0; k < 3; k++) {
-				float x = w->positions[3 * (size_t)f[i] + k];
-				b[k] = x < b[k] ? x : b[k];
-				b[3 + k] = x > b[3 + k] ? x : b[3 + k];
-			}
-	}
-	return r;
-}
-
 /* vdt_qslim with every distance option in model units. */
 static int
 simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox *box,
@@ -2707,8 +2743,6 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	stats->dropped = T - live - nbacks;
 	free(dead);
 	dead = NULL;
-	if ((c.reach = reach_boxes(&w)) == NULL)
-		goto nomem;
 	/* The engine drops the faces that welding left with a repeated
 	 * vertex (counted as dropped too): live faces that are all such
 	 * leave none either. */
