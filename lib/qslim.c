@@ -300,8 +300,8 @@ valid_fn(void *vc, uint32_t keep, uint32_t gone, const double pos[3])
  * ---- a small open-addressing hash of 64-bit keys ----
  * Filled to between a third and two thirds: the probes of linear probing
  * stay in a cache line or two, and on a mesh of 10M vertices the table
- * takes 200 MB, not the 400 MB of a table at most half full (whose first
- * touches and misses made vdt-qslim's set-up 5.3 s instead of 3.9).
+ * takes 200 MB, not the 400 MB of a table at most half full, whose first
+ * touches and misses cost vdt-qslim's set-up 0.3 to 1.5 s more there.
  */
 
 struct hash {
