@@ -761,8 +761,13 @@ reach_boxes(const struct vdt_mesh *w, struct ctx *c, const uint32_t *start, cons
 	if ((c->reach = vdt_malloc_huge(6 * nv * sizeof(*c->reach) + 1)) == NULL)
 		return -1;
 	for (int k = 0; k < t; k++)
-		job[k] = (struct reach_job){w, start, fan, dead, c->reach, nv * (size_t)k / (size_t)t,
-		                            nv * (size_t)(k + 1) / (size_t)t};
+		job[k] = (struct reach_job){.w = w,
+		                            .start = start,
+		                            .fan = fan,
+		                            .dead = dead,
+		                            .r = c->reach,
+		                            .lo = nv * (size_t)k / (size_t)t,
+		                            .hi = nv * (size_t)(k + 1) / (size_t)t};
 	vdt_run_jobs(reach_run, job, sizeof(job[0]), t);
 	return 0;
 }
