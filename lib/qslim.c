@@ -657,36 +657,56 @@ blade(const struct vdt_mesh *w, const uint32_t *start, const uint32_t *fan, cons
 	return 1;
 }
 
-/* The floors of a range of vertices. */
-struct floor_job {
+/*
+ * A job on the fan table: a range of vertices, each written by its own
+ * job alone (its floors, its box), so the result does not depend on how
+ * the range is cut.
+ */
+struct fan_job {
 	const struct vdt_mesh *w;
-	struct vdt_quadric *q;
-	const double *centre;
+	struct ctx *c;
 	const uint32_t *start, *fan;
 	const uint8_t *dead;
-	double mean, share;
+	double mean; /* the area floor's mean face area (floors) */
 	size_t lo, hi;
 };
 
+static void
+fan_jobs(void *(*fn)(void *), const struct vdt_mesh *w, struct ctx *c, const uint32_t *start,
+         const uint32_t *fan, const uint8_t *dead, double mean, int t)
+{
+	struct fan_job job[VDT_CONTRACT_MAX_THREADS];
+	size_t nv = w->vertex_count;
+
+	for (int k = 0; k < t; k++) {
+		size_t lo = nv * (size_t)k / (size_t)t, hi = nv * (size_t)(k + 1) / (size_t)t;
+		job[k] = (struct fan_job){w, c, start, fan, dead, mean, lo, hi};
+	}
+	vdt_run_jobs(fn, job, sizeof(job[0]), t);
+}
+
+/* The floors of a range of vertices. */
 static void *
 floor_run(void *arg)
 {
-	const struct floor_job *j = arg;
+	const struct fan_job *j = arg;
+	struct vdt_quadric *q = j->c->q;
+	double share = j->c->blade;
 
 	for (size_t v = j->lo; v < j->hi; v++) {
 		size_t faces = 0;
 		for (uint32_t i = j->start[v]; i < j->start[v + 1]; i++)
 			faces += !j->dead[j->fan[i]];
 		double least = (double)faces * j->mean / 3, r[3], d = 0;
-		if (vdt_quadric_corner_floor(&j->q[v], least) || !(j->share > 0) ||
+		if (vdt_quadric_corner_floor(&q[v], least) || !(share > 0) ||
 		    !blade(j->w, j->start, j->fan, j->dead, v, r))
 			continue;
-		vdt_quadric_floor(&j->q[v], (1 + (BLADE_FLOOR - 1) * j->share) * least);
+		vdt_quadric_floor(&q[v], (1 + (BLADE_FLOOR - 1) * share) * least);
 		for (int k = 0; k < 3; k++)
-			d -= r[k] * (j->w->positions[3 * v + k] - j->centre[k]);
+			d -= r[k] * (j->w->positions[3 * v + k] - j->c->centre[k]);
 		struct vdt_quadric rim;
-		vdt_quadric_plane(&rim, r, d, j->share * least);
-		vdt_quadric_add(&j->q[v], &rim);
+		vdt_quadric_plane(&rim, r, d, share * least);
+		vdt_quadric_add(&q[v], &rim);
 	}
 	return NULL;
 }
@@ -695,45 +715,22 @@ static void
 vertex_floors(const struct vdt_mesh *w, struct ctx *c, const uint32_t *start, const uint32_t *fan,
               const uint8_t *dead, double mean, int t)
 {
-	struct floor_job job[VDT_CONTRACT_MAX_THREADS];
-	size_t nv = w->vertex_count;
-
-	for (int k = 0; k < t; k++)
-		job[k] = (struct floor_job){.w = w,
-		                            .q = c->q,
-		                            .centre = c->centre,
-		                            .start = start,
-		                            .fan = fan,
-		                            .dead = dead,
-		                            .mean = mean,
-		                            .share = c->blade,
-		                            .lo = nv * (size_t)k / (size_t)t,
-		                            .hi = nv * (size_t)(k + 1) / (size_t)t};
-	vdt_run_jobs(floor_run, job, sizeof(job[0]), t);
+	fan_jobs(floor_run, w, c, start, fan, dead, mean, t);
 }
 
 /*
- * The box of each vertex's live faces (ctx.reach), from the faces around
- * it, a range of vertices per job: each box is its own vertex's, so the
- * jobs share nothing, and a box is a minimum and a maximum, the same in
- * any order. A vertex of no face has its point for a box.
+ * The box of each vertex's live faces (ctx.reach) for a range of
+ * vertices: a minimum and a maximum, the same in any order. A vertex of
+ * no face has its point for a box.
  */
-struct reach_job {
-	const struct vdt_mesh *w;
-	const uint32_t *start, *fan;
-	const uint8_t *dead;
-	float *r;
-	size_t lo, hi;
-};
-
 static void *
 reach_run(void *arg)
 {
-	const struct reach_job *j = arg;
+	const struct fan_job *j = arg;
 	const float *pos = j->w->positions;
 
 	for (size_t v = j->lo; v < j->hi; v++) {
-		float *b = j->r + 6 * v;
+		float *b = j->c->reach + 6 * v;
 		memcpy(b, pos + 3 * v, 3 * sizeof(*b));
 		memcpy(b + 3, pos + 3 * v, 3 * sizeof(*b));
 		for (uint32_t i = j->start[v]; i < j->start[v + 1]; i++) {
@@ -755,20 +752,9 @@ static int
 reach_boxes(const struct vdt_mesh *w, struct ctx *c, const uint32_t *start, const uint32_t *fan,
             const uint8_t *dead, int t)
 {
-	struct reach_job job[VDT_CONTRACT_MAX_THREADS];
-	size_t nv = w->vertex_count;
-
-	if ((c->reach = vdt_malloc_huge(6 * nv * sizeof(*c->reach) + 1)) == NULL)
+	if ((c->reach = vdt_malloc_huge(6 * w->vertex_count * sizeof(*c->reach) + 1)) == NULL)
 		return -1;
-	for (int k = 0; k < t; k++)
-		job[k] = (struct reach_job){.w = w,
-		                            .start = start,
-		                            .fan = fan,
-		                            .dead = dead,
-		                            .r = c->reach,
-		                            .lo = nv * (size_t)k / (size_t)t,
-		                            .hi = nv * (size_t)(k + 1) / (size_t)t};
-	vdt_run_jobs(reach_run, job, sizeof(job[0]), t);
+	fan_jobs(reach_run, w, c, start, fan, dead, 0, t);
 	return 0;
 }
 
