@@ -590,16 +590,6 @@ blade_share(size_t target, size_t faces)
 	return r <= BLADE_NONE ? 0 : (r - BLADE_NONE) / (BLADE_FULL - BLADE_NONE);
 }
 
-/* Twice the area normal of face f. */
-static void
-face_cross(const struct vdt_mesh *w, uint32_t f, double x[3])
-{
-	const uint32_t *t = w->triangles + 3 * (size_t)f;
-
-	vdt_triangle_cross(w->positions + 3 * (size_t)t[0], w->positions + 3 * (size_t)t[1],
-	                   w->positions + 3 * (size_t)t[2], x);
-}
-
 /* Whether v is a blade; if so, the rim's outward direction in out. */
 static int
 blade(const struct vdt_mesh *w, const uint32_t *start, const uint32_t *fan, const uint8_t *dead,
@@ -611,7 +601,7 @@ blade(const struct vdt_mesh *w, const uint32_t *start, const uint32_t *fan, cons
 	for (uint32_t i = start[v]; i < start[v + 1] && !found && k < BLADE_FAN_MAX; i++) {
 		if (dead[fan[i]])
 			continue;
-		face_cross(w, fan[i], x);
+		vdt_mesh_face_cross(w, fan[i], x);
 		/* n_j.n_k < BLADE_COS (< 0), without the square roots */
 		double l2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
 		for (int j = 0; j < k && !found; j++) {
@@ -633,7 +623,7 @@ blade(const struct vdt_mesh *w, const uint32_t *start, const uint32_t *fan, cons
 		if (dead[fan[i]])
 			continue;
 		const uint32_t *t = w->triangles + 3 * (size_t)fan[i];
-		face_cross(w, fan[i], x);
+		vdt_mesh_face_cross(w, fan[i], x);
 		for (int m = 0; m < 3; m++) {
 			sum[m] += x[m];
 			away[m] += 3.0 * p[m] - w->positions[3 * (size_t)t[0] + m] -
@@ -709,13 +699,6 @@ floor_run(void *arg)
 		vdt_quadric_add(&q[v], &rim);
 	}
 	return NULL;
-}
-
-static void
-vertex_floors(const struct vdt_mesh *w, struct ctx *c, const uint32_t *start, const uint32_t *fan,
-              const uint8_t *dead, double mean, int t)
-{
-	fan_jobs(floor_run, w, c, start, fan, dead, mean, t);
 }
 
 /*
@@ -969,7 +952,7 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 		double mean = o->area_floor > 0 ? mean_area(w, dead, threads) : 0;
 		face_quadrics(w, c, dead, mean, o->area_floor, threads);
 		if (mean > 0)
-			vertex_floors(w, c, start, fan, dead, mean, threads);
+			fan_jobs(floor_run, w, c, start, fan, dead, mean, threads);
 	}
 
 	/* Open edges of a clustered intermediate are mostly the rims of thin
