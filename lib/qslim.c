@@ -197,8 +197,7 @@ place(const struct ctx *c, const struct vdt_quadric *q, int fixed, uint32_t a, u
 		lo[k] -= PLACE_MARGIN * side;
 		hi[k] += PLACE_MARGIN * side;
 	}
-	if (pos[0] >= lo[0] && pos[0] <= hi[0] && pos[1] >= lo[1] && pos[1] <= hi[1] &&
-	    pos[2] >= lo[2] && pos[2] <= hi[2])
+	if (vdt_box_holds(lo, hi, pos))
 		return vdt_quadric_eval(q, pos);
 	return vdt_quadric_optimize_segment(q, p0, p1, pos);
 }

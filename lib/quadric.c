@@ -171,8 +171,7 @@ double
 vdt_quadric_optimize_within(const struct vdt_quadric *q, const double p0[3], const double p1[3],
                             const double lo[3], const double hi[3], double v[3])
 {
-	if (vdt_quadric_minimum(q, v) == 0 && v[0] >= lo[0] && v[0] <= hi[0] && v[1] >= lo[1] &&
-	    v[1] <= hi[1] && v[2] >= lo[2] && v[2] <= hi[2])
+	if (vdt_quadric_minimum(q, v) == 0 && vdt_box_holds(lo, hi, v))
 		return vdt_quadric_eval(q, v);
 	return vdt_quadric_optimize_segment(q, p0, p1, v);
 }

@@ -194,6 +194,14 @@ double vdt_quadric_optimize(const struct vdt_quadric *q, const double p0[3],
 double vdt_quadric_optimize_segment(const struct vdt_quadric *q, const double p0[3],
                                     const double p1[3], double v[3]);
 
+/* Whether v lies in the box [lo, hi] (a NaN does not). */
+static inline int
+vdt_box_holds(const double lo[3], const double hi[3], const double v[3])
+{
+	return v[0] >= lo[0] && v[0] <= hi[0] && v[1] >= lo[1] && v[1] <= hi[1] && v[2] >= lo[2] &&
+	       v[2] <= hi[2];
+}
+
 /*
  * vdt_quadric_optimize with the minimiser of Q taken only inside the box
  * [lo, hi]; outside it, the best point on the segment [p0, p1]. The
