@@ -1233,8 +1233,9 @@ passes_on_threads_stop_at_the_target(void **state)
  * greedy below; the explicit orders whatever the size. */
 /*
  * vdt_qslim gives the same mesh on one thread as on three, on a bumpy grid
- * big enough for its threaded set-up (face quadrics summed by vertex
- * range) and for passes (pairs costed and contracted on threads).
+ * big enough for its threaded set-up (face quadrics, floors, placement
+ * boxes and open edges, by vertex range) and for passes (pairs costed and
+ * contracted on threads).
  */
 static void
 qslim_threads_do_not_matter(void **state)
