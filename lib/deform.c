@@ -597,13 +597,14 @@ pair_fw(const struct uctx *c, uint32_t a, uint32_t b)
 	return 0;
 }
 
-/* The merged vertex of frame f: fixed end, or the quadric's minimiser. */
+/* The merged vertex of frame f: fixed end, or the quadric's minimiser;
+ * with exact, whether its error is negligible (vdt_quadric_negligible). */
 static double
 place(const struct qd *qa, const struct qd *qb, const float *pa, const float *pb,
-      const double *centre, int fixed, double v[3])
+      const double *centre, int fixed, double v[3], int *exact)
 {
 	struct vdt_quadric q, r;
-	double p0[3], p1[3];
+	double p0[3], p1[3], e;
 
 	qd_get(qa, &q);
 	qd_get(qb, &r);
@@ -612,15 +613,15 @@ place(const struct qd *qa, const struct qd *qb, const float *pa, const float *pb
 		p0[k] = pa[k] - centre[k];
 		p1[k] = pb[k] - centre[k];
 	}
-	if (fixed == 0) {
-		memcpy(v, p0, sizeof(p0));
-		return vdt_quadric_eval(&q, v);
+	if (fixed == 0 || fixed == 1) {
+		memcpy(v, fixed ? p1 : p0, sizeof(p0));
+		e = vdt_quadric_eval(&q, v);
+	} else {
+		e = vdt_quadric_optimize(&q, p0, p1, v);
 	}
-	if (fixed == 1) {
-		memcpy(v, p1, sizeof(p1));
-		return vdt_quadric_eval(&q, v);
-	}
-	return vdt_quadric_optimize(&q, p0, p1, v);
+	if (exact != NULL)
+		*exact = vdt_quadric_negligible(&q, v, e);
+	return e;
 }
 
 static double
@@ -630,19 +631,24 @@ unified_cost(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	struct uctx *c = vc;
 	size_t nf = c->nf;
 	double v[3];
+	int exact = 1, f_exact;
 
 	(void)pa;
 	(void)pb;
 	for (size_t f = 0; f < nf; f++) {
 		c->ec[f] = place(&c->q[a * nf + f], &c->q[b * nf + f], c->cur + 3 * (a * nf + f),
-		                 c->cur + 3 * (b * nf + f), c->centre + 3 * f, fixed, v);
+		                 c->cur + 3 * (b * nf + f), c->centre + 3 * f, fixed, v, &f_exact);
+		exact &= f_exact;
 		if (f == 0)
 			for (int k = 0; k < 3; k++)
 				pos[k] = v[k] + c->centre[k];
 	}
-	/* equal costs: the pair shorter in the first frame first */
+	/* equal costs: the pair shorter in the first frame first; and no
+	 * error in any frame before any error (VDT_QUADRIC_TIE_FREE) */
 	double tie = vdt_quadric_tie(c->cur + 3 * a * nf, c->cur + 3 * b * nf,
 	                             qd_trace(&c->q[a * nf], &c->q[b * nf]));
+	if (exact)
+		return VDT_QUADRIC_TIE_FREE * tie * c->unit;
 	switch (c->method) {
 	case VDT_DEFORM_FIRST:
 		return (c->ec[0] + tie) * c->unit;
@@ -670,7 +676,7 @@ unified_merged(void *vc, uint32_t keep, uint32_t gone, const double pos[3], doub
 				pk[k] = (float)pos[k];
 		} else if (!c->a->locked[keep]) {
 			place(&c->q[keep * nf + f], &c->q[gone * nf + f], pk,
-			      c->cur + 3 * (gone * nf + f), c->centre + 3 * f, -1, v);
+			      c->cur + 3 * (gone * nf + f), c->centre + 3 * f, -1, v, NULL);
 			for (int k = 0; k < 3; k++)
 				pk[k] = (float)(v[k] + c->centre[3 * f + k]);
 		}
@@ -808,12 +814,16 @@ frame_cost(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
            const float pb[3], double pos[3])
 {
 	struct fctx *c = vc;
-	double e = place(&c->q[a], &c->q[b], pa, pb, c->centre, fixed, pos);
+	int exact;
+	double e = place(&c->q[a], &c->q[b], pa, pb, c->centre, fixed, pos, &exact);
+	double tie = vdt_quadric_tie(pa, pb, qd_trace(&c->q[a], &c->q[b]));
 	for (int k = 0; k < 3; k++)
 		pos[k] += c->centre[k];
+	if (exact)
+		return VDT_QUADRIC_TIE_FREE * tie * c->unit;
 	if (c->prefer && c->prefer->n && pairset_has(c->prefer, a, b))
 		e *= c->discount;
-	return (e + vdt_quadric_tie(pa, pb, qd_trace(&c->q[a], &c->q[b]))) * c->unit;
+	return (e + tie) * c->unit;
 }
 
 static void
@@ -873,7 +883,8 @@ simplify_frame(const struct anim *a, size_t f, const struct vdt_contraction *rec
 		if (f == 0) {
 			memcpy(pk, rec[i].pos, sizeof(rec[i].pos));
 		} else if (!a->locked[keep]) {
-			place(&s->q[keep], &s->q[gone], pk, s->pos + 3 * (size_t)gone, c.centre, -1, v);
+			place(&s->q[keep], &s->q[gone], pk, s->pos + 3 * (size_t)gone, c.centre, -1,
+			      v, NULL);
 			for (int k = 0; k < 3; k++)
 				pk[k] = (float)(v[k] + c.centre[k]);
 		}

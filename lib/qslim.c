@@ -41,6 +41,7 @@ struct ctx {
 	double max_error;      /* squared-distance bound, or INFINITY */
 	const uint8_t *seam;
 	int pin_seams;         /* attributes vary: seams stay put (cost_fn) */
+	int free_first;        /* pairs of negligible error first (tied) */
 	double worst;          /* largest contraction error so far (squared) */
 	struct attr *at;       /* attribute quadrics, or NULL */
 	double *scale;         /* per welded vertex error scale, or NULL */
@@ -147,6 +148,34 @@ scaled(const struct ctx *c, uint32_t a, uint32_t b, double e)
 	return e / (s * s);
 }
 
+/* Q(p), with what is below the rounding of its terms taken as 0. */
+static double
+error_at(const struct vdt_quadric *q, const double p[3])
+{
+	double e = vdt_quadric_eval(q, p);
+
+	return vdt_quadric_negligible(q, p, e) ? 0 : e;
+}
+
+/*
+ * The cost of error e at p (centred), se once scaled, for the pair of a at
+ * pa and b at pb under q, with its tie; a negligible error costs only a
+ * little of the tie (VDT_QUADRIC_TIE_FREE), but with virtual pairs: a
+ * pair across a gap costs the gap's width, which -a asked to close, and
+ * the pairs that cost nothing on the flats around it do not need to go
+ * first (two sheets split by 1e-6 and halved left their seam open).
+ */
+static double
+tied(const struct ctx *c, const struct vdt_quadric *q, const double p[3], double e, double se,
+     const float pa[3], const float pb[3])
+{
+	double tie = vdt_quadric_tie(pa, pb, vdt_quadric_trace(q));
+
+	if (c->free_first && se < INFINITY && vdt_quadric_negligible(q, p, e))
+		return VDT_QUADRIC_TIE_FREE * tie * c->unit;
+	return (se + tie) * c->unit;
+}
+
 /*
  * Where the pair (a at pa, b at pb) goes under quadric q and the error
  * there, in the centred frame the quadrics live in: the end that must stay
@@ -232,13 +261,13 @@ cost_fn(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 		fixed = c->seam[b];
 	vdt_quadric_add(&q, &c->q[b]);
 	e = place(c, &q, fixed, a, b, pa, pb, p0, p1, pos);
+	double se = c->scale ? scaled(c, a, b, e) : e;
+	if (c->max_error < INFINITY && q.w > 0 && se > c->max_error * q.w)
+		return INFINITY;
+	double cost = tied(c, &q, pos, e, se, pa, pb);
 	for (int k = 0; k < 3; k++)
 		pos[k] += c->centre[k];
-	if (c->scale)
-		e = scaled(c, a, b, e);
-	if (c->max_error < INFINITY && q.w > 0 && e > c->max_error * q.w)
-		return INFINITY;
-	return (e + vdt_quadric_tie(pa, pb, vdt_quadric_trace(&q))) * c->unit;
+	return cost;
 }
 
 /* *worst = max(*worst, x) from any number of threads at once: a pass
@@ -252,20 +281,6 @@ worst_max(double *worst, double x)
 	while (x > cur &&
 	       !__atomic_compare_exchange(worst, &cur, &x, 1, __ATOMIC_RELAXED, __ATOMIC_RELAXED))
 		;
-}
-
-/*
- * Q(p), with what is below the rounding of its terms taken as 0: where the
- * planes meet exactly (a flat contraction) the sum cancels to a few units in
- * the last place of terms as large as c + tr(A) |p|^2, not to 0.
- */
-static double
-error_at(const struct vdt_quadric *q, const double p[3])
-{
-	double e = vdt_quadric_eval(q, p);
-	double size = fabs(q->c) + vdt_quadric_trace(q) * (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-
-	return e > 1e-14 * size ? e : 0;
 }
 
 static void
@@ -1595,10 +1610,10 @@ cost_attr(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 		if (g.w > 0 && ge > c->max_error * g.w)
 			return INFINITY;
 	}
+	double cost = tied(c, &q, pos, e, c->scale ? scaled(c, a, b, e) : e, pa, pb);
 	for (int k = 0; k < 3; k++)
 		pos[k] += c->centre[k];
-	return ((c->scale ? scaled(c, a, b, e) : e) + vdt_quadric_tie(pa, pb, vdt_quadric_trace(&q))) *
-	       c->unit;
+	return cost;
 }
 
 static void
@@ -2754,6 +2769,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	if (o->aggregate > 0 &&
 	    vdt_qslim_virtual_pairs(w.positions, w.vertex_count, o->aggregate, &vpairs, &nvp) != 0)
 		goto nomem;
+	c.free_first = nvp == 0;
 
 	uint8_t *seam = malloc(nw);
 	if (seam == NULL)
