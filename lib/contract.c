@@ -1887,6 +1887,30 @@ cheapest_valid(struct engine *e, uint32_t v, struct vcost *vn, long n, int unsur
 }
 
 /*
+ * v's two cheapest pairs from the notes alone, read where they lie (as
+ * pass_noted_best): a pair in two faces has the same note in each, so a
+ * neighbour met again changes nothing and needs no listing.
+ */
+static void
+noted_top2(const struct engine *e, uint32_t v, struct top2 *t)
+{
+	static const uint8_t next[3] = {1, 2, 0}, prev[3] = {2, 0, 1};
+	const struct list *l = &e->vt[v];
+	const uint32_t *faces = e->tpool.data + l->off;
+
+	for (uint32_t f = 0; f < l->len; f++) {
+		size_t face = faces[f];
+		const uint32_t *c = e->tri + 3 * face;
+		int kv = c[0] == v ? 0 : c[1] == v ? 1 : 2;
+		uint32_t x[2] = {c[next[kv]], c[prev[kv]]};
+		float cost[2] = {e->ecost[3 * face + kv], e->ecost[3 * face + prev[kv]]};
+		for (int j = 0; j < 2; j++)
+			if (cost[j] < INFINITY && x[j] != t->x1 && x[j] != t->x2)
+				top2_add(t, x[j], cost[j]);
+	}
+}
+
+/*
  * Make v's queue entry its cheapest pair, or with valid_only its cheapest
  * pair that passes the validity tests now, 1 taking a pair with a hub on
  * all but the hub's fan test, 2 on every test (cheapest_valid); with none,
@@ -1895,12 +1919,15 @@ cheapest_valid(struct engine *e, uint32_t v, struct vcost *vn, long n, int unsur
 static int
 vertex_update(struct engine *e, uint32_t v, int valid_only)
 {
-	long n = vertex_pairs(e, v, FAN_NOTED);
 	struct top2 t = {NONE, NONE, INFINITY, INFINITY};
+	int noted = !valid_only && e->ecost != NULL; /* the notes alone will do */
+	long n = 0;
 
-	if (n < 0)
+	if (!noted && (n = vertex_pairs(e, v, FAN_NOTED)) < 0)
 		return -1;
 	if (!valid_only) {
+		if (noted)
+			noted_top2(e, v, &t);
 		for (long i = 0; i < n; i++)
 			if (e->vn[i].cost < INFINITY)
 				top2_add(&t, e->vn[i].x, e->vn[i].cost);
