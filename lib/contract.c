@@ -51,9 +51,12 @@ struct pool {
 	int marks;    /* entries and list numbers are below 2^31 (pool_compact) */
 };
 
+/* The pair first: on a little-endian machine the entry read as 64 bits
+ * is then (cost bits, pair), which order as (cost, pair) does for costs
+ * of 0 and up (before). */
 struct hent {
-	float cost;
 	uint32_t pair; /* or vertex, in a vertex queue */
+	float cost;
 };
 
 /* A neighbour of a vertex and the cost of their pair. */
@@ -575,7 +578,16 @@ pair_push(struct engine *e, uint32_t v, uint32_t p)
 static inline int
 before(struct hent x, struct hent y)
 {
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+	/* Costs are 0 or more (never -0, nor NaN), whose bits order as
+	 * the floats do: one comparison of 64 bits. */
+	uint64_t a, b;
+	memcpy(&a, &x, sizeof(a));
+	memcpy(&b, &y, sizeof(b));
+	return a < b;
+#else
 	return x.cost < y.cost || (x.cost == y.cost && x.pair < y.pair);
+#endif
 }
 
 static void
@@ -637,7 +649,7 @@ heap_remove(struct engine *e, uint32_t p)
 static void
 heap_set(struct engine *e, uint32_t p, double cost)
 {
-	struct hent x = {(float)cost, p};
+	struct hent x = {p, (float)cost};
 	uint32_t i = e->hpos[p];
 
 	if (!(cost < INFINITY)) {
@@ -2037,7 +2049,7 @@ static int
 vertex_queue_init(struct engine *e)
 {
 	for (size_t v = 0; v < e->nv; v++) {
-		e->heap[v] = (struct hent){INFINITY, (uint32_t)v};
+		e->heap[v] = (struct hent){(uint32_t)v, INFINITY};
 		e->best[v] = e->alt[v] = NONE;
 		e->altc[v] = INFINITY;
 	}
@@ -3964,7 +3976,7 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 		                       e.pos + 3 * (size_t)a, e.pos + 3 * (size_t)b, pos);
 		if (c >= 0 && c < INFINITY) {
 			e.hpos[p] = (uint32_t)e.hlen;
-			e.heap[e.hlen++] = (struct hent){(float)c, (uint32_t)p};
+			e.heap[e.hlen++] = (struct hent){(uint32_t)p, (float)c};
 		}
 	}
 	for (size_t i = e.hlen / 4 + 1; i-- > 0;)
