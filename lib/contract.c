@@ -579,8 +579,9 @@ static inline int
 before(struct hent x, struct hent y)
 {
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-	/* Costs are 0 or more (never -0, nor NaN), whose bits order as
-	 * the floats do: one comparison of 64 bits. */
+	/* Costs are 0 or more (never NaN, and a -0 from a cost function
+	 * is made +0 where it is called), whose bits order as the floats
+	 * do: one comparison of 64 bits. */
 	uint64_t a, b;
 	memcpy(&a, &x, sizeof(a));
 	memcpy(&b, &y, sizeof(b));
@@ -716,6 +717,7 @@ pair_cost(struct engine *e, uint32_t p, double pos[3])
 		return -1;
 	}
 	c = e->ops->cost(e->ops->ctx, a, b, fixed, e->pos + 3 * a, e->pos + 3 * b, pos);
+	c += 0.0; /* -0 to +0 (before) */
 	if (!(c >= 0) || !(c < INFINITY)) {
 		heap_remove(e, p);
 		return -1;
@@ -1483,6 +1485,7 @@ eval_pair(struct engine *e, uint32_t a, uint32_t b, double pos[3])
 		return INFINITY;
 	double c = e->ops->cost(e->ops->ctx, a, b, la ? 0 : lb ? 1 : -1,
 	                        e->pos + 3 * (size_t)a, e->pos + 3 * (size_t)b, pos);
+	c += 0.0; /* -0 to +0 (before) */
 	return c >= 0 && c < INFINITY ? c : INFINITY;
 }
 
@@ -3974,6 +3977,7 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 		double c = la && lb ? INFINITY
 		           : ops->cost(ops->ctx, a, b, la ? 0 : lb ? 1 : -1,
 		                       e.pos + 3 * (size_t)a, e.pos + 3 * (size_t)b, pos);
+		c += 0.0; /* -0 to +0 (before) */
 		if (c >= 0 && c < INFINITY) {
 			e.hpos[p] = (uint32_t)e.hlen;
 			e.heap[e.hlen++] = (struct hent){(uint32_t)p, (float)c};

@@ -809,6 +809,49 @@ removed_faces_are_capped(void **state)
 		}
 }
 
+/* Pair (0, 1) costs -0 and goes where 0 is; any other costs 100. */
+static double
+minus_zero_cost(void *ctx, uint32_t a, uint32_t b, int fixed, const float pa[3], const float pb[3],
+                double pos[3])
+{
+	(void)ctx;
+	(void)fixed;
+	(void)pb;
+	for (int k = 0; k < 3; k++)
+		pos[k] = pa[k];
+	return a == 0 && b == 1 ? -0.0 : 100;
+}
+
+/*
+ * A cost of -0 is a cost of 0 in every queue: the queues compare the bits
+ * of their keys, in which -0 would come after every positive cost, and
+ * with costs above 1 refused the pair would never be taken.
+ */
+static void
+minus_zero_is_zero(void **state)
+{
+	struct vdt_mesh m;
+	struct vdt_contract_ops ops = {minus_zero_cost, NULL, NULL, NULL, 1, NULL, 0};
+
+	(void)state;
+	shape_grid(&m, 4);
+	for (int mode = 0; mode < 3; mode++) {
+		struct vdt_contract_opts o;
+		struct vdt_contract_result r;
+		vdt_contract_defaults(&o);
+		o.record = 1;
+		o.max_cost = 1;
+		o.passes = mode == 1;
+		o.threads = 1;
+		o.pair_queue = mode == 2;
+		assert_int_equal(vdt_contract_run(&m, &ops, &o, &r, NULL), 0);
+		assert_int_equal(r.contractions, 1);
+		assert_int_equal(r.records[0].keep + r.records[0].gone, 1);
+		vdt_contract_result_free(&r);
+	}
+	vdt_mesh_free(&m);
+}
+
 /* Quadric cost for the queue comparison: the engine sees only callbacks. */
 struct qctx {
 	struct vdt_quadric *q;
@@ -1818,6 +1861,7 @@ main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(tetrahedron_is_irreducible),
+		cmocka_unit_test(minus_zero_is_zero),
 		cmocka_unit_test(vertex_target_counts_orphans),
 		cmocka_unit_test(sphere_stays_manifold),
 		cmocka_unit_test(fold_over_is_refused),
