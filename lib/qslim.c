@@ -165,7 +165,7 @@ error_at(const struct vdt_quadric *q, const double p[3])
  * the pairs that cost nothing on the flats around it do not need to go
  * first (two sheets split by 1e-6 and halved left their seam open).
  */
-static double
+static inline double
 tied(const struct ctx *c, const struct vdt_quadric *q, const double p[3], double e, double se,
      const float pa[3], const float pb[3])
 {
