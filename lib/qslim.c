@@ -727,20 +727,25 @@ reach_run(void *arg)
 	const float *pos = j->w->positions;
 
 	for (size_t v = j->lo; v < j->hi; v++) {
-		float *b = j->c->reach + 6 * v;
-		memcpy(b, pos + 3 * v, 3 * sizeof(*b));
-		memcpy(b + 3, pos + 3 * v, 3 * sizeof(*b));
+		/* in locals: stores to the box could alias pos */
+		float x0 = pos[3 * v], x1 = pos[3 * v + 1], x2 = pos[3 * v + 2];
+		float lo0 = x0, lo1 = x1, lo2 = x2, hi0 = x0, hi1 = x1, hi2 = x2;
 		for (uint32_t i = j->start[v]; i < j->start[v + 1]; i++) {
 			if (j->dead[j->fan[i]])
 				continue;
 			const uint32_t *f = j->w->triangles + 3 * (size_t)j->fan[i];
-			for (int c = 0; c < 3; c++)
-				for (int k = 0; k < 3; k++) {
-					float x = pos[3 * (size_t)f[c] + k];
-					b[k] = x < b[k] ? x : b[k];
-					b[3 + k] = x > b[3 + k] ? x : b[3 + k];
-				}
+			for (int c = 0; c < 3; c++) {
+				const float *p = pos + 3 * (size_t)f[c];
+				lo0 = p[0] < lo0 ? p[0] : lo0;
+				lo1 = p[1] < lo1 ? p[1] : lo1;
+				lo2 = p[2] < lo2 ? p[2] : lo2;
+				hi0 = p[0] > hi0 ? p[0] : hi0;
+				hi1 = p[1] > hi1 ? p[1] : hi1;
+				hi2 = p[2] > hi2 ? p[2] : hi2;
+			}
 		}
+		float *b = j->c->reach + 6 * v;
+		b[0] = lo0, b[1] = lo1, b[2] = lo2, b[3] = hi0, b[4] = hi1, b[5] = hi2;
 	}
 	return NULL;
 }
