@@ -32,6 +32,17 @@ length_cost(void *ctx, uint32_t a, uint32_t b, int fixed, const float pa[3],
 
 static const struct vdt_contract_ops length_ops = {length_cost, NULL, NULL, NULL, 1, NULL, 0};
 
+/* The defaults on one of the three queues: 0 the vertex queue, 1 passes
+ * (on one thread), 2 the queue of all pairs. */
+static void
+queue_opts(struct vdt_contract_opts *o, int mode)
+{
+	vdt_contract_defaults(o);
+	o->passes = mode == 1;
+	o->pair_queue = mode == 2;
+	o->threads = 1;
+}
+
 /*
  * A closed tetrahedron cannot lose a vertex: every edge contraction would
  * leave two coincident faces. The engine must refuse them all.
@@ -789,13 +800,10 @@ removed_faces_are_capped(void **state)
 		for (size_t cap = 0; cap <= CAP; cap += CAP) {
 			struct vdt_contract_opts o;
 			struct vdt_contract_result r;
-			vdt_contract_defaults(&o);
+			queue_opts(&o, mode);
 			o.allow_nonmanifold = 1;
 			o.max_normal_angle = 180;
 			o.record = 1;
-			o.passes = mode == 1;
-			o.threads = 1;
-			o.pair_queue = mode == 2;
 			o.max_removed_faces = cap;
 			assert_int_equal(vdt_contract_run(&m, &length_ops, &o, &r, NULL), 0);
 			assert_int_equal(r.triangle_count, 0);
@@ -838,12 +846,9 @@ minus_zero_is_zero(void **state)
 	for (int mode = 0; mode < 3; mode++) {
 		struct vdt_contract_opts o;
 		struct vdt_contract_result r;
-		vdt_contract_defaults(&o);
+		queue_opts(&o, mode);
 		o.record = 1;
 		o.max_cost = 1;
-		o.passes = mode == 1;
-		o.threads = 1;
-		o.pair_queue = mode == 2;
 		assert_int_equal(vdt_contract_run(&m, &ops, &o, &r, NULL), 0);
 		assert_int_equal(r.contractions, 1);
 		assert_int_equal(r.records[0].keep + r.records[0].gone, 1);
@@ -1616,12 +1621,9 @@ hub_of_slivers_stays_a_disc(void **state)
 	for (int mode = 0; mode < 3; mode++) {
 		struct vdt_contract_opts o;
 		struct vdt_contract_result r;
-		vdt_contract_defaults(&o);
+		queue_opts(&o, mode);
 		o.target_triangles = 10;
 		o.max_normal_angle = 180;
-		o.passes = mode == 1;
-		o.pair_queue = mode == 2;
-		o.threads = 1;
 		assert_int_equal(vdt_contract_run(&m, &ops, &o, &r, NULL), 0);
 		assert_true(r.rejected > 0);
 		assert_true(r.triangle_count <= 10);
