@@ -643,22 +643,18 @@ unified_cost(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 			for (int k = 0; k < 3; k++)
 				pos[k] = v[k] + c->centre[k];
 	}
+	double e;
+	if (c->method == VDT_DEFORM_FIRST)
+		e = c->ec[0];
+	else if (c->method == VDT_DEFORM_DSD)
+		e = vdt_deform_cost(c->ec, nf, 0, 0, 0);
+	else
+		e = vdt_deform_cost(c->ec, nf, c->fw ? pair_fw(c, a, b) : 0, c->k1, c->k2);
 	/* equal costs: the pair shorter in the first frame first; and no
-	 * error in any frame before any error (VDT_QUADRIC_TIE_FREE) */
-	double tie = vdt_quadric_tie(c->cur + 3 * a * nf, c->cur + 3 * b * nf,
-	                             qd_trace(&c->q[a * nf], &c->q[b * nf]));
-	if (exact)
-		return VDT_QUADRIC_TIE_FREE * tie * c->unit;
-	switch (c->method) {
-	case VDT_DEFORM_FIRST:
-		return (c->ec[0] + tie) * c->unit;
-	case VDT_DEFORM_DSD:
-		return (vdt_deform_cost(c->ec, nf, 0, 0, 0) + tie) * c->unit;
-	default:
-		return (vdt_deform_cost(c->ec, nf, c->fw ? pair_fw(c, a, b) : 0, c->k1, c->k2) +
-		        tie) *
-		       c->unit;
-	}
+	 * error in any frame before any error */
+	return vdt_quadric_ranked(e, exact, c->cur + 3 * a * nf, c->cur + 3 * b * nf,
+	                          qd_trace(&c->q[a * nf], &c->q[b * nf])) *
+	       c->unit;
 }
 
 static void
@@ -816,14 +812,11 @@ frame_cost(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	struct fctx *c = vc;
 	int exact;
 	double e = place(&c->q[a], &c->q[b], pa, pb, c->centre, fixed, pos, &exact);
-	double tie = vdt_quadric_tie(pa, pb, qd_trace(&c->q[a], &c->q[b]));
 	for (int k = 0; k < 3; k++)
 		pos[k] += c->centre[k];
-	if (exact)
-		return VDT_QUADRIC_TIE_FREE * tie * c->unit;
 	if (c->prefer && c->prefer->n && pairset_has(c->prefer, a, b))
 		e *= c->discount;
-	return (e + tie) * c->unit;
+	return vdt_quadric_ranked(e, exact, pa, pb, qd_trace(&c->q[a], &c->q[b])) * c->unit;
 }
 
 static void

@@ -169,11 +169,9 @@ static inline double
 tied(const struct ctx *c, const struct vdt_quadric *q, const double p[3], double e, double se,
      const float pa[3], const float pb[3])
 {
-	double tie = vdt_quadric_tie(pa, pb, vdt_quadric_trace(q));
+	int negligible = c->free_first && se < INFINITY && vdt_quadric_negligible(q, p, e);
 
-	if (c->free_first && se < INFINITY && vdt_quadric_negligible(q, p, e))
-		return VDT_QUADRIC_TIE_FREE * tie * c->unit;
-	return (se + tie) * c->unit;
+	return vdt_quadric_ranked(se, negligible, pa, pb, vdt_quadric_trace(q)) * c->unit;
 }
 
 /*

@@ -146,6 +146,16 @@ vdt_quadric_tie(const float pa[3], const float pb[3], double t)
 	return 1e-9 * (d0 * d0 + d1 * d1 + d2 * d2) * t;
 }
 
+/* The cost that ranks the pair of pa and pb (A's trace t) of error e: e
+ * and its tie, or if e is negligible VDT_QUADRIC_TIE_FREE of the tie. */
+static inline double
+vdt_quadric_ranked(double e, int negligible, const float pa[3], const float pb[3], double t)
+{
+	double tie = vdt_quadric_tie(pa, pb, t);
+
+	return negligible ? VDT_QUADRIC_TIE_FREE * tie : e + tie;
+}
+
 /* Q(v) = v'Av + 2b'v + c, clamped at 0 against rounding. */
 static inline double
 vdt_quadric_eval(const struct vdt_quadric *q, const double v[3])
