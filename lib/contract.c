@@ -704,21 +704,27 @@ unreject(struct engine *e, uint32_t p)
 	}
 }
 
+/* The caller's cost of pair (a, b), a < b, or INFINITY. */
+static double
+eval_pair(struct engine *e, uint32_t a, uint32_t b, double pos[3])
+{
+	int la = e->vflag[a] & V_LOCKED, lb = e->vflag[b] & V_LOCKED;
+	int fixed = la ? 0 : lb ? 1 : -1;
+
+	if (la && lb)
+		return INFINITY;
+	double c = e->ops->cost(e->ops->ctx, a, b, fixed, e->pos + 3 * (size_t)a,
+	                        e->pos + 3 * (size_t)b, pos);
+	c += 0.0; /* -0 to +0 (before) */
+	return c >= 0 && c < INFINITY ? c : INFINITY;
+}
+
 static int
 pair_cost(struct engine *e, uint32_t p, double pos[3])
 {
-	uint32_t a = e->pv[2 * p], b = e->pv[2 * p + 1];
-	int la = e->vflag[a] & V_LOCKED, lb = e->vflag[b] & V_LOCKED;
-	int fixed = la ? 0 : lb ? 1 : -1;
-	double c;
+	double c = eval_pair(e, e->pv[2 * p], e->pv[2 * p + 1], pos);
 
-	if (la && lb) {
-		heap_remove(e, p);
-		return -1;
-	}
-	c = e->ops->cost(e->ops->ctx, a, b, fixed, e->pos + 3 * a, e->pos + 3 * b, pos);
-	c += 0.0; /* -0 to +0 (before) */
-	if (!(c >= 0) || !(c < INFINITY)) {
+	if (!(c < INFINITY)) {
 		heap_remove(e, p);
 		return -1;
 	}
@@ -1473,20 +1479,6 @@ orient(const struct engine *e, uint32_t a, uint32_t b, uint32_t *keep, uint32_t 
 	else if (!la && e->rank && e->rank[b] > e->rank[a])
 		*keep = b;
 	*gone = *keep == a ? b : a;
-}
-
-/* The caller's cost of pair (a, b), a < b, or INFINITY. */
-static double
-eval_pair(struct engine *e, uint32_t a, uint32_t b, double pos[3])
-{
-	int la = e->vflag[a] & V_LOCKED, lb = e->vflag[b] & V_LOCKED;
-
-	if (la && lb)
-		return INFINITY;
-	double c = e->ops->cost(e->ops->ctx, a, b, la ? 0 : lb ? 1 : -1,
-	                        e->pos + 3 * (size_t)a, e->pos + 3 * (size_t)b, pos);
-	c += 0.0; /* -0 to +0 (before) */
-	return c >= 0 && c < INFINITY ? c : INFINITY;
 }
 
 /*
@@ -3972,13 +3964,8 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 	if (e.vq && vertex_queue_init(&e) != 0)
 		goto nomem;
 	for (size_t p = 0; p < e.np; p++) {
-		uint32_t a = e.pv[2 * p], b = e.pv[2 * p + 1];
-		int la = e.vflag[a] & V_LOCKED, lb = e.vflag[b] & V_LOCKED;
-		double c = la && lb ? INFINITY
-		           : ops->cost(ops->ctx, a, b, la ? 0 : lb ? 1 : -1,
-		                       e.pos + 3 * (size_t)a, e.pos + 3 * (size_t)b, pos);
-		c += 0.0; /* -0 to +0 (before) */
-		if (c >= 0 && c < INFINITY) {
+		double c = eval_pair(&e, e.pv[2 * p], e.pv[2 * p + 1], pos);
+		if (c < INFINITY) {
 			e.hpos[p] = (uint32_t)e.hlen;
 			e.heap[e.hlen++] = (struct hent){(uint32_t)p, (float)c};
 		}
