@@ -358,7 +358,7 @@ same_floats(const float *a, const float *b, int n)
 }
 
 /*
- * Weld vertices with bit-identical positions: canon[i] is the welded id of
+ * Weld vertices at equal positions: canon[i] is the welded id of
  * input vertex i, ids numbered in order of first appearance. Returns the
  * welded count, or 0 on allocation failure.
  */
@@ -2008,37 +2008,19 @@ attr_distance(const struct vdt_mesh *m, uint32_t a, uint32_t b)
 	return d;
 }
 
-/* The input vertex of corner c in dups (see build_output), or NONE. */
-static uint32_t
-dup_at(const uint64_t *dups, size_t n, size_t c)
-{
-	size_t lo = 0, hi = n;
-
-	while (lo < hi) {
-		size_t mid = lo + (hi - lo) / 2;
-		if (dups[mid] >> 32 < c)
-			lo = mid + 1;
-		else
-			hi = mid;
-	}
-	return lo < n && dups[lo] >> 32 == c ? (uint32_t)dups[lo] : NONE;
-}
-
 /*
  * The output mesh: each surviving corner takes, among the input vertices
- * welded into its final vertex, the one whose attributes are closest to
+ * welded into its final vertex, the first whose attributes are closest to
  * those of the input vertex it started from; so seams stay where they were
- * and smooth regions get one vertex per position. When in's triangles were
- * taken (no attributes), dups lists the corners that started from a
- * vertex other than the first at its position; any other corner takes the
- * first.
+ * and smooth regions get one vertex per position. Without attributes, or
+ * when they are the same everywhere (in's triangles may then have been
+ * taken), every corner takes the first: one vertex per position, as the
+ * contractions saw the mesh, so a soup comes out indexed.
  */
 static int
-build_output(const struct vdt_mesh *in, const uint32_t *canon,
-             const uint32_t *wstart, const uint32_t *wlist,
-             const uint64_t *dups, size_t ndups,
-             const struct vdt_contract_result *r, const struct back_corners *bk,
-             struct vdt_mesh *out, struct vdt_err *err)
+build_output(const struct vdt_mesh *in, const uint32_t *canon, const uint32_t *wstart,
+             const uint32_t *wlist, const struct vdt_contract_result *r,
+             const struct back_corners *bk, struct vdt_mesh *out, struct vdt_err *err)
 {
 	uint32_t *index = malloc((in->vertex_count + 1) * sizeof(*index));
 	uint32_t *src = malloc((3 * r->triangle_count + 1) * sizeof(*src));
@@ -2050,22 +2032,19 @@ build_output(const struct vdt_mesh *in, const uint32_t *canon,
 		free(src);
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory building the output");
 	}
-	/* (with attributes, the first of the copies alike: a soup's corners
-	 * weld; without, a corner keeps the input vertex it started from) */
-	unsigned attrs = vdt_mesh_attrs(in);
+	int attrs = in->triangles != NULL && vdt_mesh_varying_attrs(in) != 0;
 	memset(index, 0xff, in->vertex_count * sizeof(*index));
 	for (size_t t = 0; t < r->triangle_count; t++)
 		for (int k = 0; k < 3; k++) {
 			uint32_t v = r->triangles[3 * t + k];
 			uint32_t pick = wlist[wstart[v]];
-			size_t corner = 3 * (size_t)r->sources[t] + k;
-			uint32_t w0 = wstart[v + 1] - wstart[v] < 2 ? NONE
-			            : in->triangles ? corner_vertex(in, r, bk, t, k)
-			            : dup_at(dups, ndups, corner);
+			uint32_t w0 = !attrs || wstart[v + 1] - wstart[v] < 2
+			                      ? NONE
+			                      : corner_vertex(in, r, bk, t, k);
 			if (w0 != NONE) {
 				double best = INFINITY;
 				for (uint32_t j = wstart[v]; j < wstart[v + 1]; j++) {
-					double d = wlist[j] == w0 || (attrs && same_attrs(in, wlist[j], w0))
+					double d = wlist[j] == w0 || same_attrs(in, wlist[j], w0)
 					                   ? -1
 					                   : attr_distance(in, wlist[j], w0);
 					if (d < best) {
@@ -2568,14 +2547,13 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	uint8_t *border = NULL, *locked = NULL, *dead = NULL;
 	uint32_t *fsrc = NULL, *vto = NULL, *forder = NULL;
 	int renumbered = 0;
-	uint64_t *dups = NULL; /* corner << 32 | input vertex, by corner */
 	uint32_t *pforest = NULL; /* the input's parts, when some may go */
 	uint64_t *backs = NULL;   /* double-sided faces: front << 32 | back */
 	uint8_t *twice = NULL;    /* per engine face: a front (counts twice) */
 	uint8_t *wedges = NULL;   /* rank: attribute sets at each position */
 	struct back_corners bk = {0};
 	size_t nbacks = 0;
-	size_t nw, nvp = 0, ndups = 0;
+	size_t nw, nvp = 0;
 	int rc = VDT_ENOMEM;
 
 	memset(out, 0, sizeof(*out));
@@ -2616,9 +2594,8 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 		goto nomem;
 	stats->welded = n - nw;
 	/* The working mesh. build_output needs no input position, and
-	 * without attributes that vary, of the input's triangles only which
-	 * corners used a later duplicate of a position (dups): what a caller
-	 * lets us take is welded in place rather than held twice. */
+	 * without attributes that vary, none of the input's triangles: what a
+	 * caller lets us take is welded in place rather than held twice. */
 	unsigned varying = vdt_mesh_varying_attrs(in);
 	w.vertex_count = nw;
 	w.triangle_count = T;
@@ -2634,19 +2611,10 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 		goto nomem;
 	}
 	if (take != NULL && varying == 0) {
-		size_t nd = 0;
 		w.triangles = take->triangles;
 		take->triangles = NULL;
 		for (size_t j = 0; j < 3 * T; j++)
-			nd += first[canon[w.triangles[j]]] != w.triangles[j];
-		if (nd > 0 && (dups = malloc(nd * sizeof(*dups))) == NULL)
-			goto nomem;
-		for (size_t j = 0; j < 3 * T; j++) {
-			uint32_t i = w.triangles[j];
-			if (first[canon[i]] != i)
-				dups[ndups++] = (uint64_t)j << 32 | i;
-			w.triangles[j] = canon[i];
-		}
+			w.triangles[j] = canon[w.triangles[j]];
 	} else if ((w.triangles = vdt_malloc_huge(3 * T * sizeof(uint32_t) + 1)) != NULL) {
 		for (size_t i = 0; i < 3 * T; i++)
 			w.triangles[i] = canon[in->triangles[i]];
@@ -2948,7 +2916,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	if (c.at == NULL && wstart == NULL && input_lists(canon, n, nw, &wstart, &wlist) != 0)
 		goto nomem;
 	rc = c.at ? build_output_attr(in, &c, &r, &bk, out, err)
-	          : build_output(in, canon, wstart, wlist, dups, ndups, &r, &bk, out, err);
+	          : build_output(in, canon, wstart, wlist, &r, &bk, out, err);
 	if (rc == 0 && c.at != NULL && nbacks > 0)
 		back_attributes(in, &bk, out);
 	if (rc != 0)
@@ -2981,7 +2949,6 @@ done:
 	free(fsrc);
 	free(vto);
 	free(forder);
-	free(dups);
 	free(pforest);
 	free(backs);
 	free(twice);

@@ -1093,6 +1093,31 @@ PY
 	[ "$(sort "$TMP/rows" | uniq -d | wc -l)" -eq 0 ]
 }
 
+@test "vdt-qslim gives a soup without attributes one vertex per position" {
+	# the sample sphere as a soup (every face its own copies of its
+	# corners), and with every vertex given twice and alternate faces on
+	# the second copies: each must come out as the indexed sphere does,
+	# closed and without a position given twice
+	awk 'NR == 2 { nv = $1; nf = $2; print "OFF"; print 3 * nf, nf, 0; next }
+		NR > 2 && NR <= 2 + nv { v[NR - 3] = $0; next }
+		NR > 2 + nv { print v[$2]; print v[$3]; print v[$4]; f[++n] = 3 * (n - 1) }
+		END { for (i = 1; i <= n; i++) print 3, f[i], f[i] + 1, f[i] + 2 }' \
+		"$SAMPLES/sphere.off" >"$TMP/soup.off"
+	awk 'NR == 2 { nv = $1; print "OFF"; print 2 * nv, $2, 0; next }
+		NR > 2 && NR <= 2 + nv { print; v[NR - 3] = $0; next }
+		NR > 2 + nv { f[++n] = n % 2 ? $0 : sprintf("3 %d %d %d", $2 + nv, $3 + nv, $4 + nv) }
+		END { for (i = 0; i < nv; i++) print v[i]; for (i = 1; i <= n; i++) print f[i] }' \
+		"$SAMPLES/sphere.off" >"$TMP/twice.off"
+	"$BIN/vdt-qslim" -q -r 0.1 "$SAMPLES/sphere.off" -o "$TMP/ref.off"
+	for f in soup twice; do
+		"$BIN/vdt-qslim" -q -r 0.1 "$TMP/$f.off" -o "$TMP/$f-out.off"
+		[ "$(off_vertices "$TMP/$f-out.off")" -eq "$(off_vertices "$TMP/ref.off")" ]
+		[ "$(open_edges "$TMP/$f-out.off")" -eq 0 ]
+		nv=$(off_vertices "$TMP/$f-out.off")
+		[ "$(sed -n "3,$((nv + 2))p" "$TMP/$f-out.off" | sort -u | wc -l)" -eq "$nv" ]
+	done
+}
+
 @test "vdt-qslim takes every contraction that costs nothing before any that costs something" {
 	# CGAL's CAD pipes: long pairs on their flats and cylinders cost
 	# nothing, and halving them needs no others. When such pairs waited
