@@ -16,6 +16,9 @@
 const char *progname = "vdt";
 
 static int reported; /* a failure has its line on stderr already */
+static FILE *held;   /* the notes not yet said (note()), or NULL */
+static char *held_text;
+static size_t held_size;
 
 /*
  * At exit: what went to standard output through stdio (--help, -V, a
@@ -165,6 +168,39 @@ fail(const char *what, const char *file, const struct vdt_err *err)
 }
 
 void
+note(const char *fmt, ...)
+{
+	va_list ap;
+
+	if (held == NULL) /* (NULL again without the memory: said now) */
+		held = open_memstream(&held_text, &held_size);
+	fprintf(held ? held : stderr, "%s: ", progname);
+	va_start(ap, fmt);
+	vfprintf(held ? held : stderr, fmt, ap);
+	va_end(ap);
+}
+
+void
+notes_flush(void)
+{
+	if (held == NULL)
+		return;
+	if (fclose(held) == 0 && !reported)
+		fputs(held_text, stderr);
+	held = NULL;
+	free(held_text);
+	held_text = NULL;
+}
+
+int
+cmd_done(int rc)
+{
+	if (rc == EXIT_OK)
+		notes_flush();
+	return rc;
+}
+
+void
 note_float_precision(const char *path, const struct vdt_mesh *m, int quiet)
 {
 	struct vdt_bbox box;
@@ -178,10 +214,10 @@ note_float_precision(const char *path, const struct vdt_mesh *m, int quiet)
 		far = fmax(far, fmax(fabs(box.min[k]), fabs(box.max[k])));
 	/* (a box of no size: one point, read so or rounded so, no telling) */
 	if (diag > 0 && step > 1e-4 * diag)
-		fprintf(stderr, "%s: note: '%s' reaches %g from the origin, where 32-bit floats "
-		        "step by %g: %.2g%% of its diagonal of %g, its detail rounded away as it "
-		        "was read (move it near the origin)\n", progname, input_name(path), far,
-		        step, 100 * step / diag, diag);
+		note("note: '%s' reaches %g from the origin, where 32-bit floats step by %g: "
+		     "%.2g%% of its diagonal of %g, its detail rounded away as it was read (move "
+		     "it near the origin)\n",
+		     input_name(path), far, step, 100 * step / diag, diag);
 }
 
 unsigned long

@@ -81,7 +81,21 @@ const char *attr_names(unsigned mask, int words, char buf[64]);
 int fail(const char *what, const char *file, const struct vdt_err *err);
 
 /*
- * A note on standard error (unless quiet) when m, read from path, lies so
+ * A note for standard error ("progname: " and the rest, fmt ends in a
+ * newline), held until the run has succeeded (notes_flush(), cmd_done()):
+ * a run that fails says one line, its failure, and its notes are dropped.
+ */
+void note(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
+/* The notes held so far, on standard error, unless a failure was reported
+ * (fail()): for a command to call once its output is written. */
+void notes_flush(void);
+
+/* main()'s status rc, the notes said first when it is EXIT_OK. */
+int cmd_done(int rc);
+
+/*
+ * A note (above), unless quiet, when m, read from path, lies so
  * far from the origin for its size that 32-bit floats step by more than
  * 1e-4 of its diagonal there (a box of some size): its detail was rounded
  * away as it was read.

@@ -177,6 +177,7 @@ run(struct cmdline *cl)
 		rc = fail("cannot write", cl->out, &err);
 		goto out;
 	}
+	notes_flush();
 	if (dropped > 0 && !cl->quiet)
 		fprintf(stderr, "%s: dropped %zu faces that repeat a vertex or another face\n",
 		        progname, dropped);
@@ -204,5 +205,5 @@ main(int argc, char **argv)
 
 	cmd_init(argv);
 	parse_cmdline(argc, argv, &cl);
-	return cl.check ? check(&cl) : run(&cl);
+	return cmd_done(cl.check ? check(&cl) : run(&cl));
 }

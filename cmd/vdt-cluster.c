@@ -133,8 +133,9 @@ run(struct cmdline *cl)
 	attrs = vdt_tsource_attrs(ts);
 	rc = vdt_cluster_source(ts, &rq, &c, &g, &remeasured, &box_s, p, &err);
 	if (remeasured && !cl->quiet)
-		fprintf(stderr, "%s: %s: the header's bounding box is not that of the vertices the "
-		        "faces use: clustered again on theirs\n", progname, input_name(cl->in));
+		note("%s: the header's bounding box is not that of the vertices the faces use: "
+		     "clustered again on theirs\n",
+		     input_name(cl->in));
 	t1 += box_s;
 	/* The input is read: its mapped pages go before the output is made,
 	 * so that they do not add to the peak. */
@@ -179,6 +180,7 @@ run(struct cmdline *cl)
 		goto write_failed;
 	t3 = vdt_seconds();
 	progress_done();
+	notes_flush();
 	if (attrs && !cl->quiet)
 		fprintf(stderr, "%s: note: '%s' has %s, which clustering does not keep (vdt-qslim "
 		        "alone keeps them)\n", progname, input_name(cl->in), attr_names(attrs, 1, names));
@@ -225,5 +227,5 @@ main(int argc, char **argv)
 
 	cmd_init(argv);
 	parse_cmdline(argc, argv, &cl);
-	return run(&cl);
+	return cmd_done(run(&cl));
 }

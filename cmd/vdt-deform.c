@@ -283,6 +283,7 @@ run(struct cmdline *cl)
 		rc = fail("cannot write", bad ? bad : cl->out, &err);
 		goto out;
 	}
+	notes_flush();
 	note_attributes(cl, &in);
 	if (!r.reached_target && !cl->quiet)
 		fprintf(stderr, "%s: some frames stopped above the target: no further valid "
@@ -306,5 +307,5 @@ main(int argc, char **argv)
 
 	cmd_init(argv);
 	parse_cmdline(argc, argv, &cl);
-	return run(&cl);
+	return cmd_done(run(&cl));
 }

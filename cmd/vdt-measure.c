@@ -169,6 +169,7 @@ run(const struct cmdline *cl)
 		rc = fail("cannot write", cl->color, &err);
 		goto out;
 	}
+	notes_flush();
 	if (cl->verbose)
 		fprintf(stderr, "%s: a_triangles=%zu b_triangles=%zu threads=%d read_s=%.3f "
 		        "tree_s=%.3f ab_s=%.3f ba_s=%.3f orientation_s=%.3f total_s=%.3f "
@@ -191,5 +192,5 @@ main(int argc, char **argv)
 
 	cmd_init(argv);
 	parse_cmdline(argc, argv, &cl);
-	return run(&cl);
+	return cmd_done(run(&cl));
 }

@@ -164,8 +164,8 @@ run(struct cmdline *cl)
 	}
 	/* Not an error: a batch may give every model the same options. */
 	if (cl->label_opt && x.labl.cams.count == 0 && !cl->quiet)
-		fprintf(stderr, "%s: '%s' has no LABL chunk (vdt-silhouette's labels): %s has no effect\n",
-		        progname, input_name(cl->in), cl->label_opt);
+		note("'%s' has no LABL chunk (vdt-silhouette's labels): %s has no effect\n",
+		     input_name(cl->in), cl->label_opt);
 	/* The input is needed for nothing but its counts once simplified. */
 	x.take_input = 1;
 	cl->q.progress = progress_start(cl->quiet);
@@ -182,6 +182,7 @@ run(struct cmdline *cl)
 		rc = fail("cannot write", cl->out, &err);
 		goto out;
 	}
+	notes_flush();
 	/* With -e alone the bound is the target: stopping at it is no news. */
 	if (!st.reached_target && (cl->q.target_triangles || cl->q.target_ratio > 0) &&
 	    !cl->quiet) {
@@ -228,5 +229,5 @@ main(int argc, char **argv)
 
 	cmd_init(argv);
 	parse_cmdline(argc, argv, &cl);
-	return run(&cl);
+	return cmd_done(run(&cl));
 }

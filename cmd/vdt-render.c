@@ -249,14 +249,15 @@ run(struct cmdline *cl)
 			if (cl->mesh_out)
 				rc = fail("cannot write", frame_name(name, cl->mesh_out, i), &err);
 			else if (!cl->quiet)
-				fprintf(stderr, "%s: %s\n", progname, err.msg);
+				note("%s\n", err.msg);
 		}
 		/* (the tree's roots are the least it can show) */
 		if (rc == EXIT_OK && cl->o.budget > 0 && R.drawn->triangle_count > cl->o.budget &&
 		    !over_budget && !cl->quiet) {
-			fprintf(stderr, "%s: note: frame %zu has %zu triangles, more than the budget of "
-			        "%lu (-t): the coarsest front of this tree has that many\n", progname, i,
-			        R.drawn->triangle_count, (unsigned long)cl->o.budget);
+			note("note: frame %zu has %zu triangles, more than the budget of %lu (-t): "
+			     "the "
+			     "coarsest front of this tree has that many\n",
+			     i, R.drawn->triangle_count, (unsigned long)cl->o.budget);
 			over_budget = 1;
 		}
 		/* Frames stay staged until all are written: a failed run
@@ -288,6 +289,7 @@ run(struct cmdline *cl)
 		vdt_written_remove(&done); /* leave nothing behind */
 	else if (vdt_written_commit(&done, &err) != 0)
 		rc = fail("cannot write", cl->out ? cl->out : cl->mesh_out, &err);
+	notes_flush();
 	/* A tree's nodes have positions and normals alone (vdt_front_mesh):
 	 * the input's texture coordinates and colours are not the merged
 	 * vertices'. */
@@ -316,5 +318,5 @@ main(int argc, char **argv)
 
 	cmd_init(argv);
 	parse_cmdline(argc, argv, &cl);
-	return run(&cl);
+	return cmd_done(run(&cl));
 }

@@ -181,6 +181,7 @@ run(struct cmdline *cl)
 		rc = fail("cannot write", cl->out, &err);
 		goto out;
 	}
+	notes_flush();
 	if (cl->verbose)
 		fprintf(stderr, "%s: vertices=%zu triangles=%zu cameras=%zu resolution=%d "
 		        "contours=%s label_bytes=%llu label_s=%.3f min_within_1px_pct=%.1f "
@@ -210,5 +211,5 @@ main(int argc, char **argv)
 
 	cmd_init(argv);
 	parse_cmdline(argc, argv, &cl);
-	return run(&cl);
+	return cmd_done(run(&cl));
 }
