@@ -7,7 +7,10 @@
  * repeated goes at once, in a triangle of no area. Every simple polygon
  * has such a corner; one that is not simple, or that rounding leaves
  * without, gets its most convex corner cut off instead, so that the
- * n - 2 triangles always come out, in O(n^2) time at most.
+ * n - 2 triangles always come out, in O(n^2) time at most. After a cut
+ * the walk goes on past the ear's far neighbour, so that a long convex
+ * run comes off in rounds of small ears rather than as a fan of ever
+ * larger ones, each of which would look at most of the grid (below).
  */
 #include "polygon.h"
 
@@ -22,6 +25,8 @@ vdt_polygon_free(struct vdt_polygon *s)
 	free(s->ring);
 	free(s->corner);
 	free(s->tri);
+	free(s->reflex);
+	free(s->cell);
 	memset(s, 0, sizeof(*s));
 }
 
@@ -42,7 +47,13 @@ reserve(struct vdt_polygon *s, size_t n)
 	uint32_t *t = realloc(s->tri, 3 * n * sizeof(*t));
 	if (t != NULL)
 		s->tri = t;
-	if (p == NULL || r == NULL || c == NULL || t == NULL)
+	uint32_t *x = realloc(s->reflex, 3 * n * sizeof(*x));
+	if (x != NULL)
+		s->reflex = x;
+	uint32_t *g = realloc(s->cell, n * sizeof(*g));
+	if (g != NULL)
+		s->cell = g;
+	if (p == NULL || r == NULL || c == NULL || t == NULL || x == NULL || g == NULL)
 		return -1;
 	s->cap = n;
 	return 0;
@@ -115,20 +126,112 @@ flatten(const double *p, size_t n, double *q)
 	return 0;
 }
 
-/* Whether corner i, between a and c, is an ear of the ring that starts at
- * i (no corner of it that turns right lies in the triangle a, i, c). */
+#define NONE UINT32_MAX
+
+/*
+ * The corners left that do not turn left (only they can lie in an ear), in
+ * the cells of a grid over the polygon's box, about one corner a cell: 3
+ * words per corner, the previous and next in its cell and whether it is
+ * in one. An ear's test looks in the cells its box covers. A polygon that
+ * is all but convex has few such corners; one whose corners rounding left
+ * turning both ways (a circle of thousands of corners, read as floats) has
+ * half of them, and the grid keeps each test to the few near the ear.
+ */
+struct reflex {
+	uint32_t *w;
+	uint32_t *cell; /* g * g: the first corner in each */
+	uint32_t g;
+	double min[2], scale[2];
+};
+
+static uint32_t
+cell_at(const struct reflex *r, double v, int k)
+{
+	double c = (v - r->min[k]) * r->scale[k];
+
+	return c > 0 ? c < r->g - 1 ? (uint32_t)c : r->g - 1 : 0;
+}
+
+static uint32_t *
+cell_of(const struct reflex *r, const double *q, uint32_t x)
+{
+	return r->cell + (size_t)cell_at(r, q[2 * (size_t)x + 1], 1) * r->g +
+	       cell_at(r, q[2 * (size_t)x], 0);
+}
+
+/* The grid for the n corners at q, empty. */
+static void
+reflex_init(struct reflex *r, const double *q, size_t n)
+{
+	double max[2] = {q[0], q[1]};
+
+	r->min[0] = q[0];
+	r->min[1] = q[1];
+	for (size_t k = 1; k < n; k++)
+		for (int d = 0; d < 2; d++) {
+			r->min[d] = fmin(r->min[d], q[2 * k + d]);
+			max[d] = fmax(max[d], q[2 * k + d]);
+		}
+	r->g = (uint32_t)sqrt((double)n);
+	for (int d = 0; d < 2; d++)
+		r->scale[d] = max[d] > r->min[d] ? r->g / (max[d] - r->min[d]) : 0;
+	for (size_t c = 0; c < (size_t)r->g * r->g; c++)
+		r->cell[c] = NONE;
+	for (size_t k = 0; k < n; k++)
+		r->w[3 * k + 2] = 0;
+}
+
+/* Corner x in the grid or out of it, as it turns now (or out, gone). */
+static void
+reflex_update(struct reflex *r, const double *q, const uint32_t *ring, uint32_t x, int gone)
+{
+	uint32_t *w = r->w, *head = cell_of(r, q, x);
+	int in = !gone && !(turn(q, ring[2 * x], x, ring[2 * x + 1]) > 0);
+
+	if ((uint32_t)in == w[3 * x + 2])
+		return;
+	w[3 * x + 2] = (uint32_t)in;
+	if (in) {
+		w[3 * x] = NONE;
+		w[3 * x + 1] = *head;
+		if (*head != NONE)
+			w[3 * *head] = x;
+		*head = x;
+		return;
+	}
+	uint32_t prev = w[3 * x], next = w[3 * x + 1];
+	if (prev != NONE)
+		w[3 * prev + 1] = next;
+	else
+		*head = next;
+	if (next != NONE)
+		w[3 * next] = prev;
+}
+
+/* Whether corner i, between a and c, is an ear of the ring (no other
+ * corner of it that turns right lies in the triangle a, i, c). */
 static int
-ear(const double *q, const uint32_t *ring, uint32_t a, uint32_t i, uint32_t c)
+ear(const double *q, const struct reflex *r, uint32_t a, uint32_t i, uint32_t c)
 {
 	if (!(turn(q, a, i, c) > 0))
 		return 0;
-	for (uint32_t x = ring[2 * c + 1]; x != a; x = ring[2 * x + 1]) {
-		uint32_t xp = ring[2 * x], xn = ring[2 * x + 1];
-		if (turn(q, xp, x, xn) > 0 || same(q, x, a) || same(q, x, i) || same(q, x, c))
-			continue;
-		if (turn(q, a, i, x) >= 0 && turn(q, i, c, x) >= 0 && turn(q, c, a, x) >= 0)
-			return 0;
+	uint32_t lo[2], hi[2];
+	for (int d = 0; d < 2; d++) {
+		double u = q[2 * (size_t)a + d], v = q[2 * (size_t)i + d], t = q[2 * (size_t)c + d];
+		lo[d] = cell_at(r, fmin(u, fmin(v, t)), d);
+		hi[d] = cell_at(r, fmax(u, fmax(v, t)), d);
 	}
+	for (uint32_t y = lo[1]; y <= hi[1]; y++)
+		for (uint32_t cx = lo[0]; cx <= hi[0]; cx++)
+			for (uint32_t x = r->cell[(size_t)y * r->g + cx]; x != NONE;
+			     x = r->w[3 * x + 1]) {
+				if (x == a || x == i || x == c || same(q, x, a) || same(q, x, i) ||
+				    same(q, x, c))
+					continue;
+				if (turn(q, a, i, x) >= 0 && turn(q, i, c, x) >= 0 &&
+				    turn(q, c, a, x) >= 0)
+					return 0;
+			}
 	return 1;
 }
 
@@ -176,10 +279,14 @@ vdt_polygon_triangulate(struct vdt_polygon *s, const double *p, size_t n, uint32
 		return 0;
 
 	uint32_t *ring = s->ring;
+	struct reflex rx = {.w = s->reflex, .cell = s->cell};
+	reflex_init(&rx, q, n);
 	for (size_t k = 0; k < n; k++) {
 		ring[2 * k] = (uint32_t)((k + n - 1) % n);
 		ring[2 * k + 1] = (uint32_t)((k + 1) % n);
 	}
+	for (size_t k = 0; k < n; k++)
+		reflex_update(&rx, q, ring, (uint32_t)k, 0);
 	while (left > 3) {
 		uint32_t a = ring[2 * i], c = ring[2 * i + 1];
 		if (same(q, a, i) || same(q, i, c)) {
@@ -199,7 +306,7 @@ vdt_polygon_triangulate(struct vdt_polygon *s, const double *p, size_t n, uint32
 			} while (x != start);
 			a = ring[2 * i];
 			c = ring[2 * i + 1];
-		} else if (tests++, !ear(q, ring, a, i, c)) {
+		} else if (tests++, !ear(q, &rx, a, i, c)) {
 			i = c;
 			misses++;
 			continue;
@@ -210,9 +317,12 @@ vdt_polygon_triangulate(struct vdt_polygon *s, const double *p, size_t n, uint32
 		out++;
 		ring[2 * a + 1] = c;
 		ring[2 * c] = a;
+		reflex_update(&rx, q, ring, i, 1);
+		reflex_update(&rx, q, ring, a, 0);
+		reflex_update(&rx, q, ring, c, 0);
 		left--;
 		misses = 0;
-		i = a;
+		i = ring[2 * c + 1];
 	}
 	tri[3 * out] = ring[2 * i];
 	tri[3 * out + 1] = i;
