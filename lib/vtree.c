@@ -19,6 +19,7 @@
 
 #include "bytes.h"
 #include "contract.h"
+#include "hash.h"
 #include "octree.h"
 #include "quadric.h"
 #include "topo.h"
@@ -147,22 +148,75 @@ sort3(const uint32_t *t, uint32_t s[3])
 	s[2] = c;
 }
 
+/*
+ * The first vertex at each vertex's position, into first[] (-0 is 0).
+ * Returns 0, or -1 out of memory.
+ */
+static int
+first_at_position(const struct vdt_mesh *m, uint32_t *first)
+{
+	size_t cap = 16;
+	while (cap < 2 * m->vertex_count)
+		cap *= 2;
+	uint32_t *slot = malloc(cap * sizeof(*slot));
+
+	if (slot == NULL)
+		return -1;
+	memset(slot, 0xff, cap * sizeof(*slot));
+	for (size_t v = 0; v < m->vertex_count; v++) {
+		const float *p = m->positions + 3 * v;
+		size_t h = vdt_hash_position(p) & (cap - 1);
+		for (; slot[h] != NONE; h = (h + 1) & (cap - 1)) {
+			const float *o = m->positions + 3 * (size_t)slot[h];
+			if (o[0] == p[0] && o[1] == p[1] && o[2] == p[2])
+				break;
+		}
+		if (slot[h] == NONE)
+			slot[h] = (uint32_t)v;
+		first[v] = slot[h];
+	}
+	free(slot);
+	return 0;
+}
+
+/* Face c as the first vertices at its corners' positions, turned to start
+ * at the least: equal for faces at one place the same way round. */
+static void
+at_positions(const uint32_t *c, const uint32_t *first, uint32_t r[3])
+{
+	uint32_t a = first[c[0]], b = first[c[1]], d = first[c[2]];
+
+	if (a <= b && a <= d) {
+		r[0] = a, r[1] = b, r[2] = d;
+	} else if (b <= a && b <= d) {
+		r[0] = b, r[1] = d, r[2] = a;
+	} else {
+		r[0] = d, r[1] = a, r[2] = b;
+	}
+}
+
 int
 vdt_vtree_prepare(struct vdt_mesh *m, size_t *dropped, struct vdt_err *err)
 {
 	size_t cap = 16, kept = 0;
 	while (cap < 2 * m->triangle_count)
 		cap *= 2;
-	uint32_t *slot = malloc(cap * sizeof(*slot));
+	/* two tables of the faces kept: by their vertices, and by where
+	 * their corners are (a triangle soup's copies of one face) */
+	uint32_t *slot = malloc(2 * cap * sizeof(*slot)), *pslot = slot + cap;
+	uint32_t *first = malloc((m->vertex_count + 1) * sizeof(*first));
 
 	if (dropped)
 		*dropped = 0;
-	if (slot == NULL)
+	if (slot == NULL || first == NULL || first_at_position(m, first) != 0) {
+		free(slot);
+		free(first);
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory checking faces");
-	memset(slot, 0xff, cap * sizeof(*slot));
+	}
+	memset(slot, 0xff, 2 * cap * sizeof(*slot));
 	for (size_t t = 0; t < m->triangle_count; t++) {
 		const uint32_t *c = m->triangles + 3 * t;
-		uint32_t s[3];
+		uint32_t s[3], r[3];
 		if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2])
 			continue;
 		sort3(c, s);
@@ -176,12 +230,20 @@ vdt_vtree_prepare(struct vdt_mesh *m, size_t *dropped, struct vdt_err *err)
 				break;
 			}
 		}
+		at_positions(c, first, r);
+		size_t g = tri_hash(r[0], r[1], r[2]) & (cap - 1);
+		for (; !dup && pslot[g] != NONE; g = (g + 1) & (cap - 1)) {
+			uint32_t o[3];
+			at_positions(m->triangles + 3 * (size_t)pslot[g], first, o);
+			dup = o[0] == r[0] && o[1] == r[1] && o[2] == r[2];
+		}
 		if (dup)
 			continue;
 		memmove(m->triangles + 3 * kept, c, 3 * sizeof(*c));
-		slot[h] = (uint32_t)kept++;
+		slot[h] = pslot[g] = (uint32_t)kept++;
 	}
 	free(slot);
+	free(first);
 	if (dropped)
 		*dropped = m->triangle_count - kept;
 	if (kept == 0)

@@ -90,9 +90,12 @@ void vdt_vtree_defaults(struct vdt_vtree_opts *opts);
 int vdt_vtree_place_parse(const char *name);
 
 /*
- * Make m fit for a tree in place: drop each triangle that repeats a vertex
- * and each triangle on the same three vertices as an earlier one (either
- * orientation), keeping the order of the rest. *dropped (may be NULL)
+ * Make m fit for a tree in place: drop each triangle that repeats a vertex,
+ * each triangle on the same three vertices as an earlier one (either
+ * orientation), and each whose corners are at an earlier one's positions
+ * the same way round (a soup's copies of one face, which would otherwise
+ * be contracted into one vertex after another, each contraction costing
+ * the whole stack), keeping the order of the rest. *dropped (may be NULL)
  * counts them. Returns 0, or VDT_EINVAL when nothing would be left, no
  * face has an area, or the bounding box is past VDT_VTREE_MAX_EXTENT.
  */

@@ -165,6 +165,25 @@ load helpers
 	"$BIN/vdt-build" --check "$TMP/d.vdt"
 }
 
+@test "vdt-build drops a soup's copies of one face, and keeps a face and its reverse" {
+	# 3000 copies of one triangle, each on vertices of its own: stacked,
+	# they were contracted into one hub after another, each contraction
+	# trying the whole stack again (minutes at 20000 copies)
+	awk 'BEGIN { n = 3000; print "OFF"; print 3 * n, n, 0
+		for (i = 0; i < n; i++) print "0 0 0\n1 0 0\n0 1 0"
+		for (i = 0; i < n; i++) print 3, 3 * i, 3 * i + 1, 3 * i + 2 }' >"$TMP/stack.off"
+	run "$BIN/vdt-build" -v "$TMP/stack.off" -o "$TMP/s.vdt"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"dropped 2999 faces"* ]]
+	[[ "$output" == *"triangles=1 "* ]]
+	# a double-sided triangle, each side on its own vertices: both stay
+	printf 'OFF\n6 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 3 5 4\n' >"$TMP/two.off"
+	run "$BIN/vdt-build" -v "$TMP/two.off" -o "$TMP/t.vdt"
+	[ "$status" -eq 0 ]
+	[[ "$output" != *"dropped"* ]]
+	[[ "$output" == *"triangles=2 "* ]]
+}
+
 @test "vdt-build rejects bad meshes with status 2 and leaves nothing" {
 	printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 0 0\n3 0 0 1\n' > "$TMP/degen.off"
 	printf 'OFF\n3 1 0\n0 0 0\n1 0 0\nnan 1 0\n3 0 1 2\n' > "$TMP/nan.off"
