@@ -204,14 +204,23 @@ void
 note_float_precision(const char *path, const struct vdt_mesh *m, int quiet)
 {
 	struct vdt_bbox box;
-	double step = vdt_mesh_float_step(m), diag, far = 0;
 
 	if (quiet || m->vertex_count == 0)
 		return;
 	vdt_mesh_bbox(m, &box);
-	diag = vdt_bbox_diagonal(&box);
+	note_float_box(path, &box, quiet);
+}
+
+void
+note_float_box(const char *path, const struct vdt_bbox *box, int quiet)
+{
+	double diag = vdt_bbox_diagonal(box), far = 0, step;
+
+	if (quiet)
+		return;
 	for (int k = 0; k < 3; k++)
-		far = fmax(far, fmax(fabs(box.min[k]), fabs(box.max[k])));
+		far = fmax(far, fmax(fabs(box->min[k]), fabs(box->max[k])));
+	step = vdt_float_step((float)far);
 	/* (a box of no size: one point, read so or rounded so, no telling) */
 	if (diag > 0 && step > 1e-4 * diag)
 		note("note: '%s' reaches %g from the origin, where 32-bit floats step by %g: "

@@ -102,6 +102,10 @@ int cmd_done(int rc);
  */
 void note_float_precision(const char *path, const struct vdt_mesh *m, int quiet);
 
+/* The same for a model whose box of float positions is box (one read as a
+ * stream, never held whole). */
+void note_float_box(const char *path, const struct vdt_bbox *box, int quiet);
+
 /* Exit status that matches a library status: 2 for input problems, else 1. */
 int exit_status(int code);
 

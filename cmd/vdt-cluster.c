@@ -122,6 +122,7 @@ run(struct cmdline *cl)
 	int rc, remeasured, streamed;
 	unsigned attrs = 0;
 	char names[64];
+	struct vdt_bbox box;
 
 	rq.ch.size = cl->size;
 	rq.ch.max_cells = cl->memory_mb > 0 ? (size_t)(cl->memory_mb * 1048576 / VDT_CLUSTER_CELL_BYTES) : 0;
@@ -151,6 +152,8 @@ run(struct cmdline *cl)
 		goto out;
 	}
 	t2 = vdt_seconds();
+	if (vdt_cluster_corner_box(c, &box))
+		note_float_box(cl->in, &box, cl->quiet);
 	vdt_cluster_free(c); /* before the output is encoded: a lower peak */
 	c = NULL;
 	if (q != NULL) {

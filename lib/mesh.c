@@ -175,11 +175,15 @@ vdt_mesh_float_step(const struct vdt_mesh *m)
 
 	for (size_t i = 0; i < 3 * m->vertex_count; i++)
 		big = fmaxf(big, fabsf(m->positions[i]));
-	if (m->vertex_count == 0)
-		return 0;
+	return m->vertex_count == 0 ? 0 : vdt_float_step(big);
+}
+
+double
+vdt_float_step(float x)
+{
+	x = fabsf(x);
 	/* (at FLT_MAX the step below it: there is none above) */
-	return big < FLT_MAX ? (double)nextafterf(big, INFINITY) - big
-	                     : (double)big - nextafterf(big, 0);
+	return x < FLT_MAX ? (double)nextafterf(x, INFINITY) - x : (double)x - nextafterf(x, 0);
 }
 
 int

@@ -106,6 +106,9 @@ double vdt_triangle_quality(const float *a, const float *b, const float *c);
  */
 double vdt_mesh_float_step(const struct vdt_mesh *m);
 
+/* The same at the float x: the step up from it (down at the largest). */
+double vdt_float_step(float x);
+
 /*
  * Whether some face of m has an area (its corners' cross product, in
  * double, is not zero). A mesh with none, all its vertices on a line or

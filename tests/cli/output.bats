@@ -230,7 +230,7 @@ refused() {
 	# a blob with no word (and vdt-measure, reading floats too, saw no error)
 	awk 'NR == 2 { nv = $1 } NR > 2 && NR <= 2 + nv { printf "%.9g %.9g %.9g\n", $1 + 1e7, $2 + 1e7, $3 + 1e7; next } { print }' \
 		"$SAMPLES/sphere.off" > "$TMP/far.off"
-	for t in vdt-qslim vdt-build vdt-silhouette; do
+	for t in vdt-qslim vdt-build vdt-silhouette vdt-cluster; do
 		run "$BIN/$t" "$TMP/far.off" -o "$TMP/out.vdt"
 		[[ "${lines[0]}" == "$t: note: '$TMP/far.off' reaches 1e+07 from the origin, where 32-bit floats step by 1: "*"% of its diagonal"*"(move it near the origin)" ]]
 	done
