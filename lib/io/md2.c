@@ -66,6 +66,25 @@ vdt_md2_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 		return vdt_err_set(err, VDT_EFORMAT, "MD2 triangles run past the end of the file");
 	if ((uint64_t)ofs_frames + (uint64_t)fsize * (uint64_t)nf > len)
 		return vdt_err_set(err, VDT_EFORMAT, "MD2 frames run past the end of the file");
+	/* Offsets into the header, or triangles and frames on the same bytes,
+	 * are a header corrupted: what they would read is no model. */
+	uint64_t tris_end = (uint64_t)ofs_tris + 12 * (uint64_t)nt,
+	         frames_end = (uint64_t)ofs_frames + (uint64_t)fsize * (uint64_t)nf;
+	if (ofs_tris < MD2_HEADER || ofs_frames < MD2_HEADER ||
+	    ((uint64_t)ofs_tris < frames_end && (uint64_t)ofs_frames < tris_end))
+		return vdt_err_set(err, VDT_EFORMAT,
+		                   "MD2 header puts its triangles at %d and its "
+		                   "frames at %d, which overlap (or lie in the header)",
+		                   (int)ofs_tris, (int)ofs_frames);
+	/* (texture coordinates are not read, but said to be there: a count
+	 * past the file is a header corrupted too) */
+	int32_t nst = h[7], ofs_st = h[12];
+	if (nst < 0 ||
+	    (nst > 0 && (ofs_st < MD2_HEADER || (uint64_t)ofs_st + 4 * (uint64_t)nst > len)))
+		return vdt_err_set(err, VDT_EFORMAT,
+		                   "MD2 texture coordinates (%d at %d) run past "
+		                   "the end of the file",
+		                   (int)nst, (int)ofs_st);
 	if ((rc = vdt_mesh_alloc(m, (size_t)nv, (size_t)nt, 0, err)) != 0)
 		return rc;
 	if ((rc = vdt_frames_alloc(fr, (size_t)nf, (size_t)nv, err)) != 0) {

@@ -233,6 +233,30 @@ setup() {
 	[ -z "$(ls "$TMP/out")" ]
 }
 
+@test "vdt-deform rejects an MD2 header whose offsets or counts are corrupt" {
+	[ -r "$MD2" ] || skip "assimp-testmodels is not installed"
+	# the 32-bit little-endian field at byte $2 of the header set to $3
+	patch() {
+		{ head -c "$2" "$MD2"
+		  printf "$(printf '\\%03o\\%03o\\%03o\\%03o' $(($3 & 255)) $(($3 >> 8 & 255)) \
+			$(($3 >> 16 & 255)) $(($3 >> 24 & 255)))"
+		  tail -c +$(($2 + 5)) "$MD2"; } >"$1"
+	}
+	frames=$(od -An -tu4 -j56 -N4 "$MD2" | tr -d ' ')
+	tris=$(od -An -tu4 -j52 -N4 "$MD2" | tr -d ' ')
+	patch "$TMP/onto.md2" 56 "$tris"        # the frames read from the triangles
+	patch "$TMP/head.md2" 52 20             # the triangles read from the header
+	patch "$TMP/st.md2" 28 2147483647       # texture coordinates past the end
+	for f in onto head st; do
+		run "$BIN/vdt-deform" --vertices 100 "$TMP/$f.md2" -o "$TMP/out.vdt"
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == "vdt-deform: cannot read '$TMP/$f.md2': MD2 "* ]]
+		[ ! -e "$TMP/out.vdt" ]
+	done
+	[ "$frames" -ne "$tris" ]
+}
+
 @test "vdt-deform calls an MD2 model cut inside its header truncated" {
 	[ -r "$MD2" ] || skip "assimp-testmodels is not installed"
 	head -c 30 "$MD2" > "$TMP/head.md2"
