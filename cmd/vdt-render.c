@@ -41,7 +41,9 @@ static const char *
 pattern(const char *opt, const char *s)
 {
 	if (!vdt_render_pattern_ok(s))
-		usage_error("invalid pattern '%s' for %s: want one %%d at most", s, opt);
+		usage_error("invalid pattern '%s' for %s: want one %%d at most, of a field of 20 "
+		            "at most",
+		            s, opt);
 	return s;
 }
 

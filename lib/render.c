@@ -320,10 +320,14 @@ vdt_render_pattern_ok(const char *s)
 	int conv = 0;
 
 	for (const char *p = s; (p = strchr(p, '%')) != NULL; p++) {
+		size_t width = 0;
 		if (*++p == '%')
 			continue;
-		p += strspn(p, "0123456789");
-		if (*p != 'd' || conv++)
+		/* (no frame number needs a field of more than 20 digits, and a
+		 * wider one would cut the name at the buffer's end) */
+		for (; *p >= '0' && *p <= '9' && width <= 20; p++)
+			width = 10 * width + (size_t)(*p - '0');
+		if (*p != 'd' || width > 20 || conv++)
 			return 0;
 	}
 	return 1;

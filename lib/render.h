@@ -103,7 +103,8 @@ int vdt_render_compare(const struct vdt_render *R, const char *path, double *rms
                        struct vdt_err *err);
 
 /* Is s a file name pattern with at most one integer conversion (%d, %03d;
- * %% escapes), as frame numbers are written into? 0 or 1. */
+ * a field of 20 at most; %% escapes), as frame numbers are written into?
+ * 0 or 1. */
 int vdt_render_pattern_ok(const char *s);
 
 #endif
