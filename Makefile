@@ -26,10 +26,10 @@ override CXXFLAGS += -std=c++17 -Wall -Wextra -Werror -MMD -MP \
 LDLIBS_VDT = -Wl,--as-needed -lz -lm -lpthread -ldl
 # Modules the tools load at their first use (lib/io/module.h). OpenImageIO
 # at the first image: its libraries cost a third of a second and ~130 MB
-# at start-up. Draco at the first .drc mesh: with the C++ runtime, 2.7 MB
-# resident and 1.3 ms at every start (vdt-qslim --version: 4.7 MB, 2.5 ms
-# a run with them; 2.0 MB, 1.2 ms without). Assimp at the first skinned
-# model: 5.8 MB and 2.6 ms of every start of vdt-deform.
+# at start-up. Draco at the first .drc mesh: with the C++ runtime, 3.5 MB
+# resident and about 1.3 ms, which every start would pay if it were linked
+# (a run without it: 2.2 MB). Assimp at the first skinned model: about
+# 9 MB and 2.6 ms, which every start of vdt-deform would pay.
 LDLIBS_vdt-image = -lOpenImageIO -lOpenImageIO_Util
 LDLIBS_vdt-draco = -ldraco
 LDLIBS_vdt-assimp = -lassimp
