@@ -15,7 +15,13 @@ CFLAGS ?= -O2 -g
 CXXFLAGS ?= -O2 -g
 PREFIX ?= /usr/local
 BINDIR ?= $(PREFIX)/bin
-MODDIR ?= $(PREFIX)/lib/vdt
+# The tools look for their modules beside themselves and in ../lib/vdt
+# from there (lib/io/module.h): where they go follows BINDIR, and is no
+# setting of its own, which the installed tools would not find.
+ifeq ($(origin MODDIR),command line)
+$(error MODDIR is not a setting: the modules go in lib/vdt beside BINDIR, where the tools look)
+endif
+MODDIR = $(dir $(patsubst %/,%,$(BINDIR)))lib/vdt
 MANDIR ?= $(PREFIX)/share/man
 FUZZ_SECONDS ?= 15
 
@@ -189,6 +195,7 @@ install: all
 uninstall:
 	rm -f $(addprefix $(DESTDIR)$(BINDIR)/,$(notdir $(TOOLS)) vdt-batch)
 	rm -f $(addprefix $(DESTDIR)$(MODDIR)/,$(notdir $(MODULES)))
+	rmdir --ignore-fail-on-non-empty $(DESTDIR)$(MODDIR) 2>/dev/null || :
 	rm -f $(addprefix $(DESTDIR)$(MANDIR)/man1/,$(notdir $(MAN1)))
 	rm -f $(addprefix $(DESTDIR)$(MANDIR)/man5/,$(notdir $(wildcard man/*.5)))
 	rm -f $(addprefix $(DESTDIR)$(MANDIR)/man7/,$(notdir $(wildcard man/*.7)))

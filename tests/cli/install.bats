@@ -62,6 +62,22 @@ ROOT="$BATS_TEST_DIRNAME/../.."
 	fi
 	make -s -C "$ROOT" uninstall DESTDIR="$TMP/d" PREFIX=/opt/vdt
 	[ -z "$(find "$TMP/d" -type f)" ]
+	# (and the modules' own directory)
+	[ ! -e "$TMP/d/opt/vdt/lib/vdt" ]
+}
+
+@test "make install puts the modules where the installed tools look, whatever BINDIR; MODDIR is refused" {
+	# a BINDIR of its own: the modules go in lib/vdt beside it, where the
+	# tools look (they went in PREFIX/lib/vdt, which the tools never read)
+	make -s -C "$ROOT" install PREFIX="$TMP/p" BINDIR="$TMP/q/bin" >/dev/null
+	[ -e "$TMP/q/lib/vdt/vdt-draco.so" ]
+	[ ! -e "$TMP/p/lib/vdt" ]
+	run make -s -C "$ROOT" install PREFIX="$TMP/p" MODDIR="$TMP/m"
+	[ "$status" -ne 0 ]
+	[[ "$output" == *"MODDIR is not a setting"* ]]
+	[ ! -e "$TMP/m" ]
+	make -s -C "$ROOT" uninstall PREFIX="$TMP/p" BINDIR="$TMP/q/bin"
+	[ -z "$(find "$TMP/q" -type f)" ]
 }
 
 @test "a variant switch relinks the tools; phase I's -O3 yields to the user's CFLAGS" {
