@@ -84,8 +84,8 @@ tree() { # a tree with a subdirectory and a corrupted model
 	run env LOCPATH="$TMP/locale" LC_ALL=de_DE.UTF-8 "$BATCH" -v -o "$TMP/out" "$TMP/in"
 	[ "$status" -eq 0 ]
 	[[ "$output" != *","[0-9][0-9]* ]]
-	n=$(cat "$TMP/out/.vdt-batch/"*.rec | grep -c ' time=[0-9]*\.[0-9][0-9]$')
-	[ "$n" -eq "$(cat "$TMP/out/.vdt-batch/"*.rec | wc -l)" ]
+	n=$(cat "$TMP/out/.vdt-batch/m/"*.rec | grep -c ' time=[0-9]*\.[0-9][0-9]$')
+	[ "$n" -eq "$(cat "$TMP/out/.vdt-batch/m/"*.rec | wc -l)" ]
 	[ "$n" -gt 0 ]
 }
 
@@ -371,12 +371,12 @@ SH
 	printf '%s\n' "$output" | grep -q '^  torus.lod1.ply  *230 '
 	printf '%s\n' "$output" | grep -q 'lod1_ply_triangles=230 lod1_ply_bytes=.* lod2_ply_triangles=114 '
 	# the same options: nothing is made, not even a stamp is rewritten
-	(cd "$TMP/out" && ls -l --time-style=full-iso . .vdt-batch/*.cmd .vdt-batch/*.rec) > "$TMP/before"
+	(cd "$TMP/out" && ls -l --time-style=full-iso . .vdt-batch/m/*.cmd .vdt-batch/m/*.rec) > "$TMP/before"
 	run "$BATCH" -v --ratios 10,5 -o "$TMP/out" "$TMP/in"
 	[ "$status" -eq 0 ]
 	! printf '%s\n' "$output" | grep -q ' done (' || false
 	printf '%s\n' "$output" | grep -q '^  torus.lod1.ply  *230 '
-	(cd "$TMP/out" && ls -l --time-style=full-iso . .vdt-batch/*.cmd .vdt-batch/*.rec) > "$TMP/after"
+	(cd "$TMP/out" && ls -l --time-style=full-iso . .vdt-batch/m/*.cmd .vdt-batch/m/*.rec) > "$TMP/after"
 	cmp "$TMP/before" "$TMP/after"
 	# a level whose ratio is unchanged is kept when another one changes
 	run "$BATCH" -v --ratios 10,20 -o "$TMP/out" "$TMP/in"
@@ -410,7 +410,7 @@ SH
 	ls -l --time-style=full-iso "$TMP/out/torus.lod1.ply" > "$TMP/before"
 	run "$BATCH" -v --ratios 20 --samples 2000 -o "$TMP/out" "$TMP/in"
 	[ "$status" -eq 0 ]
-	grep -q ' 2000$' "$TMP/out/.vdt-batch/torus.lod1.ply.rec.cmd"
+	grep -q ' 2000$' "$TMP/out/.vdt-batch/m/torus.lod1.ply.rec.cmd"
 	ls -l --time-style=full-iso "$TMP/out/torus.lod1.ply" | cmp - "$TMP/before"
 	# the format: the level in the new format, alone
 	run "$BATCH" -v -F off --ratios 20 --samples 2000 -o "$TMP/out" "$TMP/in"
@@ -517,6 +517,54 @@ SH
 	run "$BATCH" -q -o "$TMP/out" "$TMP/in"
 	[ "$status" -eq 0 ]
 	[ -s "$TMP/out/bunny.lod4.ply" ]
+}
+
+@test "vdt-batch: ^\\ (SIGQUIT) stops make and the tools too; ^Z stops them and fg goes on" {
+	mkdir -p "$TMP/in"
+	cp "$SAMPLES/fetched/bunny.ply" "$SAMPLES/sphere.off" "$SAMPLES/torus.off" "$TMP/in/"
+	started() {
+		for _ in $(seq 600); do
+			[ -e "$TMP/out/.vdt-batch/Makefile" ] && break
+			sleep 0.05
+		done
+		sleep 0.5
+	}
+	# the group starts with SIGQUIT ignored: passed on as such, it
+	# stopped nothing, and the tools ran on orphaned (the batch is given
+	# SIGQUIT's default back, as a shell with job control starts it)
+	env --default-signal=QUIT "$BATCH" -q -j 2 -o "$TMP/out" "$TMP/in" & pid=$!
+	started
+	kill -QUIT "$pid"
+	st=0
+	wait "$pid" || st=$?
+	[ "$st" -eq 131 ]
+	sleep 0.5
+	! pgrep -f "$TMP/" || false
+	# SIGTSTP to the batch stops its whole run, SIGCONT lets it finish
+	rm -rf "$TMP/out"
+	"$BATCH" -q -j 2 -o "$TMP/out" "$TMP/in" & pid=$!
+	started
+	kill -TSTP "$pid"
+	sleep 0.5
+	# every process of the run is stopped (state T)
+	[ -n "$(pgrep -f "$TMP/")" ]
+	[ -z "$(pgrep -f "$TMP/" | xargs ps -o stat= -p | grep -v '^T')" ]
+	kill -CONT "$pid"
+	wait "$pid"
+	[ -s "$TMP/out/bunny.lod4.ply" ]
+}
+
+@test "vdt-batch: a directory of models named like its own files (models, index) is one like any other" {
+	for d in models index lock stat usable; do
+		mkdir -p "$TMP/in/$d"
+		cp "$SAMPLES/torus.off" "$TMP/in/$d/"
+	done
+	run "$BATCH" -q --ratios 20 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+	[ -z "$output" ]
+	for d in models index lock stat usable; do
+		[ -s "$TMP/out/$d/torus.lod1.ply" ]
+	done
 }
 
 @test "vdt-batch: two models whose outputs would share a name both fail, and neither is written" {
@@ -705,7 +753,7 @@ SH
 	mkdir -p "$TMP/in"
 	cp "$SAMPLES/torus.off" "$SAMPLES/sphere.off" "$TMP/in/"
 	"$BATCH" -q --ratios 50 --samples 1000 -o "$TMP/out" "$TMP/in"
-	ls -l --time-style=full-iso "$TMP/out/sphere.lod1.ply" "$TMP/out/.vdt-batch/sphere.off."* > "$TMP/before"
+	ls -l --time-style=full-iso "$TMP/out/sphere.lod1.ply" "$TMP/out/.vdt-batch/m/sphere.off."* > "$TMP/before"
 	cp "$SAMPLES/plate.off" "$TMP/plate.off"
 	touch -d 2001-01-01 "$TMP/plate.off"
 	cp -p "$TMP/plate.off" "$TMP/in/torus.off"
@@ -727,7 +775,7 @@ SH
 	printf '%s\n' "$output" | grep -q 'torus.lod1.ply done ('
 	# the other model, and its stamps (its identity, sphere.off.id, too),
 	# were left alone
-	ls -l --time-style=full-iso "$TMP/out/sphere.lod1.ply" "$TMP/out/.vdt-batch/sphere.off."* | cmp - "$TMP/before"
+	ls -l --time-style=full-iso "$TMP/out/sphere.lod1.ply" "$TMP/out/.vdt-batch/m/sphere.off."* | cmp - "$TMP/before"
 	grep -q '/sphere.off.id$' "$TMP/before"
 }
 
