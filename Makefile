@@ -159,9 +159,16 @@ bench: deps
 
 # libFuzzer targets: clang, with the library built again for coverage.
 F := build/fuzz
-FUZZ_FLAGS := -g -O1 -fsanitize=fuzzer-no-link,address,undefined
+# (-MMD -MP: their own dependency files, which the include at the end
+# reads, so that a changed header rebuilds them as it does the others)
+FUZZ_FLAGS := -g -O1 -fsanitize=fuzzer-no-link,address,undefined -MMD -MP
 FUZZ_LIB_O := $(LIB_C:%.c=$(F)/%.o) $(LIB_CC:%.cc=$(F)/%.o)
 FUZZERS := $(patsubst tests/fuzz/%.c,$(F)/%,$(sort $(wildcard tests/fuzz/fuzz_*.c)))
+# (objects made before they had them are made again once, being older
+# than this stamp)
+$(F)/deps.stamp:
+	@mkdir -p $(@D) && touch $@
+$(FUZZ_LIB_O) $(FUZZERS:$(F)/%=$(F)/tests/fuzz/%.o): $(F)/deps.stamp
 $(F)/%.o: %.c
 	@mkdir -p $(@D)
 	clang $(CPPFLAGS) -std=c11 -Wall -Wextra $(FUZZ_FLAGS) -c -o $@ $<
