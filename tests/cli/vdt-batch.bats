@@ -13,6 +13,14 @@ tree() { # a tree with a subdirectory and a corrupted model
 	head -c 300 "$SAMPLES/sphere.off" > "$TMP/in/sub/broken.off"
 }
 
+started() { # a run into $TMP/out has written its Makefile, and begun
+	for _ in $(seq 600); do
+		[ -e "$TMP/out/.vdt-batch/Makefile" ] && break
+		sleep 0.05
+	done
+	sleep 0.5
+}
+
 @test "vdt-batch: bad usage is status 2" {
 	run "$BATCH" --bogus "$SAMPLES"
 	[ "$status" -eq 2 ]
@@ -500,57 +508,42 @@ SH
 @test "vdt-batch killed by its PID alone stops make and the tools it ran" {
 	mkdir -p "$TMP/in"
 	cp "$SAMPLES/fetched/bunny.ply" "$SAMPLES/sphere.off" "$SAMPLES/torus.off" "$TMP/in/"
-	"$BATCH" -q -j 2 -o "$TMP/out" "$TMP/in" & pid=$!
-	for _ in $(seq 600); do
-		[ -e "$TMP/out/.vdt-batch/Makefile" ] && break
-		sleep 0.05
+	# ^\ (SIGQUIT) too: the group starts with it ignored, so passed on as
+	# such it stopped nothing, and the tools ran on orphaned (the batch is
+	# given its default back, as a shell with job control starts it)
+	for sig in TERM:143 QUIT:131; do
+		rm -rf "$TMP/out"
+		env --default-signal=QUIT "$BATCH" -q -j 2 -o "$TMP/out" "$TMP/in" & pid=$!
+		started
+		kill -"${sig%:*}" "$pid"
+		st=0
+		wait "$pid" || st=$?
+		[ "$st" -eq "${sig#*:}" ]
+		sleep 0.5
+		# nothing of the run goes on behind its back: neither make nor
+		# the steps nor the tools (which name $TMP/in or $TMP/out)
+		! pgrep -f "$TMP/" || false
 	done
-	sleep 0.5
-	kill -TERM "$pid"
-	st=0
-	wait "$pid" || st=$?
-	[ "$st" -eq 143 ]
-	sleep 0.5
-	# nothing of the run goes on behind its back: neither make nor the
-	# steps nor the tools (which name $TMP/in or $TMP/out)
-	! pgrep -f "$TMP/" || false
 	run "$BATCH" -q -o "$TMP/out" "$TMP/in"
 	[ "$status" -eq 0 ]
 	[ -s "$TMP/out/bunny.lod4.ply" ]
 }
 
-@test "vdt-batch: ^\\ (SIGQUIT) stops make and the tools too; ^Z stops them and fg goes on" {
+@test "vdt-batch: ^Z (SIGTSTP) stops make and the tools too, and fg (SIGCONT) goes on" {
 	mkdir -p "$TMP/in"
 	cp "$SAMPLES/fetched/bunny.ply" "$SAMPLES/sphere.off" "$SAMPLES/torus.off" "$TMP/in/"
-	started() {
-		for _ in $(seq 600); do
-			[ -e "$TMP/out/.vdt-batch/Makefile" ] && break
-			sleep 0.05
-		done
-		sleep 0.5
-	}
-	# the group starts with SIGQUIT ignored: passed on as such, it
-	# stopped nothing, and the tools ran on orphaned (the batch is given
-	# SIGQUIT's default back, as a shell with job control starts it)
-	env --default-signal=QUIT "$BATCH" -q -j 2 -o "$TMP/out" "$TMP/in" & pid=$!
-	started
-	kill -QUIT "$pid"
-	st=0
-	wait "$pid" || st=$?
-	[ "$st" -eq 131 ]
-	sleep 0.5
-	! pgrep -f "$TMP/" || false
-	# SIGTSTP to the batch stops its whole run, SIGCONT lets it finish
-	rm -rf "$TMP/out"
 	"$BATCH" -q -j 2 -o "$TMP/out" "$TMP/in" & pid=$!
 	started
 	kill -TSTP "$pid"
 	sleep 0.5
-	# every process of the run is stopped (state T)
-	[ -n "$(pgrep -f "$TMP/")" ]
-	[ -z "$(pgrep -f "$TMP/" | xargs ps -o stat= -p | grep -v '^T')" ]
+	# every process of the run is stopped (state T), where make and the
+	# tools went on writing (their states taken first: the run goes on
+	# whatever they are, or a failure here would leave it stopped)
+	states=$(pgrep -f "$TMP/" | xargs -r ps -o stat= -p)
 	kill -CONT "$pid"
 	wait "$pid"
+	[ -n "$states" ]
+	[ -z "$(printf '%s\n' "$states" | grep -v '^T')" ]
 	[ -s "$TMP/out/bunny.lod4.ply" ]
 }
 
