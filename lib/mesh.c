@@ -1,5 +1,6 @@
 #include "mesh.h"
 #include "mem.h"
+#include "hash.h"
 
 #include <float.h>
 #include <math.h>
@@ -350,4 +351,88 @@ vdt_mesh_copy(struct vdt_mesh *dst, const struct vdt_mesh *src, struct vdt_err *
 	if (src->colors)
 		memcpy(dst->colors, src->colors, 4 * src->vertex_count * sizeof(float));
 	return 0;
+}
+
+/*
+ * ---- a small open-addressing hash of 64-bit keys ----
+ * Filled to between a third and two thirds: the probes of linear probing
+ * stay in a cache line or two, and on a mesh of 10M vertices the table
+ * takes 200 MB, not the 400 MB of a table at most half full, whose first
+ * touches and misses cost vdt-qslim's set-up 0.3 to 1.5 s more there.
+ */
+
+struct hash {
+	uint64_t *key;
+	uint32_t *val;
+	size_t mask;
+};
+
+static int
+hash_init(struct hash *h, size_t n)
+{
+	size_t cap = 16;
+	while (cap < n + n / 2)
+		cap *= 2;
+	h->key = vdt_malloc_huge(cap * sizeof(*h->key));
+	h->val = vdt_malloc_huge(cap * sizeof(*h->val));
+	h->mask = cap - 1;
+	if (h->key == NULL || h->val == NULL)
+		return -1;
+	memset(h->key, 0xff, cap * sizeof(*h->key));
+	return 0;
+}
+
+static void
+hash_free(struct hash *h)
+{
+	free(h->key);
+	free(h->val);
+}
+
+#define WELD_AHEAD 16 /* positions */
+
+size_t
+vdt_mesh_weld(const struct vdt_mesh *m, uint32_t *canon, uint32_t *first)
+{
+	struct hash h;
+	size_t n = 0;
+
+	if (hash_init(&h, m->vertex_count) != 0) {
+		hash_free(&h);
+		return 0;
+	}
+	for (size_t i = 0; i < m->vertex_count; i++) {
+		/* the slot of a position further on is on its way meanwhile */
+		if (i + WELD_AHEAD < m->vertex_count) {
+			size_t a = vdt_hash_mix(
+			                   vdt_hash_position(m->positions + 3 * (i + WELD_AHEAD))) &
+			           h.mask;
+			__builtin_prefetch(&h.key[a], 1);
+			__builtin_prefetch(&h.val[a], 1);
+		}
+		uint64_t key = vdt_hash_position(m->positions + 3 * i);
+		/* Chain on full equality: probe until a slot with equal
+		 * position or an empty one. */
+		size_t s = vdt_hash_mix(key) & h.mask;
+		for (;;) {
+			if (h.key[s] == UINT64_MAX) {
+				h.key[s] = key;
+				h.val[s] = (uint32_t)n;
+				first[n] = (uint32_t)i;
+				canon[i] = (uint32_t)n++;
+				break;
+			}
+			const float *o = m->positions + 3 * (size_t)first[h.val[s]],
+			            *p = m->positions + 3 * i;
+			/* (as numbers: -0 is 0, which a mirrored half of a model
+			 * writes along its mirror plane; no NaN gets here) */
+			if (h.key[s] == key && o[0] == p[0] && o[1] == p[1] && o[2] == p[2]) {
+				canon[i] = h.val[s];
+				break;
+			}
+			s = (s + 1) & h.mask;
+		}
+	}
+	hash_free(&h);
+	return n;
 }

@@ -110,6 +110,15 @@ double vdt_mesh_float_step(const struct vdt_mesh *m);
 double vdt_float_step(float x);
 
 /*
+ * Weld the vertices at equal positions (as numbers: -0 is 0): canon[i]
+ * (vertex_count of them) is the welded id of vertex i, ids numbered in
+ * order of first appearance, and first[w] the first vertex of welded
+ * vertex w (vertex_count at most). Returns the welded count, or 0 on
+ * allocation failure (or for no vertex).
+ */
+size_t vdt_mesh_weld(const struct vdt_mesh *m, uint32_t *canon, uint32_t *first);
+
+/*
  * Whether some face of m has an area (its corners' cross product, in
  * double, is not zero). A mesh with none, all its vertices on a line or
  * each face repeating a point, is no surface: bad input to every tool

@@ -19,7 +19,6 @@
 
 #include "bytes.h"
 #include "contract.h"
-#include "hash.h"
 #include "octree.h"
 #include "quadric.h"
 #include "topo.h"
@@ -148,43 +147,12 @@ sort3(const uint32_t *t, uint32_t s[3])
 	s[2] = c;
 }
 
-/*
- * The first vertex at each vertex's position, into first[] (-0 is 0).
- * Returns 0, or -1 out of memory.
- */
-static int
-first_at_position(const struct vdt_mesh *m, uint32_t *first)
-{
-	size_t cap = 16;
-	while (cap < 2 * m->vertex_count)
-		cap *= 2;
-	uint32_t *slot = malloc(cap * sizeof(*slot));
-
-	if (slot == NULL)
-		return -1;
-	memset(slot, 0xff, cap * sizeof(*slot));
-	for (size_t v = 0; v < m->vertex_count; v++) {
-		const float *p = m->positions + 3 * v;
-		size_t h = vdt_hash_position(p) & (cap - 1);
-		for (; slot[h] != NONE; h = (h + 1) & (cap - 1)) {
-			const float *o = m->positions + 3 * (size_t)slot[h];
-			if (o[0] == p[0] && o[1] == p[1] && o[2] == p[2])
-				break;
-		}
-		if (slot[h] == NONE)
-			slot[h] = (uint32_t)v;
-		first[v] = slot[h];
-	}
-	free(slot);
-	return 0;
-}
-
-/* Face c as the first vertices at its corners' positions, turned to start
- * at the least: equal for faces at one place the same way round. */
+/* Face c as the welded vertices at its corners (vdt_mesh_weld), turned to
+ * start at the least: equal for faces at one place the same way round. */
 static void
-at_positions(const uint32_t *c, const uint32_t *first, uint32_t r[3])
+at_positions(const uint32_t *c, const uint32_t *canon, uint32_t r[3])
 {
-	uint32_t a = first[c[0]], b = first[c[1]], d = first[c[2]];
+	uint32_t a = canon[c[0]], b = canon[c[1]], d = canon[c[2]];
 
 	if (a <= b && a <= d) {
 		r[0] = a, r[1] = b, r[2] = d;
@@ -204,13 +172,14 @@ vdt_vtree_prepare(struct vdt_mesh *m, size_t *dropped, struct vdt_err *err)
 	/* two tables of the faces kept: by their vertices, and by where
 	 * their corners are (a triangle soup's copies of one face) */
 	uint32_t *slot = malloc(2 * cap * sizeof(*slot)), *pslot = slot + cap;
-	uint32_t *first = malloc((m->vertex_count + 1) * sizeof(*first));
+	uint32_t *canon = malloc((2 * m->vertex_count + 1) * sizeof(*canon));
 
 	if (dropped)
 		*dropped = 0;
-	if (slot == NULL || first == NULL || first_at_position(m, first) != 0) {
+	if (slot == NULL || canon == NULL ||
+	    (m->vertex_count > 0 && vdt_mesh_weld(m, canon, canon + m->vertex_count) == 0)) {
 		free(slot);
-		free(first);
+		free(canon);
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory checking faces");
 	}
 	memset(slot, 0xff, 2 * cap * sizeof(*slot));
@@ -230,11 +199,11 @@ vdt_vtree_prepare(struct vdt_mesh *m, size_t *dropped, struct vdt_err *err)
 				break;
 			}
 		}
-		at_positions(c, first, r);
+		at_positions(c, canon, r);
 		size_t g = tri_hash(r[0], r[1], r[2]) & (cap - 1);
 		for (; !dup && pslot[g] != NONE; g = (g + 1) & (cap - 1)) {
 			uint32_t o[3];
-			at_positions(m->triangles + 3 * (size_t)pslot[g], first, o);
+			at_positions(m->triangles + 3 * (size_t)pslot[g], canon, o);
 			dup = o[0] == r[0] && o[1] == r[1] && o[2] == r[2];
 		}
 		if (dup)
@@ -243,7 +212,7 @@ vdt_vtree_prepare(struct vdt_mesh *m, size_t *dropped, struct vdt_err *err)
 		slot[h] = pslot[g] = (uint32_t)kept++;
 	}
 	free(slot);
-	free(first);
+	free(canon);
 	if (dropped)
 		*dropped = m->triangle_count - kept;
 	if (kept == 0)
