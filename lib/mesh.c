@@ -170,16 +170,6 @@ vdt_mesh_area_block(const struct vdt_mesh *m, const uint8_t *skip, size_t b, siz
 }
 
 double
-vdt_mesh_float_step(const struct vdt_mesh *m)
-{
-	float big = 0;
-
-	for (size_t i = 0; i < 3 * m->vertex_count; i++)
-		big = fmaxf(big, fabsf(m->positions[i]));
-	return m->vertex_count == 0 ? 0 : vdt_float_step(big);
-}
-
-double
 vdt_float_step(float x)
 {
 	x = fabsf(x);

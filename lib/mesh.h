@@ -101,12 +101,10 @@ void vdt_mesh_face_cross(const struct vdt_mesh *m, size_t t, double n[3]);
 double vdt_triangle_quality(const float *a, const float *b, const float *c);
 
 /*
- * How far apart 32-bit floats are at m's largest coordinate (in size: the
- * rounding of every position read or computed there); 0 for no vertex.
+ * How far apart 32-bit floats are at x (in size: the rounding of every
+ * position read or computed there): the step up from it (down at the
+ * largest float).
  */
-double vdt_mesh_float_step(const struct vdt_mesh *m);
-
-/* The same at the float x: the step up from it (down at the largest). */
 double vdt_float_step(float x);
 
 /*
