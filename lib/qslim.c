@@ -1927,14 +1927,14 @@ attr_distance(const struct vdt_mesh *m, uint32_t a, uint32_t b)
  * The output mesh: each surviving corner takes, among the input vertices
  * welded into its final vertex, the first whose attributes are closest to
  * those of the input vertex it started from; so seams stay where they were
- * and smooth regions get one vertex per position. Without attributes, or
- * when they are the same everywhere (in's triangles may then have been
- * taken), every corner takes the first: one vertex per position, as the
- * contractions saw the mesh, so a soup comes out indexed.
+ * and smooth regions get one vertex per position. Without attributes that
+ * vary (varying: vdt_mesh_varying_attrs of in, whose triangles may then
+ * have been taken), every corner takes the first: one vertex per
+ * position, as the contractions saw the mesh, so a soup comes out indexed.
  */
 static int
-build_output(const struct vdt_mesh *in, const uint32_t *canon, const uint32_t *wstart,
-             const uint32_t *wlist, const struct vdt_contract_result *r,
+build_output(const struct vdt_mesh *in, unsigned varying, const uint32_t *canon,
+             const uint32_t *wstart, const uint32_t *wlist, const struct vdt_contract_result *r,
              const struct back_corners *bk, struct vdt_mesh *out, struct vdt_err *err)
 {
 	uint32_t *index = malloc((in->vertex_count + 1) * sizeof(*index));
@@ -1947,13 +1947,12 @@ build_output(const struct vdt_mesh *in, const uint32_t *canon, const uint32_t *w
 		free(src);
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory building the output");
 	}
-	int attrs = in->triangles != NULL && vdt_mesh_varying_attrs(in) != 0;
 	memset(index, 0xff, in->vertex_count * sizeof(*index));
 	for (size_t t = 0; t < r->triangle_count; t++)
 		for (int k = 0; k < 3; k++) {
 			uint32_t v = r->triangles[3 * t + k];
 			uint32_t pick = wlist[wstart[v]];
-			uint32_t w0 = !attrs || wstart[v + 1] - wstart[v] < 2
+			uint32_t w0 = !varying || wstart[v + 1] - wstart[v] < 2
 			                      ? NONE
 			                      : corner_vertex(in, r, bk, t, k);
 			if (w0 != NONE) {
@@ -2831,7 +2830,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	if (c.at == NULL && wstart == NULL && input_lists(canon, n, nw, &wstart, &wlist) != 0)
 		goto nomem;
 	rc = c.at ? build_output_attr(in, &c, &r, &bk, out, err)
-	          : build_output(in, canon, wstart, wlist, &r, &bk, out, err);
+	          : build_output(in, varying, canon, wstart, wlist, &r, &bk, out, err);
 	if (rc == 0 && c.at != NULL && nbacks > 0)
 		back_attributes(in, &bk, out);
 	if (rc != 0)
