@@ -370,9 +370,10 @@ int vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 
 /*
  * 0 when what follows the triangles of the binary STL buf[0..len) (whose
- * count they fit in) may be let be, as padding; VDT_EFORMAT when it is a
- * second binary STL, which `cat a.stl b.stl` makes: read as the first
- * alone, the second was lost unsaid.
+ * count they fit in) may be let be, as padding; VDT_EFORMAT when it is
+ * whole records not all zero (the header's count is too low) or a second
+ * binary STL, which `cat a.stl b.stl` makes: read as the first alone, the
+ * rest was lost unsaid.
  */
 int vdt_stl_rest(const unsigned char *buf, size_t len, struct vdt_err *err);
 

@@ -253,9 +253,24 @@ int
 vdt_stl_rest(const unsigned char *buf, size_t len, struct vdt_err *err)
 {
 	uint64_t count = vdt_get_u32le(buf + 80), rest = len - 84 - 50 * count;
+	const unsigned char *r = buf + (len - rest);
 
+	if (rest >= 50 && rest % 50 == 0) {
+		/* Whole records, not all zero bytes (padding): the header's
+		 * count is too low (0 from a writer that never filled it in),
+		 * and the records it leaves out would be lost unsaid. */
+		size_t k = 0;
+		while (k < rest && r[k] == 0)
+			k++;
+		if (k < rest)
+			return vdt_err_set(err, VDT_EFORMAT,
+			                   "binary STL header counts %lu triangle%s, the file holds "
+			                   "%lu: its count is wrong",
+			                   (unsigned long)count, count == 1 ? "" : "s",
+			                   (unsigned long)(count + rest / 50));
+	}
 	if (rest >= 84) {
-		uint32_t c2 = vdt_get_u32le(buf + (len - rest) + 80);
+		uint32_t c2 = vdt_get_u32le(r + 80);
 		if (c2 > 0 && 84 + 50 * (uint64_t)c2 == rest)
 			return vdt_err_set(err, VDT_EFORMAT,
 			                   "two binary STLs one after the other (%lu and %lu triangles): "
@@ -276,8 +291,6 @@ vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 	if (len < 84)
 		return vdt_err_set(err, VDT_EFORMAT, "binary STL is truncated in its header (%zu bytes)", len);
 	count = vdt_get_u32le(buf + 80);
-	if (count == 0)
-		return vdt_err_set(err, VDT_EINVAL, "empty mesh (STL holds no triangle)");
 	if ((uint64_t)count > (len - 84) / 50)
 		return vdt_err_set(err, VDT_EFORMAT, "binary STL is truncated: it holds %zu of %lu triangles",
 		                   (len - 84) / 50, (unsigned long)count);
@@ -286,6 +299,8 @@ vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 		                   (unsigned long)count);
 	if (vdt_stl_rest(buf, len, err) != 0)
 		return VDT_EFORMAT;
+	if (count == 0)
+		return vdt_err_set(err, VDT_EINVAL, "empty mesh (STL holds no triangle)");
 	if (weld_init(&w, count) != 0)
 		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %lu triangles", (unsigned long)count);
 

@@ -188,3 +188,31 @@ PY
 		rm "$TMP/out.off"
 	done
 }
+
+@test "a binary STL whose header counts fewer triangles than it holds is refused, not cut short" {
+	python3 - "$TMP" <<'PY'
+import struct, sys
+d = sys.argv[1]
+tri = [struct.pack("<12fH", 0, 0, 1, x, 0, 0, x + 1, 0, 0, x, 1, 0, 0) for x in range(3)]
+head = lambda n: b" " * 80 + struct.pack("<I", n)
+open(d + "/low.stl", "wb").write(head(2) + b"".join(tri))
+open(d + "/none.stl", "wb").write(head(0) + b"".join(tri))
+open(d + "/zeros.stl", "wb").write(head(3) + b"".join(tri) + b"\0" * 150)
+PY
+	for t in "vdt-qslim -r 1" "vdt-cluster -g 8" "vdt-build"; do
+		for f in low:2 none:0; do
+			want="binary STL header counts ${f#*:} triangles, the file holds 3: its count is wrong"
+			for src in "'$TMP/${f%:*}.stl'" "- < '$TMP/${f%:*}.stl'"; do
+				run sh -c "$BIN/$t -o '$TMP/out.off' $src"
+				[ "$status" -eq 2 ]
+				[[ "$output" == "${t%% *}: cannot read '"*"': $want" ]]
+				[ ! -e "$TMP/out.off" ]
+			done
+		done
+		# whole records of zero bytes are padding, as before
+		$BIN/$t -q "$TMP/zeros.stl" -o "$TMP/out.off"
+		rm "$TMP/out.off"
+	done
+	"$BIN/vdt-qslim" -q -r 1 "$TMP/zeros.stl" -o "$TMP/z.off"
+	[ "$(off_faces "$TMP/z.off")" -eq 3 ]
+}
