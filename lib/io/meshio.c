@@ -232,6 +232,23 @@ vdt_format_unknown(const unsigned char *buf, size_t n, struct vdt_err *err)
 	return vdt_err_set(err, VDT_EFORMAT, "unknown format");
 }
 
+int
+vdt_text_lines(const unsigned char *buf, size_t n, enum vdt_format f, struct vdt_err *err)
+{
+	size_t l = n < 4096 ? n : 4096, cr = 0;
+
+	if (f != VDT_FMT_AUTO && f != VDT_FMT_OBJ && f != VDT_FMT_OFF && f != VDT_FMT_PLY_ASCII)
+		return 0;
+	if (!is_text(buf, l) || memchr(buf, '\n', l) != NULL)
+		return 0;
+	for (size_t i = 0; i + 1 < l; i++)
+		cr += buf[i] == '\r';
+	if (cr < 2)
+		return 0;
+	return vdt_err_set(err, VDT_EFORMAT, "lines end in a carriage return alone (old Mac OS "
+	                   "text): convert them to newlines, as tr '\\r' '\\n' does");
+}
+
 size_t
 vdt_bom_length(const unsigned char *buf, size_t n)
 {
@@ -400,6 +417,8 @@ vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
 		buf += b;
 		len -= b;
 	}
+	if ((rc = vdt_text_lines(buf, len, f, err)) != 0)
+		return rc;
 	switch (f) {
 	case VDT_FMT_VDT: rc = read_stream(buf, len, m, extra, err); break;
 	case VDT_FMT_PLY:

@@ -92,6 +92,12 @@ enum vdt_format vdt_format_guess(const unsigned char *buf, size_t n, enum vdt_fo
  * known (text in UTF-16 or UTF-32). */
 int vdt_format_unknown(const unsigned char *buf, size_t n, struct vdt_err *err);
 
+/* VDT_EFORMAT when buf[0..n) is text whose lines end in a carriage return
+ * alone (old Mac OS), which the OBJ, OFF and PLY readers would take for one
+ * long line and misreport (ASCII STL reads it, its line ends being blanks);
+ * else 0. Called with the text format f detected, or VDT_FMT_AUTO. */
+int vdt_text_lines(const unsigned char *buf, size_t n, enum vdt_format f, struct vdt_err *err);
+
 /*
  * Read a mesh from path ("-" for stdin). The format is detected from the
  * content. A regular file is mapped, watched by vdt_input_watch while it

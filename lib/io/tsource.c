@@ -1078,6 +1078,8 @@ setup(struct vdt_tsource *s, enum vdt_format hint, struct vdt_err *err)
 		s->buf += b;
 		s->len -= b;
 	}
+	if ((rc = vdt_text_lines(s->buf, s->len, s->format, err)) != 0)
+		return rc;
 	if (vdt_stream_sniff(s->buf, s->len)) {
 		s->kind = K_VDT;
 		s->format = VDT_FMT_VDT;

@@ -122,3 +122,25 @@ PY
 	run "$BIN/vdt-qslim" -q -r 0.5 "$TMP/a.off" -o "$TMP/out.vdt"
 	[ "$status" -eq 0 ]
 }
+
+@test "text whose lines end in a carriage return alone is named as such; CRLF still reads" {
+	printf 'OFF\r4 2 0\r0 0 0\r1 0 0\r0 1 0\r1 1 0\r3 0 1 2\r3 1 3 2\r' > "$TMP/a.off"
+	printf 'v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 3\r' > "$TMP/a.obj"
+	ascii_ply "uchar int" '3 0 1 2\n3 1 3 2' "$TMP/lf.ply"
+	tr '\n' '\r' < "$TMP/lf.ply" > "$TMP/a.ply"
+	want="lines end in a carriage return alone (old Mac OS text): convert them to newlines, as tr '\\r' '\\n' does"
+	for f in a.off a.obj a.ply; do
+		for t in "vdt-qslim -r 0.5" "vdt-cluster -g 8" "vdt-build"; do
+			refused "$TMP/$f" "$want" $t
+		done
+		run sh -c "'$BIN/vdt-qslim' -r 0.5 - -o '$TMP/out.vdt' < '$TMP/$f'"
+		[ "$status" -eq 2 ]
+		[ "$output" = "vdt-qslim: cannot read '<stdin>': $want" ]
+		# converted as the message says, it reads
+		tr '\r' '\n' < "$TMP/$f" > "$TMP/lf-$f"
+		"$BIN/vdt-qslim" -q -r 1 "$TMP/lf-$f" -o "$TMP/out.off"
+		sed 's/$/\r/' "$TMP/lf-$f" > "$TMP/crlf-$f"
+		"$BIN/vdt-qslim" -q -r 1 "$TMP/crlf-$f" -o "$TMP/out2.off"
+		cmp "$TMP/out.off" "$TMP/out2.off"
+	done
+}
