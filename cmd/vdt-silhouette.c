@@ -101,7 +101,8 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	if (nearest && !cl->has_view)
 		usage_error("--nearest weighs the cameras nearest to a --view: give one");
 	cl->in = input_operand(argc, argv, cl->in);
-	output_format(cl->out, VDT_FMT_VDT); /* (a terminal, before the work) */
+	if (!cl->has_view) /* (the labels of a view are text, for a terminal too) */
+		output_format(cl->out, VDT_FMT_VDT); /* (a terminal, before the work) */
 	refuse_output_over_input(cl->in, cl->out);
 	if (cl->cameras)
 		refuse_output_over_input(cl->cameras, cl->out);

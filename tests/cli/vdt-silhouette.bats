@@ -43,6 +43,13 @@ load helpers
 	run "$BIN/vdt-silhouette" -a 30 -r 64 --view 0.2,0.3,1 --nearest 1 "$SAMPLES/sphere.off"
 	[ "$status" -eq 0 ]
 	[ "$(printf '%s\n' "$output" | wc -l)" -eq 2562 ]
+	# text, so to a terminal too, where the stream is refused
+	run script -qec "$BIN/vdt-silhouette -q -a 30 -r 64 --view 0.2,0.3,1 $SAMPLES/sphere.off" /dev/null
+	[ "$status" -eq 0 ]
+	[ "$(printf '%s\n' "$output" | grep -c '^[0-9.e+-]*.$')" -eq 2562 ]
+	run script -qec "$BIN/vdt-silhouette -q -a 30 -r 64 $SAMPLES/sphere.off" /dev/null
+	[ "$status" -eq 2 ]
+	[[ "$output" == *"refusing to write binary vdt stream to a terminal"* ]]
 }
 
 @test "vdt-silhouette reads a camera list" {
