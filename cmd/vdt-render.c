@@ -27,10 +27,11 @@ struct cmdline {
 static void
 usage(FILE *f)
 {
-	fprintf(f, "usage: vdt-render [-p PIXELS] [-t TRIANGLES] [--frustum] [--backface] [--fovea K]\n"
-	        "                  [--lighting] [--eye X,Y,Z] [--at X,Y,Z] [--up X,Y,Z] [--fov DEG]\n"
-	        "                  [--size WxH] [--light X,Y,Z] [--path FILE] [--flat] [--wire]\n"
-	        "                  [--levels] [--full] [--compare REF] [--mesh-out PATTERN]\n"
+	fprintf(f, "usage: vdt-render [-p PIXELS] [-t TRIANGLES] [--frustum] [--backface]\n"
+	        "                  [--fovea K] [--lighting] [--eye X,Y,Z] [--at X,Y,Z]\n"
+	        "                  [--up X,Y,Z] [--fov DEG] [--size WxH] [--light X,Y,Z]\n"
+	        "                  [--path FILE] [--flat] [--wire] [--levels] [--full]\n"
+	        "                  [--compare REF] [--mesh-out PATTERN]\n"
 	        "                  [--contour-distance PIXELS] [--error-factor F] [--nearest N]\n"
 	        "                  [-o IMAGE] [-q] [-v] [INPUT]\n"
 	        "Adapt the view-dependence tree of INPUT (a .vdt stream, default -) to each\n"
