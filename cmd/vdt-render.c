@@ -174,6 +174,11 @@ check_outputs(const struct cmdline *cl, size_t nviews)
 		vdt_err_set(&err, VDT_EINVAL, "unknown output format (give a known extension)");
 		return fail("cannot write", a, &err);
 	}
+	/* (a directory that is not there, or not writable: status 1) */
+	for (size_t i = 0; i < nviews; i++)
+		for (int k = 0; k < 2; k++)
+			if (pat[k])
+				refuse_unwritable(frame_name(a, pat[k], i));
 	for (size_t i = 0; cl->compare && i < nviews; i++)
 		if (access(frame_name(a, cl->compare, i), R_OK) != 0) {
 			vdt_err_set(&err, VDT_EINVAL, "%s", strerror(errno));
@@ -203,16 +208,24 @@ run(struct cmdline *cl)
 	char names[64];
 	int over_budget = 0; /* said once */
 
-	if (vdt_read(cl->in, &m, &extra, &err) != 0)
-		return fail("cannot read", cl->in, &err);
+	/* The views and the outputs before the tree, as every tool checks
+	 * its outputs before the work: a typo in a directory's name is said
+	 * at once, not after a big tree is read, or never when it comes from
+	 * a pipe that does not end. */
+	if (cl->path && vdt_camera_read_path(cl->path, &cl->v, &views, &nviews, &err) != 0)
+		return fail("cannot read", cl->path, &err);
+	if ((rc = check_outputs(cl, nviews)) != EXIT_OK)
+		goto out;
+	if (vdt_read(cl->in, &m, &extra, &err) != 0) {
+		rc = fail("cannot read", cl->in, &err);
+		goto out;
+	}
 	read_s = vdt_seconds() - start;
 	note_float_precision(cl->in, &m, cl->quiet);
-	if (vdt_render_init(&R, &m, &extra, &cl->o, cl->v.width, cl->v.height, &err) != 0)
+	if (vdt_render_init(&R, &m, &extra, &cl->o, cl->v.width, cl->v.height, &err) != 0) {
 		rc = fail(err.code == VDT_ENOMEM ? "cannot render" : "cannot read", cl->in, &err);
-	else if (cl->path && vdt_camera_read_path(cl->path, &cl->v, &views, &nviews, &err) != 0)
-		rc = fail("cannot read", cl->path, &err);
-	if (rc != EXIT_OK)
 		goto out;
+	}
 	vdt_mesh_bbox(&m, &box);
 	if (views == &cl->v)
 		vdt_view_aim(&cl->v, &box, cl->has_eye, cl->has_at);
@@ -225,8 +238,6 @@ run(struct cmdline *cl)
 		rc = EXIT_USAGE;
 		goto out;
 	}
-	if ((rc = check_outputs(cl, nviews)) != EXIT_OK)
-		goto out;
 	/* --compare's lines on standard output, unless an image or mesh goes
 	 * there: then on standard error, not inside it */
 	char name0[4096];

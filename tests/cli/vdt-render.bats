@@ -98,6 +98,17 @@ tree() {
 	[ ! -e "$TMP/x.png" ]
 	run "$BIN/vdt-render" "$TMP/t.vdt" --compare "$TMP/none.png" -o "$TMP/x.png"
 	[ "$status" -eq 2 ]
+	# all before the tree is read: from a pipe that never ends, at once
+	mkfifo "$TMP/never"
+	sleep 60 > "$TMP/never" 3>&- & # (a writer that writes nothing)
+	writer=$!
+	for o in "-o $TMP/no/x.png" "--mesh-out $TMP/no/x.ply -o $TMP/x.png" "-o $TMP/x.zzz" \
+		"--compare $TMP/none.png -o $TMP/x.png"; do
+		run timeout 20 "$BIN/vdt-render" "$TMP/never" $o
+		[ "$status" -eq 1 ] || [ "$status" -eq 2 ]
+		one_line
+	done
+	kill $writer
 }
 
 @test "vdt-render writes PNG, TIFF and EXR that read back at the right size" {
