@@ -226,6 +226,9 @@ run(struct cmdline *cl)
 		rc = fail(err.code == VDT_ENOMEM ? "cannot render" : "cannot read", cl->in, &err);
 		goto out;
 	}
+	/* --mesh-out's fronts have vertices of their own: what describes
+	 * the tree's goes (decoded above), any other chunk is passed on. */
+	vdt_chunks_drop_vertex_data(&extra);
 	vdt_mesh_bbox(&m, &box);
 	if (views == &cl->v)
 		vdt_view_aim(&cl->v, &box, cl->has_eye, cl->has_at);
@@ -281,7 +284,7 @@ run(struct cmdline *cl)
 		                           R.r.rgb, &done, &err) != 0)
 			rc = fail("cannot write", name, &err);
 		if (rc == EXIT_OK && cl->mesh_out &&
-		    vdt_write(frame_name(name, cl->mesh_out, i), R.drawn, NULL, &wo, &err) != 0)
+		    vdt_write(frame_name(name, cl->mesh_out, i), R.drawn, &extra, &wo, &err) != 0)
 			rc = fail("cannot write", name, &err);
 		t3 = vdt_seconds();
 		write_s += t3 - t2;

@@ -143,6 +143,11 @@ load helpers
 		+ 2 * ch[0][1][24:24 + 12 * struct.unpack('<Q', ch[0][1][8:16])[0]]), ch[2]]"
 	"$BIN/vdt-deform" -q -r 0.5 "$TMP/anim.vdt" -o "$TMP/d.vdt"
 	[ "$(chunk_types "$TMP/d.vdt")" = "MESH FRMS XTRA END " ]
+	# vdt-render's fronts: the tree and the labels describe other vertices
+	for full in "" --full; do
+		"$BIN/vdt-render" -q $full --size 16x16 "$TMP/sb.vdt" -o /dev/null --mesh-out "$TMP/r.vdt"
+		[ "$(chunk_types "$TMP/r.vdt")" = "MESH XTRA END " ]
+	done
 }
 
 @test "a chunk of the vertices before MESH, or a second one, is refused by every reader" {
