@@ -35,9 +35,8 @@ vdt_chunk_name(uint32_t type, char buf[5])
 	buf[4] = '\0';
 }
 
-/* The name for messages: "END " reads better without its blank. */
-static const char *
-label(uint32_t type, char buf[5])
+const char *
+vdt_chunk_label(uint32_t type, char buf[5])
 {
 	vdt_chunk_name(type, buf);
 	for (int i = 3; i > 0 && buf[i] == ' '; i--)
@@ -224,7 +223,7 @@ truncated(uint32_t type, uint64_t at, uint64_t length, uint64_t found,
 	return vdt_err_set(err, VDT_EFORMAT,
 	                   "chunk %s at byte %" PRIu64 ": truncated: expected a payload of %" PRIu64
 	                   " bytes and a 4-byte CRC, found %" PRIu64 " bytes",
-	                   label(type, name), at, length, found);
+	                   vdt_chunk_label(type, name), at, length, found);
 }
 
 /*
@@ -294,6 +293,10 @@ next_chunk(struct src *s, struct vdt_chunk *c, struct vdt_err *err)
 		                   at, sizeof(h), got);
 	type = vdt_get_u32le(h);
 	length = vdt_get_u64le(h + 4);
+	/* (before its payload: bytes of no chunk may announce any length,
+	 * which a pipe would be read for, to the end of memory) */
+	if ((rc = vdt_chunk_type_check(type, at, err)) != 0)
+		return rc;
 	if (type == VDT_CHUNK_END && length != 0)
 		return vdt_err_set(err, VDT_EFORMAT,
 		                   "chunk END at byte %" PRIu64 ": payload of %" PRIu64 " bytes, expected none",
@@ -304,7 +307,7 @@ next_chunk(struct src *s, struct vdt_chunk *c, struct vdt_err *err)
 	if (length > SIZE_MAX)
 		return vdt_err_set(err, VDT_ENOMEM,
 		                   "chunk %s at byte %" PRIu64 ": payload of %" PRIu64 " bytes is too large",
-		                   label(type, name), at, length);
+		                   vdt_chunk_label(type, name), at, length);
 	if ((rc = read_payload(s, type, at, length, sized, &c->data, err)) != 0)
 		return rc;
 	if ((rc = pull(s, t, sizeof(t), &got, err)) != 0)
@@ -319,11 +322,9 @@ next_chunk(struct src *s, struct vdt_chunk *c, struct vdt_err *err)
 		rc = vdt_err_set(err, VDT_ECHECKSUM,
 		                 "chunk %s at byte %" PRIu64 ": checksum mismatch (stored %08" PRIx32
 		                 ", computed %08" PRIx32 ")",
-		                 label(type, name), at, stored, computed);
+		                 vdt_chunk_label(type, name), at, stored, computed);
 		goto fail;
 	}
-	if ((rc = vdt_chunk_type_check(type, at, err)) != 0)
-		goto fail;
 	if (type == VDT_CHUNK_END) {
 		if (left(s, &room) && room > 0)
 			return vdt_err_set(err, VDT_EFORMAT,
@@ -488,10 +489,10 @@ vdt_chunk_order_next(struct vdt_chunk_order *o, uint32_t type, uint64_t offset,
 {
 	char name[5];
 
-	vdt_chunk_name(type, name);
+	vdt_chunk_label(type, name);
 	if (type == VDT_CHUNK_MESH) {
 		if (o->mesh)
-			return vdt_err_set(err, VDT_EFORMAT, "second MESH chunk at offset %llu",
+			return vdt_err_set(err, VDT_EFORMAT, "second MESH chunk at byte %llu",
 			                   (unsigned long long)offset);
 		o->mesh = 1;
 	}
@@ -501,10 +502,10 @@ vdt_chunk_order_next(struct vdt_chunk_order *o, uint32_t type, uint64_t offset,
 		/* another would be silently lost */
 		if (!o->mesh)
 			return vdt_err_set(err, VDT_EFORMAT,
-			                   "chunk %s at offset %llu comes before the MESH chunk", name,
+			                   "chunk %s at byte %llu comes before the MESH chunk", name,
 			                   (unsigned long long)offset);
 		if (o->seen & 1u << i)
-			return vdt_err_set(err, VDT_EFORMAT, "second %s chunk at offset %llu", name,
+			return vdt_err_set(err, VDT_EFORMAT, "second %s chunk at byte %llu", name,
 			                   (unsigned long long)offset);
 		o->seen |= 1u << i;
 	}
@@ -563,10 +564,10 @@ vdt_stream_write_chunk(FILE *f, uint32_t type, const unsigned char *data,
 
 	if (!printable(type) || type == VDT_CHUNK_END)
 		return vdt_err_set(err, VDT_EINVAL, "cannot write a chunk of type '%s'",
-		                   label(type, name));
+		                   vdt_chunk_label(type, name));
 	if (length > SIZE_MAX)
 		return vdt_err_set(err, VDT_EINVAL, "chunk %s of %" PRIu64 " bytes is too large",
-		                   label(type, name), length);
+		                   vdt_chunk_label(type, name), length);
 	return write_chunk(f, type, data, length, err);
 }
 

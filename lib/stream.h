@@ -62,6 +62,9 @@ struct vdt_chunks {
  * that is not printable ASCII replaced by '?' (for messages).
  */
 void vdt_chunk_name(uint32_t type, char buf[5]);
+/* vdt_chunk_name without trailing blanks, returning buf: "END" reads
+ * better in a message than "END ". */
+const char *vdt_chunk_label(uint32_t type, char buf[5]);
 
 /*
  * True if the first n bytes of buf look like a vdt stream: they start with
@@ -161,7 +164,7 @@ int vdt_chunk_type_of_vertices(uint32_t type);
  * and after it at most one chunk of each type that describes its
  * vertices. Zero the struct, then give it each chunk's type and offset in
  * the order read: 0, or VDT_EFORMAT naming the chunk ("second MESH chunk
- * at offset 92", "chunk QUAD at offset 12 comes before the MESH chunk").
+ * at byte 92", "chunk QUAD at byte 12 comes before the MESH chunk").
  */
 struct vdt_chunk_order {
 	int mesh;      /* a MESH chunk was met */

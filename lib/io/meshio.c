@@ -362,7 +362,7 @@ stream_mesh(struct vdt_chunks c, struct vdt_mesh *m, struct vdt_chunks *extra,
 	}
 	rc = vdt_mesh_decode(c.items[mesh_at].data, c.items[mesh_at].length, m, err);
 	if (rc != 0) {
-		vdt_err_prefix(err, "MESH chunk at offset %llu",
+		vdt_err_prefix(err, "chunk MESH at byte %llu",
 		               (unsigned long long)c.items[mesh_at].offset);
 		goto fail;
 	}

@@ -942,7 +942,13 @@ vdt_open(struct vdt_tsource *s, struct vdt_err *err)
 			                   : "chunk at byte %" PRIu64 ": truncated header", at);
 		type = vdt_get_u32le(s->buf + at);
 		length = vdt_get_u64le(s->buf + at + 4);
-		vdt_chunk_name(type, name);
+		vdt_chunk_label(type, name);
+		/* (in the order and words of the stream reader's checks) */
+		if ((rc = vdt_chunk_type_check(type, at, err)) != 0)
+			return rc;
+		if (type == VDT_CHUNK_END && length != 0)
+			return vdt_err_set(err, VDT_EFORMAT, "chunk END at byte %" PRIu64 ": payload of %"
+			                   PRIu64 " bytes, expected none", at, length);
 		if (length > s->len - at - 12 || s->len - at - 12 - length < 4)
 			return vdt_err_set(err, VDT_EFORMAT,
 			                   "chunk %s at byte %" PRIu64 ": truncated: expected a payload of %" PRIu64
@@ -960,12 +966,7 @@ vdt_open(struct vdt_tsource *s, struct vdt_err *err)
 			return vdt_err_set(err, VDT_ECHECKSUM,
 			                   "chunk %s at byte %" PRIu64 ": checksum mismatch (stored %08" PRIx32
 			                   ", computed %08" PRIx32 ")", name, at, crc, (uint32_t)c);
-		if ((rc = vdt_chunk_type_check(type, at, err)) != 0)
-			return rc;
 		if (type == VDT_CHUNK_END) {
-			if (length != 0)
-				return vdt_err_set(err, VDT_EFORMAT, "chunk END at byte %" PRIu64 ": payload of %"
-				                   PRIu64 " bytes, expected none", at, length);
 			if (at + 16 != s->len)
 				return vdt_err_set(err, VDT_EFORMAT, "%" PRIu64 " bytes after the end chunk at byte %"
 				                   PRIu64, (uint64_t)(s->len - at - 16), at + 16);
@@ -994,7 +995,9 @@ vdt_open(struct vdt_tsource *s, struct vdt_err *err)
 		uint64_t v, t, per;
 
 		if (mesh_len < 24)
-			return vdt_err_set(err, VDT_EFORMAT, "chunk MESH at byte %" PRIu64 ": too short", mesh_at);
+			return vdt_err_set(err, VDT_EFORMAT, "chunk MESH at byte %" PRIu64 ": payload of %"
+			                   PRIu64 " bytes is shorter than its 24-byte header", mesh_at,
+			                   mesh_len);
 		mask = vdt_get_u32le(mesh);
 		v = vdt_get_u64le(mesh + 8);
 		t = vdt_get_u64le(mesh + 16);

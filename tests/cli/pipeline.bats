@@ -159,10 +159,10 @@ load helpers
 		run "$BIN/$tool" "$TMP/before.vdt" -o "$TMP/out.vdt"
 		[ "$status" -eq 2 ]
 		one_line
-		[[ "$output" == "$tool: cannot read '$TMP/before.vdt': chunk QUAD at offset 12 comes before the MESH chunk" ]]
+		[[ "$output" == "$tool: cannot read '$TMP/before.vdt': chunk QUAD at byte 12 comes before the MESH chunk" ]]
 		run "$BIN/$tool" "$TMP/twice.vdt" -o "$TMP/out.vdt"
 		[ "$status" -eq 2 ]
-		[[ "$output" == "$tool: cannot read '$TMP/twice.vdt': second QUAD chunk at offset "* ]]
+		[[ "$output" == "$tool: cannot read '$TMP/twice.vdt': second QUAD chunk at byte "* ]]
 		[ ! -e "$TMP/out.vdt" ]
 	done
 	run "$BIN/vdt-deform" -r 0.5 "$TMP/twice.vdt" -o "$TMP/out.vdt"

@@ -759,3 +759,24 @@ PY
 	done
 	[ "$short" -eq 1 ]
 }
+
+@test "vdt-cluster's own stream walker refuses a damaged stream in the stream reader's words" {
+	g="$DATA/golden-v1.vdt"
+	# a MESH chunk too short for its header; a type of no chunk announcing
+	# 2^40 bytes; an END chunk with a payload (each CRC right)
+	restream "$g" "$TMP/short.vdt" "[(b'MESH', b'')] + ch[1:]"
+	python3 - "$g" "$TMP" <<'PY'
+import struct, sys, zlib
+b, d = open(sys.argv[1], 'rb').read(), sys.argv[2]
+open(d + '/type.vdt', 'wb').write(b[:12] + b'\0\1\2\3' + struct.pack('<Q', 1 << 40) + b[20:])
+end = b.rindex(b'END ')
+p = b'!'
+open(d + '/end.vdt', 'wb').write(b[:end] + b'END ' + struct.pack('<Q', 1) + p + struct.pack('<I', zlib.crc32(b'END ' + p)))
+PY
+	for f in short:"chunk MESH at byte 12: payload of 0 bytes is shorter than its 24-byte header" \
+		type:"chunk at byte 12: type 00 01 02 03 is not printable ASCII" \
+		end:"chunk END at byte 569: payload of 1 bytes, expected none"; do
+		same_refusal "$TMP/${f%%:*}.vdt"
+		[ "$want" = "cannot read '$TMP/${f%%:*}.vdt': ${f#*:}" ]
+	done
+}

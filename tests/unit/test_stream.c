@@ -686,9 +686,10 @@ truncated_everywhere(void **state)
 	free(buf);
 }
 
-/* Which status a flip of one bit at byte i of the fixture must give. */
+/* Which status a flip of one bit at byte i of the fixture, which made it
+ * the byte now, must give. */
 static int
-expected_flip(size_t i, int bit)
+expected_flip(size_t i, int bit, unsigned char now)
 {
 	if (i < 8)
 		return VDT_EFORMAT;
@@ -702,6 +703,8 @@ expected_flip(size_t i, int bit)
 		uint64_t at = golden_chunks[k].offset;
 		if (i >= at + 4 && i < at + 12)
 			return golden_chunks[k].type == VDT_CHUNK_END ? VDT_EFORMAT : 1;
+		if (i >= at && i < at + 4 && (now < 0x20 || now > 0x7e))
+			return VDT_EFORMAT; /* a type of no chunk, said from the header */
 	}
 	return VDT_ECHECKSUM; /* type, payload or CRC */
 }
@@ -716,9 +719,10 @@ bit_flips(void **state)
 	(void)state;
 	for (size_t i = 0; i < len; i++)
 		for (int bit = 0; bit < 8; bit++) {
-			int want = expected_flip(i, bit), rc;
+			int want, rc;
 
 			buf[i] ^= (unsigned char)(1u << bit);
+			want = expected_flip(i, bit, buf[i]);
 			rc = decode_rc(buf, len, &err);
 			if (want == 1) /* a length: too long, or the CRC read elsewhere */
 				assert_true(rc == VDT_EFORMAT || rc == VDT_ECHECKSUM);
@@ -871,6 +875,21 @@ bad_framing(void **state)
 	fix_crc(longer, 548);
 	assert_int_equal(decode_rc(longer, len, &err), VDT_EFORMAT);
 	assert_string_equal(err.msg, "chunk at byte 548: type 00 54 52 41 is not printable ASCII");
+	/* ... said from its header alone, whatever length it announces: a
+	 * pipe is not read for a payload of 2^40 bytes */
+	memcpy(longer, buf, len);
+	memcpy(longer + 12, "\0\1\2\3", 4);
+	vdt_put_u64le(longer + 16, (uint64_t)1 << 40);
+	assert_int_equal(decode_rc(longer, len, &err), VDT_EFORMAT);
+	assert_string_equal(err.msg, "chunk at byte 12: type 00 01 02 03 is not printable ASCII");
+	{
+		pid_t pid;
+		struct vdt_chunks c;
+		FILE *f = pipe_from(longer, len, &pid);
+		assert_int_equal(vdt_stream_read(f, NULL, 0, &c, &err), VDT_EFORMAT);
+		assert_string_equal(err.msg, "chunk at byte 12: type 00 01 02 03 is not printable ASCII");
+		reap(f, pid);
+	}
 	free(longer);
 	free(buf);
 }
