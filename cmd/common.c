@@ -88,16 +88,31 @@ output_format(const char *path, enum vdt_format given)
 	return f;
 }
 
+/* s and a newline on standard error, in one line whatever the values it
+ * quotes hold: a control character as \ooo, as input_name shows a name. */
+static void
+put_line(const char *s)
+{
+	for (const unsigned char *p = (const unsigned char *)s; *p; p++)
+		if (*p < 0x20 || *p == 0x7f)
+			fprintf(stderr, "\\%03o", *p);
+		else
+			fputc(*p, stderr);
+	fputc('\n', stderr);
+}
+
 void
 usage_error(const char *fmt, ...)
 {
 	va_list ap;
 
-	fprintf(stderr, "%s: ", progname);
+	char line[2048];
+
 	va_start(ap, fmt);
-	vfprintf(stderr, fmt, ap);
+	vsnprintf(line, sizeof(line), fmt, ap);
 	va_end(ap);
-	fprintf(stderr, "\n");
+	fprintf(stderr, "%s: ", progname);
+	put_line(line);
 	exit(EXIT_USAGE);
 }
 
@@ -160,8 +175,9 @@ fail(const char *what, const char *file, const struct vdt_err *err)
 	reported = 1;
 	if (strncmp(what, "cannot write", 12) == 0 && strcmp(file ? file : "-", "-") == 0)
 		name = "<stdout>";
-	fprintf(stderr, "%s: %s '%s': %s\n", progname, what, name,
-	        err && err->msg[0] ? err->msg : vdt_strstatus(err ? err->code : 0));
+	fprintf(stderr, "%s: %s '%s': ", progname, what, name);
+	/* (a library's message may quote the name as given) */
+	put_line(err && err->msg[0] ? err->msg : vdt_strstatus(err ? err->code : 0));
 	if (strncmp(what, "cannot write", 12) == 0)
 		return err && err->code == VDT_EINVAL ? EXIT_USAGE : EXIT_WORK;
 	return exit_status(err ? err->code : VDT_EIO);

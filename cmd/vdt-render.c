@@ -234,7 +234,7 @@ run(struct cmdline *cl)
 		vdt_view_aim(&cl->v, &box, cl->has_eye, cl->has_at);
 	if (vdt_views_check(views, nviews, &box, &err) != 0) {
 		if (cl->path)
-			fprintf(stderr, "%s: bad view in '%s': %s\n", progname, cl->path, err.msg);
+			fprintf(stderr, "%s: bad view in '%s': %s\n", progname, input_name(cl->path), err.msg);
 		else
 			fprintf(stderr, "%s: bad view of '%s' (--eye, --at, --up): %s\n", progname,
 			        input_name(cl->in), err.msg);

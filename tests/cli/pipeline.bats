@@ -118,12 +118,28 @@ load helpers
 @test "every tool: a file name with a newline is named in one line" {
 	nl=$'a\nb.off'
 	for t in vdt-qslim vdt-cluster vdt-build vdt-render vdt-silhouette; do
-		run "$BIN/$t" "$TMP/$nl" -o "$TMP/out.vdt"
+		o=$TMP/out.vdt
+		[ $t != vdt-render ] || o=$TMP/out.png
+		run "$BIN/$t" "$TMP/$nl" -o "$o"
 		[ "$status" -eq 2 ]
 		one_line
 		[[ "$output" == *"'$TMP/a\\012b.off'"* ]]
 	done
 	run "$BIN/vdt-measure" "$TMP/$nl" "$SAMPLES/sphere.off"
+	[ "$status" -eq 2 ]
+	one_line
+	# an output's name, an option's value, a library's words quoting a name
+	for t in vdt-qslim vdt-cluster vdt-deform; do
+		run "$BIN/$t" "$SAMPLES/sphere.off" -o "$TMP/x${nl%.off}.unk"
+		[ "$status" -eq 2 ]
+		one_line
+		[[ "$output" == *"'$TMP/xa\012b.unk'"* ]]
+	done
+	run "$BIN/vdt-qslim" -F "o${nl%.off}j" "$SAMPLES/sphere.off"
+	[ "$status" -eq 2 ]
+	one_line
+	"$BIN/vdt-build" -q "$SAMPLES/torus.off" -o "$TMP/t.vdt"
+	run "$BIN/vdt-render" "$TMP/t.vdt" -o "$TMP/x${nl%.off}.zzz"
 	[ "$status" -eq 2 ]
 	one_line
 }
