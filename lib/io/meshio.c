@@ -1009,6 +1009,10 @@ vdt_output_temp(const char *target, char **tmp, struct vdt_err *err)
 	*tmp = NULL;
 	if (bl > room)
 		return vdt_err_set(err, VDT_EIO, "%s", strerror(ENAMETOOLONG));
+	/* A file its user may not write (chmod a-w, to keep it) is not
+	 * replaced behind his back, as `> file` would not write it either. */
+	if (access(target, W_OK) != 0 && errno == EACCES)
+		return vdt_err_set(err, VDT_EIO, "%s", strerror(EACCES));
 	if (bl + 8 > room) {
 		bl = room > 8 ? room - 8 : 0;
 		while (bl > 0 && (base[bl] & 0xc0) == 0x80)

@@ -75,6 +75,34 @@ refused() {
 	[ "$(stat -c %a "$TMP/new.off")" = 644 ]
 }
 
+@test "-o a file its user may not write is refused at once, status 1, and left as it was" {
+	as=
+	if [ "$(id -u)" -eq 0 ]; then # (root may write anything: run as nobody)
+		command -v setpriv >/dev/null && id nobody >/dev/null 2>&1 || skip "no setpriv or nobody"
+		as="setpriv --reuid=nobody --regid=$(id -g nobody) --clear-groups"
+		chmod 777 "$TMP"
+	fi
+	"$BIN/vdt-build" -q "$SAMPLES/torus.off" -o "$TMP/t.vdt"
+	chmod 644 "$TMP/t.vdt"
+	for f in kept.off kept.png; do
+		printf 'old\n' > "$TMP/$f"
+		chmod 444 "$TMP/$f"
+		[ -z "$as" ] || chown nobody "$TMP/$f"
+	done
+	run $as "$BIN/vdt-qslim" -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/kept.off"
+	[ "$status" -eq 1 ]
+	[ "$output" = "vdt-qslim: cannot write '$TMP/kept.off': Permission denied" ]
+	run $as "$BIN/vdt-render" --size 16x16 "$TMP/t.vdt" -o "$TMP/kept.png"
+	[ "$status" -eq 1 ]
+	[ "$output" = "vdt-render: cannot write '$TMP/kept.png': Permission denied" ]
+	[ "$(cat "$TMP/kept.off" "$TMP/kept.png")" = "$(printf 'old\nold')" ]
+	[ "$(ls -A "$TMP" | wc -l)" -eq 3 ]
+	# made writable again, it is replaced
+	chmod 644 "$TMP/kept.off"
+	$as "$BIN/vdt-qslim" -q -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/kept.off"
+	[ "$(head -n 1 "$TMP/kept.off")" = OFF ]
+}
+
 @test "-o a file of another user's, run as root, keeps its owner" {
 	[ "$(id -u)" -eq 0 ] || skip "not root"
 	id nobody >/dev/null 2>&1 || skip "no user nobody"
