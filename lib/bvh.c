@@ -18,6 +18,7 @@
  *     also gets one slab, square to them, in a direction of its own.
  */
 #include "bvh.h"
+#include "hash.h"
 
 #include <assert.h>
 #include <float.h>
@@ -656,6 +657,71 @@ slabs(struct vdt_bvh *bvh)
 	bvh->slabs = NULL;
 }
 
+/* Fill bvh->least under node; returns the node's. */
+static uint32_t
+fill_least(struct vdt_bvh *bvh, uint32_t node)
+{
+	const struct vdt_bvh_node *n = &bvh->nodes[node];
+	uint32_t m = UINT32_MAX;
+
+	if (n->count > 0) {
+		for (uint32_t s = n->index; s < n->index + n->count; s++)
+			m = bvh->order[s] < m ? bvh->order[s] : m;
+	} else {
+		uint32_t l = fill_least(bvh, node + 1), r = fill_least(bvh, n->index);
+		m = l < r ? l : r;
+	}
+	return bvh->least[node] = m;
+}
+
+/*
+ * Drop the prims (in order of their ids) whose corners are those of an
+ * earlier one, bit for bit and in the same order: the distance to each is
+ * the same to the last bit, so the earlier, of the lower id, always wins
+ * the tie, and the others only cost time (a triangle stacked thousands of
+ * times: every query at it visited them all, as no bound is below a
+ * distance rounded to 1e-34). first[t]: the id of t's kept copy. Returns
+ * the prims kept, moved to the front; n when there is no memory for the
+ * table (all kept: the answers are the same).
+ */
+static size_t
+drop_copies(struct prim *prims, size_t n, uint32_t *first)
+{
+	int bits = 1;
+	uint32_t *table, mask;
+	size_t kept = 0;
+
+	while (bits < 31 && ((size_t)1 << bits) < 2 * n)
+		bits++;
+	if ((table = malloc(((size_t)1 << bits) * sizeof(*table))) == NULL) {
+		for (size_t t = 0; t < n; t++)
+			first[t] = (uint32_t)t;
+		return n;
+	}
+	mask = (uint32_t)(((size_t)1 << bits) - 1);
+	memset(table, 0xff, ((size_t)1 << bits) * sizeof(*table));
+	for (size_t t = 0; t < n; t++) {
+		uint32_t w[9];
+		uint64_t h = 0;
+
+		memcpy(w, prims[t].v, sizeof(w));
+		for (int k = 0; k < 9; k++)
+			h = vdt_hash_mix(h ^ w[k]);
+		uint32_t i = (uint32_t)h & mask;
+		while (table[i] != UINT32_MAX && memcmp(prims[table[i]].v, prims[t].v, sizeof(w)) != 0)
+			i = (i + 1) & mask;
+		if (table[i] != UINT32_MAX) {
+			first[t] = prims[table[i]].id;
+			continue;
+		}
+		prims[kept] = prims[t]; /* (kept <= t: the table names kept slots) */
+		table[i] = (uint32_t)kept++;
+		first[t] = (uint32_t)t;
+	}
+	free(table);
+	return kept;
+}
+
 int
 vdt_bvh_build(struct vdt_bvh *bvh, const struct vdt_mesh *m, struct vdt_err *err)
 {
@@ -685,19 +751,31 @@ vdt_bvh_build(struct vdt_bvh *bvh, const struct vdt_mesh *m, struct vdt_err *err
 			       3 * sizeof(float));
 		b.prims[t].id = (uint32_t)t;
 	}
+	/* (slot_of holds each triangle's kept copy until it holds slots) */
+	size_t kept = drop_copies(b.prims, n, bvh->slot_of);
 	b.nodes = bvh->nodes;
-	b.sah = n <= SAH_MESH_MAX;
-	bounds(b.prims, n, &bb, &cb);
-	build_node(&b, 0, n, 0, &bb, &cb);
+	b.sah = kept <= SAH_MESH_MAX;
+	bounds(b.prims, kept, &bb, &cb);
+	build_node(&b, 0, kept, 0, &bb, &cb);
 	bvh->node_count = b.count;
 	bvh->triangle_count = n;
-	for (size_t s = 0; s < n; s++) {
+	for (size_t s = 0; s < kept; s++) {
 		uint32_t t = b.prims[s].id;
 		bvh->order[s] = t;
 		bvh->slot_of[t] = (uint32_t)s;
 		memcpy(bvh->corners + 9 * s, b.prims[s].v, sizeof(b.prims[s].v));
 	}
+	/* A copy's slot is its kept copy's, whose slot is set: a copy is one
+	 * whose entry is no slot that holds it (order holds kept ones alone). */
+	for (size_t t = 0; t < n; t++)
+		if (bvh->slot_of[t] >= kept || bvh->order[bvh->slot_of[t]] != t)
+			bvh->slot_of[t] = bvh->slot_of[bvh->slot_of[t]];
 	free(b.prims);
+	if ((bvh->least = malloc(bvh->node_count * sizeof(uint32_t))) == NULL) {
+		vdt_bvh_free(bvh);
+		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate a BVH over %zu triangles", n);
+	}
+	fill_least(bvh, 0);
 	slabs(bvh);
 	return 0;
 }
@@ -708,6 +786,7 @@ vdt_bvh_free(struct vdt_bvh *bvh)
 	free(bvh->nodes);
 	free(bvh->slabs);
 	free(bvh->order);
+	free(bvh->least);
 	free(bvh->slot_of);
 	free(bvh->corners);
 	memset(bvh, 0, sizeof(*bvh));
@@ -802,14 +881,17 @@ closest(const struct vdt_bvh *bvh, const double p[3], size_t hint, struct vdt_bv
 	size_t tests = 0;
 
 	if (hint < bvh->triangle_count) {
+		/* (a copy of an earlier triangle is that triangle) */
 		best = slot_closest(bvh, bvh->slot_of[hint], p, hit->point);
-		best_tri = (uint32_t)hint;
+		best_tri = bvh->order[bvh->slot_of[hint]];
 		tests++;
 	}
 	/*
-	 * Boxes at exactly the best distance are still visited: a triangle
-	 * there may tie with a lower index, and the answer must not depend on
-	 * the hint or the visiting order.
+	 * Boxes at exactly the best distance are still visited when a triangle
+	 * there may tie with a lower index (bvh->least), so that the answer
+	 * does not depend on the hint or the visiting order; not otherwise,
+	 * or a point where many triangles meet (the centre of a fan saved as
+	 * a soup, a triangle stacked many times) visited them all.
 	 */
 	if (node_dist2(bvh, 0, p, slabbed, slack) > best)
 		goto done;
@@ -822,7 +904,8 @@ closest(const struct vdt_bvh *bvh, const double p[3], size_t hint, struct vdt_bv
 				double d;
 
 				/* the exact test costs several box tests: skip far ones */
-				if (tri_box_dist2(bvh->corners + 9 * s, p) > best)
+				double bd = tri_box_dist2(bvh->corners + 9 * s, p);
+				if (bd > best || (bd == best && t > best_tri))
 					continue;
 				d = slot_closest(bvh, s, p, q);
 				tests++;
@@ -837,13 +920,13 @@ closest(const struct vdt_bvh *bvh, const double p[3], size_t hint, struct vdt_bv
 			double dl = node_dist2(bvh, l, p, slabbed, slack);
 			double dr = node_dist2(bvh, r, p, slabbed, slack);
 
-			if (dr < dl) {
+			if (dr < dl || (dr == dl && bvh->least[r] < bvh->least[l])) {
 				uint32_t t = l;
 				double td = dl;
 				l = r, r = t, dl = dr, dr = td;
 			}
-			if (dl <= best) {
-				if (dr <= best) {
+			if (dl < best || (dl == best && bvh->least[l] < best_tri)) {
+				if (dr < best || (dr == best && bvh->least[r] < best_tri)) {
 					assert(sp < STACK_MAX);
 					stack[sp].node = r;
 					stack[sp++].d2 = dr;
@@ -852,7 +935,8 @@ closest(const struct vdt_bvh *bvh, const double p[3], size_t hint, struct vdt_bv
 				continue;
 			}
 		}
-		while (sp > 0 && stack[sp - 1].d2 > best)
+		while (sp > 0 && (stack[sp - 1].d2 > best ||
+		                  (stack[sp - 1].d2 == best && bvh->least[stack[sp - 1].node] >= best_tri)))
 			sp--;
 		if (sp == 0)
 			break;

@@ -46,6 +46,7 @@ struct vdt_bvh {
 	struct vdt_bvh_slab *slabs; /* by node, or NULL when no node has one */
 	size_t triangle_count;
 	uint32_t *order;   /* slot -> triangle of the mesh, leaf by leaf */
+	uint32_t *least;   /* node -> the least triangle of the mesh under it */
 	uint32_t *slot_of; /* triangle of the mesh -> slot */
 	float *corners;    /* 9 floats per slot: the triangle's three corners */
 };

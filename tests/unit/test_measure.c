@@ -422,6 +422,46 @@ test_bvh_coincident(void **state)
 	vdt_bvh_closest(&bvh, p, 500, &hit);
 	assert_float_equal(hit.dist2, 4, 1e-12);
 	assert_int_equal(hit.triangle, 0);
+	/* on the triangle, where the distance rounds to a hair above 0 and no
+	 * bound is above it: copies are one triangle, not 1000 exact tests */
+	for (int i = 0; i < 100; i++) {
+		double a = shape_rnd(), b = (1 - a) * shape_rnd(), q[3] = {a, b, 0};
+		vdt_bvh_closest(&bvh, q, i % 2 ? SIZE_MAX : (size_t)i, &hit);
+		assert_int_equal(hit.triangle, 0);
+		assert_true(hit.tests <= 2);
+	}
+	vdt_bvh_free(&bvh);
+	vdt_mesh_free(&m);
+}
+
+/* A fan saved as a soup: at its centre every triangle is at distance 0,
+ * the lowest wins, and it is found without testing them all. */
+static void
+test_bvh_soup_fan_centre(void **state)
+{
+	enum { N = 4000 };
+	struct vdt_mesh m;
+	struct vdt_bvh bvh;
+	struct vdt_bvh_hit hit;
+	double centre[3] = {0, 0, 0};
+
+	(void)state;
+	assert_int_equal(vdt_mesh_alloc(&m, 3 * N, N, 0, NULL), 0);
+	for (size_t t = 0; t < N; t++) {
+		double a0 = 2 * M_PI * (double)t / N, a1 = 2 * M_PI * (double)(t + 1) / N;
+		set_vertex(&m, 3 * t, 0, 0, 0);
+		set_vertex(&m, 3 * t + 1, cos(a0), sin(a0), 0);
+		set_vertex(&m, 3 * t + 2, cos(a1), sin(a1), 0);
+		set_tri(&m, t, 3 * t, 3 * t + 1, 3 * t + 2);
+	}
+	assert_int_equal(vdt_bvh_build(&bvh, &m, NULL), 0);
+	for (size_t hint = 0; hint < N; hint += 997) {
+		vdt_bvh_closest(&bvh, centre, hint, &hit);
+		assert_true(hit.dist2 == 0);
+		assert_int_equal(hit.triangle, 0);
+		assert_true(hit.tests < 200);
+		closest_agrees(&bvh, &m, centre, hint);
+	}
 	vdt_bvh_free(&bvh);
 	vdt_mesh_free(&m);
 }
@@ -727,6 +767,7 @@ main(void)
 		cmocka_unit_test(test_triangle_degenerate),
 		cmocka_unit_test(test_bvh_matches_brute_force),
 		cmocka_unit_test(test_bvh_coincident),
+		cmocka_unit_test(test_bvh_soup_fan_centre),
 		cmocka_unit_test(test_bvh_fan_matches_brute_force),
 		cmocka_unit_test(test_bvh_fan_prunes),
 		cmocka_unit_test(test_sampling_area_proportional),
