@@ -156,6 +156,19 @@ load helpers
 	[ "$(off_faces "$TMP/out.off")" -le 40 ]
 }
 
+@test "vdt-qslim -a pairs no vertex of no face: a scan's stray points change nothing" {
+	"$BIN/vdt-qslim" -q -r 1 "$SAMPLES/twosphere.off" -o "$TMP/s.obj"
+	{ grep '^v ' "$TMP/s.obj"; grep '^f ' "$TMP/s.obj"; } > "$TMP/nostray.obj"
+	# a stray point beside every other vertex, within -a of it, after them
+	# all (the faces' numbers stay)
+	{ grep '^v ' "$TMP/s.obj"
+	  grep '^v ' "$TMP/s.obj" | awk 'NR % 2 == 0 { print "v", $2 * 1.01, $3 * 1.01, $4 * 1.01 + 0.001 }'
+	  grep '^f ' "$TMP/s.obj"; } > "$TMP/stray.obj"
+	"$BIN/vdt-qslim" -q -t 40 -a 5% "$TMP/nostray.obj" -o "$TMP/a.off"
+	"$BIN/vdt-qslim" -q -t 40 -a 5% "$TMP/stray.obj" -o "$TMP/b.off"
+	cmp "$TMP/a.off" "$TMP/b.off"
+}
+
 @test "vdt-qslim names a missing file, exits 2 and leaves nothing" {
 	run "$BIN/vdt-qslim" -r 0.5 "$TMP/none.off" -o "$TMP/out.off"
 	[ "$status" -eq 2 ]
