@@ -698,8 +698,11 @@ pair_edges(const uint32_t *tri, uint32_t f, const uint32_t *start, const uint32_
 
 	for (int k = 0; k < 3; k++) {
 		uint32_t a = c[k], b = c[(k + 1) % 3];
+		/* (the faces on the edge are in both fans: read the shorter,
+		 * not the apex's of a double-sided fan for each of its faces) */
+		uint32_t s = start[b + 1] - start[b] < start[a + 1] - start[a] ? b : a;
 		held[k] = along_f[k] = 0;
-		for (uint32_t i = start[a]; i < start[a + 1]; i++) {
+		for (uint32_t i = start[s]; i < start[s + 1]; i++) {
 			const uint32_t *u = tri + 3 * (size_t)fan[i];
 			if (dead[fan[i]] || front[fan[i]]) /* (f, too) */
 				continue;

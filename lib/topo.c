@@ -193,11 +193,20 @@ vdt_topo_back_of(const uint32_t *tri, uint32_t t, const uint32_t *start, const u
                  const uint8_t *dead)
 {
 	const uint32_t *v = tri + 3 * (size_t)t;
-	uint32_t m = min3(v);
+	uint64_t sum = (uint64_t)v[0] + v[1] + v[2];
+	uint32_t m = v[0];
 
-	for (uint32_t i = start[m]; i < start[m + 1] && fan[i] < t; i++)
-		if (!dead[fan[i]] && vdt_topo_same_face(v, tri + 3 * (size_t)fan[i]) < 0)
+	/* (in the shortest of its corners' fans, each in order of faces: not
+	 * the apex's of a double-sided fan, read whole for every face) */
+	for (int k = 1; k < 3; k++)
+		if (start[v[k] + 1] - start[v[k]] < start[m + 1] - start[m])
+			m = v[k];
+	for (uint32_t i = start[m]; i < start[m + 1] && fan[i] < t; i++) {
+		const uint32_t *u = tri + 3 * (size_t)fan[i];
+		if ((uint64_t)u[0] + u[1] + u[2] == sum && !dead[fan[i]] &&
+		    vdt_topo_same_face(v, u) < 0)
 			return fan[i];
+	}
 	return UINT32_MAX;
 }
 
