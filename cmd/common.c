@@ -217,6 +217,14 @@ cmd_done(int rc)
 }
 
 void
+note_dropped(const char *path, unsigned dropped, int quiet)
+{
+	if (!quiet && (dropped & VDT_DROPPED_MATERIALS))
+		note("note: '%s' names materials (mtllib, usemtl), which vdt does not keep: "
+		     "the output has none, and its textures no longer apply\n", input_name(path));
+}
+
+void
 note_float_precision(const char *path, const struct vdt_mesh *m, int quiet)
 {
 	struct vdt_bbox box;

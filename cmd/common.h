@@ -101,6 +101,9 @@ int cmd_done(int rc);
  * away as it was read.
  */
 void note_float_precision(const char *path, const struct vdt_mesh *m, int quiet);
+/* A note of what the file at path had that a mesh cannot hold and the
+ * output lacks (dropped: VDT_DROPPED_*), unless quiet. */
+void note_dropped(const char *path, unsigned dropped, int quiet);
 
 /* The same for a model whose box of float positions is box (one read as a
  * stream, never held whole). */

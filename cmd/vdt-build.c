@@ -159,6 +159,7 @@ run(struct cmdline *cl)
 		goto out;
 	}
 	note_float_precision(cl->in, &m, cl->quiet);
+	note_dropped(cl->in, m.dropped, cl->quiet);
 	if ((rc = vdt_vtree_prepare(&m, &dropped, &err)) != 0) {
 		rc = fail("cannot build a tree of", cl->in, &err);
 		goto out;

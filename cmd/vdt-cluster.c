@@ -133,6 +133,7 @@ run(struct cmdline *cl)
 	}
 	t1 = vdt_seconds();
 	attrs = vdt_tsource_attrs(ts);
+	note_dropped(cl->in, vdt_tsource_dropped(ts), cl->quiet);
 	rc = vdt_cluster_source(ts, &rq, &c, &g, &remeasured, &box_s, p, &err);
 	if (remeasured && !cl->quiet)
 		note("%s: the header's bounding box is not that of the vertices the faces use: "

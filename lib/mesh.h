@@ -30,6 +30,13 @@ struct vdt_mesh {
 
 	size_t triangle_count;
 	uint32_t *triangles; /* 3 * triangle_count, counter-clockwise */
+
+	unsigned dropped; /* what the file had that a mesh cannot hold, for a
+	                     note (VDT_DROPPED_*); the reader's alone */
+};
+
+enum {
+	VDT_DROPPED_MATERIALS = 1u << 0, /* OBJ's mtllib and usemtl */
 };
 
 struct vdt_bbox {

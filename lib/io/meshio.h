@@ -362,7 +362,7 @@ struct vdt_obj_visit {
 	void (*read_to)(void *ctx, size_t offset);
 };
 int vdt_obj_scan(const unsigned char *buf, size_t len, const struct vdt_obj_visit *visit,
-                 unsigned *attrs, struct vdt_err *err);
+                 unsigned *attrs, unsigned *dropped, struct vdt_err *err);
 int vdt_ply_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err);
 
 /*

@@ -15,7 +15,8 @@
  *
  * Everything else (o, g, s, usemtl, mtllib, l, p, curves, surfaces, unknown
  * statements) is ignored: a mesh filter has no use for it, and refusing it
- * would refuse real files. Polygons are triangulated (polygon.h). w is a weight for
+ * would refuse real files; materials are noted (VDT_DROPPED_MATERIALS), as
+ * the textures they name no longer apply. Polygons are triangulated (polygon.h). w is a weight for
  * rational curves and means nothing for polygons, so it is dropped.
  *
  * OBJ attributes belong to corners, ours to vertices. A corner is the triple
@@ -205,6 +206,7 @@ quote(const char *p, const char *end, char out[24])
 struct obj {
 	size_t nv, nt, nn, nf;     /* statements counted before parsing */
 	unsigned scan_attrs;       /* vdt_obj_scan: colours seen (VDT_ATTR_*) */
+	unsigned dropped;          /* VDT_DROPPED_* seen */
 	size_t have_v, have_t, have_n; /* read so far */
 	float *pos;                /* 3 per v */
 	float *col;                /* 4 per v, or NULL: no v has a colour */
@@ -268,7 +270,10 @@ count(const char *buf, size_t len, struct obj *o, struct vdt_err *err)
 		case K_VT: o->nt++; break;
 		case K_VN: o->nn++; break;
 		case K_F: o->nf++; break;
-		default: break;
+		default:
+			if ((n == 6 && (memcmp(k, "usemtl", 6) == 0 || memcmp(k, "mtllib", 6) == 0)))
+				o->dropped |= VDT_DROPPED_MATERIALS;
+			break;
 		}
 		end_statement(&r);
 	}
@@ -874,13 +879,13 @@ build_split(struct obj *o, struct vdt_mesh *m, struct vdt_err *err)
 
 int
 vdt_obj_scan(const unsigned char *buf, size_t len, const struct vdt_obj_visit *visit,
-             unsigned *attrs, struct vdt_err *err)
+             unsigned *attrs, unsigned *dropped, struct vdt_err *err)
 {
 	struct obj o = {0};
 	int rc;
 
 	o.visit = visit;
-	*attrs = 0;
+	*attrs = *dropped = 0;
 	if ((rc = count((const char *)buf, len, &o, err)) != 0)
 		return rc;
 	rc = parse((const char *)buf, len, &o, err);
@@ -888,6 +893,7 @@ vdt_obj_scan(const unsigned char *buf, size_t len, const struct vdt_obj_visit *v
 	if (rc != 0)
 		return rc;
 	*attrs = o.scan_attrs | (o.nt ? VDT_ATTR_UVS : 0) | (o.nn ? VDT_ATTR_NORMALS : 0);
+	*dropped = o.dropped;
 	return 0;
 }
 
@@ -924,6 +930,7 @@ vdt_obj_read(const unsigned char *buf, size_t len, struct vdt_mesh *m, struct vd
 		keep_numbers(&o, m);
 	else
 		rc = build_split(&o, m, err);
+	m->dropped = o.dropped;
 out:
 	obj_free(&o);
 	if (rc != 0)

@@ -34,6 +34,7 @@ struct vdt_tsource {
 	enum kind kind;
 	enum vdt_format format;
 	unsigned attrs; /* the input's attributes, which are not read (VDT_ATTR_*) */
+	unsigned dropped; /* what it had that a mesh cannot hold (VDT_DROPPED_*) */
 	const unsigned char *buf;
 	size_t len;
 	void *map; /* what to munmap, or NULL */
@@ -870,7 +871,7 @@ obj_open(struct vdt_tsource *s, struct vdt_err *err)
 	int rc;
 
 	if ((rc = spool_open(&o.pos, err)) != 0 || (rc = spool_open(&o.tri, err)) != 0 ||
-	    (rc = vdt_obj_scan(s->buf, s->len, &visit, &s->attrs, err)) != 0)
+	    (rc = vdt_obj_scan(s->buf, s->len, &visit, &s->attrs, &s->dropped, err)) != 0)
 		goto out;
 	if (s->mapped) /* the text is read: its pages need not stay */
 		drop_range(s->buf, s->buf + s->len);
@@ -1109,6 +1110,7 @@ setup(struct vdt_tsource *s, enum vdt_format hint, struct vdt_err *err)
 	if ((rc = vdt_read_memory(s->buf, s->len, NULL, &s->mesh, NULL, err)) != 0)
 		return rc;
 	s->attrs = vdt_mesh_attrs(&s->mesh);
+	s->dropped = s->mesh.dropped;
 	s->vcount = s->mesh.vertex_count;
 	s->tri_hint = s->mesh.triangle_count;
 	return 0;
@@ -1228,6 +1230,12 @@ unsigned
 vdt_tsource_attrs(const struct vdt_tsource *ts)
 {
 	return ts->attrs;
+}
+
+unsigned
+vdt_tsource_dropped(const struct vdt_tsource *ts)
+{
+	return ts->dropped;
 }
 
 int

@@ -66,6 +66,9 @@ enum vdt_format vdt_tsource_format(const struct vdt_tsource *ts);
  */
 unsigned vdt_tsource_attrs(const struct vdt_tsource *ts);
 
+/* What the input had that a mesh cannot hold (VDT_DROPPED_*). */
+unsigned vdt_tsource_dropped(const struct vdt_tsource *ts);
+
 /* 1 if the input is read in place (streamed), 0 if it was loaded whole. */
 int vdt_tsource_streamed(const struct vdt_tsource *ts);
 

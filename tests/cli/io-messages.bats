@@ -144,3 +144,25 @@ PY
 		cmp "$TMP/out.off" "$TMP/out2.off"
 	done
 }
+
+@test "an OBJ's materials, which no output keeps, are noted by every tool that writes a mesh" {
+	"$BIN/vdt-qslim" -q -r 1 "$SAMPLES/sphere-uv.obj" -o "$TMP/s.obj"
+	{ echo "mtllib s.mtl"; echo "usemtl skin"; cat "$TMP/s.obj"; } > "$TMP/m.obj"
+	want="note: '$TMP/m.obj' names materials (mtllib, usemtl), which vdt does not keep: the output has none, and its textures no longer apply"
+	for t in "vdt-qslim -r 0.5" "vdt-cluster -g 8" "vdt-build" "vdt-silhouette -a 60"; do
+		run $BIN/$t "$TMP/m.obj" -o "$TMP/o.vdt"
+		[ "$status" -eq 0 ]
+		[[ "$output" == *"${t%% *}: $want"* ]]
+		run $BIN/$t -q "$TMP/m.obj" -o "$TMP/o.vdt"
+		[ -z "$output" ]
+		# without materials, no such note
+		run $BIN/$t "$TMP/s.obj" -o "$TMP/o.vdt"
+		[[ "$output" != *materials* ]]
+	done
+	run "$BIN/vdt-render" --full --size 16x16 "$TMP/m.obj" -o "$TMP/x.png" --mesh-out "$TMP/x.ply"
+	[[ "$output" == *"vdt-render: $want"* ]]
+	run "$BIN/vdt-render" --full --size 16x16 "$TMP/m.obj" -o "$TMP/x.png"
+	[ -z "$output" ]
+	run "$BIN/vdt-measure" "$TMP/m.obj" "$TMP/s.obj"
+	[[ "$output" != *materials* ]]
+}

@@ -40,7 +40,7 @@ welded_in_every_frame(void **state)
 	assert_int_equal(nf, 0);
 	/* faces: (0 1 3) and (2 1 3) are one once 2 is welded to 0 */
 	uint32_t t[] = {0, 1, 3, 2, 1, 3};
-	struct vdt_mesh m = {.vertex_count = 5, .triangle_count = 2, .triangles = t};
+	struct vdt_mesh m = {.vertex_count = 5, .triangle_count = 2, .triangles = t, 0};
 	fr.frame_count = 2;
 	fr.vertex_count = 5;
 	assert_int_equal(vdt_anim_welded_counts(&m, &fr, &n, &nf, NULL), 0);

@@ -52,7 +52,7 @@ tetrahedron_is_irreducible(void **state)
 {
 	static const float p[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
 	static const uint32_t t[] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
-	struct vdt_mesh m = {4, (float *)p, NULL, NULL, NULL, 4, (uint32_t *)t};
+	struct vdt_mesh m = {4, (float *)p, NULL, NULL, NULL, 4, (uint32_t *)t, 0};
 	struct vdt_contract_opts o;
 	struct vdt_contract_result r;
 
@@ -76,7 +76,7 @@ vertex_target_counts_orphans(void **state)
 {
 	float p[36];
 	uint32_t t[12];
-	struct vdt_mesh m = {12, p, NULL, NULL, NULL, 4, t};
+	struct vdt_mesh m = {12, p, NULL, NULL, NULL, 4, t, 0};
 	struct vdt_contract_opts o;
 	struct vdt_contract_result r;
 	uint8_t used[12] = {0};
@@ -122,7 +122,7 @@ sphere_stays_manifold(void **state)
 	assert_int_equal(r.record_count, r.contractions);
 	assert_int_equal(r.contractions, m.vertex_count - 4);
 	out = (struct vdt_mesh){r.vertex_count, r.positions, NULL, NULL, NULL,
-	                        r.triangle_count, r.triangles};
+	                        r.triangle_count, r.triangles, 0};
 	assert_true(shape_closed_manifold(&out));
 	/* every removed vertex maps to a survivor */
 	for (size_t i = 0; i < m.vertex_count; i++) {
@@ -165,7 +165,7 @@ fold_over_is_refused(void **state)
 {
 	static const float p[] = {-0.05f, 0, 0, 0.2f, 0, 0, 1, 0, 0, 0.1f, 1, 0, 0.1f, -1, 0};
 	static const uint32_t t[] = {0, 1, 3, 1, 2, 3, 1, 0, 4, 2, 1, 4};
-	struct vdt_mesh m = {5, (float *)p, NULL, NULL, NULL, 4, (uint32_t *)t};
+	struct vdt_mesh m = {5, (float *)p, NULL, NULL, NULL, 4, (uint32_t *)t, 0};
 	struct vdt_contract_ops ops = {to_zero_cost, NULL, NULL, NULL, 0, NULL, 0};
 	struct vdt_contract_opts o;
 	struct vdt_contract_result r;
@@ -223,7 +223,7 @@ fold_over_threshold_is_the_angle(void **state)
 		float p[12] = {0, 0, 0,
 		               (float)(0.5 - out), (float)(0.5 - out), (float)(sqrt(0.5) * sin(a)),
 		               1, 0, 0, 0, 1, 0};
-		struct vdt_mesh m = {4, p, NULL, NULL, NULL, 2, (uint32_t *)t};
+		struct vdt_mesh m = {4, p, NULL, NULL, NULL, 2, (uint32_t *)t, 0};
 		for (int more = 0; more < 2; more++) {
 			struct vdt_contract_opts o;
 			struct vdt_contract_result r;
@@ -253,7 +253,7 @@ non_manifold_edge_is_kept(void **state)
 {
 	static const float p[] = {0, 0, 0, 0.1f, 0, 0, 0.05f, 1, 0, 0.05f, -1, 0, 0.05f, 0, 1};
 	static const uint32_t t[] = {0, 1, 2, 1, 0, 3, 0, 1, 4};
-	struct vdt_mesh m = {5, (float *)p, NULL, NULL, NULL, 3, (uint32_t *)t};
+	struct vdt_mesh m = {5, (float *)p, NULL, NULL, NULL, 3, (uint32_t *)t, 0};
 	struct vdt_contract_opts o;
 	struct vdt_contract_result r;
 
@@ -709,7 +709,7 @@ nonmanifold_virtual_pair_is_opt_in(void **state)
 	static const uint32_t t[] = {0, 1, 2, 0, 3, 4};
 	static const uint32_t pairs[] = {1, 3};
 	static const struct vdt_contract_ops ops = {pair13_cost, NULL, NULL, NULL, 0, NULL, 0};
-	struct vdt_mesh m = {5, (float *)p, NULL, NULL, NULL, 2, (uint32_t *)t};
+	struct vdt_mesh m = {5, (float *)p, NULL, NULL, NULL, 2, (uint32_t *)t, 0};
 	struct vdt_contract_opts o;
 	struct vdt_contract_result r;
 
@@ -786,7 +786,7 @@ removed_faces_are_capped(void **state)
 	enum { PAGES = 12, CAP = 5 };
 	float p[3 * (PAGES + 2)] = {0, 0, 0, 0.1f, 0, 0};
 	uint32_t t[3 * PAGES];
-	struct vdt_mesh m = {PAGES + 2, p, NULL, NULL, NULL, PAGES, t};
+	struct vdt_mesh m = {PAGES + 2, p, NULL, NULL, NULL, PAGES, t, 0};
 
 	(void)state;
 	for (int i = 0; i < PAGES; i++) {
@@ -1036,7 +1036,7 @@ passes_track_the_greedy_order(void **state)
 	assert_true(p.reached_target);
 	assert_int_equal(p.triangle_count, 200);
 	out = (struct vdt_mesh){p.vertex_count, p.positions, NULL, NULL, NULL,
-	                        p.triangle_count, p.triangles};
+	                        p.triangle_count, p.triangles, 0};
 	assert_true(shape_closed_manifold(&out));
 	for (size_t v = 0; v < m.vertex_count; v += 37) {
 		assert_int_equal(p.final[v], v);
@@ -1495,7 +1495,7 @@ long_fans_keep_the_link_condition(void **state)
 			o.threads = 2;
 			assert_int_equal(vdt_contract_run(&m, &ops, &o, &r, NULL), 0);
 			struct vdt_mesh out = {r.vertex_count, r.positions, NULL, NULL, NULL,
-			                       r.triangle_count, r.triangles};
+			                       r.triangle_count, r.triangles, 0};
 			assert_true(shape_closed_manifold(&out));
 			size_t apex = 0;
 			for (size_t i = 0; i < r.record_count; i++)
@@ -1539,7 +1539,7 @@ small_holes_close(void **state)
 		o.pair_queue = mode == 2;
 		assert_int_equal(vdt_contract_run(&m, &length_ops, &o, &r, NULL), 0);
 		struct vdt_mesh out = {r.vertex_count, r.positions, NULL, NULL, NULL,
-		                       r.triangle_count, r.triangles};
+		                       r.triangle_count, r.triangles, 0};
 		assert_int_equal(r.triangle_count, 4);
 		assert_true(shape_closed_manifold(&out));
 		vdt_contract_result_free(&r);
@@ -1607,7 +1607,7 @@ hub_of_slivers_stays_a_disc(void **state)
 	static const struct vdt_contract_ops ops = {apex_cost, NULL, NULL, NULL, 1, NULL, 0};
 	float p[3 * (N + 1)] = {0};
 	uint32_t t[3 * (N - 1)];
-	struct vdt_mesh m = {N + 1, p, NULL, NULL, NULL, N - 1, t};
+	struct vdt_mesh m = {N + 1, p, NULL, NULL, NULL, N - 1, t, 0};
 
 	(void)state;
 	for (int i = 0; i < N; i++) {
@@ -1679,7 +1679,7 @@ hubs_are_not_read_at_each_try(void **state)
 		assert_int_equal(vdt_contract_run(&m, &ops, &o, &r, NULL), 0);
 		assert_true(r.reached_target);
 		struct vdt_mesh out = {r.vertex_count, r.positions, NULL, NULL, NULL,
-		                       r.triangle_count, r.triangles};
+		                       r.triangle_count, r.triangles, 0};
 		assert_true(shape_closed_manifold(&out));
 		/* (passes read about 100 entries a vertex here, greedy 90, where
 		 * passes read 460 when each pair with a hub that passed the fan

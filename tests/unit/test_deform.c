@@ -320,7 +320,7 @@ weld_across_frames(void **state)
 	 * 0 == 4 in frame 0 only. */
 	static const float p[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 0, 0, 0, 0, 0, 0, 1, 0};
 	static const uint32_t t[] = {0, 1, 2, 3, 5, 4};
-	struct vdt_mesh m = {6, (float *)p, NULL, NULL, NULL, 2, (uint32_t *)t};
+	struct vdt_mesh m = {6, (float *)p, NULL, NULL, NULL, 2, (uint32_t *)t, 0};
 	struct vdt_frames fr;
 	struct vdt_deform_opts o;
 	struct vdt_deform_result r;

@@ -71,7 +71,7 @@ struct square {
 static void
 square_open(struct square *s)
 {
-	struct vdt_mesh m = {4, (float *)square_p, NULL, NULL, NULL, 2, (uint32_t *)square_t};
+	struct vdt_mesh m = {4, (float *)square_p, NULL, NULL, NULL, 2, (uint32_t *)square_t, 0};
 
 	memset(s, 0, sizeof(*s));
 	s->m = m;

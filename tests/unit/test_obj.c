@@ -678,7 +678,7 @@ test_scan_tells_progress(void **state)
 	struct seen s = {0};
 	struct vdt_obj_visit v = {seen_vertex, seen_triangle, &s, NULL, seen_read_to};
 	struct vdt_err err = {0};
-	unsigned attrs;
+	unsigned attrs, dropped;
 
 	(void)state;
 	for (size_t i = 0; i < n; i++)
@@ -686,10 +686,11 @@ test_scan_tells_progress(void **state)
 	for (size_t i = 0; i + 2 < n && len + 64 < cap; i += 3)
 		len += (size_t)snprintf(text + len, cap - len, "f %zu %zu %zu\n", i + 1, i + 2, i + 3);
 	assert_true(len > 16u << 20);
-	assert_int_equal(vdt_obj_scan((const unsigned char *)text, len, &v, &attrs, &err), 0);
+	assert_int_equal(vdt_obj_scan((const unsigned char *)text, len, &v, &attrs, &dropped, &err), 0);
 	assert_int_equal(s.vertices, n);
 	assert_true(s.triangles > 0);
 	assert_int_equal(s.passes, 1);
+	assert_int_equal(dropped, 0);
 	assert_true(s.calls >= 4);
 	assert_true(s.last <= len);
 	free(text);

@@ -94,7 +94,7 @@ deterministic(void **state)
 {
 	static const float p[] = {-1, -1, 0, 1, -1, 0, 0, 1, 0.5f, 0, 0, -1};
 	static const uint32_t t[] = {0, 1, 2, 0, 3, 1, 1, 3, 2};
-	struct vdt_mesh m = {4, (float *)p, NULL, NULL, NULL, 3, (uint32_t *)t};
+	struct vdt_mesh m = {4, (float *)p, NULL, NULL, NULL, 3, (uint32_t *)t, 0};
 	struct vdt_view v = {{0.3, 0.2, 4}, {0, 0, 0}, {0, 1, 0}, 45, 64, 48};
 	struct vdt_raster_opts o = {0, 1, {0, 0, 1}, 0.2, NULL};
 	struct vdt_camera c;

@@ -95,7 +95,7 @@ test_octahedron_silhouette(void **state)
 	static const float p[] = {1, 0, 0, 0, 1, 0, -1, 0, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1};
 	static const uint32_t t[] = {0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0, 4,
 	                             1, 0, 5, 2, 1, 5, 3, 2, 5, 0, 3, 5};
-	const struct vdt_mesh m = {6, (float *)p, NULL, NULL, NULL, 8, (uint32_t *)t};
+	const struct vdt_mesh m = {6, (float *)p, NULL, NULL, NULL, 8, (uint32_t *)t, 0};
 	struct vdt_sil_work w;
 	double centre[3], radius;
 	uint8_t labels[6];
@@ -516,7 +516,7 @@ test_bad_input(void **state)
 {
 	static const float p[] = {1, 2, 3, 1, 2, 3, 1, 2, 3};
 	static const uint32_t t[] = {0, 1, 2};
-	const struct vdt_mesh m = {3, (float *)p, NULL, NULL, NULL, 1, (uint32_t *)t};
+	const struct vdt_mesh m = {3, (float *)p, NULL, NULL, NULL, 1, (uint32_t *)t, 0};
 	struct vdt_cameras c;
 	struct vdt_labl l;
 	struct vdt_sil_opts o = {64, VDT_SIL_EDT, NULL, NULL, NULL, 0};

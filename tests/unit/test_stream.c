@@ -292,7 +292,7 @@ golden_reencode(void **state)
 	struct vdt_mesh m = {
 		.vertex_count = 4, .positions = (float *)golden_positions,
 		.normals = (float *)golden_normals, .triangle_count = 2,
-		.triangles = (uint32_t *)golden_triangles};
+		.triangles = (uint32_t *)golden_triangles, 0};
 
 	(void)state;
 	for (size_t i = 0; i < 4; i++) {

@@ -62,7 +62,7 @@ fin_and_dead_faces(void **state)
 {
 	static const float p[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1};
 	static const uint32_t t[] = {0, 1, 2, 1, 0, 3, 0, 1, 4};
-	struct vdt_mesh m = {5, (float *)p, NULL, NULL, NULL, 3, (uint32_t *)t};
+	struct vdt_mesh m = {5, (float *)p, NULL, NULL, NULL, 3, (uint32_t *)t, 0};
 	uint8_t dead[3] = {0, 0, 1};
 	uint32_t *e;
 	size_t nm;

@@ -51,7 +51,7 @@ static const uint32_t square_t[] = {0, 1, 2, 0, 2, 3};
 static void
 square_tree_is_exact(void **state)
 {
-	struct vdt_mesh m = {4, (float *)square_p, NULL, NULL, NULL, 2, (uint32_t *)square_t};
+	struct vdt_mesh m = {4, (float *)square_p, NULL, NULL, NULL, 2, (uint32_t *)square_t, 0};
 	struct vdt_vtree t;
 	static const uint32_t parent[] = {4, 4, 5, 5, 6, 6, NO};
 	static const uint32_t child[] = {0, 1, 2, 3, 4, 5};
@@ -140,7 +140,7 @@ two_parts_merge_through_an_octree_pair(void **state)
 	static const uint32_t parent[] = {6, 6, 8, 7, 7, 9, 8, 9, 10, 10, NO};
 	static const uint32_t child[] = {0, 1, 3, 4, 6, 2, 7, 5, 8, 9};
 	static const uint32_t first[] = {0, 1, 2, 2, 2, 2};
-	struct vdt_mesh m = {6, (float *)p, NULL, NULL, NULL, 2, (uint32_t *)tr};
+	struct vdt_mesh m = {6, (float *)p, NULL, NULL, NULL, 2, (uint32_t *)tr, 0};
 	struct vdt_vtree t;
 	uint32_t *pairs;
 	size_t np;
@@ -175,7 +175,7 @@ eps_prefers_geometry_or_topology(void **state)
 	static const float p[] = {0, 0, 0, 1, 0, 0, 0, 1, 0,
 	                          0, 0, 0.1f, 1, 0, 0.1f, 0, 1, 0.1f};
 	static const uint32_t tr[] = {0, 1, 2, 3, 5, 4};
-	struct vdt_mesh m = {6, (float *)p, NULL, NULL, NULL, 2, (uint32_t *)tr};
+	struct vdt_mesh m = {6, (float *)p, NULL, NULL, NULL, 2, (uint32_t *)tr, 0};
 	struct vdt_vtree t;
 
 	(void)state;
@@ -227,7 +227,7 @@ codec_round_trip(void **state)
 static void
 every_violation_is_rejected(void **state)
 {
-	struct vdt_mesh m = {4, (float *)square_p, NULL, NULL, NULL, 2, (uint32_t *)square_t};
+	struct vdt_mesh m = {4, (float *)square_p, NULL, NULL, NULL, 2, (uint32_t *)square_t, 0};
 	struct vdt_vtree t, u;
 	struct vdt_err err = {0};
 	unsigned char *d, c[177];
@@ -382,7 +382,7 @@ bunny_round_trip(void **state)
 static void
 chunks_and_summary(void **state)
 {
-	struct vdt_mesh m = {4, (float *)square_p, NULL, NULL, NULL, 2, (uint32_t *)square_t};
+	struct vdt_mesh m = {4, (float *)square_p, NULL, NULL, NULL, 2, (uint32_t *)square_t, 0};
 	struct vdt_chunks c = {0};
 	struct vdt_vtree t, u;
 	struct vdt_vtree_summary s;
