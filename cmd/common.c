@@ -221,7 +221,8 @@ note_dropped(const char *path, unsigned dropped, int quiet)
 {
 	if (!quiet && (dropped & VDT_DROPPED_MATERIALS))
 		note("note: '%s' names materials (mtllib, usemtl), which vdt does not keep: "
-		     "the output has none, and its textures no longer apply\n", input_name(path));
+		     "the output has none, and its textures no longer apply\n",
+		     input_name(path));
 }
 
 void

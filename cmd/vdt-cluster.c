@@ -24,13 +24,12 @@ struct cmdline {
 static void
 usage(FILE *f)
 {
-	fprintf(f,
-	        "usage: vdt-cluster [-s SIZE[%%] | -g NX[xNYxNZ] | -t TRIANGLES | -r RATIO]\n"
-	        "                   [-m MB] [--decoupled] [-o OUTPUT] [-F FORMAT] [-q] [-v]\n"
-	        "                   [INPUT]\n"
-	        "Cluster a mesh of any size on a uniform grid, keeping one quadric per cell.\n"
-	        "INPUT and OUTPUT default to - (stdin, stdout); the output is a MESH + QUAD\n"
-	        "vdt stream for vdt-qslim unless a mesh format is asked (default -g 256).\n");
+	fprintf(f, "usage: vdt-cluster [-s SIZE[%%] | -g NX[xNYxNZ] | -t TRIANGLES | -r RATIO]\n"
+	           "                   [-m MB] [--decoupled] [-o OUTPUT] [-F FORMAT] [-q] [-v]\n"
+	           "                   [INPUT]\n"
+	           "Cluster a mesh of any size on a uniform grid, keeping one quadric per cell.\n"
+	           "INPUT and OUTPUT default to - (stdin, stdout); the output is a MESH + QUAD\n"
+	           "vdt stream for vdt-qslim unless a mesh format is asked (default -g 256).\n");
 }
 
 static void

@@ -24,18 +24,18 @@ struct cmdline {
 static void
 usage(FILE *f)
 {
-	fprintf(f,
-	        "usage: vdt-qslim [-t TRIANGLES] [-r RATIO] [-e ERROR[%%]] [-o OUTPUT] [-F FORMAT]\n"
-	        "                 [-a DISTANCE[%%]] [--lock-border] [--boundary-weight W]\n"
-	        "                 [--area-floor F] [--max-angle DEGREES] [--min-quality Q]\n"
-	        "                 [--ignore-quadrics] [--no-fit] [--attribute-weight W]\n"
-	        "                 [--topology auto|keep|free] [--order auto|greedy|passes]\n"
-	        "                 [-j THREADS] [--record]\n"
-	        "                 [--contour-distance PIXELS] [--error-factor F]\n"
-	        "                 [--view X,Y,Z [--nearest N]] [--draco-bits N] [-q] [-v] [INPUT]\n"
-	        "Simplify a triangle mesh with quadric error metrics. INPUT and OUTPUT\n"
-	        "default to - (stdin, stdout); stops at the first target reached\n"
-	        "(default -r 0.5).\n");
+	fprintf(f, "usage: vdt-qslim [-t TRIANGLES] [-r RATIO] [-e ERROR[%%]] [-o OUTPUT]\n"
+	           "                 [-F FORMAT] [-a DISTANCE[%%]] [--lock-border]\n"
+	           "                 [--boundary-weight W] [--area-floor F] [--max-angle DEGREES]\n"
+	           "                 [--min-quality Q] [--ignore-quadrics] [--no-fit]\n"
+	           "                 [--attribute-weight W] [--topology auto|keep|free]\n"
+	           "                 [--order auto|greedy|passes] [-j THREADS] [--record]\n"
+	           "                 [--contour-distance PIXELS] [--error-factor F]\n"
+	           "                 [--view X,Y,Z [--nearest N]] [--draco-bits N] [-q] [-v]\n"
+	           "                 [INPUT]\n"
+	           "Simplify a triangle mesh with quadric error metrics. INPUT and OUTPUT\n"
+	           "default to - (stdin, stdout); stops at the first target reached\n"
+	           "(default -r 0.5).\n");
 }
 
 static void

@@ -27,7 +27,8 @@ struct cmdline {
 static void
 usage(FILE *f)
 {
-	fprintf(f, "usage: vdt-render [-p PIXELS] [-t TRIANGLES] [--frustum] [--backface]\n"
+	fprintf(f,
+	        "usage: vdt-render [-p PIXELS] [-t TRIANGLES] [--frustum] [--backface]\n"
 	        "                  [--fovea K] [--lighting] [--eye X,Y,Z] [--at X,Y,Z]\n"
 	        "                  [--up X,Y,Z] [--fov DEG] [--size WxH] [--light X,Y,Z]\n"
 	        "                  [--path FILE] [--flat] [--wire] [--levels] [--full]\n"
@@ -236,7 +237,8 @@ run(struct cmdline *cl)
 		vdt_view_aim(&cl->v, &box, cl->has_eye, cl->has_at);
 	if (vdt_views_check(views, nviews, &box, &err) != 0) {
 		if (cl->path)
-			fprintf(stderr, "%s: bad view in '%s': %s\n", progname, input_name(cl->path), err.msg);
+			fprintf(stderr, "%s: bad view in '%s': %s\n", progname,
+			        input_name(cl->path), err.msg);
 		else
 			fprintf(stderr, "%s: bad view of '%s' (--eye, --at, --up): %s\n", progname,
 			        input_name(cl->in), err.msg);

@@ -708,7 +708,8 @@ drop_copies(struct prim *prims, size_t n, uint32_t *first)
 		for (int k = 0; k < 9; k++)
 			h = vdt_hash_mix(h ^ w[k]);
 		uint32_t i = (uint32_t)h & mask;
-		while (table[i] != UINT32_MAX && memcmp(prims[table[i]].v, prims[t].v, sizeof(w)) != 0)
+		while (table[i] != UINT32_MAX &&
+		       memcmp(prims[table[i]].v, prims[t].v, sizeof(w)) != 0)
 			i = (i + 1) & mask;
 		if (table[i] != UINT32_MAX) {
 			first[t] = prims[table[i]].id;
@@ -935,8 +936,9 @@ closest(const struct vdt_bvh *bvh, const double p[3], size_t hint, struct vdt_bv
 				continue;
 			}
 		}
-		while (sp > 0 && (stack[sp - 1].d2 > best ||
-		                  (stack[sp - 1].d2 == best && bvh->least[stack[sp - 1].node] >= best_tri)))
+		while (sp > 0 &&
+		       (stack[sp - 1].d2 > best ||
+		        (stack[sp - 1].d2 == best && bvh->least[stack[sp - 1].node] >= best_tri)))
 			sp--;
 		if (sp == 0)
 			break;

@@ -306,7 +306,8 @@ next_chunk(struct src *s, struct vdt_chunk *c, struct vdt_err *err)
 		return truncated(type, at, length, room, err);
 	if (length > SIZE_MAX)
 		return vdt_err_set(err, VDT_ENOMEM,
-		                   "chunk %s at byte %" PRIu64 ": payload of %" PRIu64 " bytes is too large",
+		                   "chunk %s at byte %" PRIu64 ": payload of %" PRIu64
+		                   " bytes is too large",
 		                   vdt_chunk_label(type, name), at, length);
 	if ((rc = read_payload(s, type, at, length, sized, &c->data, err)) != 0)
 		return rc;
@@ -320,8 +321,9 @@ next_chunk(struct src *s, struct vdt_chunk *c, struct vdt_err *err)
 	computed = chunk_crc(type, c->data, length);
 	if (stored != computed) {
 		rc = vdt_err_set(err, VDT_ECHECKSUM,
-		                 "chunk %s at byte %" PRIu64 ": checksum mismatch (stored %08" PRIx32
-		                 ", computed %08" PRIx32 ")",
+		                 "chunk %s at byte %" PRIu64
+		                 ": checksum mismatch (stored %08" PRIx32 ", computed %08" PRIx32
+		                 ")",
 		                 vdt_chunk_label(type, name), at, stored, computed);
 		goto fail;
 	}
@@ -502,8 +504,8 @@ vdt_chunk_order_next(struct vdt_chunk_order *o, uint32_t type, uint64_t offset,
 		/* another would be silently lost */
 		if (!o->mesh)
 			return vdt_err_set(err, VDT_EFORMAT,
-			                   "chunk %s at byte %llu comes before the MESH chunk", name,
-			                   (unsigned long long)offset);
+			                   "chunk %s at byte %llu comes before the MESH chunk",
+			                   name, (unsigned long long)offset);
 		if (o->seen & 1u << i)
 			return vdt_err_set(err, VDT_EFORMAT, "second %s chunk at byte %llu", name,
 			                   (unsigned long long)offset);

@@ -245,7 +245,8 @@ vdt_text_lines(const unsigned char *buf, size_t n, enum vdt_format f, struct vdt
 		cr += buf[i] == '\r';
 	if (cr < 2)
 		return 0;
-	return vdt_err_set(err, VDT_EFORMAT, "lines end in a carriage return alone (old Mac OS "
+	return vdt_err_set(err, VDT_EFORMAT,
+	                   "lines end in a carriage return alone (old Mac OS "
 	                   "text): convert them to newlines, as tr '\\r' '\\n' does");
 }
 

@@ -271,7 +271,8 @@ count(const char *buf, size_t len, struct obj *o, struct vdt_err *err)
 		case K_VN: o->nn++; break;
 		case K_F: o->nf++; break;
 		default:
-			if ((n == 6 && (memcmp(k, "usemtl", 6) == 0 || memcmp(k, "mtllib", 6) == 0)))
+			if ((n == 6 &&
+			     (memcmp(k, "usemtl", 6) == 0 || memcmp(k, "mtllib", 6) == 0)))
 				o->dropped |= VDT_DROPPED_MATERIALS;
 			break;
 		}

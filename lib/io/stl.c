@@ -263,11 +263,12 @@ vdt_stl_rest(const unsigned char *buf, size_t len, struct vdt_err *err)
 		while (k < rest && r[k] == 0)
 			k++;
 		if (k < rest)
-			return vdt_err_set(err, VDT_EFORMAT,
-			                   "binary STL header counts %lu triangle%s, the file holds "
-			                   "%lu: its count is wrong",
-			                   (unsigned long)count, count == 1 ? "" : "s",
-			                   (unsigned long)(count + rest / 50));
+			return vdt_err_set(
+			        err, VDT_EFORMAT,
+			        "binary STL header counts %lu triangle%s, the file holds "
+			        "%lu: its count is wrong",
+			        (unsigned long)count, count == 1 ? "" : "s",
+			        (unsigned long)(count + rest / 50));
 	}
 	if (rest >= 84) {
 		uint32_t c2 = vdt_get_u32le(r + 80);

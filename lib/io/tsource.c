@@ -948,8 +948,10 @@ vdt_open(struct vdt_tsource *s, struct vdt_err *err)
 		if ((rc = vdt_chunk_type_check(type, at, err)) != 0)
 			return rc;
 		if (type == VDT_CHUNK_END && length != 0)
-			return vdt_err_set(err, VDT_EFORMAT, "chunk END at byte %" PRIu64 ": payload of %"
-			                   PRIu64 " bytes, expected none", at, length);
+			return vdt_err_set(err, VDT_EFORMAT,
+			                   "chunk END at byte %" PRIu64 ": payload of %" PRIu64
+			                   " bytes, expected none",
+			                   at, length);
 		if (length > s->len - at - 12 || s->len - at - 12 - length < 4)
 			return vdt_err_set(err, VDT_EFORMAT,
 			                   "chunk %s at byte %" PRIu64 ": truncated: expected a payload of %" PRIu64
@@ -965,8 +967,10 @@ vdt_open(struct vdt_tsource *s, struct vdt_err *err)
 		crc = vdt_get_u32le(s->buf + at + 12 + length);
 		if (crc != (uint32_t)c)
 			return vdt_err_set(err, VDT_ECHECKSUM,
-			                   "chunk %s at byte %" PRIu64 ": checksum mismatch (stored %08" PRIx32
-			                   ", computed %08" PRIx32 ")", name, at, crc, (uint32_t)c);
+			                   "chunk %s at byte %" PRIu64
+			                   ": checksum mismatch (stored %08" PRIx32
+			                   ", computed %08" PRIx32 ")",
+			                   name, at, crc, (uint32_t)c);
 		if (type == VDT_CHUNK_END) {
 			if (at + 16 != s->len)
 				return vdt_err_set(err, VDT_EFORMAT, "%" PRIu64 " bytes after the end chunk at byte %"
@@ -996,9 +1000,10 @@ vdt_open(struct vdt_tsource *s, struct vdt_err *err)
 		uint64_t v, t, per;
 
 		if (mesh_len < 24)
-			return vdt_err_set(err, VDT_EFORMAT, "chunk MESH at byte %" PRIu64 ": payload of %"
-			                   PRIu64 " bytes is shorter than its 24-byte header", mesh_at,
-			                   mesh_len);
+			return vdt_err_set(err, VDT_EFORMAT,
+			                   "chunk MESH at byte %" PRIu64 ": payload of %" PRIu64
+			                   " bytes is shorter than its 24-byte header",
+			                   mesh_at, mesh_len);
 		mask = vdt_get_u32le(mesh);
 		v = vdt_get_u64le(mesh + 8);
 		t = vdt_get_u64le(mesh + 16);
