@@ -1710,6 +1710,16 @@ struct across {
 	uint32_t b, k[2];
 };
 
+/* The corner of face t at vertex b, or NONE. */
+static uint32_t
+corner_with(const struct attr *at, uint32_t t, uint32_t b)
+{
+	for (uint32_t k = 3 * t; k < 3 * t + 3; k++)
+		if (at->cvert[k] == b)
+			return k;
+	return NONE;
+}
+
 static void
 across_fill(const struct attr *at, uint32_t v, struct across *tab, uint32_t mask)
 {
@@ -1718,7 +1728,8 @@ across_fill(const struct attr *at, uint32_t v, struct across *tab, uint32_t mask
 	for (uint32_t k = at->chead[v]; k != NONE; k = at->cnext[k]) {
 		uint32_t t = k / 3;
 		for (int d = 1; d <= 2; d++) {
-			uint32_t b = at->cvert[3 * t + (k + d) % 3], h = vdt_hash_slot(b, 31) & mask;
+			uint32_t b = at->cvert[3 * t + (k + d) % 3],
+			         h = vdt_hash_slot(b, 31) & mask;
 			while (tab[h].b != NONE && tab[h].b != b)
 				h = (h + 1) & mask;
 			if (tab[h].b == NONE)
@@ -1763,19 +1774,12 @@ seam_planes(struct ctx *c, const struct vdt_mesh *w, double weight)
 				while (tab[h].b != b)
 					h = (h + 1) & mask;
 				k2 = tab[h].k[0] / 3 != t ? tab[h].k[0] : tab[h].k[1];
-				if (k2 != NONE)
-					for (kb = 3 * (k2 / 3); at->cvert[kb] != b; kb++)
-						;
+				kb = k2 != NONE ? corner_with(at, k2 / 3, b) : NONE;
 			} else {
-				for (k2 = at->chead[v]; k2 != NONE; k2 = at->cnext[k2]) {
-					uint32_t t2 = k2 / 3;
-					if (t2 == t)
-						continue;
-					for (kb = 3 * t2; kb < 3 * t2 + 3 && at->cvert[kb] != b; kb++)
-						;
-					if (kb < 3 * t2 + 3)
+				for (k2 = at->chead[v]; k2 != NONE; k2 = at->cnext[k2])
+					if (k2 / 3 != t &&
+					    (kb = corner_with(at, k2 / 3, b)) != NONE)
 						break;
-				}
 			}
 			if (k2 == NONE || (at->cw[k] == at->cw[k2] && at->cw[k1] == at->cw[kb]))
 				continue;
@@ -1908,7 +1912,8 @@ attr_setup(struct ctx *c, const struct vdt_mesh *in, const struct vdt_mesh *w,
 					tab[h] = i;
 			} else {
 				for (uint32_t l = wstart[v]; l < j && first == NONE; l++)
-					if (at->wpar[wlist[l]] == wlist[l] && same_attrs(in, wlist[l], i))
+					if (at->wpar[wlist[l]] == wlist[l] &&
+					    same_attrs(in, wlist[l], i))
 						first = wlist[l];
 			}
 			if (first != NONE) {
