@@ -66,6 +66,19 @@ vdt_chunk_type_check(uint32_t type, uint64_t at, struct vdt_err *err)
 }
 
 int
+vdt_chunk_head_check(uint32_t type, uint64_t length, uint64_t at, struct vdt_err *err)
+{
+	int rc = vdt_chunk_type_check(type, at, err);
+
+	if (rc == 0 && type == VDT_CHUNK_END && length != 0)
+		rc = vdt_err_set(err, VDT_EFORMAT,
+		                 "chunk END at byte %" PRIu64 ": payload of %" PRIu64
+		                 " bytes, expected none",
+		                 at, length);
+	return rc;
+}
+
+int
 vdt_stream_sniff(const unsigned char *buf, size_t n)
 {
 	int same = 0;
@@ -295,12 +308,8 @@ next_chunk(struct src *s, struct vdt_chunk *c, struct vdt_err *err)
 	length = vdt_get_u64le(h + 4);
 	/* (before its payload: bytes of no chunk may announce any length,
 	 * which a pipe would be read for, to the end of memory) */
-	if ((rc = vdt_chunk_type_check(type, at, err)) != 0)
+	if ((rc = vdt_chunk_head_check(type, length, at, err)) != 0)
 		return rc;
-	if (type == VDT_CHUNK_END && length != 0)
-		return vdt_err_set(err, VDT_EFORMAT,
-		                   "chunk END at byte %" PRIu64 ": payload of %" PRIu64 " bytes, expected none",
-		                   at, length);
 	sized = left(s, &room);
 	if (sized && (room < CRC_LEN || length > room - CRC_LEN))
 		return truncated(type, at, length, room, err);
@@ -714,15 +723,12 @@ vdt_mesh_encode(const struct vdt_mesh *m, unsigned char **data,
 }
 
 int
-vdt_mesh_decode(const unsigned char *data, uint64_t length, struct vdt_mesh *m,
-                struct vdt_err *err)
+vdt_mesh_head(const unsigned char *data, uint64_t length, unsigned *attrs_, uint64_t *v_,
+              uint64_t *t_, struct vdt_err *err)
 {
-	const unsigned char *p;
 	unsigned attrs, reserved;
 	uint64_t v, t, n;
-	int rc;
 
-	memset(m, 0, sizeof(*m));
 	if (length < MESH_HEAD)
 		return vdt_err_set(err, VDT_EFORMAT,
 		                   "payload of %" PRIu64 " bytes is shorter than its %d-byte header",
@@ -746,6 +752,23 @@ vdt_mesh_decode(const unsigned char *data, uint64_t length, struct vdt_mesh *m,
 		                   "%" PRIu64 " vertices (mask 0x%x) and %" PRIu64
 		                   " triangles need %" PRIu64 " bytes, payload has %" PRIu64,
 		                   v, attrs, t, n, length);
+	*attrs_ = attrs;
+	*v_ = v;
+	*t_ = t;
+	return 0;
+}
+
+int
+vdt_mesh_decode(const unsigned char *data, uint64_t length, struct vdt_mesh *m, struct vdt_err *err)
+{
+	const unsigned char *p;
+	unsigned attrs;
+	uint64_t v, t;
+	int rc;
+
+	memset(m, 0, sizeof(*m));
+	if ((rc = vdt_mesh_head(data, length, &attrs, &v, &t, err)) != 0)
+		return rc;
 	if ((rc = vdt_mesh_alloc(m, (size_t)v, (size_t)t, attrs, err)) != 0)
 		return rc;
 	p = get_floats(data + MESH_HEAD, m->positions, 3 * m->vertex_count);

@@ -88,6 +88,12 @@ int vdt_stream_header_check(const unsigned char *h, size_t n, struct vdt_err *er
  * chunk at byte `at`. */
 int vdt_chunk_type_check(uint32_t type, uint64_t at, struct vdt_err *err);
 
+/* What a chunk's 12-byte header (type, payload length) at byte `at` says
+ * on its own, before its payload is read (which a type of no chunk may
+ * announce at any length): 0, or VDT_EFORMAT for a type that is not
+ * printable ASCII or an end chunk with a payload. */
+int vdt_chunk_head_check(uint32_t type, uint64_t length, uint64_t at, struct vdt_err *err);
+
 /*
  * Decode a whole stream held in memory (buf, len). On success *out holds
  * copies of every chunk's payload except the end chunk. Errors: bad
@@ -229,6 +235,11 @@ int vdt_mesh_encode(const struct vdt_mesh *m, unsigned char **data,
                     uint64_t *length, struct vdt_err *err);
 int vdt_mesh_decode(const unsigned char *data, uint64_t length,
                     struct vdt_mesh *m, struct vdt_err *err);
+
+/* The header checks of vdt_mesh_decode alone, in its words, for a reader
+ * that reads the payload in place: its attribute mask and counts. */
+int vdt_mesh_head(const unsigned char *data, uint64_t length, unsigned *attrs, uint64_t *v,
+                  uint64_t *t, struct vdt_err *err);
 
 /*
  * QUAD chunk payload: u64 count N, then N records of 11 f64

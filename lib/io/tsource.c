@@ -945,13 +945,8 @@ vdt_open(struct vdt_tsource *s, struct vdt_err *err)
 		length = vdt_get_u64le(s->buf + at + 4);
 		vdt_chunk_label(type, name);
 		/* (in the order and words of the stream reader's checks) */
-		if ((rc = vdt_chunk_type_check(type, at, err)) != 0)
+		if ((rc = vdt_chunk_head_check(type, length, at, err)) != 0)
 			return rc;
-		if (type == VDT_CHUNK_END && length != 0)
-			return vdt_err_set(err, VDT_EFORMAT,
-			                   "chunk END at byte %" PRIu64 ": payload of %" PRIu64
-			                   " bytes, expected none",
-			                   at, length);
 		if (length > s->len - at - 12 || s->len - at - 12 - length < 4)
 			return vdt_err_set(err, VDT_EFORMAT,
 			                   "chunk %s at byte %" PRIu64 ": truncated: expected a payload of %" PRIu64
@@ -996,28 +991,18 @@ vdt_open(struct vdt_tsource *s, struct vdt_err *err)
 	if (mesh == NULL)
 		return vdt_err_set(err, VDT_EFORMAT, "stream has no MESH chunk");
 	{
-		uint32_t mask;
+		unsigned mask;
 		uint64_t v, t, per;
 
-		if (mesh_len < 24)
-			return vdt_err_set(err, VDT_EFORMAT,
-			                   "chunk MESH at byte %" PRIu64 ": payload of %" PRIu64
-			                   " bytes is shorter than its 24-byte header",
-			                   mesh_at, mesh_len);
-		mask = vdt_get_u32le(mesh);
-		v = vdt_get_u64le(mesh + 8);
-		t = vdt_get_u64le(mesh + 16);
-		if (mask & ~7u || vdt_get_u32le(mesh + 4) != 0)
-			return vdt_err_set(err, VDT_EFORMAT, "chunk MESH at byte %" PRIu64 ": bad attribute mask or reserved word",
-			                   mesh_at);
+		/* (the stream reader's checks and words: the payload is read
+		 * in place, not decoded) */
+		if ((rc = vdt_mesh_head(mesh, mesh_len, &mask, &v, &t, err)) != 0) {
+			vdt_err_prefix(err, "chunk MESH at byte %" PRIu64, mesh_at);
+			return rc;
+		}
 		s->attrs = mask;
 		per = 12 + (mask & VDT_ATTR_NORMALS ? 12 : 0) + (mask & VDT_ATTR_UVS ? 8 : 0) +
 		      (mask & VDT_ATTR_COLORS ? 16 : 0);
-		if (v > (mesh_len - 24) / per || t > (mesh_len - 24 - v * per) / 12 ||
-		    24 + v * per + 12 * t != mesh_len)
-			return vdt_err_set(err, VDT_EFORMAT,
-			                   "chunk MESH at byte %" PRIu64 ": %" PRIu64 " vertices and %" PRIu64
-			                   " triangles do not fit its %" PRIu64 " bytes", mesh_at, v, t, mesh_len);
 		s->vbase = mesh + 24;
 		s->vstride = 12;
 		s->vcount = v;

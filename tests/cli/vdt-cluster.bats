@@ -765,6 +765,9 @@ PY
 	# a MESH chunk too short for its header; a type of no chunk announcing
 	# 2^40 bytes; an END chunk with a payload (each CRC right)
 	restream "$g" "$TMP/short.vdt" "[(b'MESH', b'')] + ch[1:]"
+	# a MESH of an unknown attribute bit, and one whose counts overrun it
+	restream "$g" "$TMP/mask.vdt" "[(b'MESH', b'\\x09' + ch[0][1][1:])] + ch[1:]"
+	restream "$g" "$TMP/count.vdt" "[(b'MESH', ch[0][1][:8] + struct.pack('<Q', 5) + ch[0][1][16:])] + ch[1:]"
 	python3 - "$g" "$TMP" <<'PY'
 import struct, sys, zlib
 b, d = open(sys.argv[1], 'rb').read(), sys.argv[2]
@@ -775,7 +778,9 @@ open(d + '/end.vdt', 'wb').write(b[:end] + b'END ' + struct.pack('<Q', 1) + p + 
 PY
 	for f in short:"chunk MESH at byte 12: payload of 0 bytes is shorter than its 24-byte header" \
 		type:"chunk at byte 12: type 00 01 02 03 is not printable ASCII" \
-		end:"chunk END at byte 569: payload of 1 bytes, expected none"; do
+		end:"chunk END at byte 569: payload of 1 bytes, expected none" \
+		mask:"chunk MESH at byte 12: attribute mask 0x9 has unknown bits 0x8" \
+		count:"chunk MESH at byte 12: 5 vertices (mask 0x1) and 2 triangles need 168 bytes, payload has 144"; do
 		same_refusal "$TMP/${f%%:*}.vdt"
 		[ "$want" = "cannot read '$TMP/${f%%:*}.vdt': ${f#*:}" ]
 	done
