@@ -687,19 +687,15 @@ fill_least(struct vdt_bvh *bvh, uint32_t node)
 static size_t
 drop_copies(struct prim *prims, size_t n, uint32_t *first)
 {
-	int bits = 1;
-	uint32_t *table, mask;
+	uint32_t mask = vdt_hash_mask(2 * n), *table = malloc(((size_t)mask + 1) * sizeof(*table));
 	size_t kept = 0;
 
-	while (bits < 31 && ((size_t)1 << bits) < 2 * n)
-		bits++;
-	if ((table = malloc(((size_t)1 << bits) * sizeof(*table))) == NULL) {
+	if (table == NULL) {
 		for (size_t t = 0; t < n; t++)
 			first[t] = (uint32_t)t;
 		return n;
 	}
-	mask = (uint32_t)(((size_t)1 << bits) - 1);
-	memset(table, 0xff, ((size_t)1 << bits) * sizeof(*table));
+	memset(table, 0xff, ((size_t)mask + 1) * sizeof(*table));
 	for (size_t t = 0; t < n; t++) {
 		uint32_t w[9];
 		uint64_t h = 0;

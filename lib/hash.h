@@ -32,6 +32,20 @@ vdt_hash_slot(uint32_t x, int bits)
 }
 
 /*
+ * The mask of the smallest open-addressing table of 2^bits >= n slots
+ * (2 to 2^31): slots - 1.
+ */
+static inline uint32_t
+vdt_hash_mask(size_t n)
+{
+	uint32_t m = 1;
+
+	while (m < 0x7fffffffu && (size_t)m + 1 < n)
+		m = 2 * m + 1;
+	return m;
+}
+
+/*
  * The key of a position, by its bits, -0 as +0 (the same point): what
  * welding compares positions by, and vdt-cluster tells edges by.
  */

@@ -1313,10 +1313,26 @@ attrs_hash(const struct vdt_mesh *in, size_t a)
 	return h;
 }
 
-/* Copies at one position, at most, whose attribute sets are told apart
- * each against every earlier one; more take a hash table (the apex of a
- * flat-shaded fan of 80000 faces: 80000 sets, 23 s by pairs). */
-#define WEDGE_SCAN_MAX 64
+/*
+ * Copies at one position, or corners at one vertex, at most, that are
+ * compared each with every other; more take a hash table (the apex of a
+ * flat-shaded fan of 80000 faces: its attribute sets took 23 s by pairs,
+ * its seam planes 11 s).
+ */
+#define SCAN_MAX 64
+
+/* A scratch table of at least `slots` entries of `size` bytes, grown from
+ * *tab (*cap entries), or NULL without the memory (*tab freed). */
+static void *
+scratch(void *tab, size_t *cap, size_t slots, size_t size)
+{
+	void *t = tab;
+
+	if (slots > *cap && (t = realloc(tab, slots * size)) == NULL)
+		free(tab);
+	*cap = t != NULL && slots > *cap ? slots : t != NULL ? *cap : 0;
+	return t;
+}
 
 /* q -= sign * sum_j (G_j.p + D_j)^2 / W, for the wedge sums x. */
 static void
@@ -1691,20 +1707,9 @@ attr_free(struct attr *at)
 }
 
 /*
- * Discontinuity curves stay in place the way open boundaries do (Garland &
- * Heckbert 98, section 5; Hoppe 99, section 6): along each seam edge, the
- * edge whose two faces meet with different wedges at an end, the plane
- * through it perpendicular to each face joins both ends' quadrics. Without
- * it a seam vertex could slide off the seam at no attribute cost, since each
- * side's attributes extrapolate linearly, and drag one side's texture over
- * the other's. The planes hold against attribute terms as well as
- * geometric ones, so their weight grows with the attribute weight above 1.
- */
-/*
  * The corners at v of the first two faces (in v's corner list) that hold
- * each neighbour b of v, in a table of 2^bits entries: the face across an
- * edge found without reading v's corners for each of its corners (the
- * apex of a flat-shaded fan of 80000 faces: 11 s).
+ * each neighbour b of v, in a table of mask + 1 entries: the face across
+ * an edge found without reading v's corners for each of its corners.
  */
 struct across {
 	uint32_t b, k[2];
@@ -1729,7 +1734,7 @@ across_fill(const struct attr *at, uint32_t v, struct across *tab, uint32_t mask
 		uint32_t t = k / 3;
 		for (int d = 1; d <= 2; d++) {
 			uint32_t b = at->cvert[3 * t + (k + d) % 3],
-			         h = vdt_hash_slot(b, 31) & mask;
+			         h = (uint32_t)vdt_hash_mix(b) & mask;
 			while (tab[h].b != NONE && tab[h].b != b)
 				h = (h + 1) & mask;
 			if (tab[h].b == NONE)
@@ -1740,37 +1745,37 @@ across_fill(const struct attr *at, uint32_t v, struct across *tab, uint32_t mask
 	}
 }
 
+/*
+ * Discontinuity curves stay in place the way open boundaries do (Garland &
+ * Heckbert 98, section 5; Hoppe 99, section 6): along each seam edge, the
+ * edge whose two faces meet with different wedges at an end, the plane
+ * through it perpendicular to each face joins both ends' quadrics. Without
+ * it a seam vertex could slide off the seam at no attribute cost, since each
+ * side's attributes extrapolate linearly, and drag one side's texture over
+ * the other's. The planes hold against attribute terms as well as
+ * geometric ones, so their weight grows with the attribute weight above 1.
+ */
 static void
 seam_planes(struct ctx *c, const struct vdt_mesh *w, double weight)
 {
 	struct attr *at = c->at;
-	uint32_t most = 0, *len = calloc(w->vertex_count + 1, sizeof(*len));
 	struct across *tab = NULL;
-	int bits = 1;
+	size_t cap = 0;
 
-	/* (without memory for the table, each corner reads v's: the same) */
-	for (size_t v = 0; len != NULL && v < w->vertex_count; v++) {
-		for (uint32_t k = at->chead[v]; k != NONE; k = at->cnext[k])
-			len[v]++;
-		most = len[v] > most ? len[v] : most;
-	}
-	while (bits < 31 && (1u << bits) < 4 * most)
-		bits++;
-	if (most > WEDGE_SCAN_MAX)
-		tab = malloc(((size_t)1 << bits) * sizeof(*tab));
 	for (size_t v = 0; v < w->vertex_count; v++) {
-		uint32_t mask = 0;
-		int table = tab != NULL && len[v] > WEDGE_SCAN_MAX;
-		if (table) {
-			for (bits = 1; (1u << bits) < 4 * len[v]; bits++)
-				;
-			mask = (1u << bits) - 1;
-			across_fill(at, (uint32_t)v, tab, mask);
+		uint32_t mask = 0, len = 0;
+		for (uint32_t k = at->chead[v]; k != NONE; k = at->cnext[k])
+			len++;
+		if (len > SCAN_MAX) { /* (without the memory, by pairs: the same) */
+			mask = vdt_hash_mask(4 * (size_t)len);
+			if ((tab = scratch(tab, &cap, (size_t)mask + 1, sizeof(*tab))) != NULL)
+				across_fill(at, (uint32_t)v, tab, mask);
 		}
+		int table = len > SCAN_MAX && tab != NULL;
 		for (uint32_t k = at->chead[v]; k != NONE; k = at->cnext[k]) {
 			uint32_t t = k / 3, k1 = 3 * t + (k + 1) % 3, b = at->cvert[k1], k2, kb = NONE;
 			if (table) {
-				uint32_t h = vdt_hash_slot(b, 31) & mask;
+				uint32_t h = (uint32_t)vdt_hash_mix(b) & mask;
 				while (tab[h].b != b)
 					h = (h + 1) & mask;
 				k2 = tab[h].k[0] / 3 != t ? tab[h].k[0] : tab[h].k[1];
@@ -1808,7 +1813,6 @@ seam_planes(struct ctx *c, const struct vdt_mesh *w, double weight)
 		}
 	}
 	free(tab);
-	free(len);
 }
 
 /* The input face of live face t (fsrc NULL: no face was dropped). */
@@ -1881,23 +1885,16 @@ attr_setup(struct ctx *c, const struct vdt_mesh *in, const struct vdt_mesh *w,
 	/* Wedges: the distinct attribute sets at each position, in input
 	 * order, each listed at its welded vertex; each copy's set is that
 	 * of the first copy with the same attributes. */
-	uint32_t kmax = 0, *tab = NULL;
-	for (size_t v = 0; v < nw; v++)
-		kmax = wstart[v + 1] - wstart[v] > kmax ? wstart[v + 1] - wstart[v] : kmax;
-	int bits = 1;
-	while (bits < 31 && (1u << bits) < 2 * kmax)
-		bits++;
-	if (kmax > WEDGE_SCAN_MAX) /* (without memory, by pairs: slower, the same) */
-		tab = malloc(((size_t)1 << bits) * sizeof(*tab));
+	uint32_t *tab = NULL;
+	size_t cap = 0;
 	for (size_t v = 0; v < nw; v++) {
 		uint32_t last = NONE, k = wstart[v + 1] - wstart[v], mask = 0;
-		int hashed = tab != NULL && k > WEDGE_SCAN_MAX;
-		if (hashed) {
-			for (bits = 1; (1u << bits) < 2 * k; bits++)
-				;
-			mask = (1u << bits) - 1;
-			memset(tab, 0xff, ((size_t)mask + 1) * sizeof(*tab));
+		if (k > SCAN_MAX) { /* (without the memory, by pairs: the same) */
+			mask = vdt_hash_mask(2 * (size_t)k);
+			if ((tab = scratch(tab, &cap, (size_t)mask + 1, sizeof(*tab))) != NULL)
+				memset(tab, 0xff, ((size_t)mask + 1) * sizeof(*tab));
 		}
+		int hashed = k > SCAN_MAX && tab != NULL;
 		at->whead[v] = NONE;
 		for (uint32_t j = wstart[v]; j < wstart[v + 1]; j++) {
 			uint32_t i = wlist[j], first = NONE;
