@@ -105,7 +105,6 @@ void
 usage_error(const char *fmt, ...)
 {
 	va_list ap;
-
 	char line[2048];
 
 	va_start(ap, fmt);

@@ -733,10 +733,12 @@ vdt_bvh_build(struct vdt_bvh *bvh, const struct vdt_mesh *m, struct vdt_err *err
 		return vdt_err_set(err, VDT_ELIMIT, "%zu triangles are too many for the BVH", n);
 	b.prims = malloc(n * sizeof(*b.prims));
 	bvh->nodes = malloc(2 * n * sizeof(*bvh->nodes));
+	bvh->least = malloc(2 * n * sizeof(uint32_t));
 	bvh->order = malloc(n * sizeof(uint32_t));
 	bvh->slot_of = malloc(n * sizeof(uint32_t));
 	bvh->corners = malloc(n * 9 * sizeof(float));
-	if (!b.prims || !bvh->nodes || !bvh->order || !bvh->slot_of || !bvh->corners) {
+	if (!b.prims || !bvh->nodes || !bvh->least || !bvh->order || !bvh->slot_of ||
+	    !bvh->corners) {
 		free(b.prims);
 		vdt_bvh_free(bvh);
 		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate a BVH over %zu triangles", n);
@@ -768,10 +770,6 @@ vdt_bvh_build(struct vdt_bvh *bvh, const struct vdt_mesh *m, struct vdt_err *err
 		if (bvh->slot_of[t] >= kept || bvh->order[bvh->slot_of[t]] != t)
 			bvh->slot_of[t] = bvh->slot_of[bvh->slot_of[t]];
 	free(b.prims);
-	if ((bvh->least = malloc(bvh->node_count * sizeof(uint32_t))) == NULL) {
-		vdt_bvh_free(bvh);
-		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate a BVH over %zu triangles", n);
-	}
 	fill_least(bvh, 0);
 	slabs(bvh);
 	return 0;

@@ -16,8 +16,9 @@
  * Everything else (o, g, s, usemtl, mtllib, l, p, curves, surfaces, unknown
  * statements) is ignored: a mesh filter has no use for it, and refusing it
  * would refuse real files; materials are noted (VDT_DROPPED_MATERIALS), as
- * the textures they name no longer apply. Polygons are triangulated (polygon.h). w is a weight for
- * rational curves and means nothing for polygons, so it is dropped.
+ * the textures they name no longer apply. Polygons are triangulated
+ * (polygon.h). w is a weight for rational curves and means nothing for
+ * polygons, so it is dropped.
  *
  * OBJ attributes belong to corners, ours to vertices. A corner is the triple
  * (v, vt, vn); each distinct triple used by a face becomes one vertex,
@@ -271,8 +272,7 @@ count(const char *buf, size_t len, struct obj *o, struct vdt_err *err)
 		case K_VN: o->nn++; break;
 		case K_F: o->nf++; break;
 		default:
-			if ((n == 6 &&
-			     (memcmp(k, "usemtl", 6) == 0 || memcmp(k, "mtllib", 6) == 0)))
+			if (n == 6 && (memcmp(k, "usemtl", 6) == 0 || memcmp(k, "mtllib", 6) == 0))
 				o->dropped |= VDT_DROPPED_MATERIALS;
 			break;
 		}
