@@ -163,6 +163,9 @@ PY
 	[[ "$output" == *"vdt-render: $want"* ]]
 	run "$BIN/vdt-render" --full --size 16x16 "$TMP/m.obj" -o "$TMP/x.png"
 	[ -z "$output" ]
+	run "$BIN/vdt-deform" --vertices 100 "$TMP/m.obj" -o "$TMP/d.obj"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"vdt-deform: $want"* ]]
 	run "$BIN/vdt-measure" "$TMP/m.obj" "$TMP/s.obj"
 	[[ "$output" != *materials* ]]
 }

@@ -56,3 +56,18 @@ rendered() {
 	"$BATS_TEST_DIRNAME/../../scripts/vdt-batch" --help > "$TMP/help"
 	[ -z "$(awk 'length > 80' "$TMP/help")" ]
 }
+
+@test "every tool's -h and -V, short and long, do what its page says" {
+	for t in vdt-qslim vdt-cluster vdt-build vdt-render vdt-deform vdt-silhouette vdt-measure; do
+		for o in -h --help; do
+			run "$BIN/$t" $o
+			[ "$status" -eq 0 ]
+			[[ "$output" == "usage: $t "* ]]
+		done
+		for o in -V --version; do
+			run "$BIN/$t" $o
+			[ "$status" -eq 0 ]
+			[[ "$output" =~ ^$t\ [0-9]+\.[0-9]+\.[0-9]+\ \(vdt\ stream\ format\ [0-9]+\.[0-9]+\)$ ]]
+		done
+	done
+}
