@@ -219,9 +219,29 @@ void
 note_dropped(const char *path, unsigned dropped, int quiet)
 {
 	if (!quiet && (dropped & VDT_DROPPED_MATERIALS))
-		note("note: '%s' names materials (mtllib, usemtl), which vdt does not keep: "
+		note("note: '%s' names materials (mtllib, usemtl), which %s does not keep: "
 		     "the output has none, and its textures no longer apply\n",
-		     input_name(path));
+		     input_name(path), progname);
+}
+
+void
+drop_materials(const char *path, struct vdt_chunks *extra, int quiet)
+{
+	if (vdt_chunks_find(extra, VDT_CHUNK_MATL) == NULL)
+		return;
+	vdt_chunks_remove(extra, VDT_CHUNK_MATL);
+	note_dropped(path, VDT_DROPPED_MATERIALS, quiet);
+}
+
+void
+note_materials_format(const char *path, const struct vdt_chunks *extra, const char *out,
+                      enum vdt_format f, int quiet)
+{
+	if (!quiet && f != VDT_FMT_OBJ && f != VDT_FMT_VDT &&
+	    vdt_chunks_find(extra, VDT_CHUNK_MATL) != NULL)
+		note("note: '%s' names materials (mtllib, usemtl), which %s output cannot hold: "
+		     "'%s' has none (an OBJ or a vdt stream keeps them)\n",
+		     input_name(path), vdt_format_name(f), out);
 }
 
 void

@@ -101,9 +101,20 @@ int cmd_done(int rc);
  * away as it was read.
  */
 void note_float_precision(const char *path, const struct vdt_mesh *m, int quiet);
-/* A note of what the file at path had that a mesh cannot hold and the
- * output lacks (dropped: VDT_DROPPED_*), unless quiet. */
+/* A note of what the file at path had that this tool does not keep and
+ * the output lacks (dropped: VDT_DROPPED_*), unless quiet. */
 void note_dropped(const char *path, unsigned dropped, int quiet);
+
+/* Remove the materials of the mesh read from path (the MATL chunk of
+ * extra), which a tool that changes the faces without keeping them must
+ * drop, with note_dropped's note. */
+struct vdt_chunks;
+void drop_materials(const char *path, struct vdt_chunks *extra, int quiet);
+
+/* A note, unless quiet, when the materials of extra (MATL) cannot go
+ * into the output out of format f (only OBJ and the stream hold them). */
+void note_materials_format(const char *path, const struct vdt_chunks *extra, const char *out,
+                           enum vdt_format f, int quiet);
 
 /* The same for a model whose box of float positions is box (one read as a
  * stream, never held whole). */

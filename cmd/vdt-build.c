@@ -160,6 +160,8 @@ run(struct cmdline *cl)
 	}
 	note_float_precision(cl->in, &m, cl->quiet);
 	note_dropped(cl->in, m.dropped, cl->quiet);
+	/* (the tree's faces are its own) */
+	drop_materials(cl->in, &extra, cl->quiet);
 	if ((rc = vdt_vtree_prepare(&m, &dropped, &err)) != 0) {
 		rc = fail("cannot build a tree of", cl->in, &err);
 		goto out;

@@ -270,6 +270,7 @@ run(struct cmdline *cl)
 		usage_error("%zu frames need a pattern with one %%d of width 20 at most "
 		            "(out/%%03d.obj) or a vdt stream for -o", fr.frame_count);
 	refuse_frames_over_inputs(cl, fr.frame_count);
+	drop_materials(cl->in[0], &extra, cl->quiet);
 	vdt_chunks_drop_vertex_data(&extra);
 	cl->d.progress = progress_start(cl->quiet);
 	t1 = vdt_seconds();

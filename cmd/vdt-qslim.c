@@ -159,7 +159,8 @@ run(struct cmdline *cl)
 		return fail("cannot read", cl->in, &err);
 	note_float_precision(cl->in, &in, cl->quiet);
 	note_dropped(cl->in, in.dropped, cl->quiet);
-	if ((rc = vdt_qslim_extra_decode(&x, &extra, in.vertex_count, cl->ignore_quadrics, &err)) != 0) {
+	if ((rc = vdt_qslim_extra_decode(&x, &extra, in.vertex_count, in.triangle_count,
+	                                 cl->ignore_quadrics, &err)) != 0) {
 		rc = fail("cannot read", cl->in, &err);
 		goto out;
 	}
@@ -178,8 +179,13 @@ run(struct cmdline *cl)
 		goto out;
 	}
 	t2 = vdt_seconds();
-	if ((rc = vdt_qslim_extra_encode(&x, &extra, &err)) != 0 ||
-	    (rc = vdt_write(cl->out, &out, &extra, &cl->w, &err)) != 0) {
+	if ((rc = vdt_qslim_extra_encode(&x, &extra, &err)) != 0) {
+		rc = fail("cannot write", cl->out, &err);
+		goto out;
+	}
+	note_materials_format(cl->in, &extra, cl->out, vdt_output_format(cl->out, cl->w.format),
+	                      cl->quiet);
+	if ((rc = vdt_write(cl->out, &out, &extra, &cl->w, &err)) != 0) {
 		rc = fail("cannot write", cl->out, &err);
 		goto out;
 	}

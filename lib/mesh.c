@@ -61,6 +61,32 @@ vdt_mesh_free(struct vdt_mesh *m)
 	memset(m, 0, sizeof(*m));
 }
 
+void
+vdt_materials_free(struct vdt_materials *m)
+{
+	for (size_t i = 0; i < m->count; i++)
+		free(m->names[i]);
+	for (size_t i = 0; i < m->lib_count; i++)
+		free(m->libs[i]);
+	free(m->names);
+	free(m->libs);
+	free(m->faces);
+	memset(m, 0, sizeof(*m));
+}
+
+int
+vdt_material_name_ok(const char *s, size_t n)
+{
+	if (n == 0 || s[0] == ' ' || s[n - 1] == ' ')
+		return 0;
+	for (size_t i = 0; i < n; i++) {
+		unsigned char c = (unsigned char)s[i];
+		if (c < 0x20 || c == 0x7f || (c == ' ' && s[i + 1] == ' '))
+			return 0;
+	}
+	return 1;
+}
+
 unsigned
 vdt_mesh_attrs(const struct vdt_mesh *m)
 {

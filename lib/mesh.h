@@ -39,6 +39,31 @@ enum {
 	VDT_DROPPED_MATERIALS = 1u << 0, /* OBJ's mtllib and usemtl */
 };
 
+/*
+ * Materials of a mesh's faces, as an OBJ names them: a number per face
+ * into a table of names (usemtl), and the libraries that define them
+ * (mtllib), each as its statement wrote it after the keyword. Names and
+ * libraries are non-empty, without control characters, and hold no
+ * leading, trailing or repeated blanks. They travel beside the mesh, as
+ * the MATL chunk of the vdt stream (vdt(5)).
+ */
+#define VDT_NO_MATERIAL UINT32_MAX /* a face before any usemtl */
+
+struct vdt_materials {
+	size_t face_count;
+	uint32_t *faces; /* face_count numbers below count, or VDT_NO_MATERIAL */
+	size_t count;
+	char **names;
+	size_t lib_count;
+	char **libs;
+};
+
+/* Free what m holds and zero it. Safe on a zeroed m. */
+void vdt_materials_free(struct vdt_materials *m);
+
+/* Whether s may be a material name or library (see above). */
+int vdt_material_name_ok(const char *s, size_t n);
+
 struct vdt_bbox {
 	double min[3], max[3];
 };

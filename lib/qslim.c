@@ -1823,6 +1823,66 @@ src_face(const uint32_t *fsrc, size_t t)
 }
 
 /*
+ * Where faces of two materials meet (mat: per input face), planes across
+ * each face at the edge, as at a seam (seam_planes), so that the border
+ * keeps its line; its vertices get bit 8 of border. Returns how many
+ * vertices are on such borders, or -1 out of memory.
+ */
+static long
+material_planes(struct ctx *c, const struct vdt_mesh *w, const uint32_t *fsrc, const uint32_t *mat,
+                double weight, uint8_t *border)
+{
+	uint32_t *start, *fan;
+	long on = 0;
+
+	if (vdt_topo_fans(w->vertex_count, w->triangles, w->triangle_count, &start, &fan) != 0)
+		return -1;
+	for (size_t t = 0; t < w->triangle_count; t++) {
+		const uint32_t *v = w->triangles + 3 * t;
+		uint32_t m = mat[src_face(fsrc, t)];
+		for (int k = 0; k < 3; k++) {
+			uint32_t a = v[k], b = v[(k + 1) % 3];
+			int differ = 0;
+			for (uint32_t j = start[a]; j < start[a + 1] && !differ; j++) {
+				const uint32_t *u = w->triangles + 3 * (size_t)fan[j];
+				differ = fan[j] != t && (u[0] == b || u[1] == b || u[2] == b) &&
+				         mat[src_face(fsrc, fan[j])] != m;
+			}
+			if (!differ)
+				continue;
+			double p[3][3], e1[3], e2[3], n[3], l;
+			struct vdt_quadric q;
+			for (int i = 0; i < 3; i++)
+				for (int j = 0; j < 3; j++)
+					p[i][j] = w->positions[3 * (size_t)v[i] + j] - c->centre[j];
+			for (int j = 0; j < 3; j++) {
+				e1[j] = p[1][j] - p[0][j];
+				e2[j] = p[2][j] - p[0][j];
+			}
+			n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+			n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+			n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+			l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+			on += !(border[a] & 8) + !(border[b] & 8);
+			border[a] |= 8;
+			border[b] |= 8;
+			if (!(l > 0))
+				continue;
+			for (int j = 0; j < 3; j++)
+				n[j] /= l;
+			if (vdt_quadric_boundary(&q, p[k], p[(k + 1) % 3], n, weight) == 0) {
+				q.w = 0;
+				vdt_quadric_add(&c->q[a], &q);
+				vdt_quadric_add(&c->q[b], &q);
+			}
+		}
+	}
+	free(start);
+	free(fan);
+	return on;
+}
+
+/*
  * Wedges and attribute quadrics for the live faces of w (fsrc: their input
  * faces, or NULL for the same numbers). Input vertices at one position
  * with bit-identical attributes are one wedge; seam[v] is set where a
@@ -2610,8 +2670,8 @@ give_up_parts(struct vdt_contract_result *r, size_t target)
 /* vdt_qslim with every distance option in model units. */
 static int
 simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox *box,
-         const struct vdt_qslim_opts *o, struct vdt_mesh *out,
-         struct vdt_contraction **records, size_t *record_count,
+         const struct vdt_qslim_opts *o, const uint32_t *mat, uint32_t **mat_out,
+         struct vdt_mesh *out, struct vdt_contraction **records, size_t *record_count,
          struct vdt_qslim_stats *stats, struct vdt_err *err)
 {
 	size_t n = in->vertex_count, T = in->triangle_count, target = 0;
@@ -2632,9 +2692,12 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	struct back_corners bk = {0};
 	size_t nbacks = 0;
 	size_t nw, nvp = 0;
+	long mat_borders = 0;
 	int rc = VDT_ENOMEM;
 
 	memset(out, 0, sizeof(*out));
+	if (mat_out != NULL)
+		*mat_out = NULL;
 	memset(stats, 0, sizeof(*stats));
 	stats->handles = -1;
 	double t_start = vdt_seconds();
@@ -2663,6 +2726,10 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 		return vdt_err_set(err, VDT_EINVAL, "every face has zero area");
 	if (target >= T) {
 		stats->reached_target = 1;
+		if (mat != NULL && (*mat_out = malloc((T ? T : 1) * sizeof(**mat_out))) == NULL)
+			return vdt_err_set(err, VDT_ENOMEM, "out of memory for materials");
+		if (mat != NULL)
+			memcpy(*mat_out, mat, T * sizeof(**mat_out));
 		return vdt_mesh_copy(out, in, err);
 	}
 
@@ -2803,6 +2870,14 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 		if (o->lock_border && (border[v] & 1))
 			locked[v] = 1;
 	}
+	/* Material borders are seams too: their vertices stay where they
+	 * are while vertices off them merge in, and the planes hold their
+	 * line (bit 8 of border). */
+	if (mat != NULL &&
+	    (mat_borders = material_planes(&c, &w, fsrc, mat,
+	                                   VDT_QSLIM_SEAM_WEIGHT * fmax(1, o->attribute_weight),
+	                                   border)) < 0)
+		goto nomem;
 	if (o->error_scale) {
 		c.scale = malloc(nw * sizeof(*c.scale));
 		if (c.scale == NULL)
@@ -2823,7 +2898,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	if (seam == NULL)
 		goto nomem;
 	for (size_t v = 0; v < nw; v++)
-		seam[v] = (border[v] & 2) != 0;
+		seam[v] = (border[v] & 10) != 0;
 	/* Attribute errors in bounding-box diagonals, like Hoppe's unit box;
 	 * attributes the same everywhere have none. */
 	if (o->attribute_weight > 0 && varying != 0) {
@@ -2840,9 +2915,11 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 		}
 		ops.cost = cost_attr;
 		ops.merged = merged_attr;
+		for (size_t v = 0; v < nw; v++)
+			seam[v] |= (border[v] & 8) != 0;
 	}
 	c.seam = seam;
-	c.pin_seams = varying != 0;
+	c.pin_seams = varying != 0 || mat_borders > 0;
 	vdt_contract_defaults(&co);
 	co.target_triangles = target;
 	co.twice = twice;
@@ -2998,6 +3075,12 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 		back_attributes(in, &bk, out);
 	if (rc != 0)
 		goto fail;
+	if (mat != NULL) {
+		if ((*mat_out = malloc((r.triangle_count + 1) * sizeof(**mat_out))) == NULL)
+			goto nomem;
+		for (size_t t = 0; t < r.triangle_count; t++)
+			(*mat_out)[t] = mat[r.sources[t]];
+	}
 	if (records) {
 		*records = r.records;
 		*record_count = r.record_count;
@@ -3040,8 +3123,9 @@ done:
 
 static int
 qslim_units(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_qslim_opts *o,
-            struct vdt_mesh *out, struct vdt_contraction **records, size_t *record_count,
-            struct vdt_qslim_stats *stats, struct vdt_err *err)
+            const uint32_t *mat, uint32_t **mat_out, struct vdt_mesh *out,
+            struct vdt_contraction **records, size_t *record_count, struct vdt_qslim_stats *stats,
+            struct vdt_err *err)
 {
 	struct vdt_qslim_opts units = *o;
 	struct vdt_bbox box;
@@ -3057,7 +3141,7 @@ qslim_units(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_q
 		units.max_error = o->max_error * diag / 100;
 	if (o->aggregate_percent)
 		units.aggregate = o->aggregate * diag / 100;
-	rc = simplify(in, take, &box, &units, out, records, record_count, stats, err);
+	rc = simplify(in, take, &box, &units, mat, mat_out, out, records, record_count, stats, err);
 	if (rc == 0)
 		stats->error_pct = diag > 0 ? 100 * stats->max_error / diag : 0;
 	return rc;
@@ -3068,7 +3152,7 @@ vdt_qslim(const struct vdt_mesh *in, const struct vdt_qslim_opts *o, struct vdt_
           struct vdt_contraction **records, size_t *record_count, struct vdt_qslim_stats *stats,
           struct vdt_err *err)
 {
-	return qslim_units(in, NULL, o, out, records, record_count, stats, err);
+	return qslim_units(in, NULL, o, NULL, NULL, out, records, record_count, stats, err);
 }
 
 int
@@ -3076,19 +3160,25 @@ vdt_qslim_take(struct vdt_mesh *in, const struct vdt_qslim_opts *o, struct vdt_m
                struct vdt_contraction **records, size_t *record_count,
                struct vdt_qslim_stats *stats, struct vdt_err *err)
 {
-	return qslim_units(in, in, o, out, records, record_count, stats, err);
+	return qslim_units(in, in, o, NULL, NULL, out, records, record_count, stats, err);
 }
 
 int
 vdt_qslim_extra_decode(struct vdt_qslim_extra *x, struct vdt_chunks *c, size_t vertex_count,
-                       int ignore_quadrics, struct vdt_err *err)
+                       size_t triangle_count, int ignore_quadrics, struct vdt_err *err)
 {
+	const struct vdt_chunk *m = vdt_chunks_find(c, VDT_CHUNK_MATL);
 	int rc;
 
 	memset(x, 0, sizeof(*x));
 	if ((!ignore_quadrics && ((rc = decode_quadrics(c, vertex_count, &x->quadrics, err)) != 0 ||
 	                          (rc = decode_border(c, vertex_count, &x->border, err)) != 0)) ||
-	    (rc = vdt_labl_decode_chunk(c, vertex_count, &x->labl, err)) != 0) {
+	    (rc = vdt_labl_decode_chunk(c, vertex_count, &x->labl, err)) != 0 ||
+	    (m != NULL &&
+	     (rc = vdt_matl_decode(m->data, m->length, triangle_count, &x->mat, err)) != 0)) {
+		if (m != NULL && x->mat.faces == NULL)
+			vdt_err_prefix(err, "chunk MATL at byte %llu",
+			               (unsigned long long)m->offset);
 		vdt_qslim_extra_free(x);
 		return rc;
 	}
@@ -3116,8 +3206,16 @@ vdt_qslim_extra_run(struct vdt_qslim_extra *x, struct vdt_mesh *in,
 	x->records = NULL;
 	x->record_count = 0;
 	x->record = o->record;
-	return qslim_units(in, x->take_input ? in : NULL, &with, out,
-	                   o->record ? &x->records : NULL, &x->record_count, stats, err);
+	uint32_t *faces = NULL;
+	rc = qslim_units(in, x->take_input ? in : NULL, &with, x->mat.faces,
+	                 x->mat.faces ? &faces : NULL, out, o->record ? &x->records : NULL,
+	                 &x->record_count, stats, err);
+	if (rc == 0 && faces != NULL) {
+		free(x->mat.faces);
+		x->mat.faces = faces;
+		x->mat.face_count = out->triangle_count;
+	}
+	return rc;
 }
 
 int
@@ -3127,6 +3225,10 @@ vdt_qslim_extra_encode(const struct vdt_qslim_extra *x, struct vdt_chunks *c, st
 	uint64_t len;
 	int rc;
 
+	if (x->mat.faces != NULL &&
+	    ((rc = vdt_matl_encode(&x->mat, &data, &len, err)) != 0 ||
+	     (rc = vdt_chunks_prepend(c, VDT_CHUNK_MATL, data, len, err)) != 0))
+		return rc;
 	if (!x->record)
 		return 0;
 	if ((rc = vdt_seqn_encode(x->records, x->record_count, &data, &len, err)) != 0)
@@ -3142,5 +3244,6 @@ vdt_qslim_extra_free(struct vdt_qslim_extra *x)
 	vdt_labl_free(&x->labl);
 	free(x->error_scale);
 	free(x->records);
+	vdt_materials_free(&x->mat);
 	memset(x, 0, sizeof(*x));
 }

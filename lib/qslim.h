@@ -227,26 +227,33 @@ struct vdt_qslim_extra {
 	                                  over in's arrays (vdt_qslim_take) */
 	struct vdt_contraction *records; /* (vdt_qslim_extra_run) */
 	size_t record_count;
+	struct vdt_materials mat; /* MATL: of in's faces, then of out's
+	                             (vdt_qslim_extra_run); face_count 0
+	                             when there are none */
 };
 
 /*
  * Decode into *x the QUAD and BNDY chunks of c (unless ignore_quadrics:
- * both are what phase I hands over) and its LABL chunk, each of which must
- * describe vertex_count vertices; then remove
+ * both are what phase I hands over), its LABL chunk, each of which must
+ * describe vertex_count vertices, and its MATL chunk, of triangle_count
+ * faces; then remove
  * from c every chunk that describes the input's vertices
  * (vdt_chunks_drop_vertex_data), since the output's vertices differ.
  * Returns 0, a decoder's status, or VDT_EFORMAT for a count that differs
  * ("QUAD chunk has 10 quadrics for 12 vertices", "LABL chunk has labels
  * of 10 vertices for 12"); on failure *x is empty and c unchanged.
  */
-int vdt_qslim_extra_decode(struct vdt_qslim_extra *x, struct vdt_chunks *c,
-                           size_t vertex_count, int ignore_quadrics,
-                           struct vdt_err *err);
+int vdt_qslim_extra_decode(struct vdt_qslim_extra *x, struct vdt_chunks *c, size_t vertex_count,
+                           size_t triangle_count, int ignore_quadrics, struct vdt_err *err);
 
 /*
  * vdt_qslim on in, whose chunks x holds: the quadrics replace o's, the
- * labels give the error scale under lo (vdt_labl_scale), and with
- * o->record the contraction record is kept in x; with x->take_input it
+ * labels give the error scale under lo (vdt_labl_scale), with
+ * o->record the contraction record is kept in x, and the materials of
+ * the faces are kept: where faces of two meet, the border is a seam that
+ * keeps its line (planes across it, as at attribute seams, and its
+ * vertices stay put while others merge into them), and each output face
+ * has the material of the input face it stands for; with x->take_input it
  * is vdt_qslim_take, which may take over in's arrays. Returns 0,
  * VDT_ENOMEM ("out of memory for labels") or vdt_qslim's status.
  */
@@ -257,8 +264,9 @@ int vdt_qslim_extra_run(struct vdt_qslim_extra *x, struct vdt_mesh *in,
                         struct vdt_err *err);
 
 /*
- * Append the contraction record x keeps, if any (even of no
- * contractions), to c as a SEQN chunk.
+ * Put the contraction record x keeps, if any (even of no contractions),
+ * and the output's materials, if any, before the chunks of c, as SEQN
+ * and MATL chunks.
  * Returns 0, or vdt_seqn_encode's or vdt_chunks_add's status.
  */
 int vdt_qslim_extra_encode(const struct vdt_qslim_extra *x, struct vdt_chunks *c,

@@ -483,9 +483,10 @@ vdt_chunks_remove(struct vdt_chunks *c, uint32_t type)
 	c->count = n;
 }
 
-/* The chunk types that describe the MESH chunk's vertices by index. */
+/* The chunk types that describe the MESH chunk's vertices or faces by index. */
 static const uint32_t vertex_types[] = {VDT_CHUNK_QUAD, VDT_CHUNK_BNDY, VDT_CHUNK_LABL,
-                                        VDT_CHUNK_VTRE, VDT_CHUNK_FRMS, VDT_CHUNK_SEQN};
+                                        VDT_CHUNK_VTRE, VDT_CHUNK_FRMS, VDT_CHUNK_SEQN,
+                                        VDT_CHUNK_MATL};
 
 void
 vdt_chunks_drop_vertex_data(struct vdt_chunks *c)
@@ -921,4 +922,126 @@ vdt_bndy_decode(const unsigned char *data, uint64_t length, size_t vertex_count,
 	}
 	*flags = f;
 	return 0;
+}
+
+int
+vdt_matl_encode(const struct vdt_materials *m, unsigned char **data, uint64_t *length,
+                struct vdt_err *err)
+{
+	size_t n = 16 + 4 * m->face_count;
+	unsigned char *buf, *p;
+
+	*data = NULL;
+	*length = 0;
+	for (size_t i = 0; i < m->count; i++)
+		n += 4 + strlen(m->names[i]);
+	for (size_t i = 0; i < m->lib_count; i++)
+		n += 4 + strlen(m->libs[i]);
+	if ((buf = malloc(n)) == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate a MATL chunk for %zu faces",
+		                   m->face_count);
+	vdt_put_u64le(buf, m->face_count);
+	vdt_put_u32le(buf + 8, (uint32_t)m->count);
+	vdt_put_u32le(buf + 12, (uint32_t)m->lib_count);
+	p = buf + 16;
+	for (size_t t = 0; t < m->face_count; t++, p += 4)
+		vdt_put_u32le(p, m->faces[t]);
+	for (size_t i = 0; i < m->count + m->lib_count; i++) {
+		const char *s = i < m->count ? m->names[i] : m->libs[i - m->count];
+		size_t l = strlen(s);
+		vdt_put_u32le(p, (uint32_t)l);
+		memcpy(p + 4, s, l);
+		p += 4 + l;
+	}
+	*data = buf;
+	*length = n;
+	return 0;
+}
+
+/* The strings of a MATL payload from *at: count of them into out
+ * (allocated), what is one in messages. */
+static int
+matl_strings(const unsigned char *data, uint64_t length, uint64_t *at, uint32_t count,
+             const char *what, char ***out, struct vdt_err *err)
+{
+	char **s;
+
+	/* each takes 4 bytes at least, so count is bounded by the payload */
+	if (count > (length - *at) / 4)
+		return vdt_err_set(err, VDT_EFORMAT, "%" PRIu32 " %ss do not fit the MATL payload",
+		                   count, what);
+	if ((s = calloc(count ? count : 1, sizeof(*s))) == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %" PRIu32 " %ss", count, what);
+	*out = s;
+	for (uint32_t i = 0; i < count; i++) {
+		uint32_t n;
+
+		if (length - *at < 4 || (n = vdt_get_u32le(data + *at)) > length - *at - 4)
+			return vdt_err_set(err, VDT_EFORMAT,
+			                   "%s %" PRIu32 " runs past the MATL payload", what, i);
+		if (!vdt_material_name_ok((const char *)data + *at + 4, n))
+			return vdt_err_set(err, VDT_EINVAL,
+			                   "%s %" PRIu32 " is empty, or has a control character or "
+			                   "stray blanks",
+			                   what, i);
+		if ((s[i] = malloc((size_t)n + 1)) == NULL)
+			return vdt_err_set(err, VDT_ENOMEM, "cannot allocate a %s", what);
+		memcpy(s[i], data + *at + 4, n);
+		s[i][n] = '\0';
+		*at += 4 + (uint64_t)n;
+	}
+	return 0;
+}
+
+int
+vdt_matl_decode(const unsigned char *data, uint64_t length, size_t triangle_count,
+                struct vdt_materials *m, struct vdt_err *err)
+{
+	uint64_t t, at;
+	uint32_t nm, nl;
+	int rc;
+
+	memset(m, 0, sizeof(*m));
+	if (length < 16)
+		return vdt_err_set(err, VDT_EFORMAT,
+		                   "payload of %" PRIu64 " bytes is shorter than its 16-byte head",
+		                   length);
+	t = vdt_get_u64le(data);
+	nm = vdt_get_u32le(data + 8);
+	nl = vdt_get_u32le(data + 12);
+	if (t > (length - 16) / 4)
+		return vdt_err_set(err, VDT_EFORMAT,
+		                   "materials of %" PRIu64 " faces do not fit a payload of %" PRIu64
+		                   " bytes",
+		                   t, length);
+	if (t != triangle_count)
+		return vdt_err_set(err, VDT_EINVAL,
+		                   "MATL chunk has materials of %" PRIu64 " faces for %zu", t,
+		                   triangle_count);
+	if ((m->faces = malloc((t ? t : 1) * sizeof(*m->faces))) == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate materials of %zu faces",
+		                   triangle_count);
+	m->face_count = (size_t)t;
+	for (uint64_t i = 0; i < t; i++) {
+		uint32_t x = vdt_get_u32le(data + 16 + 4 * i);
+		if (x >= nm && x != VDT_NO_MATERIAL) {
+			vdt_materials_free(m);
+			return vdt_err_set(err, VDT_EINVAL,
+			                   "face %" PRIu64 " has material %" PRIu32 " of %" PRIu32,
+			                   i, x, nm);
+		}
+		m->faces[i] = x;
+	}
+	at = 16 + 4 * t;
+	rc = matl_strings(data, length, &at, nm, "material name", &m->names, err);
+	m->count = m->names ? nm : 0;
+	if (rc == 0)
+		rc = matl_strings(data, length, &at, nl, "material library", &m->libs, err);
+	m->lib_count = m->libs ? nl : 0;
+	if (rc == 0 && at != length)
+		rc = vdt_err_set(err, VDT_EFORMAT,
+		                 "%" PRIu64 " bytes after the MATL chunk's strings", length - at);
+	if (rc != 0)
+		vdt_materials_free(m);
+	return rc;
 }

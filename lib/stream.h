@@ -24,7 +24,7 @@
 #include "quadric.h"
 
 #define VDT_STREAM_MAJOR 1
-#define VDT_STREAM_MINOR 1
+#define VDT_STREAM_MINOR 2
 #define VDT_STREAM_SIGNATURE "\x89VDT\r\n\x1a\n"
 #define VDT_STREAM_SIGNATURE_LEN 8
 #define VDT_STREAM_HEADER_LEN 12 /* signature + version */
@@ -41,6 +41,7 @@
 #define VDT_CHUNK_FRMS VDT_FOURCC('F', 'R', 'M', 'S')
 #define VDT_CHUNK_SEQN VDT_FOURCC('S', 'E', 'Q', 'N')
 #define VDT_CHUNK_BNDY VDT_FOURCC('B', 'N', 'D', 'Y') /* since 1.1 */
+#define VDT_CHUNK_MATL VDT_FOURCC('M', 'A', 'T', 'L') /* since 1.2 */
 #define VDT_CHUNK_END VDT_FOURCC('E', 'N', 'D', ' ')
 
 /* One chunk held in memory; the payload is owned by whoever holds it. */
@@ -154,15 +155,15 @@ const struct vdt_chunk *vdt_chunks_find(const struct vdt_chunks *c,
 void vdt_chunks_remove(struct vdt_chunks *c, uint32_t type);
 
 /*
- * Remove every chunk that describes the vertices of the MESH chunk by index
- * (QUAD, BNDY, LABL, VTRE, FRMS, SEQN): what a tool that changes the vertices
- * must drop unless it writes it anew (vdt(5), Pass-through). Chunks of
- * unknown types are kept.
+ * Remove every chunk that describes the vertices or faces of the MESH
+ * chunk by index (QUAD, BNDY, LABL, VTRE, FRMS, SEQN, MATL): what a tool
+ * that changes the mesh must drop unless it writes it anew (vdt(5),
+ * Pass-through). Chunks of unknown types are kept.
  */
 void vdt_chunks_drop_vertex_data(struct vdt_chunks *c);
 
-/* Whether chunks of `type` describe the MESH chunk's vertices by index
- * (the types vdt_chunks_drop_vertex_data drops). */
+/* Whether chunks of `type` describe the MESH chunk's vertices or faces by
+ * index (the types vdt_chunks_drop_vertex_data drops). */
 int vdt_chunk_type_of_vertices(uint32_t type);
 
 /*
@@ -267,5 +268,21 @@ int vdt_bndy_encode(const uint8_t *flags, size_t vertex_count, unsigned char **d
                     uint64_t *length, struct vdt_err *err);
 int vdt_bndy_decode(const unsigned char *data, uint64_t length, size_t vertex_count,
                     uint8_t **flags, struct vdt_err *err);
+
+/*
+ * MATL chunk payload (since 1.2), the materials of the faces
+ * (struct vdt_materials): u64 face count T, u32 material count M, u32
+ * library count L, u32[T] the material of each face (below M, or
+ * 0xFFFFFFFF: none), then M names and L libraries, each a u32 length n and
+ * n bytes. Encoding takes materials whose face_count is the mesh's
+ * triangle count. Decoding requires the lengths to fill the payload
+ * exactly (VDT_EFORMAT), T == triangle_count, every number below M or
+ * none, and names and libraries as vdt_material_name_ok takes them
+ * (VDT_EINVAL); *m is left zeroed on failure.
+ */
+int vdt_matl_encode(const struct vdt_materials *m, unsigned char **data, uint64_t *length,
+                    struct vdt_err *err);
+int vdt_matl_decode(const unsigned char *data, uint64_t length, size_t triangle_count,
+                    struct vdt_materials *m, struct vdt_err *err);
 
 #endif

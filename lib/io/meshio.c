@@ -367,6 +367,22 @@ stream_mesh(struct vdt_chunks c, struct vdt_mesh *m, struct vdt_chunks *extra,
 		               (unsigned long long)c.items[mesh_at].offset);
 		goto fail;
 	}
+	for (size_t i = 0; i < c.count; i++) {
+		struct vdt_materials mat;
+
+		/* checked here, so that every tool that passes it on names its input */
+		if (c.items[i].type != VDT_CHUNK_MATL)
+			continue;
+		rc = vdt_matl_decode(c.items[i].data, c.items[i].length, m->triangle_count, &mat,
+		                     err);
+		vdt_materials_free(&mat);
+		if (rc != 0) {
+			vdt_err_prefix(err, "chunk MATL at byte %llu",
+			               (unsigned long long)c.items[i].offset);
+			vdt_mesh_free(m);
+			goto fail;
+		}
+	}
 	if (extra != NULL) {
 		for (size_t i = 0; i < c.count; i++) {
 			if (i == mesh_at)
@@ -399,11 +415,23 @@ read_stream(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 	return rc != 0 ? rc : stream_mesh(c, m, extra, err);
 }
 
+/* The materials an OBJ named, as a MATL chunk of extra. */
+static int
+add_materials(struct vdt_chunks *extra, const struct vdt_materials *mat, struct vdt_err *err)
+{
+	unsigned char *data;
+	uint64_t length;
+	int rc = vdt_matl_encode(mat, &data, &length, err);
+
+	return rc != 0 ? rc : vdt_chunks_add(extra, VDT_CHUNK_MATL, data, length, err);
+}
+
 int
 vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
                 struct vdt_mesh *m, struct vdt_chunks *extra,
                 struct vdt_err *err)
 {
+	struct vdt_materials mat = {0};
 	enum vdt_format f;
 	int rc;
 
@@ -435,7 +463,10 @@ vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
 		break;
 	case VDT_FMT_OBJ:
 		/* Not OpenMesh: it aborts on an assertion with some faces, and is slow. */
-		rc = vdt_obj_read(buf, len, m, err);
+		rc = vdt_obj_read(buf, len, m, extra ? &mat : NULL, err);
+		if (rc == 0 && mat.faces != NULL)
+			rc = add_materials(extra, &mat, err);
+		vdt_materials_free(&mat);
 		break;
 	case VDT_FMT_STL_ASCII:
 		/* Not OpenMesh: it read a bad number as 0, took a cut-off file
@@ -1321,12 +1352,38 @@ face_normal(const struct vdt_mesh *m, size_t t, double n[3])
 		n[k] = l > 0 ? n[k] / l : 0;
 }
 
+/* Face t of an OBJ, its corners numbered as write_obj numbers them. */
 static void
-write_obj(FILE *f, const struct vdt_mesh *m)
+obj_face(FILE *f, const struct vdt_mesh *m, size_t t)
+{
+	fputc('f', f);
+	for (int k = 0; k < 3; k++) {
+		unsigned long v = (unsigned long)m->triangles[3 * t + k] + 1;
+		if (m->uvs && m->normals)
+			fprintf(f, " %lu/%lu/%lu", v, v, v);
+		else if (m->uvs)
+			fprintf(f, " %lu/%lu", v, v);
+		else if (m->normals)
+			fprintf(f, " %lu//%lu", v, v);
+		else
+			fprintf(f, " %lu", v);
+	}
+	fputc('\n', f);
+}
+
+/*
+ * An OBJ of m, with materials mat (NULL: none): their libraries first,
+ * then the faces without one, then the rest in order, a usemtl wherever
+ * the material changes (OBJ has no way back to none).
+ */
+static void
+write_obj(FILE *f, const struct vdt_mesh *m, const struct vdt_materials *mat)
 {
 	const float *p = m->positions;
 
 	fputs("# written by vdt\n", f);
+	for (size_t i = 0; mat != NULL && i < mat->lib_count; i++)
+		fprintf(f, "mtllib %s\n", mat->libs[i]);
 	for (size_t i = 0; i < m->vertex_count; i++, p += 3) {
 		if (m->colors) {
 			const float *c = m->colors + 4 * i;
@@ -1343,20 +1400,21 @@ write_obj(FILE *f, const struct vdt_mesh *m)
 		for (size_t i = 0; i < m->vertex_count; i++)
 			fprintf(f, "vn " P9 " " P9 " " P9 "\n", m->normals[3 * i],
 			        m->normals[3 * i + 1], m->normals[3 * i + 2]);
-	for (size_t t = 0; t < m->triangle_count; t++) {
-		fputc('f', f);
-		for (int k = 0; k < 3; k++) {
-			unsigned long v = (unsigned long)m->triangles[3 * t + k] + 1;
-			if (m->uvs && m->normals)
-				fprintf(f, " %lu/%lu/%lu", v, v, v);
-			else if (m->uvs)
-				fprintf(f, " %lu/%lu", v, v);
-			else if (m->normals)
-				fprintf(f, " %lu//%lu", v, v);
-			else
-				fprintf(f, " %lu", v);
-		}
-		fputc('\n', f);
+	if (mat == NULL) {
+		for (size_t t = 0; t < m->triangle_count; t++)
+			obj_face(f, m, t);
+		return;
+	}
+	for (size_t t = 0; t < m->triangle_count; t++)
+		if (mat->faces[t] == VDT_NO_MATERIAL)
+			obj_face(f, m, t);
+	for (size_t t = 0, last = VDT_NO_MATERIAL; t < m->triangle_count; t++) {
+		if (mat->faces[t] == VDT_NO_MATERIAL)
+			continue;
+		if (mat->faces[t] != last)
+			fprintf(f, "usemtl %s\n", mat->names[mat->faces[t]]);
+		last = mat->faces[t];
+		obj_face(f, m, t);
 	}
 }
 
@@ -1446,7 +1504,7 @@ vdt_text_write(FILE *f, const struct vdt_mesh *m, enum vdt_format format,
                struct vdt_err *err)
 {
 	switch (format) {
-	case VDT_FMT_OBJ: write_obj(f, m); break;
+	case VDT_FMT_OBJ: write_obj(f, m, NULL); break;
 	case VDT_FMT_OFF: write_off(f, m); break;
 	case VDT_FMT_PLY_ASCII: write_ply_ascii(f, m); break;
 	case VDT_FMT_STL_ASCII: write_stl_ascii(f, m); break;
@@ -1513,6 +1571,8 @@ vdt_write(const char *path, const struct vdt_mesh *m,
           struct vdt_err *err)
 {
 	enum vdt_format f = opts ? opts->format : VDT_FMT_AUTO;
+	const struct vdt_chunk *c;
+	struct vdt_materials mat = {0};
 	struct vdt_output o;
 	int rc;
 
@@ -1537,6 +1597,15 @@ vdt_write(const char *path, const struct vdt_mesh *m,
 	case VDT_FMT_DRC:
 		rc = vdt_draco_write(o.f, m, opts ? opts->draco_position_bits : 0,
 		                     opts ? opts->draco_speed : 0, err);
+		break;
+	case VDT_FMT_OBJ:
+		if ((c = extra ? vdt_chunks_find(extra, VDT_CHUNK_MATL) : NULL) != NULL &&
+		    (rc = vdt_matl_decode(c->data, c->length, m->triangle_count, &mat, err)) != 0)
+			break;
+		write_obj(o.f, m, c ? &mat : NULL);
+		vdt_materials_free(&mat);
+		if (ferror(o.f))
+			rc = vdt_err_set(err, VDT_EIO, "write error: %s", strerror(errno));
 		break;
 	default: rc = vdt_text_write(o.f, m, f, err); break;
 	}

@@ -103,7 +103,9 @@ int vdt_text_lines(const unsigned char *buf, size_t n, enum vdt_format f, struct
  * content. A regular file is mapped, watched by vdt_input_watch while it
  * is read. If the input is a vdt stream, its MESH chunk becomes *m and every
  * other chunk is appended, in order, to *extra (if extra is NULL they are
- * dropped). The mesh is validated (vdt_mesh_validate) before returning.
+ * dropped); a MATL chunk is checked against the mesh. An OBJ's materials
+ * become a MATL chunk of *extra (extra NULL: m->dropped notes them). The
+ * mesh is validated (vdt_mesh_validate) before returning.
  * Messages name the file: "cannot read 'x.ply': face 12 uses vertex 9001 of
  * 8000" is composed by the caller from err->msg, which here reads
  * "face 12 uses vertex 9001 of 8000". Returns 0, VDT_EIO, VDT_EFORMAT,
@@ -134,8 +136,9 @@ struct vdt_write_opts {
 
 /*
  * Write m to path ("-" for stdout) in the given format. For the vdt stream the
- * MESH chunk is followed by the chunks of extra (may be NULL). Formats that
- * cannot hold an attribute drop it. A named file is written to a temporary
+ * MESH chunk is followed by the chunks of extra (may be NULL); an OBJ takes
+ * the materials of extra's MATL chunk. Formats that cannot hold an
+ * attribute, or materials, drop it. A named file is written to a temporary
  * file in the same directory and renamed over path only on success, so a
  * failure leaves nothing behind. The stream is never written to a terminal
  * (VDT_EINVAL). Returns 0, VDT_EIO, VDT_EINVAL or VDT_ENOMEM.
@@ -320,6 +323,8 @@ int vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
  *   distinct triple used by a face, in order of first use, positions used by
  *   no face dropped. A file whose faces use no vt or vn, or use vt and vn
  *   numbered as v with one of each per v, keeps the file's vertex numbers.
+ *   With mat, usemtl and mtllib are read into *mat (left zeroed when the
+ *   file has neither); without, they set VDT_DROPPED_MATERIALS.
  * vdt_stl_read: binary STL; identical positions are welded (stl.c, native).
  * vdt_stl_ascii_read: ASCII STL, any number of solids, keywords in any
  *   case (stl.c, native); welded as vdt_stl_read welds, so that both forms
@@ -335,7 +340,7 @@ int vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
 int vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
                  struct vdt_err *err);
 int vdt_obj_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
-                 struct vdt_err *err);
+                 struct vdt_materials *mat, struct vdt_err *err);
 
 /*
  * OBJ text parsed as vdt_obj_read parses it (the same statements, numbers,

@@ -13,10 +13,15 @@
  *   # ...                      comment to the end of the line
  *   \ at the end of a line     continues the statement on the next line
  *
- * Everything else (o, g, s, usemtl, mtllib, l, p, curves, surfaces, unknown
- * statements) is ignored: a mesh filter has no use for it, and refusing it
- * would refuse real files; materials are noted (VDT_DROPPED_MATERIALS), as
- * the textures they name no longer apply. Polygons are triangulated
+ *   usemtl name                the material of the faces that follow
+ *   mtllib file ...            the libraries that define the materials
+ *
+ * Materials are read when the caller asks for them (struct vdt_materials),
+ * names and libraries being the rest of their statement, blanks collapsed;
+ * otherwise they are noted (VDT_DROPPED_MATERIALS), as the textures they
+ * name no longer apply. Everything else (o, g, s, l, p, curves, surfaces,
+ * unknown statements) is ignored: a mesh filter has no use for it, and
+ * refusing it would refuse real files. Polygons are triangulated
  * (polygon.h). w is a weight for rational curves and means nothing for
  * polygons, so it is dropped.
  *
@@ -48,6 +53,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../hash.h"
 #include "polygon.h"
 #include "text.h"
 
@@ -204,6 +210,72 @@ quote(const char *p, const char *end, char out[24])
 	return out;
 }
 
+/* Strings numbered in order of first sight, found again by hash. */
+struct strtab {
+	char **s;
+	size_t n, cap;
+	uint32_t *slot; /* 2^k >= 2n slots, NONE when empty */
+	size_t slots;
+};
+
+static uint32_t
+str_hash(const char *s)
+{
+	uint64_t h = 0xcbf29ce484222325ULL;
+	for (; *s; s++)
+		h = (h ^ (unsigned char)*s) * 0x100000001b3ULL;
+	return (uint32_t)vdt_hash_mix(h);
+}
+
+/* The number of s in t, added if new; NONE out of memory. */
+static uint32_t
+strtab_add(struct strtab *t, const char *s, size_t len)
+{
+	uint32_t h;
+
+	if (2 * (t->n + 1) > t->slots) {
+		size_t slots = t->slots ? 2 * t->slots : 16;
+		uint32_t *slot = malloc(slots * sizeof(*slot));
+		if (slot == NULL)
+			return NONE;
+		memset(slot, 0xff, slots * sizeof(*slot));
+		for (size_t i = 0; i < t->n; i++) {
+			for (h = str_hash(t->s[i]) & (slots - 1); slot[h] != NONE;
+			     h = (h + 1) & (slots - 1))
+				;
+			slot[h] = (uint32_t)i;
+		}
+		free(t->slot);
+		t->slot = slot;
+		t->slots = slots;
+	}
+	for (h = str_hash(s) & (t->slots - 1); t->slot[h] != NONE; h = (h + 1) & (t->slots - 1))
+		if (strcmp(t->s[t->slot[h]], s) == 0)
+			return t->slot[h];
+	if (t->n == t->cap) {
+		size_t cap = t->cap ? 2 * t->cap : 8;
+		char **p = realloc(t->s, cap * sizeof(*p));
+		if (p == NULL)
+			return NONE;
+		t->s = p;
+		t->cap = cap;
+	}
+	if ((t->s[t->n] = malloc(len + 1)) == NULL)
+		return NONE;
+	memcpy(t->s[t->n], s, len + 1);
+	t->slot[h] = (uint32_t)t->n;
+	return (uint32_t)t->n++;
+}
+
+static void
+strtab_free(struct strtab *t)
+{
+	for (size_t i = 0; i < t->n; i++)
+		free(t->s[i]);
+	free(t->s);
+	free(t->slot);
+}
+
 struct obj {
 	size_t nv, nt, nn, nf;     /* statements counted before parsing */
 	unsigned scan_attrs;       /* vdt_obj_scan: colours seen (VDT_ATTR_*) */
@@ -225,6 +297,13 @@ struct obj {
 	struct vdt_polygon poly;           /* scratch for the polygons' triangles */
 	uint64_t *later;                   /* first triangle << 20 | corners of the polygons */
 	size_t nlater, later_cap;          /* that use a vertex defined after them */
+	struct vdt_materials *mat;         /* materials to read, or NULL */
+	int usemtl;                        /* the file has usemtl statements */
+	uint32_t cur_mat;                  /* of the faces read now */
+	uint32_t *tri_m;                   /* with mat and usemtl: 1 per triangle */
+	struct strtab names, libs;         /* mat's, deduplicated */
+	char *word;                        /* scratch for a statement's text */
+	size_t word_cap;
 };
 
 static void
@@ -238,6 +317,10 @@ obj_free(struct obj *o)
 	free(o->tri_t);
 	free(o->tri_n);
 	free(o->later);
+	free(o->tri_m);
+	free(o->word);
+	strtab_free(&o->names);
+	strtab_free(&o->libs);
 	vdt_polygon_free(&o->poly);
 }
 
@@ -274,6 +357,8 @@ count(const char *buf, size_t len, struct obj *o, struct vdt_err *err)
 		default:
 			if (n == 6 && (memcmp(k, "usemtl", 6) == 0 || memcmp(k, "mtllib", 6) == 0))
 				o->dropped |= VDT_DROPPED_MATERIALS;
+			if (n == 6 && memcmp(k, "usemtl", 6) == 0)
+				o->usemtl = 1;
 			break;
 		}
 		end_statement(&r);
@@ -456,6 +541,11 @@ grow_triangles(struct obj *o, size_t want, struct vdt_err *err)
 	if (p == NULL)
 		goto nomem;
 	o->tri_v = p;
+	if (o->mat != NULL && o->usemtl) {
+		if ((p = realloc(o->tri_m, cap * sizeof(uint32_t))) == NULL)
+			goto nomem;
+		o->tri_m = p;
+	}
 	if (o->nt || o->nn) {
 		if ((p = realloc(o->tri_t, cap * 3 * sizeof(uint32_t))) == NULL)
 			goto nomem;
@@ -607,6 +697,8 @@ read_f(struct reader *r, struct obj *o, size_t face, struct vdt_err *err)
 				o->tri_n[t + 1] = prev[2];
 				o->tri_n[t + 2] = c[2];
 			}
+			if (o->tri_m != NULL)
+				o->tri_m[o->tri_count] = o->cur_mat;
 			o->tri_count++;
 		}
 		memcpy(prev, c, sizeof(c));
@@ -616,6 +708,62 @@ read_f(struct reader *r, struct obj *o, size_t face, struct vdt_err *err)
 		                   k);
 	if (k > 3 && k <= VDT_POLYGON_EAR_MAX)
 		return polygon(o, k, err);
+	return 0;
+}
+
+/*
+ * The words of the rest of the statement, joined by single blanks, into
+ * o->word (its length in *n; 0: none); r->p stops at the statement's end.
+ */
+static int
+read_words(struct reader *r, struct obj *o, size_t *n, struct vdt_err *err)
+{
+	*n = 0;
+	for (skip_blank(r); !at_eol(r); skip_blank(r)) {
+		const char *w = r->p;
+		size_t l;
+
+		while (!at_token_end(r->p, r->end))
+			r->p++;
+		l = (size_t)(r->p - w);
+		if (*n + l + 2 > o->word_cap) {
+			size_t cap = 2 * (*n + l + 2);
+			char *p = realloc(o->word, cap);
+			if (p == NULL)
+				return vdt_err_set(err, VDT_ENOMEM,
+				                   "out of memory for a material name");
+			o->word = p;
+			o->word_cap = cap;
+		}
+		if (*n > 0)
+			o->word[(*n)++] = ' ';
+		/* (a control character would reach the output's lines) */
+		for (size_t i = 0; i < l; i++)
+			o->word[*n + i] = (unsigned char)w[i] < 0x20 || w[i] == 0x7f ? '_' : w[i];
+		*n += l;
+		o->word[*n] = '\0';
+	}
+	return 0;
+}
+
+/* usemtl (k 'u') or mtllib: the material of the faces that follow, or
+ * libraries. */
+static int
+read_material(struct reader *r, struct obj *o, char k, struct vdt_err *err)
+{
+	size_t n;
+	int rc = read_words(r, o, &n, err);
+
+	if (rc != 0)
+		return rc;
+	if (k == 'u') {
+		/* a usemtl without a name goes back to none */
+		o->cur_mat = n == 0 ? VDT_NO_MATERIAL : strtab_add(&o->names, o->word, n);
+		if (n > 0 && o->cur_mat == NONE)
+			return vdt_err_set(err, VDT_ENOMEM, "out of memory for material names");
+	} else if (n > 0 && strtab_add(&o->libs, o->word, n) == NONE) {
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory for material libraries");
+	}
 	return 0;
 }
 
@@ -644,7 +792,11 @@ parse(const char *buf, size_t len, struct obj *o, struct vdt_err *err)
 		case K_VT: rc = read_vt(&r, o, err); break;
 		case K_VN: rc = read_vn(&r, o, err); break;
 		case K_F: rc = read_f(&r, o, face++, err); break;
-		default: break;
+		default:
+			if (o->mat != NULL && n == 6 &&
+			    (memcmp(k, "usemtl", 6) == 0 || memcmp(k, "mtllib", 6) == 0))
+				rc = read_material(&r, o, k[0], err);
+			break;
 		}
 		if (rc == 0)
 			end_statement(&r);
@@ -898,13 +1050,45 @@ vdt_obj_scan(const unsigned char *buf, size_t len, const struct vdt_obj_visit *v
 	return 0;
 }
 
+/* The materials o read, moved into *mat (any usemtl or mtllib: o->dropped). */
+static int
+take_materials(struct obj *o, struct vdt_materials *mat, struct vdt_err *err)
+{
+	if (!(o->dropped & VDT_DROPPED_MATERIALS))
+		return 0;
+	mat->face_count = o->tri_count;
+	if (o->tri_m != NULL) {
+		mat->faces = o->tri_m;
+		o->tri_m = NULL;
+	} else {
+		mat->faces = malloc((o->tri_count ? o->tri_count : 1) * sizeof(*mat->faces));
+		if (mat->faces == NULL)
+			return vdt_err_set(err, VDT_ENOMEM, "out of memory for materials");
+		for (size_t t = 0; t < o->tri_count; t++)
+			mat->faces[t] = VDT_NO_MATERIAL;
+	}
+	mat->names = o->names.s;
+	mat->count = o->names.n;
+	mat->libs = o->libs.s;
+	mat->lib_count = o->libs.n;
+	o->names.s = o->libs.s = NULL;
+	o->names.n = o->libs.n = 0;
+	o->dropped &= ~(unsigned)VDT_DROPPED_MATERIALS;
+	return 0;
+}
+
 int
-vdt_obj_read(const unsigned char *buf, size_t len, struct vdt_mesh *m, struct vdt_err *err)
+vdt_obj_read(const unsigned char *buf, size_t len, struct vdt_mesh *m, struct vdt_materials *mat,
+             struct vdt_err *err)
 {
 	struct obj o = {0};
 	int rc;
 
 	memset(m, 0, sizeof(*m));
+	if (mat != NULL)
+		memset(mat, 0, sizeof(*mat));
+	o.mat = mat;
+	o.cur_mat = VDT_NO_MATERIAL;
 	o.lockstep = 1;
 	rc = count((const char *)buf, len, &o, err);
 	if (rc != 0)
@@ -931,10 +1115,15 @@ vdt_obj_read(const unsigned char *buf, size_t len, struct vdt_mesh *m, struct vd
 		keep_numbers(&o, m);
 	else
 		rc = build_split(&o, m, err);
+	if (rc == 0 && mat != NULL)
+		rc = take_materials(&o, mat, err);
 	m->dropped = o.dropped;
 out:
 	obj_free(&o);
-	if (rc != 0)
+	if (rc != 0) {
 		vdt_mesh_free(m);
+		if (mat != NULL)
+			vdt_materials_free(mat);
+	}
 	return rc;
 }

@@ -974,6 +974,8 @@ vdt_open(struct vdt_tsource *s, struct vdt_err *err)
 		}
 		if ((rc = vdt_chunk_order_next(&order, type, at, err)) != 0)
 			return rc; /* as vdt_read takes them */
+		if (type == VDT_CHUNK_MATL) /* (faces of the input, not of the output) */
+			s->dropped |= VDT_DROPPED_MATERIALS;
 		if (type != VDT_CHUNK_MESH && !vdt_chunk_type_of_vertices(type)) {
 			uint64_t *p = realloc(s->pass, (s->npass + 1) * sizeof(*p));
 			if (p == NULL)

@@ -192,7 +192,7 @@ load helpers
 	for t in vdt-qslim vdt-build vdt-silhouette vdt-deform; do
 		run bash -c "(printf '\x89VDT\r\n\x1a\n\x02\x00\x00\x00'; cat /dev/zero) | timeout 20 '$BIN/$t' -o '$TMP/out.vdt'"
 		[ "$status" -eq 2 ]
-		[ "$output" = "$t: cannot read '<stdin>': version 2.0 at byte 8 is newer than this reader (1.1)" ]
+		[ "$output" = "$t: cannot read '<stdin>': version 2.0 at byte 8 is newer than this reader (1.2)" ]
 	done
 	run bash -c "(printf '\x89VDT\r\n\x1a\n\x02\x00\x00\x00'; cat /dev/zero) | timeout 20 '$BIN/vdt-measure' - '$SAMPLES/sphere.off'"
 	[ "$status" -eq 2 ]

@@ -1143,3 +1143,89 @@ PY
 		awk -v h="$h" 'BEGIN { exit !(h < 1e-5) }'
 	done
 }
+
+# sphere-uv with its upper half of one material and its lower of another
+two_materials() {
+	awk '/^v / { n++; z[n] = $4 }
+	/^f / { split($2, a, "/"); split($3, b, "/"); split($4, c, "/")
+		if (z[a[1]] + z[b[1]] + z[c[1]] > 0) top[++nt] = $0; else bot[++nb] = $0; next }
+	{ print }
+	END { print "mtllib sphere.mtl"; print "usemtl red paint"
+		for (i = 1; i <= nt; i++) print top[i]
+		print "usemtl blue"; for (i = 1; i <= nb; i++) print bot[i] }' "$SAMPLES/sphere-uv.obj"
+}
+
+# "material lowest-z highest-z" of the vertices of each material's faces
+material_spans() {
+	awk '/^v / { n++; z[n] = $4 } /^usemtl/ { m = $2 }
+	/^f / { for (i = 2; i <= 4; i++) { split($i, a, "/"); v = z[a[1]]
+		if (!(m in lo) || v < lo[m]) lo[m] = v; if (!(m in hi) || v > hi[m]) hi[m] = v } }
+	END { for (m in lo) print m, lo[m], hi[m] }' "$1" | sort
+}
+
+@test "vdt-qslim keeps an OBJ's materials, and the border between two where it was" {
+	two_materials > "$TMP/two.obj"
+	# and with positions alone, the cost then without attribute terms
+	sed -e '/^v[tn] /d' -e 's#/[0-9]*/[0-9]*##g' "$TMP/two.obj" > "$TMP/plain.obj"
+	for r in 0.2 0.05 "0.2 --attribute-weight 0"; do
+	for m in two plain; do
+		run "$BIN/vdt-qslim" -r $r "$TMP/$m.obj" -o "$TMP/out.obj"
+		[ "$status" -eq 0 ]
+		[ -z "$output" ]
+		# the library, then each material once, its faces together
+		[ "$(grep -n '^mtllib\|^usemtl' "$TMP/out.obj" | cut -d: -f2-)" = "$(printf 'mtllib sphere.mtl\nusemtl red paint\nusemtl blue')" ]
+		[ "$(grep -c '^f' "$TMP/out.obj")" -le "$(awk -v r="${r%% *}" 'BEGIN { print int(960 * r + 1) }')" ]
+		# the equator, where the two meet, stays within 2% of the radius
+		run material_spans "$TMP/out.obj"
+		[ "${#lines[@]}" -eq 2 ]
+		awk '$1 == "blue" { exit !($2 < -0.9 && $3 < 0.02) }' <<< "${lines[0]}"
+		awk '$1 == "red" { exit !($2 > -0.02 && $3 > 0.9) }' <<< "${lines[1]}"
+	done
+	done
+}
+
+@test "vdt-qslim passes materials through the stream, and names what cannot hold them" {
+	two_materials > "$TMP/two.obj"
+	"$BIN/vdt-qslim" -r 0.5 "$TMP/two.obj" -o "$TMP/half.vdt"
+	"$BIN/vdt-qslim" -r 0.2 "$TMP/half.vdt" -o "$TMP/out.obj"
+	grep -q '^usemtl red paint$' "$TMP/out.obj"
+	grep -q '^usemtl blue$' "$TMP/out.obj"
+	grep -q '^mtllib sphere.mtl$' "$TMP/out.obj"
+	# a target above the input: the same faces, the same materials
+	"$BIN/vdt-qslim" -t 5000 "$TMP/two.obj" -o "$TMP/same.obj"
+	[ "$(grep -c '^usemtl' "$TMP/same.obj")" -eq 2 ]
+	diff <(grep -v '^#' "$TMP/same.obj") <("$BIN/vdt-qslim" -q -t 5000 "$TMP/same.obj" -o - | "$BIN/vdt-qslim" -t 5000 - -o - -F obj | grep -v '^#')
+	# PLY has no materials: said, not silently lost
+	run "$BIN/vdt-qslim" -r 0.5 "$TMP/two.obj" -o "$TMP/out.ply"
+	[ "$status" -eq 0 ]
+	[ "$output" = "vdt-qslim: note: '$TMP/two.obj' names materials (mtllib, usemtl), which ply output cannot hold: '$TMP/out.ply' has none (an OBJ or a vdt stream keeps them)" ]
+	run "$BIN/vdt-qslim" -q -r 0.5 "$TMP/two.obj" -o "$TMP/out.ply"
+	[ -z "$output" ]
+	# faces before any usemtl have none, and come first in the output
+	{ echo "v 0 0 0"; echo "v 1 0 0"; echo "v 0 1 0"; echo "v 1 1 1"; echo "usemtl a"; echo "f 1 2 3"; echo "usemtl"; echo "f 2 4 3"; } > "$TMP/none.obj"
+	"$BIN/vdt-qslim" -q -t 9 "$TMP/none.obj" -o "$TMP/none-out.obj"
+	[ "$(grep '^[fu]' "$TMP/none-out.obj")" = "$(printf 'f 2 4 3\nusemtl a\nf 1 2 3')" ]
+}
+
+@test "vdt-qslim refuses a MATL chunk that does not fit the mesh, naming the file and the byte" {
+	# golden-v1.2's MATL chunk (at byte 580) with face 0's material changed, its CRC mended
+	for case in "5 face 0 has material 5 of 1" "0 MATL chunk has materials of 3 faces for 2"; do
+		python3 - "$DATA/golden-v1.2.vdt" "$TMP/bad.vdt" "${case%% *}" <<'PY'
+import struct, sys, zlib
+b = bytearray(open(sys.argv[1], 'rb').read())
+if sys.argv[3] == '0':
+    struct.pack_into('<Q', b, 580 + 12, 3)
+else:
+    struct.pack_into('<I', b, 580 + 12 + 16, int(sys.argv[3]))
+n = struct.unpack_from('<Q', b, 584)[0]
+struct.pack_into('<I', b, 580 + 12 + n, zlib.crc32(bytes(b[580:584]) + bytes(b[592:592 + n])))
+open(sys.argv[2], 'wb').write(b)
+PY
+		for t in vdt-qslim vdt-silhouette; do
+			run "$BIN/$t" "$TMP/bad.vdt" -o "$TMP/out.vdt"
+			[ "$status" -eq 2 ]
+			[ "$output" = "$t: cannot read '$TMP/bad.vdt': chunk MATL at byte 580: ${case#* }" ]
+			[ ! -e "$TMP/out.vdt" ]
+		done
+	done
+}

@@ -20,7 +20,7 @@
 static int
 obj(const char *text, struct vdt_mesh *m, struct vdt_err *err)
 {
-	return vdt_obj_read((const unsigned char *)text, strlen(text), m, err);
+	return vdt_obj_read((const unsigned char *)text, strlen(text), m, NULL, err);
 }
 
 static void
@@ -427,10 +427,10 @@ test_corner_limit(void **state)
 	o = (size_t)sprintf(s, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf");
 	for (size_t i = 0; i < n; i++)
 		o += (size_t)sprintf(s + o, " %d", (int)(i % 3) + 1);
-	assert_int_equal(vdt_obj_read((unsigned char *)s, o, &m, &err), VDT_EFORMAT);
+	assert_int_equal(vdt_obj_read((unsigned char *)s, o, &m, NULL, &err), VDT_EFORMAT);
 	assert_non_null(strstr(err.msg, "face 0 has more than 65536 corners"));
 	assert_null(m.triangles);
-	assert_int_equal(vdt_obj_read((unsigned char *)s, o - 2, &m, &err), 0);
+	assert_int_equal(vdt_obj_read((unsigned char *)s, o - 2, &m, NULL, &err), 0);
 	assert_int_equal(m.triangle_count, 65534);
 	vdt_mesh_free(&m);
 	free(s);
@@ -530,7 +530,7 @@ write_read(const struct vdt_mesh *m, struct vdt_mesh *r)
 	assert_non_null(f);
 	assert_int_equal(vdt_text_write(f, m, VDT_FMT_OBJ, &err), 0);
 	assert_int_equal(fclose(f), 0);
-	if (vdt_obj_read((const unsigned char *)text, len, r, &err) != 0)
+	if (vdt_obj_read((const unsigned char *)text, len, r, NULL, &err) != 0)
 		fail_msg("%s", err.msg);
 	free(text);
 }
@@ -696,6 +696,57 @@ test_scan_tells_progress(void **state)
 	free(text);
 }
 
+/* usemtl and mtllib, read when asked for: a number per triangle
+ * (polygons' triangles all), names deduplicated, blanks collapsed. */
+static void
+test_materials(void **state)
+{
+	static const char text[] = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+	                           "f 1 2 3\n"
+	                           "mtllib  a.mtl \nmtllib a.mtl\nmtllib b c.mtl\n"
+	                           "usemtl red \t paint\nf 1 2 3 4\n"
+	                           "usemtl blue\nf 1 3 4\nusemtl red paint\nf 1 2 4\n"
+	                           "usemtl\nf 2 3 4\nusemtl \x01x\nf 1 2 3\n";
+	struct vdt_materials mat;
+	struct vdt_mesh m;
+	struct vdt_err err = {0};
+
+	(void)state;
+	assert_int_equal(vdt_obj_read((const unsigned char *)text, strlen(text), &m, &mat, &err), 0);
+	assert_int_equal(m.triangle_count, 7);
+	assert_int_equal(m.dropped, 0);
+	assert_int_equal(mat.face_count, 7);
+	static const uint32_t want[7] = {VDT_NO_MATERIAL, 0, 0, 1, 0, VDT_NO_MATERIAL, 2};
+	assert_memory_equal(mat.faces, want, sizeof(want));
+	assert_int_equal(mat.count, 3);
+	assert_string_equal(mat.names[0], "red paint");
+	assert_string_equal(mat.names[1], "blue");
+	assert_string_equal(mat.names[2], "_x");
+	assert_int_equal(mat.lib_count, 2);
+	assert_string_equal(mat.libs[0], "a.mtl");
+	assert_string_equal(mat.libs[1], "b c.mtl");
+	vdt_materials_free(&mat);
+	vdt_mesh_free(&m);
+
+	/* Not asked for: noted as dropped. Without any: none. */
+	assert_int_equal(vdt_obj_read((const unsigned char *)text, strlen(text), &m, NULL, &err), 0);
+	assert_int_equal(m.dropped, VDT_DROPPED_MATERIALS);
+	vdt_mesh_free(&m);
+	assert_int_equal(vdt_obj_read((const unsigned char *)"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+	                              32, &m, &mat, &err), 0);
+	assert_null(mat.faces);
+	vdt_mesh_free(&m);
+	/* A library alone: every face without a material. */
+	static const char lib[] = "mtllib x.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+	assert_int_equal(vdt_obj_read((const unsigned char *)lib, strlen(lib), &m, &mat, &err), 0);
+	assert_int_equal(mat.face_count, 1);
+	assert_int_equal(mat.faces[0], VDT_NO_MATERIAL);
+	assert_int_equal(mat.count, 0);
+	assert_int_equal(mat.lib_count, 1);
+	vdt_materials_free(&mat);
+	vdt_mesh_free(&m);
+}
+
 int
 main(void)
 {
@@ -709,6 +760,7 @@ main(void)
 		cmocka_unit_test(test_openmesh_crash), cmocka_unit_test(test_validated),
 		cmocka_unit_test(test_roundtrip),    cmocka_unit_test(test_floats),
 		cmocka_unit_test(test_scan_tells_progress), cmocka_unit_test(test_missing_normals),
+		cmocka_unit_test(test_materials),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -224,13 +224,13 @@ extra_refuses_quadrics_of_another_mesh(void **state)
 	(void)state;
 	shape_icosphere(&m, 2);
 	add_quad_chunk(&c, &m, m.vertex_count - 1);
-	assert_int_equal(vdt_qslim_extra_decode(&x, &c, m.vertex_count, 0, &err), VDT_EFORMAT);
+	assert_int_equal(vdt_qslim_extra_decode(&x, &c, m.vertex_count, m.triangle_count, 0, &err), VDT_EFORMAT);
 	snprintf(want, sizeof(want), "QUAD chunk has %zu quadrics for %zu vertices",
 	         m.vertex_count - 1, m.vertex_count);
 	assert_string_equal(err.msg, want);
 	assert_null(x.quadrics);
 	assert_int_equal(c.count, 1);
-	assert_int_equal(vdt_qslim_extra_decode(&x, &c, m.vertex_count, 1, &err), 0);
+	assert_int_equal(vdt_qslim_extra_decode(&x, &c, m.vertex_count, m.triangle_count, 1, &err), 0);
 	assert_null(x.quadrics);
 	assert_int_equal(c.count, 0);
 	vdt_qslim_extra_free(&x);
@@ -255,7 +255,7 @@ extra_runs_with_the_chunk_quadrics(void **state)
 	(void)state;
 	shape_icosphere(&m, 2);
 	add_quad_chunk(&c, &m, m.vertex_count);
-	assert_int_equal(vdt_qslim_extra_decode(&x, &c, m.vertex_count, 0, NULL), 0);
+	assert_int_equal(vdt_qslim_extra_decode(&x, &c, m.vertex_count, m.triangle_count, 0, NULL), 0);
 	assert_non_null(x.quadrics);
 	assert_int_equal(c.count, 0);
 	vdt_qslim_defaults(&o);
@@ -345,7 +345,7 @@ extra_border_decides_the_boundary_planes(void **state)
 			flag[i] = k == 1 || (k == 2 && (i % 17 + i / 17) % 2 == 0);
 		add_quad_chunk(&c, &m, m.vertex_count);
 		add_bndy_chunk(&c, flag, m.vertex_count);
-		assert_int_equal(vdt_qslim_extra_decode(&x, &c, m.vertex_count, 0, NULL), 0);
+		assert_int_equal(vdt_qslim_extra_decode(&x, &c, m.vertex_count, m.triangle_count, 0, NULL), 0);
 		assert_non_null(x.border);
 		assert_int_equal(c.count, 0);
 		assert_int_equal(vdt_qslim_extra_run(&x, &m, &o, &lo, out, &st, NULL), 0);
@@ -367,7 +367,7 @@ extra_border_decides_the_boundary_planes(void **state)
 	}
 	/* The same quadrics without the chunk, with and without planes. */
 	add_quad_chunk(&c, &m, m.vertex_count);
-	assert_int_equal(vdt_qslim_extra_decode(&x, &c, m.vertex_count, 0, NULL), 0);
+	assert_int_equal(vdt_qslim_extra_decode(&x, &c, m.vertex_count, m.triangle_count, 0, NULL), 0);
 	assert_null(x.border);
 	assert_int_equal(vdt_qslim_extra_run(&x, &m, &o, &lo, &plain, &st, NULL), 0);
 	o.boundary_weight = 0;
@@ -383,14 +383,14 @@ extra_border_decides_the_boundary_planes(void **state)
 	/* Ignored with the quadrics; refused for another vertex count. */
 	add_quad_chunk(&c, &m, m.vertex_count);
 	add_bndy_chunk(&c, flag, m.vertex_count);
-	assert_int_equal(vdt_qslim_extra_decode(&x, &c, m.vertex_count, 1, &err), 0);
+	assert_int_equal(vdt_qslim_extra_decode(&x, &c, m.vertex_count, m.triangle_count, 1, &err), 0);
 	assert_null(x.quadrics);
 	assert_null(x.border);
 	vdt_qslim_extra_free(&x);
 	flag[m.vertex_count - 1] = 1;
 	add_quad_chunk(&c, &m, m.vertex_count - 1);
 	add_bndy_chunk(&c, flag, m.vertex_count);
-	assert_int_equal(vdt_qslim_extra_decode(&x, &c, m.vertex_count - 1, 0, &err), VDT_EINVAL);
+	assert_int_equal(vdt_qslim_extra_decode(&x, &c, m.vertex_count - 1, m.triangle_count, 0, &err), VDT_EINVAL);
 	assert_string_equal(err.msg, "chunk BNDY: boundary vertex 288 is out of range (288 vertices)");
 	assert_null(x.quadrics);
 	assert_null(x.border);

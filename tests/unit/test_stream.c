@@ -83,6 +83,31 @@ static const struct golden_chunk golden11_chunks[] = {
 };
 #define GOLDEN11_LEN 617
 
+/*
+ * tests/data/golden-v1.2.vdt (674 bytes): the same, version 1.2, with a
+ * MATL chunk after the BNDY chunk: face 0 of material 0, "skin", face 1
+ * of none, library "s.mtl" (u64 2, u32 1, u32 1, u32 0, u32 FFFFFFFF,
+ * u32 4 "skin", u32 5 "s.mtl").
+ *
+ *   offset  chunk  payload  CRC-32
+ *   0       header: signature, version 1.2
+ *   12      MESH   144      97fb1809
+ *   172     QUAD   360      62a2b0fe
+ *   548     BNDY   16       eaade288
+ *   580     MATL   41       0b26fbee
+ *   637     XTRA   5        05bcd1d3
+ *   658     END    0        58f17d10
+ */
+static const struct golden_chunk golden12_chunks[] = {
+	{VDT_CHUNK_MESH, 12, 144, 0x97fb1809},
+	{VDT_CHUNK_QUAD, 172, 360, 0x62a2b0fe},
+	{VDT_CHUNK_BNDY, 548, 16, 0xeaade288},
+	{VDT_CHUNK_MATL, 580, 41, 0x0b26fbee},
+	{XTRA, 637, 5, 0x05bcd1d3},
+	{VDT_CHUNK_END, 658, 0, 0x58f17d10},
+};
+#define GOLDEN12_LEN 674
+
 static const float golden_positions[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
 static const float golden_normals[] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
 static const uint32_t golden_triangles[] = {0, 1, 2, 0, 2, 3};
@@ -278,17 +303,46 @@ golden11_decode(void **state)
 	free(buf);
 }
 
-/* Encoding the decoded values again must give the fixture byte for byte. */
+/* Version 1.2 adds the MATL chunk. */
+static void
+golden12_decode(void **state)
+{
+	size_t len;
+	unsigned char *buf = fixture("golden-v1.2.vdt", GOLDEN12_LEN, &len);
+	struct vdt_chunks c;
+	struct vdt_materials mat;
+	struct vdt_err err = {0};
+
+	(void)state;
+	assert_memory_equal(buf, "\x89VDT\r\n\x1a\n\x01\x00\x02\x00", 12);
+	check_chunks(buf, len, golden12_chunks, 6, &c);
+	assert_int_equal(vdt_matl_decode(c.items[3].data, c.items[3].length, 2, &mat, &err), 0);
+	assert_int_equal(mat.faces[0], 0);
+	assert_int_equal(mat.faces[1], VDT_NO_MATERIAL);
+	assert_int_equal(mat.count, 1);
+	assert_string_equal(mat.names[0], "skin");
+	assert_int_equal(mat.lib_count, 1);
+	assert_string_equal(mat.libs[0], "s.mtl");
+	vdt_materials_free(&mat);
+	vdt_chunks_free(&c);
+	free(buf);
+}
+
+/* Encoding the decoded values again must give the fixture of the
+ * version written byte for byte. */
 static void
 golden_reencode(void **state)
 {
 	size_t len, outlen;
-	unsigned char *buf = fixture("golden-v1.1.vdt", GOLDEN11_LEN, &len), *out, *d;
+	unsigned char *buf = fixture("golden-v1.2.vdt", GOLDEN12_LEN, &len), *out, *d;
 	struct vdt_chunks c = {0};
 	struct vdt_quadric q[4];
 	struct vdt_err err = {0};
 	uint64_t n;
 	static const uint8_t border[4] = {0, 1, 0, 1};
+	char *names[] = {"skin"}, *libs[] = {"s.mtl"};
+	uint32_t faces[2] = {0, VDT_NO_MATERIAL};
+	struct vdt_materials mat = {2, faces, 1, names, 1, libs};
 	struct vdt_mesh m = {
 		.vertex_count = 4, .positions = (float *)golden_positions,
 		.normals = (float *)golden_normals, .triangle_count = 2,
@@ -306,6 +360,8 @@ golden_reencode(void **state)
 	assert_int_equal(vdt_chunks_add(&c, VDT_CHUNK_QUAD, d, n, &err), 0);
 	assert_int_equal(vdt_bndy_encode(border, 4, &d, &n, &err), 0);
 	assert_int_equal(vdt_chunks_add(&c, VDT_CHUNK_BNDY, d, n, &err), 0);
+	assert_int_equal(vdt_matl_encode(&mat, &d, &n, &err), 0);
+	assert_int_equal(vdt_chunks_add(&c, VDT_CHUNK_MATL, d, n, &err), 0);
 	d = malloc(5);
 	memcpy(d, "extra", 5);
 	assert_int_equal(vdt_chunks_add(&c, XTRA, d, 5, &err), 0);
@@ -320,6 +376,18 @@ golden_reencode(void **state)
 	out = encode_stream(&c, &outlen);
 	assert_int_equal(outlen, len);
 	assert_memory_equal(out, buf, len);
+	free(out);
+	vdt_chunks_free(&c);
+	free(buf);
+
+	/* A 1.1 stream comes out the same but for the version written. */
+	buf = fixture("golden-v1.1.vdt", GOLDEN11_LEN, &len);
+	assert_int_equal(vdt_stream_decode(buf, len, &c, &err), 0);
+	out = encode_stream(&c, &outlen);
+	assert_int_equal(outlen, len);
+	assert_int_equal(vdt_get_u16le(out + 10), VDT_STREAM_MINOR);
+	assert_memory_equal(out, buf, 10);
+	assert_memory_equal(out + 12, buf + 12, len - 12);
 	free(out);
 	vdt_chunks_free(&c);
 	free(buf);
@@ -808,7 +876,7 @@ bad_version_and_crc(void **state)
 	(void)state;
 	vdt_put_u16le(buf + 8, 2);
 	assert_int_equal(decode_rc(buf, len, &err), VDT_EVERSION);
-	assert_string_equal(err.msg, "version 2.0 at byte 8 is newer than this reader (1.1)");
+	assert_string_equal(err.msg, "version 2.0 at byte 8 is newer than this reader (1.2)");
 	vdt_put_u16le(buf + 8, 0);
 	assert_int_equal(decode_rc(buf, len, &err), VDT_EFORMAT);
 	vdt_put_u16le(buf + 8, 1);
@@ -1001,6 +1069,58 @@ bad_quad(void **state)
 	free(d);
 }
 
+/* MATL: materials of faces to bytes and back; every damage refused. */
+static void
+matl_chunk(void **state)
+{
+	char *names[] = {"red paint", "blue"}, *libs[] = {"a b.mtl"};
+	uint32_t faces[3] = {1, VDT_NO_MATERIAL, 0};
+	struct vdt_materials m = {3, faces, 2, names, 1, libs}, back;
+	struct vdt_err err = {0};
+	unsigned char *d;
+	uint64_t n;
+
+	(void)state;
+	assert_int_equal(vdt_matl_encode(&m, &d, &n, &err), 0);
+	assert_int_equal(n, 16 + 3 * 4 + 4 + 9 + 4 + 4 + 4 + 7);
+	assert_int_equal(vdt_get_u64le(d), 3);
+	assert_int_equal(vdt_get_u32le(d + 8), 2);
+	assert_int_equal(vdt_get_u32le(d + 12), 1);
+	assert_int_equal(vdt_get_u32le(d + 20), 0xffffffffu);
+	assert_int_equal(vdt_matl_decode(d, n, 3, &back, &err), 0);
+	assert_int_equal(back.face_count, 3);
+	assert_memory_equal(back.faces, faces, sizeof(faces));
+	assert_int_equal(back.count, 2);
+	assert_string_equal(back.names[0], "red paint");
+	assert_string_equal(back.names[1], "blue");
+	assert_int_equal(back.lib_count, 1);
+	assert_string_equal(back.libs[0], "a b.mtl");
+	vdt_materials_free(&back);
+
+	for (uint64_t k = 0; k < n; k++) {
+		assert_int_not_equal(vdt_matl_decode(d, k, 3, &back, &err), 0);
+		assert_null(back.faces);
+	}
+	assert_int_equal(vdt_matl_decode(d, n, 4, &back, &err), VDT_EINVAL);
+	assert_string_equal(err.msg, "MATL chunk has materials of 3 faces for 4");
+	vdt_put_u32le(d + 16, 2);
+	assert_int_equal(vdt_matl_decode(d, n, 3, &back, &err), VDT_EINVAL);
+	assert_string_equal(err.msg, "face 0 has material 2 of 2");
+	vdt_put_u32le(d + 16, 1);
+	d[16 + 12 + 4 + 3] = '\n'; /* "red\npaint" */
+	assert_int_equal(vdt_matl_decode(d, n, 3, &back, &err), VDT_EINVAL);
+	assert_string_equal(err.msg,
+	                    "material name 0 is empty, or has a control character or stray blanks");
+	d[16 + 12 + 4 + 3] = ' ';
+	vdt_put_u32le(d + 8, 0x7fffffff); /* more names than bytes */
+	assert_int_equal(vdt_matl_decode(d, n, 3, &back, &err), VDT_EFORMAT);
+	assert_string_equal(err.msg, "2147483647 material names do not fit the MATL payload");
+	vdt_put_u32le(d + 8, 3); /* a third name: the library's bytes as one */
+	assert_int_equal(vdt_matl_decode(d, n, 3, &back, &err), VDT_EFORMAT);
+	assert_null(back.names);
+	free(d);
+}
+
 /* BNDY: flags to a list of vertices and back; every damage refused. */
 static void
 bndy_chunk(void **state)
@@ -1160,6 +1280,7 @@ main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(golden_decode),
 		cmocka_unit_test(golden11_decode),
+		cmocka_unit_test(golden12_decode),
 		cmocka_unit_test(golden_reencode),
 		cmocka_unit_test(mesh_round_trip),
 		cmocka_unit_test(quad_round_trip),
@@ -1178,6 +1299,7 @@ main(void)
 		cmocka_unit_test(reader_misuse),
 		cmocka_unit_test(writer_and_names),
 		cmocka_unit_test(chunks_move),
+		cmocka_unit_test(matl_chunk),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
