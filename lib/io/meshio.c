@@ -1373,14 +1373,34 @@ obj_face(FILE *f, const struct vdt_mesh *m, size_t t)
 
 /*
  * An OBJ of m, with materials mat (NULL: none): their libraries first,
- * then the faces without one, then the rest in order, a usemtl wherever
- * the material changes (OBJ has no way back to none).
+ * then the faces without one (OBJ has no way back to none), then each
+ * material's faces after its usemtl, in the order of the names. Returns
+ * 0 or VDT_ENOMEM.
  */
-static void
-write_obj(FILE *f, const struct vdt_mesh *m, const struct vdt_materials *mat)
+static int
+write_obj(FILE *f, const struct vdt_mesh *m, const struct vdt_materials *mat, struct vdt_err *err)
 {
 	const float *p = m->positions;
+	size_t *start = NULL;
+	uint32_t *order = NULL;
 
+	/* (the faces by material, counted first: none, then each name) */
+	if (mat != NULL) {
+		start = calloc(mat->count + 2, sizeof(*start));
+		order = malloc((m->triangle_count + 1) * sizeof(*order));
+		if (start == NULL || order == NULL) {
+			free(start);
+			free(order);
+			return vdt_err_set(err, VDT_ENOMEM, "out of memory for materials");
+		}
+		/* (key: 0 for none, UINT32_MAX wrapping, else the number + 1) */
+		for (size_t t = 0; t < m->triangle_count; t++)
+			start[(size_t)(uint32_t)(mat->faces[t] + 1u) + 1]++;
+		for (size_t i = 1; i <= mat->count + 1; i++)
+			start[i] += start[i - 1];
+		for (size_t t = 0; t < m->triangle_count; t++)
+			order[start[(uint32_t)(mat->faces[t] + 1u)]++] = (uint32_t)t;
+	}
 	fputs("# written by vdt\n", f);
 	for (size_t i = 0; mat != NULL && i < mat->lib_count; i++)
 		fprintf(f, "mtllib %s\n", mat->libs[i]);
@@ -1400,22 +1420,16 @@ write_obj(FILE *f, const struct vdt_mesh *m, const struct vdt_materials *mat)
 		for (size_t i = 0; i < m->vertex_count; i++)
 			fprintf(f, "vn " P9 " " P9 " " P9 "\n", m->normals[3 * i],
 			        m->normals[3 * i + 1], m->normals[3 * i + 2]);
-	if (mat == NULL) {
-		for (size_t t = 0; t < m->triangle_count; t++)
-			obj_face(f, m, t);
-		return;
-	}
-	for (size_t t = 0; t < m->triangle_count; t++)
-		if (mat->faces[t] == VDT_NO_MATERIAL)
-			obj_face(f, m, t);
-	for (size_t t = 0, last = VDT_NO_MATERIAL; t < m->triangle_count; t++) {
-		if (mat->faces[t] == VDT_NO_MATERIAL)
-			continue;
-		if (mat->faces[t] != last)
+	for (size_t k = 0; k < m->triangle_count; k++) {
+		size_t t = order ? order[k] : k;
+		if (order != NULL && mat->faces[t] != VDT_NO_MATERIAL &&
+		    (k == 0 || mat->faces[order[k - 1]] != mat->faces[t]))
 			fprintf(f, "usemtl %s\n", mat->names[mat->faces[t]]);
-		last = mat->faces[t];
 		obj_face(f, m, t);
 	}
+	free(start);
+	free(order);
+	return 0;
 }
 
 /*
@@ -1504,7 +1518,7 @@ vdt_text_write(FILE *f, const struct vdt_mesh *m, enum vdt_format format,
                struct vdt_err *err)
 {
 	switch (format) {
-	case VDT_FMT_OBJ: write_obj(f, m, NULL); break;
+	case VDT_FMT_OBJ: write_obj(f, m, NULL, err); break;
 	case VDT_FMT_OFF: write_off(f, m); break;
 	case VDT_FMT_PLY_ASCII: write_ply_ascii(f, m); break;
 	case VDT_FMT_STL_ASCII: write_stl_ascii(f, m); break;
@@ -1602,9 +1616,9 @@ vdt_write(const char *path, const struct vdt_mesh *m,
 		if ((c = extra ? vdt_chunks_find(extra, VDT_CHUNK_MATL) : NULL) != NULL &&
 		    (rc = vdt_matl_decode(c->data, c->length, m->triangle_count, &mat, err)) != 0)
 			break;
-		write_obj(o.f, m, c ? &mat : NULL);
+		rc = write_obj(o.f, m, c ? &mat : NULL, err);
 		vdt_materials_free(&mat);
-		if (ferror(o.f))
+		if (rc == 0 && ferror(o.f))
 			rc = vdt_err_set(err, VDT_EIO, "write error: %s", strerror(errno));
 		break;
 	default: rc = vdt_text_write(o.f, m, f, err); break;

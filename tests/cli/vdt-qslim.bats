@@ -1201,10 +1201,11 @@ material_spans() {
 	[ "$output" = "vdt-qslim: note: '$TMP/two.obj' names materials (mtllib, usemtl), which ply output cannot hold: '$TMP/out.ply' has none (an OBJ or a vdt stream keeps them)" ]
 	run "$BIN/vdt-qslim" -q -r 0.5 "$TMP/two.obj" -o "$TMP/out.ply"
 	[ -z "$output" ]
-	# faces before any usemtl have none, and come first in the output
-	{ echo "v 0 0 0"; echo "v 1 0 0"; echo "v 0 1 0"; echo "v 1 1 1"; echo "usemtl a"; echo "f 1 2 3"; echo "usemtl"; echo "f 2 4 3"; } > "$TMP/none.obj"
+	# faces of no material (before any usemtl, or after an empty one) come
+	# first, then each material's together, in the order first named
+	printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 1\nv 2 2 0\nusemtl a\nf 1 2 3\nusemtl b\nf 2 4 3\nusemtl a\nf 2 5 4\nusemtl\nf 1 3 5\n' > "$TMP/none.obj"
 	"$BIN/vdt-qslim" -q -t 9 "$TMP/none.obj" -o "$TMP/none-out.obj"
-	[ "$(grep '^[fu]' "$TMP/none-out.obj")" = "$(printf 'f 2 4 3\nusemtl a\nf 1 2 3')" ]
+	[ "$(grep '^[fu]' "$TMP/none-out.obj")" = "$(printf 'f 1 3 5\nusemtl a\nf 1 2 3\nf 2 5 4\nusemtl b\nf 2 4 3')" ]
 }
 
 @test "vdt-qslim refuses a MATL chunk that does not fit the mesh, naming the file and the byte" {
