@@ -244,6 +244,44 @@ note_materials_format(const char *path, const struct vdt_chunks *extra, const ch
 		     input_name(path), vdt_format_name(f), out);
 }
 
+/* Whether file, relative to the directory of beside (a path), exists. */
+static int
+found_beside(const char *beside, const char *file)
+{
+	const char *slash = strrchr(beside, '/');
+	size_t d = slash ? (size_t)(slash - beside) + 1 : 0;
+	char *p = malloc(d + strlen(file) + 1);
+	int found;
+
+	if (p == NULL)
+		return 1; /* (no note rather than a wrong one) */
+	memcpy(p, beside, d);
+	strcpy(p + d, file);
+	found = access(p, F_OK) == 0;
+	free(p);
+	return found;
+}
+
+void
+note_material_libraries(const char *path, const struct vdt_chunks *extra, size_t faces,
+                        const char *out, int quiet)
+{
+	const struct vdt_chunk *c = vdt_chunks_find(extra, VDT_CHUNK_MATL);
+	struct vdt_materials mat;
+
+	if (quiet || c == NULL || strcmp(path, "-") == 0 || strcmp(out, "-") == 0 ||
+	    vdt_matl_decode(c->data, c->length, faces, &mat, NULL) != 0)
+		return;
+	for (size_t i = 0; i < mat.lib_count; i++) {
+		const char *lib = mat.libs[i];
+		if (lib[0] != '/' && found_beside(path, lib) && !found_beside(out, lib))
+			note("note: '%s' names the material library '%s', which is beside '%s' but "
+			     "not beside it: copy it there for its materials to apply\n",
+			     out, lib, path);
+	}
+	vdt_materials_free(&mat);
+}
+
 void
 note_float_precision(const char *path, const struct vdt_mesh *m, int quiet)
 {

@@ -116,6 +116,12 @@ void drop_materials(const char *path, struct vdt_chunks *extra, int quiet);
 void note_materials_format(const char *path, const struct vdt_chunks *extra, const char *out,
                            enum vdt_format f, int quiet);
 
+/* A note, unless quiet, for each material library of extra (MATL, of
+ * faces faces) that lies beside the input file path but not beside the
+ * OBJ out, whose mtllib names it relative to itself as the input did. */
+void note_material_libraries(const char *path, const struct vdt_chunks *extra, size_t faces,
+                             const char *out, int quiet);
+
 /* The same for a model whose box of float positions is box (one read as a
  * stream, never held whole). */
 void note_float_box(const char *path, const struct vdt_bbox *box, int quiet);

@@ -185,6 +185,8 @@ run(struct cmdline *cl)
 	}
 	note_materials_format(cl->in, &extra, cl->out, vdt_output_format(cl->out, cl->w.format),
 	                      cl->quiet);
+	if (vdt_output_format(cl->out, cl->w.format) == VDT_FMT_OBJ)
+		note_material_libraries(cl->in, &extra, out.triangle_count, cl->out, cl->quiet);
 	if ((rc = vdt_write(cl->out, &out, &extra, &cl->w, &err)) != 0) {
 		rc = fail("cannot write", cl->out, &err);
 		goto out;

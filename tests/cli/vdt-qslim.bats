@@ -1230,3 +1230,24 @@ PY
 		done
 	done
 }
+
+@test "vdt-qslim says when an OBJ's material library is not beside the output" {
+	two_materials > "$TMP/two.obj"
+	: > "$TMP/sphere.mtl"
+	mkdir "$TMP/sub"
+	run "$BIN/vdt-qslim" -r 0.5 "$TMP/two.obj" -o "$TMP/sub/x.obj"
+	[ "$status" -eq 0 ]
+	[ "$output" = "vdt-qslim: note: '$TMP/sub/x.obj' names the material library 'sphere.mtl', which is beside '$TMP/two.obj' but not beside it: copy it there for its materials to apply" ]
+	grep -q '^mtllib sphere.mtl$' "$TMP/sub/x.obj"
+	run "$BIN/vdt-qslim" -q -r 0.5 "$TMP/two.obj" -o "$TMP/sub/x.obj"
+	[ -z "$output" ]
+	# beside it, or not beside the input either (nothing lost): no note
+	run "$BIN/vdt-qslim" -r 0.5 "$TMP/two.obj" -o "$TMP/y.obj"
+	[ -z "$output" ]
+	cp "$TMP/sphere.mtl" "$TMP/sub/"
+	run "$BIN/vdt-qslim" -r 0.5 "$TMP/two.obj" -o "$TMP/sub/x.obj"
+	[ -z "$output" ]
+	rm "$TMP/sphere.mtl" "$TMP/sub/sphere.mtl"
+	run "$BIN/vdt-qslim" -r 0.5 "$TMP/two.obj" -o "$TMP/sub/x.obj"
+	[ -z "$output" ]
+}
