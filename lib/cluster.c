@@ -38,6 +38,7 @@
 
 #include "io/tsource.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -1034,8 +1035,12 @@ vdt_cluster_finish(struct vdt_cluster *c, struct vdt_mesh *out, struct vdt_quadr
 			continue;
 		for (int k = 0; k < 3; k++) {
 			uint64_t ci = key >> (k * KEY_BITS) & KEY_MASK;
+			/* (within the floats: a grid of a given cell size
+			 * overhangs the model, past the largest float if the
+			 * model reaches that far) */
 			lo[k] = c->g.origin[k] + (double)ci * c->g.cell[k];
-			hi[k] = lo[k] + c->g.cell[k];
+			hi[k] = fmin(lo[k] + c->g.cell[k], FLT_MAX);
+			lo[k] = fmax(lo[k], -FLT_MAX);
 			ref[k] = cl->sum[k] / (double)cl->corners;
 		}
 		/*

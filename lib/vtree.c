@@ -87,7 +87,8 @@ set_normal(float out[3], const double n[3])
 	double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
 	float f[3] = {0, 0, 1};
 	int16_t q[2];
-	if (l > 1e-30 && isfinite(l))
+	/* (any length: a model of edges 1e-15 long has face normals 1e-30 long) */
+	if (l > 0 && isfinite(l))
 		for (int k = 0; k < 3; k++)
 			f[k] = (float)(n[k] / l);
 	oct_encode(f, q);

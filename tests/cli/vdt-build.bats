@@ -257,3 +257,16 @@ load helpers
 	run "$BIN/vdt-build" --check "$TMP/s.vdt"
 	[ "$status" -eq 0 ]
 }
+
+@test "vdt-build keeps the normals of a model however small" {
+	# the sphere at 1e-16 of its size: face normals about 1e-34 long
+	awk 'NR == 2 { n = $1 } NR > 2 && NR <= n + 2 { printf "%.9g %.9g %.9g\n", $1 * 1e-16, $2 * 1e-16, $3 * 1e-16; next } { print }' \
+		"$SAMPLES/sphere.off" > "$TMP/tiny.off"
+	"$BIN/vdt-build" -q "$SAMPLES/sphere.off" -o "$TMP/s.vdt"
+	"$BIN/vdt-build" -q "$TMP/tiny.off" -o "$TMP/t.vdt"
+	"$BIN/vdt-render" -q --size 64x64 -p 1 "$TMP/s.vdt" -o "$TMP/s.png"
+	run "$BIN/vdt-render" --size 64x64 -p 1 "$TMP/t.vdt" -o "$TMP/t.png" --compare "$TMP/s.png"
+	[ "$status" -eq 0 ]
+	# the same picture, not a flat grey disc
+	awk -F'psnr=' '{ exit !($2 + 0 > 60) }' <<< "$output"
+}

@@ -785,3 +785,15 @@ PY
 		[ "$want" = "cannot read '$TMP/${f%%:*}.vdt': ${f#*:}" ]
 	done
 }
+
+@test "vdt-cluster -s places no vertex past the largest float, with a model that reaches it" {
+	awk 'NR == 2 { n = $1 } NR > 2 && NR <= n + 2 { printf "%.9g %.9g %.9g\n", $1 * 3.4e38, $2 * 3.4e38, $3 * 3.4e38; next } { print }' \
+		"$SAMPLES/sphere.off" > "$TMP/huge.off"
+	for s in 1.5552% 7.3% 13%; do
+		run "$BIN/vdt-cluster" -s $s "$TMP/huge.off" -F off -o "$TMP/c.off"
+		[ "$status" -eq 0 ]
+		# (the grid overhangs the model, its cells past the largest float)
+		! grep -qi 'inf\|nan' "$TMP/c.off"
+		[ "$(sed -n 2p "$TMP/c.off" | cut -d' ' -f1)" -gt 50 ]
+	done
+}
