@@ -262,6 +262,16 @@ found_beside(const char *beside, const char *file)
 	return found;
 }
 
+/* note_material_libraries's note of one library, lib. */
+static void
+library_note(const char *path, const char *lib, const char *out)
+{
+	if (lib[0] != '/' && found_beside(path, lib) && !found_beside(out, lib))
+		note("note: '%s' names the material library '%s', which is beside '%s' but "
+		     "not beside it: copy it there for its materials to apply\n",
+		     out, lib, path);
+}
+
 void
 note_material_libraries(const char *path, const struct vdt_chunks *extra, size_t faces,
                         const char *out, int quiet)
@@ -273,11 +283,15 @@ note_material_libraries(const char *path, const struct vdt_chunks *extra, size_t
 	    vdt_matl_decode(c->data, c->length, faces, &mat, NULL) != 0)
 		return;
 	for (size_t i = 0; i < mat.lib_count; i++) {
-		const char *lib = mat.libs[i];
-		if (lib[0] != '/' && found_beside(path, lib) && !found_beside(out, lib))
-			note("note: '%s' names the material library '%s', which is beside '%s' but "
-			     "not beside it: copy it there for its materials to apply\n",
-			     out, lib, path);
+		/* the whole text one name, as some write it, or each of its
+		 * words one, as OBJ has it ("mtllib a.mtl b.mtl") */
+		char *lib = mat.libs[i], *word, *save = NULL;
+		if (found_beside(path, lib) || lib[strcspn(lib, " \t")] == '\0') {
+			library_note(path, lib, out);
+			continue;
+		}
+		for (word = strtok_r(lib, " \t", &save); word; word = strtok_r(NULL, " \t", &save))
+			library_note(path, word, out);
 	}
 	vdt_materials_free(&mat);
 }

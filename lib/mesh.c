@@ -77,11 +77,11 @@ vdt_materials_free(struct vdt_materials *m)
 int
 vdt_material_name_ok(const char *s, size_t n)
 {
-	if (n == 0 || s[0] == ' ' || s[n - 1] == ' ')
+	if (n == 0 || s[0] == ' ' || s[0] == '\t' || s[n - 1] == ' ' || s[n - 1] == '\t')
 		return 0;
 	for (size_t i = 0; i < n; i++) {
 		unsigned char c = (unsigned char)s[i];
-		if (c < 0x20 || c == 0x7f || (c == ' ' && s[i + 1] == ' '))
+		if ((c < 0x20 && c != '\t') || c == 0x7f)
 			return 0;
 	}
 	return 1;

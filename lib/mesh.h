@@ -43,9 +43,9 @@ enum {
  * Materials of a mesh's faces, as an OBJ names them: a number per face
  * into a table of names (usemtl), and the libraries that define them
  * (mtllib), each as its statement wrote it after the keyword. Names and
- * libraries are non-empty, without control characters, and hold no
- * leading, trailing or repeated blanks. They travel beside the mesh, as
- * the MATL chunk of the vdt stream (vdt(5)).
+ * libraries are non-empty, without control characters but tabs, and
+ * neither start nor end with a blank (space or tab). They travel beside
+ * the mesh, as the MATL chunk of the vdt stream (vdt(5)).
  */
 #define VDT_NO_MATERIAL UINT32_MAX /* a face before any usemtl */
 

@@ -1825,60 +1825,90 @@ src_face(const uint32_t *fsrc, size_t t)
 /*
  * Where faces of two materials meet (mat: per input face), planes across
  * each face at the edge, as at a seam (seam_planes), so that the border
- * keeps its line; its vertices get bit 8 of border. Returns how many
- * vertices are on such borders, or -1 out of memory.
+ * keeps its line; its vertices get bit 8 of border. The edges are found
+ * through a table of them, each with the material of its first face and
+ * whether another differs: time linear in the faces, however many meet
+ * at a vertex. Returns how many vertices are on such borders, or -1 out
+ * of memory.
  */
+struct medge {
+	uint64_t key; /* lower << 32 | higher vertex; UINT64_MAX: empty */
+	uint32_t mat; /* of the first face */
+	uint32_t differ;
+};
+
+/* The entry of edge (a, b), made with material m if new. */
+static struct medge *
+medge_at(struct medge *tab, uint32_t mask, uint32_t a, uint32_t b, uint32_t m)
+{
+	uint64_t key = a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
+	uint32_t h = (uint32_t)vdt_hash_mix(key) & mask;
+
+	while (tab[h].key != key && tab[h].key != UINT64_MAX)
+		h = (h + 1) & mask;
+	if (tab[h].key == UINT64_MAX)
+		tab[h] = (struct medge){key, m, 0};
+	return &tab[h];
+}
+
 static long
 material_planes(struct ctx *c, const struct vdt_mesh *w, const uint32_t *fsrc, const uint32_t *mat,
                 double weight, uint8_t *border)
 {
-	uint32_t *start, *fan;
+	size_t nt = w->triangle_count;
+	uint32_t mask = vdt_hash_mask(3 * nt + 2);
+	struct medge *tab = malloc(((size_t)mask + 1) * sizeof(*tab));
 	long on = 0;
 
-	if (vdt_topo_fans(w->vertex_count, w->triangles, w->triangle_count, &start, &fan) != 0)
+	if (tab == NULL)
 		return -1;
-	for (size_t t = 0; t < w->triangle_count; t++) {
-		const uint32_t *v = w->triangles + 3 * t;
-		uint32_t m = mat[src_face(fsrc, t)];
-		for (int k = 0; k < 3; k++) {
-			uint32_t a = v[k], b = v[(k + 1) % 3];
-			int differ = 0;
-			for (uint32_t j = start[a]; j < start[a + 1] && !differ; j++) {
-				const uint32_t *u = w->triangles + 3 * (size_t)fan[j];
-				differ = fan[j] != t && (u[0] == b || u[1] == b || u[2] == b) &&
-				         mat[src_face(fsrc, fan[j])] != m;
-			}
-			if (!differ)
+	for (size_t i = 0; i <= mask; i++)
+		tab[i].key = UINT64_MAX;
+	for (int pass = 0; pass < 2; pass++)
+		for (size_t t = 0; t < nt; t++) {
+			const uint32_t *v = w->triangles + 3 * t;
+			uint32_t m = mat[src_face(fsrc, t)];
+			if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2])
 				continue;
-			double p[3][3], e1[3], e2[3], n[3], l;
-			struct vdt_quadric q;
-			for (int i = 0; i < 3; i++)
+			for (int k = 0; k < 3; k++) {
+				uint32_t a = v[k], b = v[(k + 1) % 3];
+				struct medge *x = medge_at(tab, mask, a, b, m);
+				if (pass == 0) {
+					x->differ |= x->mat != m;
+					continue;
+				}
+				if (!x->differ)
+					continue;
+				on += !(border[a] & 8) + !(border[b] & 8);
+				border[a] |= 8;
+				border[b] |= 8;
+				double p[3][3], e1[3], e2[3], n[3], l;
+				struct vdt_quadric q;
+				for (int i = 0; i < 3; i++)
+					for (int j = 0; j < 3; j++)
+						p[i][j] = w->positions[3 * (size_t)v[i] + j] -
+						          c->centre[j];
+				for (int j = 0; j < 3; j++) {
+					e1[j] = p[1][j] - p[0][j];
+					e2[j] = p[2][j] - p[0][j];
+				}
+				n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+				n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+				n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+				l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+				if (!(l > 0) || !(weight > 0))
+					continue;
 				for (int j = 0; j < 3; j++)
-					p[i][j] = w->positions[3 * (size_t)v[i] + j] - c->centre[j];
-			for (int j = 0; j < 3; j++) {
-				e1[j] = p[1][j] - p[0][j];
-				e2[j] = p[2][j] - p[0][j];
-			}
-			n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-			n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-			n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-			l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-			on += !(border[a] & 8) + !(border[b] & 8);
-			border[a] |= 8;
-			border[b] |= 8;
-			if (!(l > 0))
-				continue;
-			for (int j = 0; j < 3; j++)
-				n[j] /= l;
-			if (vdt_quadric_boundary(&q, p[k], p[(k + 1) % 3], n, weight) == 0) {
-				q.w = 0;
-				vdt_quadric_add(&c->q[a], &q);
-				vdt_quadric_add(&c->q[b], &q);
+					n[j] /= l;
+				if (vdt_quadric_boundary(&q, p[k], p[(k + 1) % 3], n, weight) ==
+				    0) {
+					q.w = 0;
+					vdt_quadric_add(&c->q[a], &q);
+					vdt_quadric_add(&c->q[b], &q);
+				}
 			}
 		}
-	}
-	free(start);
-	free(fan);
+	free(tab);
 	return on;
 }
 
@@ -2870,13 +2900,21 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 		if (o->lock_border && (border[v] & 1))
 			locked[v] = 1;
 	}
-	/* Material borders are seams too: their vertices stay where they
+	/*
+	 * Material borders are seams too: their vertices stay where they
 	 * are while vertices off them merge in, and the planes hold their
-	 * line (bit 8 of border). */
-	if (mat != NULL &&
-	    (mat_borders = material_planes(&c, &w, fsrc, mat,
-	                                   VDT_QSLIM_SEAM_WEIGHT * fmax(1, o->attribute_weight),
-	                                   border)) < 0)
+	 * line (bit 8 of border). With attribute costs, which do not pin,
+	 * as strongly as the seams of attributes; without, pinning holds
+	 * the line and planes as strong as at open boundaries keep it
+	 * straight: at the seams' weight they cost more than they hold
+	 * (the bunny of four materials at 2%: RMS 0.18% of the diagonal,
+	 * 46 faces on the wrong side of a border; at weight 3, 0.10% and
+	 * 12; without materials, 0.088%).
+	 */
+	double mweight = o->attribute_weight > 0 && varying != 0
+	                         ? VDT_QSLIM_SEAM_WEIGHT * fmax(1, o->attribute_weight)
+	                         : o->boundary_weight;
+	if (mat != NULL && (mat_borders = material_planes(&c, &w, fsrc, mat, mweight, border)) < 0)
 		goto nomem;
 	if (o->error_scale) {
 		c.scale = malloc(nw * sizeof(*c.scale));
@@ -3173,12 +3211,13 @@ vdt_qslim_extra_decode(struct vdt_qslim_extra *x, struct vdt_chunks *c, size_t v
 	memset(x, 0, sizeof(*x));
 	if ((!ignore_quadrics && ((rc = decode_quadrics(c, vertex_count, &x->quadrics, err)) != 0 ||
 	                          (rc = decode_border(c, vertex_count, &x->border, err)) != 0)) ||
-	    (rc = vdt_labl_decode_chunk(c, vertex_count, &x->labl, err)) != 0 ||
-	    (m != NULL &&
-	     (rc = vdt_matl_decode(m->data, m->length, triangle_count, &x->mat, err)) != 0)) {
-		if (m != NULL && x->mat.faces == NULL)
-			vdt_err_prefix(err, "chunk MATL at byte %llu",
-			               (unsigned long long)m->offset);
+	    (rc = vdt_labl_decode_chunk(c, vertex_count, &x->labl, err)) != 0) {
+		vdt_qslim_extra_free(x);
+		return rc;
+	}
+	if (m != NULL &&
+	    (rc = vdt_matl_decode(m->data, m->length, triangle_count, &x->mat, err)) != 0) {
+		vdt_err_prefix(err, "chunk MATL at byte %llu", (unsigned long long)m->offset);
 		vdt_qslim_extra_free(x);
 		return rc;
 	}

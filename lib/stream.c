@@ -959,19 +959,19 @@ vdt_matl_encode(const struct vdt_materials *m, unsigned char **data, uint64_t *l
 }
 
 /* The strings of a MATL payload from *at: count of them into out
- * (allocated), what is one in messages. */
+ * (allocated), what is one in messages, whats more. */
 static int
 matl_strings(const unsigned char *data, uint64_t length, uint64_t *at, uint32_t count,
-             const char *what, char ***out, struct vdt_err *err)
+             const char *what, const char *whats, char ***out, struct vdt_err *err)
 {
 	char **s;
 
 	/* each takes 4 bytes at least, so count is bounded by the payload */
 	if (count > (length - *at) / 4)
-		return vdt_err_set(err, VDT_EFORMAT, "%" PRIu32 " %ss do not fit the MATL payload",
-		                   count, what);
+		return vdt_err_set(err, VDT_EFORMAT, "%" PRIu32 " %s do not fit the MATL payload",
+		                   count, whats);
 	if ((s = calloc(count ? count : 1, sizeof(*s))) == NULL)
-		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %" PRIu32 " %ss", count, what);
+		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %" PRIu32 " %s", count, whats);
 	*out = s;
 	for (uint32_t i = 0; i < count; i++) {
 		uint32_t n;
@@ -981,8 +981,8 @@ matl_strings(const unsigned char *data, uint64_t length, uint64_t *at, uint32_t 
 			                   "%s %" PRIu32 " runs past the MATL payload", what, i);
 		if (!vdt_material_name_ok((const char *)data + *at + 4, n))
 			return vdt_err_set(err, VDT_EINVAL,
-			                   "%s %" PRIu32 " is empty, or has a control character or "
-			                   "stray blanks",
+			                   "%s %" PRIu32 " is empty, has a control character, or "
+			                   "starts or ends with a blank",
 			                   what, i);
 		if ((s[i] = malloc((size_t)n + 1)) == NULL)
 			return vdt_err_set(err, VDT_ENOMEM, "cannot allocate a %s", what);
@@ -1033,10 +1033,11 @@ vdt_matl_decode(const unsigned char *data, uint64_t length, size_t triangle_coun
 		m->faces[i] = x;
 	}
 	at = 16 + 4 * t;
-	rc = matl_strings(data, length, &at, nm, "material name", &m->names, err);
+	rc = matl_strings(data, length, &at, nm, "material name", "material names", &m->names, err);
 	m->count = m->names ? nm : 0;
 	if (rc == 0)
-		rc = matl_strings(data, length, &at, nl, "material library", &m->libs, err);
+		rc = matl_strings(data, length, &at, nl, "material library", "material libraries",
+		                  &m->libs, err);
 	m->lib_count = m->libs ? nl : 0;
 	if (rc == 0 && at != length)
 		rc = vdt_err_set(err, VDT_EFORMAT,

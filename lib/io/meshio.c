@@ -1371,6 +1371,16 @@ obj_face(FILE *f, const struct vdt_mesh *m, size_t t)
 	fputc('\n', f);
 }
 
+/* "keyword text": a text that ends in a backslash gets a blank after
+ * it, which keeps it from continuing the line. */
+static void
+obj_statement(FILE *f, const char *keyword, const char *text)
+{
+	size_t n = strlen(text);
+
+	fprintf(f, "%s %s%s\n", keyword, text, n > 0 && text[n - 1] == '\\' ? " " : "");
+}
+
 /*
  * An OBJ of m, with materials mat (NULL: none): their libraries first,
  * then the faces without one (OBJ has no way back to none), then each
@@ -1403,7 +1413,7 @@ write_obj(FILE *f, const struct vdt_mesh *m, const struct vdt_materials *mat, st
 	}
 	fputs("# written by vdt\n", f);
 	for (size_t i = 0; mat != NULL && i < mat->lib_count; i++)
-		fprintf(f, "mtllib %s\n", mat->libs[i]);
+		obj_statement(f, "mtllib", mat->libs[i]);
 	for (size_t i = 0; i < m->vertex_count; i++, p += 3) {
 		if (m->colors) {
 			const float *c = m->colors + 4 * i;
@@ -1424,7 +1434,7 @@ write_obj(FILE *f, const struct vdt_mesh *m, const struct vdt_materials *mat, st
 		size_t t = order ? order[k] : k;
 		if (order != NULL && mat->faces[t] != VDT_NO_MATERIAL &&
 		    (k == 0 || mat->faces[order[k - 1]] != mat->faces[t]))
-			fprintf(f, "usemtl %s\n", mat->names[mat->faces[t]]);
+			obj_statement(f, "usemtl", mat->names[mat->faces[t]]);
 		obj_face(f, m, t);
 	}
 	free(start);

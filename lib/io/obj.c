@@ -17,7 +17,7 @@
  *   mtllib file ...            the libraries that define the materials
  *
  * Materials are read when the caller asks for them (struct vdt_materials),
- * names and libraries being the rest of their statement, blanks collapsed;
+ * names and libraries being the rest of their statement as written;
  * otherwise they are noted (VDT_DROPPED_MATERIALS), as the textures they
  * name no longer apply. Everything else (o, g, s, l, p, curves, surfaces,
  * unknown statements) is ignored: a mesh filter has no use for it, and
@@ -712,22 +712,30 @@ read_f(struct reader *r, struct obj *o, size_t face, struct vdt_err *err)
 }
 
 /*
- * The words of the rest of the statement, joined by single blanks, into
- * o->word (its length in *n; 0: none); r->p stops at the statement's end.
+ * The rest of the statement as it is written, '#' included (3ds Max
+ * names materials "Material #25"), into o->word (its length in *n; 0:
+ * none): without the blanks at either end, a continued line joined with
+ * a space, control characters but tabs made '_' (they would reach the
+ * output's lines). r->p stops at the statement's end.
  */
 static int
 read_words(struct reader *r, struct obj *o, size_t *n, struct vdt_err *err)
 {
 	*n = 0;
-	for (skip_blank(r); !at_eol(r); skip_blank(r)) {
-		const char *w = r->p;
-		size_t l;
-
-		while (!at_token_end(r->p, r->end))
+	skip_blank(r);
+	while (r->p < r->end && *r->p != '\n') {
+		char c = *r->p;
+		if (is_continuation(r->p, r->end)) {
+			skip_blank(r);
+			c = ' ';
+		} else {
 			r->p++;
-		l = (size_t)(r->p - w);
-		if (*n + l + 2 > o->word_cap) {
-			size_t cap = 2 * (*n + l + 2);
+			/* (a CR ends a CRLF line) */
+			if (c == '\r' && (r->p == r->end || *r->p == '\n'))
+				break;
+		}
+		if (*n + 2 > o->word_cap) {
+			size_t cap = 2 * (*n + 2) + 64;
 			char *p = realloc(o->word, cap);
 			if (p == NULL)
 				return vdt_err_set(err, VDT_ENOMEM,
@@ -735,14 +743,12 @@ read_words(struct reader *r, struct obj *o, size_t *n, struct vdt_err *err)
 			o->word = p;
 			o->word_cap = cap;
 		}
-		if (*n > 0)
-			o->word[(*n)++] = ' ';
-		/* (a control character would reach the output's lines) */
-		for (size_t i = 0; i < l; i++)
-			o->word[*n + i] = (unsigned char)w[i] < 0x20 || w[i] == 0x7f ? '_' : w[i];
-		*n += l;
-		o->word[*n] = '\0';
+		o->word[(*n)++] = ((unsigned char)c < 0x20 && c != '\t') || c == 0x7f ? '_' : c;
 	}
+	while (*n > 0 && (o->word[*n - 1] == ' ' || o->word[*n - 1] == '\t'))
+		(*n)--;
+	if (o->word != NULL)
+		o->word[*n] = '\0';
 	return 0;
 }
 

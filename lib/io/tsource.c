@@ -924,8 +924,8 @@ vdt_tsource_pass_on(const struct vdt_tsource *ts, struct vdt_chunks *c, struct v
 static int
 vdt_open(struct vdt_tsource *s, struct vdt_err *err)
 {
-	const unsigned char *mesh = NULL;
-	uint64_t at = VDT_STREAM_HEADER_LEN, mesh_len = 0, mesh_at = 0;
+	const unsigned char *mesh = NULL, *matl = NULL;
+	uint64_t at = VDT_STREAM_HEADER_LEN, mesh_len = 0, mesh_at = 0, matl_len = 0, matl_at = 0;
 	struct vdt_chunk_order order = {0};
 	int rc;
 
@@ -974,8 +974,12 @@ vdt_open(struct vdt_tsource *s, struct vdt_err *err)
 		}
 		if ((rc = vdt_chunk_order_next(&order, type, at, err)) != 0)
 			return rc; /* as vdt_read takes them */
-		if (type == VDT_CHUNK_MATL) /* (faces of the input, not of the output) */
+		if (type == VDT_CHUNK_MATL) { /* (faces of the input, not of the output) */
 			s->dropped |= VDT_DROPPED_MATERIALS;
+			matl = s->buf + at + 12;
+			matl_len = length;
+			matl_at = at;
+		}
 		if (type != VDT_CHUNK_MESH && !vdt_chunk_type_of_vertices(type)) {
 			uint64_t *p = realloc(s->pass, (s->npass + 1) * sizeof(*p));
 			if (p == NULL)
@@ -1010,6 +1014,16 @@ vdt_open(struct vdt_tsource *s, struct vdt_err *err)
 		s->vcount = v;
 		s->tbase = mesh + 24 + v * per;
 		s->tri_hint = t;
+		/* checked though dropped, as every tool that reads it checks it */
+		if (matl != NULL) {
+			struct vdt_materials mat;
+			rc = vdt_matl_decode(matl, matl_len, t, &mat, err);
+			vdt_materials_free(&mat);
+			if (rc != 0) {
+				vdt_err_prefix(err, "chunk MATL at byte %" PRIu64, matl_at);
+				return rc;
+			}
+		}
 	}
 	return 0;
 }

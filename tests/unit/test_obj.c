@@ -704,24 +704,28 @@ test_materials(void **state)
 	static const char text[] = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
 	                           "f 1 2 3\n"
 	                           "mtllib  a.mtl \nmtllib a.mtl\nmtllib b c.mtl\n"
-	                           "usemtl red \t paint\nf 1 2 3 4\n"
+	                           "usemtl red paint \t\r\nf 1 2 3 4\n"
 	                           "usemtl blue\nf 1 3 4\nusemtl red paint\nf 1 2 4\n"
-	                           "usemtl\nf 2 3 4\nusemtl \x01x\nf 1 2 3\n";
+	                           "usemtl\nf 2 3 4\nusemtl \x01x\nf 1 2 3\n"
+	                           "usemtl Material #25\nf 1 2 3\nusemtl a\t b\\\n c\\ \nf 1 2 3\n";
 	struct vdt_materials mat;
 	struct vdt_mesh m;
 	struct vdt_err err = {0};
 
 	(void)state;
 	assert_int_equal(vdt_obj_read((const unsigned char *)text, strlen(text), &m, &mat, &err), 0);
-	assert_int_equal(m.triangle_count, 7);
+	assert_int_equal(m.triangle_count, 9);
 	assert_int_equal(m.dropped, 0);
-	assert_int_equal(mat.face_count, 7);
-	static const uint32_t want[7] = {VDT_NO_MATERIAL, 0, 0, 1, 0, VDT_NO_MATERIAL, 2};
+	assert_int_equal(mat.face_count, 9);
+	static const uint32_t want[9] = {VDT_NO_MATERIAL, 0, 0, 1, 0, VDT_NO_MATERIAL, 2, 3, 4};
 	assert_memory_equal(mat.faces, want, sizeof(want));
-	assert_int_equal(mat.count, 3);
+	assert_int_equal(mat.count, 5);
 	assert_string_equal(mat.names[0], "red paint");
 	assert_string_equal(mat.names[1], "blue");
 	assert_string_equal(mat.names[2], "_x");
+	/* as written: '#', a tab, a continued line joined by a space */
+	assert_string_equal(mat.names[3], "Material #25");
+	assert_string_equal(mat.names[4], "a\t b c\\");
 	assert_int_equal(mat.lib_count, 2);
 	assert_string_equal(mat.libs[0], "a.mtl");
 	assert_string_equal(mat.libs[1], "b c.mtl");

@@ -1109,8 +1109,8 @@ matl_chunk(void **state)
 	vdt_put_u32le(d + 16, 1);
 	d[16 + 12 + 4 + 3] = '\n'; /* "red\npaint" */
 	assert_int_equal(vdt_matl_decode(d, n, 3, &back, &err), VDT_EINVAL);
-	assert_string_equal(err.msg,
-	                    "material name 0 is empty, or has a control character or stray blanks");
+	assert_string_equal(err.msg, "material name 0 is empty, has a control character, or starts "
+	                             "or ends with a blank");
 	d[16 + 12 + 4 + 3] = ' ';
 	vdt_put_u32le(d + 8, 0x7fffffff); /* more names than bytes */
 	assert_int_equal(vdt_matl_decode(d, n, 3, &back, &err), VDT_EFORMAT);
