@@ -1746,6 +1746,39 @@ across_fill(const struct attr *at, uint32_t v, struct across *tab, uint32_t mask
 }
 
 /*
+ * The plane perpendicular to face v (its three vertices) through its edge
+ * from corner k to the next, weighted as the boundary planes are
+ * (vdt_quadric_boundary), into *q, its w 0: a constraint, not surface
+ * area. Returns 0, or -1 for a face of no area.
+ */
+static int
+edge_plane(const struct ctx *c, const float *positions, const uint32_t v[3], int k, double weight,
+           struct vdt_quadric *q)
+{
+	double p[3][3], e1[3], e2[3], n[3], l;
+
+	for (int i = 0; i < 3; i++)
+		for (int j = 0; j < 3; j++)
+			p[i][j] = positions[3 * (size_t)v[i] + j] - c->centre[j];
+	for (int j = 0; j < 3; j++) {
+		e1[j] = p[1][j] - p[0][j];
+		e2[j] = p[2][j] - p[0][j];
+	}
+	n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+	n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+	n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+	l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+	if (!(l > 0))
+		return -1;
+	for (int j = 0; j < 3; j++)
+		n[j] /= l;
+	if (vdt_quadric_boundary(q, p[k], p[(k + 1) % 3], n, weight) != 0)
+		return -1;
+	q->w = 0;
+	return 0;
+}
+
+/*
  * Discontinuity curves stay in place the way open boundaries do (Garland &
  * Heckbert 98, section 5; Hoppe 99, section 6): along each seam edge, the
  * edge whose two faces meet with different wedges at an end, the plane
@@ -1788,25 +1821,9 @@ seam_planes(struct ctx *c, const struct vdt_mesh *w, double weight)
 			}
 			if (k2 == NONE || (at->cw[k] == at->cw[k2] && at->cw[k1] == at->cw[kb]))
 				continue;
-			double p[3][3], e1[3], e2[3], n[3], l;
 			struct vdt_quadric q;
-			for (int i = 0; i < 3; i++)
-				for (int j = 0; j < 3; j++)
-					p[i][j] = w->positions[3 * (size_t)at->cvert[3 * t + i] + j] - c->centre[j];
-			for (int j = 0; j < 3; j++) {
-				e1[j] = p[1][j] - p[0][j];
-				e2[j] = p[2][j] - p[0][j];
-			}
-			n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-			n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-			n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-			l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-			if (!(l > 0))
-				continue;
-			for (int j = 0; j < 3; j++)
-				n[j] /= l;
-			if (vdt_quadric_boundary(&q, p[k % 3], p[(k + 1) % 3], n, weight) == 0) {
-				q.w = 0;
+			if (edge_plane(c, w->positions, at->cvert + 3 * t, (int)(k % 3), weight,
+			               &q) == 0) {
 				vdt_quadric_add(&at->qc[v], &q);
 				vdt_quadric_add(&at->qc[b], &q);
 			}
@@ -1882,27 +1899,9 @@ material_planes(struct ctx *c, const struct vdt_mesh *w, const uint32_t *fsrc, c
 				on += !(border[a] & 8) + !(border[b] & 8);
 				border[a] |= 8;
 				border[b] |= 8;
-				double p[3][3], e1[3], e2[3], n[3], l;
 				struct vdt_quadric q;
-				for (int i = 0; i < 3; i++)
-					for (int j = 0; j < 3; j++)
-						p[i][j] = w->positions[3 * (size_t)v[i] + j] -
-						          c->centre[j];
-				for (int j = 0; j < 3; j++) {
-					e1[j] = p[1][j] - p[0][j];
-					e2[j] = p[2][j] - p[0][j];
-				}
-				n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-				n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-				n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-				l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-				if (!(l > 0) || !(weight > 0))
-					continue;
-				for (int j = 0; j < 3; j++)
-					n[j] /= l;
-				if (vdt_quadric_boundary(&q, p[k], p[(k + 1) % 3], n, weight) ==
-				    0) {
-					q.w = 0;
+				if (weight > 0 &&
+				    edge_plane(c, w->positions, v, k, weight, &q) == 0) {
 					vdt_quadric_add(&c->q[a], &q);
 					vdt_quadric_add(&c->q[b], &q);
 				}
