@@ -319,34 +319,50 @@ same_floats(const float *a, const float *b, int n)
 	return 1;
 }
 
-static void
-add_boundary(struct ctx *c, const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
-             uint32_t t, uint32_t a, uint32_t b, uint8_t *border)
+/*
+ * The plane perpendicular to face v (its three vertices) through its edge
+ * from vertex a to vertex b, weighted as the boundary planes are
+ * (vdt_quadric_boundary), into *q, its w 0: a constraint, not surface
+ * area. Returns 0, or -1 for a face of no area.
+ */
+static int
+edge_plane(const struct ctx *c, const float *positions, const uint32_t v[3], uint32_t a, uint32_t b,
+           double weight, struct vdt_quadric *q)
 {
-	const uint32_t *v = w->triangles + 3 * (size_t)t;
-	double p[3][3], n[3], e1[3], e2[3], pa[3], pb[3];
-	struct vdt_quadric q;
+	double p[3][3], e1[3], e2[3], n[3], pa[3], pb[3], l;
 
 	for (int i = 0; i < 3; i++)
-		for (int k = 0; k < 3; k++)
-			p[i][k] = w->positions[3 * (size_t)v[i] + k] - c->centre[k];
-	for (int k = 0; k < 3; k++) {
-		e1[k] = p[1][k] - p[0][k];
-		e2[k] = p[2][k] - p[0][k];
-		pa[k] = w->positions[3 * (size_t)a + k] - c->centre[k];
-		pb[k] = w->positions[3 * (size_t)b + k] - c->centre[k];
+		for (int j = 0; j < 3; j++)
+			p[i][j] = positions[3 * (size_t)v[i] + j] - c->centre[j];
+	for (int j = 0; j < 3; j++) {
+		e1[j] = p[1][j] - p[0][j];
+		e2[j] = p[2][j] - p[0][j];
+		pa[j] = positions[3 * (size_t)a + j] - c->centre[j];
+		pb[j] = positions[3 * (size_t)b + j] - c->centre[j];
 	}
 	n[0] = e1[1] * e2[2] - e1[2] * e2[1];
 	n[1] = e1[2] * e2[0] - e1[0] * e2[2];
 	n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-	double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-	border[a] = border[b] = 1;
+	l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
 	if (!(l > 0))
-		return;
-	for (int k = 0; k < 3; k++)
-		n[k] /= l;
-	if (vdt_quadric_boundary(&q, pa, pb, n, o->boundary_weight) == 0) {
-		q.w = 0; /* a constraint, not surface area */
+		return -1;
+	for (int j = 0; j < 3; j++)
+		n[j] /= l;
+	if (vdt_quadric_boundary(q, pa, pb, n, weight) != 0)
+		return -1;
+	q->w = 0;
+	return 0;
+}
+
+static void
+add_boundary(struct ctx *c, const struct vdt_mesh *w, const struct vdt_qslim_opts *o, uint32_t t,
+             uint32_t a, uint32_t b, uint8_t *border)
+{
+	struct vdt_quadric q;
+
+	border[a] = border[b] = 1;
+	if (edge_plane(c, w->positions, w->triangles + 3 * (size_t)t, a, b, o->boundary_weight,
+	               &q) == 0) {
 		vdt_quadric_add(&c->q[a], &q);
 		vdt_quadric_add(&c->q[b], &q);
 	}
@@ -1746,39 +1762,6 @@ across_fill(const struct attr *at, uint32_t v, struct across *tab, uint32_t mask
 }
 
 /*
- * The plane perpendicular to face v (its three vertices) through its edge
- * from corner k to the next, weighted as the boundary planes are
- * (vdt_quadric_boundary), into *q, its w 0: a constraint, not surface
- * area. Returns 0, or -1 for a face of no area.
- */
-static int
-edge_plane(const struct ctx *c, const float *positions, const uint32_t v[3], int k, double weight,
-           struct vdt_quadric *q)
-{
-	double p[3][3], e1[3], e2[3], n[3], l;
-
-	for (int i = 0; i < 3; i++)
-		for (int j = 0; j < 3; j++)
-			p[i][j] = positions[3 * (size_t)v[i] + j] - c->centre[j];
-	for (int j = 0; j < 3; j++) {
-		e1[j] = p[1][j] - p[0][j];
-		e2[j] = p[2][j] - p[0][j];
-	}
-	n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-	n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-	n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-	l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-	if (!(l > 0))
-		return -1;
-	for (int j = 0; j < 3; j++)
-		n[j] /= l;
-	if (vdt_quadric_boundary(q, p[k], p[(k + 1) % 3], n, weight) != 0)
-		return -1;
-	q->w = 0;
-	return 0;
-}
-
-/*
  * Discontinuity curves stay in place the way open boundaries do (Garland &
  * Heckbert 98, section 5; Hoppe 99, section 6): along each seam edge, the
  * edge whose two faces meet with different wedges at an end, the plane
@@ -1822,8 +1805,7 @@ seam_planes(struct ctx *c, const struct vdt_mesh *w, double weight)
 			if (k2 == NONE || (at->cw[k] == at->cw[k2] && at->cw[k1] == at->cw[kb]))
 				continue;
 			struct vdt_quadric q;
-			if (edge_plane(c, w->positions, at->cvert + 3 * t, (int)(k % 3), weight,
-			               &q) == 0) {
+			if (edge_plane(c, w->positions, at->cvert + 3 * t, v, b, weight, &q) == 0) {
 				vdt_quadric_add(&at->qc[v], &q);
 				vdt_quadric_add(&at->qc[b], &q);
 			}
@@ -1901,7 +1883,7 @@ material_planes(struct ctx *c, const struct vdt_mesh *w, const uint32_t *fsrc, c
 				border[b] |= 8;
 				struct vdt_quadric q;
 				if (weight > 0 &&
-				    edge_plane(c, w->positions, v, k, weight, &q) == 0) {
+				    edge_plane(c, w->positions, v, a, b, weight, &q) == 0) {
 					vdt_quadric_add(&c->q[a], &q);
 					vdt_quadric_add(&c->q[b], &q);
 				}
@@ -2755,11 +2737,14 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 		return vdt_err_set(err, VDT_EINVAL, "every face has zero area");
 	if (target >= T) {
 		stats->reached_target = 1;
-		if (mat != NULL && (*mat_out = malloc((T ? T : 1) * sizeof(**mat_out))) == NULL)
+		if ((rc = vdt_mesh_copy(out, in, err)) != 0 || mat == NULL)
+			return rc;
+		if ((*mat_out = malloc((T ? T : 1) * sizeof(**mat_out))) == NULL) {
+			vdt_mesh_free(out);
 			return vdt_err_set(err, VDT_ENOMEM, "out of memory for materials");
-		if (mat != NULL)
-			memcpy(*mat_out, mat, T * sizeof(**mat_out));
-		return vdt_mesh_copy(out, in, err);
+		}
+		memcpy(*mat_out, mat, T * sizeof(**mat_out));
+		return 0;
 	}
 
 	canon = vdt_malloc_huge((n + 1) * sizeof(*canon));
