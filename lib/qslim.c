@@ -3199,9 +3199,8 @@ vdt_qslim_extra_decode(struct vdt_qslim_extra *x, struct vdt_chunks *c, size_t v
 		vdt_qslim_extra_free(x);
 		return rc;
 	}
-	if (m != NULL &&
-	    (rc = vdt_matl_decode(m->data, m->length, triangle_count, &x->mat, err)) != 0) {
-		vdt_err_prefix(err, "chunk MATL at byte %llu", (unsigned long long)m->offset);
+	if (m != NULL && (rc = vdt_matl_decode_at(m->data, m->length, m->offset, triangle_count,
+	                                          &x->mat, err)) != 0) {
 		vdt_qslim_extra_free(x);
 		return rc;
 	}

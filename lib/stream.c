@@ -1040,9 +1040,23 @@ vdt_matl_decode(const unsigned char *data, uint64_t length, size_t triangle_coun
 		                  &m->libs, err);
 	m->lib_count = m->libs ? nl : 0;
 	if (rc == 0 && at != length)
-		rc = vdt_err_set(err, VDT_EFORMAT,
-		                 "%" PRIu64 " bytes after the MATL chunk's strings", length - at);
+		rc = vdt_err_set(err, VDT_EFORMAT, "bytes after the MATL chunk's strings: %" PRIu64,
+		                 length - at);
 	if (rc != 0)
 		vdt_materials_free(m);
+	return rc;
+}
+
+int
+vdt_matl_decode_at(const unsigned char *data, uint64_t length, uint64_t offset,
+                   size_t triangle_count, struct vdt_materials *m, struct vdt_err *err)
+{
+	struct vdt_materials check;
+	int rc = vdt_matl_decode(data, length, triangle_count, m ? m : &check, err);
+
+	if (m == NULL)
+		vdt_materials_free(&check);
+	if (rc != 0)
+		vdt_err_prefix(err, "chunk MATL at byte %" PRIu64, offset);
 	return rc;
 }

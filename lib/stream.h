@@ -285,4 +285,10 @@ int vdt_matl_encode(const struct vdt_materials *m, unsigned char **data, uint64_
 int vdt_matl_decode(const unsigned char *data, uint64_t length, size_t triangle_count,
                     struct vdt_materials *m, struct vdt_err *err);
 
+/* vdt_matl_decode of the payload of the MATL chunk at byte offset of its
+ * stream, a failure's message prefixed "chunk MATL at byte N"; with m
+ * NULL the payload is only checked. */
+int vdt_matl_decode_at(const unsigned char *data, uint64_t length, uint64_t offset,
+                       size_t triangle_count, struct vdt_materials *m, struct vdt_err *err);
+
 #endif

@@ -367,22 +367,14 @@ stream_mesh(struct vdt_chunks c, struct vdt_mesh *m, struct vdt_chunks *extra,
 		               (unsigned long long)c.items[mesh_at].offset);
 		goto fail;
 	}
-	for (size_t i = 0; i < c.count; i++) {
-		struct vdt_materials mat;
-
-		/* checked here, so that every tool that passes it on names its input */
-		if (c.items[i].type != VDT_CHUNK_MATL)
-			continue;
-		rc = vdt_matl_decode(c.items[i].data, c.items[i].length, m->triangle_count, &mat,
-		                     err);
-		vdt_materials_free(&mat);
-		if (rc != 0) {
-			vdt_err_prefix(err, "chunk MATL at byte %llu",
-			               (unsigned long long)c.items[i].offset);
+	/* checked here, so that every tool that passes it on names its input */
+	for (size_t i = 0; i < c.count; i++)
+		if (c.items[i].type == VDT_CHUNK_MATL &&
+		    (rc = vdt_matl_decode_at(c.items[i].data, c.items[i].length, c.items[i].offset,
+		                             m->triangle_count, NULL, err)) != 0) {
 			vdt_mesh_free(m);
 			goto fail;
 		}
-	}
 	if (extra != NULL) {
 		for (size_t i = 0; i < c.count; i++) {
 			if (i == mesh_at)

@@ -1015,15 +1015,9 @@ vdt_open(struct vdt_tsource *s, struct vdt_err *err)
 		s->tbase = mesh + 24 + v * per;
 		s->tri_hint = t;
 		/* checked though dropped, as every tool that reads it checks it */
-		if (matl != NULL) {
-			struct vdt_materials mat;
-			rc = vdt_matl_decode(matl, matl_len, t, &mat, err);
-			vdt_materials_free(&mat);
-			if (rc != 0) {
-				vdt_err_prefix(err, "chunk MATL at byte %" PRIu64, matl_at);
-				return rc;
-			}
-		}
+		if (matl != NULL &&
+		    (rc = vdt_matl_decode_at(matl, matl_len, matl_at, t, NULL, err)) != 0)
+			return rc;
 	}
 	return 0;
 }

@@ -1103,6 +1103,20 @@ matl_chunk(void **state)
 	}
 	assert_int_equal(vdt_matl_decode(d, n, 4, &back, &err), VDT_EINVAL);
 	assert_string_equal(err.msg, "MATL chunk has materials of 3 faces for 4");
+	/* as a stream's chunk: its place named; checked only, or decoded */
+	assert_int_equal(vdt_matl_decode_at(d, n, 580, 4, NULL, &err), VDT_EINVAL);
+	assert_string_equal(err.msg, "chunk MATL at byte 580: MATL chunk has materials of 3 faces for 4");
+	assert_int_equal(vdt_matl_decode_at(d, n, 580, 3, NULL, &err), 0);
+	assert_int_equal(vdt_matl_decode_at(d, n, 580, 3, &back, &err), 0);
+	assert_string_equal(back.libs[0], "a b.mtl");
+	vdt_materials_free(&back);
+	/* a byte past the strings */
+	unsigned char *longer = malloc(n + 1);
+	memcpy(longer, d, n);
+	longer[n] = 'x';
+	assert_int_equal(vdt_matl_decode(longer, n + 1, 3, &back, &err), VDT_EFORMAT);
+	assert_string_equal(err.msg, "bytes after the MATL chunk's strings: 1");
+	free(longer);
 	vdt_put_u32le(d + 16, 2);
 	assert_int_equal(vdt_matl_decode(d, n, 3, &back, &err), VDT_EINVAL);
 	assert_string_equal(err.msg, "face 0 has material 2 of 2");
