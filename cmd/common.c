@@ -233,67 +233,63 @@ drop_materials(const char *path, struct vdt_chunks *extra, int quiet)
 	note_dropped(path, VDT_DROPPED_MATERIALS, quiet);
 }
 
-void
-note_materials_format(const char *path, const struct vdt_chunks *extra, const char *out,
-                      enum vdt_format f, int quiet)
-{
-	if (!quiet && f != VDT_FMT_OBJ && f != VDT_FMT_VDT &&
-	    vdt_chunks_find(extra, VDT_CHUNK_MATL) != NULL)
-		note("note: '%s' names materials (mtllib, usemtl), which %s output cannot hold: "
-		     "'%s' has none (an OBJ or a vdt stream keeps them)\n",
-		     input_name(path), vdt_format_name(f), out);
-}
-
-/* Whether file, relative to the directory of beside (a path), exists. */
+/* Whether file, relative to the directory of beside (a path), exists:
+ * file is its first n bytes. */
 static int
-found_beside(const char *beside, const char *file)
+found_beside(const char *beside, const char *file, size_t n)
 {
 	const char *slash = strrchr(beside, '/');
 	size_t d = slash ? (size_t)(slash - beside) + 1 : 0;
-	char *p = malloc(d + strlen(file) + 1);
+	char *p = malloc(d + n + 1);
 	int found;
 
 	if (p == NULL)
 		return 1; /* (no note rather than a wrong one) */
 	memcpy(p, beside, d);
-	strcpy(p + d, file);
+	memcpy(p + d, file, n);
+	p[d + n] = '\0';
 	found = access(p, F_OK) == 0;
 	free(p);
 	return found;
 }
 
-/* note_material_libraries's note of one library, lib. */
+/* note_materials_output's note of one library, its first n bytes lib. */
 static void
-library_note(const char *path, const char *lib, const char *out)
+library_note(const char *path, const char *lib, size_t n, const char *out)
 {
-	if (lib[0] != '/' && found_beside(path, lib) && !found_beside(out, lib))
-		note("note: '%s' names the material library '%s', which is beside '%s' but "
+	if (lib[0] != '/' && found_beside(path, lib, n) && !found_beside(out, lib, n))
+		note("note: '%s' names the material library '%.*s', which is beside '%s' but "
 		     "not beside it: copy it there for its materials to apply\n",
-		     out, lib, path);
+		     out, (int)n, lib, path);
 }
 
 void
-note_material_libraries(const char *path, const struct vdt_chunks *extra, size_t faces,
-                        const char *out, int quiet)
+note_materials_output(const char *path, const struct vdt_materials *mat, const char *out,
+                      enum vdt_format f, int quiet)
 {
-	const struct vdt_chunk *c = vdt_chunks_find(extra, VDT_CHUNK_MATL);
-	struct vdt_materials mat;
-
-	if (quiet || c == NULL || strcmp(path, "-") == 0 || strcmp(out, "-") == 0 ||
-	    vdt_matl_decode(c->data, c->length, faces, &mat, NULL) != 0)
+	if (quiet || mat->faces == NULL)
 		return;
-	for (size_t i = 0; i < mat.lib_count; i++) {
+	if (f != VDT_FMT_OBJ && f != VDT_FMT_VDT)
+		note("note: '%s' names materials (mtllib, usemtl), which %s output cannot hold: "
+		     "'%s' has none (an OBJ or a vdt stream keeps them)\n",
+		     input_name(path), vdt_format_name(f), out);
+	if (f != VDT_FMT_OBJ || strcmp(path, "-") == 0 || strcmp(out, "-") == 0)
+		return;
+	for (size_t i = 0; i < mat->lib_count; i++) {
 		/* the whole text one name, as some write it, or each of its
 		 * words one, as OBJ has it ("mtllib a.mtl b.mtl") */
-		char *lib = mat.libs[i], *word, *save = NULL;
-		if (found_beside(path, lib) || lib[strcspn(lib, " \t")] == '\0') {
-			library_note(path, lib, out);
+		const char *lib = mat->libs[i];
+		size_t n = strlen(lib);
+		if (found_beside(path, lib, n) || lib[strcspn(lib, " \t")] == '\0') {
+			library_note(path, lib, n, out);
 			continue;
 		}
-		for (word = strtok_r(lib, " \t", &save); word; word = strtok_r(NULL, " \t", &save))
-			library_note(path, word, out);
+		for (lib += strspn(lib, " \t"); *lib; lib += strspn(lib, " \t")) {
+			n = strcspn(lib, " \t");
+			library_note(path, lib, n, out);
+			lib += n;
+		}
 	}
-	vdt_materials_free(&mat);
 }
 
 void

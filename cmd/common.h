@@ -102,7 +102,8 @@ int cmd_done(int rc);
  */
 void note_float_precision(const char *path, const struct vdt_mesh *m, int quiet);
 /* A note of what the file at path had that this tool does not keep and
- * the output lacks (dropped: VDT_DROPPED_*), unless quiet. */
+ * the output lacks (dropped: VDT_DROPPED_*, as a reader read without
+ * chunks sets them), unless quiet. */
 void note_dropped(const char *path, unsigned dropped, int quiet);
 
 /* Remove the materials of the mesh read from path (the MATL chunk of
@@ -111,16 +112,16 @@ void note_dropped(const char *path, unsigned dropped, int quiet);
 struct vdt_chunks;
 void drop_materials(const char *path, struct vdt_chunks *extra, int quiet);
 
-/* A note, unless quiet, when the materials of extra (MATL) cannot go
- * into the output out of format f (only OBJ and the stream hold them). */
-void note_materials_format(const char *path, const struct vdt_chunks *extra, const char *out,
+/*
+ * Notes, unless quiet, on the materials mat (none when mat->faces is
+ * NULL) of the mesh read from path as they go to out, of format f: that
+ * f cannot hold them (only OBJ and the stream do); and in an OBJ, whose
+ * mtllib names its libraries relative to itself as the input did, each
+ * library that lies beside the input but not beside out.
+ */
+struct vdt_materials;
+void note_materials_output(const char *path, const struct vdt_materials *mat, const char *out,
                            enum vdt_format f, int quiet);
-
-/* A note, unless quiet, for each material library of extra (MATL, of
- * faces faces) that lies beside the input file path but not beside the
- * OBJ out, whose mtllib names it relative to itself as the input did. */
-void note_material_libraries(const char *path, const struct vdt_chunks *extra, size_t faces,
-                             const char *out, int quiet);
 
 /* The same for a model whose box of float positions is box (one read as a
  * stream, never held whole). */

@@ -158,7 +158,6 @@ run(struct cmdline *cl)
 	if ((rc = vdt_read(cl->in, &in, &extra, &err)) != 0)
 		return fail("cannot read", cl->in, &err);
 	note_float_precision(cl->in, &in, cl->quiet);
-	note_dropped(cl->in, in.dropped, cl->quiet);
 	if ((rc = vdt_qslim_extra_decode(&x, &extra, in.vertex_count, in.triangle_count,
 	                                 cl->ignore_quadrics, &err)) != 0) {
 		rc = fail("cannot read", cl->in, &err);
@@ -183,10 +182,8 @@ run(struct cmdline *cl)
 		rc = fail("cannot write", cl->out, &err);
 		goto out;
 	}
-	note_materials_format(cl->in, &extra, cl->out, vdt_output_format(cl->out, cl->w.format),
+	note_materials_output(cl->in, &x.mat, cl->out, vdt_output_format(cl->out, cl->w.format),
 	                      cl->quiet);
-	if (vdt_output_format(cl->out, cl->w.format) == VDT_FMT_OBJ)
-		note_material_libraries(cl->in, &extra, out.triangle_count, cl->out, cl->quiet);
 	if ((rc = vdt_write(cl->out, &out, &extra, &cl->w, &err)) != 0) {
 		rc = fail("cannot write", cl->out, &err);
 		goto out;

@@ -223,10 +223,8 @@ run(struct cmdline *cl)
 	}
 	read_s = vdt_seconds() - start;
 	note_float_precision(cl->in, &m, cl->quiet);
-	if (cl->mesh_out) { /* (the images have no texture to lose) */
-		note_dropped(cl->in, m.dropped, cl->quiet);
+	if (cl->mesh_out) /* (the images have no texture to lose) */
 		drop_materials(cl->in, &extra, cl->quiet);
-	}
 	if (vdt_render_init(&R, &m, &extra, &cl->o, cl->v.width, cl->v.height, &err) != 0) {
 		rc = fail(err.code == VDT_ENOMEM ? "cannot render" : "cannot read", cl->in, &err);
 		goto out;
