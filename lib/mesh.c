@@ -150,6 +150,54 @@ vdt_mesh_validate(const struct vdt_mesh *m, struct vdt_err *err)
 	return 0;
 }
 
+int
+vdt_mesh_unit_normals(struct vdt_mesh *m, struct vdt_err *err)
+{
+	uint8_t *none = NULL;
+
+	for (size_t i = 0; m->normals != NULL && i < m->vertex_count; i++) {
+		float *x = m->normals + 3 * i;
+		double l2 = (double)x[0] * x[0] + (double)x[1] * x[1] + (double)x[2] * x[2];
+		if (l2 == 0 && none == NULL && (none = calloc(m->vertex_count, 1)) == NULL)
+			return vdt_err_set(err, VDT_ENOMEM, "out of memory for normals");
+		if (l2 == 0)
+			none[i] = 1;
+		/* (a float normal made unit is within about 1e-7 of it) */
+		if (l2 > 0 && fabs(l2 - 1) > 1e-5) {
+			double l = sqrt(l2);
+			for (int a = 0; a < 3; a++)
+				x[a] = (float)(x[a] / l);
+		}
+	}
+	if (none == NULL)
+		return 0;
+	for (size_t f = 0; f < m->triangle_count; f++) {
+		const uint32_t *c = m->triangles + 3 * f;
+		double fn[3];
+		if (!none[c[0]] && !none[c[1]] && !none[c[2]])
+			continue;
+		vdt_mesh_face_cross(m, f, fn);
+		for (int k = 0; k < 3; k++)
+			for (int a = 0; none[c[k]] && a < 3; a++)
+				m->normals[3 * (size_t)c[k] + a] += (float)fn[a];
+	}
+	for (size_t i = 0; i < m->vertex_count; i++) {
+		float *x = m->normals + 3 * i;
+		if (!none[i])
+			continue;
+		double l = sqrt((double)x[0] * x[0] + (double)x[1] * x[1] + (double)x[2] * x[2]);
+		if (l > 0 && isfinite(l)) {
+			for (int a = 0; a < 3; a++)
+				x[a] = (float)(x[a] / l);
+		} else {
+			x[0] = x[1] = 0;
+			x[2] = 1;
+		}
+	}
+	free(none);
+	return 0;
+}
+
 double
 vdt_triangle_quality(const float *a, const float *b, const float *c)
 {

@@ -119,6 +119,16 @@ unsigned vdt_mesh_varying_attrs(const struct vdt_mesh *m);
 int vdt_mesh_validate(const struct vdt_mesh *m, struct vdt_err *err);
 
 /*
+ * Make m's normals (if any) unit length, as vdt(5) has them: one of
+ * length 0 (a scanner's or MeshLab's "no normal") becomes the sum of its
+ * faces' normals, each as long as twice its face's area, made unit, or
+ * (0, 0, 1) where those faces have no area; one whose length is off 1 by
+ * more than rounding is divided by it. Unit ones are left bit for bit.
+ * Normals must be finite (vdt_mesh_validate). Returns 0, or VDT_ENOMEM.
+ */
+int vdt_mesh_unit_normals(struct vdt_mesh *m, struct vdt_err *err);
+
+/*
  * The normal of triangle t, not normalised (its length is twice the
  * triangle's area), from its corners in double precision.
  */

@@ -148,15 +148,51 @@ is_off(const unsigned char *buf, size_t n)
 	       buf[i] == '\t' || buf[i] == '\f' || buf[i] == '\v' || buf[i] == '#';
 }
 
+/* Where the first line that is neither blank nor a comment ('#') starts
+ * in buf[0..n), or n. */
+static size_t
+past_comments(const unsigned char *buf, size_t n)
+{
+	size_t i = 0;
+
+	for (;;) {
+		size_t l = i;
+		while (l < n && (buf[l] == ' ' || buf[l] == '\t' || buf[l] == '\r' ||
+		                 buf[l] == '\f' || buf[l] == '\v'))
+			l++;
+		if (l < n && (buf[l] == '#' || buf[l] == '\n')) {
+			const unsigned char *e = memchr(buf + l, '\n', n - l);
+			if (e == NULL)
+				return n;
+			i = (size_t)(e - buf) + 1;
+			continue;
+		}
+		return i;
+	}
+}
+
+/*
+ * The first statement, after comments and blank lines, is an OBJ one:
+ * any keyword of the format (appendix B1), then a blank or the line's end.
+ */
 static int
 is_obj(const unsigned char *buf, size_t n)
 {
-	static const char *const keys[] = {"v", "vt", "vn", "vp", "f", "o", "g", "s",
-	                                   "l", "p", "usemtl", "mtllib"};
-	size_t i = 0;
+	static const char *const keys[] = {
+	        "v",        "vt",       "vn",         "vp",        "f",      "o",     "g",
+	        "s",        "l",        "p",          "usemtl",    "mtllib", "mg",    "cstype",
+	        "deg",      "bmat",     "step",       "curv",      "curv2",  "surf",  "parm",
+	        "trim",     "hole",     "scrv",       "sp",        "end",    "con",   "lod",
+	        "usemap",   "maplib",   "shadow_obj", "trace_obj", "ctech",  "stech", "bevel",
+	        "c_interp", "d_interp", "call",       "csh"};
+	size_t i = past_comments(buf, n);
 
+	buf += i;
+	n -= i;
+	n = n < 4096 ? n : 4096;
 	if (!is_text(buf, n))
 		return 0;
+	i = 0;
 	while (i < n) {
 		size_t j, wl;
 
@@ -176,13 +212,14 @@ is_obj(const unsigned char *buf, size_t n)
 			return 0; /* the word may go on beyond what we see */
 		wl = j - i;
 		for (size_t k = 0; k < sizeof(keys) / sizeof(keys[0]); k++)
-			if (strlen(keys[k]) == wl && memcmp(buf + i, keys[k], wl) == 0 &&
-			    buf[j] != '\n' && buf[j] != '\r')
+			if (strlen(keys[k]) == wl && memcmp(buf + i, keys[k], wl) == 0)
 				return 1;
 		return 0;
 	}
 	return 0;
 }
+
+#define PLY_FORMAT_WITHIN (1 << 20) /* bytes of a PLY header that may precede its format */
 
 /* PLY's first line: "ply", then blanks at most. */
 static int
@@ -272,7 +309,8 @@ vdt_format_detect(const unsigned char *buf, size_t n)
 	if (has_prefix(buf, n, "DRACO"))
 		return VDT_FMT_DRC;
 	if (ply_magic(buf, n)) {
-		size_t l = n < 512 ? n : 512;
+		/* (the format line may follow many comments) */
+		size_t l = n < PLY_FORMAT_WITHIN ? n : PLY_FORMAT_WITHIN;
 		if (ply_format(buf, l, "ascii"))
 			return VDT_FMT_PLY_ASCII;
 		if (ply_format(buf, l, "binary_"))
@@ -291,15 +329,20 @@ vdt_format_detect(const unsigned char *buf, size_t n)
 	 * no format of ours (vdt_format_unknown says so). */
 	if (wide(buf, n))
 		return VDT_FMT_AUTO;
-	if (has_prefix_ci(buf, n, "solid")) { /* its keywords in any case, as the reader takes them */
+	size_t lead = 0; /* (blank lines before "solid", which the reader skips) */
+	while (lead < n && lead < 4096 &&
+	       (buf[lead] == ' ' || buf[lead] == '\t' || buf[lead] == '\r' || buf[lead] == '\n'))
+		lead++;
+	/* (its keywords in any case, as the reader takes them) */
+	if (has_prefix_ci(buf + lead, n - lead, "solid")) {
 		size_t l = n < 512 ? n : 512;
 		if (!is_text(buf, l))
 			return VDT_FMT_STL; /* binary with a "solid" header */
 		return VDT_FMT_STL_ASCII;
 	}
-	if (is_off(buf, n < 4096 ? n : 4096))
+	if (is_off(buf, n))
 		return VDT_FMT_OFF;
-	if (is_obj(buf, n < 4096 ? n : 4096))
+	if (is_obj(buf, n))
 		return VDT_FMT_OBJ;
 	/* Unknown binary content of STL size or more: the STL reader says why not. */
 	if (n >= 84 && !is_text(buf, n < 512 ? n : 512))
@@ -325,8 +368,14 @@ vdt_input_limit(const unsigned char *head, enum vdt_format hint, enum vdt_format
 {
 	enum vdt_format f = *format = vdt_format_guess(head, VDT_DETECT_BYTES, hint);
 
+	/* (text of comments alone so far, or a PLY header of long comments,
+	 * is told by what follows: read whole, the reader decides) */
 	if (f == VDT_FMT_AUTO)
-		return 0;
+		return is_text(head, VDT_DETECT_BYTES) &&
+		                       (ply_magic(head, VDT_DETECT_BYTES) ||
+		                        past_comments(head, VDT_DETECT_BYTES) == VDT_DETECT_BYTES)
+		               ? UINT64_MAX
+		               : 0;
 	if (f == VDT_FMT_STL)
 		return 84 + 50 * (uint64_t)vdt_get_u32le(head + 80) + STL_SLACK;
 	return UINT64_MAX;
@@ -470,6 +519,8 @@ vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
 	}
 	if (rc == 0)
 		rc = vdt_mesh_validate(m, err);
+	if (rc == 0)
+		rc = vdt_mesh_unit_normals(m, err);
 	if (rc != 0) {
 		vdt_mesh_free(m);
 		if (extra != NULL)
@@ -1403,14 +1454,23 @@ write_obj(FILE *f, const struct vdt_mesh *m, const struct vdt_materials *mat, st
 		for (size_t t = 0; t < m->triangle_count; t++)
 			order[start[(uint32_t)(mat->faces[t] + 1u)]++] = (uint32_t)t;
 	}
+	/* (alpha as a seventh value, as the reader takes it, when any vertex
+	 * is not opaque) */
+	int alpha = 0;
+	for (size_t i = 0; m->colors != NULL && i < m->vertex_count && !alpha; i++)
+		alpha = vdt_color_clamp(m->colors[4 * i + 3]) != 1;
 	fputs("# written by vdt\n", f);
 	for (size_t i = 0; mat != NULL && i < mat->lib_count; i++)
 		obj_statement(f, "mtllib", mat->libs[i]);
 	for (size_t i = 0; i < m->vertex_count; i++, p += 3) {
 		if (m->colors) {
 			const float *c = m->colors + 4 * i;
-			fprintf(f, "v " P9 " " P9 " " P9 " " P9 " " P9 " " P9 "\n", p[0], p[1], p[2],
-			        vdt_color_clamp(c[0]), vdt_color_clamp(c[1]), vdt_color_clamp(c[2]));
+			fprintf(f, "v " P9 " " P9 " " P9 " " P9 " " P9 " " P9, p[0], p[1], p[2],
+			        vdt_color_clamp(c[0]), vdt_color_clamp(c[1]),
+			        vdt_color_clamp(c[2]));
+			if (alpha)
+				fprintf(f, " " P9, vdt_color_clamp(c[3]));
+			fputc('\n', f);
 		} else {
 			fprintf(f, "v " P9 " " P9 " " P9 "\n", p[0], p[1], p[2]);
 		}

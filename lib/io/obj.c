@@ -3,8 +3,12 @@
  * appendix B1, "Object Files (.obj)", of the Advanced Visualizer manual
  * (Wavefront Technologies, version 4.2 and later):
  *
- *   v x y z [w] [r g b]        vertex; r g b is a common extension (MeshLab,
- *                              ZBrush) for vertex colours in [0,1]
+ *   v x y z [w]                vertex
+ *   v x y z r g b [a]          vertex with a colour, a common extension
+ *                              (MeshLab, ZBrush; alpha as three.js and
+ *                              tinyobjloader read it), in [0,1], or in
+ *                              [0,255] when every value is integral and
+ *                              one exceeds 1, as OFF's colours
  *   vt u [v [w]]               texture coordinate
  *   vn i j k                   normal
  *   f v[/[vt][/vn]] ...        polygon of 3 or more corners; indices count
@@ -58,7 +62,7 @@
 #include "text.h"
 
 #define MAX_CORNERS 65536
-#define MAX_VERTEX_VALUES 7 /* x y z w r g b */
+#define MAX_VERTEX_VALUES 7 /* x y z r g b a */
 #define NONE UINT32_MAX     /* a corner without vt or vn */
 
 struct reader {
@@ -413,15 +417,18 @@ read_v(struct reader *r, struct obj *o, struct vdt_err *err)
 		return vdt_err_set(err, VDT_EFORMAT, "line %zu: vertex has too few values (%zu of 3)",
 		                   r->line, n);
 	if (n == 5)
-		return vdt_err_set(err, VDT_EFORMAT,
-		                   "line %zu: vertex has 5 values (x y z [w] [r g b] expected)", r->line);
+		return vdt_err_set(
+		        err, VDT_EFORMAT,
+		        "line %zu: vertex has 5 values (x y z [w] or x y z r g b [a] expected)",
+		        r->line);
 	/* Used or not: a vertex that is no point means a damaged file. */
 	if (!(isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2])))
 		return vdt_err_set(err, VDT_EINVAL, "line %zu: vertex has a non-finite coordinate",
 		                   r->line);
-	if (n >= 6 && !(isfinite(v[n - 3]) && isfinite(v[n - 2]) && isfinite(v[n - 1])))
-		return vdt_err_set(err, VDT_EINVAL, "line %zu: vertex has a non-finite colour",
-		                   r->line);
+	for (size_t k = 3; n >= 6 && k < n; k++)
+		if (!isfinite(v[k]))
+			return vdt_err_set(err, VDT_EINVAL,
+			                   "line %zu: vertex has a non-finite colour", r->line);
 	if (o->visit != NULL) {
 		o->have_v++;
 		if (n >= 6)
@@ -430,21 +437,18 @@ read_v(struct reader *r, struct obj *o, struct vdt_err *err)
 	}
 	memcpy(o->pos + 3 * i, v, 3 * sizeof(float));
 	if (n >= 6 && o->col == NULL) {
-		/* The first colour: every vertex before it is white. */
+		/* The first colour: every vertex before it has none. */
 		o->col = malloc(4 * (o->nv ? o->nv : 1) * sizeof(float));
 		if (o->col == NULL)
 			return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu vertex colours", o->nv);
 		for (size_t k = 0; k < 4 * i; k++)
-			o->col[k] = 1;
+			o->col[k] = NAN;
 	}
 	if (o->col != NULL) {
+		/* (NaN: not given, which no file's value is; see scale_colours) */
 		float *c = o->col + 4 * i;
-
-		if (n >= 6)
-			memcpy(c, v + n - 3, 3 * sizeof(float));
-		else
-			c[0] = c[1] = c[2] = 1;
-		c[3] = 1;
+		for (size_t k = 0; k < 4; k++)
+			c[k] = n >= 6 && k + 3 < n ? v[k + 3] : NAN;
 	}
 	o->have_v++;
 	return 0;
@@ -933,6 +937,32 @@ out:
 	return 0;
 }
 
+/*
+ * The colours read, in [0,1]: a value not given (NaN) is 1 (white,
+ * opaque), and the others are divided by 255 when every one of them is
+ * integral and one exceeds 1 (so that "1 0 0" stays red).
+ */
+static void
+scale_colours(struct obj *o)
+{
+	int integral = 1, above = 0;
+	size_t n = 4 * o->nv;
+
+	if (o->col == NULL)
+		return;
+	for (size_t k = 0; k < n; k++) {
+		float c = o->col[k];
+		if (c == c) {
+			integral &= c == floorf(c);
+			above |= c > 1;
+		}
+	}
+	for (size_t k = 0; k < n; k++) {
+		float c = o->col[k];
+		o->col[k] = c != c ? 1 : integral && above ? (float)(c / 255.0) : c;
+	}
+}
+
 /* Move the parsed arrays into m, one vertex per file vertex. */
 static void
 keep_numbers(struct obj *o, struct vdt_mesh *m)
@@ -951,44 +981,6 @@ keep_numbers(struct obj *o, struct vdt_mesh *m)
 	if (o->any_n) {
 		m->normals = o->nrm;
 		o->nrm = NULL;
-	}
-}
-
-/*
- * The normals of the vertices whose corners gave none (n[i] == NONE) in a
- * file where others do: the sum of their faces' normals, each as long as
- * twice its face's area, made unit; (0, 0, 1) where those faces have no
- * area. A normal of 0 would not be one (vdt(5): normals are unit length).
- */
-static void
-face_normals(struct vdt_mesh *m, const uint32_t *n)
-{
-	for (size_t i = 0; i < m->vertex_count; i++)
-		if (n[i] == NONE)
-			m->normals[3 * i] = m->normals[3 * i + 1] = m->normals[3 * i + 2] = 0;
-	for (size_t f = 0; f < m->triangle_count; f++) {
-		const uint32_t *c = m->triangles + 3 * f;
-		double fn[3];
-		if (n[c[0]] != NONE && n[c[1]] != NONE && n[c[2]] != NONE)
-			continue;
-		vdt_mesh_face_cross(m, f, fn);
-		for (int k = 0; k < 3; k++)
-			if (n[c[k]] == NONE)
-				for (int a = 0; a < 3; a++)
-					m->normals[3 * (size_t)c[k] + a] += (float)fn[a];
-	}
-	for (size_t i = 0; i < m->vertex_count; i++) {
-		float *x = m->normals + 3 * i;
-		if (n[i] != NONE)
-			continue;
-		double l = sqrt((double)x[0] * x[0] + (double)x[1] * x[1] + (double)x[2] * x[2]);
-		if (l > 0 && isfinite(l)) {
-			for (int a = 0; a < 3; a++)
-				x[a] = (float)(x[a] / l);
-		} else {
-			x[0] = x[1] = 0;
-			x[2] = 1;
-		}
 	}
 }
 
@@ -1027,8 +1019,9 @@ build_split(struct obj *o, struct vdt_mesh *m, struct vdt_err *err)
 		m->triangles = o->tri_v;
 		m->triangle_count = o->tri_count;
 		o->tri_v = NULL;
-		if (m->normals && o->miss_n)
-			face_normals(m, n);
+		/* (the corners that gave none have 0: made from the faces) */
+		if (m->normals)
+			rc = vdt_mesh_unit_normals(m, err);
 	}
 	free(v);
 	free(t);
@@ -1114,6 +1107,7 @@ vdt_obj_read(const unsigned char *buf, size_t len, struct vdt_mesh *m, struct vd
 		rc = mend_later(&o, err);
 	if (rc != 0)
 		goto out;
+	scale_colours(&o);
 	if (!o.any_t && !o.any_n)
 		keep_numbers(&o, m);
 	else if (o.lockstep && (!o.any_t || (!o.miss_t && o.nt == o.nv)) &&

@@ -42,13 +42,34 @@ attr_of(const char *name)
 		const char *name;
 		int attr;
 	} names[] = {
-		{"x", A_X},          {"y", A_Y},          {"z", A_Z},
-		{"nx", A_NX},        {"ny", A_NY},        {"nz", A_NZ},
-		{"s", A_U},          {"t", A_V},          {"u", A_U},
-		{"v", A_V},          {"texture_u", A_U},  {"texture_v", A_V},
-		{"texture_s", A_U},  {"texture_t", A_V},  {"red", A_R},
-		{"green", A_G},      {"blue", A_B},       {"alpha", A_A},
-		{"diffuse_red", A_R}, {"diffuse_green", A_G}, {"diffuse_blue", A_B},
+	        {"x", A_X},
+	        {"y", A_Y},
+	        {"z", A_Z},
+	        {"nx", A_NX},
+	        {"ny", A_NY},
+	        {"nz", A_NZ},
+	        {"s", A_U},
+	        {"t", A_V},
+	        {"u", A_U},
+	        {"v", A_V},
+	        {"texture_u", A_U},
+	        {"texture_v", A_V},
+	        {"texture_s", A_U},
+	        {"texture_t", A_V},
+	        {"red", A_R},
+	        {"green", A_G},
+	        {"blue", A_B},
+	        {"alpha", A_A},
+	        {"diffuse_red", A_R},
+	        {"diffuse_green", A_G},
+	        {"diffuse_blue", A_B},
+	        {"diffuse_alpha", A_A},
+	        {"r", A_R},
+	        {"g", A_G},
+	        {"b", A_B},
+	        {"normal_x", A_NX},
+	        {"normal_y", A_NY},
+	        {"normal_z", A_NZ}, /* (the Point Cloud Library's) */
 	};
 
 	for (size_t i = 0; i < sizeof(names) / sizeof(names[0]); i++)
@@ -610,6 +631,7 @@ read_ascii(const struct vdt_plyhead *h, const struct vdt_ply_element *ve, const 
            const unsigned char *buf, size_t len, struct vdt_mesh *m, struct vdt_err *err)
 {
 	struct text t = {(const char *)buf + h->data_offset, (const char *)buf + len, 0, 0};
+	struct text faces = {0}; /* where faces that come before the vertices start */
 	int rc = 0;
 
 	/* Lines of the data, for messages, count on from the header's. */
@@ -629,14 +651,18 @@ read_ascii(const struct vdt_plyhead *h, const struct vdt_ply_element *ve, const 
 			                   (unsigned long long)e->count, e->name, left);
 		if (e == ve) {
 			rc = text_vertices(&t, e, m, err);
-		} else if (e == fe) {
-			if (m->positions == NULL)
-				return vdt_err_set(err, VDT_EFORMAT,
-				                   "PLY face element comes before the vertex element");
+		} else if (e == fe && m->positions != NULL) {
 			rc = text_faces(&t, e, m, err);
 		} else {
+			/* (faces before the vertices, as the format allows: read
+			 * once these are) */
+			if (e == fe)
+				faces = t;
 			rc = text_skip(&t, e, err);
 		}
+	}
+	if (rc == 0 && faces.p != NULL) {
+		rc = text_faces(&faces, fe, m, err);
 	}
 	/* More after the last record: the header's counts are too low, and
 	 * what they leave out would be lost without a word. */
@@ -644,6 +670,23 @@ read_ascii(const struct vdt_plyhead *h, const struct vdt_ply_element *ve, const 
 		rc = vdt_plyhead_check_end(h, buf, len, (size_t)((const unsigned char *)t.p - buf),
 		                           t.line, err);
 	return rc;
+}
+
+/* The binary face records at p (avail bytes) into m, *pos moved past them. */
+static int
+ply_faces(const struct vdt_plyhead *h, const struct vdt_ply_element *e, const unsigned char *p,
+          size_t avail, size_t *pos, struct vdt_mesh *m, struct vdt_err *err)
+{
+	struct vdt_mesh tm = *m;
+	size_t used = 0;
+	int rc = read_faces(h, e, p, avail, &used, &tm, err);
+
+	if (rc != 0)
+		return rc;
+	free(m->triangles);
+	*m = tm;
+	*pos += used;
+	return 0;
 }
 
 int
@@ -682,6 +725,7 @@ vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 		goto out;
 	}
 	pos = h->data_offset;
+	size_t face_pos = 0; /* faces that come before the vertices: where */
 	for (size_t i = 0; i < h->element_count; i++) {
 		const struct vdt_ply_element *e = &h->elements[i];
 		size_t avail = len - pos, rs;
@@ -701,21 +745,9 @@ vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 			if (rc != 0)
 				goto out;
 			pos += (size_t)e->count * rs;
-		} else if (e == fe) {
-			struct vdt_mesh tm = *m;
-			size_t used = 0;
-
-			if (m->positions == NULL) {
-				/* Faces before vertices: rare; read them against a bound. */
-				rc = vdt_err_set(err, VDT_EFORMAT, "PLY face element comes before the vertex element");
+		} else if (e == fe && m->positions != NULL) {
+			if ((rc = ply_faces(h, e, buf + pos, avail, &pos, m, err)) != 0)
 				goto out;
-			}
-			rc = read_faces(h, e, buf + pos, avail, &used, &tm, err);
-			if (rc != 0)
-				goto out;
-			free(m->triangles);
-			*m = tm;
-			pos += used;
 		} else if (vdt_plyhead_fixed_size(e, &rs)) {
 			if (rs != 0 && e->count > avail / rs) {
 				rc = vdt_err_set(err, VDT_EFORMAT, "PLY file is truncated in element '%s'", e->name);
@@ -723,6 +755,10 @@ vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 			}
 			pos += (size_t)e->count * rs;
 		} else {
+			/* (faces before the vertices, as the format allows: read
+			 * once these are) */
+			if (e == fe)
+				face_pos = pos;
 			if (e->count > avail) {
 				rc = vdt_err_set(err, VDT_EFORMAT, "PLY file is truncated in element '%s'", e->name);
 				goto out;
@@ -742,6 +778,11 @@ vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 				pos += rs;
 			}
 		}
+	}
+	if (face_pos != 0) {
+		size_t at = face_pos;
+		if ((rc = ply_faces(h, fe, buf + face_pos, len - face_pos, &at, m, err)) != 0)
+			goto out;
 	}
 	rc = vdt_plyhead_check_end(h, buf, len, pos, 0, err);
 out:

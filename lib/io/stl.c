@@ -412,23 +412,62 @@ stl_is(const char *w, size_t wl, const char *key)
 	return 1;
 }
 
+/* The next word on the line from *p, moving *p past it: 0 at its end. */
+static int
+stl_line_word(const struct stl_text *t, const char **p, const char **w, size_t *wl)
+{
+	while (*p < t->end && **p != '\n' && stl_blank(**p))
+		(*p)++;
+	if (*p == t->end || **p == '\n')
+		return 0;
+	*w = *p;
+	while (*p < t->end && !stl_blank(**p))
+		(*p)++;
+	*wl = (size_t)(*p - *w);
+	return 1;
+}
+
+/* Whether the next word on the line from p is key. */
+static int
+stl_next_is(const struct stl_text *t, const char *p, const char *key)
+{
+	const char *w;
+	size_t wl;
+
+	return stl_line_word(t, &p, &w, &wl) && stl_is(w, wl, key);
+}
+
+/* Whether a facet begins on the line from p: "facet normal". */
+static int
+stl_facet_follows(const struct stl_text *t, const char *p)
+{
+	const char *w;
+	size_t wl;
+
+	while (stl_line_word(t, &p, &w, &wl))
+		if (stl_is(w, wl, "facet") && stl_next_is(t, p, "normal"))
+			return 1;
+	return 0;
+}
+
 /*
- * Skip a solid's name: the rest of the line, which may hold blanks, but
- * not from a word `stop` on it, where a file written on one line goes on.
+ * Skip a solid's name: the rest of the line, which may hold blanks and any
+ * word ("solid Solid", "solid Body facet"), but not from where a file
+ * written on one line goes on: a facet ("facet normal"), an "endsolid",
+ * or, after an "endsolid", a "solid" that a facet follows on the line.
  */
 static void
-stl_name(struct stl_text *t, const char *stop, const char *stop2)
+stl_name(struct stl_text *t, int after_end)
 {
-	for (;;) {
-		while (t->p < t->end && *t->p != '\n' && stl_blank(*t->p))
-			t->p++;
-		if (t->p == t->end || *t->p == '\n')
-			return;
-		const char *w = t->p;
-		while (t->p < t->end && !stl_blank(*t->p))
-			t->p++;
-		size_t wl = (size_t)(t->p - w);
-		if (stl_is(w, wl, stop) || (stop2 && stl_is(w, wl, stop2))) {
+	const char *w;
+	size_t wl;
+
+	while (stl_line_word(t, &t->p, &w, &wl)) {
+		int stop = after_end
+		                   ? stl_is(w, wl, "solid") && stl_facet_follows(t, t->p)
+		                   : stl_is(w, wl, "endsolid") || (stl_is(w, wl, "facet") &&
+		                                                   stl_next_is(t, t->p, "normal"));
+		if (stop) {
 			t->p = w;
 			return;
 		}
@@ -462,6 +501,21 @@ stl_expect(struct stl_text *t, const char *key, struct vdt_err *err)
 }
 
 /* Three finite numbers, each a whole word, into x. */
+/* Whether a word is a NaN or infinity as Windows prints them:
+ * "-nan(ind)", "-1.#IND00", "1.#QNAN", "1.#INF". */
+static int
+stl_nan_word(const char *w, size_t wl)
+{
+	for (size_t i = 0; i + 3 <= wl; i++) {
+		char a = (char)(w[i] | 0x20), b = (char)(w[i + 1] | 0x20),
+		     c = (char)(w[i + 2] | 0x20);
+		if ((a == 'n' && b == 'a' && c == 'n') ||
+		    (a == 'i' && b == 'n' && (c == 'd' || c == 'f')))
+			return 1;
+	}
+	return 0;
+}
+
 static int
 stl_numbers(struct stl_text *t, const char *what, float x[3], struct vdt_err *err)
 {
@@ -472,6 +526,8 @@ stl_numbers(struct stl_text *t, const char *what, float x[3], struct vdt_err *er
 		if (!stl_word(t, &w, &wl))
 			return vdt_err_set(err, VDT_EFORMAT, "line %zu: ends inside a %s", t->line, what);
 		q = vdt_text_parse_float(w, w + wl, &x[k]);
+		if (q != w + wl && strcmp(what, "normal") == 0 && stl_nan_word(w, wl))
+			continue;
 		if (q != w + wl)
 			return vdt_err_set(err, VDT_EFORMAT, "line %zu: '%.*s' is not a number (in a %s)",
 			                   t->line, (int)(wl > 32 ? 32 : wl), w, what);
@@ -526,13 +582,13 @@ stl_solids(struct stl_text *t, struct weld *w, struct vdt_err *err)
 	while (stl_word(t, &word, &wl)) {
 		if (!stl_is(word, wl, "solid"))
 			return stl_unexpected(t, word, wl, "'solid'", err);
-		stl_name(t, "facet", "endsolid");
+		stl_name(t, 0);
 		for (;;) {
 			if (!stl_word(t, &word, &wl))
 				return vdt_err_set(err, VDT_EFORMAT, "line %zu: ends before 'endsolid'",
 				                   t->line);
 			if (stl_is(word, wl, "endsolid")) {
-				stl_name(t, "solid", NULL);
+				stl_name(t, 1);
 				break;
 			}
 			if (!stl_is(word, wl, "facet"))

@@ -1,9 +1,11 @@
-/* Unit tests of lib/mesh: the bulk box of a surface with stray faces. */
+/* Unit tests of lib/mesh: the bulk box of a surface with stray faces;
+ * normals made unit. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -69,11 +71,51 @@ bulk_box(void **state)
 	percentiles(7, 1);
 }
 
+/*
+ * Two triangles in z = 0 (up) and a vertex of no face. A unit normal stays
+ * bit for bit, a long one is made unit, and one of 0 takes its faces'
+ * direction, or +z without faces.
+ */
+static void
+unit_normals(void **state)
+{
+	static const float p[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 5, 5, 5};
+	static const uint32_t t[] = {0, 1, 2, 0, 2, 3};
+	const float given[] = {0.6f, 0, 0.8f, 0, 0, 2.5f, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+	const float want[] = {0.6f, 0, 0.8f, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+	struct vdt_mesh m = {0};
+	(void)state;
+
+	assert_int_equal(vdt_mesh_alloc(&m, 5, 2, VDT_ATTR_NORMALS, NULL), 0);
+	memcpy(m.positions, p, sizeof(p));
+	memcpy(m.triangles, t, sizeof(t));
+	memcpy(m.normals, given, sizeof(given));
+	m.positions[9] = 0.5f; /* (vertex 3 off the corner: its faces tilt) */
+	assert_int_equal(vdt_mesh_unit_normals(&m, NULL), 0);
+	assert_memory_equal(m.normals, want, 9 * sizeof(float));
+	assert_memory_equal(m.normals + 12, want + 12, 3 * sizeof(float));
+	/* (vertex 3: one face, (0,0,0) (1,1,0) (0.5,1,0), still up) */
+	assert_true(m.normals[9] == 0 && m.normals[10] == 0 && m.normals[11] == 1);
+	vdt_mesh_free(&m);
+
+	/* without a zero normal nothing is allocated: no error to give */
+	assert_int_equal(vdt_mesh_alloc(&m, 3, 1, VDT_ATTR_NORMALS, NULL), 0);
+	memcpy(m.positions, p, 9 * sizeof(float));
+	memcpy(m.triangles, t, 3 * sizeof(uint32_t));
+	for (int i = 0; i < 9; i++)
+		m.normals[i] = i % 3 ? 0 : -3;
+	assert_int_equal(vdt_mesh_unit_normals(&m, NULL), 0);
+	for (int i = 0; i < 3; i++)
+		assert_true(m.normals[3 * i] == -1 && fabsf(m.normals[3 * i + 1]) == 0);
+	vdt_mesh_free(&m);
+}
+
 int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
-		cmocka_unit_test(bulk_box),
+	        cmocka_unit_test(bulk_box),
+	        cmocka_unit_test(unit_normals),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

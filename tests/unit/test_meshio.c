@@ -261,7 +261,32 @@ test_detect(void **state)
 	assert_int_equal(D("solid x\n facet normal 0 0 1\n"), VDT_FMT_STL_ASCII);
 	assert_int_equal(D("hello world\n"), VDT_FMT_AUTO);
 	assert_int_equal(D(""), VDT_FMT_AUTO);
+	/* any statement of OBJ's first, bare or not; blank lines before an
+	 * ASCII STL's "solid" */
+	assert_int_equal(D("g\nv 0 0 0\n"), VDT_FMT_OBJ);
+	assert_int_equal(D("o\r\nv 0 0 0\n"), VDT_FMT_OBJ);
+	assert_int_equal(D("mg 1\nv 0 0 0\n"), VDT_FMT_OBJ);
+	assert_int_equal(D("shadow_obj s.obj\n"), VDT_FMT_OBJ);
+	assert_int_equal(D("\n  solid x\n facet normal 0 0 1\n"), VDT_FMT_STL_ASCII);
 #undef D
+	/* comments longer than the first 4096 bytes, before OBJ, OFF, PLY */
+	static const char *const after[] = {"v 0 0 0\n", "OFF\n",
+	                                    "format ascii 1.0\nelement vertex 0\n"};
+	static const enum vdt_format want[] = {VDT_FMT_OBJ, VDT_FMT_OFF, VDT_FMT_PLY_ASCII};
+	for (int k = 0; k < 3; k++) {
+		char *b = malloc(20000);
+		size_t n = 0;
+		assert_non_null(b);
+		if (k == 2)
+			n += (size_t)sprintf(b, "ply\n");
+		for (int i = 0; i < 200; i++)
+			n += (size_t)sprintf(b + n, "%s line %d of the header, long enough\n",
+			                     k == 2 ? "comment" : "#", i);
+		n += (size_t)sprintf(b + n, "%s", after[k]);
+		assert_true(n > 4096);
+		assert_int_equal(vdt_format_detect((const unsigned char *)b, n), want[k]);
+		free(b);
+	}
 	vdt_put_u32le(stl + 80, 1);
 	assert_int_equal(vdt_format_detect(stl, sizeof(stl)), VDT_FMT_STL);
 	/* binary STL whose header starts with "solid" */
@@ -621,22 +646,26 @@ test_polygon(void **state)
 	vdt_mesh_free(&m);
 }
 
-/* stdin is a pipe: the content is read whole and detected. */
+/* stdin is a pipe: the content is read whole and detected, also after
+ * comments longer than the bytes detection first looks at. */
 static void
-test_pipe(void **state)
+pipe_read(int comments)
 {
 	static const char obj[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+	static const char comment[] = "# a comment line of the exporter's, 40 bytes\n";
 	struct vdt_mesh m;
 	struct vdt_err err = {0};
 	int fds[2], saved, rc;
 	pid_t pid;
-	(void)state;
 
 	assert_int_equal(pipe(fds), 0);
 	pid = fork();
 	assert_true(pid >= 0);
 	if (pid == 0) {
 		close(fds[0]);
+		for (int i = 0; i < comments; i++)
+			if (write(fds[1], comment, sizeof(comment) - 1) < 0)
+				_exit(1);
 		for (int i = 0; i < 1; i++)
 			if (write(fds[1], obj, sizeof(obj) - 1) < 0)
 				_exit(1);
@@ -655,6 +684,14 @@ test_pipe(void **state)
 	assert_int_equal(m.vertex_count, 3);
 	assert_int_equal(m.triangle_count, 1);
 	vdt_mesh_free(&m);
+}
+
+static void
+test_pipe(void **state)
+{
+	(void)state;
+	pipe_read(0);
+	pipe_read(400);
 }
 
 /* Binary PLY header for 3 float vertices and faces as uchar/int lists. */

@@ -312,19 +312,33 @@ test_missing_normals(void **state)
 	vdt_mesh_free(&m);
 }
 
-/* v x y z [w] [r g b]: w is dropped; vertices without colour are white. */
+/*
+ * v x y z [w] or v x y z r g b [a]: w is dropped; vertices without colour
+ * are white; colours in [0,255] (every value integral, one above 1) are
+ * scaled, and "1 0 0" stays red.
+ */
 static void
 test_colors(void **state)
 {
 	static const float p[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
-	static const float c[] = {1, 1, 1, 1, 0.5f, 0, 0.25f, 1, 0, 1, 0, 1, 1, 1, 1, 1};
+	static const float c[] = {1, 1, 1, 1, 0.5f, 0, 0.25f, 1, 0, 1, 0, 0.5f, 1, 1, 1, 1};
+	static const float c255[] = {1, 128 / 255.0f, 0, 1, 1, 1, 1, 1, 0, 0, 1, 51 / 255.0f};
+	static const float unit[] = {1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 1, 0};
 	struct vdt_mesh m;
 	(void)state;
 
-	read_ok("v 0 0 0\nv 1 0 0 0.5 0 0.25\nv 0 1 0 2 0 1 0\nv 0 0 1 3\nf 1 2 3 4\n", &m);
+	read_ok("v 0 0 0\nv 1 0 0 0.5 0 0.25\nv 0 1 0 0 1 0 0.5\nv 0 0 1 3\nf 1 2 3 4\n", &m);
 	assert_floats(m.positions, p);
 	assert_non_null(m.colors);
 	assert_floats(m.colors, c);
+	vdt_mesh_free(&m);
+
+	read_ok("v 0 0 0 255 128 0\nv 1 0 0\nv 0 1 0 0 0 255 51\nf 1 2 3\n", &m);
+	assert_floats(m.colors, c255);
+	vdt_mesh_free(&m);
+
+	read_ok("v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1 0\nf 1 2 3\n", &m);
+	assert_floats(m.colors, unit);
 	vdt_mesh_free(&m);
 
 	read_ok("v 0 0 0 2\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", &m);
@@ -554,8 +568,8 @@ random_float(void)
 
 /*
  * Every float, attribute and index comes back bit for bit, with colours
- * (alpha is not in OBJ: 1), unused vertices (2 and 5) and vertices used out
- * of order.
+ * (alpha too, as a seventh value, where a vertex is not opaque), unused
+ * vertices (2 and 5) and vertices used out of order.
  */
 static void
 test_roundtrip(void **state)
@@ -584,7 +598,9 @@ test_roundtrip(void **state)
 				m.normals[i] = random_float();
 		if (m.colors)
 			for (size_t i = 0; i < 4 * nv; i++)
-				m.colors[i] = i % 4 == 3 ? 1.0f : (float)(i % 7) / 7.0f;
+				m.colors[i] = i % 4 != 3        ? (float)(i % 7) / 7.0f
+				              : a % 2 && i == 7 ? 0.5f
+				                                : 1.0f;
 		write_read(&m, &r);
 		assert_int_equal(r.vertex_count, nv);
 		assert_int_equal(r.triangle_count, 3);

@@ -116,7 +116,8 @@ test_polygons(void **state)
 	vdt_mesh_free(&m);
 }
 
-/* Normals, texture coordinates under each name, colours of each type. */
+/* Normals, texture coordinates and colours under each name, colours of
+ * each type. */
 static void
 test_attributes(void **state)
 {
@@ -125,6 +126,11 @@ test_attributes(void **state)
 	static const float c8[] = {1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 1, 1};
 	static const char *const uvnames[][2] = {
 		{"s", "t"}, {"u", "v"}, {"texture_u", "texture_v"}, {"texture_s", "texture_t"}};
+	static const char *const nnames[][3] = {{"nx", "ny", "nz"},
+	                                        {"normal_x", "normal_y", "normal_z"}};
+	static const char *const cnames[][3] = {{"red", "green", "blue"},
+	                                        {"r", "g", "b"},
+	                                        {"diffuse_red", "diffuse_green", "diffuse_blue"}};
 	struct vdt_mesh m;
 	char text[1024];
 	(void)state;
@@ -132,13 +138,14 @@ test_attributes(void **state)
 	for (size_t k = 0; k < sizeof(uvnames) / sizeof(uvnames[0]); k++) {
 		snprintf(text, sizeof(text),
 		         "ply\nformat ascii 1.0\nelement vertex 3\n" XYZ
-		         "property float nx\nproperty float ny\nproperty float nz\n"
+		         "property float %s\nproperty float %s\nproperty float %s\n"
 		         "property float %s\nproperty float %s\n"
-		         "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+		         "property uchar %s\nproperty uchar %s\nproperty uchar %s\n"
 		         "element face 1\n" FACES "end_header\n"
 		         "0 0 0 0 0 1 0 0 255 0 0\n1 0 0 0 1 0 0.5 0.25 0 255 0\n"
 		         "0 1 0 1 0 0 1 1 0 0 255\n3 0 1 2\n",
-		         uvnames[k][0], uvnames[k][1]);
+		         nnames[k % 2][0], nnames[k % 2][1], nnames[k % 2][2], uvnames[k][0],
+		         uvnames[k][1], cnames[k % 3][0], cnames[k % 3][1], cnames[k % 3][2]);
 		read_ok(text, &m);
 		assert_floats(m.normals, n);
 		assert_floats(m.uvs, uv);
@@ -289,9 +296,26 @@ test_reject(void **state)
 	             VDT_EINVAL, "face 0 has a non-integer vertex index -0.5");
 	expect_error(HEAD(99999999999999999999, 1) "0 0 0\n", VDT_EFORMAT,
 	             "PLY header line 3: element count 99999999999999999999 is too large");
+	/* faces before the vertices, which the format allows, read as after
+	 * them (the quad, concave at 4, cut by its positions, not as the fan
+	 * from 1); their faults named */
+	struct vdt_mesh m, after;
+	read_ok("ply\nformat ascii 1.0\nelement face 2\n" FACES "element edge 1\n"
+	        "property int a\nelement vertex 5\n" XYZ "end_header\n3 0 1 2\n4 1 4 3 0\n7\n"
+	        "0 0 0\n1 0 0\n0 1 0\n0 2 0\n0.2 0.2 0\n",
+	        &m);
+	read_ok(HEAD(5, 2) "0 0 0\n1 0 0\n0 1 0\n0 2 0\n0.2 0.2 0\n3 0 1 2\n4 1 4 3 0\n", &after);
+	assert_int_equal(m.triangle_count, 3);
+	assert_memory_equal(m.triangles, after.triangles, 9 * sizeof(uint32_t));
+	assert_memory_equal(m.positions, after.positions, 15 * sizeof(float));
+	vdt_mesh_free(&m);
+	vdt_mesh_free(&after);
 	expect_error("ply\nformat ascii 1.0\nelement face 1\n" FACES "element vertex 3\n" XYZ
-	             "end_header\n3 0 1 2\n0 0 0\n1 0 0\n0 1 0\n",
-	             VDT_EFORMAT, "face element comes before the vertex element");
+	             "end_header\n3 0 1 3\n0 0 0\n1 0 0\n0 1 0\n",
+	             VDT_EINVAL, "face 0 uses vertex 3 of 3");
+	expect_error("ply\nformat ascii 1.0\nelement face 1\n" FACES "element vertex 3\n" XYZ
+	             "end_header\n3 0 1\n0 0 0\n1 0 0\n0 1 0\n",
+	             VDT_EFORMAT, "PLY line 10: face 0 has fewer values");
 	expect_error("ply\nformat ascii 1.0\nelement vertex 3\n" XYZ "end_header\n0 0 0\n1 0 0\n0 1 0\n",
 	             VDT_EFORMAT, "no face element");
 	expect_error("ply\nformat ascii 1.0\nelement face 1\n" FACES "end_header\n3 0 1 2\n",
@@ -348,8 +372,8 @@ random_float(void)
 }
 
 /*
- * The ASCII PLY writer's output reads back bit for bit: positions, normals
- * and texture coordinates (9 significant digits), colours that are k/255,
+ * The ASCII PLY writer's output reads back bit for bit: positions, unit
+ * normals and texture coordinates (9 significant digits), colours that are k/255,
  * and the triangles, unused vertex 3 included.
  */
 static void
@@ -372,9 +396,15 @@ test_roundtrip(void **state)
 			m.positions[i] = random_float();
 		m.positions[0] = 0.1f;
 		m.positions[1] = 1.0f / 3.0f;
-		if (m.normals)
-			for (size_t i = 0; i < 3 * nv; i++)
-				m.normals[i] = random_float();
+		/* (unit normals, as readers make them: vdt(5)) */
+		for (size_t i = 0; m.normals && i < nv; i++) {
+			float *n = m.normals + 3 * i;
+			n[0] = random_float(), n[1] = random_float(), n[2] = random_float();
+			double l = sqrt((double)n[0] * n[0] + (double)n[1] * n[1] +
+			                (double)n[2] * n[2]);
+			for (int k = 0; k < 3; k++)
+				n[k] = (float)(n[k] / l);
+		}
 		if (m.uvs)
 			for (size_t i = 0; i < 2 * nv; i++)
 				m.uvs[i] = random_float();

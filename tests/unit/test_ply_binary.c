@@ -302,14 +302,57 @@ test_more_than_declared(void **state)
 	}
 }
 
+/*
+ * Faces before the vertices, as the format allows, with an element of
+ * lists between: read as after them, in both byte orders (the quad,
+ * concave at 4, cut by its positions, not as the fan from 1); an index
+ * past the vertices named.
+ */
+static void
+test_faces_first(void **state)
+{
+	static const uint32_t t[] = {0, 1, 2, 0, 1, 4, 4, 3, 0};
+	static const float xy[] = {0, 0, 1, 0, 0, 1, 0, 2, 0.2f, 0.2f};
+	(void)state;
+
+	for (int be = 0; be < 2; be++) {
+		struct ply p;
+		struct vdt_mesh m;
+		struct vdt_err err = {0};
+
+		head(&p, be,
+		     "element face 2\nproperty list uchar int vertex_indices\n"
+		     "element junk 1\nproperty list uchar short v\nelement vertex 5\n" XYZ);
+		put(&p, "Ciii", 3.0, 0.0, 1.0, 2.0);
+		put(&p, "Ciiii", 4.0, 1.0, 4.0, 3.0, 0.0);
+		put(&p, "Css", 2.0, 7.0, 7.0);
+		for (int v = 0; v < 5; v++)
+			put(&p, "fff", (double)xy[2 * v], (double)xy[2 * v + 1], 0.0);
+		if (vdt_read_memory(p.b, p.n, NULL, &m, NULL, &err) != 0)
+			fail_msg("%s", err.msg);
+		assert_int_equal(m.vertex_count, 5);
+		assert_int_equal(m.triangle_count, 3);
+		assert_memory_equal(m.triangles, t, sizeof(t));
+		assert_true(m.positions[12] == 0.2f && m.positions[13] == 0.2f);
+		vdt_mesh_free(&m);
+
+		head(&p, be,
+		     "element face 1\nproperty list uchar int vertex_indices\n"
+		     "element vertex 3\n" XYZ);
+		put(&p, "Ciii", 3.0, 0.0, 1.0, 3.0);
+		for (int v = 0; v < 3; v++)
+			put(&p, "fff", (double)xy[2 * v], (double)xy[2 * v + 1], 0.0);
+		expect_error(&p, VDT_EINVAL, "face 0 uses vertex 3 of 3");
+	}
+}
+
 int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
-	        cmocka_unit_test(test_beyond_float),
-	        cmocka_unit_test(test_index_not_integer),
-	        cmocka_unit_test(test_negative_count),
-	        cmocka_unit_test(test_more_than_declared),
+	        cmocka_unit_test(test_beyond_float),   cmocka_unit_test(test_index_not_integer),
+	        cmocka_unit_test(test_negative_count), cmocka_unit_test(test_more_than_declared),
+	        cmocka_unit_test(test_faces_first),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -139,11 +139,17 @@ test_degenerate_kept(void **state)
 	free(t.s);
 
 	/* a degenerate facet's normal of NaNs, as some writers give it, is
-	 * dropped with the rest (as binary STL's are) */
+	 * dropped with the rest (as binary STL's are), Windows' spellings too */
 	static const char nan_normal[] = "solid t\nfacet normal nan -nan inf\nouter loop\n"
 	                                 "vertex 0 0 0\nvertex 1 0 0\nvertex 1 0 0\nendloop\n"
 	                                 "endfacet\nendsolid t\n";
+	static const char nan_windows[] = "solid t\nfacet normal -nan(ind) -1.#IND00 1.#QNAN\n"
+	                                  "outer loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 0 0\n"
+	                                  "endloop\nendfacet\nendsolid t\n";
 	read_ok(nan_normal, sizeof(nan_normal) - 1, &m);
+	assert_int_equal(m.triangle_count, 1);
+	vdt_mesh_free(&m);
+	read_ok(nan_windows, sizeof(nan_windows) - 1, &m);
 	assert_int_equal(m.triangle_count, 1);
 	vdt_mesh_free(&m);
 }
@@ -211,30 +217,30 @@ test_same_as_binary(void **state)
 }
 
 /*
- * Several solids (one empty, one named with blanks), CRLF line ends, tabs,
- * keywords in capitals and in mixed case, no line end at the end: the
- * square's mesh, as one plain solid reads.
+ * Several solids (one empty, one named with blanks and the words "Solid"
+ * and "facet", two on one line), CRLF line ends, tabs, keywords in
+ * capitals and in mixed case, no line end at the end: the square's mesh,
+ * as one plain solid reads.
  */
 static void
 test_solids_crlf_case(void **state)
 {
-	static const char text[] =
-		"solid first part\r\n"
-		"  facet normal 0 0 1\r\n    outer loop\r\n"
-		"\tvertex 0 -0 0\r\n\tvertex 1 1 0\r\n\tvertex 0 1 0\r\n"
-		"    endloop\r\n  endfacet\r\n"
-		"endsolid first part\r\n"
-		"SOLID\r\nENDSOLID\r\n"
-		"SOLID SECOND\r\n"
-		"FACET NORMAL 0 0 1\r\nOUTER LOOP\r\n"
-		"VERTEX 0 0 0\r\nVERTEX 1 0 0\r\nVERTEX 1 1 0\r\n"
-		"ENDLOOP\r\nENDFACET\r\n"
-		"Facet Normal 0 0 0\r\nOuter Loop\r\n"
-		"Vertex 0 0 0\r\nVertex 1 1 0\r\nVertex 1 1 0\r\n"
-		"EndLoop\r\nEndFacet\r\n"
-		"EndSolid SECOND\r\n"
-		"solid\tthird\r\nfacet normal 0 0 0 outer loop vertex 1 0 0 vertex 1 0 0 vertex 1 0 0 "
-		"endloop endfacet\r\nendsolid";
+	static const char text[] = "solid first Solid facet\r\n"
+	                           "  facet normal 0 0 1\r\n    outer loop\r\n"
+	                           "\tvertex 0 -0 0\r\n\tvertex 1 1 0\r\n\tvertex 0 1 0\r\n"
+	                           "    endloop\r\n  endfacet\r\n"
+	                           "endsolid first Solid facet\r\n"
+	                           "SOLID\r\nENDSOLID\r\n"
+	                           "SOLID SECOND\r\n"
+	                           "FACET NORMAL 0 0 1\r\nOUTER LOOP\r\n"
+	                           "VERTEX 0 0 0\r\nVERTEX 1 0 0\r\nVERTEX 1 1 0\r\n"
+	                           "ENDLOOP\r\nENDFACET\r\n"
+	                           "Facet Normal 0 0 0\r\nOuter Loop\r\n"
+	                           "Vertex 0 0 0\r\nVertex 1 1 0\r\nVertex 1 1 0\r\n"
+	                           "EndLoop\r\nEndFacet\r\n"
+	                           "EndSolid SECOND solid\tthird facet normal 0 0 0 outer loop "
+	                           "vertex 1 0 0 vertex 1 0 0 vertex 1 0 0 "
+	                           "endloop endfacet\r\nendsolid";
 	struct text t = ascii_stl(square, 4);
 	struct vdt_mesh m, plain;
 	(void)state;

@@ -82,19 +82,31 @@ convert(const draco::PointAttribute *pa, draco::AttributeValueIndex v, int have,
 	return true;
 }
 
-/* Read component values of point p as floats (integers normalised); a
- * fourth component the attribute lacks is 1, any other 0. */
+/*
+ * Read component values of point p as floats; a fourth component the
+ * attribute lacks is 1, any other 0. Integers the attribute calls
+ * normalised are divided by their type's largest value, as are a colour's
+ * whatever it says (glTF's colours are such; 200 of a byte is no colour
+ * but 200/255).
+ */
 bool
-get_floats(const draco::PointAttribute *pa, draco::PointIndex p, int comps, float *out)
+get_floats(const draco::PointAttribute *pa, draco::PointIndex p, int comps, bool colour, float *out)
 {
 	draco::AttributeValueIndex v = pa->mapped_index(p);
 	int have = pa->num_components();
+	bool n = colour || pa->normalized();
 
 	for (int k = 0; k < comps; k++)
 		out[k] = k == 3 ? 1.0f : 0.0f;
 	switch (pa->data_type()) {
-	case draco::DT_UINT8: return convert<uint8_t>(pa, v, have, comps, 255.0f, out);
-	case draco::DT_UINT16: return convert<uint16_t>(pa, v, have, comps, 65535.0f, out);
+	case draco::DT_UINT8: return convert<uint8_t>(pa, v, have, comps, n ? 255.0f : 1, out);
+	case draco::DT_INT8: return convert<int8_t>(pa, v, have, comps, n ? 127.0f : 1, out);
+	case draco::DT_UINT16: return convert<uint16_t>(pa, v, have, comps, n ? 65535.0f : 1, out);
+	case draco::DT_INT16: return convert<int16_t>(pa, v, have, comps, n ? 32767.0f : 1, out);
+	case draco::DT_UINT32:
+		return convert<uint32_t>(pa, v, have, comps, n ? 4294967295.0f : 1, out);
+	case draco::DT_INT32:
+		return convert<int32_t>(pa, v, have, comps, n ? 2147483647.0f : 1, out);
 	default: return convert<float>(pa, v, have, comps, 1, out);
 	}
 }
@@ -139,13 +151,13 @@ read_mesh(const struct vdt_host *host, const unsigned char *buf, size_t len, str
 		return rc;
 	for (size_t i = 0; i < nv; i++) {
 		draco::PointIndex p(static_cast<uint32_t>(i));
-		bool ok = get_floats(pos, p, 3, m->positions + 3 * i);
+		bool ok = get_floats(pos, p, 3, false, m->positions + 3 * i);
 		if (ok && nrm)
-			ok = get_floats(nrm, p, 3, m->normals + 3 * i);
+			ok = get_floats(nrm, p, 3, false, m->normals + 3 * i);
 		if (ok && tex)
-			ok = get_floats(tex, p, 2, m->uvs + 2 * i);
+			ok = get_floats(tex, p, 2, false, m->uvs + 2 * i);
 		if (ok && col) {
-			ok = get_floats(col, p, 4, m->colors + 4 * i);
+			ok = get_floats(col, p, 4, true, m->colors + 4 * i);
 			if (col->num_components() < 4)
 				m->colors[4 * i + 3] = 1.0f;
 		}

@@ -1,0 +1,136 @@
+#!/usr/bin/env bats
+# Command-line tests of valid files as exporters write them: what each
+# holds comes through (colours, normals, faces in any element order), and
+# standard input is told apart as a file is.
+
+load helpers
+
+# The vertex lines of an ASCII PLY on stdin.
+ply_vertices() {
+	sed -n '/^end_header/,$p' | awk -v n="$1" 'NR > 1 && NR <= n + 1'
+}
+
+@test "OBJ colours: r g b a as three.js reads them, 0-255 scaled as in OFF, alpha written back" {
+	printf 'v 0 0 0 1 0 0 1\nv 1 0 0 0 1 0 0.5\nv 0 1 0 0 0 1 1\nf 1 2 3\n' > "$TMP/rgba.obj"
+	run "$BIN/vdt-qslim" -q -r 1 "$TMP/rgba.obj" -F ply-ascii -o -
+	[ "$status" -eq 0 ]
+	[ "$(printf '%s\n' "$output" | ply_vertices 3)" = "$(printf '0 0 0 255 0 0 255\n1 0 0 0 255 0 128\n0 1 0 0 0 255 255')" ]
+	# (alpha comes back as the seventh value of v)
+	"$BIN/vdt-qslim" -q -r 1 "$TMP/rgba.obj" -o "$TMP/back.obj"
+	grep -qx 'v 1 0 0 0 1 0 0.5' "$TMP/back.obj"
+	printf 'v 0 0 0 255 128 0\nv 1 0 0 0 128 255\nv 0 1 0 10 20 30\nf 1 2 3\n' > "$TMP/c255.obj"
+	run "$BIN/vdt-qslim" -q -r 1 "$TMP/c255.obj" -F ply-ascii -o -
+	[ "$(printf '%s\n' "$output" | ply_vertices 3)" = "$(printf '0 0 0 255 128 0 255\n1 0 0 0 128 255 255\n0 1 0 10 20 30 255')" ]
+	# an opaque model keeps its six values
+	"$BIN/vdt-qslim" -q -r 1 "$TMP/c255.obj" -o "$TMP/c.obj"
+	grep -q '^v 0 0 0 1 0.50196' "$TMP/c.obj"
+	[ "$(awk '$1 == "v" { print NF }' "$TMP/c.obj" | sort -u)" = 7 ]
+}
+
+@test "normals of 0 (a scanner's none) and of other lengths are read as unit ones" {
+	# a 4 x 4 grid in z = 0 facing up: every other normal 0 0 0, the rest
+	# 0 0 2.5; simplified, every normal still faces up
+	awk 'BEGIN {
+		print "ply\nformat ascii 1.0\nelement vertex 25"
+		print "property float x\nproperty float y\nproperty float z"
+		print "property float nx\nproperty float ny\nproperty float nz"
+		print "element face 32\nproperty list uchar int vertex_indices\nend_header"
+		for (j = 0; j < 5; j++) for (i = 0; i < 5; i++)
+			print i, j, 0, 0, 0, (i + j) % 2 ? 2.5 : 0
+		for (j = 0; j < 4; j++) for (i = 0; i < 4; i++) {
+			v = 5 * j + i
+			print 3, v, v + 1, v + 6; print 3, v, v + 6, v + 5
+		}
+	}' > "$TMP/grid.ply"
+	for r in 1 0.5 0.2; do
+		"$BIN/vdt-qslim" -q -r $r "$TMP/grid.ply" -F ply-ascii -o "$TMP/out.ply"
+		n=$(sed -n 's/^element vertex //p' "$TMP/out.ply")
+		bad=$(ply_vertices "$n" < "$TMP/out.ply" |
+			awk '{ l = $4 * $4 + $5 * $5 + $6 * $6; if ($6 < 0.999 || l < 0.999 || l > 1.001) print }')
+		[ -z "$bad" ] || { echo "-r $r: $bad"; false; }
+	done
+}
+
+@test "ASCII STL: a solid named with the words solid and facet, Windows' NaN normals" {
+	for name in 'Solid' 'my solid' 'Facet' 'Body facet 2'; do
+		printf 'solid %s\nfacet normal -nan(ind) -1.#IND00 1.#QNAN\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid %s\n' \
+			"$name" "$name" > "$TMP/n.stl"
+		run "$BIN/vdt-qslim" -q -r 1 "$TMP/n.stl" -F off -o -
+		[ "$status" -eq 0 ] || { echo "$name: $output"; false; }
+		[ "$(printf '%s\n' "$output" | sed -n 2p)" = "3 1 0" ]
+	done
+}
+
+@test "standard input is told apart as a file is: any OBJ statement first, long comments, blank lines before solid" {
+	tri='v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n'
+	for first in 'g' 'o' 's off' 'mg 1' 'maplib a.tga' 'cstype bezier'; do
+		printf "$first\n$tri" > "$TMP/a.obj"
+		run "$BIN/vdt-qslim" -q -r 1 -F off -o - < "$TMP/a.obj"
+		[ "$status" -eq 0 ] || { echo "$first: $output"; false; }
+	done
+	# 8 KB of comments: past what detection looks at first
+	{ for i in $(seq 200); do echo "# exported by a tool that says a lot, line $i"; done; printf "$tri"; } > "$TMP/long.obj"
+	[ "$(wc -c < "$TMP/long.obj")" -gt 4096 ]
+	{ echo ply; for i in $(seq 200); do echo "comment exported by a tool that says a lot, line $i"; done
+	  printf 'format ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n'
+	  printf 'element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n'; } > "$TMP/long.ply"
+	printf '\n  \nsolid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid x\n' > "$TMP/blank.stl"
+	for f in long.obj long.ply blank.stl; do
+		for tool in vdt-qslim vdt-cluster; do
+			opt=-r; [ $tool = vdt-cluster ] && opt=-g
+			arg=1; [ $tool = vdt-cluster ] && arg=4
+			run "$BIN/$tool" -q $opt $arg -F off -o - < "$TMP/$f"
+			[ "$status" -eq 0 ] || { echo "$tool $f: $output"; false; }
+			[ "$(printf '%s\n' "$output" | sed -n 2p)" = "3 1 0" ]
+			run "$BIN/$tool" -q $opt $arg -F off -o "$TMP/x.off" "$TMP/$f"
+			[ "$status" -eq 0 ] || { echo "$tool $f: $output"; false; }
+		done
+	done
+	# what is no mesh is still refused
+	for i in $(seq 200); do echo "# nothing but comments $i"; done > "$TMP/none.txt"
+	run "$BIN/vdt-qslim" -r 1 -o "$TMP/x.ply" - < "$TMP/none.txt"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-qslim: cannot read '<stdin>': unknown format" ]
+	[ ! -e "$TMP/x.ply" ]
+}
+
+@test "PLY faces before the vertices read as after them, in every tool" {
+	python3 - "$TMP" <<'EOF'
+import struct, sys
+d = sys.argv[1]
+xyz = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0.5, 0.5, 0.5)]
+faces = [(0, 1, 4), (1, 2, 4), (2, 3, 4), (3, 0, 4), (0, 3, 2), (0, 2, 1)]
+def elem(kind):
+    if kind == 'v':
+        return (b"element vertex 5\nproperty float x\nproperty float y\nproperty float z\n",
+                b"".join(struct.pack('<fff', *p) for p in xyz))
+    return (b"element face 6\nproperty list uchar int vertex_indices\n",
+            b"".join(struct.pack('<Biii', 3, *f) for f in faces))
+for name, order in (('vf', 'vf'), ('fv', 'fv')):
+    h, b = b"ply\nformat binary_little_endian 1.0\n", b""
+    for k in order:
+        eh, eb = elem(k)
+        h, b = h + eh, b + eb
+    open(d + '/' + name + '.ply', 'wb').write(h + b"end_header\n" + b)
+EOF
+	"$BIN/vdt-qslim" -q -r 1 "$TMP/vf.ply" -F off -o "$TMP/vf.off"
+	"$BIN/vdt-qslim" -q -r 1 "$TMP/fv.ply" -F off -o "$TMP/fv.off"
+	cmp "$TMP/vf.off" "$TMP/fv.off"
+	"$BIN/vdt-cluster" -q -g 3 "$TMP/fv.ply" -F off -o "$TMP/c.off"
+	run "$BIN/vdt-measure" -q -F kv "$TMP/fv.ply" "$TMP/vf.ply"
+	[ "$status" -eq 0 ]
+	h=$(printf '%s\n' "$output" | kv hausdorff_pct)
+	awk -v h="$h" 'BEGIN { exit !(h < 1e-9) }'
+	[ "$(printf '%s\n' "$output" | kv faces)" = 6 ]
+}
+
+@test "Draco colours of signed bytes come out in [0,1], as glTF's integer colours are read" {
+	# tests/data/int8-colour.drc: 8 faces of a 3 x 3 grid written by
+	# libdraco (sequential, not quantised), per-corner attributes, colours
+	# as int8 (10 x vertex, 50, 100)
+	run "$BIN/vdt-qslim" -q -r 1 "$DATA/int8-colour.drc" -F ply-ascii -o -
+	[ "$status" -eq 0 ]
+	cols=$(printf '%s\n' "$output" | sed -n '/^end_header/,$p' | awk 'NR > 1 && NF > 5 { print $(NF - 3), $(NF - 2), $(NF - 1) }' | sort -u)
+	# 50/127 and 100/127 of 255
+	[ "$(printf '%s\n' "$cols" | awk '{ print $2, $3 }' | sort -u)" = "100 201" ]
+}
