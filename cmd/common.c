@@ -293,6 +293,32 @@ note_materials_output(const char *path, const struct vdt_materials *mat, const c
 }
 
 void
+note_attributes_output(const char *path, const struct vdt_mesh *m, const char *out,
+                       enum vdt_format f, int quiet)
+{
+	static const char *const name[] = {"normals", "texture coordinates", "colours"};
+	unsigned a = vdt_mesh_attrs(m);
+	char list[64] = "";
+	int n = 0, left = 0;
+
+	if (quiet || a == 0 || (f != VDT_FMT_STL && f != VDT_FMT_STL_ASCII))
+		return;
+	for (int k = 0; k < 3; k++)
+		n += (a >> k) & 1;
+	for (int k = 0; k < 3; k++)
+		if ((a >> k) & 1) {
+			left++;
+			snprintf(list + strlen(list), sizeof(list) - strlen(list), "%s%s",
+			         left == 1   ? ""
+			         : left == n ? " and "
+			                     : ", ",
+			         name[k]);
+		}
+	note("note: '%s' has %s, which %s output cannot hold: '%s' has none\n", input_name(path),
+	     list, vdt_format_name(f), out);
+}
+
+void
 note_float_precision(const char *path, const struct vdt_mesh *m, int quiet)
 {
 	struct vdt_bbox box;

@@ -123,6 +123,11 @@ struct vdt_materials;
 void note_materials_output(const char *path, const struct vdt_materials *mat, const char *out,
                            enum vdt_format f, int quiet);
 
+/* A note, unless quiet, when the mesh m read from path goes to out, of
+ * format f, which cannot hold the attributes it has (STL holds none). */
+void note_attributes_output(const char *path, const struct vdt_mesh *m, const char *out,
+                            enum vdt_format f, int quiet);
+
 /* The same for a model whose box of float positions is box (one read as a
  * stream, never held whole). */
 void note_float_box(const char *path, const struct vdt_bbox *box, int quiet);

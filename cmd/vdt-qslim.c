@@ -182,8 +182,9 @@ run(struct cmdline *cl)
 		rc = fail("cannot write", cl->out, &err);
 		goto out;
 	}
-	note_materials_output(cl->in, &x.mat, cl->out, vdt_output_format(cl->out, cl->w.format),
-	                      cl->quiet);
+	enum vdt_format of = vdt_output_format(cl->out, cl->w.format);
+	note_materials_output(cl->in, &x.mat, cl->out, of, cl->quiet);
+	note_attributes_output(cl->in, &out, cl->out, of, cl->quiet);
 	if ((rc = vdt_write(cl->out, &out, &extra, &cl->w, &err)) != 0) {
 		rc = fail("cannot write", cl->out, &err);
 		goto out;

@@ -134,3 +134,13 @@ EOF
 	# 50/127 and 100/127 of 255
 	[ "$(printf '%s\n' "$cols" | awk '{ print $2, $3 }' | sort -u)" = "100 201" ]
 }
+
+@test "STL output says which attributes it cannot hold" {
+	run "$BIN/vdt-qslim" -r 0.5 "$SAMPLES/sphere-uv.obj" -o "$TMP/s.stl"
+	[ "$status" -eq 0 ]
+	[ "$output" = "vdt-qslim: note: '$SAMPLES/sphere-uv.obj' has normals and texture coordinates, which stl output cannot hold: '$TMP/s.stl' has none" ]
+	run "$BIN/vdt-qslim" -q -r 0.5 "$SAMPLES/sphere-uv.obj" -o "$TMP/s.stl"
+	[ -z "$output" ]
+	run "$BIN/vdt-qslim" -r 0.5 "$SAMPLES/sphere-uv.obj" -o "$TMP/s.ply"
+	[ -z "$output" ]
+}
