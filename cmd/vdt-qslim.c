@@ -208,18 +208,20 @@ run(struct cmdline *cl)
 		fprintf(stderr, "%s: -a found virtual pairs, which are contracted one at a time: "
 		        "--order passes has no effect\n", progname);
 	if (cl->verbose)
-		fprintf(stderr, "%s: in_vertices=%zu in_triangles=%zu out_vertices=%zu "
-		        "out_triangles=%zu contractions=%zu rejected=%zu fitted=%zu welded=%zu dropped=%zu "
+		fprintf(stderr,
+		        "%s: in_vertices=%zu in_triangles=%zu out_vertices=%zu "
+		        "out_triangles=%zu contractions=%zu rejected=%zu fitted=%zu welded=%zu "
+		        "dropped=%zu "
 		        "parts_given_up=%zu nonmanifold=%zu "
-		        "topology=%s order=%s error=%.6g error_pct=%.6g "
+		        "topology=%s order=%s flat_normals=%d error=%.6g error_pct=%.6g "
 		        "read_s=%.3f simplify_s=%.3f setup_s=%.3f contract_s=%.3f fit_s=%.3f "
 		        "write_s=%.3f peak_mb=%.1f\n",
 		        progname, in.vertex_count, in.triangle_count, out.vertex_count,
-		        out.triangle_count, st.contractions, st.rejected, st.fitted, st.welded, st.dropped,
-		        st.parts_given_up, st.nonmanifold, st.free_topology ? "free" : "keep",
-		        st.passes ? "passes" : "greedy", st.max_error,
-		        st.error_pct, t1 - t0, t2 - t1, st.setup_s, st.contract_s, st.fit_s,
-		        vdt_seconds() - t2, peak_rss_bytes() / 1048576.0);
+		        out.triangle_count, st.contractions, st.rejected, st.fitted, st.welded,
+		        st.dropped, st.parts_given_up, st.nonmanifold,
+		        st.free_topology ? "free" : "keep", st.passes ? "passes" : "greedy",
+		        st.flat_normals, st.max_error, st.error_pct, t1 - t0, t2 - t1, st.setup_s,
+		        st.contract_s, st.fit_s, vdt_seconds() - t2, peak_rss_bytes() / 1048576.0);
 	rc = EXIT_OK;
 out:
 	vdt_mesh_free(&in);

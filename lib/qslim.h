@@ -156,6 +156,9 @@ struct vdt_qslim_stats {
 	double setup_s;     /* seconds: welding, quadrics and the rest before */
 	double contract_s;  /* the contractions (the engine's run) */
 	double fit_s;       /* the fit after them (0 without) */
+	int flat_normals;   /* 1 if the input was flat-shaded (every corner's
+	                       normal its face's): simplified without its
+	                       normals, each output face given its own */
 };
 
 /*

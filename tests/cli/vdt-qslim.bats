@@ -1307,3 +1307,86 @@ PY
 		awk -v a="$with" -v b="$without" 'BEGIN { exit !(a < 1.4 * b) }'
 	done
 }
+
+# with_normals SRC OUT smooth|flat: SRC (OFF or OBJ, positions) as an OBJ
+# with area-weighted vertex normals, or each face's own normal at its
+# corners (flat shading, as an STL made an OBJ has it).
+with_normals() {
+	python3 - "$1" "$2" "$3" <<'PY'
+import math, sys
+src, out, mode = sys.argv[1:4]
+V, F = [], []
+if src.endswith('.off'):
+    t = [l for l in open(src).read().split('\n') if l.strip() and not l.startswith('#')]
+    nv, nf = map(int, t[1].split()[:2])
+    V = [tuple(map(float, l.split()[:3])) for l in t[2:2 + nv]]
+    F = [tuple(map(int, l.split()[1:4])) for l in t[2 + nv:2 + nv + nf]]
+else:
+    for l in open(src):
+        s = l.split()
+        if s and s[0] == 'v': V.append(tuple(map(float, s[1:4])))
+        if s and s[0] == 'f': F.append(tuple(int(x.split('/')[0]) - 1 for x in s[1:4]))
+def cross(f):
+    a, b, c = [V[i] for i in f]
+    u = [b[k] - a[k] for k in range(3)]; v = [c[k] - a[k] for k in range(3)]
+    return (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
+def unit(n):
+    l = math.sqrt(sum(x * x for x in n)) or 1
+    return tuple(x / l for x in n)
+L = ['v %.9g %.9g %.9g' % p for p in V]
+if mode == 'flat':
+    L += ['vn %.7f %.7f %.7f' % unit(cross(f)) for f in F]
+    L += ['f ' + ' '.join('%d//%d' % (i + 1, j + 1) for i in f) for j, f in enumerate(F)]
+else:
+    N = [[0, 0, 0] for _ in V]
+    for f in F:
+        n = cross(f)
+        for i in f:
+            for k in range(3): N[i][k] += n[k]
+    L += ['vn %.7f %.7f %.7f' % unit(n) for n in N]
+    L += ['f ' + ' '.join('%d//%d' % (i + 1, i + 1) for i in f) for f in F]
+open(out, 'w').write('\n'.join(L) + '\n')
+PY
+}
+
+@test "smooth normals cost little distance: the bunny within 1.25 times the RMS error without them" {
+	with_normals "$SAMPLES/fetched/bunny.obj" "$TMP/n.obj" smooth
+	for r in 0.5 0.1 0.02; do
+		"$BIN/vdt-qslim" -q -r $r "$SAMPLES/fetched/bunny.obj" -o "$TMP/plain.obj"
+		"$BIN/vdt-qslim" -q -r $r "$TMP/n.obj" -o "$TMP/with.obj"
+		[ "$(grep -c '^vn ' "$TMP/with.obj")" -gt 0 ]
+		p=$("$BIN/vdt-measure" -q -F kv "$SAMPLES/fetched/bunny.obj" "$TMP/plain.obj" | kv rms_pct)
+		w=$("$BIN/vdt-measure" -q -F kv "$SAMPLES/fetched/bunny.obj" "$TMP/with.obj" | kv rms_pct)
+		awk -v p="$p" -v w="$w" 'BEGIN { exit !(w <= 1.25 * p) }' || { echo "-r $r: $w against $p"; false; }
+	done
+}
+
+@test "a flat-shaded model simplifies as its positions do, each output face with its own normal" {
+	with_normals "$SAMPLES/torus.off" "$TMP/flat.obj" flat
+	for r in 0.5 0.2; do
+		"$BIN/vdt-qslim" -q -r $r "$SAMPLES/torus.off" -o "$TMP/plain.obj"
+		"$BIN/vdt-qslim" -q -r $r -F ply-ascii "$TMP/flat.obj" -o "$TMP/flat.ply"
+		p=$("$BIN/vdt-measure" -q -F kv "$SAMPLES/torus.off" "$TMP/plain.obj" | kv rms_pct)
+		f=$("$BIN/vdt-measure" -q -F kv "$SAMPLES/torus.off" "$TMP/flat.ply" | kv rms_pct)
+		awk -v p="$p" -v f="$f" 'BEGIN { exit !(f <= 1.01 * p) }' || { echo "-r $r: $f against $p"; false; }
+		# every corner's normal is its face's
+		awk 'BEGIN { i = 0 } /^element vertex/ { nv = $3 } /^end_header/ { body = 1; next }
+		body && i < nv { for (k = 0; k < 6; k++) v[i, k] = $(k + 1); i++; next }
+		body && NF == 4 {
+			for (k = 0; k < 3; k++) { a[k] = v[$3, k] - v[$2, k]; b[k] = v[$4, k] - v[$2, k] }
+			n0 = a[1] * b[2] - a[2] * b[1]; n1 = a[2] * b[0] - a[0] * b[2]; n2 = a[0] * b[1] - a[1] * b[0]
+			l = sqrt(n0 * n0 + n1 * n1 + n2 * n2)
+			for (c = 2; c <= 4; c++)
+				if ((n0 * v[$c, 3] + n1 * v[$c, 4] + n2 * v[$c, 5]) / l < 0.9999) bad++
+		} END { exit bad > 0 }' "$TMP/flat.ply"
+	done
+	run "$BIN/vdt-qslim" -v -r 0.5 "$TMP/flat.obj" -o "$TMP/v.obj"
+	[ "$(printf '%s\n' "$output" | kv flat_normals)" = 1 ]
+	run "$BIN/vdt-qslim" -v -r 0.5 "$SAMPLES/sphere-uv.obj" -o "$TMP/v.obj"
+	[ "$(printf '%s\n' "$output" | kv flat_normals)" = 0 ]
+	# nothing to simplify: the input back as it was, normals and all
+	"$BIN/vdt-qslim" -q -r 1 "$TMP/flat.obj" -o "$TMP/same.obj"
+	"$BIN/vdt-qslim" -q -r 1 -F ply-ascii "$TMP/flat.obj" -o "$TMP/a.ply"
+	"$BIN/vdt-qslim" -q -r 1 -F ply-ascii "$TMP/same.obj" -o "$TMP/b.ply"
+	cmp "$TMP/a.ply" "$TMP/b.ply"
+}
