@@ -854,7 +854,11 @@ static struct {
 	char path[PENDING_PATH];
 } pending[PENDING_SLOTS];
 
-static const int cleanup_signals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE, SIGXFSZ};
+/* (every signal whose default ends the process and that can be caught:
+ * a CPU limit's SIGXCPU, a batch scheduler's warning SIGUSR1 or SIGUSR2,
+ * a timer's) */
+static const int cleanup_signals[] = {SIGINT,  SIGTERM, SIGHUP,  SIGQUIT, SIGPIPE,   SIGXFSZ,
+                                      SIGXCPU, SIGUSR1, SIGUSR2, SIGALRM, SIGVTALRM, SIGPROF};
 
 /*
  * The runs' sets of files written (vdt_written) for the handler too: each

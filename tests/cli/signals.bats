@@ -40,15 +40,19 @@ until_() {
 
 @test "a signal while the temporary output file is made leaves none behind" {
 	# (between mkstemp and the handler's note of the name: keep_mode's
-	# fchmod is held)
-	mkdir "$TMP/out"
-	traced "$TMP/pid" -e trace=fchmod -e inject=fchmod:delay_exit=1500000 -- \
-		"$BIN/vdt-qslim" -q -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/out/o.ply" &
-	until_ 'test -n "$(ls -A "$TMP/out")"'
-	kill -TERM "$(cat "$TMP/pid")"
-	wait $! || :
-	grep -q 'killed by SIGTERM' "$TMP/trace"
-	[ -z "$(ls -A "$TMP/out")" ]
+	# fchmod is held); a CPU limit's, a batch scheduler's warning and a
+	# timer's signal too
+	for sig in TERM XCPU USR1 ALRM; do
+		rm -rf "$TMP/out"
+		mkdir "$TMP/out"
+		traced "$TMP/pid" -e trace=fchmod -e inject=fchmod:delay_exit=1500000 -- \
+			"$BIN/vdt-qslim" -q -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/out/o.ply" &
+		until_ 'test -n "$(ls -A "$TMP/out")"'
+		kill -$sig "$(cat "$TMP/pid")"
+		wait $! || :
+		grep -q "killed by SIG$sig" "$TMP/trace"
+		[ -z "$(ls -A "$TMP/out")" ] || { echo "SIG$sig left $(ls -A "$TMP/out")"; false; }
+	done
 }
 
 @test "a signal while vdt-render renames its frames into place: all of them new, none left staged" {
