@@ -11,11 +11,13 @@
  * ties broken by pair number so the order, and the output, are
  * deterministic.
  */
+#define _GNU_SOURCE /* sched_getaffinity */
 #include "contract.h"
 
 #include <assert.h>
 #include <math.h>
 #include <pthread.h>
+#include <sched.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -3768,6 +3770,18 @@ spin_pause(void)
 
 /* Worker k: job k of each call that has more than k + 1 jobs; at every
  * call, done with it. */
+/* The processors this process may run on (taskset, a container's
+ * cpuset), else those online. */
+static long
+usable_cpus(void)
+{
+	cpu_set_t set;
+
+	if (sched_getaffinity(0, sizeof(set), &set) == 0 && CPU_COUNT(&set) > 0)
+		return CPU_COUNT(&set);
+	return sysconf(_SC_NPROCESSORS_ONLN);
+}
+
 static void *
 pool_worker(void *arg)
 {
@@ -3835,7 +3849,7 @@ pool_run(void *(*fn)(void *), void *jobs, size_t size, int t)
 		return -1;
 	}
 	if (pool.cpus == 0)
-		pool.cpus = sysconf(_SC_NPROCESSORS_ONLN);
+		pool.cpus = usable_cpus();
 	int spin = pool.workers < pool.cpus ? POOL_SPIN : 0;
 	__atomic_store_n(&pool.spin, spin, __ATOMIC_RELAXED);
 	pool.fn = fn;
@@ -3881,7 +3895,7 @@ vdt_run_jobs(void *(*fn)(void *), void *jobs, size_t size, int t)
 int
 vdt_contract_threads(int threads)
 {
-	long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+	long cpus = usable_cpus();
 	int t = threads > 0 ? threads : cpus > 0 ? (int)cpus : 1;
 
 	return t > VDT_CONTRACT_MAX_THREADS ? VDT_CONTRACT_MAX_THREADS : t;

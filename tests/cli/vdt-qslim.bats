@@ -219,7 +219,7 @@ load helpers
 }
 
 @test "vdt-qslim rejects bad --attribute-weight values with status 2" {
-	for bad in -1 x 1x nan inf ""; do
+	for bad in -1 x 1x nan inf "" 0x10 0X1p0; do
 		run "$BIN/vdt-qslim" --attribute-weight "$bad" -r 0.5 "$SAMPLES/sphere-uv.obj" -o "$TMP/x.obj"
 		[ "$status" -eq 2 ]
 		one_line
@@ -1389,4 +1389,16 @@ PY
 	"$BIN/vdt-qslim" -q -r 1 -F ply-ascii "$TMP/flat.obj" -o "$TMP/a.ply"
 	"$BIN/vdt-qslim" -q -r 1 -F ply-ascii "$TMP/same.obj" -o "$TMP/b.ply"
 	cmp "$TMP/a.ply" "$TMP/b.ply"
+}
+
+@test "vdt-qslim's threads: as many as the processors it may run on (taskset, a cpuset), same output" {
+	command -v strace >/dev/null || skip "no strace(1)"
+	[ "$(nproc --all)" -ge 2 ] || skip "one processor"
+	export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
+	m="$SAMPLES/fetched/bunny.ply"
+	strace -f -e trace=clone,clone3 -o "$TMP/one" taskset -c 0 "$BIN/vdt-qslim" -q -r 0.1 --order passes "$m" -o "$TMP/one.ply"
+	[ "$(grep -c 'clone' "$TMP/one")" -eq 0 ]
+	strace -f -e trace=clone,clone3 -o "$TMP/two" taskset -c 0,1 "$BIN/vdt-qslim" -q -r 0.1 --order passes "$m" -o "$TMP/two.ply"
+	[ "$(grep -c 'clone' "$TMP/two")" -ge 1 ]
+	cmp "$TMP/one.ply" "$TMP/two.ply"
 }
