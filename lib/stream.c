@@ -836,7 +836,7 @@ vdt_quad_decode(const unsigned char *data, uint64_t length,
                 struct vdt_quadric **q, size_t *count, struct vdt_err *err)
 {
 	struct vdt_quadric *a;
-	uint64_t n;
+	uint64_t n = 0;
 
 	*q = NULL;
 	*count = 0;
@@ -897,7 +897,7 @@ vdt_bndy_decode(const unsigned char *data, uint64_t length, size_t vertex_count,
                 uint8_t **flags, struct vdt_err *err)
 {
 	uint8_t *f = NULL;
-	uint64_t k;
+	uint64_t k = 0;
 
 	*flags = NULL;
 	if (counted(data, length, 4, "vertex indices", &k, err) != 0)
