@@ -153,7 +153,11 @@ vdt_sampler_init(struct vdt_sampler *s, const struct vdt_mesh *m, size_t samples
 		}
 		faces = (size_t)llround(density * area);
 	} else {
+		/* (at least half for the faces, whose samples alone make the
+		 * mean and RMS: a mesh of nearly as many vertices as samples
+		 * left them a handful) */
 		faces = samples > used ? samples - used : 0;
+		faces = faces < samples / 2 ? samples / 2 : faces;
 	}
 	if (!(area > 0))
 		faces = 0;

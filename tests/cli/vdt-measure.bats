@@ -300,3 +300,17 @@ assert len(d["ab_hausdorff_at"]) == 3 and len(d["ba_hausdorff_at"]) == 3'
 	done
 	[ ! -e "$TMP/r.txt" ]
 }
+
+@test "vdt-measure: the faces get half the samples at least, however many vertices take the rest" {
+	"$BIN/vdt-qslim" -q -r 0.1 "$SAMPLES/fetched/bunny.ply" -o "$TMP/b.ply"
+	run "$BIN/vdt-measure" -q -F kv "$SAMPLES/fetched/bunny.ply" "$TMP/b.ply"
+	all=$(kv ab_rms)
+	# (the bunny has 34835 vertices: 34900 samples left its faces 65)
+	for n in 34900 20000; do
+		run "$BIN/vdt-measure" -q -F kv -n $n "$SAMPLES/fetched/bunny.ply" "$TMP/b.ply"
+		[ "$status" -eq 0 ]
+		few=$(kv ab_rms)
+		awk -v a="$all" -v f="$few" 'BEGIN { exit !(f < 1.05 * a && f > 0.95 * a) }' ||
+			{ echo "-n $n: $few against $all"; false; }
+	done
+}
