@@ -378,7 +378,8 @@ parse_real_shown(const char *opt, const char *s, const char *given, const char *
 	if (s == NULL || *s == '\0' || *s == ' ')
 		usage_error("invalid value '%s' for %s", given ? given : "", opt);
 	v = strtod(s, &end);
-	if (errno != 0 || *end != '\0' || !isfinite(v))
+	/* (strtod's hexadecimal, 0x10 for 16, is no number a user means) */
+	if (errno != 0 || *end != '\0' || !isfinite(v) || strpbrk(s, "xX") != NULL)
 		usage_error("invalid value '%s' for %s", given, opt);
 	if (v < min && !(max < HUGE_VAL))
 		usage_error("%s must be at least %g%s, not %s", opt, min, unit, given);
@@ -403,7 +404,9 @@ parse_vec3(const char *opt, const char *s, int nonzero, double out[3])
 	for (int i = 0; i < 3; i++) {
 		errno = 0;
 		out[i] = strtod(p, &end);
-		if (end == p || errno != 0 || !isfinite(out[i]) || *end != (i < 2 ? ',' : '\0'))
+		if (end == p || errno != 0 || !isfinite(out[i]) || *end != (i < 2 ? ',' : '\0') ||
+		    memchr(p, 'x', (size_t)(end - p)) != NULL ||
+		    memchr(p, 'X', (size_t)(end - p)) != NULL)
 			usage_error("invalid vector '%s' for %s: want X,Y,Z", s, opt);
 		p = end + 1;
 	}
