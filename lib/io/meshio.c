@@ -1092,6 +1092,24 @@ vdt_output_temp(const char *target, char **tmp, struct vdt_err *err)
 	 * replaced behind his back, as `> file` would not write it either. */
 	if (access(target, W_OK) != 0 && errno == EACCES)
 		return vdt_err_set(err, VDT_EIO, "%s", strerror(EACCES));
+	/* Nor is a loop of symbolic links (`>` fails on it too), and a file
+	 * of another user's in a sticky directory (/tmp), which rename may
+	 * not replace, is said now rather than after the work. */
+	struct stat ts, ds;
+	if (lstat(target, &ts) == 0 && S_ISLNK(ts.st_mode) && stat(target, &ts) != 0 &&
+	    errno == ELOOP)
+		return vdt_err_set(err, VDT_EIO, "%s", strerror(ELOOP));
+	if (stat(target, &ts) == 0 && geteuid() != 0 && ts.st_uid != geteuid()) {
+		char *dir = dl > 0 ? strndup(target, dl) : strdup(".");
+		int sticky = dir != NULL && stat(dir, &ds) == 0 && (ds.st_mode & S_ISVTX) &&
+		             ds.st_uid != geteuid();
+		free(dir);
+		if (sticky)
+			return vdt_err_set(
+			        err, VDT_EIO,
+			        "it is another user's, in a sticky directory, where it can "
+			        "only be written in place (as with >), not replaced");
+	}
 	if (bl + 8 > room) {
 		bl = room > 8 ? room - 8 : 0;
 		while (bl > 0 && (base[bl] & 0xc0) == 0x80)

@@ -474,3 +474,32 @@ refused() {
 	[ "$(head -n 1 "$TMP/$u")" = OFF ]
 	[ "$(ls -A "$TMP" | grep -c '^\.')" -eq 0 ]
 }
+
+@test "-o a loop of symbolic links is refused at once, as > refuses it, and the links stay" {
+	ln -s l2.ply "$TMP/l1.ply"
+	ln -s l1.ply "$TMP/l2.ply"
+	run "$BIN/vdt-qslim" -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/l1.ply"
+	[ "$status" -eq 1 ]
+	[ "$output" = "vdt-qslim: cannot write '$TMP/l1.ply': Too many levels of symbolic links" ]
+	[ -L "$TMP/l1.ply" ] && [ -L "$TMP/l2.ply" ]
+	[ "$(ls -A "$TMP" | wc -l)" -eq 2 ]
+}
+
+@test "-o another user's file in a sticky directory, which rename may not replace, is refused before the work" {
+	[ "$(id -u)" -eq 0 ] || skip "not root"
+	command -v setpriv >/dev/null && id nobody >/dev/null 2>&1 || skip "no setpriv or nobody"
+	as="setpriv --reuid=nobody --regid=$(id -g nobody) --clear-groups"
+	mkdir -m 1777 "$TMP/shared"
+	printf 'old\n' > "$TMP/shared/theirs.off"
+	chmod 666 "$TMP/shared/theirs.off"
+	chmod 755 "$TMP"
+	run $as "$BIN/vdt-qslim" -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/shared/theirs.off"
+	[ "$status" -eq 1 ]
+	[ "$output" = "vdt-qslim: cannot write '$TMP/shared/theirs.off': it is another user's, in a sticky directory, where it can only be written in place (as with >), not replaced" ]
+	[ "$(cat "$TMP/shared/theirs.off")" = old ]
+	[ "$(ls -A "$TMP/shared")" = theirs.off ]
+	# a file of one's own there is replaced as anywhere
+	$as "$BIN/vdt-qslim" -q -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/shared/mine.off"
+	$as "$BIN/vdt-qslim" -q -r 0.4 "$SAMPLES/sphere.off" -o "$TMP/shared/mine.off"
+	[ "$(head -n 1 "$TMP/shared/mine.off")" = OFF ]
+}
