@@ -935,3 +935,12 @@ teardown() {
 	done
 	[ "$failed" -gt 5 ]
 }
+
+@test "vdt-batch names the temporary directory it cannot write in, status 1, nothing made" {
+	mkdir -p "$TMP/in"
+	cp "$SAMPLES/torus.off" "$TMP/in/"
+	TMPDIR="$TMP/missing" run "$BATCH" -q --ratios=50 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 1 ]
+	[ "$output" = "vdt-batch: cannot create a temporary file in '$TMP/missing': No such file or directory" ]
+	[ ! -e "$TMP/out" ]
+}
