@@ -198,6 +198,20 @@ vdt_mesh_unit_normals(struct vdt_mesh *m, struct vdt_err *err)
 	return 0;
 }
 
+void
+vdt_colors_from_text(float *c, size_t n)
+{
+	int integral = 1, above = 0;
+
+	for (size_t k = 0; k < 4 * n; k++)
+		if (!isnan(c[k])) {
+			integral &= c[k] == floorf(c[k]);
+			above |= c[k] > 1;
+		}
+	for (size_t k = 0; k < 4 * n; k++)
+		c[k] = isnan(c[k]) ? 1 : integral && above ? (float)(c[k] / 255.0) : c[k];
+}
+
 double
 vdt_triangle_quality(const float *a, const float *b, const float *c)
 {

@@ -129,6 +129,14 @@ int vdt_mesh_validate(const struct vdt_mesh *m, struct vdt_err *err);
 int vdt_mesh_unit_normals(struct vdt_mesh *m, struct vdt_err *err);
 
 /*
+ * The n colours c (4 floats each) a text format gave, NaN for a value it
+ * did not (white, opaque), into [0,1] as OFF and OBJ writers mean them:
+ * divided by 255 when every value given is integral and one exceeds 1
+ * (so that "1 0 0" stays red).
+ */
+void vdt_colors_from_text(float *c, size_t n);
+
+/*
  * The normal of triangle t, not normalised (its length is twice the
  * triangle's area), from its corners in double precision.
  */

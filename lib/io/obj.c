@@ -445,7 +445,7 @@ read_v(struct reader *r, struct obj *o, struct vdt_err *err)
 			o->col[k] = NAN;
 	}
 	if (o->col != NULL) {
-		/* (NaN: not given, which no file's value is; see scale_colours) */
+		/* (NaN: not given, which no file's value is) */
 		float *c = o->col + 4 * i;
 		for (size_t k = 0; k < 4; k++)
 			c[k] = n >= 6 && k + 3 < n ? v[k + 3] : NAN;
@@ -937,32 +937,6 @@ out:
 	return 0;
 }
 
-/*
- * The colours read, in [0,1]: a value not given (NaN) is 1 (white,
- * opaque), and the others are divided by 255 when every one of them is
- * integral and one exceeds 1 (so that "1 0 0" stays red).
- */
-static void
-scale_colours(struct obj *o)
-{
-	int integral = 1, above = 0;
-	size_t n = 4 * o->nv;
-
-	if (o->col == NULL)
-		return;
-	for (size_t k = 0; k < n; k++) {
-		float c = o->col[k];
-		if (c == c) {
-			integral &= c == floorf(c);
-			above |= c > 1;
-		}
-	}
-	for (size_t k = 0; k < n; k++) {
-		float c = o->col[k];
-		o->col[k] = c != c ? 1 : integral && above ? (float)(c / 255.0) : c;
-	}
-}
-
 /* Move the parsed arrays into m, one vertex per file vertex. */
 static void
 keep_numbers(struct obj *o, struct vdt_mesh *m)
@@ -1107,7 +1081,8 @@ vdt_obj_read(const unsigned char *buf, size_t len, struct vdt_mesh *m, struct vd
 		rc = mend_later(&o, err);
 	if (rc != 0)
 		goto out;
-	scale_colours(&o);
+	if (o.col != NULL)
+		vdt_colors_from_text(o.col, o.nv);
 	if (!o.any_t && !o.any_n)
 		keep_numbers(&o, m);
 	else if (o.lockstep && (!o.any_t || (!o.miss_t && o.nt == o.nv)) &&

@@ -245,13 +245,13 @@ read_header(struct reader *r, struct layout *l, long long *nv, long long *nf,
 	return 0;
 }
 
+/* The vertices into m, a colour's alpha NaN where the file gives none
+ * (vdt_colors_from_text makes the colours). */
 static int
-read_vertices(struct reader *r, const struct layout *l, struct vdt_mesh *m,
-              unsigned char *no_alpha, int *int_colors, struct vdt_err *err)
+read_vertices(struct reader *r, const struct layout *l, struct vdt_mesh *m, struct vdt_err *err)
 {
-	size_t need = 3 + (size_t)l->four + 3 * (size_t)l->normal +
-	              3 * (size_t)l->color + 2 * (size_t)l->st;
-	int fractional = 0, above_one = 0;
+	size_t need = 3 + (size_t)l->four + 3 * (size_t)l->normal + 3 * (size_t)l->color +
+	              2 * (size_t)l->st;
 	char q[24];
 
 	for (size_t i = 0; i < m->vertex_count; i++) {
@@ -310,22 +310,13 @@ read_vertices(struct reader *r, const struct layout *l, struct vdt_mesh *m,
 			/* A fourth colour value is alpha when the line has room for it. */
 			size_t nc = n >= need + 1 ? 4 : 3;
 
-			for (size_t c = 0; c < nc; c++) {
-				float x = v[k + c];
-				fractional |= x != floorf(x);
-				above_one |= x > 1;
-				m->colors[4 * i + c] = x;
-			}
-			if (nc == 3) {
-				m->colors[4 * i + 3] = 1;
-				no_alpha[i] = 1;
-			}
+			for (size_t c = 0; c < 4; c++)
+				m->colors[4 * i + c] = c < nc ? v[k + c] : NAN;
 			k += nc;
 		}
 		if (l->st)
 			memcpy(m->uvs + 2 * i, v + k, 2 * sizeof(float));
 	}
-	*int_colors = !fractional && above_one;
 	return 0;
 }
 
@@ -414,8 +405,7 @@ vdt_off_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 	struct reader r = {(const char *)buf, (const char *)buf + len, 1};
 	struct layout l;
 	long long nv, nf;
-	unsigned char *no_alpha = NULL;
-	int int_colors = 0, rc;
+	int rc;
 	size_t left;
 	unsigned long long per_vertex;
 
@@ -445,11 +435,7 @@ vdt_off_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 	                    err);
 	if (rc != 0)
 		return rc;
-	if (l.color && (no_alpha = calloc(nv > 0 ? (size_t)nv : 1, 1)) == NULL) {
-		rc = vdt_err_set(err, VDT_ENOMEM, "out of memory");
-		goto out;
-	}
-	rc = read_vertices(&r, &l, m, no_alpha, &int_colors, err);
+	rc = read_vertices(&r, &l, m, err);
 	if (rc == 0) {
 		struct vdt_polygon poly = {0};
 		rc = read_faces(&r, (size_t)nf, m, &poly, err);
@@ -463,13 +449,8 @@ vdt_off_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 		                 "more data ('%s' on line %zu) after the %lld faces the header declares",
 		                 quote(r.p, r.end, q), r.line, nf);
 	}
-	if (rc == 0 && int_colors)
-		for (size_t i = 0; i < m->vertex_count; i++)
-			for (int c = 0; c < 4; c++)
-				if (c < 3 || !no_alpha[i])
-					m->colors[4 * i + c] = (float)(m->colors[4 * i + c] / 255.0);
-out:
-	free(no_alpha);
+	if (rc == 0 && m->colors != NULL)
+		vdt_colors_from_text(m->colors, m->vertex_count);
 	if (rc != 0)
 		vdt_mesh_free(m);
 	return rc;
