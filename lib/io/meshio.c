@@ -105,49 +105,6 @@ is_text(const unsigned char *buf, size_t n)
 	return 1;
 }
 
-/*
- * The first word of OFF files, after blank and comment lines: the prefixes
- * ST, C, N, 4 and n, each at most once and in any order, then OFF (then
- * optionally " BINARY"), exactly what off.c accepts.
- */
-static int
-is_off(const unsigned char *buf, size_t n)
-{
-	size_t i = 0;
-	int st = 0, c = 0, nn = 0, four = 0, dim = 0;
-
-	for (;;) {
-		while (i < n && (buf[i] == ' ' || buf[i] == '\t' || buf[i] == '\r' || buf[i] == '\n' ||
-		                 buf[i] == '\f' || buf[i] == '\v'))
-			i++;
-		if (i < n && buf[i] == '#') {
-			while (i < n && buf[i] != '\n')
-				i++;
-			continue;
-		}
-		break;
-	}
-	for (;;) {
-		if (i + 1 < n && buf[i] == 'S' && buf[i + 1] == 'T' && !st)
-			st = 1, i += 2;
-		else if (i < n && buf[i] == 'C' && !c)
-			c = 1, i++;
-		else if (i < n && buf[i] == 'N' && !nn)
-			nn = 1, i++;
-		else if (i < n && buf[i] == '4' && !four)
-			four = 1, i++;
-		else if (i < n && buf[i] == 'n' && !dim)
-			dim = 1, i++;
-		else
-			break;
-	}
-	if (i + 3 > n || memcmp(buf + i, "OFF", 3) != 0)
-		return 0;
-	i += 3;
-	return i == n || buf[i] == '\n' || buf[i] == '\r' || buf[i] == ' ' ||
-	       buf[i] == '\t' || buf[i] == '\f' || buf[i] == '\v' || buf[i] == '#';
-}
-
 /* Where the first line that is neither blank nor a comment ('#') starts
  * in buf[0..n), or n. */
 static size_t
@@ -169,6 +126,40 @@ past_comments(const unsigned char *buf, size_t n)
 		}
 		return i;
 	}
+}
+
+/*
+ * The first word of OFF files, after blank and comment lines: the prefixes
+ * ST, C, N, 4 and n, each at most once and in any order, then OFF (then
+ * optionally " BINARY"), exactly what off.c accepts.
+ */
+static int
+is_off(const unsigned char *buf, size_t n)
+{
+	size_t i = past_comments(buf, n);
+	int st = 0, c = 0, nn = 0, four = 0, dim = 0;
+
+	while (i < n && (buf[i] == ' ' || buf[i] == '\t' || buf[i] == '\f' || buf[i] == '\v'))
+		i++;
+	for (;;) {
+		if (i + 1 < n && buf[i] == 'S' && buf[i + 1] == 'T' && !st)
+			st = 1, i += 2;
+		else if (i < n && buf[i] == 'C' && !c)
+			c = 1, i++;
+		else if (i < n && buf[i] == 'N' && !nn)
+			nn = 1, i++;
+		else if (i < n && buf[i] == '4' && !four)
+			four = 1, i++;
+		else if (i < n && buf[i] == 'n' && !dim)
+			dim = 1, i++;
+		else
+			break;
+	}
+	if (i + 3 > n || memcmp(buf + i, "OFF", 3) != 0)
+		return 0;
+	i += 3;
+	return i == n || buf[i] == '\n' || buf[i] == '\r' || buf[i] == ' ' ||
+	       buf[i] == '\t' || buf[i] == '\f' || buf[i] == '\v' || buf[i] == '#';
 }
 
 /*
@@ -1063,12 +1054,20 @@ vdt_output_temp_done(const char *tmp)
 		}
 }
 
+/* The directory of target, its first dl bytes ("." for none), or NULL
+ * without the memory. */
+static char *
+dir_of(const char *target, size_t dl)
+{
+	return dl ? strndup(target, dl) : strdup(".");
+}
+
 /* The longest name the directory of target (its first dl bytes) holds. */
 static size_t
 name_max(const char *target, size_t dl)
 {
-	char *dir = dl ? strndup(target, dl) : NULL;
-	long n = dl && dir == NULL ? -1 : pathconf(dl ? dir : ".", _PC_NAME_MAX);
+	char *dir = dir_of(target, dl);
+	long n = dir == NULL ? -1 : pathconf(dir, _PC_NAME_MAX);
 
 	free(dir);
 	return n > 0 ? (size_t)n : NAME_MAX;
@@ -1096,11 +1095,11 @@ vdt_output_temp(const char *target, char **tmp, struct vdt_err *err)
 	 * of another user's in a sticky directory (/tmp), which rename may
 	 * not replace, is said now rather than after the work. */
 	struct stat ts, ds;
-	if (lstat(target, &ts) == 0 && S_ISLNK(ts.st_mode) && stat(target, &ts) != 0 &&
-	    errno == ELOOP)
+	int there = stat(target, &ts) == 0;
+	if (!there && errno == ELOOP)
 		return vdt_err_set(err, VDT_EIO, "%s", strerror(ELOOP));
-	if (stat(target, &ts) == 0 && geteuid() != 0 && ts.st_uid != geteuid()) {
-		char *dir = dl > 0 ? strndup(target, dl) : strdup(".");
+	if (there && geteuid() != 0 && ts.st_uid != geteuid()) {
+		char *dir = dir_of(target, dl);
 		int sticky = dir != NULL && stat(dir, &ds) == 0 && (ds.st_mode & S_ISVTX) &&
 		             ds.st_uid != geteuid();
 		free(dir);
