@@ -16,7 +16,7 @@ tree() {
 
 @test "vdt-render rejects every bad option value with status 2 and one line" {
 	tree
-	for bad in "--bogus" "-p 0" "-p x" "-b 0" "-b 1x" "--fovea -1" "--eye 1,2" "--at a,b,c" \
+	for bad in "--bogus" "-p 0" "-p x" "-b 0" "-b 1x" "--fovea -1" "--eye 1,2" "--eye 0x1,0,3" "--fov 0x20" "--at a,b,c" \
 	    "--up 1,2,3,4" "--fov 0" "--fov 180" "--size 0x10" "--size 10" "--size 10x10x" \
 	    "--light 1" "--light 0,0,0" "-o %d%d.png" "--mesh-out %s.off" "-o %021d.png" \
 	    "-o %05000d.png" "--mesh-out %99999999999999999999d.off"; do
