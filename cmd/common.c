@@ -222,6 +222,10 @@ note_dropped(const char *path, unsigned dropped, int quiet)
 		note("note: '%s' names materials (mtllib, usemtl), which %s does not keep: "
 		     "the output has none, and its textures no longer apply\n",
 		     input_name(path), progname);
+	if (!quiet && (dropped & VDT_DROPPED_TEXTURE))
+		note("note: '%s' names a texture file (comment TextureFile), which %s does not "
+		     "keep: the output has the texture coordinates but names no texture\n",
+		     input_name(path), progname);
 }
 
 void

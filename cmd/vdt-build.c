@@ -159,6 +159,7 @@ run(struct cmdline *cl)
 		goto out;
 	}
 	note_float_precision(cl->in, &m, cl->quiet);
+	note_dropped(cl->in, m.dropped, cl->quiet);
 	/* (the tree's faces are its own) */
 	drop_materials(cl->in, &extra, cl->quiet);
 	if ((rc = vdt_vtree_prepare(&m, &dropped, &err)) != 0) {

@@ -37,6 +37,7 @@ struct vdt_mesh {
 
 enum {
 	VDT_DROPPED_MATERIALS = 1u << 0, /* OBJ's mtllib and usemtl */
+	VDT_DROPPED_TEXTURE = 1u << 1,   /* a PLY's "comment TextureFile" */
 };
 
 /*

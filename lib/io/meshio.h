@@ -314,8 +314,10 @@ int vdt_read_memory(const unsigned char *buf, size_t len, const char *name,
  * non-finite.
  *
  * vdt_ply_read: PLY, ASCII or binary of either byte order (ply.c, native);
- *   polygons are triangulated (polygon.h), elements other than vertex and face and
- *   unknown properties are skipped. A negative list count, or a float index
+ *   polygons are triangulated (polygon.h); face colours and texcoord lists
+ *   become vertex attributes, vertices split where their faces differ;
+ *   elements other than vertex and face and unknown properties are skipped
+ *   (a "comment TextureFile" sets VDT_DROPPED_TEXTURE). A negative list count, or a float index
  *   that is not a whole number, is refused with its record (plyhead.h).
  * vdt_obj_read: Wavefront OBJ (obj.c, native): v (with optional vertex
  *   colours), vt, vn and f; polygons are triangulated. Vertices are

@@ -10,7 +10,8 @@
  * Vertices take x y z, nx ny nz, s t (or u v, texture_u texture_v, ...) and
  * red green blue [alpha] (8- or 16-bit integers scaled to [0,1], or floats
  * taken as they are); faces their vertex_indices (or vertex_index) list,
- * triangulated (polygon.h). Other properties and elements are skipped.
+ * triangulated (polygon.h), and colours and a texcoord list, which split
+ * the vertices (split_corners). Other properties and elements are skipped.
  *
  * The header is untrusted: every count is checked against the bytes that
  * remain before anything is allocated (an ASCII value takes at least two
@@ -27,6 +28,7 @@
 #include <string.h>
 
 #include "../bytes.h"
+#include "../hash.h"
 #include "../mem.h"
 #include "text.h"
 
@@ -203,6 +205,340 @@ read_vertices(const struct vdt_plyhead *h, const struct vdt_ply_element *e,
 }
 
 /*
+ * What faces may carry for their corners besides vertex numbers, as MeshLab
+ * and photogrammetry exporters write them: a colour per face (red green
+ * blue [alpha], the names vertices take) and a texcoord list of two values
+ * per corner. Gathered per corner of the triangles as the faces are read,
+ * then made vertex attributes by splitting the vertices whose corners
+ * differ (split_corners), as an OBJ's (v, vt) pairs are.
+ */
+struct corners {
+	size_t col[4]; /* property numbers of red green blue alpha, or NONE */
+	size_t tex;    /* that of the texcoord list, or NONE */
+	float *uv;     /* 2 per corner of the triangles, or NULL */
+	float *rgba;   /* 4 per corner, or NULL */
+	size_t cap;    /* triangles they hold */
+	/* the face being read */
+	float face_rgba[4];
+	float *face_uv;                    /* 2 per vertex of the face */
+	uint32_t *face_v;                  /* its vertices */
+	size_t face_n, face_cap, face_tex; /* vertices, room, texcoord values */
+};
+
+#define NONE ((size_t)-1)
+
+static void
+corners_free(struct corners *c)
+{
+	free(c->uv);
+	free(c->rgba);
+	free(c->face_uv);
+	free(c->face_v);
+}
+
+/* Find the face properties c gathers; 0 when there are none. */
+static int
+corners_find(const struct vdt_ply_element *e, struct corners *c)
+{
+	int any = 0;
+
+	memset(c, 0, sizeof(*c));
+	c->tex = NONE;
+	for (int k = 0; k < 4; k++)
+		c->col[k] = NONE;
+	for (size_t i = 0; i < e->prop_count; i++) {
+		const struct vdt_ply_prop *pr = &e->props[i];
+		int a = attr_of(pr->name);
+
+		if (pr->count_type == VDT_PLY_NONE && a >= A_R && c->col[a - A_R] == NONE)
+			c->col[a - A_R] = i;
+		else if (pr->count_type != VDT_PLY_NONE && c->tex == NONE &&
+		         strcmp(pr->name, "texcoord") == 0)
+			c->tex = i;
+	}
+	if (c->col[0] == NONE || c->col[1] == NONE || c->col[2] == NONE)
+		c->col[0] = c->col[1] = c->col[2] = c->col[3] = NONE;
+	any = c->col[0] != NONE || c->tex != NONE;
+	c->face_rgba[3] = 1;
+	return any;
+}
+
+/* Room for tris triangles' corners. */
+static int
+corners_reserve(struct corners *c, size_t tris, struct vdt_err *err)
+{
+	if (tris <= c->cap)
+		return 0;
+	if (tris > SIZE_MAX / (12 * sizeof(float)))
+		return vdt_err_set(err, VDT_ENOMEM, "too many triangles");
+	if (c->tex != NONE) {
+		float *n = realloc(c->uv, tris * 6 * sizeof(float));
+		if (n == NULL)
+			return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu triangles", tris);
+		c->uv = n;
+	}
+	if (c->col[0] != NONE) {
+		float *n = realloc(c->rgba, tris * 12 * sizeof(float));
+		if (n == NULL)
+			return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu triangles", tris);
+		c->rgba = n;
+	}
+	c->cap = tris;
+	return 0;
+}
+
+/* Room for a face of n vertices, or n texcoord pairs, keeping what the
+ * face has given so far. */
+static int
+corners_room(struct corners *c, size_t n, struct vdt_err *err)
+{
+	if (n <= c->face_cap)
+		return 0;
+	if (n > SIZE_MAX / (2 * sizeof(float)))
+		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate a face of %zu vertices", n);
+	uint32_t *v = realloc(c->face_v, n * sizeof(*v));
+	if (v != NULL)
+		c->face_v = v;
+	float *uv = realloc(c->face_uv, 2 * n * sizeof(*uv));
+	if (uv != NULL)
+		c->face_uv = uv;
+	if (v == NULL || uv == NULL)
+		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate a face of %zu vertices", n);
+	c->face_cap = n;
+	return 0;
+}
+
+/* Whether c gathers property i. */
+static int
+corners_held(const struct corners *c, size_t i)
+{
+	return c->cap > 0 && (i == c->tex || i == c->col[0] || i == c->col[1] || i == c->col[2] ||
+	                      i == c->col[3]);
+}
+
+/*
+ * Value d of property i of face f, of type t, if c gathers it. A texcoord
+ * list gives its values in order, into room made for them (corners_room).
+ */
+static int
+corners_value(struct corners *c, size_t i, double d, enum vdt_ply_type t, uint64_t f,
+              struct vdt_err *err)
+{
+	float x = 0;
+
+	if (i == c->tex)
+		x = c->face_uv[c->face_tex++] = (float)d;
+	for (int k = 0; k < 4; k++)
+		if (i == c->col[k])
+			x = c->face_rgba[k] = (float)color_value(d, t);
+	if (!isfinite(x))
+		return vdt_err_set(err, VDT_EINVAL, "face %llu: %s %g %s", (unsigned long long)f,
+		                   i == c->tex ? "texture coordinate" : "colour", d,
+		                   isfinite(d) ? "out of float range" : "is not finite");
+	return 0;
+}
+
+/* Whether face f's texcoord list of count values fits its n vertices:
+ * two values for each, or none (the face has no texture). */
+static int
+corners_count(int64_t count, int64_t n, uint64_t f, struct vdt_err *err)
+{
+	if (count == 2 * n || count == 0)
+		return 0;
+	return vdt_err_set(err, VDT_EFORMAT, "face %llu has %lld texcoord values for %lld vertices",
+	                   (unsigned long long)f, (long long)count, (long long)n);
+}
+
+/* The face just read gave triangles from..to-1 of tri: their corners take
+ * its attributes, a corner those of the first place of its vertex in the
+ * face (a face that repeats a vertex gives it one texture coordinate). */
+static void
+corners_put(struct corners *c, const uint32_t *tri, size_t from, size_t to)
+{
+	for (size_t j = 3 * from; j < 3 * to; j++) {
+		if (c->rgba != NULL)
+			memcpy(c->rgba + 4 * j, c->face_rgba, sizeof(c->face_rgba));
+		if (c->uv != NULL) {
+			size_t k = 0;
+
+			while (k < c->face_n && c->face_v[k] != tri[j])
+				k++;
+			if (c->face_tex == 0 || k == c->face_n) {
+				c->uv[2 * j] = c->uv[2 * j + 1] = 0;
+			} else {
+				c->uv[2 * j] = c->face_uv[2 * k];
+				c->uv[2 * j + 1] = c->face_uv[2 * k + 1];
+			}
+		}
+	}
+	c->face_rgba[3] = 1;
+}
+
+/* Whether corners a and b carry the same attributes, bit for bit. */
+static int
+corners_same(const struct corners *c, size_t a, size_t b)
+{
+	return (c->uv == NULL || memcmp(c->uv + 2 * a, c->uv + 2 * b, 2 * sizeof(float)) == 0) &&
+	       (c->rgba == NULL ||
+	        memcmp(c->rgba + 4 * a, c->rgba + 4 * b, 4 * sizeof(float)) == 0);
+}
+
+static uint64_t
+corner_key(const struct corners *c, uint32_t v, size_t j)
+{
+	uint64_t h = v;
+	uint32_t x;
+
+	for (int k = 0; c->uv != NULL && k < 2; k++) {
+		memcpy(&x, c->uv + 2 * j + k, sizeof(x));
+		h = vdt_hash_mix(h ^ x);
+	}
+	for (int k = 0; c->rgba != NULL && k < 4; k++) {
+		memcpy(&x, c->rgba + 4 * j + k, sizeof(x));
+		h = vdt_hash_mix(h ^ ((uint64_t)x << 32));
+	}
+	return vdt_hash_mix(h);
+}
+
+/*
+ * Make the corners' attributes the vertices': a vertex takes those of its
+ * first corner and keeps its number; a corner that differs goes to a copy
+ * of it, one for each different set, numbered after the vertices in the
+ * order of first use. Vertices used by no face keep theirs, or none (0, 0
+ * and opaque white).
+ */
+static int
+split_corners(struct vdt_mesh *m, const struct corners *c, struct vdt_err *err)
+{
+	size_t nv = m->vertex_count, nc = 3 * m->triangle_count, n = nv;
+	uint32_t *def = NULL, *src = NULL, *slot = NULL, mask;
+	int rc = 0;
+
+	if (nc == 0)
+		return 0;
+	if (nv + nc > UINT32_MAX || nc > (size_t)1 << 30) /* (and a table of 2 slots a corner) */
+		return vdt_err_set(err, VDT_EFORMAT,
+		                   "%zu vertices and %zu corners: too many vertices once split by "
+		                   "the faces' colours and texture coordinates",
+		                   nv, nc);
+	mask = vdt_hash_mask(2 * nc);
+	def = malloc((nv + nc) * sizeof(*def)); /* the corner whose attributes a vertex has */
+	src = malloc(nc * sizeof(*src));        /* the vertex a copy is of */
+	slot = malloc(((size_t)mask + 1) * sizeof(*slot));
+	if (def == NULL || src == NULL || slot == NULL) {
+		rc = vdt_err_set(err, VDT_ENOMEM, "cannot split the vertices of %zu corners", nc);
+		goto out;
+	}
+	for (size_t v = 0; v < nv; v++)
+		def[v] = UINT32_MAX;
+	memset(slot, 0xff, ((size_t)mask + 1) * sizeof(*slot));
+	for (size_t j = 0; j < nc; j++) {
+		uint32_t v = m->triangles[j], s, w;
+
+		if (def[v] == UINT32_MAX) {
+			def[v] = (uint32_t)j;
+			w = v;
+		} else if (corners_same(c, def[v], j)) {
+			continue;
+		} else {
+			w = UINT32_MAX;
+		}
+		/* (the first corner of v goes in the table too, so that a later
+		 * one finds it there) */
+		for (s = (uint32_t)corner_key(c, v, j) & mask; slot[s] != UINT32_MAX;
+		     s = (s + 1) & mask) {
+			uint32_t o = slot[s];
+
+			if ((o < nv ? o : src[o - nv]) == v && corners_same(c, def[o], j))
+				break;
+		}
+		if (slot[s] != UINT32_MAX) {
+			m->triangles[j] = slot[s];
+			continue;
+		}
+		if (w == UINT32_MAX) {
+			w = (uint32_t)n++;
+			def[w] = (uint32_t)j;
+			src[w - nv] = v;
+			m->triangles[j] = w;
+		}
+		slot[s] = w;
+	}
+
+	struct vdt_mesh s;
+	unsigned attrs =
+	        vdt_mesh_attrs(m) | (c->uv ? VDT_ATTR_UVS : 0) | (c->rgba ? VDT_ATTR_COLORS : 0);
+	if ((rc = vdt_mesh_alloc(&s, n, 0, attrs, err)) != 0)
+		goto out;
+	for (size_t w = 0; w < n; w++) {
+		size_t v = w < nv ? w : src[w - nv], j = def[w];
+
+		memcpy(s.positions + 3 * w, m->positions + 3 * v, 3 * sizeof(float));
+		if (s.normals)
+			memcpy(s.normals + 3 * w, m->normals + 3 * v, 3 * sizeof(float));
+		if (c->uv && j != UINT32_MAX)
+			memcpy(s.uvs + 2 * w, c->uv + 2 * j, 2 * sizeof(float));
+		else if (s.uvs)
+			memcpy(s.uvs + 2 * w, m->uvs ? m->uvs + 2 * v : (const float[2]){0, 0},
+			       2 * sizeof(float));
+		if (c->rgba && j != UINT32_MAX)
+			memcpy(s.colors + 4 * w, c->rgba + 4 * j, 4 * sizeof(float));
+		else if (s.colors)
+			memcpy(s.colors + 4 * w,
+			       m->colors ? m->colors + 4 * v : (const float[4]){1, 1, 1, 1},
+			       4 * sizeof(float));
+	}
+	free(s.triangles);
+	s.triangles = m->triangles;
+	s.triangle_count = m->triangle_count;
+	s.dropped = m->dropped;
+	m->triangles = NULL;
+	vdt_mesh_free(m);
+	*m = s;
+out:
+	free(def);
+	free(src);
+	free(slot);
+	return rc;
+}
+
+/* The attributes cs gathers from the binary record r of face f, of c
+ * vertices. */
+static int
+face_corners(const struct vdt_ply_element *e, struct corners *cs, const unsigned char *r, int be,
+             uint64_t f, int64_t c, struct vdt_err *err)
+{
+	int rc;
+
+	cs->face_n = cs->face_tex = 0;
+	if ((rc = corners_room(cs, (size_t)c, err)) != 0)
+		return rc;
+	for (size_t i = 0; i < e->prop_count; i++) {
+		const struct vdt_ply_prop *pr = &e->props[i];
+		const unsigned char *q;
+		int64_t n = 1;
+
+		if (!corners_held(cs, i))
+			continue;
+		q = r + vdt_plyhead_list_offset(e, i, r, be);
+		if (i == cs->tex) {
+			n = vdt_plyhead_int(q, pr->count_type, be);
+			if ((rc = corners_count(n, c, f, err)) != 0)
+				return rc;
+			q += vdt_ply_type_size[pr->count_type];
+		}
+		for (int64_t k = 0; k < n; k++)
+			if ((rc = corners_value(
+			             cs, i,
+			             vdt_plyhead_scalar(q + (size_t)k * vdt_ply_type_size[pr->type],
+			                                pr->type, be),
+			             pr->type, f, err)) != 0)
+				return rc;
+	}
+	return 0;
+}
+
+/*
  * Walk the face records twice: once to count triangles and check every
  * record fits, once to fan-triangulate into m->triangles.
  */
@@ -254,8 +590,13 @@ read_faces(const struct vdt_plyhead *h, const struct vdt_ply_element *e,
 
 	size_t nt = 0, nv = m->vertex_count;
 	struct vdt_polygon poly = {0};
+	struct corners co;
 	int simple = li == 0 && e->prop_count == 1 && lp->count_type == VDT_PLY_U8 &&
 	             (lp->type == VDT_PLY_I32 || lp->type == VDT_PLY_U32) && !be;
+	int rc = 0;
+
+	if (corners_find(e, &co) && (rc = corners_reserve(&co, tris, err)) != 0)
+		goto fail;
 	o = 0;
 	for (uint64_t f = 0; f < e->count; f++) {
 		size_t lo = 0;
@@ -271,10 +612,9 @@ read_faces(const struct vdt_plyhead *h, const struct vdt_ply_element *e,
 					int64_t v = lp->type == VDT_PLY_I32 ? (int32_t)vdt_get_u32le(q + 4 * k)
 					                              : (int64_t)vdt_get_u32le(q + 4 * k);
 					if (v < 0 || (uint64_t)v >= nv) {
-						free(t);
-						vdt_polygon_free(&poly);
-						return vdt_plyhead_bad_index((double)v, lp->type, f,
-						                             nv, VDT_EINVAL, err);
+						rc = vdt_plyhead_bad_index((double)v, lp->type, f,
+						                           nv, VDT_EINVAL, err);
+						goto fail;
 					}
 					t[3 * nt + k] = (uint32_t)v;
 				}
@@ -287,17 +627,20 @@ read_faces(const struct vdt_plyhead *h, const struct vdt_ply_element *e,
 			c = vdt_plyhead_int(p + o + lo, lp->count_type, be);
 			q = p + o + lo + cs;
 		}
+		if (co.cap > 0 && (rc = face_corners(e, &co, p + o, be, f, c, err)) != 0)
+			goto fail;
 		first = prev = -1;
 		for (int64_t k = 0; k < c; k++) {
 			int64_t v = vdt_plyhead_int(q + (size_t)k * is, lp->type, be);
 
 			if (v < 0 || (uint64_t)v >= nv) {
-				free(t);
-				vdt_polygon_free(&poly);
-				return vdt_plyhead_bad_index(
+				rc = vdt_plyhead_bad_index(
 				        vdt_plyhead_scalar(q + (size_t)k * is, lp->type, be),
 				        lp->type, f, nv, VDT_EINVAL, err);
+				goto fail;
 			}
+			if (co.cap > 0)
+				co.face_v[co.face_n++] = (uint32_t)v;
 			if (k == 0)
 				first = v;
 			else if (k >= 2) {
@@ -311,18 +654,30 @@ read_faces(const struct vdt_plyhead *h, const struct vdt_ply_element *e,
 		if (c > 3 &&
 		    vdt_polygon_refan(&poly, vdt_polygon_floats, m->positions,
 		                      t + 3 * (nt - (size_t)(c - 2)), (size_t)c, NULL, 0) != 0) {
-			free(t);
-			vdt_polygon_free(&poly);
-			return vdt_err_set(err, VDT_ENOMEM,
-			                   "cannot triangulate face %llu of %lld vertices",
-			                   (unsigned long long)f, (long long)c);
+			rc = vdt_err_set(err, VDT_ENOMEM,
+			                 "cannot triangulate face %llu of %lld vertices",
+			                 (unsigned long long)f, (long long)c);
+			goto fail;
 		}
+		if (co.cap > 0)
+			corners_put(&co, t, nt - (size_t)(c - 2), nt);
 		o += vdt_plyhead_record_size(e, p + o, *used - o, be);
 	}
 	vdt_polygon_free(&poly);
 	m->triangles = t;
 	m->triangle_count = nt;
+	if (co.cap > 0 && (rc = split_corners(m, &co, err)) != 0) {
+		m->triangles = NULL; /* (the caller's mesh keeps its own) */
+		t = NULL;
+		goto fail;
+	}
+	corners_free(&co);
 	return 0;
+fail:
+	corners_free(&co);
+	vdt_polygon_free(&poly);
+	free(t);
+	return rc;
 }
 
 /* ASCII records: the values of one element after another, one per line. */
@@ -545,6 +900,7 @@ text_faces(struct text *t, const struct vdt_ply_element *e, struct vdt_mesh *m, 
 	size_t nv = m->vertex_count;
 	struct where w = {e, 0};
 	struct vdt_polygon poly = {0};
+	struct corners cs;
 	uint32_t *tri;
 	double d;
 	int rc;
@@ -554,7 +910,12 @@ text_faces(struct text *t, const struct vdt_ply_element *e, struct vdt_mesh *m, 
 	if (cap > SIZE_MAX / (3 * sizeof(uint32_t)) ||
 	    (tri = malloc(cap * 3 * sizeof(uint32_t))) == NULL)
 		return vdt_err_set(err, VDT_ENOMEM, "cannot allocate %zu triangles", cap);
+	if (corners_find(e, &cs) && (rc = corners_reserve(&cs, cap, err)) != 0)
+		goto fail;
 	for (; w.r < e->count; w.r++) {
+		size_t from = nt;
+
+		cs.face_n = cs.face_tex = 0;
 		for (size_t i = 0; i < e->prop_count; i++) {
 			const struct vdt_ply_prop *pr = &e->props[i];
 			int64_t c = 1, first = 0, prev = 0;
@@ -567,19 +928,30 @@ text_faces(struct text *t, const struct vdt_ply_element *e, struct vdt_mesh *m, 
 				                 (unsigned long long)w.r, (long long)c);
 				goto fail;
 			}
+			if (cs.cap > 0 && (i == li || i == cs.tex) &&
+			    (rc = corners_room(&cs, i == li ? (size_t)c : (size_t)c / 2 + 1,
+			                       err)) != 0)
+				goto fail;
 			for (int64_t k = 0; k < c; k++) {
 				int64_t v;
 
-				if ((rc = text_value(t, pr->type, 0, &w, &d, err)) != 0)
+				if ((rc = text_value(t, pr->type, corners_held(&cs, i), &w, &d,
+				                     err)) != 0)
 					goto fail;
-				if (i != li)
+				if (i != li) {
+					if (cs.cap > 0 && (rc = corners_value(&cs, i, d, pr->type,
+					                                      w.r, err)) != 0)
+						goto fail;
 					continue;
+				}
 				v = vdt_plyhead_whole(d);
 				if (v < 0 || (uint64_t)v >= nv) {
 					rc = vdt_plyhead_bad_index(d, pr->type, w.r, nv, VDT_EINVAL,
 					                           err);
 					goto fail;
 				}
+				if (cs.cap > 0)
+					cs.face_v[cs.face_n++] = (uint32_t)v;
 				if (k == 0) {
 					first = v;
 				} else if (k >= 2) {
@@ -594,6 +966,9 @@ text_faces(struct text *t, const struct vdt_ply_element *e, struct vdt_mesh *m, 
 						}
 						tri = n;
 						cap *= 2;
+						if (cs.cap > 0 &&
+						    (rc = corners_reserve(&cs, cap, err)) != 0)
+							goto fail;
 					}
 					tri[3 * nt] = (uint32_t)first;
 					tri[3 * nt + 1] = (uint32_t)prev;
@@ -614,13 +989,26 @@ text_faces(struct text *t, const struct vdt_ply_element *e, struct vdt_mesh *m, 
 		}
 		if ((rc = text_end_record(t, &w, err)) != 0)
 			goto fail;
+		if (cs.cap > 0) {
+			if (cs.tex != NONE &&
+			    (rc = corners_count((int64_t)cs.face_tex, (int64_t)cs.face_n, w.r,
+			                        err)) != 0)
+				goto fail;
+			corners_put(&cs, tri, from, nt);
+		}
 	}
 	vdt_polygon_free(&poly);
 	free(m->triangles);
 	m->triangles = tri;
 	m->triangle_count = nt;
+	if (cs.cap > 0 && (rc = split_corners(m, &cs, err)) != 0) {
+		corners_free(&cs);
+		return rc; /* (m, and tri with it, the caller frees) */
+	}
+	corners_free(&cs);
 	return 0;
 fail:
+	corners_free(&cs);
 	vdt_polygon_free(&poly);
 	free(tri);
 	return rc;
@@ -786,6 +1174,8 @@ vdt_ply_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
 	}
 	rc = vdt_plyhead_check_end(h, buf, len, pos, 0, err);
 out:
+	if (rc == 0 && h->texture_file)
+		m->dropped |= VDT_DROPPED_TEXTURE;
 	free(h);
 	if (rc != 0)
 		vdt_mesh_free(m);

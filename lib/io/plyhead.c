@@ -130,6 +130,8 @@ vdt_plyhead_parse(const unsigned char *buf, size_t len, struct vdt_plyhead *h,
 			header_box(h, line + 13, ll - 13);
 			continue;
 		}
+		if (ll >= 20 && memcmp(line, "comment TextureFile ", 20) == 0)
+			h->texture_file = 1;
 		if ((ll >= 7 && memcmp(line, "comment", 7) == 0) ||
 		    (ll >= 8 && memcmp(line, "obj_info", 8) == 0))
 			continue;

@@ -51,6 +51,7 @@ struct vdt_plyhead {
 	/* A "comment bbox XMIN YMIN ZMIN XMAX YMAX ZMAX" line (vdt's writers
 	 * put one), a claim nothing checks: has_box 1 and box filled. */
 	int has_box;
+	int texture_file; /* a "comment TextureFile" line */
 	double box[6];
 };
 

@@ -144,3 +144,81 @@ EOF
 	run "$BIN/vdt-qslim" -r 0.5 "$SAMPLES/sphere-uv.obj" -o "$TMP/s.ply"
 	[ -z "$output" ]
 }
+
+# A cube of six quads as MeshLab and photogrammetry tools write a textured
+# PLY: per-face colours and a texcoord list of the face's corners (each
+# face its own square of an atlas), ASCII ($2 ascii) or binary.
+face_attr_cube() {
+	python3 - "$1" "$2" <<'PY'
+import struct, sys
+path, mode = sys.argv[1], sys.argv[2]
+V = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
+F = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
+cols = [(255, 0, 0), (0, 255, 0), (0, 0, 255), (255, 255, 0), (0, 255, 255), (255, 0, 255)]
+f32 = lambda x: struct.unpack("<f", struct.pack("<f", x))[0]
+def uv(fi, k):
+    return (f32(fi % 3 / 4 + [0, 1, 1, 0][k] / 5), f32(fi // 3 / 2 + [0, 0, 1, 1][k] / 3))
+head = ["ply", "format %s 1.0" % ("ascii" if mode == "ascii" else "binary_little_endian"),
+        "comment TextureFile atlas.png", "element vertex 8", "property float x",
+        "property float y", "property float z", "element face 6",
+        "property list uchar int vertex_indices", "property list uchar float texcoord",
+        "property uchar red", "property uchar green", "property uchar blue", "end_header"]
+with open(path, "wb") as out:
+    out.write(("\n".join(head) + "\n").encode())
+    for v in V:
+        out.write(("%g %g %g\n" % v).encode() if mode == "ascii" else struct.pack("<3f", *v))
+    for fi, f in enumerate(F):
+        t = [c for k in range(4) for c in uv(fi, k)]
+        if mode == "ascii":
+            out.write(("4 %s 8 %s %d %d %d\n" % (" ".join(map(str, f)),
+                       " ".join("%.9g" % x for x in t), *cols[fi])).encode())
+        else:
+            out.write(struct.pack("<B4iB8f3B", 4, *f, 8, *t, *cols[fi]))
+PY
+}
+
+@test "PLY per-face colours and texcoord lists become vertex attributes, split where faces differ" {
+	face_attr_cube "$TMP/a.ply" ascii
+	face_attr_cube "$TMP/b.ply" binary
+	run "$BIN/vdt-qslim" -r 1 "$TMP/a.ply" -o "$TMP/a.obj"
+	[ "$status" -eq 0 ]
+	# (the texture itself is not kept, and the note says so)
+	[[ "$output" == *"'$TMP/a.ply' names a texture file (comment TextureFile)"*"names no texture"* ]]
+	"$BIN/vdt-qslim" -q -r 1 "$TMP/b.ply" -o "$TMP/b.obj"
+	cmp "$TMP/a.obj" "$TMP/b.obj"
+	# every corner of the 6 faces its own vertex: 24, with its face's
+	# colour and its own place in the atlas
+	[ "$(grep -c '^v ' "$TMP/a.obj")" -eq 24 ]
+	[ "$(grep -c '^vt ' "$TMP/a.obj")" -eq 24 ]
+	[ "$(grep '^v ' "$TMP/a.obj" | cut -d' ' -f5-7 | sort | uniq -c | awk '{ print $1 }' | sort -u)" = 4 ]
+	grep -qx 'v 0 0 0 1 0 0' "$TMP/a.obj"
+	grep -qx 'v 0 1 1 1 1 0' "$TMP/a.obj"
+	# (face 1's third corner: u = 1/4 + 1/5, v = 1/3)
+	grep -q '^vt 0.449999988 0.333333343$' "$TMP/a.obj"
+	# simplified, the output still has texture coordinates and colours
+	"$BIN/vdt-qslim" -q -r 0.5 "$TMP/b.ply" -F ply-ascii -o "$TMP/h.ply"
+	grep -qx 'property float s' "$TMP/h.ply"
+	grep -qx 'property uchar red' "$TMP/h.ply"
+}
+
+@test "PLY face texcoords: a count that does not fit the face, or a value out of range, is refused" {
+	head='ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 2\nproperty list uchar int vertex_indices\nproperty list uchar float texcoord\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n'
+	{ printf "$head"; printf '%s\n' '3 0 1 2 6 0 0 1 0 1 1' '3 0 2 3 4 0 0 1 1'; } > "$TMP/count.ply"
+	run "$BIN/vdt-qslim" -r 1 "$TMP/count.ply" -o "$TMP/out.obj"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-qslim: cannot read '$TMP/count.ply': face 1 has 4 texcoord values for 3 vertices" ]
+	[ ! -e "$TMP/out.obj" ]
+	{ printf "$head"; printf '%s\n' '3 0 1 2 6 0 0 1 0 1 nan' '3 0 2 3 0'; } > "$TMP/nan.ply"
+	run "$BIN/vdt-qslim" -r 1 "$TMP/nan.ply" -o "$TMP/out.obj"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-qslim: cannot read '$TMP/nan.ply': face 0: texture coordinate nan is not finite" ]
+	{ printf "$head"; printf '%s\n' '3 0 1 2 6 0 0 1 0 1 1' '3 0 2 3 6 0 0 1 1 1e39 1'; } > "$TMP/big.ply"
+	run "$BIN/vdt-qslim" -r 1 "$TMP/big.ply" -o "$TMP/out.obj"
+	[ "$status" -eq 2 ]
+	[[ "$output" == *"'1e39' in face 1 is out of float range" ]]
+	# a face with no texcoords (an untextured part) takes 0 0
+	{ printf "$head"; printf '%s\n' '3 0 1 2 6 0 0 1 0 1 1' '3 0 2 3 0'; } > "$TMP/none.ply"
+	"$BIN/vdt-qslim" -q -r 1 "$TMP/none.ply" -o "$TMP/out.obj"
+	[ "$(grep -c '^vt 0 0$' "$TMP/out.obj")" -eq 3 ]
+	[ ! -e "$TMP/out.ply" ]
+}
