@@ -119,6 +119,7 @@ struct engine {
 	const uint8_t *twice;   /* vdt_contract_opts.twice */
 	double cos_max, min_quality;
 	int allow_nonmanifold, keep_parts, keep_a_face, keep_holes;
+	int vanish;             /* ops->vanish, with keep_parts 0, the vertex queue, no record */
 	size_t max_removed;     /* vdt_contract_opts.max_removed_faces */
 	const struct vdt_contract_ops *ops;
 
@@ -706,6 +707,44 @@ unreject(struct engine *e, uint32_t p)
 	}
 }
 
+/*
+ * Whether a and b are corners of a closed tetrahedron that is a whole
+ * part, none of whose vertices is locked: each of its four vertices in
+ * three faces, of the four alone (4 x 3 corners: its 4 faces and no
+ * other). Fills the other two corners.
+ */
+static int
+tetrahedron(const struct engine *e, uint32_t a, uint32_t b, uint32_t *c, uint32_t *d)
+{
+	uint32_t x[4] = {a, b, NONE, NONE};
+	int n = 2;
+
+	if (e->vt[a].len != 3 || e->vt[b].len != 3)
+		return 0;
+	for (int s = 0; s < 2; s++)
+		for (uint32_t i = 0; i < 3; i++) {
+			const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[e->vt[x[s]].off + i];
+			for (int k = 0; k < 3; k++) {
+				int j = 0;
+				while (j < n && x[j] != t[k])
+					j++;
+				if (j == n) {
+					if (n == 4)
+						return 0;
+					x[n++] = t[k];
+				}
+			}
+		}
+	if (n != 4 || e->vt[x[2]].len != 3 || e->vt[x[3]].len != 3)
+		return 0;
+	for (int j = 0; j < 4; j++)
+		if (e->vflag[x[j]] & V_LOCKED)
+			return 0;
+	*c = x[2];
+	*d = x[3];
+	return 1;
+}
+
 /* The caller's cost of pair (a, b), a < b, or INFINITY. */
 static double
 eval_pair(struct engine *e, uint32_t a, uint32_t b, double pos[3])
@@ -717,6 +756,9 @@ eval_pair(struct engine *e, uint32_t a, uint32_t b, double pos[3])
 		return INFINITY;
 	double c = e->ops->cost(e->ops->ctx, a, b, fixed, e->pos + 3 * (size_t)a,
 	                        e->pos + 3 * (size_t)b, pos);
+	uint32_t c3, d3;
+	if (e->vanish && c < INFINITY && tetrahedron(e, a, b, &c3, &d3))
+		c = e->ops->vanish(e->ops->ctx, a); /* (pos as the pair has it) */
 	c += 0.0; /* -0 to +0 (before) */
 	return c >= 0 && c < INFINITY ? c : INFINITY;
 }
@@ -1501,6 +1543,12 @@ try_pair(struct engine *e, uint32_t u, uint32_t v, struct link *lu, int unsure,
 
 	orient(e, a, b, keep, gone);
 	*cost = eval_pair(e, a, b, pos);
+	uint32_t c, d;
+	if (e->vanish && tetrahedron(e, a, b, &c, &d))
+		/* (its cost eval_pair's; never the last faces: several
+		 * threads may take as many such parts at once) */
+		return *cost < INFINITY && e->live_tris > 4 * (size_t)(e->threads + 1) &&
+		       (ops->valid == NULL || ops->valid(ops->ctx, *keep, *gone, pos));
 	float fpos[3] = {(float)pos[0], (float)pos[1], (float)pos[2]};
 	uint32_t few = e->vt[a].len < e->vt[b].len ? a : b, many = few == a ? b : a;
 	int hub = e->vt[many].len >= HUB;
@@ -2163,6 +2211,8 @@ contract(struct engine *e, struct work *w, uint32_t keep, uint32_t gone,
          const double dpos[3], double cost)
 {
 	struct list *lg = &e->vt[gone];
+	uint32_t c3, d3;
+	int tetra = e->vanish && tetrahedron(e, keep, gone, &c3, &d3);
 
 	for (int k = 0; k < 3; k++)
 		e->pos[3 * (size_t)keep + k] = (float)dpos[k];
@@ -2211,6 +2261,22 @@ contract(struct engine *e, struct work *w, uint32_t keep, uint32_t gone,
 		return -1;
 	if (e->safe != NULL)
 		contract_safe(e, keep);
+	/* A tetrahedron that vanishes (try_pair): its two faces left, now on
+	 * the same three vertices, go too, and its vertices with them
+	 * (orphans: the other two are the third corners of the two faces
+	 * removed above). */
+	if (tetra) {
+		const struct list *lk = &e->vt[keep];
+		uint32_t t2[2] = {e->tpool.data[lk->off], e->tpool.data[lk->off + 1]};
+		for (int j = 0; j < 2; j++) {
+			uint32_t *c = e->tri + 3 * (size_t)t2[j];
+			for (int k = 0; k < 3; k++)
+				face_remove(e, c[k], t2[j], k);
+			c[0] = c[1] = c[2] = NONE;
+			w->dead_tris++;
+			w->dead_counted += 1 + (e->twice != NULL && e->twice[t2[j]]);
+		}
+	}
 
 	if (e->vq) {
 		e->vflag[gone] |= V_DEAD;
@@ -3950,6 +4016,7 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 	e.rank = o->rank;
 	e.vq = !o->pair_queue && o->virtual_pair_count == 0;
 	e.passes = e.vq && o->passes;
+	e.vanish = e.vq && ops->vanish != NULL && !o->keep_parts && !o->record;
 	e.exhaustive = o->exhaustive;
 	res->passes = e.passes;
 	if (engine_init(&e, m, own_pos, own_tri, o) != 0)

@@ -72,6 +72,18 @@ struct vdt_contract_ops {
 	 * (a hint only). NULL: none. */
 	const void *vertex_data;
 	size_t vertex_stride;
+	/*
+	 * Optional, with keep_parts 0, the vertex queue and no record: the
+	 * cost of the whole part of vertex v vanishing, or INFINITY to keep
+	 * it. A closed part down to a tetrahedron, which the link condition
+	 * holds there, then vanishes by the contraction of an edge at that
+	 * cost (merged is called for the edge alone), so that parts go in
+	 * the order of cost with the contractions, instead of every part
+	 * being crushed to its least, the largest too. No locked vertex
+	 * vanishes. NULL: none does. (The record has no word for the faces
+	 * the contraction of an edge does not remove.)
+	 */
+	double (*vanish)(void *ctx, uint32_t v);
 };
 
 struct vdt_contract_opts {

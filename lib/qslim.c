@@ -52,6 +52,8 @@ struct ctx {
 	                          maxima) of the surface it stands for: its
 	                          faces, and those of the vertices merged
 	                          into it (place) */
+	float *vanish;         /* per welded vertex, the cost of its part
+	                          vanishing (part_costs), or NULL */
 };
 
 void
@@ -2614,6 +2616,7 @@ struct part {
 	double area;
 	size_t faces;
 	uint32_t root;
+	int locked; /* it has a locked vertex */
 };
 
 static int
@@ -2631,10 +2634,12 @@ by_area(const void *p, const void *q)
  * more parts than it holds: closed parts end as tetrahedra, which no
  * contraction removes. The smallest parts (by area; the one of the lower
  * vertex slot first among equals) go whole until the target is met or one
- * part is left. Returns the number of parts given up, or -1 out of memory.
+ * part is left, but for those with a locked vertex (a border under
+ * --lock-border, a vertex a label pins), which never vanishes. Returns the
+ * number of parts given up, or -1 out of memory.
  */
 static long
-give_up_parts(struct vdt_contract_result *r, size_t target)
+give_up_parts(struct vdt_contract_result *r, size_t target, const uint8_t *locked)
 {
 	size_t nt = r->triangle_count, nv = r->vertex_count ? r->vertex_count : 1, np = 0;
 	uint32_t *up = vdt_malloc_huge(nv * sizeof(*up)), *slot = malloc(nv * sizeof(*slot));
@@ -2658,17 +2663,23 @@ give_up_parts(struct vdt_contract_result *r, size_t target)
 		uint32_t root = vdt_topo_find(up, r->triangles[3 * t]);
 		double n[3];
 		if (slot[root] == UINT32_MAX) {
-			p[np] = (struct part){0, 0, root};
+			p[np] = (struct part){0, 0, root, 0};
 			slot[root] = (uint32_t)np++;
 		}
 		vdt_mesh_face_cross(&view, t, n);
 		p[slot[root]].area += 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
 		p[slot[root]].faces++;
 	}
+	for (size_t v = 0; v < r->vertex_count; v++)
+		if (locked[v] && slot[vdt_topo_find(up, (uint32_t)v)] != UINT32_MAX)
+			p[slot[vdt_topo_find(up, (uint32_t)v)]].locked = 1;
 	qsort(p, np, sizeof(*p), by_area);
-	for (size_t i = 0; i + 1 < np && nt > target; i++) {
+	for (size_t i = 0, left = np; left > 1 && i < np && nt > target; i++) {
+		if (p[i].locked)
+			continue;
 		slot[p[i].root] = UINT32_MAX - 1; /* given up */
 		nt -= p[i].faces;
+		left--;
 		given++;
 	}
 	if (given > 0) {
@@ -2687,6 +2698,149 @@ give_up_parts(struct vdt_contract_result *r, size_t target)
 	free(slot);
 	free(up);
 	return given;
+}
+
+/* The distance between boxes a and b (3 minima, 3 maxima each). */
+static double
+box_gap(const double *a, const double *b)
+{
+	double d2 = 0;
+
+	for (int k = 0; k < 3; k++) {
+		double g = fmax(a[k] - b[3 + k], b[k] - a[3 + k]);
+		if (g > 0)
+			d2 += g * g;
+	}
+	return sqrt(d2);
+}
+
+/* Parts on either side, in the Morton order of their boxes' centres, among
+ * which each part's nearest is looked for. */
+#define PART_NEAR 32
+
+/*
+ * Of w's first live faces: the fewest faces they can become without a
+ * part vanishing (a tetrahedron for each closed part, a triangle for each
+ * open one: a vertex on the boundary, border bit 1), returned, and with
+ * vanish, per vertex the cost of its part vanishing whole
+ * (vdt_contract_ops.vanish), as a contraction costs it: its area times the
+ * square of how far its surface goes, its half diagonal and the gap to the
+ * nearest other part (of their boxes, among the PART_NEAR parts on either
+ * side in Morton order), times unit; INFINITY for a part whose faces have
+ * no area or which goes further than max_error (squared). SIZE_MAX out of
+ * memory.
+ */
+static size_t
+part_costs(const struct vdt_mesh *w, size_t live, const uint8_t *border, double max_error,
+           double unit, float *vanish)
+{
+	size_t nv = w->vertex_count ? w->vertex_count : 1, need = 0, np = 0;
+	uint32_t *up = vdt_malloc_huge(nv * sizeof(*up)), *slot = malloc(nv * sizeof(*slot));
+	uint64_t *order = NULL;
+	double *box = NULL, *area = NULL, *gap = NULL;
+	uint8_t *open = NULL;
+
+	if (up == NULL || slot == NULL)
+		goto nomem;
+	vdt_topo_part_forest(w->vertex_count, w->triangles, live, up);
+	for (size_t v = 0; v < w->vertex_count; v++)
+		slot[v] = UINT32_MAX;
+	for (size_t t = 0; t < live; t++) {
+		uint32_t r = vdt_topo_find(up, w->triangles[3 * t]);
+		if (slot[r] == UINT32_MAX)
+			slot[r] = (uint32_t)np++;
+	}
+	box = malloc((np ? np : 1) * 6 * sizeof(*box));
+	area = calloc(np ? np : 1, sizeof(*area));
+	gap = malloc((np ? np : 1) * sizeof(*gap));
+	order = malloc((np ? np : 1) * sizeof(*order));
+	open = calloc(np ? np : 1, 1);
+	if (box == NULL || area == NULL || gap == NULL || order == NULL || open == NULL)
+		goto nomem;
+	for (size_t i = 0; i < np; i++) {
+		for (int k = 0; k < 3; k++) {
+			box[6 * i + k] = INFINITY;
+			box[6 * i + 3 + k] = -INFINITY;
+		}
+		gap[i] = INFINITY;
+	}
+	for (size_t t = 0; t < live; t++) {
+		const uint32_t *c = w->triangles + 3 * t;
+		uint32_t i = slot[vdt_topo_find(up, c[0])];
+		double n[3];
+		vdt_mesh_face_cross(w, t, n);
+		area[i] += 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+		for (int q = 0; q < 3; q++) {
+			const float *p = w->positions + 3 * (size_t)c[q];
+			open[i] |= border[c[q]] & 1;
+			for (int k = 0; k < 3; k++) {
+				box[6 * i + k] = fmin(box[6 * i + k], p[k]);
+				box[6 * i + 3 + k] = fmax(box[6 * i + 3 + k], p[k]);
+			}
+		}
+	}
+	for (size_t i = 0; i < np; i++)
+		need += open[i] ? 1 : 4;
+	if (vanish != NULL) {
+		double lo[3] = {INFINITY, INFINITY, INFINITY},
+		       hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+		for (size_t i = 0; i < np; i++)
+			for (int k = 0; k < 3; k++) {
+				lo[k] = fmin(lo[k], box[6 * i + k]);
+				hi[k] = fmax(hi[k], box[6 * i + 3 + k]);
+			}
+		for (size_t i = 0; i < np; i++) {
+			uint32_t key = 0;
+			for (int k = 0; k < 3; k++) {
+				double c = 0.5 * (box[6 * i + k] + box[6 * i + 3 + k]);
+				double f = hi[k] > lo[k] ? (c - lo[k]) / (hi[k] - lo[k]) : 0;
+				key |= spread3((uint32_t)(f * 1023)) << k;
+			}
+			order[i] = (uint64_t)key << 32 | i;
+		}
+		if (vdt_sort_u64(order, np) != 0)
+			goto nomem;
+		for (size_t a = 0; a < np; a++)
+			for (size_t b = a + 1; b < np && b <= a + PART_NEAR; b++) {
+				uint32_t i = (uint32_t)order[a], j = (uint32_t)order[b];
+				double g = box_gap(box + 6 * (size_t)i, box + 6 * (size_t)j);
+				gap[i] = fmin(gap[i], g);
+				gap[j] = fmin(gap[j], g);
+			}
+		for (size_t v = 0; v < w->vertex_count; v++) {
+			uint32_t i = slot[vdt_topo_find(up, (uint32_t)v)];
+			if (i == UINT32_MAX)
+				continue; /* (a vertex of no face) */
+			const double *b = box + 6 * (size_t)i;
+			double half = 0.5 * sqrt((b[3] - b[0]) * (b[3] - b[0]) +
+			                         (b[4] - b[1]) * (b[4] - b[1]) +
+			                         (b[5] - b[2]) * (b[5] - b[2]));
+			double far = half + (gap[i] < INFINITY ? gap[i] : 0);
+			vanish[v] = far * far > max_error || !(area[i] > 0)
+			                    ? INFINITY
+			                    : (float)(area[i] * far * far * unit);
+		}
+	}
+out:
+	free(open);
+	free(order);
+	free(gap);
+	free(area);
+	free(box);
+	free(slot);
+	free(up);
+	return need;
+nomem:
+	need = SIZE_MAX;
+	goto out;
+}
+
+static double
+vanish_fn(void *vc, uint32_t v)
+{
+	const struct ctx *c = vc;
+
+	return c->vanish[v];
 }
 
 /* vdt_qslim with every distance option in model units. */
@@ -2715,7 +2869,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	struct vdt_mesh w = {0};
 	struct ctx c = {0};
 	struct vdt_contract_opts co;
-	struct vdt_contract_ops ops = {cost_fn, merged_fn, valid_fn, &c, 0, NULL, 0};
+	struct vdt_contract_ops ops = {cost_fn, merged_fn, valid_fn, &c, 0, NULL, 0, NULL};
 	struct vdt_contract_result r = {0};
 	uint32_t *canon = NULL, *first = NULL, *wstart = NULL, *wlist = NULL;
 	uint32_t *vpairs = NULL;
@@ -2984,18 +3138,30 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	co.keep_a_face = 1; /* -e alone must not empty the mesh */
 	/*
 	 * No part vanishes while the target can hold them all with room to
-	 * spare, nor under a bound on the error alone: a part's quadrics say
-	 * nothing of the distance from where it was to the rest of the
-	 * surface. Clustering breaks thin features into small pieces (on the
-	 * dragon at 1%, one of them is where the error was greatest, 1.75%
-	 * of the diagonal, which keeping it halves); past half the target,
-	 * the smallest parts are what simplifying a model of many gives up
-	 * first.
+	 * spare (twice the least they can be: a tetrahedron each closed part,
+	 * a triangle each open one), nor under a bound on the error alone: a
+	 * part's quadrics say nothing of the distance from where it was to
+	 * the rest of the surface. Clustering breaks thin features into small
+	 * pieces (on the dragon at 1%, one of them is where the error was
+	 * greatest, 1.75% of the diagonal, which keeping it halves). Past
+	 * that, parts vanish in the order of cost with the contractions (the
+	 * cost part_costs gives them, which counts that distance), those that
+	 * contraction takes or down to a tetrahedron; keeping them all first
+	 * crushed every part to its least, the largest too.
 	 */
 	size_t parts = vdt_topo_parts(nw, w.triangles, live);
 	if (parts == SIZE_MAX)
 		goto nomem;
-	co.keep_parts = target == 0 || parts <= target / 2;
+	size_t least = target == 0 ? 0 : part_costs(&w, live, border, c.max_error, c.unit, NULL);
+	if (least == SIZE_MAX)
+		goto nomem;
+	co.keep_parts = target == 0 || 2 * least <= target;
+	if (!co.keep_parts && records == NULL && nvp == 0) {
+		if ((c.vanish = malloc((nw ? nw : 1) * sizeof(*c.vanish))) == NULL ||
+		    part_costs(&w, live, border, c.max_error, c.unit, c.vanish) == SIZE_MAX)
+			goto nomem;
+		ops.vanish = vanish_fn;
+	}
 	/* Which part each vertex is of, to count the parts that vanish. */
 	if (!co.keep_parts) {
 		if ((pforest = vdt_malloc_huge((nw ? nw : 1) * sizeof(*pforest))) == NULL)
@@ -3060,7 +3226,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	/* (a record must replay to the output: it has no word for a part
 	 * given up) */
 	if (!co.keep_parts && target > 0 && r.triangle_count > target && records == NULL) {
-		if (give_up_parts(&r, target) < 0)
+		if (give_up_parts(&r, target, locked) < 0)
 			goto nomem;
 	}
 	/* The parts given up: those contraction took (a lone triangle goes
@@ -3097,6 +3263,8 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	free(c.q); /* (the output needs no quadric) */
 	c.q = NULL;
 	free(c.reach);
+	free(c.vanish);
+	c.vanish = NULL;
 	c.reach = NULL;
 	stats->passes = r.passes;
 	stats->contractions = r.contractions;
@@ -3158,6 +3326,7 @@ done:
 	free(wlist);
 	free(c.q);
 	free(c.reach);
+	free(c.vanish);
 	free(c.scale);
 	attr_free(c.at);
 	free(border);

@@ -30,7 +30,7 @@ length_cost(void *ctx, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	return d;
 }
 
-static const struct vdt_contract_ops length_ops = {length_cost, NULL, NULL, NULL, 1, NULL, 0};
+static const struct vdt_contract_ops length_ops = {length_cost, NULL, NULL, NULL, 1, NULL, 0, NULL};
 
 /* The defaults on one of the three queues: 0 the vertex queue, 1 passes
  * (on one thread), 2 the queue of all pairs. */
@@ -166,7 +166,7 @@ fold_over_is_refused(void **state)
 	static const float p[] = {-0.05f, 0, 0, 0.2f, 0, 0, 1, 0, 0, 0.1f, 1, 0, 0.1f, -1, 0};
 	static const uint32_t t[] = {0, 1, 3, 1, 2, 3, 1, 0, 4, 2, 1, 4};
 	struct vdt_mesh m = {5, (float *)p, NULL, NULL, NULL, 4, (uint32_t *)t, 0};
-	struct vdt_contract_ops ops = {to_zero_cost, NULL, NULL, NULL, 0, NULL, 0};
+	struct vdt_contract_ops ops = {to_zero_cost, NULL, NULL, NULL, 0, NULL, 0, NULL};
 	struct vdt_contract_opts o;
 	struct vdt_contract_result r;
 
@@ -214,7 +214,7 @@ fold_over_threshold_is_the_angle(void **state)
 {
 	static const uint32_t t[] = {0, 2, 3, 0, 1, 2};
 	static const double turns[] = {10, 40, 75, 100, 150};
-	struct vdt_contract_ops ops = {onto_one, NULL, NULL, NULL, 0, NULL, 0};
+	struct vdt_contract_ops ops = {onto_one, NULL, NULL, NULL, 0, NULL, 0, NULL};
 
 	(void)state;
 	for (size_t i = 0; i < sizeof(turns) / sizeof(turns[0]); i++) {
@@ -708,7 +708,8 @@ nonmanifold_virtual_pair_is_opt_in(void **state)
 	static const float p[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 1, 0, 0.2f, 1, -1, 0.2f};
 	static const uint32_t t[] = {0, 1, 2, 0, 3, 4};
 	static const uint32_t pairs[] = {1, 3};
-	static const struct vdt_contract_ops ops = {pair13_cost, NULL, NULL, NULL, 0, NULL, 0};
+	static const struct vdt_contract_ops ops = {pair13_cost, NULL, NULL, NULL,
+	                                            0,           NULL, 0,    NULL};
 	struct vdt_mesh m = {5, (float *)p, NULL, NULL, NULL, 2, (uint32_t *)t, 0};
 	struct vdt_contract_opts o;
 	struct vdt_contract_result r;
@@ -839,7 +840,7 @@ static void
 minus_zero_is_zero(void **state)
 {
 	struct vdt_mesh m;
-	struct vdt_contract_ops ops = {minus_zero_cost, NULL, NULL, NULL, 1, NULL, 0};
+	struct vdt_contract_ops ops = {minus_zero_cost, NULL, NULL, NULL, 1, NULL, 0, NULL};
 
 	(void)state;
 	shape_grid(&m, 4);
@@ -917,7 +918,7 @@ run_queue(const struct vdt_mesh *m, const uint8_t *locked, int mode,
           struct vdt_contract_result *r)
 {
 	struct qctx c = {face_quadrics(m)};
-	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0};
+	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0, NULL};
 	struct vdt_contract_opts o;
 
 	vdt_contract_defaults(&o);
@@ -1113,7 +1114,7 @@ passes_contract_only_edges(void **state)
 			memmove(m.triangles + 3 * nt++, m.triangles + 3 * t, 3 * sizeof(uint32_t));
 	m.triangle_count = nt;
 	struct qctx c = {face_quadrics(&m)};
-	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0};
+	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0, NULL};
 	vdt_contract_defaults(&o);
 	o.passes = 1;
 	o.record = 1;
@@ -1191,7 +1192,7 @@ passes_on_threads_match_one_thread(void **state)
 		memcpy(t + 9 * k, f, sizeof(f));
 	}
 	struct qctx c = {face_quadrics(&m)};
-	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0};
+	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0, NULL};
 	struct vdt_contract_opts o;
 	/* Runs 0 to 2 on 1 to 3 threads; run 3 on one, costing afresh what
 	 * the others read from the noted costs. */
@@ -1255,7 +1256,8 @@ passes_on_threads_stop_at_the_target(void **state)
 	size_t nt = m.triangle_count, target = nt / 4;
 	for (int k = 0; k < 2; k++) {
 		struct qctx c = {face_quadrics(&m)};
-		struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0};
+		struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0,
+		                               NULL};
 		struct vdt_contract_opts o;
 		vdt_contract_defaults(&o);
 		o.passes = 1;
@@ -1386,7 +1388,7 @@ static void
 passes_sort_past_the_claimable_keys(void **state)
 {
 	struct vdt_mesh g, m;
-	struct vdt_contract_ops ops = {hub_cost, NULL, NULL, NULL, 0, NULL, 0};
+	struct vdt_contract_ops ops = {hub_cost, NULL, NULL, NULL, 0, NULL, 0, NULL};
 	struct vdt_contract_result r[2];
 
 	(void)state;
@@ -1463,7 +1465,7 @@ static void
 long_fans_keep_the_link_condition(void **state)
 {
 	static const int sizes[] = {40, 400, 1500};
-	static const struct vdt_contract_ops ops = {apex_cost, NULL, NULL, NULL, 1, NULL, 0};
+	static const struct vdt_contract_ops ops = {apex_cost, NULL, NULL, NULL, 1, NULL, 0, NULL};
 	(void)state;
 	for (int z = 0; z < 3; z++) {
 		int n = sizes[z];
@@ -1604,7 +1606,7 @@ static void
 hub_of_slivers_stays_a_disc(void **state)
 {
 	enum { N = 301 };
-	static const struct vdt_contract_ops ops = {apex_cost, NULL, NULL, NULL, 1, NULL, 0};
+	static const struct vdt_contract_ops ops = {apex_cost, NULL, NULL, NULL, 1, NULL, 0, NULL};
 	float p[3 * (N + 1)] = {0};
 	uint32_t t[3 * (N - 1)];
 	struct vdt_mesh m = {N + 1, p, NULL, NULL, NULL, N - 1, t, 0};
@@ -1668,7 +1670,8 @@ hubs_are_not_read_at_each_try(void **state)
 	}
 	for (int mode = 0; mode < 3; mode++) {
 		struct qctx c = {face_quadrics(&m)};
-		struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0};
+		struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0,
+		                               NULL};
 		struct vdt_contract_opts o;
 		struct vdt_contract_result r;
 		vdt_contract_defaults(&o);
