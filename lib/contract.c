@@ -117,6 +117,7 @@ struct engine {
 	size_t live_tris, live_verts;
 	size_t counted;         /* live faces as the target counts them (twice) */
 	const uint8_t *twice;   /* vdt_contract_opts.twice */
+	unsigned twice_max;     /* its largest count */
 	double cos_max, min_quality;
 	int allow_nonmanifold, keep_parts, keep_a_face, keep_holes;
 	int vanish;             /* ops->vanish, with keep_parts 0, the vertex queue, no record */
@@ -2245,7 +2246,7 @@ contract(struct engine *e, struct work *w, uint32_t keep, uint32_t gone,
 			}
 			c[0] = c[1] = c[2] = NONE;
 			w->dead_tris++;
-			w->dead_counted += 1 + (e->twice != NULL && e->twice[t]);
+			w->dead_counted += 1 + (e->twice != NULL ? e->twice[t] : 0);
 			continue;
 		}
 		for (int k = 0; k < 3; k++)
@@ -2274,7 +2275,7 @@ contract(struct engine *e, struct work *w, uint32_t keep, uint32_t gone,
 				face_remove(e, c[k], t2[j], k);
 			c[0] = c[1] = c[2] = NONE;
 			w->dead_tris++;
-			w->dead_counted += 1 + (e->twice != NULL && e->twice[t2[j]]);
+			w->dead_counted += 1 + (e->twice != NULL ? e->twice[t2[j]] : 0);
 		}
 	}
 
@@ -3103,7 +3104,9 @@ round_prefix(const struct engine *e, const struct vdt_contract_opts *o, const ui
 
 	for (size_t i = 0; i < m; i++) {
 		uint32_t v = (uint32_t)keys[i], lv = e->vt[v].len, lx = e->vt[e->best[v]].len;
-		tris += (lv < lx ? lv : lx) * (e->twice ? 2u : 1u);
+		/* (a tetrahedron that vanishes takes its 4 faces: one more
+		 * than either end has) */
+		tris += ((lv < lx ? lv : lx) + (e->vanish != 0)) * (1u + e->twice_max);
 		grow += grown_cap(lv + lx);
 		if (tris >= spare || grow > room)
 			return i;
@@ -3640,8 +3643,11 @@ engine_init(struct engine *e, const struct vdt_mesh *m, float *own_pos,
 	e->live_tris = live;
 	e->twice = o->twice;
 	e->counted = live;
-	for (size_t f = 0; o->twice != NULL && f < nt; f++)
-		e->counted += e->tri[3 * f] != NONE && o->twice[f];
+	for (size_t f = 0; o->twice != NULL && f < nt; f++) {
+		e->counted += e->tri[3 * f] != NONE ? o->twice[f] : 0;
+		if (o->twice[f] > e->twice_max)
+			e->twice_max = o->twice[f];
+	}
 	e->tpool.marks = nv < LIST_MARK; /* faces number fewer than NONE / 3 */
 	if (pool_reserve(&e->tpool, 3 * live + live / 4 + 64) != 0)
 		goto nomem;

@@ -88,9 +88,10 @@ struct vdt_contract_ops {
 
 struct vdt_contract_opts {
 	size_t target_triangles; /* stop once at most this many remain */
-	const uint8_t *twice;    /* per face of m, or NULL: nonzero counts twice
-	                            toward target_triangles (a double-sided face,
-	                            whose back the caller adds) */
+	const uint8_t *twice;    /* per face of m, or NULL: how many faces more
+	                            it counts for toward target_triangles (the
+	                            backs of a double-sided face, which the
+	                            caller adds) */
 	size_t target_vertices;  /* and/or this many vertices (0: no target) */
 	double max_cost;         /* never contract above this cost */
 	double max_normal_angle; /* degrees; fold-over threshold (default 75) */

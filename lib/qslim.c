@@ -2878,7 +2878,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	int renumbered = 0;
 	uint32_t *pforest = NULL; /* the input's parts, when some may go */
 	uint64_t *backs = NULL;   /* double-sided faces: front << 32 | back */
-	uint8_t *twice = NULL;    /* per engine face: a front (counts twice) */
+	uint8_t *twice = NULL;    /* per engine face: a front's backs */
 	uint8_t *wedges = NULL;   /* rank: attribute sets at each position */
 	struct back_corners bk = {0};
 	size_t nbacks = 0;
@@ -2996,7 +2996,9 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 			goto nomem;
 		}
 		for (size_t i = 0; i < nbacks; i++)
-			twice[backs[i] >> 32] = 1;
+			if (twice[backs[i] >> 32] < UINT8_MAX) /* (a face given once one way
+			                                          round, twice the other) */
+				twice[backs[i] >> 32]++;
 		for (size_t i = 0; i < nbacks; i++) {
 			uint32_t t = (uint32_t)backs[i];
 			b[i].pair = forder == NULL ? backs[i]

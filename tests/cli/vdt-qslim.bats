@@ -731,6 +731,24 @@ END
 	[ "$(grep -c '^f ' "$TMP/rep-out.obj")" -eq 1 ]
 }
 
+@test "vdt-qslim counts every back of a face given once one way and twice the other" {
+	# a 3 x 3 leaf given once up and twice down (each time with its own
+	# vertices): each face has two backs, and -t counted one
+	awk 'BEGIN { print "OFF"; print 27, 24, 0
+		for (c = 0; c < 3; c++) for (j = 0; j < 3; j++) for (i = 0; i < 3; i++)
+			print i, j, (i == 1 && j == 1) ? 0.2 : 0
+		for (j = 0; j < 2; j++) for (i = 0; i < 2; i++) {
+			v = 3 * j + i; print 3, v, v + 1, v + 4; print 3, v, v + 4, v + 3 }
+		for (c = 1; c < 3; c++) for (j = 0; j < 2; j++) for (i = 0; i < 2; i++) {
+			v = 9 * c + 3 * j + i; print 3, v, v + 4, v + 1; print 3, v, v + 3, v + 4 } }' > "$TMP/leaf3.off"
+	for t in 9 12 20; do
+		run "$BIN/vdt-qslim" -v -t $t "$TMP/leaf3.off" -o "$TMP/out.off"
+		[ "$status" -eq 0 ]
+		n=$(printf '%s\n' "$output" | tr ' ' '\n' | sed -n 's/^out_triangles=//p')
+		[ "$n" -le $t ] || { echo "-t $t: $n"; false; }
+	done
+}
+
 @test "vdt-qslim keeps double-sided faces double-sided, and a closed surface closed" {
 	# a face and its reverse: one double-sided face (it was dropped, both
 	# sides, and a model of them all was bad input)
