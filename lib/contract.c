@@ -37,7 +37,8 @@
 enum { V_DEAD = 1, V_LOCKED = 2, V_CHECKED = 4, V_STALE = 8, V_NOALT = 16 };
 /* In passes: V_DIRTY: the neighbourhood changed, find the cheapest pair
  * again; V_REFUSED: the cheapest pair failed a test, find the cheapest
- * valid one. */
+ * valid one. In the vertex queue, V_REFUSED: a hub none of whose pairs
+ * passed, left to its neighbours (vertex_merged). */
 enum { V_DIRTY = 32, V_REFUSED = 64, V_KEPT = 128, V_UNSURE = V_DIRTY };
 enum { P_DEAD = 1, P_REJECTED = 2 };
 
@@ -2028,6 +2029,13 @@ vertex_merged(struct engine *e, uint32_t keep, uint32_t gone)
 		if (f & V_STALE)
 			continue;
 		uint32_t b = e->best[x], s = e->alt[x];
+		/* A hub whose cheapest pair failed the tests is searched no
+		 * more, at each change around it or at all: the rim of a
+		 * crumpled fan made each contraction there sort and test its
+		 * thousands of pairs (100k faces ran for minutes). Its pairs
+		 * are still its neighbours', whose searches take them. */
+		if (f & V_REFUSED)
+			continue;
 		if (b == NONE || (f & V_CHECKED)) {
 			if (vertex_update(e, x, 0) != 0)
 				return -1;
@@ -2072,7 +2080,12 @@ vertex_merged(struct engine *e, uint32_t keep, uint32_t gone)
 	e->vflag[keep] &= (uint8_t)~(V_CHECKED | V_STALE | V_NOALT | V_UNSURE);
 	e->alt[keep] = t.x2;
 	e->altc[keep] = t.c2;
-	vertex_set(e, keep, t.x1, t.c1);
+	if ((e->vflag[keep] & V_REFUSED) && e->vt[keep].len >= HUB)
+		vertex_set(e, keep, NONE, INFINITY); /* (still a hub: see above) */
+	else {
+		e->vflag[keep] &= (uint8_t)~V_REFUSED;
+		vertex_set(e, keep, t.x1, t.c1);
+	}
 
 	/* A corner of a removed face may have lost its edge to keep. */
 	for (size_t i = 0; i < e->work.wing_len; i++) {
@@ -4075,9 +4088,17 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 			}
 			if (!try_pair(&e, p, e.best[p], NULL, 0, &keep, &gone, pos, &c)) {
 				res->rejected++;
-				/* (a pair taken unsure failed: search on every test) */
-				if (vertex_update(&e, p, e.vflag[p] & V_UNSURE ? 2 : 1) != 0)
+				/* (a pair taken unsure failed: search on every test;
+				 * a hub leaves its pairs to its neighbours, see
+				 * vertex_merged) */
+				if (e.vt[p].len >= HUB) {
+					heap_remove(&e, p);
+					e.best[p] = NONE;
+					e.vflag[p] |= V_REFUSED;
+				} else if (vertex_update(&e, p, e.vflag[p] & V_UNSURE ? 2 : 1) !=
+				           0) {
 					goto nomem;
+				}
 				continue;
 			}
 		} else if (!try_pair(&e, e.pv[2 * p], e.pv[2 * p + 1], NULL, 0, &keep, &gone, pos, &c)) {
