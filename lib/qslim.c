@@ -3245,7 +3245,9 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 		free(kept);
 		stats->parts_given_up = parts > left ? parts - left : 0;
 	}
-	if (o->fit && records == NULL) { /* (a record must replay to the output) */
+	/* (a record must replay to the output; without a contraction every
+	 * vertex is where the input has it, and the fit has nothing to do) */
+	if (o->fit && records == NULL && r.contractions > 0) {
 		struct vdt_fit_stats fs;
 		double t_fit = vdt_seconds();
 		/* Open edges keep their planes' place, and vertices near the
