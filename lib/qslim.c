@@ -2843,6 +2843,44 @@ vanish_fn(void *vc, uint32_t v)
 	return c->vanish[v];
 }
 
+/*
+ * The welded vertices no face uses (a scan's stray points), all in one past
+ * the rest, which keep their order: the work is sized by the vertices the
+ * faces use (2M stray points about 200 faces took 316 MB). canon and first
+ * (vdt_mesh_weld's) and *nw change with them; none does when every vertex
+ * is used. 0, or -1 out of memory.
+ */
+static int
+unused_last(const struct vdt_mesh *in, uint32_t *canon, uint32_t *first, size_t *nw)
+{
+	size_t n = in->vertex_count, used = 0;
+	uint32_t *to = vdt_calloc_huge(*nw + 1, sizeof(*to)), gone = NONE;
+
+	if (to == NULL)
+		return -1;
+	for (size_t i = 0; i < 3 * in->triangle_count; i++)
+		to[canon[in->triangles[i]]] = 1;
+	for (size_t v = 0; v < *nw; v++)
+		used += to[v];
+	if (used == *nw) {
+		free(to);
+		return 0;
+	}
+	for (size_t v = 0, k = 0; v < *nw; v++) {
+		if (!to[v] && gone == NONE)
+			gone = first[v];
+		to[v] = to[v] ? (uint32_t)k++ : (uint32_t)used;
+		if (to[v] < used)
+			first[to[v]] = first[v]; /* (to[v] <= v: in place) */
+	}
+	first[used] = gone;
+	for (size_t i = 0; i < n; i++)
+		canon[i] = to[canon[i]];
+	free(to);
+	*nw = used + 1;
+	return 0;
+}
+
 /* vdt_qslim with every distance option in model units. */
 /* The triangles o asks for of T: the larger of its count and ratio, or
  * 0 for an error bound alone. */
@@ -2926,6 +2964,9 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	if (!canon || !first || (nw = vdt_mesh_weld(in, canon, first)) == 0)
 		goto nomem;
 	stats->welded = n - nw;
+	/* (a record numbers the vertices as welding does) */
+	if (records == NULL && unused_last(in, canon, first, &nw) != 0)
+		goto nomem;
 	/* The working mesh. build_output needs no input position, and
 	 * without attributes that vary, none of the input's triangles: what a
 	 * caller lets us take is welded in place rather than held twice. */
