@@ -2844,40 +2844,49 @@ vanish_fn(void *vc, uint32_t v)
 }
 
 /*
- * The welded vertices no face uses (a scan's stray points), all in one past
+ * The vertices of w no face uses (a scan's stray points), all in one past
  * the rest, which keep their order: the work is sized by the vertices the
- * faces use (2M stray points about 200 faces took 316 MB). canon and first
- * (vdt_mesh_weld's) and *nw change with them; none does when every vertex
- * is used. 0, or -1 out of memory.
+ * faces use (2M stray points about 200 faces took 316 MB). w and canon (n
+ * input vertices) change with them; nothing does when every vertex is
+ * used. 0, or -1 out of memory.
  */
 static int
-unused_last(const struct vdt_mesh *in, uint32_t *canon, uint32_t *first, size_t *nw)
+unused_last(struct vdt_mesh *w, uint32_t *canon, size_t n)
 {
-	size_t n = in->vertex_count, used = 0;
-	uint32_t *to = vdt_calloc_huge(*nw + 1, sizeof(*to)), gone = NONE;
+	size_t nw = w->vertex_count, used = 0, k = 0;
+	uint8_t *bit = calloc(nw / 8 + 1, 1);
+	uint32_t *to;
+	float at[3] = {0, 0, 0};
+	int seen = 0;
 
-	if (to == NULL)
+	if (bit == NULL)
 		return -1;
-	for (size_t i = 0; i < 3 * in->triangle_count; i++)
-		to[canon[in->triangles[i]]] = 1;
-	for (size_t v = 0; v < *nw; v++)
-		used += to[v];
-	if (used == *nw) {
-		free(to);
-		return 0;
+	for (size_t i = 0; i < 3 * w->triangle_count; i++)
+		bit[w->triangles[i] >> 3] |= (uint8_t)(1u << (w->triangles[i] & 7));
+	for (size_t b = 0; b < nw / 8 + 1; b++)
+		used += (size_t)__builtin_popcount(bit[b]);
+	if (used == nw || (to = vdt_malloc_huge(nw * sizeof(*to))) == NULL) {
+		free(bit);
+		return used == nw ? 0 : -1;
 	}
-	for (size_t v = 0, k = 0; v < *nw; v++) {
-		if (!to[v] && gone == NONE)
-			gone = first[v];
-		to[v] = to[v] ? (uint32_t)k++ : (uint32_t)used;
-		if (to[v] < used)
-			first[to[v]] = first[v]; /* (to[v] <= v: in place) */
+	for (size_t v = 0; v < nw; v++) {
+		if (!(bit[v >> 3] & (1u << (v & 7)))) {
+			if (!seen++) /* (not yet overwritten: k <= v) */
+				memcpy(at, w->positions + 3 * v, sizeof(at));
+			to[v] = (uint32_t)used;
+			continue;
+		}
+		memmove(w->positions + 3 * k, w->positions + 3 * v, 3 * sizeof(float));
+		to[v] = (uint32_t)k++;
 	}
-	first[used] = gone;
+	memcpy(w->positions + 3 * used, at, sizeof(at));
+	for (size_t i = 0; i < 3 * w->triangle_count; i++)
+		w->triangles[i] = to[w->triangles[i]];
 	for (size_t i = 0; i < n; i++)
 		canon[i] = to[canon[i]];
 	free(to);
-	*nw = used + 1;
+	free(bit);
+	w->vertex_count = used + 1;
 	return 0;
 }
 
@@ -2964,9 +2973,6 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	if (!canon || !first || (nw = vdt_mesh_weld(in, canon, first)) == 0)
 		goto nomem;
 	stats->welded = n - nw;
-	/* (a record numbers the vertices as welding does) */
-	if (records == NULL && unused_last(in, canon, first, &nw) != 0)
-		goto nomem;
 	/* The working mesh. build_output needs no input position, and
 	 * without attributes that vary, none of the input's triangles: what a
 	 * caller lets us take is welded in place rather than held twice. */
@@ -2997,6 +3003,12 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	}
 	free(first);
 	first = NULL;
+	/* (a record numbers the vertices as welding does) */
+	if (records == NULL) {
+		if (unused_last(&w, canon, n) != 0)
+			goto nomem;
+		nw = w.vertex_count;
+	}
 	if (nw >= VDT_QSLIM_PASSES_MIN && scattered(&w)) {
 		if (locality_order(&w, box, &vto, &forder) != 0)
 			goto nomem;
@@ -3195,7 +3207,11 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	size_t parts = vdt_topo_parts(nw, w.triangles, live);
 	if (parts == SIZE_MAX)
 		goto nomem;
-	size_t least = target == 0 ? 0 : part_costs(&w, live, border, c.max_error, c.unit, NULL);
+	/* (at most a tetrahedron a part: then the parts need not be told
+	 * apart) */
+	size_t least = target == 0 || 8 * parts <= target
+	                       ? 0
+	                       : part_costs(&w, live, border, c.max_error, c.unit, NULL);
 	if (least == SIZE_MAX)
 		goto nomem;
 	co.keep_parts = target == 0 || 2 * least <= target;
