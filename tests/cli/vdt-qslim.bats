@@ -1015,6 +1015,31 @@ PY
 	[ "$(awk 'NR > 2 && NF == 3 && ($1 % 10 == 0 || $1 % 10 == 3 || $2 == 0 || $2 == 3)' "$TMP/out.off" | sort -u | wc -l)" -eq 60 ]
 }
 
+@test "vdt-qslim: parts vanish in passes on two threads as on one" {
+	# 3000 cubes of sizes 0.1 to 2 strewn over a box of 100: 36000
+	# faces to 2000 (a tetrahedron each would be 12000)
+	awk 'BEGIN { n = 3000; s = 12345; print "OFF"; print 8 * n, 12 * n, 0
+		split("0 2 1 0 3 2 4 5 6 4 6 7 0 1 5 0 5 4 1 2 6 1 6 5 2 3 7 2 7 6 3 0 4 3 4 7", c)
+		for (i = 0; i < n; i++) {
+			for (k = 0; k < 4; k++) { s = (s * 1103515245 + 12345) % 2147483648; r[k] = s / 2147483648 }
+			x = 100 * r[0]; y = 100 * r[1]; z = 100 * r[2]; e = 0.1 + 1.9 * r[3]
+			print x, y, z; print x + e, y, z; print x + e, y + e, z; print x, y + e, z
+			print x, y, z + e; print x + e, y, z + e; print x + e, y + e, z + e; print x, y + e, z + e
+		}
+		for (i = 0; i < n; i++) for (k = 1; k <= 36; k += 3)
+			print 3, 8 * i + c[k], 8 * i + c[k + 1], 8 * i + c[k + 2] }' > "$TMP/cubes.off"
+	run "$BIN/vdt-qslim" -v --order passes -j1 -t 2000 "$TMP/cubes.off" -o "$TMP/one.ply"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *" out_triangles=2000 "* || "$output" == *" out_triangles=1998 "* ]]
+	[[ "$output" != *" parts_given_up=0 "* ]]
+	"$BIN/vdt-qslim" -q --order passes -j2 -t 2000 "$TMP/cubes.off" -o "$TMP/two.ply"
+	cmp "$TMP/one.ply" "$TMP/two.ply"
+	# and no two faces left on the same three vertices
+	run "$BIN/vdt-measure" -F kv "$TMP/cubes.off" "$TMP/two.ply"
+	[ "$status" -eq 0 ]
+	"$BIN/vdt-qslim" -v -r 1 "$TMP/two.ply" -o "$TMP/again.ply" 2>&1 | grep -q ' dropped=0 '
+}
+
 @test "vdt-qslim -a however small still pairs vertices closer than it" {
 	# Two tetrahedra touching at the origin, their corners there one
 	# float's least step apart (1.4e-45), closer than any -a in model
