@@ -1543,6 +1543,10 @@ try_pair(struct engine *e, uint32_t u, uint32_t v, struct link *lu, int unsure,
 	uint32_t a = u < v ? u : v, b = u < v ? v : u;
 	const struct vdt_contract_ops *ops = e->ops;
 
+	/* (a vertex a tetrahedron left as it vanished has no face, nor any
+	 * pair: its other two, which may still hold each other as their pair) */
+	if (e->vanish && (e->vt[a].len == 0 || e->vt[b].len == 0))
+		return 0;
 	orient(e, a, b, keep, gone);
 	*cost = eval_pair(e, a, b, pos);
 	uint32_t c, d;
