@@ -2611,13 +2611,41 @@ back_attributes(const struct vdt_mesh *in, const struct back_corners *bk, struct
 	free(done);
 }
 
-/* A connected part of the contracted mesh: its area, faces and root. */
+/* A connected part of a mesh: its area, faces and root. */
 struct part {
 	double area;
 	size_t faces;
 	uint32_t root;
-	int locked; /* it has a locked vertex */
+	int locked; /* it has a locked vertex (give_up_parts) */
 };
+
+/*
+ * The parts of m's first nt faces: the forest of their vertices into up,
+ * each root's part number into slot (UINT32_MAX for a vertex of no face),
+ * and each part's area, faces and root into p (room for nt). Returns the
+ * number of parts.
+ */
+static size_t
+part_list(const struct vdt_mesh *m, size_t nt, uint32_t *up, uint32_t *slot, struct part *p)
+{
+	size_t np = 0;
+
+	vdt_topo_part_forest(m->vertex_count, m->triangles, nt, up);
+	for (size_t v = 0; v < m->vertex_count; v++)
+		slot[v] = UINT32_MAX;
+	for (size_t t = 0; t < nt; t++) {
+		uint32_t root = vdt_topo_find(up, m->triangles[3 * t]);
+		double n[3];
+		if (slot[root] == UINT32_MAX) {
+			p[np] = (struct part){0, 0, root, 0};
+			slot[root] = (uint32_t)np++;
+		}
+		vdt_mesh_face_cross(m, t, n);
+		p[slot[root]].area += 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+		p[slot[root]].faces++;
+	}
+	return np;
+}
 
 static int
 by_area(const void *p, const void *q)
@@ -2641,7 +2669,7 @@ by_area(const void *p, const void *q)
 static long
 give_up_parts(struct vdt_contract_result *r, size_t target, const uint8_t *locked)
 {
-	size_t nt = r->triangle_count, nv = r->vertex_count ? r->vertex_count : 1, np = 0;
+	size_t nt = r->triangle_count, nv = r->vertex_count ? r->vertex_count : 1;
 	uint32_t *up = vdt_malloc_huge(nv * sizeof(*up)), *slot = malloc(nv * sizeof(*slot));
 	struct part *p = malloc((nt ? nt : 1) * sizeof(*p));
 	long given = 0;
@@ -2656,20 +2684,7 @@ give_up_parts(struct vdt_contract_result *r, size_t target, const uint8_t *locke
 	const struct vdt_mesh view = {.positions = r->positions, .vertex_count = r->vertex_count,
 	                              .triangles = r->triangles, .triangle_count = nt};
 
-	vdt_topo_part_forest(r->vertex_count, r->triangles, nt, up);
-	for (size_t v = 0; v < r->vertex_count; v++)
-		slot[v] = UINT32_MAX;
-	for (size_t t = 0; t < nt; t++) {
-		uint32_t root = vdt_topo_find(up, r->triangles[3 * t]);
-		double n[3];
-		if (slot[root] == UINT32_MAX) {
-			p[np] = (struct part){0, 0, root, 0};
-			slot[root] = (uint32_t)np++;
-		}
-		vdt_mesh_face_cross(&view, t, n);
-		p[slot[root]].area += 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-		p[slot[root]].faces++;
-	}
+	size_t np = part_list(&view, nt, up, slot, p);
 	for (size_t v = 0; v < r->vertex_count; v++)
 		if (locked[v] && slot[vdt_topo_find(up, (uint32_t)v)] != UINT32_MAX)
 			p[slot[vdt_topo_find(up, (uint32_t)v)]].locked = 1;
@@ -2721,41 +2736,34 @@ box_gap(const double *a, const double *b)
 /*
  * Of w's first live faces: the fewest faces they can become without a
  * part vanishing (a tetrahedron for each closed part, a triangle for each
- * open one: a vertex on the boundary, border bit 1), returned, and with
- * vanish, per vertex the cost of its part vanishing whole
- * (vdt_contract_ops.vanish), as a contraction costs it: its area times the
- * square of how far its surface goes, its half diagonal and the gap to the
- * nearest other part (of their boxes, among the PART_NEAR parts on either
- * side in Morton order), times unit; INFINITY for a part whose faces have
- * no area or which goes further than max_error (squared). SIZE_MAX out of
- * memory.
+ * open one: a vertex on the boundary, border bit 1), returned, with the
+ * forest of their parts into up; and with vanish, per vertex the cost of
+ * its part vanishing whole (vdt_contract_ops.vanish), as a contraction
+ * costs it: its area times the square of how far its surface goes, its
+ * half diagonal and the gap to the nearest other part (of their boxes,
+ * among the PART_NEAR parts on either side in Morton order), times unit;
+ * INFINITY for a part whose faces have no area or which goes further than
+ * max_error (squared). SIZE_MAX out of memory.
  */
 static size_t
-part_costs(const struct vdt_mesh *w, size_t live, const uint8_t *border, double max_error,
-           double unit, float *vanish)
+part_costs(const struct vdt_mesh *w, size_t live, const uint8_t *border, uint32_t *up,
+           double max_error, double unit, float *vanish)
 {
-	size_t nv = w->vertex_count ? w->vertex_count : 1, need = 0, np = 0;
-	uint32_t *up = vdt_malloc_huge(nv * sizeof(*up)), *slot = malloc(nv * sizeof(*slot));
+	size_t nv = w->vertex_count ? w->vertex_count : 1, need = 0, np;
+	uint32_t *slot = malloc(nv * sizeof(*slot));
+	struct part *p = malloc((live ? live : 1) * sizeof(*p));
 	uint64_t *order = NULL;
-	double *box = NULL, *area = NULL, *gap = NULL;
+	double *box = NULL, *gap = NULL;
 	uint8_t *open = NULL;
 
-	if (up == NULL || slot == NULL)
+	if (slot == NULL || p == NULL)
 		goto nomem;
-	vdt_topo_part_forest(w->vertex_count, w->triangles, live, up);
-	for (size_t v = 0; v < w->vertex_count; v++)
-		slot[v] = UINT32_MAX;
-	for (size_t t = 0; t < live; t++) {
-		uint32_t r = vdt_topo_find(up, w->triangles[3 * t]);
-		if (slot[r] == UINT32_MAX)
-			slot[r] = (uint32_t)np++;
-	}
+	np = part_list(w, live, up, slot, p);
 	box = malloc((np ? np : 1) * 6 * sizeof(*box));
-	area = calloc(np ? np : 1, sizeof(*area));
 	gap = malloc((np ? np : 1) * sizeof(*gap));
 	order = malloc((np ? np : 1) * sizeof(*order));
 	open = calloc(np ? np : 1, 1);
-	if (box == NULL || area == NULL || gap == NULL || order == NULL || open == NULL)
+	if (box == NULL || gap == NULL || order == NULL || open == NULL)
 		goto nomem;
 	for (size_t i = 0; i < np; i++) {
 		for (int k = 0; k < 3; k++) {
@@ -2764,19 +2772,14 @@ part_costs(const struct vdt_mesh *w, size_t live, const uint8_t *border, double 
 		}
 		gap[i] = INFINITY;
 	}
-	for (size_t t = 0; t < live; t++) {
-		const uint32_t *c = w->triangles + 3 * t;
-		uint32_t i = slot[vdt_topo_find(up, c[0])];
-		double n[3];
-		vdt_mesh_face_cross(w, t, n);
-		area[i] += 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-		for (int q = 0; q < 3; q++) {
-			const float *p = w->positions + 3 * (size_t)c[q];
-			open[i] |= border[c[q]] & 1;
-			for (int k = 0; k < 3; k++) {
-				box[6 * i + k] = fmin(box[6 * i + k], p[k]);
-				box[6 * i + 3 + k] = fmax(box[6 * i + 3 + k], p[k]);
-			}
+	for (size_t v = 0; v < w->vertex_count; v++) {
+		uint32_t i = slot[vdt_topo_find(up, (uint32_t)v)];
+		if (i == UINT32_MAX)
+			continue; /* (a vertex of no face) */
+		open[i] |= border[v] & 1;
+		for (int k = 0; k < 3; k++) {
+			box[6 * i + k] = fmin(box[6 * i + k], w->positions[3 * v + k]);
+			box[6 * i + 3 + k] = fmax(box[6 * i + 3 + k], w->positions[3 * v + k]);
 		}
 	}
 	for (size_t i = 0; i < np; i++)
@@ -2810,25 +2813,24 @@ part_costs(const struct vdt_mesh *w, size_t live, const uint8_t *border, double 
 		for (size_t v = 0; v < w->vertex_count; v++) {
 			uint32_t i = slot[vdt_topo_find(up, (uint32_t)v)];
 			if (i == UINT32_MAX)
-				continue; /* (a vertex of no face) */
+				continue;
 			const double *b = box + 6 * (size_t)i;
 			double half = 0.5 * sqrt((b[3] - b[0]) * (b[3] - b[0]) +
 			                         (b[4] - b[1]) * (b[4] - b[1]) +
 			                         (b[5] - b[2]) * (b[5] - b[2]));
 			double far = half + (gap[i] < INFINITY ? gap[i] : 0);
-			vanish[v] = far * far > max_error || !(area[i] > 0)
+			vanish[v] = far * far > max_error || !(p[i].area > 0)
 			                    ? INFINITY
-			                    : (float)(area[i] * far * far * unit);
+			                    : (float)(p[i].area * far * far * unit);
 		}
 	}
 out:
 	free(open);
 	free(order);
 	free(gap);
-	free(area);
 	free(box);
+	free(p);
 	free(slot);
-	free(up);
 	return need;
 nomem:
 	need = SIZE_MAX;
@@ -3208,24 +3210,25 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	if (parts == SIZE_MAX)
 		goto nomem;
 	/* (at most a tetrahedron a part: then the parts need not be told
-	 * apart) */
-	size_t least = target == 0 || 8 * parts <= target
-	                       ? 0
-	                       : part_costs(&w, live, border, c.max_error, c.unit, NULL);
-	if (least == SIZE_MAX)
-		goto nomem;
-	co.keep_parts = target == 0 || 2 * least <= target;
-	if (!co.keep_parts && records == NULL && nvp == 0) {
-		if ((c.vanish = malloc((nw ? nw : 1) * sizeof(*c.vanish))) == NULL ||
-		    part_costs(&w, live, border, c.max_error, c.unit, c.vanish) == SIZE_MAX)
+	 * apart; else the forest of the parts stays, to count those that
+	 * vanish) */
+	size_t least = 0;
+	if (target > 0 && 8 * parts > target) {
+		if ((pforest = vdt_malloc_huge((nw ? nw : 1) * sizeof(*pforest))) == NULL ||
+		    (records == NULL && nvp == 0 &&
+		     (c.vanish = malloc((nw ? nw : 1) * sizeof(*c.vanish))) == NULL) ||
+		    (least = part_costs(&w, live, border, pforest, c.max_error, c.unit,
+		                        c.vanish)) == SIZE_MAX)
 			goto nomem;
-		ops.vanish = vanish_fn;
 	}
-	/* Which part each vertex is of, to count the parts that vanish. */
-	if (!co.keep_parts) {
-		if ((pforest = vdt_malloc_huge((nw ? nw : 1) * sizeof(*pforest))) == NULL)
-			goto nomem;
-		vdt_topo_part_forest(nw, w.triangles, live, pforest);
+	co.keep_parts = target == 0 || 2 * least <= target;
+	if (co.keep_parts) {
+		free(pforest);
+		pforest = NULL;
+		free(c.vanish);
+		c.vanish = NULL;
+	} else if (c.vanish != NULL) {
+		ops.vanish = vanish_fn;
 	}
 	co.max_normal_angle = o->max_normal_angle;
 	co.min_quality = o->min_quality;
