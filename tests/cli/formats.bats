@@ -216,6 +216,27 @@ PY
 	run "$BIN/vdt-qslim" -r 1 "$TMP/big.ply" -o "$TMP/out.obj"
 	[ "$status" -eq 2 ]
 	[[ "$output" == *"'1e39' in face 1 is out of float range" ]]
+	# binary: a double beyond a float's range, a colour not a number
+	python3 - "$TMP" <<'PY'
+import struct, sys
+def ply(name, tex, col):
+    head = ("ply\nformat binary_little_endian 1.0\nelement vertex 3\n"
+            "property float x\nproperty float y\nproperty float z\nelement face 1\n"
+            "property list uchar int vertex_indices\nproperty list uchar double texcoord\n"
+            "property float red\nproperty float green\nproperty float blue\nend_header\n")
+    body = (struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<B3i", 3, 0, 1, 2) +
+            struct.pack("<B6d", 6, *tex) + struct.pack("<3f", *col))
+    open(sys.argv[1] + "/" + name, "wb").write(head.encode() + body)
+ply("bigtex.ply", [0, 0, 1, 0, 1e39, 1], [1, 0, 0])
+ply("nancol.ply", [0, 0, 1, 0, 0, 1], [1, float("nan"), 0])
+PY
+	run "$BIN/vdt-qslim" -r 1 "$TMP/bigtex.ply" -o "$TMP/out.obj"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-qslim: cannot read '$TMP/bigtex.ply': face 0: texture coordinate 1e+39 out of float range" ]
+	run "$BIN/vdt-qslim" -r 1 "$TMP/nancol.ply" -o "$TMP/out.obj"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-qslim: cannot read '$TMP/nancol.ply': face 0: colour nan is not finite" ]
+	[ ! -e "$TMP/out.obj" ]
 	# a face with no texcoords (an untextured part) takes 0 0
 	{ printf "$head"; printf '%s\n' '3 0 1 2 6 0 0 1 0 1 1' '3 0 2 3 0'; } > "$TMP/none.ply"
 	"$BIN/vdt-qslim" -q -r 1 "$TMP/none.ply" -o "$TMP/out.obj"
