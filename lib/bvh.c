@@ -15,7 +15,7 @@
  *   T. L. Kay, J. T. Kajiya, "Ray tracing complex scenes", SIGGRAPH 1986,
  *     section 3: bounding volumes as slabs, the space between two parallel
  *     planes. Here a node whose box is loose about long thin triangles
- *     also gets one slab, square to them, in a direction of its own.
+ *     also gets two slabs of its own, across them and along their normal.
  */
 #include "bvh.h"
 #include "hash.h"
@@ -62,6 +62,14 @@ enum {
  */
 #define SLAB_MARGIN 0x1p-30
 #define SLAB_SLACK 0x1p-32
+
+/*
+ * How far from square a slab's two directions may be: their gaps g, h then
+ * bound the distance by (g^2 + h^2)(1 - SLAB_SQUARE), as the bound of two
+ * directions at cosine c is (g^2 + h^2 - 2cgh) / (1 - c^2). Rounding
+ * leaves them about 1e-8 apart.
+ */
+#define SLAB_SQUARE 0x1p-20
 
 static double
 dot3(const double a[3], const double b[3])
@@ -465,6 +473,7 @@ struct span {
 	size_t first, end; /* its slots */
 	double area;       /* of its triangles */
 	double dir[3];     /* sum of their across directions, see across() */
+	double nrm[3];     /* sum of their normals, as long as their areas */
 	double slabbed;    /* area of its triangles under a node with a slab */
 };
 
@@ -479,10 +488,11 @@ cross3(double r[3], const double a[3], const double b[3])
 /*
  * The area of a triangle, and if d is not NULL the direction across it into
  * d: in its plane, square to its longest edge and as long as that edge (the
- * long edges weigh most). A triangle of no area has no such direction: 0.
+ * long edges weigh most), and its normal into nrm, as long as its area. A
+ * triangle of no area has no such directions: 0.
  */
 static double
-across(const float *c, double d[3])
+across(const float *c, double d[3], double nrm[3])
 {
 	double a[3] = {c[0], c[1], c[2]}, b[3] = {c[3], c[4], c[5]}, cc[3] = {c[6], c[7], c[8]};
 	double ab[3], bc[3], ca[3], n[3], len;
@@ -496,8 +506,11 @@ across(const float *c, double d[3])
 		return len / 2;
 	if (!(len > 0)) {
 		d[0] = d[1] = d[2] = 0;
+		nrm[0] = nrm[1] = nrm[2] = 0;
 		return 0;
 	}
+	for (int i = 0; i < 3; i++)
+		nrm[i] = n[i] / 2;
 	sub3(ca, a, cc);
 	e = dot3(ab, ab) >= dot3(bc, bc) ? ab : bc;
 	e = dot3(e, e) >= dot3(ca, ca) ? e : ca;
@@ -553,7 +566,7 @@ mark_loose(struct vdt_bvh *bvh, uint32_t node, double *loose)
 
 	if (n->count > 0)
 		for (uint32_t s = n->index; s < n->index + n->count; s++)
-			area += across(bvh->corners + 9 * s, NULL);
+			area += across(bvh->corners + 9 * s, NULL, NULL);
 	else
 		area = mark_loose(bvh, node + 1, &below) + mark_loose(bvh, n->index, &below);
 	n->slab = node_area(n) > SLAB_TRY * area;
@@ -561,20 +574,25 @@ mark_loose(struct vdt_bvh *bvh, uint32_t node, double *loose)
 	return area;
 }
 
-/* The slab of node n across sp's direction, if it is worth one. */
-static int
-make_slab(const struct vdt_bvh *bvh, const struct vdt_bvh_node *n, const struct span *sp,
-          struct vdt_bvh_slab *slab)
+/*
+ * Direction k of node n's slab into slab: v turned unit, shortened a little
+ * so that the rounded direction stays within 1, and the interval of the
+ * node's corners along it, widened for rounding. Returns the width of the
+ * box along it over the slab's, or -1 if v has no length or the node's
+ * coordinates are out of range (slab untouched).
+ */
+static double
+slab_along(const struct vdt_bvh *bvh, const struct vdt_bvh_node *n, const struct span *sp,
+           const double v[3], int k, struct vdt_bvh_slab *slab)
 {
-	double len = sqrt(dot3(sp->dir, sp->dir)), lo = INFINITY, hi = -INFINITY;
-	double scale = 0, across_box = 0;
+	double len = sqrt(dot3(v, v)), lo = INFINITY, hi = -INFINITY, scale = 0, box = 0;
+
 	float u[3];
 
 	if (!(len > 0))
-		return 0;
-	/* shortened a little, so that the rounded direction stays within 1 */
-	for (int k = 0; k < 3; k++)
-		u[k] = (float)(sp->dir[k] / len * (1 - 0x1p-20));
+		return -1;
+	for (int i = 0; i < 3; i++)
+		u[i] = (float)(v[i] / len * (1 - 0x1p-20));
 	for (size_t i = 3 * sp->first; i < 3 * sp->end; i++) {
 		const float *x = bvh->corners + 3 * i;
 		double t = (double)u[0] * x[0] + (double)u[1] * x[1] + (double)u[2] * x[2];
@@ -582,15 +600,51 @@ make_slab(const struct vdt_bvh *bvh, const struct vdt_bvh_node *n, const struct 
 		lo = t < lo ? t : lo;
 		hi = t > hi ? t : hi;
 	}
-	for (int k = 0; k < 3; k++) {
-		scale += fabs(u[k]) * fmax(fabs(n->lo[k]), fabs(n->hi[k]));
-		across_box += fabs(u[k]) * ((double)n->hi[k] - n->lo[k]);
+	for (int i = 0; i < 3; i++) {
+		scale += fabs(u[i]) * fmax(fabs(n->lo[i]), fabs(n->hi[i]));
+		box += fabs(u[i]) * ((double)n->hi[i] - n->lo[i]);
 	}
-	if (!(SLAB_GAIN * (hi - lo) < across_box) || !(scale < FLT_MAX / 2))
+	if (!(scale < FLT_MAX / 2))
+		return -1;
+	memcpy(slab->dir[k], u, sizeof(u));
+	slab->lo[k] = float_past(lo - SLAB_MARGIN * scale, 1);
+	slab->hi[k] = float_past(hi + SLAB_MARGIN * scale, 0);
+	return box / fmax(hi - lo, DBL_MIN);
+}
+
+/*
+ * The slab of node n across sp's direction, if it is worth one, and square
+ * to it along the triangles' normal: in a fan of slivers, the across
+ * direction bounds the slivers beside a query's, the normal those of a
+ * flat cap below it or a cone's side away from it. Without the normal, a
+ * point over a flat cap was as near every sliver box and slab as to the
+ * cap, and visited them all. The normal is made square to the across
+ * direction (to SLAB_SQUARE after rounding), so that the two gaps add as
+ * squares; where it cannot be, its gap is 0.
+ */
+static int
+make_slab(const struct vdt_bvh *bvh, const struct vdt_bvh_node *n, const struct span *sp,
+          struct vdt_bvh_slab *slab)
+{
+	double u[3], w[3], c = 0;
+
+	memset(slab, 0, sizeof(*slab));
+	if (!(slab_along(bvh, n, sp, sp->dir, 0, slab) > SLAB_GAIN))
 		return 0;
-	memcpy(slab->dir, u, sizeof(u));
-	slab->lo = float_past(lo - SLAB_MARGIN * scale, 1);
-	slab->hi = float_past(hi + SLAB_MARGIN * scale, 0);
+	for (int i = 0; i < 3; i++)
+		u[i] = slab->dir[0][i];
+	c = dot3(sp->nrm, u) / dot3(u, u);
+	for (int i = 0; i < 3; i++)
+		w[i] = sp->nrm[i] - c * u[i];
+	if (slab_along(bvh, n, sp, w, 1, slab) < 0)
+		return 1; /* (its direction 0, its gap 0) */
+	c = 0;
+	for (int i = 0; i < 3; i++)
+		c += (double)slab->dir[0][i] * slab->dir[1][i];
+	if (!(fabs(c) <= SLAB_SQUARE)) {
+		memset(slab->dir[1], 0, sizeof(slab->dir[1]));
+		slab->lo[1] = slab->hi[1] = 0;
+	}
 	return 1;
 }
 
@@ -612,10 +666,11 @@ add_slabs(struct vdt_bvh *bvh, uint32_t node, int need, struct span *sp)
 		sp->first = n->index;
 		sp->end = n->index + n->count;
 		for (size_t s = sp->first; need && s < sp->end; s++) {
-			double d[3];
+			double d[3], nrm[3];
 
-			sp->area += across(bvh->corners + 9 * s, d);
+			sp->area += across(bvh->corners + 9 * s, d, nrm);
 			add_across(sp->dir, d);
+			add_across(sp->nrm, nrm);
 		}
 	} else {
 		struct span r;
@@ -625,6 +680,7 @@ add_slabs(struct vdt_bvh *bvh, uint32_t node, int need, struct span *sp)
 		sp->area += r.area;
 		sp->slabbed += r.slabbed;
 		add_across(sp->dir, r.dir);
+		add_across(sp->nrm, r.nrm);
 	}
 	if (n->slab) {
 		n->slab = (uint16_t)make_slab(bvh, n, sp, &bvh->slabs[node]);
@@ -808,10 +864,16 @@ box_dist2(const struct vdt_bvh_node *n, const double p[3])
 static double
 slab_dist2(const struct vdt_bvh_slab *s, const double p[3], double slack, double d)
 {
-	double t = s->dir[0] * p[0] + s->dir[1] * p[1] + s->dir[2] * p[2];
-	double g = (t < s->lo ? s->lo - t : t > s->hi ? t - s->hi : 0) - slack;
+	double g2 = 0;
 
-	return g > 0 && g * g * (1 - SLAB_SLACK) > d ? g * g * (1 - SLAB_SLACK) : d;
+	for (int k = 0; k < 2; k++) {
+		double t = s->dir[k][0] * p[0] + s->dir[k][1] * p[1] + s->dir[k][2] * p[2];
+		double g = (t < s->lo[k] ? s->lo[k] - t : t > s->hi[k] ? t - s->hi[k] : 0) - slack;
+
+		g2 += g > 0 ? g * g : 0;
+	}
+	g2 *= (1 - SLAB_SLACK) * (1 - SLAB_SQUARE);
+	return g2 > d ? g2 : d;
 }
 
 /*

@@ -28,16 +28,18 @@ struct vdt_bvh_node {
 /*
  * A second bound of a node, for the long thin triangles that boxes bound
  * badly (in a fan of slivers, the box of a sliver through the middle of a
- * quadrant holds a quarter of the fan): dir . x lies in [lo, hi] for every
- * point x of the node's triangles and |dir| <= 1, so that the gap of
- * dir . p outside [lo, hi] is a lower bound on the distance from p to
- * them. Widened for rounding, so that it never exceeds the distance a
- * query computes. Only nodes with slab set have one; the other entries of
- * slabs are undefined.
+ * quadrant holds a quarter of the fan): dir[k] . x lies in [lo[k], hi[k]]
+ * for every point x of the node's triangles, |dir[k]| <= 1 and the two
+ * directions are square to each other (to rounding), so that the gaps g, h
+ * of dir[k] . p outside them bound the distance from p to them by
+ * sqrt(g^2 + h^2). dir[0] lies across the triangles, dir[1] along their
+ * normal (0, with a gap of 0, where they have none). Widened for
+ * rounding, so that it never exceeds the distance a query computes. Only
+ * nodes with slab set have one; the other entries of slabs are undefined.
  */
 struct vdt_bvh_slab {
-	float dir[3];
-	float lo, hi;
+	float dir[2][3]; /* across long thin triangles, and their normal */
+	float lo[2], hi[2];
 };
 
 struct vdt_bvh {

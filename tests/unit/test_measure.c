@@ -392,6 +392,32 @@ test_bvh_fan_prunes(void **state)
 	}
 	/* about 30 on average; with boxes alone, 600 */
 	assert_true(sum < 64 * 1000);
+
+	/*
+	 * Off the fan: over it, where every box and across slab is as near the
+	 * query as the fan is, and inside a cone of such slivers, far from
+	 * all of them: bounded along the normal too, a few tests each (45 over
+	 * the disc, 33 inside the cone); by the across slab and the box alone,
+	 * 200 and 1750.
+	 */
+	for (int shape = 0; shape < 2; shape++) {
+		sum = 0;
+		if (shape) {
+			vdt_bvh_free(&bvh);
+			vdt_mesh_free(&m);
+			fan(&m, 4096, 1, 0);
+			assert_int_equal(vdt_bvh_build(&bvh, &m, NULL), 0);
+		}
+		for (int i = 0; i < 1000; i++) {
+			double r = 0.25 + 0.5 * shape_rnd(), a = 2 * M_PI * shape_rnd();
+			double p[3] = {r * cos(a), r * sin(a), 0.01 + 0.1 * shape_rnd()};
+			struct vdt_bvh_hit hit;
+
+			vdt_bvh_closest(&bvh, p, SIZE_MAX, &hit);
+			sum += hit.tests;
+		}
+		assert_true(sum < 100 * 1000);
+	}
 	vdt_bvh_free(&bvh);
 	vdt_mesh_free(&m);
 
