@@ -97,6 +97,11 @@ struct engine {
 	                      contraction it took part in (adjacent) */
 	uint64_t *hubnb;  /* with fpos, per vertex: its last adjacency test
 	                     with another hub (adjacent) */
+	uint64_t *xfan;   /* with fpos, per vertex: its faces' other corners,
+	                     mixed and xored (fan_xor) */
+	uint8_t *edges2;  /* with fpos, per vertex: 1 once a listing found no
+	                     edge of it held by three faces or more (the link
+	                     test keeps it so: link_hub) */
 	uint32_t clock;   /* contractions made, or in passes rounds */
 	size_t entries_read; /* vdt_contract_result.entries_read */
 	int16_t *tnormal; /* input unit normal per triangle, times 32767 */
@@ -446,8 +451,26 @@ index_from(struct engine *e, uint32_t v, uint32_t i)
 		index_at(e, v, i);
 }
 
+/*
+ * Xor face c's other corners, mixed, into the xfan of each of its three.
+ * A vertex's xfan is 0 when each neighbour is met by an even number of
+ * its faces (no edge held by one face alone: no boundary edge), and not 0
+ * when an odd number of them meets only two (an open fan's two ends: the
+ * mix is a bijection), so a hub's boundary is known without listing it
+ * (link_hub); with four or more odd ones, 0 by a chance of 2^-64.
+ */
+static inline void
+fan_xor(struct engine *e, const uint32_t *c)
+{
+	uint64_t h[3] = {vdt_hash_mix(c[0]), vdt_hash_mix(c[1]), vdt_hash_mix(c[2])};
+
+	e->xfan[c[0]] ^= h[1] ^ h[2];
+	e->xfan[c[1]] ^= h[0] ^ h[2];
+	e->xfan[c[2]] ^= h[0] ^ h[1];
+}
+
 /* Make the index, of every list long enough, and the notes kept for them
- * (refuse, safe, sfront, touched, hubnb). */
+ * (refuse, safe, sfront, touched, hubnb, xfan, edges2). */
 static int
 index_make(struct engine *e)
 {
@@ -457,11 +480,16 @@ index_make(struct engine *e)
 	e->sfront = calloc(e->nv + 1, sizeof(*e->sfront));
 	e->touched = calloc(e->nv + 1, sizeof(*e->touched));
 	e->hubnb = malloc((e->nv + 1) * sizeof(*e->hubnb));
+	e->xfan = calloc(e->nv + 1, sizeof(*e->xfan));
+	e->edges2 = calloc(e->nv + 1, sizeof(*e->edges2));
 	if (e->fpos == NULL || e->refuse == NULL || e->safe == NULL || e->sfront == NULL ||
-	    e->touched == NULL || e->hubnb == NULL)
+	    e->touched == NULL || e->hubnb == NULL || e->xfan == NULL || e->edges2 == NULL)
 		return -1;
 	memset(e->refuse, 0xff, (e->nv + 1) * sizeof(*e->refuse)); /* NONE */
 	memset(e->hubnb, 0xff, (e->nv + 1) * sizeof(*e->hubnb));   /* of vertex NONE */
+	for (size_t t = 0; t < e->nt; t++)
+		if (e->tri[3 * t] != NONE)
+			fan_xor(e, e->tri + 3 * t);
 	for (size_t v = 0; v < e->nv; v++)
 		if (indexed(e, (uint32_t)v))
 			index_from(e, (uint32_t)v, 0);
@@ -1073,9 +1101,40 @@ link_hub(const struct engine *e, uint32_t hub, struct link *B)
 		return 0;
 	for (long i = 0; i < B->n; i++)
 		common += B->nb[2 * i] != hub && adjacent(e, hub, B->nb[2 * i]);
+	/*
+	 * With B on a boundary, the hub's boundary counts as a neighbour the
+	 * two share (link_holds). It is known without listing the hub: along
+	 * the edge to B if one face holds it, else from the hub's xfan, 0 on
+	 * none and, with no edge of three faces (edges2), not 0 on one. (A
+	 * hub at the middle of an open fan was listed for each pair of its
+	 * rim, each change around it: quadratic in its faces.) A hole the
+	 * pair closes (closes_hole) needs the listing.
+	 */
+	if (shared == 1 && common != 2)
+		return common == 1;
+	if (shared == 2 && link_boundary(B) && e->xfan != NULL &&
+	    (e->xfan[hub] == 0 || e->edges2[hub]))
+		return common + (e->xfan[hub] != 0) == 2;
 	if (shared > 0)
 		return link_boundary(B) ? -1 : common == shared + (shared == 1);
 	return common == 0 ? 1 : common > 2 ? 0 : -1;
+}
+
+/*
+ * Note a hub's edges2 from its listing l. The link test keeps an edge at
+ * it from gaining a third face (a shared neighbour off the pair's faces
+ * is refused), so the note holds while the test is made; a caller that
+ * skips it (allow_nonmanifold) never reads the note.
+ */
+static void
+note_edges2(struct engine *e, const struct link *l)
+{
+	if (e->edges2 == NULL || e->edges2[l->v] || e->vt[l->v].len < HUB)
+		return;
+	for (long i = 0; i < l->n; i++)
+		if (l->nb[2 * i + 1] > 2)
+			return;
+	e->edges2[l->v] = 1;
 }
 
 /*
@@ -1085,7 +1144,7 @@ link_hub(const struct engine *e, uint32_t hub, struct link *B)
  * (The test is the same whichever is listed first.)
  */
 static int
-link_ok(const struct engine *e, uint32_t a, uint32_t b, struct link *known)
+link_ok(struct engine *e, uint32_t a, uint32_t b, struct link *known)
 {
 	uint32_t local[2 * (4 * LINK_STACK + 4 * LINK_STACK)]; /* 2 fan_words(LINK_STACK) */
 	uint32_t *words = local, *big = NULL;
@@ -1111,6 +1170,7 @@ link_ok(const struct engine *e, uint32_t a, uint32_t b, struct link *known)
 	int ok = e->vt[other].len >= HUB && e->vt[known->v].len < HUB ? link_hub(e, other, known) : -1;
 	if (ok < 0) {
 		link_fill(e, other, words, &lb);
+		note_edges2(e, &lb);
 		ok = link_holds(e, known, &lb);
 	}
 	free(big);
@@ -1936,6 +1996,7 @@ cheapest_valid(struct engine *e, uint32_t v, struct vcost *vn, long n, int unsur
 			big = malloc(need * sizeof(*big));
 		if (need <= sizeof(local) / sizeof(local[0]) || big != NULL) {
 			link_fill(e, v, big != NULL ? big : local, &lv);
+			note_edges2(e, &lv);
 			known = &lv;
 		}
 	}
@@ -2244,6 +2305,8 @@ contract(struct engine *e, struct work *w, uint32_t keep, uint32_t gone,
 	for (uint32_t i = 0; i < lg->len; i++) {
 		uint32_t t = e->tpool.data[lg->off + i];
 		uint32_t *c = e->tri + 3 * (size_t)t;
+		if (e->xfan != NULL)
+			fan_xor(e, c);
 		if (c[0] == keep || c[1] == keep || c[2] == keep) {
 			for (int k = 0; k < 3; k++)
 				if (c[k] != gone)
@@ -2269,6 +2332,8 @@ contract(struct engine *e, struct work *w, uint32_t keep, uint32_t gone,
 		for (int k = 0; k < 3; k++)
 			if (c[k] == gone)
 				c[k] = keep;
+		if (e->xfan != NULL)
+			fan_xor(e, c);
 		e->tpool.data[lg->off + moved++] = t;
 	}
 	lg->len = moved;
@@ -2288,6 +2353,8 @@ contract(struct engine *e, struct work *w, uint32_t keep, uint32_t gone,
 		uint32_t t2[2] = {e->tpool.data[lk->off], e->tpool.data[lk->off + 1]};
 		for (int j = 0; j < 2; j++) {
 			uint32_t *c = e->tri + 3 * (size_t)t2[j];
+			if (e->xfan != NULL)
+				fan_xor(e, c);
 			for (int k = 0; k < 3; k++)
 				face_remove(e, c[k], t2[j], k);
 			c[0] = c[1] = c[2] = NONE;
@@ -3560,7 +3627,8 @@ engine_shed(struct engine *e)
 {
 	void **p[] = {(void **)&e->tnormal, (void **)&e->fpos, (void **)&e->refuse,
 	              (void **)&e->safe, (void **)&e->sfront, (void **)&e->touched,
-	              (void **)&e->hubnb, (void **)&e->vflag, (void **)&e->vt,
+	              (void **)&e->hubnb, (void **)&e->xfan, (void **)&e->edges2,
+	              (void **)&e->vflag, (void **)&e->vt,
 	              (void **)&e->vp, (void **)&e->tpool.data, (void **)&e->ppool.data,
 	              (void **)&e->pv, (void **)&e->ppos, (void **)&e->pflag, (void **)&e->heap,
 	              (void **)&e->hpos, (void **)&e->vrej, (void **)&e->best,
@@ -3587,6 +3655,8 @@ engine_free(struct engine *e)
 	free(e->sfront);
 	free(e->touched);
 	free(e->hubnb);
+	free(e->xfan);
+	free(e->edges2);
 	free(e->vflag);
 	free(e->vt);
 	free(e->vp);
