@@ -1137,6 +1137,20 @@ note_edges2(struct engine *e, const struct link *l)
 	e->edges2[l->v] = 1;
 }
 
+/* need words for a listing: from *words while *room lasts, else
+ * allocated into *big (NULL without memory). */
+static uint32_t *
+link_words(uint32_t **words, size_t *room, size_t need, uint32_t **big)
+{
+	uint32_t *w = *words;
+
+	if (need > *room)
+		return *big = malloc(need * sizeof(**big));
+	*words += need;
+	*room -= need;
+	return w;
+}
+
 /*
  * The link condition for pair (a, b); `known`, if not NULL, is the
  * listing of one of them, made already. Of a hub and a vertex of few
@@ -1147,8 +1161,10 @@ static int
 link_ok(struct engine *e, uint32_t a, uint32_t b, struct link *known)
 {
 	uint32_t local[2 * (4 * LINK_STACK + 4 * LINK_STACK)]; /* 2 fan_words(LINK_STACK) */
-	uint32_t *words = local, *big = NULL;
+	uint32_t *words = local, *big[2] = {NULL, NULL};
+	size_t room = sizeof(local) / sizeof(local[0]);
 	struct link la, lb;
+	int ok = 0;
 
 	if (known == NULL && e->vt[a].len >= HUB && e->vt[b].len < HUB) {
 		uint32_t t = a;
@@ -1156,24 +1172,27 @@ link_ok(struct engine *e, uint32_t a, uint32_t b, struct link *known)
 		b = t;
 	}
 	uint32_t other = known == NULL || known->v == a ? b : a;
-	size_t need = fan_words(e->vt[other].len) + (known ? 0 : fan_words(e->vt[a].len));
-	if (need > sizeof(local) / sizeof(local[0])) {
-		if ((big = malloc(need * sizeof(*big))) == NULL)
-			return 0;
-		words = big;
-	}
 	if (known == NULL) {
-		link_fill(e, a, words, &la);
-		words += fan_words(e->vt[a].len);
+		uint32_t *w = link_words(&words, &room, fan_words(e->vt[a].len), &big[0]);
+		if (w == NULL)
+			return 0;
+		link_fill(e, a, w, &la);
 		known = &la;
 	}
-	int ok = e->vt[other].len >= HUB && e->vt[known->v].len < HUB ? link_hub(e, other, known) : -1;
+	/* (the hub's room only if it is listed: from mmap past 256 KB, each
+	 * time, for a hub of some 8000 faces) */
+	ok = e->vt[other].len >= HUB && e->vt[known->v].len < HUB ? link_hub(e, other, known) : -1;
 	if (ok < 0) {
-		link_fill(e, other, words, &lb);
-		note_edges2(e, &lb);
-		ok = link_holds(e, known, &lb);
+		uint32_t *w = link_words(&words, &room, fan_words(e->vt[other].len), &big[1]);
+		ok = 0;
+		if (w != NULL) {
+			link_fill(e, other, w, &lb);
+			note_edges2(e, &lb);
+			ok = link_holds(e, known, &lb);
+		}
 	}
-	free(big);
+	free(big[0]);
+	free(big[1]);
 	return ok;
 }
 
