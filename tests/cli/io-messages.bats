@@ -159,7 +159,7 @@ PY
 		run $BIN/$t "$TMP/s.obj" -o "$TMP/o.vdt"
 		[[ "$output" != *materials* ]]
 		# nor does the output carry them
-		! grep -q MATL "$TMP/o.vdt"
+		! grep -q MATL "$TMP/o.vdt" || false
 	done
 	# the same from a stream that carries them (vdt-cluster reads it as it goes)
 	"$BIN/vdt-qslim" -q -r 1 "$TMP/m.obj" -o "$TMP/m.vdt"
@@ -167,7 +167,7 @@ PY
 	for t in "vdt-cluster -g 8" "vdt-build"; do
 		run $BIN/$t "$TMP/m.vdt" -o "$TMP/o.vdt"
 		[[ "$output" == *"${t%% *}: note: '$TMP/m.vdt' names materials"* ]]
-		! grep -q MATL "$TMP/o.vdt"
+		! grep -q MATL "$TMP/o.vdt" || false
 	done
 	# vdt-qslim and vdt-silhouette keep them, into the stream and on to an OBJ
 	for t in "vdt-qslim -r 0.5" "vdt-silhouette -a 60"; do
@@ -184,7 +184,7 @@ PY
 	run "$BIN/vdt-deform" --vertices 100 "$TMP/m.obj" -o "$TMP/d.obj"
 	[ "$status" -eq 0 ]
 	[[ "$output" == *"vdt-deform: ${want/TOOL/vdt-deform}"* ]]
-	! grep -q usemtl "$TMP/d.obj"
+	! grep -q usemtl "$TMP/d.obj" || false
 	run "$BIN/vdt-measure" "$TMP/m.obj" "$TMP/s.obj"
 	[[ "$output" != *materials* ]]
 }

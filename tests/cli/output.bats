@@ -308,10 +308,10 @@ refused() {
 	# (LeakSanitizer cannot run under ptrace, in a SANITIZE=1 build)
 	export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
 	strace -f -e trace=openat -o "$TMP/sil" "$BIN/vdt-silhouette" -q -a 90 -r 32 "$SAMPLES/sphere.off" -o "$TMP/s.vdl"
-	! grep -q 'libOpenImageIO' "$TMP/sil"
+	! grep -q 'libOpenImageIO' "$TMP/sil" || false
 	"$BIN/vdt-build" -q "$SAMPLES/sphere.off" -o "$TMP/s.vdt"
 	strace -f -e trace=openat -o "$TMP/mesh" "$BIN/vdt-render" --size 32x24 --mesh-out "$TMP/m.off" "$TMP/s.vdt"
-	! grep -q 'libOpenImageIO' "$TMP/mesh"
+	! grep -q 'libOpenImageIO' "$TMP/mesh" || false
 	strace -f -e trace=openat -o "$TMP/png" "$BIN/vdt-render" --size 32x24 "$TMP/s.vdt" -o "$TMP/s.png"
 	grep -q 'vdt-image.so' "$TMP/png"
 	[ -s "$TMP/s.png" ]
@@ -322,7 +322,7 @@ refused() {
 	# with the C++ runtime, 3.2 MB and two milliseconds of every start
 	export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
 	strace -f -e trace=openat -o "$TMP/off" "$BIN/vdt-qslim" -q -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/s.ply"
-	! grep -q 'libdraco\|libstdc++\|vdt-draco.so' "$TMP/off"
+	! grep -q 'libdraco\|libstdc++\|vdt-draco.so' "$TMP/off" || false
 	strace -f -e trace=openat -o "$TMP/drc" "$BIN/vdt-qslim" -q -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/s.drc"
 	grep -q 'vdt-draco.so.* = [0-9]' "$TMP/drc"
 	grep -q 'libdraco.* = [0-9]' "$TMP/drc"
