@@ -94,6 +94,20 @@ vdt_color_clamp(float c)
 }
 
 /*
+ * Whether m's colours need their alpha channel written: some vertex is
+ * not opaque. Writers leave it out otherwise, so that a mesh read with
+ * red, green and blue alone is written back with them alone.
+ */
+static inline int
+vdt_colors_alpha(const struct vdt_mesh *m)
+{
+	for (size_t i = 0; m->colors != NULL && i < m->vertex_count; i++)
+		if (vdt_color_clamp(m->colors[4 * i + 3]) != 1)
+			return 1;
+	return 0;
+}
+
+/*
  * Allocate the arrays of a mesh with the given counts and attributes (a mask
  * of enum vdt_mesh_attr). The contents are uninitialised. On failure the mesh
  * is left empty and VDT_ENOMEM returned.

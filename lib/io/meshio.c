@@ -1475,11 +1475,8 @@ write_obj(FILE *f, const struct vdt_mesh *m, const struct vdt_materials *mat, st
 		for (size_t t = 0; t < m->triangle_count; t++)
 			order[start[(uint32_t)(mat->faces[t] + 1u)]++] = (uint32_t)t;
 	}
-	/* (alpha as a seventh value, as the reader takes it, when any vertex
-	 * is not opaque) */
-	int alpha = 0;
-	for (size_t i = 0; m->colors != NULL && i < m->vertex_count && !alpha; i++)
-		alpha = vdt_color_clamp(m->colors[4 * i + 3]) != 1;
+	/* (alpha as a seventh value, as the reader takes it) */
+	int alpha = vdt_colors_alpha(m);
 	fputs("# written by vdt\n", f);
 	for (size_t i = 0; mat != NULL && i < mat->lib_count; i++)
 		obj_statement(f, "mtllib", mat->libs[i]);
@@ -1524,6 +1521,8 @@ write_obj(FILE *f, const struct vdt_mesh *m, const struct vdt_materials *mat, st
 static void
 write_off(FILE *f, const struct vdt_mesh *m)
 {
+	int alpha = vdt_colors_alpha(m);
+
 	fprintf(f, "%s%s%sOFF\n%zu %zu 0\n", m->uvs ? "ST" : "", m->colors ? "C" : "",
 	        m->normals ? "N" : "", m->vertex_count, m->triangle_count);
 	for (size_t i = 0; i < m->vertex_count; i++) {
@@ -1533,7 +1532,7 @@ write_off(FILE *f, const struct vdt_mesh *m)
 			fprintf(f, " " P9 " " P9 " " P9, m->normals[3 * i], m->normals[3 * i + 1],
 			        m->normals[3 * i + 2]);
 		if (m->colors)
-			for (int k = 0; k < 4; k++)
+			for (int k = 0; k < 3 + alpha; k++)
 				fprintf(f, " " P9, vdt_color_clamp(m->colors[4 * i + k]));
 		if (m->uvs)
 			fprintf(f, " " P9 " " P9, m->uvs[2 * i], m->uvs[2 * i + 1]);
@@ -1555,9 +1554,10 @@ write_ply_ascii(FILE *f, const struct vdt_mesh *m)
 		fputs("property float nx\nproperty float ny\nproperty float nz\n", f);
 	if (m->uvs)
 		fputs("property float s\nproperty float t\n", f);
+	int alpha = vdt_colors_alpha(m);
 	if (m->colors)
-		fputs("property uchar red\nproperty uchar green\nproperty uchar blue\n"
-		      "property uchar alpha\n", f);
+		fprintf(f, "property uchar red\nproperty uchar green\nproperty uchar blue\n%s",
+		        alpha ? "property uchar alpha\n" : "");
 	fprintf(f, "element face %zu\nproperty list uchar int vertex_indices\nend_header\n",
 	        m->triangle_count);
 	for (size_t i = 0; i < m->vertex_count; i++) {
@@ -1569,7 +1569,7 @@ write_ply_ascii(FILE *f, const struct vdt_mesh *m)
 		if (m->uvs)
 			fprintf(f, " " P9 " " P9, m->uvs[2 * i], m->uvs[2 * i + 1]);
 		if (m->colors)
-			for (int k = 0; k < 4; k++)
+			for (int k = 0; k < 3 + alpha; k++)
 				fprintf(f, " %ld", lrintf(vdt_color_clamp(m->colors[4 * i + k]) * 255.0f));
 		fputc('\n', f);
 	}

@@ -1215,7 +1215,7 @@ vdt_ply_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err)
 	enum { BUF = 1 << 16 };
 	unsigned char *b;
 	size_t n = 0, rec = 12;
-	int rc = 0;
+	int rc = 0, alpha = vdt_colors_alpha(m);
 
 	if (fputs("ply\nformat binary_little_endian 1.0\ncomment vdt\n", f) < 0)
 		return vdt_err_set(err, VDT_EIO, "write error: %s", strerror(errno));
@@ -1232,8 +1232,9 @@ vdt_ply_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err)
 		rec += 8;
 	}
 	if (m->colors) {
-		fputs("property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar alpha\n", f);
-		rec += 4;
+		fprintf(f, "property uchar red\nproperty uchar green\nproperty uchar blue\n%s",
+		        alpha ? "property uchar alpha\n" : "");
+		rec += 3 + (size_t)alpha;
 	}
 	if (fprintf(f, "element face %zu\nproperty list uchar int vertex_indices\nend_header\n",
 	            m->triangle_count) < 0)
@@ -1256,7 +1257,7 @@ vdt_ply_write(FILE *f, const struct vdt_mesh *m, struct vdt_err *err)
 			for (int k = 0; k < 2; k++, q += 4)
 				vdt_put_f32le(q, m->uvs[2 * i + k]);
 		if (m->colors)
-			for (int k = 0; k < 4; k++)
+			for (int k = 0; k < 3 + alpha; k++)
 				*q++ = (unsigned char)lrintf(vdt_color_clamp(m->colors[4 * i + k]) * 255.0f);
 		n += rec;
 	}

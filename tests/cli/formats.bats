@@ -20,11 +20,35 @@ ply_vertices() {
 	grep -qx 'v 1 0 0 0 1 0 0.5' "$TMP/back.obj"
 	printf 'v 0 0 0 255 128 0\nv 1 0 0 0 128 255\nv 0 1 0 10 20 30\nf 1 2 3\n' > "$TMP/c255.obj"
 	run "$BIN/vdt-qslim" -q -r 1 "$TMP/c255.obj" -F ply-ascii -o -
-	[ "$(printf '%s\n' "$output" | ply_vertices 3)" = "$(printf '0 0 0 255 128 0 255\n1 0 0 0 128 255 255\n0 1 0 10 20 30 255')" ]
+	[ "$(printf '%s\n' "$output" | ply_vertices 3)" = "$(printf '0 0 0 255 128 0\n1 0 0 0 128 255\n0 1 0 10 20 30')" ]
 	# an opaque model keeps its six values
 	"$BIN/vdt-qslim" -q -r 1 "$TMP/c255.obj" -o "$TMP/c.obj"
 	grep -q '^v 0 0 0 1 0.50196' "$TMP/c.obj"
 	[ "$(awk '$1 == "v" { print NF }' "$TMP/c.obj" | sort -u)" = 7 ]
+}
+
+@test "colours without alpha are written back without it, in every format that has colours" {
+	# an RGB PLY, as scanners and MeshLab write it
+	printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0 255 0 0\n1 0 0 0 255 0\n1 1 0 0 0 255\n0 1 0 10 20 30\n3 0 1 2\n3 0 2 3\n' > "$TMP/rgb.ply"
+	"$BIN/vdt-qslim" -q -r 1 "$TMP/rgb.ply" -o "$TMP/out.ply"
+	head -c 400 "$TMP/out.ply" | grep -qa '^property uchar blue$'
+	! head -c 400 "$TMP/out.ply" | grep -qa alpha || false
+	run "$BIN/vdt-qslim" -q -r 1 "$TMP/rgb.ply" -F ply-ascii -o -
+	[ "$(printf '%s\n' "$output" | ply_vertices 4 | sort)" = "$(printf '0 0 0 255 0 0\n0 1 0 10 20 30\n1 0 0 0 255 0\n1 1 0 0 0 255')" ]
+	! printf '%s\n' "$output" | grep -q alpha || false
+	# COFF: three values a colour
+	"$BIN/vdt-qslim" -q -r 1 "$TMP/rgb.ply" -o "$TMP/out.off"
+	[ "$(sed -n '3,6p' "$TMP/out.off" | awk '{ print NF }' | sort -u)" = 6 ]
+	# Draco: three channels, which read back as the same colours
+	"$BIN/vdt-qslim" -q -r 1 "$TMP/rgb.ply" -o "$TMP/out.drc"
+	"$BIN/vdt-qslim" -q -r 1 "$TMP/out.drc" -F ply-ascii -o "$TMP/back.ply"
+	! grep -q alpha "$TMP/back.ply" || false
+	[ "$(ply_vertices 4 < "$TMP/back.ply" | awk '{ print $4, $5, $6 }' | sort)" = "$(printf '0 0 255\n0 255 0\n10 20 30\n255 0 0')" ]
+	# one vertex not opaque: alpha is written, for every vertex
+	sed 's/^1 1 0 0 0 255$/1 1 0 0 0 255 128/; s/^0 0 0 255 0 0$/0 0 0 255 0 0 255/; s/^1 0 0 0 255 0$/1 0 0 0 255 0 255/; s/^0 1 0 10 20 30$/0 1 0 10 20 30 255/; s/^property uchar blue$/property uchar blue\nproperty uchar alpha/' "$TMP/rgb.ply" > "$TMP/rgba.ply"
+	run "$BIN/vdt-qslim" -q -r 1 "$TMP/rgba.ply" -F ply-ascii -o -
+	printf '%s\n' "$output" | grep -qx 'property uchar alpha'
+	[ "$(printf '%s\n' "$output" | ply_vertices 4 | sort)" = "$(printf '0 0 0 255 0 0 255\n0 1 0 10 20 30 255\n1 0 0 0 255 0 255\n1 1 0 0 0 255 128')" ]
 }
 
 @test "normals of 0 (a scanner's none) and of other lengths are read as unit ones" {
@@ -130,7 +154,7 @@ EOF
 	# as int8 (10 x vertex, 50, 100)
 	run "$BIN/vdt-qslim" -q -r 1 "$DATA/int8-colour.drc" -F ply-ascii -o -
 	[ "$status" -eq 0 ]
-	cols=$(printf '%s\n' "$output" | sed -n '/^end_header/,$p' | awk 'NR > 1 && NF > 5 { print $(NF - 3), $(NF - 2), $(NF - 1) }' | sort -u)
+	cols=$(printf '%s\n' "$output" | sed -n '/^end_header/,$p' | awk 'NR > 1 && NF > 5 { print $(NF - 2), $(NF - 1), $NF }' | sort -u)
 	# 50/127 and 100/127 of 255
 	[ "$(printf '%s\n' "$cols" | awk '{ print $2, $3 }' | sort -u)" = "100 201" ]
 }

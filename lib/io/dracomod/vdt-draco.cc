@@ -197,13 +197,15 @@ write_mesh(const struct vdt_host *host, FILE *f, const struct vdt_mesh *m, int b
 	if (m->uvs)
 		add_float_attribute(dm, draco::GeometryAttribute::TEX_COORD, 2, m->uvs, nv);
 	if (m->colors) {
+		int channels = 3 + vdt_colors_alpha(m);
 		draco::GeometryAttribute ga;
-		ga.Init(draco::GeometryAttribute::COLOR, nullptr, 4, draco::DT_UINT8, true, 4, 0);
+		ga.Init(draco::GeometryAttribute::COLOR, nullptr, channels, draco::DT_UINT8, true,
+		        channels, 0);
 		int id = dm.AddAttribute(ga, true, uint32_t(nv));
 		draco::PointAttribute *pa = dm.attribute(id);
 		for (size_t i = 0; i < nv; i++) {
 			uint8_t c[4];
-			for (int k = 0; k < 4; k++)
+			for (int k = 0; k < channels; k++)
 				c[k] = uint8_t(std::lrint(vdt_color_clamp(m->colors[4 * i + k]) * 255.0f));
 			pa->SetAttributeValue(draco::AttributeValueIndex(uint32_t(i)), c);
 		}
