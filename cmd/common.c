@@ -323,6 +323,13 @@ note_attributes_output(const char *path, const struct vdt_mesh *m, const char *o
 }
 
 void
+note_input(const char *path, const struct vdt_mesh *m, int quiet)
+{
+	note_float_precision(path, m, quiet);
+	note_dropped(path, m->dropped, quiet);
+}
+
+void
 note_float_precision(const char *path, const struct vdt_mesh *m, int quiet)
 {
 	struct vdt_bbox box;

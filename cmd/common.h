@@ -105,6 +105,9 @@ void note_float_precision(const char *path, const struct vdt_mesh *m, int quiet)
  * the output lacks (dropped: VDT_DROPPED_*, as a reader read without
  * chunks sets them), unless quiet. */
 void note_dropped(const char *path, unsigned dropped, int quiet);
+/* Both notes of a mesh m read from path and simplified: its precision
+ * and what it had that the output lacks (m->dropped). */
+void note_input(const char *path, const struct vdt_mesh *m, int quiet);
 
 /* Remove the materials of the mesh read from path (the MATL chunk of
  * extra), which a tool that changes the faces without keeping them must

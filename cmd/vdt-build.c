@@ -158,8 +158,7 @@ run(struct cmdline *cl)
 		rc = fail("cannot read", cl->in, &err);
 		goto out;
 	}
-	note_float_precision(cl->in, &m, cl->quiet);
-	note_dropped(cl->in, m.dropped, cl->quiet);
+	note_input(cl->in, &m, cl->quiet);
 	/* (the tree's faces are its own) */
 	drop_materials(cl->in, &extra, cl->quiet);
 	if ((rc = vdt_vtree_prepare(&m, &dropped, &err)) != 0) {

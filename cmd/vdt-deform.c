@@ -264,8 +264,7 @@ run(struct cmdline *cl)
 		rc = fail("cannot read", bad ? bad : cl->in[0], &err);
 		goto out;
 	}
-	note_float_precision(cl->in[0], &in, cl->quiet);
-	note_dropped(cl->in[0], in.dropped, cl->quiet);
+	note_input(cl->in[0], &in, cl->quiet);
 	if (fr.frame_count > 1 && !vdt_deform_writes_frames(cl->out, &cl->w))
 		usage_error("%zu frames need a pattern with one %%d of width 20 at most "
 		            "(out/%%03d.obj) or a vdt stream for -o", fr.frame_count);

@@ -157,8 +157,7 @@ run(struct cmdline *cl)
 
 	if ((rc = vdt_read(cl->in, &in, &extra, &err)) != 0)
 		return fail("cannot read", cl->in, &err);
-	note_float_precision(cl->in, &in, cl->quiet);
-	note_dropped(cl->in, in.dropped, cl->quiet);
+	note_input(cl->in, &in, cl->quiet);
 	if ((rc = vdt_qslim_extra_decode(&x, &extra, in.vertex_count, in.triangle_count,
 	                                 cl->ignore_quadrics, &err)) != 0) {
 		rc = fail("cannot read", cl->in, &err);

@@ -142,8 +142,7 @@ run(struct cmdline *cl)
 		goto out;
 	}
 	tr = vdt_seconds();
-	note_float_precision(cl->in, &m, cl->quiet);
-	note_dropped(cl->in, m.dropped, cl->quiet);
+	note_input(cl->in, &m, cl->quiet);
 	if (cl->images) {
 		im.dir = cl->images;
 		cl->s.on_camera = vdt_sil_write_images;
