@@ -3644,17 +3644,17 @@ face_run(void *arg)
 static void
 engine_shed(struct engine *e)
 {
-	void **p[] = {(void **)&e->tnormal, (void **)&e->fpos, (void **)&e->refuse,
-	              (void **)&e->safe, (void **)&e->sfront, (void **)&e->touched,
-	              (void **)&e->hubnb, (void **)&e->xfan, (void **)&e->edges2,
-	              (void **)&e->vflag, (void **)&e->vt,
-	              (void **)&e->vp, (void **)&e->tpool.data, (void **)&e->ppool.data,
-	              (void **)&e->pv, (void **)&e->ppos, (void **)&e->pflag, (void **)&e->heap,
-	              (void **)&e->hpos, (void **)&e->vrej, (void **)&e->best,
-	              (void **)&e->alt, (void **)&e->altc,
-	              (void **)&e->vn, (void **)&e->vk, (void **)&e->work.wing,
-	              (void **)&e->keys, (void **)&e->kscratch, (void **)&e->plist, (void **)&e->poff,
-	              (void **)&e->pcount, (void **)&e->pout, (void **)&e->part,
+	void **p[] = {(void **)&e->tnormal,    (void **)&e->fpos,       (void **)&e->refuse,
+	              (void **)&e->safe,       (void **)&e->sfront,     (void **)&e->touched,
+	              (void **)&e->hubnb,      (void **)&e->xfan,       (void **)&e->edges2,
+	              (void **)&e->vflag,      (void **)&e->vt,         (void **)&e->vp,
+	              (void **)&e->tpool.data, (void **)&e->ppool.data, (void **)&e->pv,
+	              (void **)&e->ppos,       (void **)&e->pflag,      (void **)&e->heap,
+	              (void **)&e->hpos,       (void **)&e->vrej,       (void **)&e->best,
+	              (void **)&e->alt,        (void **)&e->altc,       (void **)&e->vn,
+	              (void **)&e->vk,         (void **)&e->work.wing,  (void **)&e->keys,
+	              (void **)&e->kscratch,   (void **)&e->plist,      (void **)&e->poff,
+	              (void **)&e->pcount,     (void **)&e->pout,       (void **)&e->part,
 	              (void **)&e->ecost};
 	for (size_t i = 0; i < sizeof(p) / sizeof(p[0]); i++) {
 		free(*p[i]);
