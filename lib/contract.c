@@ -1113,7 +1113,7 @@ link_hub(const struct engine *e, uint32_t hub, struct link *B)
 	if (shared == 1 && common != 2)
 		return common == 1;
 	if (shared == 2 && link_boundary(B) && e->xfan != NULL &&
-	    (e->xfan[hub] == 0 || e->edges2[hub]))
+	    (e->xfan[hub] == 0 || __atomic_load_n(&e->edges2[hub], __ATOMIC_RELAXED)))
 		return common + (e->xfan[hub] != 0) == 2;
 	if (shared > 0)
 		return link_boundary(B) ? -1 : common == shared + (shared == 1);
@@ -1124,17 +1124,20 @@ link_hub(const struct engine *e, uint32_t hub, struct link *B)
  * Note a hub's edges2 from its listing l. The link test keeps an edge at
  * it from gaining a third face (a shared neighbour off the pair's faces
  * is refused), so the note holds while the test is made; a caller that
- * skips it (allow_nonmanifold) never reads the note.
+ * skips it (allow_nonmanifold) never reads the note. (The costing threads
+ * of a pass may note and read it at once: it only turns 1, and a 0 read
+ * lists the hub for the same answer.)
  */
 static void
 note_edges2(struct engine *e, const struct link *l)
 {
-	if (e->edges2 == NULL || e->edges2[l->v] || e->vt[l->v].len < HUB)
+	if (e->edges2 == NULL || __atomic_load_n(&e->edges2[l->v], __ATOMIC_RELAXED) ||
+	    e->vt[l->v].len < HUB)
 		return;
 	for (long i = 0; i < l->n; i++)
 		if (l->nb[2 * i + 1] > 2)
 			return;
-	e->edges2[l->v] = 1;
+	__atomic_store_n(&e->edges2[l->v], 1, __ATOMIC_RELAXED);
 }
 
 /* need words for a listing: from *words while *room lasts, else
@@ -1630,9 +1633,12 @@ try_pair(struct engine *e, uint32_t u, uint32_t v, struct link *lu, int unsure,
 	*cost = eval_pair(e, a, b, pos);
 	uint32_t c, d;
 	if (e->vanish && tetrahedron(e, a, b, &c, &d))
-		/* (its cost eval_pair's; never the last faces: several
-		 * threads may take as many such parts at once) */
-		return *cost < INFINITY && e->live_tris > 4 * (size_t)(e->threads + 1) &&
+		/* (its cost eval_pair's; never the last faces. A round on
+		 * threads reads live_tris as it began, but takes fewer faces
+		 * than lie above the target, at least 1 where parts vanish
+		 * (round_prefix): a bound of the threads' number made the
+		 * output depend on it, a tetrahedron left or not) */
+		return *cost < INFINITY && e->live_tris > 4 &&
 		       (ops->valid == NULL || ops->valid(ops->ctx, *keep, *gone, pos));
 	float fpos[3] = {(float)pos[0], (float)pos[1], (float)pos[2]};
 	uint32_t few = e->vt[a].len < e->vt[b].len ? a : b, many = few == a ? b : a;

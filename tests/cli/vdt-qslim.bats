@@ -1038,6 +1038,14 @@ PY
 	run "$BIN/vdt-measure" -F kv "$TMP/cubes.off" "$TMP/two.ply"
 	[ "$status" -eq 0 ]
 	"$BIN/vdt-qslim" -v -r 1 "$TMP/two.ply" -o "$TMP/again.ply" 2>&1 | grep -q ' dropped=0 '
+	# down to the last few faces too: two spheres to 8 faces (a part
+	# vanished on one thread, none on two and four, when the last faces
+	# were kept by a bound of the threads' number)
+	for j in 1 2 4; do
+		"$BIN/vdt-qslim" -q --order passes -j$j -t 8 "$SAMPLES/twosphere.off" -o "$TMP/ts$j.off"
+	done
+	cmp "$TMP/ts1.off" "$TMP/ts2.off"
+	cmp "$TMP/ts1.off" "$TMP/ts4.off"
 }
 
 @test "vdt-qslim -a however small still pairs vertices closer than it" {
