@@ -64,6 +64,14 @@ enum {
 #define SLAB_SLACK 0x1p-32
 
 /*
+ * The part of the slack of every query that the mesh sets, as a share of
+ * its largest coordinate: a closest point is off its triangle by the
+ * rounding of the triangle's coordinates, whatever the query's (a query
+ * at the origin, a triangle 1e-6 long there).
+ */
+#define BVH_SLACK 0x1p-40
+
+/*
  * How far from square a slab's two directions may be: their gaps g, h then
  * bound the distance by (g^2 + h^2)(1 - SLAB_SQUARE), as the bound of two
  * directions at cosine c is (g^2 + h^2 - 2cgh) / (1 - c^2). Rounding
@@ -826,6 +834,8 @@ vdt_bvh_build(struct vdt_bvh *bvh, const struct vdt_mesh *m, struct vdt_err *err
 		if (bvh->slot_of[t] >= kept || bvh->order[bvh->slot_of[t]] != t)
 			bvh->slot_of[t] = bvh->slot_of[bvh->slot_of[t]];
 	free(b.prims);
+	for (size_t i = 0; i < 3 * m->vertex_count; i++)
+		bvh->slack = fmax(bvh->slack, BVH_SLACK * fabs(m->positions[i]));
 	fill_least(bvh, 0);
 	slabs(bvh);
 	return 0;
@@ -845,14 +855,23 @@ vdt_bvh_free(struct vdt_bvh *bvh)
 
 /* ---- query ---- */
 
+/*
+ * Squared distance from p to node n's box, each gap less slack (that of
+ * p and the mesh, see slack_of): a closest point is computed a few ulps off its
+ * triangle, outside the box of floats that holds the triangle (by an ulp
+ * of the corner at a corner, more where the corners' coordinates differ
+ * by 2^29 or more), and an exact box distance then exceeded the distance
+ * computed: a triangle there was missed for another a few ulps farther.
+ */
 static double
-box_dist2(const struct vdt_bvh_node *n, const double p[3])
+box_dist2(const struct vdt_bvh_node *n, const double p[3], double slack)
 {
 	double d = 0;
 
 	for (int i = 0; i < 3; i++) {
 		double v = p[i] < n->lo[i] ? n->lo[i] - p[i] : p[i] > n->hi[i] ? p[i] - n->hi[i] : 0;
-		d += v * v;
+		v -= slack;
+		d += v > 0 ? v * v : 0;
 	}
 	return d;
 }
@@ -883,20 +902,21 @@ slab_dist2(const struct vdt_bvh_slab *s, const double p[3], double slack, double
 static inline double
 node_dist2(const struct vdt_bvh *bvh, uint32_t i, const double p[3], int slabbed, double slack)
 {
-	double d = box_dist2(&bvh->nodes[i], p);
+	double d = box_dist2(&bvh->nodes[i], p, slack);
 
 	return slabbed && bvh->nodes[i].slab ? slab_dist2(&bvh->slabs[i], p, slack, d) : d;
 }
 
 static double
-slack_of(const double p[3])
+slack_of(const struct vdt_bvh *bvh, const double p[3])
 {
-	return SLAB_SLACK * (fabs(p[0]) + fabs(p[1]) + fabs(p[2]));
+	return SLAB_SLACK * (fabs(p[0]) + fabs(p[1]) + fabs(p[2])) + bvh->slack;
 }
 
-/* Squared distance from p to the box of a triangle: a lower bound. */
+/* Squared distance from p to the box of a triangle, less slack as
+ * box_dist2: a lower bound. */
 static double
-tri_box_dist2(const float *c, const double p[3])
+tri_box_dist2(const float *c, const double p[3], double slack)
 {
 	double d = 0;
 
@@ -907,8 +927,8 @@ tri_box_dist2(const float *c, const double p[3])
 
 		lo = c[6 + i] < lo ? c[6 + i] : lo;
 		hi = c[6 + i] > hi ? c[6 + i] : hi;
-		v = p[i] < lo ? lo - p[i] : p[i] > hi ? p[i] - hi : 0;
-		d += v * v;
+		v = (p[i] < lo ? lo - p[i] : p[i] > hi ? p[i] - hi : 0) - slack;
+		d += v > 0 ? v * v : 0;
 	}
 	return d;
 }
@@ -934,7 +954,7 @@ closest(const struct vdt_bvh *bvh, const double p[3], size_t hint, struct vdt_bv
 	} stack[STACK_MAX];
 	int sp = 0;
 	uint32_t node = 0, best_tri = UINT32_MAX;
-	double best = INFINITY, q[3], slack = slabbed ? slack_of(p) : 0;
+	double best = INFINITY, q[3], slack = slack_of(bvh, p);
 	size_t tests = 0;
 
 	if (hint < bvh->triangle_count) {
@@ -961,7 +981,7 @@ closest(const struct vdt_bvh *bvh, const double p[3], size_t hint, struct vdt_bv
 				double d;
 
 				/* the exact test costs several box tests: skip far ones */
-				double bd = tri_box_dist2(bvh->corners + 9 * s, p);
+				double bd = tri_box_dist2(bvh->corners + 9 * s, p, slack);
 				if (bd > best || (bd == best && t > best_tri))
 					continue;
 				d = slot_closest(bvh, s, p, q);
@@ -1023,7 +1043,7 @@ vdt_bvh_any_within(const struct vdt_bvh *bvh, const double p[3], double r2,
 {
 	uint32_t stack[STACK_MAX];
 	int sp = 0;
-	double q[3], slack = slack_of(p);
+	double q[3], slack = slack_of(bvh, p);
 	int slabbed = bvh->slabs != NULL;
 
 	if (bvh->node_count == 0)
@@ -1037,7 +1057,7 @@ vdt_bvh_any_within(const struct vdt_bvh *bvh, const double p[3], double r2,
 			continue;
 		if (n->count > 0) {
 			for (uint32_t s = n->index; s < n->index + n->count; s++)
-				if (tri_box_dist2(bvh->corners + 9 * s, p) <= r2 &&
+				if (tri_box_dist2(bvh->corners + 9 * s, p, slack) <= r2 &&
 				    slot_closest(bvh, s, p, q) <= r2 && pred(ctx, bvh->order[s]))
 					return 1;
 		} else {

@@ -51,6 +51,7 @@ struct vdt_bvh {
 	uint32_t *least;   /* node -> the least triangle of the mesh under it */
 	uint32_t *slot_of; /* triangle of the mesh -> slot */
 	float *corners;    /* 9 floats per slot: the triangle's three corners */
+	double slack;      /* below every bound: BVH_SLACK of the largest coordinate */
 };
 
 struct vdt_bvh_hit {

@@ -428,6 +428,70 @@ test_bvh_fan_prunes(void **state)
 	vdt_mesh_free(&m);
 }
 
+static int
+count_seen(void *ctx, size_t t)
+{
+	((size_t *)ctx)[t]++;
+	return 0;
+}
+
+/*
+ * A closest point is computed a few ulps off its triangle, outside the box
+ * of floats that holds it: at a corner (a query an ulp off one, its
+ * computed distance 0, its triangle's box 2^-130 away), and where the
+ * corners' coordinates differ by 2^29 or more (two needles on the z axis,
+ * 1e-6 and 1e-21 from the origin). The bounds allow for it: the answer is
+ * the brute force's whatever the hint, and any_within finds it.
+ */
+static void
+test_bvh_rounding_off_the_box(void **state)
+{
+	static const float corner[2][9] = {
+	        {0x1.253eeep-15f, -0x1.f1466ep-14f, -0x1.c0552cp-15f, -0x1.013964p-12f, 0x1.b0169cp-13f,
+	         -0x1.f5a674p-11f, -0x1.ff773cp-13f, 0x1.b2b62cp-13f, -0x1.f5a55ap-11f},
+	        {0x1.3466fcp-15f, -0x1.f15c98p-14f, -0x1.c518dap-15f, -0x1.fea8c6p-13f, 0x1.b00b86p-13f,
+	         -0x1.f5f2bp-11f, -0x1.013964p-12f, 0x1.b0169cp-13f, -0x1.f5a674p-11f}};
+	const float a = 0x1.ce81ap-21f, c = -0x1.3fc96p-68f;
+	const float needle[2][9] = {{0, 0, c, 0, 0, a, 0, 0, c}, {0, 0, a, 0, 0, a, 0, 0, c}};
+	const double at[2][3] = {{-0x1.013963fffffffp-12, 0x1.b0169c0000001p-13, -0x1.f5a674p-11},
+	                         {0, 0, -0x1.49f5e0465e1efp-17}};
+
+	(void)state;
+	for (int shape = 0; shape < 2; shape++) {
+		const float(*t)[9] = shape ? needle : corner;
+		struct vdt_mesh m;
+		struct vdt_bvh bvh;
+		double want = INFINITY, d[2];
+
+		assert_int_equal(vdt_mesh_alloc(&m, 6, 2, 0, NULL), 0);
+		for (int i = 0; i < 18; i++)
+			m.positions[i] = t[i / 9][i % 9];
+		for (uint32_t i = 0; i < 6; i++)
+			m.triangles[i] = i;
+		for (int k = 0; k < 2; k++) {
+			double v[3][3], q[3];
+			for (int i = 0; i < 9; i++)
+				v[i / 3][i % 3] = t[k][i];
+			d[k] = vdt_closest_on_triangle(at[shape], v[0], v[1], v[2], q);
+			want = d[k] < want ? d[k] : want;
+		}
+		assert_true(d[1] < d[0]);
+		assert_int_equal(vdt_bvh_build(&bvh, &m, NULL), 0);
+		for (size_t hint = 0; hint < 3; hint++) {
+			struct vdt_bvh_hit hit;
+			size_t seen[2] = {0, 0};
+
+			vdt_bvh_closest(&bvh, at[shape], hint < 2 ? hint : SIZE_MAX, &hit);
+			assert_true(hit.dist2 == want);
+			assert_int_equal(hit.triangle, 1);
+			vdt_bvh_any_within(&bvh, at[shape], want, count_seen, seen);
+			assert_int_equal(seen[1], 1);
+		}
+		vdt_bvh_free(&bvh);
+		vdt_mesh_free(&m);
+	}
+}
+
 /* Every triangle at one place: the build must still terminate and answer. */
 static void
 test_bvh_coincident(void **state)
@@ -796,6 +860,7 @@ main(void)
 		cmocka_unit_test(test_bvh_soup_fan_centre),
 		cmocka_unit_test(test_bvh_fan_matches_brute_force),
 		cmocka_unit_test(test_bvh_fan_prunes),
+		cmocka_unit_test(test_bvh_rounding_off_the_box),
 		cmocka_unit_test(test_sampling_area_proportional),
 		cmocka_unit_test(test_identical_is_zero),
 		cmocka_unit_test(test_parallel_squares),
