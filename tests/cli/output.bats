@@ -322,7 +322,9 @@ refused() {
 	# with the C++ runtime, 3.2 MB and two milliseconds of every start
 	export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
 	strace -f -e trace=openat -o "$TMP/off" "$BIN/vdt-qslim" -q -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/s.ply"
-	! grep -q 'libdraco\|libstdc++\|vdt-draco.so' "$TMP/off" || false
+	# (the C++ runtime too, but in a SANITIZE=1 build: libasan needs it)
+	if grep -q 'libasan' "$TMP/off"; then cxx=; else cxx='\|libstdc++'; fi
+	! grep -q "libdraco\|vdt-draco.so$cxx" "$TMP/off" || false
 	strace -f -e trace=openat -o "$TMP/drc" "$BIN/vdt-qslim" -q -r 0.5 "$SAMPLES/sphere.off" -o "$TMP/s.drc"
 	grep -q 'vdt-draco.so.* = [0-9]' "$TMP/drc"
 	grep -q 'libdraco.* = [0-9]' "$TMP/drc"

@@ -133,7 +133,9 @@ setup() {
 	export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
 	frames
 	strace -f -e trace=openat -o "$TMP/off" "$BIN/vdt-deform" -q --vertices 100 "$TMP/in/%03d.off" -o "$TMP/out/%03d.off"
-	! grep -q 'libassimp\|libstdc++\|vdt-assimp.so' "$TMP/off" || false
+	# (the C++ runtime too, but in a SANITIZE=1 build: libasan needs it)
+	if grep -q 'libasan' "$TMP/off"; then cxx=; else cxx='\|libstdc++'; fi
+	! grep -q "libassimp\|vdt-assimp.so$cxx" "$TMP/off" || false
 	strace -f -e trace=openat -o "$TMP/x" "$BIN/vdt-deform" -q --frames 2 -r 0.5 "$DANCE" -o "$TMP/out/x%d.off"
 	grep -q 'vdt-assimp.so.* = [0-9]' "$TMP/x"
 	grep -q 'libassimp.* = [0-9]' "$TMP/x"
