@@ -1634,6 +1634,18 @@ hub_of_slivers_stays_a_disc(void **state)
 	}
 }
 
+/* The options of the hub tests: mode 0 greedy, 1 passes, 2 the pair
+ * queue, on two threads, to target faces. */
+static void
+hub_opts(struct vdt_contract_opts *o, int mode, size_t target)
+{
+	vdt_contract_defaults(o);
+	o->target_triangles = target;
+	o->passes = mode == 1;
+	o->pair_queue = mode == 2;
+	o->threads = 2;
+}
+
 /*
  * Two hubs, each joined to every vertex of a ring of n (2n faces; the
  * ring wavers in and out so that its pairs cost something), simplified
@@ -1674,11 +1686,7 @@ hubs_are_not_read_at_each_try(void **state)
 		                               NULL};
 		struct vdt_contract_opts o;
 		struct vdt_contract_result r;
-		vdt_contract_defaults(&o);
-		o.target_triangles = 2 * N / 10;
-		o.passes = mode == 1;
-		o.pair_queue = mode == 2;
-		o.threads = 2;
+		hub_opts(&o, mode, 2 * N / 10);
 		assert_int_equal(vdt_contract_run(&m, &ops, &o, &r, NULL), 0);
 		assert_true(r.reached_target);
 		struct vdt_mesh out = {r.vertex_count, r.positions, NULL, NULL, NULL,
@@ -1746,11 +1754,7 @@ open_hub_is_not_read_at_each_try(void **state)
 				vdt_quadric_add(&c.q[t[2]], &q);
 			}
 		}
-		vdt_contract_defaults(&o);
-		o.target_triangles = N / 10;
-		o.passes = mode == 1;
-		o.pair_queue = mode == 2;
-		o.threads = 2;
+		hub_opts(&o, mode, N / 10);
 		assert_int_equal(vdt_contract_run(&m, &ops, &o, &r, NULL), 0);
 		assert_true(r.triangle_count <= N / 10);
 		assert_true(r.entries_read < (mode == 0 ? 100 : 1000) * (size_t)N);
