@@ -775,20 +775,26 @@ tetrahedron(const struct engine *e, uint32_t a, uint32_t b, uint32_t *c, uint32_
 	return 1;
 }
 
-/* The caller's cost of pair (a, b), a < b, or INFINITY. */
+/* The caller's cost of pair (a, b), a < b, or INFINITY; *tetra, if not
+ * NULL, 1 when the pair would make a tetrahedron vanish (the vanishing
+ * cost given instead), else 0. */
 static double
-eval_pair(struct engine *e, uint32_t a, uint32_t b, double pos[3])
+eval_pair(struct engine *e, uint32_t a, uint32_t b, double pos[3], int *tetra)
 {
 	int la = e->vflag[a] & V_LOCKED, lb = e->vflag[b] & V_LOCKED;
-	int fixed = la ? 0 : lb ? 1 : -1;
+	int fixed = la ? 0 : lb ? 1 : -1, vanishes = 0;
 
+	if (tetra != NULL)
+		*tetra = 0;
 	if (la && lb)
 		return INFINITY;
 	double c = e->ops->cost(e->ops->ctx, a, b, fixed, e->pos + 3 * (size_t)a,
 	                        e->pos + 3 * (size_t)b, pos);
 	uint32_t c3, d3;
-	if (e->vanish && c < INFINITY && tetrahedron(e, a, b, &c3, &d3))
+	if (e->vanish && c < INFINITY && (vanishes = tetrahedron(e, a, b, &c3, &d3)))
 		c = e->ops->vanish(e->ops->ctx, a); /* (pos as the pair has it) */
+	if (tetra != NULL)
+		*tetra = vanishes;
 	c += 0.0; /* -0 to +0 (before) */
 	return c >= 0 && c < INFINITY ? c : INFINITY;
 }
@@ -796,7 +802,7 @@ eval_pair(struct engine *e, uint32_t a, uint32_t b, double pos[3])
 static int
 pair_cost(struct engine *e, uint32_t p, double pos[3])
 {
-	double c = eval_pair(e, e->pv[2 * p], e->pv[2 * p + 1], pos);
+	double c = eval_pair(e, e->pv[2 * p], e->pv[2 * p + 1], pos, NULL);
 
 	if (!(c < INFINITY)) {
 		heap_remove(e, p);
@@ -1630,9 +1636,9 @@ try_pair(struct engine *e, uint32_t u, uint32_t v, struct link *lu, int unsure,
 	if (e->vanish && (e->vt[a].len == 0 || e->vt[b].len == 0))
 		return 0;
 	orient(e, a, b, keep, gone);
-	*cost = eval_pair(e, a, b, pos);
-	uint32_t c, d;
-	if (e->vanish && tetrahedron(e, a, b, &c, &d))
+	int tetra;
+	*cost = eval_pair(e, a, b, pos, &tetra);
+	if (tetra)
 		/* (its cost eval_pair's; never the last faces. A round on
 		 * threads reads live_tris as it began, but takes fewer faces
 		 * than lie above the target, at least 1 where parts vanish
@@ -1894,7 +1900,7 @@ fan_costs(struct engine *e, uint32_t v, int upper, int how, struct vcost *out)
 	/* Costed once all are listed, so that their data is on its way. */
 	for (uint32_t s = 0; s < n; s++) {
 		uint32_t x = out[s].x;
-		out[s].cost = (float)(x < v ? eval_pair(e, x, v, pos) : eval_pair(e, v, x, pos));
+		out[s].cost = (float)(x < v ? eval_pair(e, x, v, pos, NULL) : eval_pair(e, v, x, pos, NULL));
 	}
 	if (how == FAN_EVAL) {
 		free(big);
@@ -2008,22 +2014,20 @@ cheapest_valid(struct engine *e, uint32_t v, struct vcost *vn, long n, int unsur
                float *c)
 {
 	uint32_t local[4 * LINK_STACK + 4 * LINK_STACK]; /* fan_words(LINK_STACK) */
-	size_t need = fan_words(e->vt[v].len);
-	uint32_t keep, gone, *big = NULL;
+	uint32_t keep, gone, *words = local, *big = NULL, *w;
+	size_t room = sizeof(local) / sizeof(local[0]);
 	double pos[3], cost;
 	struct link lv, *known = NULL;
 
 	*x = NONE;
 	*c = INFINITY;
 	qsort(vn, (size_t)n, sizeof(*vn), by_cost);
-	if (!e->allow_nonmanifold && n > 0) { /* (without memory, listed at each try) */
-		if (need > sizeof(local) / sizeof(local[0]))
-			big = malloc(need * sizeof(*big));
-		if (need <= sizeof(local) / sizeof(local[0]) || big != NULL) {
-			link_fill(e, v, big != NULL ? big : local, &lv);
-			note_edges2(e, &lv);
-			known = &lv;
-		}
+	/* (without memory, listed at each try) */
+	if (!e->allow_nonmanifold && n > 0 &&
+	    (w = link_words(&words, &room, fan_words(e->vt[v].len), &big)) != NULL) {
+		link_fill(e, v, w, &lv);
+		note_edges2(e, &lv);
+		known = &lv;
 	}
 	int found = 0;
 	for (long i = 0; i < n && vn[i].cost < INFINITY && !found; i++)
@@ -4163,7 +4167,7 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 	if (e.vq && vertex_queue_init(&e) != 0)
 		goto nomem;
 	for (size_t p = 0; p < e.np; p++) {
-		double c = eval_pair(&e, e.pv[2 * p], e.pv[2 * p + 1], pos);
+		double c = eval_pair(&e, e.pv[2 * p], e.pv[2 * p + 1], pos, NULL);
 		if (c < INFINITY) {
 			e.hpos[p] = (uint32_t)e.hlen;
 			e.heap[e.hlen++] = (struct hent){(uint32_t)p, (float)c};
