@@ -1900,7 +1900,8 @@ fan_costs(struct engine *e, uint32_t v, int upper, int how, struct vcost *out)
 	/* Costed once all are listed, so that their data is on its way. */
 	for (uint32_t s = 0; s < n; s++) {
 		uint32_t x = out[s].x;
-		out[s].cost = (float)(x < v ? eval_pair(e, x, v, pos, NULL) : eval_pair(e, v, x, pos, NULL));
+		out[s].cost = (float)(x < v ? eval_pair(e, x, v, pos, NULL)
+		                            : eval_pair(e, v, x, pos, NULL));
 	}
 	if (how == FAN_EVAL) {
 		free(big);
