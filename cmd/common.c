@@ -143,7 +143,7 @@ input_name(const char *path)
 {
 	/* a few at a time: one message may name two files */
 	static char ring[4][1024];
-	static int next;
+	static unsigned next;
 	char *b = ring[next++ % 4];
 	size_t n = 0;
 
@@ -161,7 +161,7 @@ input_name(const char *path)
 			n += (size_t)snprintf(b + n, 5, "\\%03o", *p);
 		else
 			b[n++] = (char)*p;
-	strcpy(b + n, *p ? "..." : "");
+	snprintf(b + n, sizeof(ring[0]) - n, "%s", *p ? "..." : "");
 	return b;
 }
 

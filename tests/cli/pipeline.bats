@@ -142,6 +142,14 @@ load helpers
 	run "$BIN/vdt-render" "$TMP/t.vdt" -o "$TMP/x${nl%.off}.zzz"
 	[ "$status" -eq 2 ]
 	one_line
+	# a name too long for the message is cut, marked so
+	long=$(printf 'd%.0s' {1..200})
+	long="$TMP/$long/$long/$long/$long/$long/$long/$nl"
+	run "$BIN/vdt-qslim" "$long" -o "$TMP/out.off"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"...': "* ]]
+	[ ! -e "$TMP/out.off" ]
 }
 
 @test "every tool writes its own chunks first, then those it passes on, as read" {
