@@ -3676,43 +3676,10 @@ engine_shed(struct engine *e)
 static void
 engine_free(struct engine *e)
 {
+	engine_shed(e);
 	free(e->pos);
 	free(e->tri);
-	free(e->tnormal);
-	free(e->fpos);
-	free(e->refuse);
-	free(e->safe);
-	free(e->sfront);
-	free(e->touched);
-	free(e->hubnb);
-	free(e->xfan);
-	free(e->edges2);
-	free(e->vflag);
-	free(e->vt);
-	free(e->vp);
-	free(e->tpool.data);
-	free(e->ppool.data);
-	free(e->pv);
-	free(e->ppos);
-	free(e->pflag);
-	free(e->heap);
-	free(e->hpos);
 	free(e->parent);
-	free(e->vrej);
-	free(e->best);
-	free(e->alt);
-	free(e->altc);
-	free(e->vn);
-	free(e->vk);
-	free(e->work.wing);
-	free(e->keys);
-	free(e->kscratch);
-	free(e->plist);
-	free(e->poff);
-	free(e->pcount);
-	free(e->pout);
-	free(e->part);
-	free(e->ecost);
 }
 
 /* The engine works in m's arrays when they are handed over (own), else in copies. */
