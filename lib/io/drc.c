@@ -29,6 +29,12 @@ vdt_draco_read(const unsigned char *buf, size_t len, struct vdt_mesh *m, struct 
 }
 
 int
+vdt_draco_ready(struct vdt_err *err)
+{
+	return vdt_module_ready(&mod, err);
+}
+
+int
 vdt_draco_write(FILE *f, const struct vdt_mesh *m, int position_bits, int speed,
                 struct vdt_err *err)
 {

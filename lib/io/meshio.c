@@ -847,9 +847,12 @@ static struct {
 
 /* (every signal whose default ends the process and that can be caught:
  * a CPU limit's SIGXCPU, a batch scheduler's warning SIGUSR1 or SIGUSR2,
- * a timer's) */
-static const int cleanup_signals[] = {SIGINT,  SIGTERM, SIGHUP,  SIGQUIT, SIGPIPE,   SIGXFSZ,
-                                      SIGXCPU, SIGUSR1, SIGUSR2, SIGALRM, SIGVTALRM, SIGPROF};
+ * a timer's; and abort's, which the C++ runtime calls on an exception
+ * it cannot pass on, as Draco's encoder throws out of a destructor when
+ * memory runs out) */
+static const int cleanup_signals[] = {SIGINT,    SIGTERM, SIGHUP,  SIGQUIT, SIGPIPE,
+                                      SIGXFSZ,   SIGXCPU, SIGUSR1, SIGUSR2, SIGALRM,
+                                      SIGVTALRM, SIGPROF, SIGABRT};
 
 /*
  * The runs' sets of files written (vdt_written) for the handler too: each
@@ -858,6 +861,8 @@ static const int cleanup_signals[] = {SIGINT,  SIGTERM, SIGHUP,  SIGQUIT, SIGPIP
  */
 struct vdt_wnode {
 	struct vdt_wnode *next;
+	struct vdt_wnode *newer; /* the other way, oldest first: commit needs
+	                            no memory, which may have run out */
 	char *target; /* staged: what path is renamed to at commit; else NULL */
 	char path[];  /* what a failure removes: the staged temporary file, or
 	                 the file written */
@@ -1139,6 +1144,11 @@ static void
 written_push(struct vdt_written *w, struct vdt_wnode *n)
 {
 	n->next = w->head;
+	n->newer = NULL;
+	if (w->head != NULL)
+		w->head->newer = n;
+	else
+		w->oldest = n;
 	__atomic_store_n(&w->head, n, __ATOMIC_RELEASE);
 	w->count++;
 	if (w->slot == 0) { /* (more sets at once than slots: not on a signal) */
@@ -1244,33 +1254,25 @@ vdt_written_stage(struct vdt_written *w, const char *tmp, const char *target, st
 int
 vdt_written_commit(struct vdt_written *w, struct vdt_err *err)
 {
-	struct vdt_wnode **order = malloc((w->count ? w->count : 1) * sizeof(*order));
+	struct vdt_wnode *x = w->oldest;
 	sigset_t old;
-	size_t n = 0;
 	int rc = 0;
 
-	if (order == NULL) {
-		vdt_written_remove(w);
-		return vdt_err_set(err, VDT_ENOMEM, "out of memory");
-	}
-	for (struct vdt_wnode *x = w->head; x; x = x->next)
-		order[n++] = x;
 	/* No signal from the first rename to the last, which left some
 	 * files new and the rest old; and none until w is off the handler's
 	 * list, which would remove the files renamed. */
 	hold_signals(&old);
-	/* in the order written (the list is newest first) */
-	while (n-- > 0 && rc == 0)
-		if (order[n]->target && rename(order[n]->path, order[n]->target) != 0) {
+	/* in the order written */
+	for (; x != NULL; x = x->newer)
+		if (x->target && rename(x->path, x->target) != 0) {
 			rc = vdt_err_set(err, VDT_EIO, "cannot rename the temporary file '%s': %s",
-			                 order[n]->path, strerror(errno));
+			                 x->path, strerror(errno));
 			break;
 		}
 	/* what a failed rename left staged goes; what was renamed stays */
-	for (size_t i = 0; rc != 0 && i <= n; i++)
-		if (order[i]->target)
-			unlink(order[i]->path);
-	free(order);
+	for (; x != NULL; x = x->newer)
+		if (x->target)
+			unlink(x->path);
 	vdt_written_free(w);
 	pthread_sigmask(SIG_SETMASK, &old, NULL);
 	return rc;
@@ -1677,6 +1679,11 @@ vdt_write(const char *path, const struct vdt_mesh *m,
 		return vdt_err_set(err, VDT_EINVAL, "unknown output format (give a known extension)");
 	rc = vdt_mesh_validate(m, err);
 	if (rc != 0)
+		return rc;
+	/* Draco loaded before the output is begun: a module missing, or a
+	 * process killed in its loading (its libraries' start-up out of
+	 * memory), leaves no temporary file behind. */
+	if (f == VDT_FMT_DRC && (rc = vdt_draco_ready(err)) != 0)
 		return rc;
 	rc = vdt_output_open(&o, path, err);
 	if (rc != 0)

@@ -184,6 +184,7 @@ struct vdt_wnode;
 struct vdt_written {
 	struct vdt_wnode *head; /* what was written, through symbolic links,
 	                           newest first (the signal handler reads it) */
+	struct vdt_wnode *oldest; /* the list's other end, for commit */
 	size_t count;
 	int slot; /* where the handler finds it, from 1; 0 before any */
 };
@@ -419,6 +420,8 @@ int vdt_text_write(FILE *f, const struct vdt_mesh *m, enum vdt_format format,
                    struct vdt_err *err);
 int vdt_draco_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
                    struct vdt_err *err);
+/* Draco's module loaded (vdt_draco_write loads it itself): 0, or why not. */
+int vdt_draco_ready(struct vdt_err *err);
 /* position_bits 0 and speed 0 select the defaults above. */
 int vdt_draco_write(FILE *f, const struct vdt_mesh *m, int position_bits,
                     int speed, struct vdt_err *err);

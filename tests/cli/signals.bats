@@ -41,8 +41,8 @@ until_() {
 @test "a signal while the temporary output file is made leaves none behind" {
 	# (between mkstemp and the handler's note of the name: keep_mode's
 	# fchmod is held); a CPU limit's, a batch scheduler's warning and a
-	# timer's signal too
-	for sig in TERM XCPU USR1 ALRM; do
+	# timer's signal too, and abort's (the C++ runtime's end)
+	for sig in TERM XCPU USR1 ALRM ABRT; do
 		rm -rf "$TMP/out"
 		mkdir "$TMP/out"
 		traced "$TMP/pid" -e trace=fchmod -e inject=fchmod:delay_exit=1500000 -- \
