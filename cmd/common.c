@@ -576,12 +576,15 @@ long
 output_over_input(const char *const *in, size_t nin, const char *const *out, size_t nout,
                   size_t *which)
 {
-	struct stat *si = malloc((nin ? nin : 1) * sizeof(*si)), so;
-	char *ok = malloc(nin ? nin : 1);
+	/* (a few inputs on the stack: the first thing a tool does, whose
+	 * failure could name no file) */
+	struct stat sfew[8], *si = sfew, so;
+	char okfew[8], *ok = okfew;
 	long found = -1;
 
-	if (si == NULL || ok == NULL) {
-		fprintf(stderr, "%s: out of memory\n", progname);
+	if (nin > 8 && ((si = malloc(nin * sizeof(*si))) == NULL || (ok = malloc(nin)) == NULL)) {
+		fprintf(stderr, "%s: cannot check the outputs against %zu inputs: out of memory\n",
+		        progname, nin);
 		exit(EXIT_WORK);
 	}
 	for (size_t i = 0; i < nin; i++)
@@ -597,8 +600,10 @@ output_over_input(const char *const *in, size_t nin, const char *const *out, siz
 				*which = i;
 			}
 	}
-	free(si);
-	free(ok);
+	if (si != sfew) {
+		free(si);
+		free(ok);
+	}
 	return found;
 }
 
