@@ -31,7 +31,9 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <map>
 #include <new>
 #include <string>
@@ -324,9 +326,17 @@ bake(const struct vdt_host *host, const aiScene *s, const struct vdt_bake_opts *
 
 } // namespace
 
+/*
+ * Asked first, at load: the C++ runtime's per-thread exception state,
+ * which a C program that loads it has in dynamic thread-local storage,
+ * is made now. Made at the first throw (out of memory, say) or at exit,
+ * its allocation failing aborted the process past every catch.
+ */
 extern "C" int
 vdt_asm_abi(void)
 {
+	volatile int made = std::uncaught_exceptions(); /* (pure: kept only if used) */
+	(void)made;
 	return VDT_ASM_ABI;
 }
 
@@ -343,19 +353,29 @@ vdt_asm_read(const struct vdt_host *host, const char *path, const struct vdt_bak
 	/* Assimp's own word for a file it cannot open is vaguer than errno's. */
 	FILE *f = fopen(path, "rb");
 	if (f == nullptr)
-		return host->err_set(err, VDT_EIO, "%s", strerror(errno));
+		return host->err_set(err, errno == ENOMEM ? VDT_ENOMEM : VDT_EIO, "%s",
+		                     strerror(errno));
 	fclose(f);
 	const aiScene *s = aiImportFile(path, aiProcess_ValidateDataStructure | aiProcess_Triangulate |
 	                                          aiProcess_SortByPType);
 	if (s == nullptr) {
-		std::string why = aiGetErrorString();
-		while (!why.empty() && (why.back() == '\n' || why.back() == '.' || why.back() == ' '))
-			why.pop_back();
-		/* (Assimp catches its own exceptions, out of memory too) */
-		if (why.find("bad_alloc") != std::string::npos)
+		/* Assimp catches its own exceptions, out of memory too, and
+		 * says so as "bad_alloc", in errno's words, or not at all (its
+		 * message lost for want of memory): a file it failed on while
+		 * not even a little memory is left is no bad input. (Its
+		 * string read in place: a copy could run out itself.) */
+		const char *why = aiGetErrorString();
+		size_t n = strlen(why);
+		while (n > 0 && (why[n - 1] == '\n' || why[n - 1] == '.' || why[n - 1] == ' '))
+			n--;
+		void *room = malloc(65536);
+		bool starved = room == nullptr;
+		free(room);
+		if (starved || strstr(why, "bad_alloc") || strstr(why, strerror(ENOMEM)))
 			return host->err_set(err, VDT_ENOMEM, "out of memory");
-		return host->err_set(err, VDT_EFORMAT, "%s",
-		                   why.empty() ? "not a model Assimp reads" : why.c_str());
+		if (n == 0)
+			return host->err_set(err, VDT_EFORMAT, "not a model Assimp reads");
+		return host->err_set(err, VDT_EFORMAT, "%.*s", (int)n, why);
 	}
 	try {
 		rc = bake(host, s, bo, m, fr, err);
