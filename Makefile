@@ -140,7 +140,14 @@ $(B)/bench/%: $(B)/scripts/bench/%.o $(LIB)
 deps:
 	@scripts/install-deps
 
-unit: $(UNIT)
+unit: $(UNIT) $(B)/tests/failalloc.so
+
+# An LD_PRELOAD library that makes the Nth allocation fail, for the tests
+# of running out of memory: not sanitized (ASan's allocator must come
+# first; the tests skip it there).
+$(B)/tests/failalloc.so: tests/cli/failalloc.c
+	@mkdir -p $(@D)
+	$(CC) -std=c11 -O2 -Wall -Wextra -Werror -shared -fPIC -o $@ $<
 
 check: deps
 	@$(MAKE) --no-print-directory all unit samples
