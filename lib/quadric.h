@@ -126,7 +126,7 @@ int vdt_quadric_floor(struct vdt_quadric *q, double least);
  * hollow pipes at 3% of their faces: RMS 12% above CGAL's, 13% below with
  * the tie). At 1e-9 of the squared length it is the cost of a distance of
  * 3e-5 of the pair: above rounding, far below most real errors. Not below
- * all: on CGAL's CAD pipes, long pairs on the flats (no error) waited
+ * all: on the crossing pipes, long pairs on the flats (no error) waited
  * behind short ones with errors of 1e-6 of the diagonal elsewhere, and the
  * pipes at half their faces came out 2e-4% of the diagonal off where they
  * need not be off at all. So a pair whose error is negligible

@@ -1230,7 +1230,7 @@ PY
 }
 
 @test "vdt-qslim takes every contraction that costs nothing before any that costs something" {
-	# CGAL's CAD pipes: long pairs on their flats and cylinders cost
+	# mkshapes' crossing pipes: long pairs on their flats and cylinders cost
 	# nothing, and halving them needs no others. When such pairs waited
 	# behind short ones of tiny real cost, the result was 2e-4% of the
 	# diagonal off at a half and 2e-3% at 30%; now only the rounding of
