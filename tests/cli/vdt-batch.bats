@@ -901,6 +901,20 @@ teardown() {
 	printf '%s\n' "$output" | grep -q '^vdt-batch: broken.off failed: vdt-cluster: cannot read '
 }
 
+@test "vdt-batch: a closed standard output: -q needs none, a summary says it cannot write" {
+	mkdir -p "$TMP/in"
+	cp "$SAMPLES/torus.off" "$TMP/in/"
+	# (its option checks' awk failed at its end there: "bad ratio '50'")
+	run bash -c '"$1" -q --ratios 50 --samples 1000 -o "$2" "$3" >&-' _ "$BATCH" "$TMP/q" "$TMP/in"
+	[ "$status" -eq 0 ]
+	[ -z "$output" ]
+	[ -s "$TMP/q/torus.lod1.ply" ]
+	run bash -c '"$1" --ratios 50 --samples 1000 -o "$2" "$3" >&-' _ "$BATCH" "$TMP/s" "$TMP/in"
+	[ "$status" -eq 1 ]
+	[ "$output" = "vdt-batch: cannot write '<stdout>': Bad file descriptor" ]
+	cmp "$TMP/q/torus.lod1.ply" "$TMP/s/torus.lod1.ply"
+}
+
 @test "vdt-batch: an output tree on a read-only file system is status 1 and one line" {
 	mkdir -p "$TMP/in"
 	cp "$SAMPLES/torus.off" "$TMP/in/"
