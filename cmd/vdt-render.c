@@ -306,6 +306,15 @@ run(struct cmdline *cl)
 			        R.F.stats.collapses, R.F.stats.forced, R.F.stats.refused, R.F.stats.updated, R.tau,
 			        vdt_render_has_labels(&R), 1e3 * (t1 - t0), 1e3 * (t2 - t1), 100 * (t1 - t0) / (t2 - t0));
 	}
+	/* --compare's lines are output too: written, or the files are not
+	 * put in place either */
+	errno = 0;
+	if (rc == EXIT_OK && cl->compare && report == stdout &&
+	    (fflush(stdout) != 0 || ferror(stdout))) {
+		struct vdt_err werr = {0};
+		vdt_err_set(&werr, VDT_EIO, "write error: %s", strerror(errno ? errno : EIO));
+		rc = fail("cannot write", "-", &werr);
+	}
 	if (rc != EXIT_OK)
 		vdt_written_remove(&done); /* leave nothing behind */
 	else if (vdt_written_commit(&done, &err) != 0)

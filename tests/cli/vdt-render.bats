@@ -154,6 +154,19 @@ tree() {
 	[[ "$output" == "frame=0 rmse=0.0000 "* ]]
 }
 
+@test "vdt-render --compare: lines that cannot be written put no file in place" {
+	[ -w /dev/full ] || skip "no /dev/full"
+	tree
+	"$BIN/vdt-render" --size 32x32 "$TMP/t.vdt" -o "$TMP/a.png"
+	echo old > "$TMP/b.png"
+	run bash -c '"$1" --size 32x32 "$2" --compare "$3" -o "$4" --mesh-out "$5" >/dev/full' _ \
+		"$BIN/vdt-render" "$TMP/t.vdt" "$TMP/a.png" "$TMP/b.png" "$TMP/b.ply"
+	[ "$status" -eq 1 ]
+	[ "$output" = "vdt-render: cannot write '<stdout>': write error: No space left on device" ]
+	[ "$(cat "$TMP/b.png")" = old ]
+	[ ! -e "$TMP/b.ply" ]
+}
+
 @test "vdt-render --compare takes a reference per frame along a path" {
 	tree
 	for i in 0 1 2; do echo "$((3 + i)) 1 $((8 - i)) 0 0 0 0 1 0"; done > "$TMP/p.txt"
