@@ -901,6 +901,17 @@ teardown() {
 	printf '%s\n' "$output" | grep -q '^vdt-batch: broken.off failed: vdt-cluster: cannot read '
 }
 
+@test "vdt-batch: a tool killed by a signal is named with the signal and its output" {
+	mkdir -p "$TMP/in"
+	cp "$SAMPLES/sphere.off" "$TMP/in/"
+	# (said "not finished": a killed tool writes no message)
+	run bash -c 'ulimit -f 40; "$1" -q --ratios 50 --samples 1000 -o "$2" "$3"' _ \
+		"$BATCH" "$TMP/out" "$TMP/in"
+	[ "$status" -eq 1 ]
+	[ "${lines[0]}" = "vdt-batch: sphere.off failed: vdt-qslim: killed by SIGXFSZ making '$TMP/out/sphere.lod1.ply'" ]
+	[ ! -e "$TMP/out/sphere.lod1.ply" ]
+}
+
 @test "vdt-batch: a closed standard output: -q needs none, a summary says it cannot write" {
 	mkdir -p "$TMP/in"
 	cp "$SAMPLES/torus.off" "$TMP/in/"
