@@ -1265,8 +1265,8 @@ vdt_written_commit(struct vdt_written *w, struct vdt_err *err)
 	/* in the order written */
 	for (; x != NULL; x = x->newer)
 		if (x->target && rename(x->path, x->target) != 0) {
-			rc = vdt_err_set(err, VDT_EIO, "cannot rename the temporary file '%s': %s",
-			                 x->path, strerror(errno));
+			rc = vdt_err_set(err, VDT_EIO, "cannot rename '%s' to '%s': %s", x->path,
+			                 x->target, strerror(errno));
 			break;
 		}
 	/* what a failed rename left staged goes; what was renamed stays */

@@ -167,6 +167,22 @@ tree() {
 	[ ! -e "$TMP/b.ply" ]
 }
 
+@test "vdt-render: a rename that fails among the frames names the file it was renaming" {
+	command -v strace >/dev/null || skip "no strace(1)"
+	tree
+	for i in 0 1; do echo "$((3 + i)) 1 $((8 - i)) 0 0 0 0 1 0"; done > "$TMP/p.txt"
+	mkdir "$TMP/o"
+	# the second rename fails, as on a file system turned read-only
+	run strace -f -qq -o /dev/null -e trace=rename,renameat,renameat2 \
+		-e inject=rename,renameat,renameat2:error=EROFS:when=2 \
+		"$BIN/vdt-render" --size 16x16 --path "$TMP/p.txt" "$TMP/t.vdt" -o "$TMP/o/f%d.png"
+	[ "$status" -eq 1 ]
+	one_line
+	[[ "$output" == *" to '$TMP/o/f1.png': Read-only file system" ]]
+	# the first stays, as the page says; nothing else is left
+	[ "$(ls -A "$TMP/o")" = f0.png ]
+}
+
 @test "vdt-render --compare takes a reference per frame along a path" {
 	tree
 	for i in 0 1 2; do echo "$((3 + i)) 1 $((8 - i)) 0 0 0 0 1 0"; done > "$TMP/p.txt"
