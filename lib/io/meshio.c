@@ -1150,7 +1150,6 @@ written_push(struct vdt_written *w, struct vdt_wnode *n)
 	else
 		w->oldest = n;
 	__atomic_store_n(&w->head, n, __ATOMIC_RELEASE);
-	w->count++;
 	if (w->slot == 0) { /* (more sets at once than slots: not on a signal) */
 		cleanup_install();
 		for (int i = 0; i < WRITTEN_SLOTS && w->slot == 0; i++) {

@@ -185,7 +185,6 @@ struct vdt_written {
 	struct vdt_wnode *head; /* what was written, through symbolic links,
 	                           newest first (the signal handler reads it) */
 	struct vdt_wnode *oldest; /* the list's other end, for commit */
-	size_t count;
 	int slot; /* where the handler finds it, from 1; 0 before any */
 };
 
