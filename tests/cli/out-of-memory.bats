@@ -24,20 +24,23 @@ setup() {
 # end the process themselves): all after it only, and a failure is
 # never taken for bad input (status 2). Either way, a success gives the
 # output of a run with its memory, and a failure leaves nothing. What
-# went wrong goes to $TMP/bad.
+# went wrong goes to $TMP/bad. With LAST=L in the environment, only the
+# last L allocations.
 sweep() {
-	local how=$1 step=$2 out=$3 n k rc all err left modes=1
+	local how=$1 step=$2 out=$3 n k rc all err left modes=1 first=1
 	shift 3
 	[ "$how" = loose ] || modes="0 1"
+	rm -rf "$TMP/ref" "$TMP/w"
 	mkdir "$TMP/ref" "$TMP/w"
 	(cd "$TMP/ref" && VDT_FAIL_ALLOC_COUNT=$TMP/count LD_PRELOAD=$FAILALLOC "$@")
 	n=$(<"$TMP/count")
 	[ "$n" -gt 10 ]
+	[ -z "${LAST:-}" ] || first=$((n - LAST + 1))
 	: >"$TMP/bad"
 	cd "$TMP/w"
 	shopt -s nullglob dotglob
 	for all in $modes; do
-		for ((k = 1; k <= n; k += step)); do
+		for ((k = first; k <= n; k += step)); do
 			rc=0
 			VDT_FAIL_ALLOC=$k VDT_FAIL_ALLOC_ALL=$all LD_PRELOAD=$FAILALLOC \
 				timeout 60 "$@" 2>"$TMP/stderr" || rc=$?
@@ -78,9 +81,7 @@ sweep() {
 
 @test "vdt-cluster, vdt-build and vdt-silhouette out of memory anywhere" {
 	sweep strict 1 out.vdt "$BIN/vdt-cluster" -r 0.3 -o out.vdt "$SAMPLES/sphere.off"
-	rm -rf "$TMP/ref" "$TMP/w"
 	sweep strict 1 t.vdt "$BIN/vdt-build" -q -o t.vdt "$SAMPLES/torus.off"
-	rm -rf "$TMP/ref" "$TMP/w"
 	sweep strict 1 s.vdt "$BIN/vdt-silhouette" -a 60 -r 32 -o s.vdt "$SAMPLES/torus.off"
 }
 
@@ -89,6 +90,10 @@ sweep() {
 	# process when memory runs out: nothing to catch; but the output
 	# is not begun before Draco is loaded, and an abort removes it)
 	sweep loose 1 out.drc "$BIN/vdt-qslim" -r 0.2 -o out.drc "$SAMPLES/open.off"
+	# Past Draco's work, out of memory is ours to say: the C++ runtime's
+	# thread state, made at the module's load, is not made at exit,
+	# where its failure ended the run with status 127
+	LAST=20 sweep strict 1 out.drc "$BIN/vdt-qslim" -r 0.2 -o out.drc "$SAMPLES/open.off"
 }
 
 @test "a model Assimp reads, out of memory: never taken for bad input" {

@@ -33,7 +33,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <exception>
 #include <map>
 #include <new>
 #include <string>
@@ -41,6 +40,7 @@
 
 extern "C" {
 #include "../assimpmod.h"
+#include "../modcxx.h"
 }
 
 namespace {
@@ -326,17 +326,10 @@ bake(const struct vdt_host *host, const aiScene *s, const struct vdt_bake_opts *
 
 } // namespace
 
-/*
- * Asked first, at load: the C++ runtime's per-thread exception state,
- * which a C program that loads it has in dynamic thread-local storage,
- * is made now. Made at the first throw (out of memory, say) or at exit,
- * its allocation failing aborted the process past every catch.
- */
 extern "C" int
 vdt_asm_abi(void)
 {
-	volatile int made = std::uncaught_exceptions(); /* (pure: kept only if used) */
-	(void)made;
+	vdt_cxx_thread_ready();
 	return VDT_ASM_ABI;
 }
 

@@ -16,11 +16,11 @@
 #include <cfloat>
 #include <cmath>
 #include <cstring>
-#include <exception>
 #include <memory>
 
 extern "C" {
 #include "../dracomod.h"
+#include "../modcxx.h"
 #include "../meshio.h"
 }
 
@@ -237,17 +237,10 @@ write_mesh(const struct vdt_host *host, FILE *f, const struct vdt_mesh *m, int b
 
 } // namespace
 
-/*
- * Asked first, at load: the C++ runtime's per-thread exception state,
- * which a C program that loads it has in dynamic thread-local storage,
- * is made now. Made at the first throw (out of memory, say) or at exit,
- * its allocation failing aborted the process past every catch.
- */
 extern "C" int
 vdt_drc_abi(void)
 {
-	volatile int made = std::uncaught_exceptions(); /* (pure: kept only if used) */
-	(void)made;
+	vdt_cxx_thread_ready();
 	return VDT_DRC_ABI;
 }
 

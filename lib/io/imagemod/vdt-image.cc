@@ -9,13 +9,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <exception>
 #include <new>
 #include <string>
 #include <vector>
 
 extern "C" {
 #include "../imagemod.h"
+#include "../modcxx.h"
 }
 
 namespace {
@@ -67,17 +67,10 @@ write_all(OIIO::ImageOutput &out, const char *name, const OIIO::ImageSpec &spec,
 
 } // namespace
 
-/*
- * Asked first, at load: the C++ runtime's per-thread exception state,
- * which a C program that loads it has in dynamic thread-local storage,
- * is made now. Made at the first throw (out of memory, say) or at exit,
- * its allocation failing aborted the process past every catch.
- */
 extern "C" int
 vdt_img_abi(void)
 {
-	volatile int made = std::uncaught_exceptions(); /* (pure: kept only if used) */
-	(void)made;
+	vdt_cxx_thread_ready();
 	return VDT_IMG_ABI;
 }
 
