@@ -20,21 +20,30 @@ static FILE *held;   /* the notes not yet said (note()), or NULL */
 static char *held_text;
 static size_t held_size;
 
+int
+stdout_written(void)
+{
+	int bad = fflush(stdout) != 0, e = errno;
+
+	if (!(bad || ferror(stdout)))
+		return EXIT_OK;
+	if (!reported)
+		fprintf(stderr, "%s: cannot write '<stdout>': %s\n", progname,
+		        bad ? strerror(e) : "write error");
+	reported = 1;
+	return EXIT_WORK;
+}
+
 /*
  * At exit: what went to standard output through stdio (--help, -V, a
- * report, --compare's lines) got there, or status 1 and one line, as any
- * other write error. (A failure already reported said so: not again.)
+ * report) got there, or status 1 and one line, as any other write error.
+ * (A failure already reported said so: not again.)
  */
 static void
 close_stdout(void)
 {
-	int bad = fflush(stdout) != 0, e = errno;
-
-	if ((bad || ferror(stdout)) && !reported) {
-		fprintf(stderr, "%s: cannot write '<stdout>': %s\n", progname,
-		        bad ? strerror(e) : "write error");
+	if (stdout_written() != EXIT_OK)
 		_exit(EXIT_WORK);
-	}
 }
 
 void

@@ -21,6 +21,12 @@ extern const char *progname;
 
 void cmd_init(char **argv);
 
+/* Whether what went to standard output through stdio got there:
+ * EXIT_OK, or EXIT_WORK with its one line said (once). Every tool checks
+ * at exit; one that puts files in place after writing there checks
+ * first, so that a failure replaces nothing. */
+int stdout_written(void);
+
 /* Print "progname: message" on stderr and exit 2 (bad usage). */
 void usage_error(const char *fmt, ...) __attribute__((format(printf, 1, 2), noreturn));
 

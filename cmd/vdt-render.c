@@ -308,13 +308,8 @@ run(struct cmdline *cl)
 	}
 	/* --compare's lines are output too: written, or the files are not
 	 * put in place either */
-	errno = 0;
-	if (rc == EXIT_OK && cl->compare && report == stdout &&
-	    (fflush(stdout) != 0 || ferror(stdout))) {
-		struct vdt_err werr = {0};
-		vdt_err_set(&werr, VDT_EIO, "write error: %s", strerror(errno ? errno : EIO));
-		rc = fail("cannot write", "-", &werr);
-	}
+	if (rc == EXIT_OK)
+		rc = stdout_written();
 	if (rc != EXIT_OK)
 		vdt_written_remove(&done); /* leave nothing behind */
 	else if (vdt_written_commit(&done, &err) != 0)
