@@ -591,9 +591,10 @@ output_over_input(const char *const *in, size_t nin, const char *const *out, siz
 	char okfew[8], *ok = okfew;
 	long found = -1;
 
-	if (nin > 8 && ((si = malloc(nin * sizeof(*si))) == NULL || (ok = malloc(nin)) == NULL)) {
-		fprintf(stderr, "%s: cannot check the outputs against %zu inputs: out of memory\n",
-		        progname, nin);
+	if (nin > sizeof(sfew) / sizeof(sfew[0]) &&
+	    ((si = malloc(nin * sizeof(*si))) == NULL || (ok = malloc(nin)) == NULL)) {
+		fprintf(stderr, "%s: cannot write '%s': out of memory\n", progname,
+		        nout == 0 || strcmp(out[0], "-") == 0 ? "<stdout>" : input_name(out[0]));
 		exit(EXIT_WORK);
 	}
 	for (size_t i = 0; i < nin; i++)

@@ -85,6 +85,11 @@ sweep() {
 	sweep strict 1 s.vdt "$BIN/vdt-silhouette" -a 60 -r 32 -o s.vdt "$SAMPLES/torus.off"
 }
 
+@test "vdt-deform on ten frames out of memory (every 7th allocation)" {
+	for i in 0 1 2 3 4 5 6 7 8 9; do cp "$SAMPLES/torus.off" "$TMP/f$i.off"; done
+	sweep strict 7 d.vdt "$BIN/vdt-deform" -q -r 0.5 -o d.vdt "$TMP/f%d.off"
+}
+
 @test "a Draco output out of memory leaves no file behind, whatever Draco does" {
 	# (Draco's own start-up and its encoder's destructors can end the
 	# process when memory runs out: nothing to catch; but the output
