@@ -775,6 +775,20 @@ tetrahedron(const struct engine *e, uint32_t a, uint32_t b, uint32_t *c, uint32_
 	return 1;
 }
 
+/* With parts allowed to vanish, whether keep has just become a corner of
+ * a tetrahedron that may vanish whole (tetrahedron); fills its other three
+ * corners, whose pairs now cost the part's vanishing (eval_pair) where
+ * their notes and queue keys still hold the edges' contraction costs. */
+static int
+tetrahedron_made(const struct engine *e, uint32_t keep, uint32_t x[3])
+{
+	if (!e->vanish || e->vt[keep].len != 3)
+		return 0;
+	const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[e->vt[keep].off];
+	x[0] = t[0] != keep ? t[0] : t[1];
+	return tetrahedron(e, keep, x[0], &x[1], &x[2]);
+}
+
 /* The caller's cost of pair (a, b), a < b, or INFINITY; *tetra, if not
  * NULL, 1 when the pair would make a tetrahedron vanish (the vanishing
  * cost given instead), else 0. */
@@ -2195,20 +2209,15 @@ vertex_merged(struct engine *e, uint32_t keep, uint32_t gone)
 		if ((!near && e->best[w] == keep) || e->best[w] == gone)
 			e->vflag[w] |= V_STALE;
 	}
-	/* A part just brought down to a tetrahedron: each of its pairs now
-	 * costs the part's vanishing (eval_pair), those between its other
-	 * three vertices too, whose notes and keys still held the edges'
-	 * contraction costs. Left so, a part whose vanishing costs more than
-	 * the contractions still to come went at the cost of an edge, and
-	 * one that costs less waited behind them. */
-	if (e->vanish && e->vt[keep].len == 3) {
-		const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[e->vt[keep].off];
-		uint32_t x[3] = {t[0] != keep ? t[0] : t[1], NONE, NONE};
-		if (tetrahedron(e, keep, x[0], &x[1], &x[2]))
-			for (int j = 0; j < 3; j++)
-				if (vertex_pairs(e, x[j], FAN_NOTE) < 0 || vertex_update(e, x[j], 0) != 0)
-					return -1;
-	}
+	/* A part just brought down to a tetrahedron: its other corners are
+	 * costed again. Left with their edges' costs, a part whose vanishing
+	 * costs more than the contractions still to come went at the cost of
+	 * an edge, and one that costs less waited behind them. */
+	uint32_t x[3];
+	if (tetrahedron_made(e, keep, x))
+		for (int j = 0; j < 3; j++)
+			if (vertex_pairs(e, x[j], FAN_NOTE) < 0 || vertex_update(e, x[j], 0) != 0)
+				return -1;
 	return 0;
 }
 
@@ -2882,16 +2891,12 @@ pass_pair(struct engine *e, struct work *w, uint32_t v, struct vdt_contraction *
 		r->pos[k] = (float)pos[k];
 	r->cost = (float)*cost;
 	e->vflag[keep] |= V_KEPT;
-	/* (a part brought down to a tetrahedron: the pairs of its other
-	 * vertices now cost its vanishing, costed again with keep's; see
-	 * vertex_merged) */
-	if (e->vanish && e->vt[keep].len == 3) {
-		const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[e->vt[keep].off];
-		uint32_t x[3] = {t[0] != keep ? t[0] : t[1], NONE, NONE};
-		if (tetrahedron(e, keep, x[0], &x[1], &x[2]))
-			for (int j = 0; j < 3; j++)
-				e->vflag[x[j]] |= V_KEPT;
-	}
+	/* (a part brought down to a tetrahedron: its other corners are
+	 * costed again with keep's; see vertex_merged) */
+	uint32_t x[3];
+	if (tetrahedron_made(e, keep, x))
+		for (int j = 0; j < 3; j++)
+			e->vflag[x[j]] |= V_KEPT;
 	/* A corner of a removed face may share no face with keep any more:
 	 * its pair with keep is then no edge, and pass_kept will not come by. */
 	for (size_t j = 0; j < w->wing_len; j++)
