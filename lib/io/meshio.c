@@ -284,9 +284,12 @@ vdt_bom_length(const unsigned char *buf, size_t n)
 	return n >= 3 && buf[0] == 0xef && buf[1] == 0xbb && buf[2] == 0xbf ? 3 : 0;
 }
 
-enum vdt_format
-vdt_format_detect(const unsigned char *buf, size_t n)
+/* vdt_format_detect; *guessed: whether a binary STL is only the guess for
+ * binary bytes of no other format (neither sized as one nor headed "solid"). */
+static enum vdt_format
+detect(const unsigned char *buf, size_t n, int *guessed)
 {
+	*guessed = 0;
 	if (buf == NULL || n == 0)
 		return VDT_FMT_AUTO;
 	if (vdt_bom_length(buf, n)) { /* text after it, or nothing known */
@@ -335,29 +338,81 @@ vdt_format_detect(const unsigned char *buf, size_t n)
 		return VDT_FMT_OFF;
 	if (is_obj(buf, n))
 		return VDT_FMT_OBJ;
-	/* Unknown binary content of STL size or more: the STL reader says why not. */
-	if (n >= 84 && !is_text(buf, n < 512 ? n : 512))
+	/* Unknown binary content of STL size or more: perhaps an STL cut
+	 * short or padded, or a pipe's first bytes, which vdt_format_guess
+	 * judges once the whole input is known. */
+	if (n >= 84 && !is_text(buf, n < 512 ? n : 512)) {
+		*guessed = 1;
 		return VDT_FMT_STL;
+	}
 	return VDT_FMT_AUTO;
+}
+
+enum vdt_format
+vdt_format_detect(const unsigned char *buf, size_t n)
+{
+	int guessed;
+
+	return detect(buf, n, &guessed);
 }
 
 #define STL_SLACK 65536 /* bytes after a binary STL's triangles, at most */
 
-enum vdt_format
-vdt_format_guess(const unsigned char *buf, size_t n, enum vdt_format hint)
+/*
+ * Whether the first record of buf[0..n) has a normal of unit length, as
+ * nearly every STL writer makes it: a sign of an STL where the size is
+ * none (cut short), or not known yet (a pipe's first bytes). Zero, which
+ * some writers give, is no sign: it is as common in other binary files.
+ */
+static int
+stl_normal_first(const unsigned char *buf, size_t n)
 {
-	enum vdt_format f = vdt_format_detect(buf, n);
+	double l = 0;
 
+	if (n < 96)
+		return 0;
+	for (int k = 0; k < 3; k++) {
+		double c = vdt_get_f32le(buf + 84 + 4 * k);
+		l += c * c;
+	}
+	return fabs(l - 1) < 0.01; /* (false for NaN) */
+}
+
+/* vdt_format_guess from the first n bytes of an input alone; *guessed:
+ * whether a binary STL is only the guess for binary bytes of no other
+ * format, with nothing to show for it (no "solid", no name, no normal). */
+static enum vdt_format
+guess(const unsigned char *buf, size_t n, enum vdt_format hint, int *guessed)
+{
+	enum vdt_format f = detect(buf, n, guessed);
+
+	if (hint == VDT_FMT_STL || stl_normal_first(buf, n))
+		*guessed = 0;
 	/* Only text formats can hide from detection (long comments). */
 	if (f == VDT_FMT_AUTO && (hint == VDT_FMT_OBJ || hint == VDT_FMT_OFF) && !wide(buf, n))
 		return hint;
 	return f;
 }
 
+enum vdt_format
+vdt_format_guess(const unsigned char *buf, size_t n, enum vdt_format hint)
+{
+	int guessed;
+	enum vdt_format f = guess(buf, n, hint, &guessed);
+
+	/* A .3ds, say: the STL reader called it cut short, holding some
+	 * thousands of the billions of triangles its bytes 80 to 83 count,
+	 * or read a few triangles from it. */
+	if (f == VDT_FMT_STL && guessed && !vdt_stl_sized(buf, n))
+		return VDT_FMT_AUTO;
+	return f;
+}
+
 uint64_t
 vdt_input_limit(const unsigned char *head, enum vdt_format hint, enum vdt_format *format)
 {
-	enum vdt_format f = *format = vdt_format_guess(head, VDT_DETECT_BYTES, hint);
+	int guessed;
+	enum vdt_format f = *format = guess(head, VDT_DETECT_BYTES, hint, &guessed);
 
 	/* (text of comments alone so far, or a PLY header of long comments,
 	 * is told by what follows: read whole, the reader decides) */
@@ -373,12 +428,28 @@ vdt_input_limit(const unsigned char *head, enum vdt_format hint, enum vdt_format
 }
 
 int
-vdt_input_limit_error(const unsigned char *head, struct vdt_err *err)
+vdt_input_limit_error(const unsigned char *head, enum vdt_format hint, struct vdt_err *err)
 {
-	if (vdt_format_detect(head, VDT_DETECT_BYTES) == VDT_FMT_STL)
+	int guessed;
+
+	/* (guessed, it has nothing of an STL but a count it overruns) */
+	if (guess(head, VDT_DETECT_BYTES, hint, &guessed) == VDT_FMT_STL && !guessed)
 		return vdt_err_set(err, VDT_EFORMAT, "not a binary STL: it goes on past its %" PRIu32
 		                   " triangles", vdt_get_u32le(head + 80));
 	return vdt_format_unknown(head, VDT_DETECT_BYTES, err);
+}
+
+int
+vdt_input_scan_error(const unsigned char *head, enum vdt_format hint, int rc, struct vdt_err *err)
+{
+	int guessed;
+
+	/* Random bytes, or a .png, were an STL with a non-finite triangle,
+	 * its size unknown yet; an STL with one is still named so, its
+	 * first normal of unit length. */
+	if (guess(head, VDT_DETECT_BYTES, hint, &guessed) == VDT_FMT_STL && guessed)
+		return vdt_format_unknown(head, VDT_DETECT_BYTES, err);
+	return rc;
 }
 
 /* The mesh and the other chunks (to extra, if given) of a decoded stream,
@@ -557,9 +628,10 @@ slurp(int fd, enum vdt_format hint, int sniff, unsigned char *b, size_t n, size_
 		if (sniff && n >= VDT_DETECT_BYTES) {
 			if (limit == 0)
 				limit = vdt_input_limit(b, hint, &f);
-			int rc = n > limit ? vdt_input_limit_error(b, err) : 0;
-			if (rc == 0 && f == VDT_FMT_STL)
-				rc = vdt_stl_scan(&stl, b + stl.at, n - (size_t)stl.at, err);
+			int rc = n > limit ? vdt_input_limit_error(b, hint, err) : 0;
+			if (rc == 0 && f == VDT_FMT_STL &&
+			    (rc = vdt_stl_scan(&stl, b + stl.at, n - (size_t)stl.at, err)) != 0)
+				rc = vdt_input_scan_error(b, hint, rc, err);
 			if (rc != 0) {
 				free(b);
 				return rc;

@@ -61,13 +61,19 @@ enum vdt_format vdt_output_format(const char *path, enum vdt_format given);
  * (vdt_format_detect looks no further for text), the size a binary STL's
  * count allows (with some slack), or UINT64_MAX. Readers of pipes stop
  * there rather than take in an endless stream, and say why with
- * vdt_input_limit_error. *format: the format head shows (as
- * vdt_format_guess), which for a binary STL asks for vdt_stl_scan.
+ * vdt_input_limit_error (given the same hint). *format: the format head
+ * shows (as vdt_format_guess, but before the size is known), which for a
+ * binary STL asks for vdt_stl_scan; when that refuses a record (rc),
+ * vdt_input_scan_error gives the error to report: rc, or "unknown format"
+ * when head is binary bytes of no format with nothing to show of an STL
+ * (no name, "solid" header or first normal that says STL).
  */
 #define VDT_DETECT_BYTES 4096
 uint64_t vdt_input_limit(const unsigned char *head, enum vdt_format hint,
                          enum vdt_format *format);
-int vdt_input_limit_error(const unsigned char *head, struct vdt_err *err);
+int vdt_input_limit_error(const unsigned char *head, enum vdt_format hint, struct vdt_err *err);
+int vdt_input_scan_error(const unsigned char *head, enum vdt_format hint, int rc,
+                         struct vdt_err *err);
 
 /*
  * Detect the format of content from its first n bytes (n >= 0; 512 is
@@ -83,9 +89,12 @@ size_t vdt_bom_length(const unsigned char *buf, size_t n);
 
 enum vdt_format vdt_format_detect(const unsigned char *buf, size_t n);
 
-/* The format of buf[0..n) by its content, else the hint (the name's) when
- * that is a text format that can hide from detection (OBJ, OFF) and buf
- * is no UTF-16 or UTF-32 text; else VDT_FMT_AUTO. */
+/* The format of the whole input buf[0..n) by its content, else the hint
+ * (the name's) when that is a text format that can hide from detection
+ * (OBJ, OFF) and buf is no UTF-16 or UTF-32 text; else VDT_FMT_AUTO.
+ * Binary bytes of no other format are a binary STL when the hint says
+ * STL, their first record has a normal of unit length (as nearly every
+ * writer's) or they are sized as one (vdt_stl_sized); else of no format. */
 enum vdt_format vdt_format_guess(const unsigned char *buf, size_t n, enum vdt_format hint);
 
 /* VDT_EFORMAT "unknown format" for buf[0..n), with what it is where that is
@@ -389,6 +398,16 @@ int vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
  * rest was lost unsaid.
  */
 int vdt_stl_rest(const unsigned char *buf, size_t len, struct vdt_err *err);
+
+/*
+ * Whether the whole input buf[0..len) is sized as a binary STL: the
+ * records its count gives fit in it, and what follows them is none, whole
+ * records, a second binary STL (both vdt_stl_rest's to refuse) or zero
+ * bytes. Binary bytes of no other format are taken for an STL
+ * (vdt_format_detect); those not so sized are of no format, not an STL
+ * cut short, unless something else says STL (vdt_format_guess).
+ */
+int vdt_stl_sized(const unsigned char *buf, size_t len);
 
 /*
  * A binary STL read from a pipe, checked as its bytes come (fed in order,

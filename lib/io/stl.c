@@ -282,6 +282,37 @@ vdt_stl_rest(const unsigned char *buf, size_t len, struct vdt_err *err)
 }
 
 int
+vdt_stl_sized(const unsigned char *buf, size_t len)
+{
+	uint64_t count, rest;
+	const unsigned char *r;
+
+	if (len < 84)
+		return 0;
+	count = vdt_get_u32le(buf + 80);
+	if (84 + 50 * count > len)
+		return 0;
+	rest = len - 84 - 50 * count;
+	r = buf + (len - rest);
+	/* Whole records more (or none) and a second STL are vdt_stl_rest's
+	 * to name; padding is zero bytes. Any other tail is no sign of an
+	 * STL: a quarter of binary files of other formats (.3ds, .mdl, .png)
+	 * hold at bytes 80 to 83 a count their size fits, 0 most often, and
+	 * would read as a few triangles or an empty STL. */
+	if (rest % 50 == 0)
+		return 1;
+	if (rest >= 84) {
+		uint32_t c2 = vdt_get_u32le(r + 80);
+		if (c2 > 0 && 84 + 50 * (uint64_t)c2 == rest)
+			return 1;
+	}
+	for (uint64_t k = 0; k < rest; k++)
+		if (r[k] != 0)
+			return 0;
+	return 1;
+}
+
+int
 vdt_stl_read(const unsigned char *buf, size_t len, struct vdt_mesh *m,
              struct vdt_err *err)
 {

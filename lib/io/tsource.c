@@ -194,17 +194,17 @@ spool(int in, enum vdt_format hint, size_t *len, struct vdt_err *err)
 				limit = vdt_input_limit(head, hint, &f);
 				if (f == VDT_FMT_STL && (rc = vdt_stl_scan(&stl, head, VDT_DETECT_BYTES, err)) != 0) {
 					close(fd);
-					return rc;
+					return vdt_input_scan_error(head, hint, rc, err);
 				}
 			}
 		}
 		if (total + (size_t)r > limit) {
 			close(fd);
-			return vdt_input_limit_error(head, err);
+			return vdt_input_limit_error(head, hint, err);
 		}
 		if (f == VDT_FMT_STL && (rc = vdt_stl_scan(&stl, b + k, (size_t)r - k, err)) != 0) {
 			close(fd);
-			return rc;
+			return vdt_input_scan_error(head, hint, rc, err);
 		}
 		while (w < r) {
 			ssize_t k = write(fd, b + w, (size_t)(r - w));

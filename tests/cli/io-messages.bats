@@ -188,3 +188,52 @@ PY
 	run "$BIN/vdt-measure" "$TMP/m.obj" "$TMP/s.obj"
 	[[ "$output" != *materials* ]]
 }
+
+@test "binary bytes of no format are of unknown format, not a binary STL cut short" {
+	"$BIN/vdt-qslim" -q -r 1 "$SAMPLES/sphere.off" -o "$TMP/s.stl"
+	python3 - "$TMP" <<'PY'
+import random, struct, sys
+d = sys.argv[1]
+rnd = random.Random(7)
+def noise(n):
+    return bytes(rnd.getrandbits(8) for _ in range(n))
+def halves(n): # u16 values as a .3ds's faces hold them: finite as floats
+    return b"".join(struct.pack("<H", i % 700) for i in range(n // 2))
+# a .3ds's main chunk, bytes 80 to 83 counting billions of triangles
+# (once "binary STL is truncated: it holds 199 of 3225354762 triangles")
+open(d + "/a.3ds", "wb").write(b"MM" + struct.pack("<I", 10050) + noise(74)
+                               + struct.pack("<I", 3225354762) + noise(9966))
+# a count of 0 its size fits (once "empty mesh (STL holds no triangle)")
+open(d + "/b.3ds", "wb").write(b"MM" + bytes(78) + struct.pack("<I", 0) + halves(8002))
+# a count of 2 (once read as two triangles, the rest let be)
+tri = b"".join(struct.pack("<12fH", 0, 0, 0, x, 0, 0, x + 1, 0, 0, x, 1, 0, 0) for x in (0, 1))
+open(d + "/c.bin", "wb").write(bytes(80) + struct.pack("<I", 2) + tri + halves(6010))
+# an STL of normals 0, on a pipe known by its size alone
+open(d + "/z.dat", "wb").write(bytes(80) + struct.pack("<I", 2) + tri)
+PY
+	for t in "vdt-qslim -r 0.5" "vdt-cluster -g 8" "vdt-build"; do
+		for f in a.3ds b.3ds c.bin; do
+			refused "$TMP/$f" "unknown format" $t
+			run sh -c "$BIN/$t -q -o '$TMP/out.vdt' - < '$TMP/$f'"
+			[ "$status" -eq 2 ]
+			[ "$output" = "${t%% *}: cannot read '<stdin>': unknown format" ]
+			[ ! -e "$TMP/out.vdt" ]
+		done
+		# a binary STL still reads by any name and on a pipe, one cut
+		# short is still called so, and bytes after its triangles
+		# are still let be
+		head -c -20 "$TMP/s.stl" > "$TMP/cut.stl"
+		cp "$TMP/s.stl" "$TMP/s.bin"
+		{ cat "$TMP/s.stl"; printf 'trailing words'; } > "$TMP/tail.dat"
+		for src in "'$TMP/s.bin'" "- < '$TMP/s.stl'" "- < '$TMP/tail.dat'" "- < '$TMP/z.dat'"; do
+			sh -c "$BIN/$t -q -o '$TMP/out.vdt' $src"
+			rm "$TMP/out.vdt"
+		done
+		for src in "'$TMP/cut.stl'" "- < '$TMP/cut.stl'"; do
+			run sh -c "$BIN/$t -o '$TMP/out.vdt' $src"
+			[ "$status" -eq 2 ]
+			one_line
+			[[ "$output" == *"binary STL is truncated: it holds"* || "$output" == *"STL header announces"* ]]
+		done
+	done
+}

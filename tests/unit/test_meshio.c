@@ -389,6 +389,73 @@ test_stl_scan(void **state)
 	}
 }
 
+/*
+ * Binary bytes of no other format are a binary STL only with something to
+ * show for it: the name, a size of 84 + 50 count (or a tail vdt_stl_rest
+ * judges: whole records, a second STL, zeros) or a first normal of unit
+ * length; else "unknown format", not an STL cut short. The 2 records:
+ *
+ *   count 2 | rec 0 | rec 1 | tail
+ *   84      | 50    | 50    | 0..99 bytes
+ */
+static void
+test_stl_guess(void **state)
+{
+	unsigned char b[VDT_DETECT_BYTES + 84];
+	struct vdt_err err;
+	(void)state;
+
+	memset(b, 0, sizeof(b));
+	vdt_put_u32le(b + 80, 2);
+	for (int t = 0; t < 2; t++)
+		for (int k = 0; k < 9; k++)
+			vdt_put_f32le(b + 84 + 50 * t + 12 + 4 * k, (float)(t + k % 4));
+	b[0] = 0x4d; /* binary, as a .3ds's "MM" chunk and its length */
+	b[2] = 0x81;
+	assert_int_equal(vdt_format_guess(b, 184, VDT_FMT_AUTO), VDT_FMT_STL);
+	/* cut short, or a tail of junk: no STL, but by the name */
+	assert_int_equal(vdt_format_guess(b, 183, VDT_FMT_AUTO), VDT_FMT_AUTO);
+	assert_int_equal(vdt_format_guess(b, 183, VDT_FMT_STL), VDT_FMT_STL);
+	b[190] = 7;
+	assert_int_equal(vdt_format_guess(b, 191, VDT_FMT_AUTO), VDT_FMT_AUTO);
+	assert_int_equal(vdt_format_guess(b, 191, VDT_FMT_OFF), VDT_FMT_AUTO);
+	assert_int_equal(vdt_format_guess(b, 191, VDT_FMT_STL), VDT_FMT_STL);
+	/* zero padding, a whole record more, a second STL: the STL reader's */
+	assert_int_equal(vdt_format_guess(b, 190, VDT_FMT_AUTO), VDT_FMT_STL);
+	assert_int_equal(vdt_format_guess(b, 234, VDT_FMT_AUTO), VDT_FMT_STL);
+	memcpy(b + 184, b, 184);
+	assert_int_equal(vdt_format_guess(b, 368, VDT_FMT_AUTO), VDT_FMT_STL);
+	/* a count of billions: the STL reader called it truncated */
+	vdt_put_u32le(b + 80, 3225354762u);
+	assert_int_equal(vdt_format_guess(b, 368, VDT_FMT_AUTO), VDT_FMT_AUTO);
+	assert_int_equal(vdt_format_guess(b, 368, VDT_FMT_STL), VDT_FMT_STL);
+	/* but a first normal of unit length says STL, cut short */
+	vdt_put_f32le(b + 84 + 8, 1.0f);
+	assert_int_equal(vdt_format_guess(b, 368, VDT_FMT_AUTO), VDT_FMT_STL);
+
+	/* On a pipe, the first bytes alone: a non-finite record, or too many
+	 * bytes, is the STL's fault only when it shows as one. */
+	vdt_put_u32le(b + 80, 100);
+	vdt_put_f32le(b + 84 + 50 + 12, NAN);
+	for (int normal = 0; normal < 2; normal++) {
+		enum vdt_format f;
+		vdt_put_f32le(b + 84 + 8, (float)normal);
+		assert_int_equal(vdt_input_limit(b, VDT_FMT_AUTO, &f), 84 + 50 * 100 + 65536);
+		assert_int_equal(f, VDT_FMT_STL);
+		memset(&err, 0, sizeof(err));
+		assert_int_equal(vdt_input_scan_error(b, VDT_FMT_AUTO, VDT_EINVAL, &err),
+		                 normal ? VDT_EINVAL : VDT_EFORMAT);
+		assert_string_equal(err.msg, normal ? "" : "unknown format");
+		memset(&err, 0, sizeof(err));
+		assert_int_equal(vdt_input_scan_error(b, VDT_FMT_STL, VDT_EINVAL, &err),
+		                 VDT_EINVAL);
+		assert_int_equal(vdt_input_limit_error(b, VDT_FMT_AUTO, &err), VDT_EFORMAT);
+		assert_string_equal(err.msg,
+		                    normal ? "not a binary STL: it goes on past its 100 triangles"
+		                           : "unknown format");
+	}
+}
+
 /* Positions (and UVs) whose range Draco cannot quantise, past the float
  * maximum or near the smallest normal float, are kept as they are: the
  * encoder crashed on the first and put every vertex on one point for the
@@ -758,11 +825,15 @@ test_reject(void **state)
 	static const char nanobj[] = "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n";
 	expect_reject((const unsigned char *)nanobj, sizeof(nanobj) - 1, VDT_EINVAL, "line 2: vertex has a non-finite coordinate");
 
-	/* STL declaring 2 triangles but holding 1 */
+	/* STL declaring 2 triangles but holding 1, which its first normal
+	 * of unit length shows to be one (without, and unnamed, bytes of no
+	 * format: test_stl_guess) */
 	memset(b, 0, 84 + 50);
 	memcpy(b, "binary", 6);
 	vdt_put_u32le(b + 80, 2);
 	b[100] = 0x80; /* not text */
+	expect_reject(b, 84 + 50, VDT_EFORMAT, "unknown format");
+	vdt_put_f32le(b + 84 + 8, 1.0f);
 	expect_reject(b, 84 + 50, VDT_EFORMAT, "holds 1 of 2 triangles");
 
 	static const char drc[] = "DRACO\x02\x02\x01\x01\x00\x00\xff\xff\xff\xff garbage";
@@ -1058,6 +1129,7 @@ main(void)
 		cmocka_unit_test(test_detect),
 		cmocka_unit_test(test_roundtrip_plain),
 		cmocka_unit_test(test_stl_scan),
+		cmocka_unit_test(test_stl_guess),
 		cmocka_unit_test(test_module_bind),
 		cmocka_unit_test(test_module_unloadable),
 		cmocka_unit_test(test_draco_extreme_ranges),
