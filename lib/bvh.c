@@ -946,7 +946,7 @@ slot_closest(const struct vdt_bvh *bvh, size_t s, const double p[3], double q[3]
 /* vdt_bvh_closest, for trees with slabs or without (slabbed: a constant). */
 static inline __attribute__((always_inline)) void
 closest(const struct vdt_bvh *bvh, const double p[3], size_t hint, struct vdt_bvh_hit *hit,
-        int slabbed)
+        int slabbed, int (*pred)(void *ctx, size_t triangle), void *ctx)
 {
 	struct {
 		uint32_t node;
@@ -983,6 +983,8 @@ closest(const struct vdt_bvh *bvh, const double p[3], size_t hint, struct vdt_bv
 				/* the exact test costs several box tests: skip far ones */
 				double bd = tri_box_dist2(bvh->corners + 9 * s, p, slack);
 				if (bd > best || (bd == best && t > best_tri))
+					continue;
+				if (pred != NULL && !pred(ctx, t))
 					continue;
 				d = slot_closest(bvh, s, p, q);
 				tests++;
@@ -1022,7 +1024,7 @@ closest(const struct vdt_bvh *bvh, const double p[3], size_t hint, struct vdt_bv
 	}
 done:
 	hit->dist2 = best;
-	hit->triangle = best_tri;
+	hit->triangle = best_tri == UINT32_MAX ? SIZE_MAX : best_tri;
 	hit->tests = tests;
 }
 
@@ -1032,9 +1034,19 @@ vdt_bvh_closest(const struct vdt_bvh *bvh, const double p[3], size_t hint,
 {
 	/* two copies of the traversal, so that trees without slabs pay nothing */
 	if (bvh->slabs != NULL)
-		closest(bvh, p, hint, hit, 1);
+		closest(bvh, p, hint, hit, 1, NULL, NULL);
 	else
-		closest(bvh, p, hint, hit, 0);
+		closest(bvh, p, hint, hit, 0, NULL, NULL);
+}
+
+void
+vdt_bvh_closest_if(const struct vdt_bvh *bvh, const double p[3],
+                   int (*pred)(void *ctx, size_t triangle), void *ctx, struct vdt_bvh_hit *hit)
+{
+	if (bvh->slabs != NULL)
+		closest(bvh, p, SIZE_MAX, hit, 1, pred, ctx);
+	else
+		closest(bvh, p, SIZE_MAX, hit, 0, pred, ctx);
 }
 
 int

@@ -99,6 +99,15 @@ void vdt_bvh_closest(const struct vdt_bvh *bvh, const double p[3], size_t hint,
                      struct vdt_bvh_hit *hit);
 
 /*
+ * vdt_bvh_closest among the triangles that satisfy pred (called with the
+ * triangle's index in the mesh) only, with no hint: hit->dist2 INFINITY
+ * and hit->triangle SIZE_MAX when none does. Thread-safe as pred is.
+ */
+void vdt_bvh_closest_if(const struct vdt_bvh *bvh, const double p[3],
+                        int (*pred)(void *ctx, size_t triangle), void *ctx,
+                        struct vdt_bvh_hit *hit);
+
+/*
  * Closest point q on triangle abc to p, and its squared distance as the
  * return value (Ericson's Voronoi-region test). Degenerate triangles (a
  * point, a segment) are handled by falling back to their edges.

@@ -1046,6 +1046,38 @@ PY
 	done
 }
 
+@test "vdt-qslim: a part that vanishes costs its distance to the larger parts left" {
+	# the sphere and two small boxes side by side 3 away: each box was
+	# costed by its gap to the other (0.02), both went at 16 faces and
+	# the Hausdorff error was 60% of the diagonal; the larger box, costed
+	# by its distance to the sphere, stays as a tetrahedron
+	awk 'function box(x0, y0, z0, x1, y1, z1,   b) {
+		b = nv + 0
+		V[nv++] = x0 " " y0 " " z0; V[nv++] = x1 " " y0 " " z0
+		V[nv++] = x1 " " y1 " " z0; V[nv++] = x0 " " y1 " " z0
+		V[nv++] = x0 " " y0 " " z1; V[nv++] = x1 " " y0 " " z1
+		V[nv++] = x1 " " y1 " " z1; V[nv++] = x0 " " y1 " " z1
+		split("0 2 1 0 3 2 4 5 6 4 6 7 0 1 5 0 5 4 1 2 6 1 6 5 2 3 7 2 7 6 3 0 4 3 4 7", c)
+		for (k = 1; k <= 36; k += 3)
+			F[nf++] = (b + c[k]) " " (b + c[k + 1]) " " (b + c[k + 2])
+	}
+	NR == 2 { n = $1; next }
+	NR > 2 && NR <= n + 2 { V[nv++] = $1 " " $2 " " $3; next }
+	NR > n + 2 { F[nf++] = $2 " " $3 " " $4 }
+	END {
+		box(4, 0, 0, 4.3, 0.3, 0.3); box(4.32, 0, 0, 4.52, 0.2, 0.2)
+		print "OFF"; print nv, nf, 0
+		for (i = 0; i < nv; i++) print V[i]
+		for (i = 0; i < nf; i++) print 3, F[i]
+	}' "$SAMPLES/sphere.off" > "$TMP/pair.off"
+	run "$BIN/vdt-qslim" -v -t 16 -F off "$TMP/pair.off" -o "$TMP/out.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *" out_triangles=16 "*" parts_given_up=1 "* ]]
+	[ "$(awk 'NR > 2 && NF == 3 && $1 > 3.9 && $1 < 4.31' "$TMP/out.off" | wc -l)" -eq 4 ]
+	h=$("$BIN/vdt-measure" -F kv "$TMP/pair.off" "$TMP/out.off" | tr ' ' '\n' | sed -n 's/^hausdorff_pct=//p')
+	awk -v h="$h" 'BEGIN { exit !(h < 10) }'
+}
+
 @test "vdt-qslim: parts vanish in passes on two threads as on one" {
 	# 3000 cubes of sizes 0.1 to 2 strewn over a box of 100: 36000
 	# faces to 2000 (a tetrahedron each would be 12000)
