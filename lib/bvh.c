@@ -946,7 +946,8 @@ slot_closest(const struct vdt_bvh *bvh, size_t s, const double p[3], double q[3]
 /* vdt_bvh_closest, for trees with slabs or without (slabbed: a constant). */
 static inline __attribute__((always_inline)) void
 closest(const struct vdt_bvh *bvh, const double p[3], size_t hint, struct vdt_bvh_hit *hit,
-        int slabbed, int (*pred)(void *ctx, size_t triangle), void *ctx)
+        int slabbed, int (*pred)(void *ctx, size_t triangle),
+        int (*node_pred)(void *ctx, uint32_t node), void *ctx)
 {
 	struct {
 		uint32_t node;
@@ -970,7 +971,8 @@ closest(const struct vdt_bvh *bvh, const double p[3], size_t hint, struct vdt_bv
 	 * or a point where many triangles meet (the centre of a fan saved as
 	 * a soup, a triangle stacked many times) visited them all.
 	 */
-	if (node_dist2(bvh, 0, p, slabbed, slack) > best)
+	if (node_dist2(bvh, 0, p, slabbed, slack) > best ||
+	    (node_pred != NULL && !node_pred(ctx, 0)))
 		goto done;
 	for (;;) {
 		const struct vdt_bvh_node *n = &bvh->nodes[node];
@@ -996,16 +998,23 @@ closest(const struct vdt_bvh *bvh, const double p[3], size_t hint, struct vdt_bv
 			}
 		} else {
 			uint32_t l = node + 1, r = n->index;
-			double dl = node_dist2(bvh, l, p, slabbed, slack);
-			double dr = node_dist2(bvh, r, p, slabbed, slack);
+			/* (a subtree with no triangle pred may take is not visited:
+			 * it comes second, and neither is then) */
+			int okl = node_pred == NULL || node_pred(ctx, l);
+			int okr = node_pred == NULL || node_pred(ctx, r);
+			double dl = okl ? node_dist2(bvh, l, p, slabbed, slack) : INFINITY;
+			double dr = okr ? node_dist2(bvh, r, p, slabbed, slack) : INFINITY;
 
-			if (dr < dl || (dr == dl && bvh->least[r] < bvh->least[l])) {
+			if (okr &&
+			    (!okl || dr < dl || (dr == dl && bvh->least[r] < bvh->least[l]))) {
 				uint32_t t = l;
 				double td = dl;
-				l = r, r = t, dl = dr, dr = td;
+				int to = okl;
+				l = r, r = t, dl = dr, dr = td, okl = okr, okr = to;
 			}
-			if (dl < best || (dl == best && bvh->least[l] < best_tri)) {
-				if (dr < best || (dr == best && bvh->least[r] < best_tri)) {
+			if (okl && (dl < best || (dl == best && bvh->least[l] < best_tri))) {
+				if (okr &&
+				    (dr < best || (dr == best && bvh->least[r] < best_tri))) {
 					assert(sp < STACK_MAX);
 					stack[sp].node = r;
 					stack[sp++].d2 = dr;
@@ -1034,19 +1043,20 @@ vdt_bvh_closest(const struct vdt_bvh *bvh, const double p[3], size_t hint,
 {
 	/* two copies of the traversal, so that trees without slabs pay nothing */
 	if (bvh->slabs != NULL)
-		closest(bvh, p, hint, hit, 1, NULL, NULL);
+		closest(bvh, p, hint, hit, 1, NULL, NULL, NULL);
 	else
-		closest(bvh, p, hint, hit, 0, NULL, NULL);
+		closest(bvh, p, hint, hit, 0, NULL, NULL, NULL);
 }
 
 void
 vdt_bvh_closest_if(const struct vdt_bvh *bvh, const double p[3],
-                   int (*pred)(void *ctx, size_t triangle), void *ctx, struct vdt_bvh_hit *hit)
+                   int (*pred)(void *ctx, size_t triangle),
+                   int (*node_pred)(void *ctx, uint32_t node), void *ctx, struct vdt_bvh_hit *hit)
 {
 	if (bvh->slabs != NULL)
-		closest(bvh, p, SIZE_MAX, hit, 1, pred, ctx);
+		closest(bvh, p, SIZE_MAX, hit, 1, pred, node_pred, ctx);
 	else
-		closest(bvh, p, SIZE_MAX, hit, 0, pred, ctx);
+		closest(bvh, p, SIZE_MAX, hit, 0, pred, node_pred, ctx);
 }
 
 int

@@ -101,10 +101,14 @@ void vdt_bvh_closest(const struct vdt_bvh *bvh, const double p[3], size_t hint,
 /*
  * vdt_bvh_closest among the triangles that satisfy pred (called with the
  * triangle's index in the mesh) only, with no hint: hit->dist2 INFINITY
- * and hit->triangle SIZE_MAX when none does. Thread-safe as pred is.
+ * and hit->triangle SIZE_MAX when none does. node_pred, if not NULL, says
+ * of a node (an index into bvh->nodes) whether any triangle under it may
+ * satisfy pred: the query skips those that cannot, and so does not visit
+ * the many near triangles pred refuses. Thread-safe as the two are.
  */
 void vdt_bvh_closest_if(const struct vdt_bvh *bvh, const double p[3],
-                        int (*pred)(void *ctx, size_t triangle), void *ctx,
+                        int (*pred)(void *ctx, size_t triangle),
+                        int (*node_pred)(void *ctx, uint32_t node), void *ctx,
                         struct vdt_bvh_hit *hit);
 
 /*

@@ -368,6 +368,104 @@ test_bvh_fan_matches_brute_force(void **state)
 	}
 }
 
+/* vdt_bvh_closest_if's taking and skipping (keys by triangle, the most
+ * under each node): below, the key a triangle must exceed. */
+struct keyed {
+	const uint32_t *key;  /* by triangle of the mesh */
+	const uint32_t *most; /* by node */
+	uint32_t above;
+	size_t asked; /* triangles key_above was asked of */
+};
+
+static int
+key_above(void *ctx, size_t t)
+{
+	struct keyed *k = ctx;
+
+	k->asked++;
+	return k->key[t] > k->above;
+}
+
+static int
+node_above(void *ctx, uint32_t node)
+{
+	const struct keyed *k = ctx;
+
+	return k->most[node] > k->above;
+}
+
+/*
+ * The closest triangle among those a predicate takes is the brute force's
+ * (the lowest index among equals), with the subtrees of none skipped or
+ * not; skipping them spares most of the triangles the predicate refuses;
+ * none taken is INFINITY and SIZE_MAX.
+ */
+static void
+test_bvh_closest_if(void **state)
+{
+	struct vdt_mesh m;
+	struct vdt_bvh bvh;
+	size_t pruned = 0, plain = 0;
+
+	(void)state;
+	sphere(&m, 24);
+	assert_int_equal(vdt_bvh_build(&bvh, &m, NULL), 0);
+	uint32_t *key = malloc(m.triangle_count * sizeof(*key));
+	uint32_t *most = malloc(bvh.node_count * sizeof(*most));
+	assert_non_null(key);
+	assert_non_null(most);
+	for (size_t t = 0; t < m.triangle_count; t++)
+		key[t] = (uint32_t)(shape_rnd() * 1000);
+	for (size_t k = bvh.node_count; k-- > 0;) {
+		const struct vdt_bvh_node *n = &bvh.nodes[k];
+		most[k] = 0;
+		if (n->count > 0)
+			for (uint32_t s = n->index; s < n->index + n->count; s++)
+				most[k] = key[bvh.order[s]] > most[k] ? key[bvh.order[s]] : most[k];
+		else
+			most[k] = most[k + 1] > most[n->index] ? most[k + 1] : most[n->index];
+	}
+	for (int i = 0; i < 400; i++) {
+		struct keyed k = {key, most, (uint32_t)(i % 2 ? 990 : shape_rnd() * 1000), 0};
+		double p[3] = {2 * shape_rnd() - 1, 2 * shape_rnd() - 1, 2 * shape_rnd() - 1};
+		double want = INFINITY, q[3], v[3][3];
+		size_t want_t = SIZE_MAX;
+		struct vdt_bvh_hit a, b;
+
+		for (size_t t = 0; t < m.triangle_count; t++) {
+			if (key[t] <= k.above)
+				continue;
+			for (int c = 0; c < 3; c++)
+				for (int j = 0; j < 3; j++)
+					v[c][j] = m.positions[3 * m.triangles[3 * t + c] + j];
+			double d = vdt_closest_on_triangle(p, v[0], v[1], v[2], q);
+			if (d < want) {
+				want = d;
+				want_t = t;
+			}
+		}
+		vdt_bvh_closest_if(&bvh, p, key_above, node_above, &k, &a);
+		pruned += k.asked;
+		k.asked = 0;
+		vdt_bvh_closest_if(&bvh, p, key_above, NULL, &k, &b);
+		plain += k.asked;
+		assert_true(a.dist2 == want && b.dist2 == want);
+		assert_int_equal(a.triangle, want_t);
+		assert_int_equal(b.triangle, want_t);
+	}
+	assert_true(2 * pruned < plain);
+	struct keyed none = {key, most, 1000, 0};
+	struct vdt_bvh_hit h;
+	double p[3] = {0, 0, 0};
+	vdt_bvh_closest_if(&bvh, p, key_above, node_above, &none, &h);
+	assert_true(h.dist2 == INFINITY);
+	assert_int_equal(h.triangle, SIZE_MAX);
+	free(most);
+	free(key);
+	vdt_bvh_free(&bvh);
+	vdt_mesh_free(&m);
+}
+
 /*
  * A query on a fan of 4096 slivers tests a few of them, not the thousand
  * whose boxes hold it; an ordinary surface's tree has no slabs at all.
@@ -853,23 +951,24 @@ int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
-		cmocka_unit_test(test_triangle_regions),
-		cmocka_unit_test(test_triangle_degenerate),
-		cmocka_unit_test(test_bvh_matches_brute_force),
-		cmocka_unit_test(test_bvh_coincident),
-		cmocka_unit_test(test_bvh_soup_fan_centre),
-		cmocka_unit_test(test_bvh_fan_matches_brute_force),
-		cmocka_unit_test(test_bvh_fan_prunes),
-		cmocka_unit_test(test_bvh_rounding_off_the_box),
-		cmocka_unit_test(test_sampling_area_proportional),
-		cmocka_unit_test(test_identical_is_zero),
-		cmocka_unit_test(test_parallel_squares),
-		cmocka_unit_test(test_sphere_octahedron),
-		cmocka_unit_test(test_flipped_face),
-		cmocka_unit_test(test_thin_part_not_flipped),
-		cmocka_unit_test(test_threads_deterministic),
-		cmocka_unit_test(test_one_sided_and_errors),
-		cmocka_unit_test(test_colorize),
+	        cmocka_unit_test(test_triangle_regions),
+	        cmocka_unit_test(test_triangle_degenerate),
+	        cmocka_unit_test(test_bvh_matches_brute_force),
+	        cmocka_unit_test(test_bvh_coincident),
+	        cmocka_unit_test(test_bvh_soup_fan_centre),
+	        cmocka_unit_test(test_bvh_fan_matches_brute_force),
+	        cmocka_unit_test(test_bvh_fan_prunes),
+	        cmocka_unit_test(test_bvh_closest_if),
+	        cmocka_unit_test(test_bvh_rounding_off_the_box),
+	        cmocka_unit_test(test_sampling_area_proportional),
+	        cmocka_unit_test(test_identical_is_zero),
+	        cmocka_unit_test(test_parallel_squares),
+	        cmocka_unit_test(test_sphere_octahedron),
+	        cmocka_unit_test(test_flipped_face),
+	        cmocka_unit_test(test_thin_part_not_flipped),
+	        cmocka_unit_test(test_threads_deterministic),
+	        cmocka_unit_test(test_one_sided_and_errors),
+	        cmocka_unit_test(test_colorize),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
