@@ -108,3 +108,22 @@ for t, p in eval(sys.argv[3]) + [(b'END ', b'')]:
 open(sys.argv[2], 'wb').write(out)
 PY
 }
+
+# An awk program's functions: box(x0, y0, z0, x1, y1, z1) adds a closed
+# box to the vertices V (nv of them, as "x y z") and faces F (nf, as
+# "a b c"); print_off() prints them as an OFF file.
+BOX_AWK='function box(x0, y0, z0, x1, y1, z1,   b, c, k) {
+	b = nv + 0
+	V[nv++] = x0 " " y0 " " z0; V[nv++] = x1 " " y0 " " z0
+	V[nv++] = x1 " " y1 " " z0; V[nv++] = x0 " " y1 " " z0
+	V[nv++] = x0 " " y0 " " z1; V[nv++] = x1 " " y0 " " z1
+	V[nv++] = x1 " " y1 " " z1; V[nv++] = x0 " " y1 " " z1
+	split("0 2 1 0 3 2 4 5 6 4 6 7 0 1 5 0 5 4 1 2 6 1 6 5 2 3 7 2 7 6 3 0 4 3 4 7", c)
+	for (k = 1; k <= 36; k += 3)
+		F[nf++] = (b + c[k]) " " (b + c[k + 1]) " " (b + c[k + 2])
+}
+function print_off(   i) {
+	print "OFF"; print nv, nf, 0
+	for (i = 0; i < nv; i++) print V[i]
+	for (i = 0; i < nf; i++) print 3, F[i]
+}'

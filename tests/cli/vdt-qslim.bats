@@ -975,23 +975,12 @@ PY
 	# tetrahedron, the plate too, and it stopped at 88 (Hausdorff 14% of
 	# the diagonal); small blocks go instead, and the plate's 12 faces
 	# keep it exact
-	awk 'function box(x0, y0, z0, x1, y1, z1,   b) {
-		b = nv + 0
-		V[nv++] = x0 " " y0 " " z0; V[nv++] = x1 " " y0 " " z0
-		V[nv++] = x1 " " y1 " " z0; V[nv++] = x0 " " y1 " " z0
-		V[nv++] = x0 " " y0 " " z1; V[nv++] = x1 " " y0 " " z1
-		V[nv++] = x1 " " y1 " " z1; V[nv++] = x0 " " y1 " " z1
-		split("0 2 1 0 3 2 4 5 6 4 6 7 0 1 5 0 5 4 1 2 6 1 6 5 2 3 7 2 7 6 3 0 4 3 4 7", c)
-		for (k = 1; k <= 36; k += 3)
-			F[nf++] = (b + c[k]) " " (b + c[k + 1]) " " (b + c[k + 2])
-	}
+	awk "$BOX_AWK"'
 	BEGIN {
 		box(0, 0, 0, 10, 10, 1)
 		for (i = 0; i < 21; i++)
 			box(i % 5 * 2 + 0.5, int(i / 5) * 2 + 0.5, 1, i % 5 * 2 + 0.7, int(i / 5) * 2 + 0.7, 1.2)
-		print "OFF"; print nv, nf, 0
-		for (i = 0; i < nv; i++) print V[i]
-		for (i = 0; i < nf; i++) print 3, F[i]
+		print_off()
 	}' > "$TMP/plate.off"
 	run "$BIN/vdt-qslim" -v -t 80 -F off "$TMP/plate.off" -o "$TMP/out.off"
 	[ "$status" -eq 0 ]
@@ -1020,21 +1009,10 @@ PY
 	# part a tetrahedron left its other pairs at the cost of edges, and
 	# the part vanished at the next turn: two boxes went (Hausdorff 21%
 	# of the diagonal) while cheaper contractions remained
-	awk 'function box(x0, y0, z0, x1, y1, z1,   b) {
-		b = nv + 0
-		V[nv++] = x0 " " y0 " " z0; V[nv++] = x1 " " y0 " " z0
-		V[nv++] = x1 " " y1 " " z0; V[nv++] = x0 " " y1 " " z0
-		V[nv++] = x0 " " y0 " " z1; V[nv++] = x1 " " y0 " " z1
-		V[nv++] = x1 " " y1 " " z1; V[nv++] = x0 " " y1 " " z1
-		split("0 2 1 0 3 2 4 5 6 4 6 7 0 1 5 0 5 4 1 2 6 1 6 5 2 3 7 2 7 6 3 0 4 3 4 7", c)
-		for (k = 1; k <= 36; k += 3)
-			F[nf++] = (b + c[k]) " " (b + c[k + 1]) " " (b + c[k + 2])
-	}
+	awk "$BOX_AWK"'
 	BEGIN {
 		for (i = 0; i < 6; i++) { s = 1 + i % 3; box(10 * i, 0, 0, 10 * i + s, s + 1, s + 2) }
-		print "OFF"; print nv, nf, 0
-		for (i = 0; i < nv; i++) print V[i]
-		for (i = 0; i < nf; i++) print 3, F[i]
+		print_off()
 	}' > "$TMP/boxes.off"
 	for order in greedy passes; do
 		run "$BIN/vdt-qslim" -v --order $order -t 26 -F off "$TMP/boxes.off" -o "$TMP/out.off"
@@ -1051,24 +1029,13 @@ PY
 	# costed by its gap to the other (0.02), both went at 16 faces and
 	# the Hausdorff error was 60% of the diagonal; the larger box, costed
 	# by its distance to the sphere, stays as a tetrahedron
-	awk 'function box(x0, y0, z0, x1, y1, z1,   b) {
-		b = nv + 0
-		V[nv++] = x0 " " y0 " " z0; V[nv++] = x1 " " y0 " " z0
-		V[nv++] = x1 " " y1 " " z0; V[nv++] = x0 " " y1 " " z0
-		V[nv++] = x0 " " y0 " " z1; V[nv++] = x1 " " y0 " " z1
-		V[nv++] = x1 " " y1 " " z1; V[nv++] = x0 " " y1 " " z1
-		split("0 2 1 0 3 2 4 5 6 4 6 7 0 1 5 0 5 4 1 2 6 1 6 5 2 3 7 2 7 6 3 0 4 3 4 7", c)
-		for (k = 1; k <= 36; k += 3)
-			F[nf++] = (b + c[k]) " " (b + c[k + 1]) " " (b + c[k + 2])
-	}
+	awk "$BOX_AWK"'
 	NR == 2 { n = $1; next }
 	NR > 2 && NR <= n + 2 { V[nv++] = $1 " " $2 " " $3; next }
 	NR > n + 2 { F[nf++] = $2 " " $3 " " $4 }
 	END {
 		box(4, 0, 0, 4.3, 0.3, 0.3); box(4.32, 0, 0, 4.52, 0.2, 0.2)
-		print "OFF"; print nv, nf, 0
-		for (i = 0; i < nv; i++) print V[i]
-		for (i = 0; i < nf; i++) print 3, F[i]
+		print_off()
 	}' "$SAMPLES/sphere.off" > "$TMP/pair.off"
 	run "$BIN/vdt-qslim" -v -t 16 -F off "$TMP/pair.off" -o "$TMP/out.off"
 	[ "$status" -eq 0 ]
