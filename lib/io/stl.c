@@ -249,67 +249,75 @@ vdt_stl_scan(struct vdt_stl_scan *s, const unsigned char *p, size_t n, struct vd
 	return 0;
 }
 
+/* What follows the records a binary STL's count gives (buf[0..len), 84 +
+ * 50 * count bytes or more). */
+enum stl_tail {
+	TAIL_NONE,
+	TAIL_ZERO,    /* zero bytes: padding */
+	TAIL_RECORDS, /* whole records, not all zero: the count is too low */
+	TAIL_SECOND,  /* a second binary STL, *c2 triangles */
+	TAIL_OTHER,
+};
+
+static enum stl_tail
+stl_tail(const unsigned char *buf, size_t len, uint32_t *c2)
+{
+	uint64_t count = vdt_get_u32le(buf + 80), rest = len - 84 - 50 * count;
+	const unsigned char *r = buf + (len - rest);
+	uint64_t k = 0;
+
+	if (rest == 0)
+		return TAIL_NONE;
+	while (k < rest && r[k] == 0)
+		k++;
+	if (k == rest)
+		return TAIL_ZERO;
+	if (rest % 50 == 0)
+		return TAIL_RECORDS;
+	if (rest >= 84) {
+		*c2 = vdt_get_u32le(r + 80);
+		if (*c2 > 0 && 84 + 50 * (uint64_t)*c2 == rest)
+			return TAIL_SECOND;
+	}
+	return TAIL_OTHER;
+}
+
 int
 vdt_stl_rest(const unsigned char *buf, size_t len, struct vdt_err *err)
 {
 	uint64_t count = vdt_get_u32le(buf + 80), rest = len - 84 - 50 * count;
-	const unsigned char *r = buf + (len - rest);
+	uint32_t c2;
 
-	if (rest >= 50 && rest % 50 == 0) {
-		/* Whole records, not all zero bytes (padding): the header's
-		 * count is too low (0 from a writer that never filled it in),
-		 * and the records it leaves out would be lost unsaid. */
-		size_t k = 0;
-		while (k < rest && r[k] == 0)
-			k++;
-		if (k < rest)
-			return vdt_err_set(
-			        err, VDT_EFORMAT,
-			        "binary STL header counts %lu triangle%s, the file holds "
-			        "%lu: its count is wrong",
-			        (unsigned long)count, count == 1 ? "" : "s",
-			        (unsigned long)(count + rest / 50));
+	switch (stl_tail(buf, len, &c2)) {
+	case TAIL_RECORDS:
+		/* the records it leaves out (0 from a writer that never filled
+		 * it in) would be lost unsaid */
+		return vdt_err_set(err, VDT_EFORMAT,
+		                   "binary STL header counts %lu triangle%s, the file holds "
+		                   "%lu: its count is wrong",
+		                   (unsigned long)count, count == 1 ? "" : "s",
+		                   (unsigned long)(count + rest / 50));
+	case TAIL_SECOND:
+		return vdt_err_set(err, VDT_EFORMAT,
+		                   "two binary STLs one after the other (%lu and %lu triangles): "
+		                   "give one",
+		                   (unsigned long)count, (unsigned long)c2);
+	default:
+		return 0;
 	}
-	if (rest >= 84) {
-		uint32_t c2 = vdt_get_u32le(r + 80);
-		if (c2 > 0 && 84 + 50 * (uint64_t)c2 == rest)
-			return vdt_err_set(err, VDT_EFORMAT,
-			                   "two binary STLs one after the other (%lu and %lu triangles): "
-			                   "give one",
-			                   (unsigned long)count, (unsigned long)c2);
-	}
-	return 0;
 }
 
 int
 vdt_stl_sized(const unsigned char *buf, size_t len)
 {
-	uint64_t count, rest;
-	const unsigned char *r;
+	uint32_t c2;
 
-	if (len < 84)
-		return 0;
-	count = vdt_get_u32le(buf + 80);
-	if (84 + 50 * count > len)
-		return 0;
-	rest = len - 84 - 50 * count;
-	r = buf + (len - rest);
-	/* Whole records more (or none) and a second STL are vdt_stl_rest's
-	 * to name; padding is zero bytes. Any other tail is no sign of an
+	/* Any tail but those vdt_stl_rest names or lets be is no sign of an
 	 * STL: a quarter of binary files of other formats (.3ds, .mdl, .png)
 	 * hold at bytes 80 to 83 a count their size fits, 0 most often, and
 	 * would read as a few triangles or an empty STL. */
-	if (rest % 50 == 0)
-		return 1;
-	if (rest >= 84) {
-		uint32_t c2 = vdt_get_u32le(r + 80);
-		if (c2 > 0 && 84 + 50 * (uint64_t)c2 == rest)
-			return 1;
-	}
-	for (uint64_t k = 0; k < rest; k++)
-		if (r[k] != 0)
-			return 0;
-	return 1;
+	return len >= 84 && 84 + 50 * (uint64_t)vdt_get_u32le(buf + 80) <= len &&
+	       stl_tail(buf, len, &c2) != TAIL_OTHER;
 }
 
 int
