@@ -2809,23 +2809,29 @@ part_reach_run(void *arg)
 			memcpy(sample, vs, n * sizeof(*vs));
 			ns = n;
 		} else {
-			for (int k = 0; k < REACH_DIRS; k++) {
-				uint32_t best = vs[0];
-				double bd = -INFINITY;
-				for (uint32_t v = 0; v < n; v++) {
-					const float *x = pos + 3 * (size_t)vs[v];
+			/* (its extreme vertices in one walk: the first of the
+			 * greatest along each direction, each taken once) */
+			uint32_t best[REACH_DIRS];
+			double bd[REACH_DIRS];
+			for (int k = 0; k < REACH_DIRS; k++)
+				bd[k] = -INFINITY;
+			for (uint32_t v = 0; v < n; v++) {
+				const float *x = pos + 3 * (size_t)vs[v];
+				for (int k = 0; k < REACH_DIRS; k++) {
 					double d = reach_dir[k][0] * x[0] + reach_dir[k][1] * x[1] +
 					           reach_dir[k][2] * x[2];
-					if (d > bd) {
-						bd = d;
-						best = vs[v];
+					if (d > bd[k]) {
+						bd[k] = d;
+						best[k] = vs[v];
 					}
 				}
+			}
+			for (int k = 0; k < REACH_DIRS; k++) {
 				uint32_t s = 0;
-				while (s < ns && sample[s] != best)
+				while (s < ns && sample[s] != best[k])
 					s++;
 				if (s == ns)
-					sample[ns++] = best;
+					sample[ns++] = best[k];
 			}
 		}
 		j->o.self = j->o.rank[i];
