@@ -219,9 +219,12 @@ run(struct cmdline *cl)
 		        progname, in.vertex_count, in.triangle_count, out.vertex_count,
 		        out.triangle_count, st.contractions, st.rejected, st.fitted, st.welded,
 		        st.dropped, st.parts_given_up, st.nonmanifold,
-		        st.free_topology ? "free" : "keep", st.passes ? "passes" : "greedy",
-		        st.flat_normals, st.max_error, st.error_pct, t1 - t0, t2 - t1, st.setup_s,
-		        st.contract_s, st.fit_s, vdt_seconds() - t2, peak_rss_bytes() / 1048576.0);
+		        st.free_topology == 2 ? "mixed"
+		        : st.free_topology    ? "free"
+		                              : "keep",
+		        st.passes ? "passes" : "greedy", st.flat_normals, st.max_error,
+		        st.error_pct, t1 - t0, t2 - t1, st.setup_s, st.contract_s, st.fit_s,
+		        vdt_seconds() - t2, peak_rss_bytes() / 1048576.0);
 	rc = EXIT_OK;
 out:
 	vdt_mesh_free(&in);

@@ -126,6 +126,7 @@ struct engine {
 	unsigned twice_max;     /* its largest count */
 	double cos_max, min_quality;
 	int allow_nonmanifold, keep_parts, keep_a_face, keep_holes;
+	const uint8_t *free_v;  /* vdt_contract_opts.free_vertices */
 	int vanish;             /* ops->vanish, with keep_parts 0, the vertex queue, no record */
 	size_t max_removed;     /* vdt_contract_opts.max_removed_faces */
 	const struct vdt_contract_ops *ops;
@@ -1144,14 +1145,16 @@ link_hub(const struct engine *e, uint32_t hub, struct link *B)
  * Note a hub's edges2 from its listing l. The link test keeps an edge at
  * it from gaining a third face (a shared neighbour off the pair's faces
  * is refused), so the note holds while the test is made; a caller that
- * skips it (allow_nonmanifold) never reads the note. (The costing threads
+ * skips it (allow_nonmanifold) never reads the note, and one that skips
+ * it for some pairs (free_v), whose contractions may give an edge of a
+ * hub a third face (a virtual pair joins parts), takes none. (The costing threads
  * of a pass may note and read it at once: it only turns 1, and a 0 read
  * lists the hub for the same answer.)
  */
 static void
 note_edges2(struct engine *e, const struct link *l)
 {
-	if (e->edges2 == NULL || __atomic_load_n(&e->edges2[l->v], __ATOMIC_RELAXED) ||
+	if (e->edges2 == NULL || e->free_v || __atomic_load_n(&e->edges2[l->v], __ATOMIC_RELAXED) ||
 	    e->vt[l->v].len < HUB)
 		return;
 	for (long i = 0; i < l->n; i++)
@@ -1177,8 +1180,9 @@ link_words(uint32_t **words, size_t *room, size_t need, uint32_t **big)
 /*
  * The link condition for pair (a, b); `known`, if not NULL, is the
  * listing of one of them, made already. Of a hub and a vertex of few
- * faces, the latter is listed, and the hub only if link_hub cannot tell.
- * (The test is the same whichever is listed first.)
+ * faces, the latter is listed, and the hub only if link_hub cannot tell
+ * (always with free_v: see note_edges2). (The test is the same whichever
+ * is listed first.)
  */
 static int
 link_ok(struct engine *e, uint32_t a, uint32_t b, struct link *known)
@@ -1204,7 +1208,9 @@ link_ok(struct engine *e, uint32_t a, uint32_t b, struct link *known)
 	}
 	/* (the hub's room only if it is listed: from mmap past 256 KB, each
 	 * time, for a hub of some 8000 faces) */
-	ok = e->vt[other].len >= HUB && e->vt[known->v].len < HUB ? link_hub(e, other, known) : -1;
+	ok = e->vt[other].len >= HUB && e->vt[known->v].len < HUB && !e->free_v
+	             ? link_hub(e, other, known)
+	             : -1;
 	if (ok < 0) {
 		uint32_t *w = link_words(&words, &room, fan_words(e->vt[other].len), &big[1]);
 		ok = 0;
@@ -1666,7 +1672,8 @@ try_pair(struct engine *e, uint32_t u, uint32_t v, struct link *lu, int unsure,
 	/* (the tests only read: their order changes no answer) */
 	if (!(*cost < INFINITY) || (hub && !fan_ok(e, few, many, fpos)))
 		return 0;
-	if (!((e->allow_nonmanifold || link_ok(e, *keep, *gone, lu)) &&
+	if (!((e->allow_nonmanifold || (e->free_v && e->free_v[*keep] && e->free_v[*gone]) ||
+	       link_ok(e, *keep, *gone, lu)) &&
 	      !(e->keep_parts && last_of_part(e, *keep, *gone)) &&
 	      !(e->keep_a_face && last_faces(e, *keep, *gone)) &&
 	      !(e->max_removed && shared_faces(e, *keep, *gone) > e->max_removed) &&
@@ -4128,6 +4135,7 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 		e.cos_max = -2;
 	e.min_quality = o->min_quality;
 	e.allow_nonmanifold = o->allow_nonmanifold;
+	e.free_v = o->allow_nonmanifold ? NULL : o->free_vertices;
 	e.keep_holes = o->keep_holes;
 	e.keep_parts = o->keep_parts;
 	e.keep_a_face = o->keep_a_face;

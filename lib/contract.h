@@ -114,6 +114,15 @@ struct vdt_contract_opts {
 	 */
 	int allow_nonmanifold;
 	/*
+	 * With allow_nonmanifold 0: NULL, or one byte per vertex, nonzero
+	 * where the link condition may be dropped. It is not applied to a
+	 * pair both of whose ends are so marked (the vertices of the parts
+	 * of a mesh that already have a non-manifold edge or a handle, say)
+	 * and applied to every other pair, so that the other parts stay
+	 * manifold and keep their topology.
+	 */
+	const uint8_t *free_vertices;
+	/*
 	 * With the link condition (allow_nonmanifold 0), nonzero: a hole
 	 * of three edges stays open, as the condition has it, so that the
 	 * count of boundaries never changes. 0 (the default): contracting

@@ -700,6 +700,7 @@ struct oe_job {
 	uint32_t *edges;
 	long n;
 	size_t nonmanifold;
+	uint8_t *nm_at;
 };
 
 /*
@@ -771,25 +772,31 @@ oe_run(void *arg)
 	struct oe_job *j = arg;
 
 	j->n = vdt_topo_open_edges_in(j->lo, j->hi, j->w->triangles, j->start, j->fan, j->dead,
-	                              &j->edges, &j->nonmanifold);
+	                              &j->edges, &j->nonmanifold, j->nm_at);
 	return NULL;
 }
 
-/* vdt_topo_open_edges on t threads, a range of vertices each, joined in
- * order: the same edges in the same order. */
+/* vdt_topo_open_edges_in on t threads, a range of vertices each, joined in
+ * order: the same edges in the same order, and the same marks in nm_at. */
 static long
 open_edges(const struct vdt_mesh *w, const uint32_t *start, const uint32_t *fan,
-           const uint8_t *dead, int t, uint32_t **edges, size_t *nonmanifold)
+           const uint8_t *dead, int t, uint32_t **edges, size_t *nonmanifold, uint8_t *nm_at)
 {
 	struct oe_job job[VDT_CONTRACT_MAX_THREADS];
 	size_t nv = w->vertex_count, at = 0;
 	long total = 0;
 
 	if (t < 2)
-		return vdt_topo_open_edges(nv, w->triangles, start, fan, dead, edges, nonmanifold);
+		return vdt_topo_open_edges_in(0, nv, w->triangles, start, fan, dead, edges,
+		                              nonmanifold, nm_at);
 	for (int k = 0; k < t; k++)
-		job[k] = (struct oe_job){w, start, fan, dead, nv * (size_t)k / (size_t)t,
-		                         nv * (size_t)(k + 1) / (size_t)t, NULL, 0, 0};
+		job[k] = (struct oe_job){.w = w,
+		                         .start = start,
+		                         .fan = fan,
+		                         .dead = dead,
+		                         .lo = nv * (size_t)k / (size_t)t,
+		                         .hi = nv * (size_t)(k + 1) / (size_t)t,
+		                         .nm_at = nm_at};
 	vdt_run_jobs(oe_run, job, sizeof(job[0]), t);
 	*edges = NULL;
 	*nonmanifold = 0;
@@ -818,15 +825,17 @@ open_edges(const struct vdt_mesh *w, const uint32_t *start, const uint32_t *fan,
  *    volume, as clustering leaves them), marked in `dead`;
  *  - find open edges: (v,x) is open when one live face of v's fan holds x.
  * Linear in the mesh, with no edge table. Counts the edges of three or more
- * faces in *nonmanifold. Marks boundary vertices in
+ * faces in *nonmanifold; when there are some, under --topology auto, marks
+ * in *free_parts (NULL when it would mark every vertex, or there are none)
+ * the vertices whose part has one, or a handle. Marks boundary vertices in
  * `border`. c->q is written from scratch: the face jobs zero their own
  * vertices' quadrics, so that their pages (44 MB on a mesh of 1M faces) are
  * first touched on the threads that fill them, not one.
  */
 static int
-build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
-               const uint32_t *canon, size_t nin, struct ctx *c, uint8_t *border,
-               uint8_t *dead, size_t *nonmanifold, uint64_t **backs, size_t *nbacks)
+build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o, const uint32_t *canon,
+               size_t nin, struct ctx *c, uint8_t *border, uint8_t *dead, size_t *nonmanifold,
+               uint8_t **free_parts, uint64_t **backs, size_t *nbacks)
 {
 	size_t nt = w->triangle_count, nv = w->vertex_count;
 	int threads = nv < FQ_MIN_VERTICES ? 1 : vdt_contract_threads(o->threads);
@@ -928,13 +937,30 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o,
 		free(fan);
 		return -1;
 	}
-	uint32_t *open;
-	long nopen = open_edges(w, start, fan, dead, threads, &open, nonmanifold);
+	uint32_t *open = NULL;
+	uint8_t *nm_at = o->topology == VDT_TOPOLOGY_AUTO ? calloc(nv ? nv : 1, 1) : NULL;
+	long nopen = o->topology == VDT_TOPOLOGY_AUTO && nm_at == NULL
+	                     ? -1
+	                     : open_edges(w, start, fan, dead, threads, &open, nonmanifold, nm_at);
 	for (long k = 0; k < nopen; k++) {
 		uint32_t a = open[3 * k + 1], b = open[3 * k + 2];
 		if (!real || real[a] || real[b])
 			add_boundary(c, w, o, open[3 * k], a, b, border);
 	}
+	*free_parts = NULL;
+	if (nopen >= 0 && nm_at != NULL && *nonmanifold > 0) {
+		long manifold = -1;
+		if ((*free_parts = malloc(nv ? nv : 1)) != NULL)
+			manifold = vdt_topo_free_parts(nv, w->triangles, nt, dead, open, nopen,
+			                               nm_at, *free_parts);
+		if (manifold <= 0) {
+			free(*free_parts);
+			*free_parts = NULL;
+		}
+		if (manifold < 0)
+			nopen = -1;
+	}
+	free(nm_at);
 	free(real);
 	free(open);
 	if (nopen < 0) {
@@ -3068,7 +3094,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	struct vdt_contract_result r = {0};
 	uint32_t *canon = NULL, *first = NULL, *wstart = NULL, *wlist = NULL;
 	uint32_t *vpairs = NULL;
-	uint8_t *border = NULL, *locked = NULL, *dead = NULL;
+	uint8_t *border = NULL, *locked = NULL, *dead = NULL, *free_parts = NULL;
 	uint32_t *fsrc = NULL, *vto = NULL, *forder = NULL;
 	int renumbered = 0;
 	uint32_t *pforest = NULL; /* the input's parts, when some may go */
@@ -3184,7 +3210,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	c.blade = blade_share(target, T);
 	dead = vdt_calloc_huge(T + 1, 1);
 	if (dead == NULL || build_quadrics(&w, o, canon, n, &c, border, dead, &stats->nonmanifold,
-	                                   &backs, &nbacks) != 0)
+	                                   &free_parts, &backs, &nbacks) != 0)
 		goto nomem;
 	/* The fronts count twice toward the target (their backs come back),
 	 * in the engine's faces; the pairs in the input's, by front. */
@@ -3408,10 +3434,18 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	co.record = records != NULL;
 	/* The link condition keeps manifold input manifold; on input that is
 	 * not (a clustered intermediate, a scan with fins) it would also keep
-	 * every hole and inverted face the damage left, so it is dropped. */
-	co.allow_nonmanifold = o->topology == VDT_TOPOLOGY_FREE ||
-	                       (o->topology == VDT_TOPOLOGY_AUTO && stats->nonmanifold > 0);
-	stats->free_topology = co.allow_nonmanifold;
+	 * every hole and inverted face the damage left, so it is dropped
+	 * there: on the parts with a non-manifold edge, and those with
+	 * handles, which auto has always let go. The other parts keep it, so
+	 * that they are not pinched into pockets that hang by an edge, which
+	 * no contraction can take (a model of 24 parts, two of them
+	 * non-manifold, stopped at 134 faces, which its tetrahedra would
+	 * hold in 96). */
+	co.allow_nonmanifold =
+	        o->topology == VDT_TOPOLOGY_FREE ||
+	        (o->topology == VDT_TOPOLOGY_AUTO && stats->nonmanifold > 0 && free_parts == NULL);
+	co.free_vertices = free_parts;
+	stats->free_topology = co.allow_nonmanifold ? 1 : free_parts != NULL ? 2 : 0;
 	co.keep_holes = o->topology == VDT_TOPOLOGY_KEEP;
 	co.progress = o->progress;
 	co.passes = o->order == VDT_QSLIM_ORDER_PASSES ||
@@ -3480,7 +3514,9 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	stats->contractions = r.contractions;
 	stats->rejected = r.rejected;
 	stats->reached_target = r.reached_target;
-	stats->handles = r.reached_target || co.allow_nonmanifold
+	/* (where the link condition was dropped on some parts, those with
+	 * handles were among them) */
+	stats->handles = r.reached_target || co.allow_nonmanifold || co.free_vertices
 	                         ? -1
 	                         : vdt_topo_handles(r.vertex_count, r.triangles, r.triangle_count);
 	stats->max_error = sqrt(c.worst);
@@ -3543,6 +3579,7 @@ done:
 	free(locked);
 	free(vpairs);
 	free(dead);
+	free(free_parts);
 	free(fsrc);
 	free(vto);
 	free(forder);

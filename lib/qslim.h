@@ -21,8 +21,10 @@
 
 /*
  * When contractions may change topology. AUTO keeps manifold input manifold
- * (the link condition) and lets input that already has non-manifold edges
- * change freely; KEEP always applies the link condition; FREE never does.
+ * (the link condition) and, on input that already has non-manifold edges,
+ * lets the parts with such an edge or a handle change freely while the
+ * others keep the condition (vdt_contract_opts.free_vertices); KEEP
+ * always applies the link condition; FREE never does.
  * Faces are never flipped or left degenerate in any mode.
  */
 enum vdt_topology { VDT_TOPOLOGY_AUTO = 0, VDT_TOPOLOGY_KEEP, VDT_TOPOLOGY_FREE };
@@ -144,7 +146,9 @@ struct vdt_qslim_stats {
 	size_t dropped;     /* repeated faces removed (see vdt_qslim), and
 	                       faces welding left with a repeated vertex */
 	size_t nonmanifold; /* edges of three or more faces in the input */
-	int free_topology;  /* 1 if the link condition was not applied */
+	int free_topology;  /* 1 if the link condition was not applied, 2 if
+	                       not on the parts with a non-manifold edge or a
+	                       handle alone */
 	int passes;         /* 1 if contracted in passes, 0 greedy */
 	size_t fitted;      /* vertices the fit moved */
 	size_t parts_given_up; /* parts of which no face is left, to meet the target */

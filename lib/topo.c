@@ -244,7 +244,7 @@ vdt_topo_open_edges(size_t nv, const uint32_t *tri, const uint32_t *start,
                     const uint32_t *fan, const uint8_t *dead, uint32_t **edges,
                     size_t *nonmanifold)
 {
-	return vdt_topo_open_edges_in(0, nv, tri, start, fan, dead, edges, nonmanifold);
+	return vdt_topo_open_edges_in(0, nv, tri, start, fan, dead, edges, nonmanifold, NULL);
 }
 
 /*
@@ -317,10 +317,19 @@ nb_count(struct nb_table *h, size_t v, const uint32_t *tri, const uint32_t *fan,
 	return 0;
 }
 
+/* A non-manifold edge at v (its lower end): marked in nm_at, if any. */
+static int
+nm_mark(uint8_t *nm_at, size_t v)
+{
+	if (nm_at != NULL)
+		nm_at[v] = 1;
+	return 1;
+}
+
 long
 vdt_topo_open_edges_in(size_t lo, size_t hi, const uint32_t *tri, const uint32_t *start,
                        const uint32_t *fan, const uint8_t *dead, uint32_t **edges,
-                       size_t *nonmanifold)
+                       size_t *nonmanifold, uint8_t *nm_at)
 {
 	struct open_list l = {NULL, 0, 0};
 	struct nb_table h = {NULL, NULL, 0};
@@ -345,7 +354,7 @@ vdt_topo_open_edges_in(size_t lo, size_t hi, const uint32_t *tri, const uint32_t
 					if (c[1] == 1 && open_push(&l, fan[i], (uint32_t)v, tv[k]) != 0)
 						goto nomem;
 					if (c[1] > 2 && c[2] == i)
-						nm++;
+						nm += nm_mark(nm_at, v);
 				}
 			}
 			continue;
@@ -382,7 +391,7 @@ vdt_topo_open_edges_in(size_t lo, size_t hi, const uint32_t *tri, const uint32_t
 				if (uses == 1 && open_push(&l, fan[i], (uint32_t)v, x) != 0)
 					goto nomem;
 				if (uses > 2 && first)
-					nm++;
+					nm += nm_mark(nm_at, v);
 			}
 		}
 		for (uint32_t j = 0; j < n; j++) {
@@ -390,7 +399,7 @@ vdt_topo_open_edges_in(size_t lo, size_t hi, const uint32_t *tri, const uint32_t
 			    open_push(&l, seen[2 * j + 1] >> 2, (uint32_t)v, seen[2 * j]) != 0)
 				goto nomem;
 			if ((seen[2 * j + 1] & 3) == 3)
-				nm++;
+				nm += nm_mark(nm_at, v);
 		}
 	}
 	free(h.slot);
@@ -447,6 +456,25 @@ vdt_topo_parts(size_t nv, const uint32_t *tri, size_t nt)
 	return parts;
 }
 
+/*
+ * The boundary loops of the open edges edges[0..3 open) (face, a, b) as a
+ * union-find forest in loop (nv entries, filled here): edges that meet are
+ * of one loop. Their vertices are marked 3 in used.
+ */
+static void
+loop_forest(size_t nv, const uint32_t *edges, long open, uint32_t *loop, uint8_t *used)
+{
+	for (size_t v = 0; v < nv; v++)
+		loop[v] = (uint32_t)v;
+	for (long k = 0; k < open; k++) {
+		uint32_t a = vdt_topo_find(loop, edges[3 * k + 1]);
+		uint32_t b = vdt_topo_find(loop, edges[3 * k + 2]);
+		if (a != b)
+			loop[a > b ? a : b] = a < b ? a : b;
+		used[edges[3 * k + 1]] = used[edges[3 * k + 2]] = 3;
+	}
+}
+
 long
 vdt_topo_handles(size_t nv, const uint32_t *tri, size_t nt)
 {
@@ -464,18 +492,9 @@ vdt_topo_handles(size_t nv, const uint32_t *tri, size_t nt)
 	if (open < 0 || nm > 0 || up == NULL || loop == NULL || used == NULL)
 		goto out;
 	vdt_topo_part_forest(nv, tri, nt, up);
-	for (size_t v = 0; v < nv; v++)
-		loop[v] = (uint32_t)v;
-	for (long k = 0; k < open; k++) {
-		uint32_t a = vdt_topo_find(loop, edges[3 * k + 1]);
-		uint32_t b = vdt_topo_find(loop, edges[3 * k + 2]);
-		if (a != b)
-			loop[a > b ? a : b] = a < b ? a : b;
-	}
 	for (size_t i = 0; i < 3 * nt; i++)
 		used[tri[i]] = 1;
-	for (long k = 0; k < open; k++)
-		used[edges[3 * k + 1]] = used[edges[3 * k + 2]] = 3; /* on a loop */
+	loop_forest(nv, edges, open, loop, used);
 	long verts = 0, parts = 0, loops = 0;
 	for (size_t v = 0; v < nv; v++) {
 		verts += used[v] != 0;
@@ -495,4 +514,69 @@ out:
 	free(loop);
 	free(used);
 	return handles;
+}
+
+long
+vdt_topo_free_parts(size_t nv, const uint32_t *tri, size_t nt, const uint8_t *dead,
+                    const uint32_t *edges, long open, const uint8_t *nm_at, uint8_t *out)
+{
+	uint32_t *up = vdt_malloc_huge((nv ? nv : 1) * sizeof(*up));
+	uint32_t *loop = vdt_malloc_huge((nv ? nv : 1) * sizeof(*loop));
+	int64_t *four = calloc(nv ? nv : 1, sizeof(*four)); /* by part root: 4 H, below */
+	long manifold = 0;
+
+	if (up == NULL || loop == NULL || four == NULL) {
+		free(up);
+		free(loop);
+		free(four);
+		return -1;
+	}
+	for (size_t v = 0; v < nv; v++) {
+		up[v] = (uint32_t)v;
+		out[v] = 0;
+	}
+	for (size_t t = 0; t < nt; t++) {
+		const uint32_t *c = tri + 3 * t;
+		if (dead && dead[t])
+			continue;
+		for (int k = 0; k < 3; k++) {
+			uint32_t a = vdt_topo_find(up, c[k]), b = vdt_topo_find(up, c[(k + 1) % 3]);
+			if (a != b)
+				up[a > b ? a : b] = a < b ? a : b;
+			out[c[k]] = 1;
+		}
+	}
+	loop_forest(nv, edges, open, loop, out);
+	/*
+	 * Part by part, 2 - L - (V - E + F) = 2 H, and 2 E = 3 F + open edges
+	 * where every edge has one or two faces: 4 H = 4 - 2 L - 2 V + F +
+	 * open edges, summed here at the part's root.
+	 */
+	for (size_t t = 0; t < nt; t++)
+		if (!(dead && dead[t]))
+			four[vdt_topo_find(up, tri[3 * t])]++;
+	for (long k = 0; k < open; k++)
+		four[vdt_topo_find(up, edges[3 * k + 1])]++;
+	for (size_t v = 0; v < nv; v++) {
+		if (out[v] == 0)
+			continue;
+		uint32_t r = vdt_topo_find(up, (uint32_t)v);
+		four[r] -= 2 + (out[v] == 3 && loop[v] == v ? 2 : 0);
+		if (r == v)
+			four[r] += 4;
+	}
+	/* (a non-manifold edge frees its part whatever the count says) */
+	for (size_t v = 0; v < nv; v++)
+		if (nm_at != NULL && nm_at[v])
+			four[vdt_topo_find(up, (uint32_t)v)] = 1;
+	for (size_t v = 0; v < nv; v++) {
+		if (out[v] == 0)
+			continue;
+		out[v] = four[vdt_topo_find(up, (uint32_t)v)] > 0;
+		manifold += !out[v];
+	}
+	free(up);
+	free(loop);
+	free(four);
+	return manifold;
 }

@@ -53,11 +53,13 @@ long vdt_topo_open_edges(size_t nv, const uint32_t *tri, const uint32_t *start,
 /*
  * The same for the vertices lo..hi-1 only (those of their edges with a
  * vertex above them): the open edges of [0, nv) are those of consecutive
- * ranges, in order, so that threads may take one range each.
+ * ranges, in order, so that threads may take one range each. nm_at, if
+ * not NULL, gets a 1 at the lower end of every edge of three or more live
+ * faces (others left as they are).
  */
-long vdt_topo_open_edges_in(size_t lo, size_t hi, const uint32_t *tri,
-                            const uint32_t *start, const uint32_t *fan, const uint8_t *dead,
-                            uint32_t **edges, size_t *nonmanifold);
+long vdt_topo_open_edges_in(size_t lo, size_t hi, const uint32_t *tri, const uint32_t *start,
+                            const uint32_t *fan, const uint8_t *dead, uint32_t **edges,
+                            size_t *nonmanifold, uint8_t *nm_at);
 
 /* The root of v's set in the union-find forest up (up[r] == r at a
  * root), halving the path on the way. */
@@ -92,5 +94,17 @@ long vdt_topo_handles(size_t nv, const uint32_t *tri, size_t nt);
  * part's root is its lowest vertex, vdt_topo_find(up, v) the part of v.
  */
 void vdt_topo_part_forest(size_t nv, const uint32_t *tri, size_t nt, uint32_t *up);
+
+/*
+ * Into out (nv bytes), 1 for each vertex of a part of the live faces
+ * tri[0..3 nt) (dead may be NULL) that has an edge of three faces or more
+ * (marked in nm_at as vdt_topo_open_edges_in marks them) or a handle (as
+ * vdt_topo_handles counts them, part by part), given the open edges
+ * (edges[0..3 open), as vdt_topo_open_edges lists them); 0 for the other
+ * vertices. Returns the number of vertices of faces marked 0, or -1 when
+ * memory runs out.
+ */
+long vdt_topo_free_parts(size_t nv, const uint32_t *tri, size_t nt, const uint8_t *dead,
+                         const uint32_t *edges, long open, const uint8_t *nm_at, uint8_t *out);
 
 #endif

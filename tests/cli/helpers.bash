@@ -24,14 +24,25 @@ off_faces() {
 
 # open_edges OFF: edges of one face in an OFF file (by its vertex numbers).
 open_edges() {
-	awk 'NR == 2 { nv = $1; next }
+	edges_of "$1" 1
+}
+
+# Edges of three faces or more in an OFF file.
+nonmanifold_edges() {
+	edges_of "$1" 3
+}
+
+# edges_of OFF N: the edges of an OFF file held by N faces (N 3: three or
+# more).
+edges_of() {
+	awk -v n="$2" 'NR == 2 { nv = $1; next }
 	NR > 2 + nv && NF >= 4 {
 		for (k = 2; k <= 4; k++) {
 			a = $k; b = k == 4 ? $2 : $(k + 1)
 			c[a < b ? a " " b : b " " a]++
 		}
 	}
-	END { n = 0; for (e in c) n += c[e] == 1; print n }' "$1"
+	END { m = 0; for (e in c) m += n < 3 ? c[e] == n : c[e] >= n; print m }' "$1"
 }
 
 # holes_sphere OUT: the sample sphere with six single faces taken out,

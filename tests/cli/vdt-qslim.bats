@@ -342,6 +342,36 @@ load helpers
 	[[ "$output" == *" nonmanifold=0 topology=keep "* ]]
 }
 
+@test "vdt-qslim --topology auto frees the parts with a non-manifold edge or a handle alone" {
+	# a dumbbell with a thin neck and, away from it, a book of three
+	# faces on one edge
+	{ echo OFF; echo "2567 5123 0"
+	  awk 'NR > 2 && NR <= 2564 { s = $1 * $1 < 0.09 ? 0.02 : 1; print 3 * $1, s * $2, s * $3 }' \
+	      "$SAMPLES/sphere.off"
+	  printf '5 0 0\n5 0 1\n6 0 0\n5 1 0\n4 0 0.5\n'
+	  sed -n '2565,$p' "$SAMPLES/sphere.off"
+	  printf '3 2562 2563 2564\n3 2563 2562 2565\n3 2562 2563 2566\n'; } > "$TMP/dumbbell.off"
+	run "$BIN/vdt-qslim" -v -t 100 -F off "$TMP/dumbbell.off" -o "$TMP/a.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *" nonmanifold=1 topology=mixed "* ]]
+	# the book's edge alone: freed whole, the neck was pinched too,
+	[ "$(nonmanifold_edges "$TMP/a.off")" -eq 1 ]
+	# its halves left hanging by an edge that stopped the contractions
+	# at 15 faces
+	run "$BIN/vdt-qslim" -t 12 -F off "$TMP/dumbbell.off" -o "$TMP/b.off"
+	[ "$status" -eq 0 ]
+	[ -z "$output" ]
+	[ "$(off_faces "$TMP/b.off")" -le 12 ]
+	# a torus beside the book is freed too: auto lets its handle go
+	{ echo OFF; echo "1157 2307 0"; sed -n '3,1154p' "$SAMPLES/torus.off"
+	  printf '5 0 0\n5 0 1\n6 0 0\n5 1 0\n4 0 0.5\n'
+	  sed -n '1155,$p' "$SAMPLES/torus.off"
+	  printf '3 1152 1153 1154\n3 1153 1152 1155\n3 1152 1153 1156\n'; } > "$TMP/book.off"
+	run "$BIN/vdt-qslim" -v -r 0.5 "$TMP/book.off" -o "$TMP/c.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *" nonmanifold=1 topology=free "* ]]
+}
+
 @test "vdt-qslim stopped by the handles it keeps says so, and how to let them go" {
 	run "$BIN/vdt-qslim" -t 10 "$SAMPLES/torus.off" -o "$TMP/a.off"
 	[ "$status" -eq 0 ]

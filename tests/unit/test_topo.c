@@ -107,8 +107,8 @@ ranges_join_to_the_whole(void **state)
 		for (size_t b = a; b <= nv; b += 5) {
 			size_t cut[4] = {0, a, b, nv}, at = 0, nm_sum = 0;
 			for (int k = 0; k < 3; k++) {
-				long c = vdt_topo_open_edges_in(cut[k], cut[k + 1], f.triangles, start, fan,
-				                                NULL, &part, &nm);
+				long c = vdt_topo_open_edges_in(cut[k], cut[k + 1], f.triangles,
+				                                start, fan, NULL, &part, &nm, NULL);
 				assert_true(c >= 0 && at + (size_t)c <= (size_t)n);
 				if (c > 0)
 					assert_memory_equal(part, all + 3 * at, 3 * sizeof(uint32_t) * (size_t)c);
@@ -196,15 +196,66 @@ handles_of_surfaces(void **state)
 	vdt_mesh_free(&m);
 }
 
+/* Parts freed from the link condition: a torus (a handle) and a sphere
+ * with a fin (an edge of three faces) are; a tube (two boundary loops)
+ * and a sphere less a face are not. */
+static void
+free_parts_of_surfaces(void **state)
+{
+	struct vdt_mesh s;
+	(void)state;
+
+	shape_icosphere(&s, 1);
+	size_t ns = s.vertex_count, nf = s.triangle_count, nv = 96 + 2 * ns;
+	uint32_t *t = malloc((2 * 3 * 2 * 8 * 6 + 3 * (2 * nf + 1)) * sizeof(*t)), x = 0;
+	size_t nt = torus_faces(8, 6, 1, t);
+	size_t tube = torus_faces(8, 6, 0, t + 3 * nt);
+	for (size_t i = 0; i < 3 * tube; i++)
+		t[3 * nt + i] += 48;
+	nt += tube;
+	for (size_t i = 0; i < 3 * nf; i++) /* the sphere with a fin */
+		t[3 * nt + i] = s.triangles[i] + 96;
+	while (x == s.triangles[0] || x == s.triangles[1] || x == s.triangles[2])
+		x++;
+	nt += nf;
+	t[3 * nt] = s.triangles[0] + 96;
+	t[3 * nt + 1] = s.triangles[1] + 96;
+	t[3 * nt + 2] = x + 96;
+	nt++;
+	for (size_t i = 3; i < 3 * nf; i++) /* the sphere less a face */
+		t[3 * nt + i - 3] = s.triangles[i] + 96 + (uint32_t)ns;
+	nt += nf - 1;
+
+	uint32_t *start, *fan, *e;
+	uint8_t *nm_at = calloc(nv, 1), *out = malloc(nv);
+	size_t nm;
+	assert_int_equal(vdt_topo_fans(nv, t, nt, &start, &fan), 0);
+	long open = vdt_topo_open_edges_in(0, nv, t, start, fan, NULL, &e, &nm, nm_at);
+	assert_int_equal(nm, 1);
+	assert_int_equal(
+	        nm_at[96 + (s.triangles[0] < s.triangles[1] ? s.triangles[0] : s.triangles[1])], 1);
+	assert_int_equal(vdt_topo_free_parts(nv, t, nt, NULL, e, open, nm_at, out), 48 + (long)ns);
+	for (size_t v = 0; v < nv; v++)
+		assert_int_equal(out[v], v < 48 || (v >= 96 && v < 96 + ns));
+	free(start);
+	free(fan);
+	free(e);
+	free(nm_at);
+	free(out);
+	free(t);
+	vdt_mesh_free(&s);
+}
+
 int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
-		cmocka_unit_test(grid_and_sphere),
-		cmocka_unit_test(fin_and_dead_faces),
-		cmocka_unit_test(ranges_join_to_the_whole),
-		cmocka_unit_test(parts_by_shared_vertices),
-		cmocka_unit_test(handles_of_surfaces),
+	        cmocka_unit_test(grid_and_sphere),
+	        cmocka_unit_test(fin_and_dead_faces),
+	        cmocka_unit_test(ranges_join_to_the_whole),
+	        cmocka_unit_test(parts_by_shared_vertices),
+	        cmocka_unit_test(handles_of_surfaces),
+	        cmocka_unit_test(free_parts_of_surfaces),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
