@@ -891,6 +891,28 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o, const u
 	*nbacks = kept;
 	free(front);
 
+	/* The open edges, and the edges of three faces or more (nm_at): a
+	 * quad triangulated twice, a flat tetrahedron set into the surface,
+	 * loses the pair of faces that disagrees with its neighbours (a
+	 * model's six such pockets had it freed whole and pinched). */
+	uint32_t *open = NULL;
+	uint8_t *nm_at = calloc(nv ? nv : 1, 1);
+	long nopen = nm_at == NULL
+	                     ? -1
+	                     : open_edges(w, start, fan, dead, threads, &open, nonmanifold, nm_at);
+	if (nopen >= 0 && *nonmanifold > 0 &&
+	    vdt_topo_drop_pockets(nv, w->triangles, start, fan, nm_at, dead) > 0) {
+		free(open);
+		open = NULL;
+		memset(nm_at, 0, nv);
+		nopen = open_edges(w, start, fan, dead, threads, &open, nonmanifold, nm_at);
+	}
+	if (nopen < 0) {
+		free(nm_at);
+		free(open);
+		goto nomem;
+	}
+
 	/*
 	 * Section 3.3: phase I's quadrics, the planes of the input inside each
 	 * cell, stand for the faces'. They say where the input is, not what a
@@ -922,33 +944,22 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o, const u
 	 * sides: planes go only where phase I found the input's boundary, and
 	 * only there are vertices on a border (--lock-border). */
 	uint8_t *real = NULL;
-	if (o->quadrics && o->input_border) {
-		if ((real = calloc(nv, 1)) == NULL) {
-			free(start);
-			free(fan);
-			return -1;
-		}
-		for (size_t i = 0; i < nin; i++)
-			real[canon[i]] |= o->input_border[i] != 0;
-	}
-	if (reach_boxes(w, c, start, fan, dead, threads) != 0) {
+	if ((o->quadrics && o->input_border && (real = calloc(nv, 1)) == NULL) ||
+	    reach_boxes(w, c, start, fan, dead, threads) != 0) {
 		free(real);
-		free(start);
-		free(fan);
-		return -1;
+		free(nm_at);
+		free(open);
+		goto nomem;
 	}
-	uint32_t *open = NULL;
-	uint8_t *nm_at = o->topology == VDT_TOPOLOGY_AUTO ? calloc(nv ? nv : 1, 1) : NULL;
-	long nopen = o->topology == VDT_TOPOLOGY_AUTO && nm_at == NULL
-	                     ? -1
-	                     : open_edges(w, start, fan, dead, threads, &open, nonmanifold, nm_at);
+	for (size_t i = 0; real && i < nin; i++)
+		real[canon[i]] |= o->input_border[i] != 0;
 	for (long k = 0; k < nopen; k++) {
 		uint32_t a = open[3 * k + 1], b = open[3 * k + 2];
 		if (!real || real[a] || real[b])
 			add_boundary(c, w, o, open[3 * k], a, b, border);
 	}
 	*free_parts = NULL;
-	if (nopen >= 0 && nm_at != NULL && *nonmanifold > 0) {
+	if (o->topology == VDT_TOPOLOGY_AUTO && *nonmanifold > 0) {
 		long manifold = -1;
 		if ((*free_parts = malloc(nv ? nv : 1)) != NULL)
 			manifold = vdt_topo_free_parts(nv, w->triangles, nt, dead, open, nopen,
@@ -963,11 +974,8 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o, const u
 	free(nm_at);
 	free(real);
 	free(open);
-	if (nopen < 0) {
-		free(start);
-		free(fan);
-		return -1;
-	}
+	if (nopen < 0)
+		goto nomem;
 	free(start);
 	free(fan);
 	return 0;

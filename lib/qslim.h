@@ -143,9 +143,12 @@ struct vdt_qslim_stats {
 	                       planes of its quadric), model units */
 	int reached_target; /* 0: stopped early (bound, or nothing valid left) */
 	size_t welded;      /* input vertices merged with an identical position */
-	size_t dropped;     /* repeated faces removed (see vdt_qslim), and
-	                       faces welding left with a repeated vertex */
-	size_t nonmanifold; /* edges of three or more faces in the input */
+	size_t dropped;     /* repeated faces removed (see vdt_qslim), the
+	                       second triangulation of quads triangulated
+	                       twice, and faces welding left with a repeated
+	                       vertex */
+	size_t nonmanifold; /* edges of three or more faces in the input,
+	                       once those are dropped */
 	int free_topology;  /* 1 if the link condition was not applied, 2 if
 	                       not on the parts with a non-manifold edge or a
 	                       handle alone */
@@ -170,7 +173,8 @@ struct vdt_qslim_stats {
  * Vertices at identical positions are welded first, so texture and normal
  * seams cannot open; then a face on the same three vertices as an earlier
  * one is dropped, and both are when they face opposite ways (a zero-volume
- * fin). Unchanged vertices keep their exact input coordinates and
+ * fin), as is the second triangulation of a quad triangulated twice
+ * (vdt_topo_drop_pockets). Unchanged vertices keep their exact input coordinates and
  * attributes. If the target is not below the input's triangle count, out is
  * a copy of in. Records (if asked) are in welded vertex ids and written to
  * *records.

@@ -144,6 +144,144 @@ mark_repeat(uint8_t *dead, size_t t, uint32_t f, int same, int fins)
 	return 1;
 }
 
+/* Up to max of the live faces of v's fan that hold x into out; returns how
+ * many there are. */
+static int
+edge_faces(const uint32_t *tri, const uint32_t *start, const uint32_t *fan, const uint8_t *dead,
+           uint32_t v, uint32_t x, uint32_t *out, int max)
+{
+	int n = 0;
+
+	for (uint32_t i = start[v]; i < start[v + 1]; i++) {
+		const uint32_t *c = tri + 3 * (size_t)fan[i];
+		if (dead[fan[i]] || (c[0] != x && c[1] != x && c[2] != x))
+			continue;
+		if (n < max)
+			out[n] = fan[i];
+		n++;
+	}
+	return n;
+}
+
+/* The corner of face c that is neither a nor b. */
+static uint32_t
+third(const uint32_t *c, uint32_t a, uint32_t b)
+{
+	return c[0] != a && c[0] != b ? c[0] : c[1] != a && c[1] != b ? c[1] : c[2];
+}
+
+/* The live face on a, b and c (the first in a's fan), or UINT32_MAX. */
+static uint32_t
+face_on(const uint32_t *tri, const uint32_t *start, const uint32_t *fan, const uint8_t *dead,
+        uint32_t a, uint32_t b, uint32_t c)
+{
+	uint32_t f[8];
+	int n = edge_faces(tri, start, fan, dead, a, b, f, 8);
+
+	for (int i = 0; i < n && i < 8; i++)
+		if (third(tri + 3 * (size_t)f[i], a, b) == c)
+			return f[i];
+	return UINT32_MAX;
+}
+
+/* Whether face c runs from a to b. */
+static int
+runs(const uint32_t *c, uint32_t a, uint32_t b)
+{
+	return (c[0] == a && c[1] == b) || (c[1] == a && c[2] == b) || (c[2] == a && c[0] == b);
+}
+
+/*
+ * Of the quad q[0..4) (in order round it) covered twice by the faces of
+ * pocket, whether pair[0] and pair[1] (two of them, which cover it once)
+ * agree in orientation with the one outside face on each side of the
+ * quad: the faces to keep.
+ */
+static int
+pair_agrees(const uint32_t *tri, const uint32_t *start, const uint32_t *fan, const uint8_t *dead,
+            const uint32_t q[4], const uint32_t pocket[4], const uint32_t pair[2])
+{
+	for (int k = 0; k < 4; k++) {
+		uint32_t a = q[k], b = q[(k + 1) % 4], f[3], in = UINT32_MAX, out = UINT32_MAX;
+		if (edge_faces(tri, start, fan, dead, a, b, f, 3) != 3)
+			return 0;
+		for (int i = 0; i < 3; i++) {
+			int mine = f[i] == pocket[0] || f[i] == pocket[1] || f[i] == pocket[2] ||
+			           f[i] == pocket[3];
+			if (!mine)
+				out = f[i];
+			else if (f[i] == pair[0] || f[i] == pair[1])
+				in = f[i];
+		}
+		if (in == UINT32_MAX || out == UINT32_MAX)
+			return 0;
+		const uint32_t *ci = tri + 3 * (size_t)in, *co = tri + 3 * (size_t)out;
+		if (runs(ci, a, b) == runs(co, a, b))
+			return 0;
+	}
+	return 1;
+}
+
+/*
+ * Faces fa and fb, both on edge v-x and with other corners p and q: if
+ * they, the face on v p q and the face on x p q cover a quad twice,
+ * the pair to drop is marked dead. Returns the faces marked.
+ */
+static size_t
+pocket_of(const uint32_t *tri, const uint32_t *start, const uint32_t *fan, uint8_t *dead,
+          uint32_t v, uint32_t x, uint32_t fa, uint32_t fb)
+{
+	uint32_t p = third(tri + 3 * (size_t)fa, v, x), q = third(tri + 3 * (size_t)fb, v, x), f[3];
+
+	if (p == q || dead[fa] || dead[fb])
+		return 0;
+	uint32_t h = face_on(tri, start, fan, dead, v, p, q),
+	         k = face_on(tri, start, fan, dead, x, p, q);
+	if (h == UINT32_MAX || k == UINT32_MAX)
+		return 0;
+	/* The tetrahedron v x p q covers the quad twice, split along v-p and
+	 * x-q (the quad v x p q) or along v-q and x-p (v x q p). */
+	uint32_t pocket[4] = {fa, fb, h, k};
+	int vp = edge_faces(tri, start, fan, dead, v, p, f, 3) == 2;
+	uint32_t quad[4] = {v, x, vp ? p : q, vp ? q : p};
+	uint32_t one[2] = {vp ? fa : fb, h}, two[2] = {vp ? fb : fa, k};
+	int keep1 = pair_agrees(tri, start, fan, dead, quad, pocket, one);
+	int keep2 = pair_agrees(tri, start, fan, dead, quad, pocket, two);
+	if (!keep1 && !keep2)
+		return 0;
+	/* (both: a quad covered twice the same way round; the pair given
+	 * first stays) */
+	if (keep1 && keep2)
+		keep1 = (one[0] < one[1] ? one[0] : one[1]) < (two[0] < two[1] ? two[0] : two[1]);
+	const uint32_t *drop = keep1 ? two : one;
+	dead[drop[0]] = dead[drop[1]] = 1;
+	return 2;
+}
+
+size_t
+vdt_topo_drop_pockets(size_t nv, const uint32_t *tri, const uint32_t *start, const uint32_t *fan,
+                      const uint8_t *nm_at, uint8_t *dead)
+{
+	size_t dropped = 0;
+
+	for (size_t v = 0; v < nv; v++) {
+		for (uint32_t i = start[v]; nm_at[v] && i < start[v + 1]; i++) {
+			const uint32_t *c = tri + 3 * (size_t)fan[i];
+			for (int j = 0; j < 3 && !dead[fan[i]]; j++) {
+				uint32_t x = c[j], e[8];
+				if (x <= v)
+					continue;
+				int n = edge_faces(tri, start, fan, dead, (uint32_t)v, x, e, 8);
+				for (int a = 0; n >= 3 && n <= 8 && a < n; a++)
+					for (int b = a + 1; b < n; b++)
+						dropped += pocket_of(tri, start, fan, dead,
+						                     (uint32_t)v, x, e[a], e[b]);
+			}
+		}
+	}
+	return dropped;
+}
+
 size_t
 vdt_topo_drop_repeats(const uint32_t *tri, size_t nt, const uint32_t *start,
                       const uint32_t *fan, uint8_t *dead, int fins)

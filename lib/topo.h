@@ -34,6 +34,18 @@ int vdt_topo_same_face(const uint32_t *a, const uint32_t *b);
 size_t vdt_topo_drop_repeats(const uint32_t *tri, size_t nt, const uint32_t *start,
                              const uint32_t *fan, uint8_t *dead, int fins);
 
+/*
+ * A quad triangulated twice, along both its diagonals (a flat tetrahedron
+ * set into the surface, whose four sides are then edges of three faces):
+ * of its two pairs of faces, the one that does not agree in orientation
+ * with the faces around the quad is marked in dead (1), if the other
+ * does (if both do, the pair whose first face comes later). Only edges at the vertices marked in
+ * nm_at (nv bytes, as vdt_topo_open_edges_in marks them) are looked at. Returns the number of faces
+ * marked.
+ */
+size_t vdt_topo_drop_pockets(size_t nv, const uint32_t *tri, const uint32_t *start,
+                             const uint32_t *fan, const uint8_t *nm_at, uint8_t *dead);
+
 /* The live face that face t, marked VDT_TOPO_BACK, is the back of. */
 uint32_t vdt_topo_back_of(const uint32_t *tri, uint32_t t, const uint32_t *start,
                           const uint32_t *fan, const uint8_t *dead);

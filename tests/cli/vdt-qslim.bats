@@ -372,6 +372,36 @@ load helpers
 	[[ "$output" == *" nonmanifold=1 topology=free "* ]]
 }
 
+@test "vdt-qslim drops the second triangulation of a quad triangulated twice" {
+	# the sphere's first face (a b c) and its neighbour across a-b
+	# (b a d) make the quad a d b c; its other diagonal's faces are
+	# added, the same way round as the sphere's or turned over
+	for how in same over; do
+		awk -v how=$how 'NR == 2 { nv = $1; nf = $2; print nv, nf + 2, 0; next }
+		NR <= 2 + nv || NR == 1 { print; next }
+		{ print; f[++n] = $2 " " $3 " " $4 }
+		END {
+			split(f[1], x, " "); a = x[1]; b = x[2]; c = x[3]
+			for (i = 2; i <= n; i++) {
+				split(f[i], y, " ")
+				for (k = 1; k <= 3; k++)
+					if (y[k] == b && y[k % 3 + 1] == a)
+						d = y[(k + 1) % 3 + 1]
+			}
+			if (how == "same")
+				print 3, a, d, c "\n" 3, d, b, c
+			else
+				print 3, c, d, a "\n" 3, c, b, d
+		}' "$SAMPLES/sphere.off" > "$TMP/$how.off"
+		run "$BIN/vdt-qslim" -v -r 0.1 -F off "$TMP/$how.off" -o "$TMP/a.off"
+		[ "$status" -eq 0 ]
+		[[ "$output" == *" dropped=2 "* ]]
+		[[ "$output" == *" nonmanifold=0 topology=keep "* ]]
+		[ "$(nonmanifold_edges "$TMP/a.off")" -eq 0 ]
+		[ "$(open_edges "$TMP/a.off")" -eq 0 ]
+	done
+}
+
 @test "vdt-qslim stopped by the handles it keeps says so, and how to let them go" {
 	run "$BIN/vdt-qslim" -t 10 "$SAMPLES/torus.off" -o "$TMP/a.off"
 	[ "$status" -eq 0 ]

@@ -246,6 +246,63 @@ free_parts_of_surfaces(void **state)
 	vdt_mesh_free(&s);
 }
 
+/* The faces of t[0..3 nt) over nv vertices that vdt_topo_drop_pockets
+ * marks, into dead (nt bytes); returns how many. */
+static size_t
+pockets(size_t nv, const uint32_t *t, size_t nt, uint8_t *dead)
+{
+	uint32_t *start, *fan, *e;
+	uint8_t *nm_at = calloc(nv, 1);
+	size_t nm, n;
+
+	memset(dead, 0, nt);
+	assert_int_equal(vdt_topo_fans(nv, t, nt, &start, &fan), 0);
+	assert_true(vdt_topo_open_edges_in(0, nv, t, start, fan, NULL, &e, &nm, nm_at) >= 0);
+	n = vdt_topo_drop_pockets(nv, t, start, fan, nm_at, dead);
+	free(start);
+	free(fan);
+	free(e);
+	free(nm_at);
+	return n;
+}
+
+/* A quad of a grid triangulated twice: the pair that disagrees with the
+ * faces around it goes, or if both agree the one given last; a fin (a
+ * third face on an edge) is no pocket. */
+static void
+pockets_of_a_grid(void **state)
+{
+	struct vdt_mesh m;
+	uint32_t t[3 * 34];
+	uint8_t dead[34];
+	(void)state;
+
+	shape_grid(&m, 4); /* cell (1,1): faces 10 (6 7 12) and 11 (6 12 11) */
+	memcpy(t, m.triangles, 3 * 32 * sizeof(*t));
+	const uint32_t same[6] = {6, 7, 11, 7, 12, 11}, back[6] = {6, 11, 7, 7, 11, 12};
+	memcpy(t + 96, same, sizeof(same));
+	assert_int_equal(pockets(25, t, 34, dead), 2);
+	for (int f = 0; f < 34; f++)
+		assert_int_equal(dead[f], f >= 32);
+	memcpy(t + 96, back, sizeof(back));
+	assert_int_equal(pockets(25, t, 34, dead), 2);
+	for (int f = 0; f < 34; f++)
+		assert_int_equal(dead[f], f >= 32);
+	/* the grid's own pair turned over: it goes */
+	const uint32_t over[6] = {6, 12, 7, 6, 11, 12};
+	memcpy(t + 30, over, sizeof(over));
+	memcpy(t + 96, same, sizeof(same));
+	assert_int_equal(pockets(25, t, 34, dead), 2);
+	for (int f = 0; f < 34; f++)
+		assert_int_equal(dead[f], f == 10 || f == 11);
+	/* a fin on edge 6-7 and nothing else: no pocket */
+	memcpy(t, m.triangles, 3 * 32 * sizeof(*t));
+	const uint32_t fin[3] = {6, 7, 24};
+	memcpy(t + 96, fin, sizeof(fin));
+	assert_int_equal(pockets(25, t, 33, dead), 0);
+	vdt_mesh_free(&m);
+}
+
 int
 main(void)
 {
@@ -256,6 +313,7 @@ main(void)
 	        cmocka_unit_test(parts_by_shared_vertices),
 	        cmocka_unit_test(handles_of_surfaces),
 	        cmocka_unit_test(free_parts_of_surfaces),
+	        cmocka_unit_test(pockets_of_a_grid),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
