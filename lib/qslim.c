@@ -2664,7 +2664,7 @@ part_list(const struct vdt_mesh *m, size_t nt, uint32_t *up, uint32_t *slot, str
 {
 	size_t np = 0;
 
-	vdt_topo_part_forest(m->vertex_count, m->triangles, nt, up);
+	vdt_topo_part_forest(m->vertex_count, m->triangles, nt, NULL, up);
 	for (size_t v = 0; v < m->vertex_count; v++)
 		slot[v] = UINT32_MAX;
 	for (size_t t = 0; t < nt; t++) {

@@ -553,12 +553,14 @@ nomem:
 }
 
 void
-vdt_topo_part_forest(size_t nv, const uint32_t *tri, size_t nt, uint32_t *up)
+vdt_topo_part_forest(size_t nv, const uint32_t *tri, size_t nt, const uint8_t *dead, uint32_t *up)
 {
 	for (size_t v = 0; v < nv; v++)
 		up[v] = (uint32_t)v;
 	for (size_t t = 0; t < nt; t++) {
 		const uint32_t *c = tri + 3 * t;
+		if (dead && dead[t])
+			continue;
 		uint32_t r = vdt_topo_find(up, c[0]);
 		for (int k = 1; k < 3; k++) {
 			uint32_t q = vdt_topo_find(up, c[k]);
@@ -584,7 +586,7 @@ vdt_topo_parts(size_t nv, const uint32_t *tri, size_t nt)
 		free(used);
 		return SIZE_MAX;
 	}
-	vdt_topo_part_forest(nv, tri, nt, up);
+	vdt_topo_part_forest(nv, tri, nt, NULL, up);
 	for (size_t i = 0; i < 3 * nt; i++)
 		used[tri[i]] = 1;
 	for (size_t v = 0; v < nv; v++)
@@ -595,29 +597,55 @@ vdt_topo_parts(size_t nv, const uint32_t *tri, size_t nt)
 }
 
 /*
- * The boundary loops of the open edges edges[0..3 open) (face, a, b) as a
- * union-find forest in loop (nv entries, filled here): edges that meet are
- * of one loop. Their vertices are marked 3 in used.
+ * Four times the handles of each part of the live faces tri[0..3 nt) (dead
+ * may be NULL), at its root in up (vdt_topo_part_forest), given their open
+ * edges edges[0..3 open) (face, a, b): part by part V - E + F = 2 - 2 H -
+ * L, L its boundary loops (open edges that meet are of one), and 2 E = 3 F
+ * + open edges where every edge has one or two faces, so 4 H = 4 - 2 L -
+ * 2 V + F + open edges. used (nv bytes, zeroed) gets 1 at the vertices of
+ * live faces, 3 at those on open edges. Returns 0, or -1 out of memory.
  */
-static void
-loop_forest(size_t nv, const uint32_t *edges, long open, uint32_t *loop, uint8_t *used)
+static int
+part_handles4(size_t nv, const uint32_t *tri, size_t nt, const uint8_t *dead, const uint32_t *edges,
+              long open, uint32_t *up, uint8_t *used, int64_t *four)
 {
+	uint32_t *loop = vdt_malloc_huge((nv ? nv : 1) * sizeof(*loop));
+
+	if (loop == NULL)
+		return -1;
 	for (size_t v = 0; v < nv; v++)
 		loop[v] = (uint32_t)v;
+	for (size_t t = 0; t < nt; t++)
+		if (!(dead && dead[t])) {
+			used[tri[3 * t]] = used[tri[3 * t + 1]] = used[tri[3 * t + 2]] = 1;
+			four[vdt_topo_find(up, tri[3 * t])]++;
+		}
 	for (long k = 0; k < open; k++) {
 		uint32_t a = vdt_topo_find(loop, edges[3 * k + 1]);
 		uint32_t b = vdt_topo_find(loop, edges[3 * k + 2]);
 		if (a != b)
 			loop[a > b ? a : b] = a < b ? a : b;
 		used[edges[3 * k + 1]] = used[edges[3 * k + 2]] = 3;
+		four[vdt_topo_find(up, edges[3 * k + 1])]++;
 	}
+	for (size_t v = 0; v < nv; v++) {
+		if (used[v] == 0)
+			continue;
+		uint32_t r = vdt_topo_find(up, (uint32_t)v);
+		four[r] -= 2 + (used[v] == 3 && loop[v] == v ? 2 : 0);
+		if (r == v)
+			four[r] += 4;
+	}
+	free(loop);
+	return 0;
 }
 
 long
 vdt_topo_handles(size_t nv, const uint32_t *tri, size_t nt)
 {
-	uint32_t *start = NULL, *fan = NULL, *edges = NULL, *up = NULL, *loop = NULL;
+	uint32_t *start = NULL, *fan = NULL, *edges = NULL, *up = NULL;
 	uint8_t *used = NULL;
+	int64_t *four = NULL, sum = 0;
 	size_t nm = 0;
 	long open = -1, handles = -1;
 
@@ -625,32 +653,24 @@ vdt_topo_handles(size_t nv, const uint32_t *tri, size_t nt)
 		return -1;
 	open = vdt_topo_open_edges(nv, tri, start, fan, NULL, &edges, &nm);
 	up = vdt_malloc_huge((nv ? nv : 1) * sizeof(*up));
-	loop = vdt_malloc_huge((nv ? nv : 1) * sizeof(*loop));
 	used = calloc(nv ? nv : 1, 1);
-	if (open < 0 || nm > 0 || up == NULL || loop == NULL || used == NULL)
+	four = calloc(nv ? nv : 1, sizeof(*four));
+	if (open < 0 || nm > 0 || up == NULL || used == NULL || four == NULL)
 		goto out;
-	vdt_topo_part_forest(nv, tri, nt, up);
-	for (size_t i = 0; i < 3 * nt; i++)
-		used[tri[i]] = 1;
-	loop_forest(nv, edges, open, loop, used);
-	long verts = 0, parts = 0, loops = 0;
-	for (size_t v = 0; v < nv; v++) {
-		verts += used[v] != 0;
-		parts += used[v] != 0 && up[v] == v;
-		loops += used[v] == 3 && loop[v] == v;
-	}
-	/* 2 E = 3 F + open edges */
-	long chi = verts - (3 * (long)nt + open) / 2 + (long)nt;
-	long twice = 2 * parts - loops - chi;
-	if (twice >= 0 && twice % 2 == 0)
-		handles = twice / 2;
+	vdt_topo_part_forest(nv, tri, nt, NULL, up);
+	if (part_handles4(nv, tri, nt, NULL, edges, open, up, used, four) != 0)
+		goto out;
+	for (size_t v = 0; v < nv; v++)
+		sum += four[v];
+	if (sum >= 0 && sum % 4 == 0)
+		handles = (long)(sum / 4);
 out:
 	free(start);
 	free(fan);
 	free(edges);
 	free(up);
-	free(loop);
 	free(used);
+	free(four);
 	return handles;
 }
 
@@ -659,62 +679,28 @@ vdt_topo_free_parts(size_t nv, const uint32_t *tri, size_t nt, const uint8_t *de
                     const uint32_t *edges, long open, const uint8_t *nm_at, uint8_t *out)
 {
 	uint32_t *up = vdt_malloc_huge((nv ? nv : 1) * sizeof(*up));
-	uint32_t *loop = vdt_malloc_huge((nv ? nv : 1) * sizeof(*loop));
-	int64_t *four = calloc(nv ? nv : 1, sizeof(*four)); /* by part root: 4 H, below */
-	long manifold = 0;
+	int64_t *four = calloc(nv ? nv : 1, sizeof(*four));
+	long manifold = -1;
 
-	if (up == NULL || loop == NULL || four == NULL) {
-		free(up);
-		free(loop);
-		free(four);
-		return -1;
-	}
-	for (size_t v = 0; v < nv; v++) {
-		up[v] = (uint32_t)v;
-		out[v] = 0;
-	}
-	for (size_t t = 0; t < nt; t++) {
-		const uint32_t *c = tri + 3 * t;
-		if (dead && dead[t])
-			continue;
-		for (int k = 0; k < 3; k++) {
-			uint32_t a = vdt_topo_find(up, c[k]), b = vdt_topo_find(up, c[(k + 1) % 3]);
-			if (a != b)
-				up[a > b ? a : b] = a < b ? a : b;
-			out[c[k]] = 1;
-		}
-	}
-	loop_forest(nv, edges, open, loop, out);
-	/*
-	 * Part by part, 2 - L - (V - E + F) = 2 H, and 2 E = 3 F + open edges
-	 * where every edge has one or two faces: 4 H = 4 - 2 L - 2 V + F +
-	 * open edges, summed here at the part's root.
-	 */
-	for (size_t t = 0; t < nt; t++)
-		if (!(dead && dead[t]))
-			four[vdt_topo_find(up, tri[3 * t])]++;
-	for (long k = 0; k < open; k++)
-		four[vdt_topo_find(up, edges[3 * k + 1])]++;
-	for (size_t v = 0; v < nv; v++) {
-		if (out[v] == 0)
-			continue;
-		uint32_t r = vdt_topo_find(up, (uint32_t)v);
-		four[r] -= 2 + (out[v] == 3 && loop[v] == v ? 2 : 0);
-		if (r == v)
-			four[r] += 4;
-	}
+	memset(out, 0, nv);
+	if (up == NULL || four == NULL)
+		goto out;
+	vdt_topo_part_forest(nv, tri, nt, dead, up);
+	if (part_handles4(nv, tri, nt, dead, edges, open, up, out, four) != 0)
+		goto out;
 	/* (a non-manifold edge frees its part whatever the count says) */
 	for (size_t v = 0; v < nv; v++)
 		if (nm_at != NULL && nm_at[v])
 			four[vdt_topo_find(up, (uint32_t)v)] = 1;
+	manifold = 0;
 	for (size_t v = 0; v < nv; v++) {
 		if (out[v] == 0)
 			continue;
 		out[v] = four[vdt_topo_find(up, (uint32_t)v)] > 0;
 		manifold += !out[v];
 	}
+out:
 	free(up);
-	free(loop);
 	free(four);
 	return manifold;
 }

@@ -104,8 +104,10 @@ long vdt_topo_handles(size_t nv, const uint32_t *tri, size_t nt);
 /*
  * The same as a union-find forest in up (nv entries, filled here): each
  * part's root is its lowest vertex, vdt_topo_find(up, v) the part of v.
+ * Faces marked in dead (which may be NULL) are left out.
  */
-void vdt_topo_part_forest(size_t nv, const uint32_t *tri, size_t nt, uint32_t *up);
+void vdt_topo_part_forest(size_t nv, const uint32_t *tri, size_t nt, const uint8_t *dead,
+                          uint32_t *up);
 
 /*
  * Into out (nv bytes), 1 for each vertex of a part of the live faces

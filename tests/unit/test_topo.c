@@ -198,7 +198,8 @@ handles_of_surfaces(void **state)
 
 /* Parts freed from the link condition: a torus (a handle) and a sphere
  * with a fin (an edge of three faces) are; a tube (two boundary loops)
- * and a sphere less a face are not. */
+ * and a sphere less a face are not, nor the sphere once its fin is a
+ * dead face. */
 static void
 free_parts_of_surfaces(void **state)
 {
@@ -218,6 +219,7 @@ free_parts_of_surfaces(void **state)
 	while (x == s.triangles[0] || x == s.triangles[1] || x == s.triangles[2])
 		x++;
 	nt += nf;
+	size_t fin = nt;
 	t[3 * nt] = s.triangles[0] + 96;
 	t[3 * nt + 1] = s.triangles[1] + 96;
 	t[3 * nt + 2] = x + 96;
@@ -237,6 +239,17 @@ free_parts_of_surfaces(void **state)
 	assert_int_equal(vdt_topo_free_parts(nv, t, nt, NULL, e, open, nm_at, out), 48 + (long)ns);
 	for (size_t v = 0; v < nv; v++)
 		assert_int_equal(out[v], v < 48 || (v >= 96 && v < 96 + ns));
+	free(e);
+	uint8_t *dead = calloc(nt, 1);
+	dead[fin] = 1;
+	memset(nm_at, 0, nv);
+	open = vdt_topo_open_edges_in(0, nv, t, start, fan, dead, &e, &nm, nm_at);
+	assert_int_equal(nm, 0);
+	assert_int_equal(vdt_topo_free_parts(nv, t, nt, dead, e, open, nm_at, out),
+	                 48 + 2 * (long)ns);
+	for (size_t v = 0; v < nv; v++)
+		assert_int_equal(out[v], v < 48);
+	free(dead);
 	free(start);
 	free(fan);
 	free(e);
@@ -307,13 +320,13 @@ int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
-	        cmocka_unit_test(grid_and_sphere),
-	        cmocka_unit_test(fin_and_dead_faces),
-	        cmocka_unit_test(ranges_join_to_the_whole),
-	        cmocka_unit_test(parts_by_shared_vertices),
-	        cmocka_unit_test(handles_of_surfaces),
-	        cmocka_unit_test(free_parts_of_surfaces),
-	        cmocka_unit_test(pockets_of_a_grid),
+		cmocka_unit_test(grid_and_sphere),
+		cmocka_unit_test(fin_and_dead_faces),
+		cmocka_unit_test(ranges_join_to_the_whole),
+		cmocka_unit_test(parts_by_shared_vertices),
+		cmocka_unit_test(handles_of_surfaces),
+		cmocka_unit_test(free_parts_of_surfaces),
+		cmocka_unit_test(pockets_of_a_grid),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
