@@ -1346,18 +1346,20 @@ auto_order_follows_the_size(void **state)
 	assert_int_equal(vdt_qslim_order_parse("fast"), -1);
 }
 
-/* Pairs with a hub (a vertex numbered 0 mod HUB_STRIDE, below
- * HUB_VERTICES) cost 1, other pairs 10 and up, varying with the vertices;
- * the merged vertex stays where the survivor is. */
+/* Pairs with a hub (a vertex numbered HUB_FIRST + k HUB_STRIDE, after
+ * the grid's vertices) cost 1, other pairs 10 and up, varying with the
+ * vertices; the merged vertex stays where the survivor is. */
 #define HUB_SPOKES 40
 #define HUB_STRIDE (1 + HUB_SPOKES)
 #define HUB_COUNT 800
 #define HUB_VERTICES (HUB_COUNT * HUB_STRIDE)
+#define HUB_GRID 250
+#define HUB_FIRST ((HUB_GRID + 1) * (HUB_GRID + 1))
 
 static int
 is_hub(uint32_t v)
 {
-	return v < HUB_VERTICES && v % HUB_STRIDE == 0;
+	return v >= HUB_FIRST && (v - HUB_FIRST) % HUB_STRIDE == 0;
 }
 
 static double
@@ -1375,8 +1377,11 @@ hub_cost(void *ctx, uint32_t a, uint32_t b, int fixed, const float pa[3], const 
  * cost of the need-th) and sorts the rest only if its claims run past
  * them. Here they must: 800 fans of 40 triangles, whose spokes are the
  * cheapest pairs but share their hubs, so that a pass can claim only one
- * per fan, beside a grid of dearer pairs. The result must be that of
- * sorting every key (exhaustive).
+ * per fan, beside a grid of dearer pairs, many of one cost. The result
+ * must be that of sorting every key (exhaustive). The grid's vertices are
+ * numbered first, so that the keys a pass may claim (the fans') are not
+ * already at the front of the keys, in vertex order: moving them there
+ * must leave the order of ties among the rest to the sort.
  *
  *     r2                      o---o---o
  *   /    \                    | / | / |   the grid, 250 x 250, apart
@@ -1392,12 +1397,19 @@ passes_sort_past_the_claimable_keys(void **state)
 	struct vdt_contract_result r[2];
 
 	(void)state;
-	shape_grid(&g, 250);
+	shape_grid(&g, HUB_GRID);
+	assert_int_equal(g.vertex_count, HUB_FIRST);
 	size_t nv = HUB_VERTICES + g.vertex_count, nt = HUB_COUNT * HUB_SPOKES + g.triangle_count;
 	assert_int_equal(vdt_mesh_alloc(&m, nv, nt, 0, NULL), 0);
 	uint32_t *t = m.triangles;
+	for (size_t i = 0; i < g.vertex_count; i++) {
+		float *p = m.positions + 3 * i;
+		p[0] = g.positions[3 * i], p[1] = 3 + g.positions[3 * i + 1], p[2] = 0;
+	}
+	memcpy(t, g.triangles, 3 * g.triangle_count * sizeof(*t));
+	t += 3 * g.triangle_count;
 	for (uint32_t h = 0; h < HUB_COUNT; h++) {
-		uint32_t c = h * HUB_STRIDE;
+		uint32_t c = HUB_FIRST + h * HUB_STRIDE;
 		float *p = m.positions + 3 * (size_t)c;
 		p[0] = (float)(3 * h), p[1] = 0, p[2] = 0;
 		for (uint32_t i = 0; i < HUB_SPOKES; i++) {
@@ -1407,12 +1419,6 @@ passes_sort_past_the_claimable_keys(void **state)
 			*t++ = c, *t++ = c + 1 + i, *t++ = c + 1 + (i + 1) % HUB_SPOKES;
 		}
 	}
-	for (size_t i = 0; i < g.vertex_count; i++) {
-		float *p = m.positions + 3 * (HUB_VERTICES + i);
-		p[0] = g.positions[3 * i], p[1] = 3 + g.positions[3 * i + 1], p[2] = 0;
-	}
-	for (size_t i = 0; i < 3 * g.triangle_count; i++)
-		*t++ = HUB_VERTICES + g.triangles[i];
 	for (int k = 0; k < 2; k++) {
 		struct vdt_contract_opts o;
 		vdt_contract_defaults(&o);
