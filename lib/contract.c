@@ -1152,10 +1152,10 @@ link_hub(const struct engine *e, uint32_t hub, struct link *B)
  * it from gaining a third face (a shared neighbour off the pair's faces
  * is refused), so the note holds while the test is made; a caller that
  * skips it (allow_nonmanifold) never reads the note, and one that skips
- * it for some pairs (free_v), whose contractions may give an edge of a
- * hub a third face (a virtual pair joins parts), takes none. (The costing threads
- * of a pass may note and read it at once: it only turns 1, and a 0 read
- * lists the hub for the same answer.)
+ * it for some pairs only (free_v), whose contractions may then give an
+ * edge of a hub a third face, takes none. (The costing threads of a pass
+ * may note and read it at once: it only turns 1, and a 0 read lists the
+ * hub for the same answer.)
  */
 static void
 note_edges2(struct engine *e, const struct link *l)

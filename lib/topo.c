@@ -265,14 +265,19 @@ vdt_topo_drop_pockets(size_t nv, const uint32_t *tri, const uint32_t *start, con
 	size_t dropped = 0;
 
 	for (size_t v = 0; v < nv; v++) {
-		for (uint32_t i = start[v]; nm_at[v] && i < start[v + 1]; i++) {
+		if (!nm_at[v])
+			continue;
+		for (uint32_t i = start[v]; i < start[v + 1]; i++) {
 			const uint32_t *c = tri + 3 * (size_t)fan[i];
 			for (int j = 0; j < 3 && !dead[fan[i]]; j++) {
 				uint32_t x = c[j], e[8];
 				if (x <= v)
 					continue;
+				/* (each edge v-x once, from its first live face) */
 				int n = edge_faces(tri, start, fan, dead, (uint32_t)v, x, e, 8);
-				for (int a = 0; n >= 3 && n <= 8 && a < n; a++)
+				if (n < 3 || n > 8 || e[0] != fan[i])
+					continue;
+				for (int a = 0; a < n; a++)
 					for (int b = a + 1; b < n; b++)
 						dropped += pocket_of(tri, start, fan, dead,
 						                     (uint32_t)v, x, e[a], e[b]);

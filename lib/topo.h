@@ -39,9 +39,10 @@ size_t vdt_topo_drop_repeats(const uint32_t *tri, size_t nt, const uint32_t *sta
  * set into the surface, whose four sides are then edges of three faces):
  * of its two pairs of faces, the one that does not agree in orientation
  * with the faces around the quad is marked in dead (1), if the other
- * does (if both do, the pair whose first face comes later). Only edges at the vertices marked in
- * nm_at (nv bytes, as vdt_topo_open_edges_in marks them) are looked at. Returns the number of faces
- * marked.
+ * does (if both do, the pair whose first face comes later). Only the
+ * edges at the vertices marked in nm_at (nv bytes, as
+ * vdt_topo_open_edges_in marks them) are looked at. Returns the number of
+ * faces marked.
  */
 size_t vdt_topo_drop_pockets(size_t nv, const uint32_t *tri, const uint32_t *start,
                              const uint32_t *fan, const uint8_t *nm_at, uint8_t *dead);
