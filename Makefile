@@ -10,8 +10,11 @@
 
 CC ?= cc
 CXX ?= c++
-CFLAGS_ORIGIN := $(origin CFLAGS)
-CFLAGS ?= -O2 -g
+# -O3 gives the same output bytes as -O2 (no -ffast-math, no FMA) and,
+# in alternating runs, takes 7-8% off vdt-qslim's time on the dragon and
+# on a 1M-triangle mesh (10% fewer instructions), a fifth off phase I of
+# vdt-cluster on big-20m, and a little off vdt-measure on the dragon.
+CFLAGS ?= -O3 -g
 CXXFLAGS ?= -O2 -g
 PREFIX ?= /usr/local
 BINDIR ?= $(PREFIX)/bin
@@ -86,13 +89,6 @@ FORCE:
 $(B)/%.o: %.c
 	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS) $(CFLAGS) -c -o $@ $<
-
-# Phase I is a pass of arithmetic per input triangle: -O3 takes about a
-# fifth off its time on big-20m (alternating runs, same output bytes);
-# elsewhere it measured no gain. A CFLAGS of the user's is left alone.
-ifeq ($(CFLAGS_ORIGIN),undefined)
-$(B)/lib/cluster.o: override CFLAGS += -O3
-endif
 
 $(B)/%.o: %.cc
 	@mkdir -p $(@D)
