@@ -55,6 +55,16 @@ endif
 
 B := build/$(VARIANT)
 
+# Objects are compiled again when the flags change (a CFLAGS of the
+# user's, a new default): each variant keeps those it was built with in
+# $(B)/flags, written here, as the makefile is read (a rule's copy would
+# take the target-specific flags of whichever object asked first).
+FLAGS_NOW := $(CC) $(CPPFLAGS) $(CFLAGS) | $(CXX) $(CXXFLAGS)
+ifneq ($(FLAGS_NOW),$(file <$(B)/flags))
+$(shell mkdir -p $(B))
+$(file >$(B)/flags,$(FLAGS_NOW))
+endif
+
 LIB_C := $(sort $(wildcard lib/*.c lib/io/*.c))
 LIB_CC := $(sort $(wildcard lib/io/*.cc))
 LIB_O := $(LIB_C:%.c=$(B)/%.o) $(LIB_CC:%.cc=$(B)/%.o)
@@ -86,11 +96,11 @@ build/variant: FORCE
 	@echo $(VARIANT) | cmp -s - $@ || echo $(VARIANT) > $@
 FORCE:
 
-$(B)/%.o: %.c
+$(B)/%.o: %.c $(B)/flags
 	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS) $(CFLAGS) -c -o $@ $<
 
-$(B)/%.o: %.cc
+$(B)/%.o: %.cc $(B)/flags
 	@mkdir -p $(@D)
 	$(CXX) $(CPPFLAGS) $(CXXFLAGS) -c -o $@ $<
 
