@@ -169,7 +169,6 @@ LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 		o.min_quality = 0.1;
 	if (in.uvs != NULL)
 		o.attribute_weight = VDT_QSLIM_ATTRIBUTE_WEIGHT;
-	o.fit = 1;
 	o.order = flags & 8 ? VDT_QSLIM_ORDER_PASSES : VDT_QSLIM_ORDER_GREEDY;
 	for (int k = 0; k < 2; k++) {
 		o.threads = k + 1;
