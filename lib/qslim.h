@@ -175,9 +175,9 @@ struct vdt_qslim_stats {
  * one is dropped, and both are when they face opposite ways (a zero-volume
  * fin), as is the second triangulation of a quad triangulated twice
  * (vdt_topo_drop_pockets). Unchanged vertices keep their exact input
- * coordinates and attributes. If the target is not below the input's triangle count, out is
- * a copy of in. Records (if asked) are in welded vertex ids and written to
- * *records.
+ * coordinates and attributes. If the target is not below the input's
+ * triangle count, out is a copy of in. Records (if asked) are in welded
+ * vertex ids and written to *records.
  *
  * Attributes: the input vertices welded into one position are that
  * position's wedges (one per distinct attribute set). With
