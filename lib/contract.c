@@ -2125,16 +2125,15 @@ vertex_update(struct engine *e, uint32_t v, int valid_only)
 }
 
 /*
- * After gone merged into keep: keep's pairs are all new; a neighbour keeps
- * its partner unless that was keep or gone, or the pair with keep is now
- * cheaper. Neighbours whose pair had failed a test are searched afresh:
- * their neighbourhood changed.
+ * After gone merged into keep (or with gone == keep, after keep's pairs
+ * changed cost with nothing merged): keep's pairs are all new; a
+ * neighbour keeps its partner unless that was keep or gone, or the pair
+ * with keep is now cheaper. Neighbours whose pair had failed a test are
+ * searched afresh: their neighbourhood changed.
  */
 static int
-vertex_merged(struct engine *e, uint32_t keep, uint32_t gone)
+vertex_recost(struct engine *e, uint32_t keep, uint32_t gone)
 {
-	heap_remove(e, gone);
-	e->best[gone] = NONE;
 	long n = vertex_pairs(e, keep, FAN_NOTE);
 	if (n < 0 || vcost_reserve(&e->vk, &e->vk_cap, (size_t)n) != 0)
 		return -1;
@@ -2208,6 +2207,25 @@ vertex_merged(struct engine *e, uint32_t keep, uint32_t gone)
 		e->vflag[keep] &= (uint8_t)~V_REFUSED;
 		vertex_set(e, keep, t.x1, t.c1);
 	}
+	return 0;
+}
+
+/*
+ * After gone merged into keep: keep's pairs costed again, and with them
+ * the keys of its neighbours; then those of the vertices the cost's
+ * callback names (vdt_contract_ops.affected), as if each had survived a
+ * contraction with nothing merged into it.
+ */
+static int
+vertex_merged(struct engine *e, uint32_t keep, uint32_t gone, const uint32_t *aff, int naff)
+{
+	heap_remove(e, gone);
+	e->best[gone] = NONE;
+	if (vertex_recost(e, keep, gone) != 0)
+		return -1;
+	for (int i = 0; i < naff; i++)
+		if (vertex_recost(e, aff[i], aff[i]) != 0)
+			return -1;
 
 	/* A corner of a removed face may have lost its edge to keep. */
 	for (size_t i = 0; i < e->work.wing_len; i++) {
@@ -2351,6 +2369,24 @@ pass_safe(struct engine *e)
 	}
 }
 
+/* The live vertices besides keep whose pairs the contraction into keep
+ * changed the cost of (vdt_contract_ops.affected), into out; their
+ * number. */
+static int
+affected(const struct engine *e, uint32_t keep, uint32_t *out)
+{
+	uint32_t got[VDT_CONTRACT_MAX_AFFECTED];
+	int n = 0, m;
+
+	if (e->ops->affected == NULL)
+		return 0;
+	m = e->ops->affected(e->ops->ctx, keep, got);
+	for (int i = 0; i < m && i < VDT_CONTRACT_MAX_AFFECTED; i++)
+		if (got[i] < e->nv && got[i] != keep && !(e->vflag[got[i]] & V_DEAD))
+			out[n++] = got[i];
+	return n;
+}
+
 static int
 contract(struct engine *e, struct work *w, uint32_t keep, uint32_t gone,
          const double dpos[3], double cost)
@@ -2436,7 +2472,14 @@ contract(struct engine *e, struct work *w, uint32_t keep, uint32_t gone,
 		w->dead_verts += orphans(e, w, keep);
 		if (e->ops->merged)
 			e->ops->merged(e->ops->ctx, keep, gone, dpos, cost);
-		return e->passes ? 0 : vertex_merged(e, keep, gone);
+		uint32_t aff[VDT_CONTRACT_MAX_AFFECTED];
+		int naff = affected(e, keep, aff);
+		if (!e->passes)
+			return vertex_merged(e, keep, gone, aff, naff);
+		/* (their pairs are costed with keep's after the pass) */
+		for (int i = 0; i < naff; i++)
+			e->vflag[aff[i]] |= V_KEPT;
+		return 0;
 	}
 
 	/* Pairs: re-point gone's pairs to keep, dropping duplicates. */
@@ -2482,11 +2525,16 @@ contract(struct engine *e, struct work *w, uint32_t keep, uint32_t gone,
 	/* Re-cost every pair at keep, and give set-aside pairs around it
 	 * another chance: their neighbourhood has changed. */
 	double scratch[3];
-	const struct list *pk = &e->vp[keep];
-	for (uint32_t j = 0; j < pk->len; j++) {
-		uint32_t p = e->ppool.data[pk->off + j];
-		unreject(e, p);
-		pair_cost(e, p, scratch);
+	uint32_t aff[VDT_CONTRACT_MAX_AFFECTED + 1];
+	int naff = affected(e, keep, aff);
+	aff[naff++] = keep;
+	for (int i = 0; i < naff; i++) {
+		const struct list *pk = &e->vp[aff[i]];
+		for (uint32_t j = 0; j < pk->len; j++) {
+			uint32_t p = e->ppool.data[pk->off + j];
+			unreject(e, p);
+			pair_cost(e, p, scratch);
+		}
 	}
 	const struct list *tk = &e->vt[keep];
 	for (uint32_t i = 0; i < tk->len; i++) {

@@ -84,7 +84,21 @@ struct vdt_contract_ops {
 	 * the contraction of an edge does not remove.)
 	 */
 	double (*vanish)(void *ctx, uint32_t v);
+	/*
+	 * Optional, for a cost that reads more than its two vertices (the
+	 * boundary sag of vdt_qslim reads their neighbours along an open
+	 * boundary): called after merged, the vertices besides keep whose
+	 * pairs the contraction changed the cost of, at most
+	 * VDT_CONTRACT_MAX_AFFECTED, into out; their number. Their pairs are
+	 * costed again, as keep's are, and the keys they set follow (a cost
+	 * that fell, which merging alone never does, is taken up at once but
+	 * where a neighbour of theirs had its second cheapest pair with
+	 * them: that one's key stays until it comes to the top). NULL: none.
+	 */
+	int (*affected)(void *ctx, uint32_t keep, uint32_t *out);
 };
+
+#define VDT_CONTRACT_MAX_AFFECTED 2
 
 struct vdt_contract_opts {
 	size_t target_triangles; /* stop once at most this many remain */
@@ -171,9 +185,10 @@ struct vdt_contract_opts {
 	 * lower vertex number), in a fraction of the memory, with no pair
 	 * lists. A vertex whose cheapest pair fails a validity test queues its
 	 * cheapest valid one until its neighbourhood changes. This relies on
-	 * a pair's cost depending only on its two vertices, and on merging
-	 * never lowering the costs of a vertex's pairs (true of summed
-	 * quadrics), so that old keys are lower bounds to refresh lazily.
+	 * a pair's cost depending only on its two vertices (and on what
+	 * affected names), and on merging never lowering the costs of a
+	 * vertex's pairs (true of summed quadrics), so that old keys are
+	 * lower bounds to refresh lazily.
 	 * Nonzero pair_queue (or any virtual pairs) queues every pair instead.
 	 */
 	int pair_queue;
@@ -268,6 +283,9 @@ int vdt_contract_run(const struct vdt_mesh *m, const struct vdt_contract_ops *op
  * copies (36 bytes per vertex less on big meshes): they pass to the engine,
  * which frees them or returns the positions as res->positions, and m is
  * left without them (its other arrays stay the caller's), success or not.
+ * During the run the positions array holds every vertex's current
+ * position (keep's new one when merged is called), which the callbacks
+ * may read there.
  */
 int vdt_contract_run_in_place(struct vdt_mesh *m, const struct vdt_contract_ops *ops,
                               const struct vdt_contract_opts *opts,

@@ -3098,7 +3098,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	struct vdt_mesh w = {0};
 	struct ctx c = {0};
 	struct vdt_contract_opts co;
-	struct vdt_contract_ops ops = {cost_fn, merged_fn, valid_fn, &c, 0, NULL, 0, NULL};
+	struct vdt_contract_ops ops = {cost_fn, merged_fn, valid_fn, &c, 0, NULL, 0, NULL, NULL};
 	struct vdt_contract_result r = {0};
 	uint32_t *canon = NULL, *first = NULL, *wstart = NULL, *wlist = NULL;
 	uint32_t *vpairs = NULL;

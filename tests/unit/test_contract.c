@@ -30,7 +30,8 @@ length_cost(void *ctx, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	return d;
 }
 
-static const struct vdt_contract_ops length_ops = {length_cost, NULL, NULL, NULL, 1, NULL, 0, NULL};
+static const struct vdt_contract_ops length_ops = {length_cost, NULL, NULL, NULL, 1,
+                                                   NULL,        0,    NULL, NULL};
 
 /* The defaults on one of the three queues: 0 the vertex queue, 1 passes
  * (on one thread), 2 the queue of all pairs. */
@@ -166,7 +167,7 @@ fold_over_is_refused(void **state)
 	static const float p[] = {-0.05f, 0, 0, 0.2f, 0, 0, 1, 0, 0, 0.1f, 1, 0, 0.1f, -1, 0};
 	static const uint32_t t[] = {0, 1, 3, 1, 2, 3, 1, 0, 4, 2, 1, 4};
 	struct vdt_mesh m = {5, (float *)p, NULL, NULL, NULL, 4, (uint32_t *)t, 0};
-	struct vdt_contract_ops ops = {to_zero_cost, NULL, NULL, NULL, 0, NULL, 0, NULL};
+	struct vdt_contract_ops ops = {to_zero_cost, NULL, NULL, NULL, 0, NULL, 0, NULL, NULL};
 	struct vdt_contract_opts o;
 	struct vdt_contract_result r;
 
@@ -214,7 +215,7 @@ fold_over_threshold_is_the_angle(void **state)
 {
 	static const uint32_t t[] = {0, 2, 3, 0, 1, 2};
 	static const double turns[] = {10, 40, 75, 100, 150};
-	struct vdt_contract_ops ops = {onto_one, NULL, NULL, NULL, 0, NULL, 0, NULL};
+	struct vdt_contract_ops ops = {onto_one, NULL, NULL, NULL, 0, NULL, 0, NULL, NULL};
 
 	(void)state;
 	for (size_t i = 0; i < sizeof(turns) / sizeof(turns[0]); i++) {
@@ -708,8 +709,8 @@ nonmanifold_virtual_pair_is_opt_in(void **state)
 	static const float p[] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 1, 0, 0.2f, 1, -1, 0.2f};
 	static const uint32_t t[] = {0, 1, 2, 0, 3, 4};
 	static const uint32_t pairs[] = {1, 3};
-	static const struct vdt_contract_ops ops = {pair13_cost, NULL, NULL, NULL,
-	                                            0,           NULL, 0,    NULL};
+	static const struct vdt_contract_ops ops = {pair13_cost, NULL, NULL, NULL, 0,
+	                                            NULL,        0,    NULL, NULL};
 	struct vdt_mesh m = {5, (float *)p, NULL, NULL, NULL, 2, (uint32_t *)t, 0};
 	struct vdt_contract_opts o;
 	struct vdt_contract_result r;
@@ -840,7 +841,7 @@ static void
 minus_zero_is_zero(void **state)
 {
 	struct vdt_mesh m;
-	struct vdt_contract_ops ops = {minus_zero_cost, NULL, NULL, NULL, 1, NULL, 0, NULL};
+	struct vdt_contract_ops ops = {minus_zero_cost, NULL, NULL, NULL, 1, NULL, 0, NULL, NULL};
 
 	(void)state;
 	shape_grid(&m, 4);
@@ -918,7 +919,8 @@ run_queue(const struct vdt_mesh *m, const uint8_t *locked, int mode,
           struct vdt_contract_result *r)
 {
 	struct qctx c = {face_quadrics(m)};
-	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0, NULL};
+	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0, NULL,
+	                               NULL};
 	struct vdt_contract_opts o;
 
 	vdt_contract_defaults(&o);
@@ -1114,7 +1116,8 @@ passes_contract_only_edges(void **state)
 			memmove(m.triangles + 3 * nt++, m.triangles + 3 * t, 3 * sizeof(uint32_t));
 	m.triangle_count = nt;
 	struct qctx c = {face_quadrics(&m)};
-	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0, NULL};
+	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0, NULL,
+	                               NULL};
 	vdt_contract_defaults(&o);
 	o.passes = 1;
 	o.record = 1;
@@ -1192,7 +1195,8 @@ passes_on_threads_match_one_thread(void **state)
 		memcpy(t + 9 * k, f, sizeof(f));
 	}
 	struct qctx c = {face_quadrics(&m)};
-	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0, NULL};
+	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0, NULL,
+	                               NULL};
 	struct vdt_contract_opts o;
 	/* Runs 0 to 2 on 1 to 3 threads; run 3 on one, costing afresh what
 	 * the others read from the noted costs. */
@@ -1256,8 +1260,8 @@ passes_on_threads_stop_at_the_target(void **state)
 	size_t nt = m.triangle_count, target = nt / 4;
 	for (int k = 0; k < 2; k++) {
 		struct qctx c = {face_quadrics(&m)};
-		struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0,
-		                               NULL};
+		struct vdt_contract_ops ops = {
+		        quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0, NULL, NULL};
 		struct vdt_contract_opts o;
 		vdt_contract_defaults(&o);
 		o.passes = 1;
@@ -1393,7 +1397,7 @@ static void
 passes_sort_past_the_claimable_keys(void **state)
 {
 	struct vdt_mesh g, m;
-	struct vdt_contract_ops ops = {hub_cost, NULL, NULL, NULL, 0, NULL, 0, NULL};
+	struct vdt_contract_ops ops = {hub_cost, NULL, NULL, NULL, 0, NULL, 0, NULL, NULL};
 	struct vdt_contract_result r[2];
 
 	(void)state;
@@ -1471,7 +1475,8 @@ static void
 long_fans_keep_the_link_condition(void **state)
 {
 	static const int sizes[] = {40, 400, 1500};
-	static const struct vdt_contract_ops ops = {apex_cost, NULL, NULL, NULL, 1, NULL, 0, NULL};
+	static const struct vdt_contract_ops ops = {apex_cost, NULL, NULL, NULL, 1,
+	                                            NULL,      0,    NULL, NULL};
 	(void)state;
 	for (int z = 0; z < 3; z++) {
 		int n = sizes[z];
@@ -1612,7 +1617,8 @@ static void
 hub_of_slivers_stays_a_disc(void **state)
 {
 	enum { N = 301 };
-	static const struct vdt_contract_ops ops = {apex_cost, NULL, NULL, NULL, 1, NULL, 0, NULL};
+	static const struct vdt_contract_ops ops = {apex_cost, NULL, NULL, NULL, 1,
+	                                            NULL,      0,    NULL, NULL};
 	float p[3 * (N + 1)] = {0};
 	uint32_t t[3 * (N - 1)];
 	struct vdt_mesh m = {N + 1, p, NULL, NULL, NULL, N - 1, t, 0};
@@ -1688,8 +1694,8 @@ hubs_are_not_read_at_each_try(void **state)
 	}
 	for (int mode = 0; mode < 3; mode++) {
 		struct qctx c = {face_quadrics(&m)};
-		struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0,
-		                               NULL};
+		struct vdt_contract_ops ops = {
+		        quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0, NULL, NULL};
 		struct vdt_contract_opts o;
 		struct vdt_contract_result r;
 		hub_opts(&o, mode, 2 * N / 10);
@@ -1736,8 +1742,8 @@ open_hub_is_not_read_at_each_try(void **state)
 	}
 	for (int mode = 0; mode < 3; mode++) {
 		struct qctx c = {face_quadrics(&m)};
-		struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0,
-		                               NULL};
+		struct vdt_contract_ops ops = {
+		        quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0, NULL, NULL};
 		struct vdt_contract_opts o;
 		struct vdt_contract_result r;
 		for (uint32_t i = 0; i < N; i++) { /* the rim's planes, as vdt-qslim's */
@@ -1937,44 +1943,126 @@ run_jobs_runs_each_job_once(void **state)
 	assert_int_equal(WEXITSTATUS(status), 0);
 }
 
+/*
+ * A cost that reads more than its pair's two vertices: the pairs of a
+ * square apart from a grid cost less with each contraction in the grid
+ * (nothing in the square moves), and the callback names a corner of the
+ * square as affected. Costed again, the square's pairs fall to nothing
+ * and go before the grid's (which cost at least a squared grid step);
+ * left with their first cost, as without the callback, they wait.
+ */
+struct far_square {
+	uint32_t first; /* the square's first vertex */
+	int merges;
+};
+
+static double
+far_square_cost(void *ctx, uint32_t a, uint32_t b, int fixed, const float pa[3], const float pb[3],
+                double pos[3])
+{
+	const struct far_square *f = ctx;
+
+	if (a >= f->first && b >= f->first) {
+		length_cost(NULL, a, b, fixed, pa, pb, pos);
+		return fmax(0, 50 - f->merges);
+	}
+	return length_cost(NULL, a, b, fixed, pa, pb, pos) * 64 * 64;
+}
+
+static void
+far_square_merged(void *ctx, uint32_t keep, uint32_t gone, const double pos[3], double cost)
+{
+	(void)keep, (void)gone, (void)pos, (void)cost;
+	((struct far_square *)ctx)->merges++;
+}
+
+static int
+far_square_affected(void *ctx, uint32_t keep, uint32_t *out)
+{
+	(void)keep;
+	out[0] = ((const struct far_square *)ctx)->first;
+	return 1;
+}
+
+static void
+affected_pairs_are_costed_again(void **state)
+{
+	struct vdt_mesh grid, m;
+	struct vdt_contract_opts o;
+	struct vdt_contract_result r;
+
+	(void)state;
+	shape_grid(&grid, 64);
+	size_t nv = grid.vertex_count, nt = grid.triangle_count;
+	assert_int_equal(vdt_mesh_alloc(&m, nv + 4, nt + 2, 0, NULL), 0);
+	memcpy(m.positions, grid.positions, 3 * nv * sizeof(float));
+	memcpy(m.triangles, grid.triangles, 3 * nt * sizeof(uint32_t));
+	static const float sq[12] = {5, 0, 0, 6, 0, 0, 6, 1, 0, 5, 1, 0};
+	memcpy(m.positions + 3 * nv, sq, sizeof(sq));
+	uint32_t s = (uint32_t)nv, *t = m.triangles + 3 * nt;
+	uint32_t st[6] = {s, s + 1, s + 2, s, s + 2, s + 3};
+	memcpy(t, st, sizeof(st));
+	for (int mode = 0; mode < 3; mode++)
+		for (int with = 0; with < 2; with++) {
+			struct far_square f = {s, 0};
+			struct vdt_contract_ops ops = {.cost = far_square_cost,
+			                               .merged = far_square_merged,
+			                               .ctx = &f,
+			                               .affected =
+			                                       with ? far_square_affected : NULL};
+			queue_opts(&o, mode);
+			o.target_triangles = nt - 200; /* a few hundred contractions */
+			assert_int_equal(vdt_contract_run(&m, &ops, &o, &r, NULL), 0);
+			assert_true(f.merges >= 100);
+			int square_merged = 0;
+			for (uint32_t v = s; v < s + 4; v++)
+				square_merged |= r.final[v] != v;
+			assert_int_equal(square_merged, with);
+			vdt_contract_result_free(&r);
+		}
+	vdt_mesh_free(&grid);
+	vdt_mesh_free(&m);
+}
+
 int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
-		cmocka_unit_test(tetrahedron_is_irreducible),
-		cmocka_unit_test(minus_zero_is_zero),
-		cmocka_unit_test(vertex_target_counts_orphans),
-		cmocka_unit_test(sphere_stays_manifold),
-		cmocka_unit_test(fold_over_is_refused),
-		cmocka_unit_test(fold_over_threshold_is_the_angle),
-		cmocka_unit_test(non_manifold_edge_is_kept),
-		cmocka_unit_test(seqn_round_trip_and_rejects),
-		cmocka_unit_test(flat_grid_reduces_to_its_corners),
-		cmocka_unit_test(sphere_simplifies_cleanly),
-		cmocka_unit_test(uv_seam_does_not_open),
-		cmocka_unit_test(repeated_positions_are_not_seams),
-		cmocka_unit_test(given_quadrics_drive_placement),
-		cmocka_unit_test(aggregation_joins_parts),
-		cmocka_unit_test(virtual_pairs_zip_a_gap_shut),
-		cmocka_unit_test(repeated_faces_are_dropped),
-		cmocka_unit_test(nonmanifold_virtual_pair_is_opt_in),
-		cmocka_unit_test(removed_faces_are_capped),
-		cmocka_unit_test(vertex_queue_matches_pair_queue),
-		cmocka_unit_test(passes_track_the_greedy_order),
-		cmocka_unit_test(passes_stop_at_the_bound),
-		cmocka_unit_test(passes_contract_only_edges),
-		cmocka_unit_test(auto_order_follows_the_size),
-		cmocka_unit_test(passes_on_threads_match_one_thread),
-		cmocka_unit_test(passes_on_threads_stop_at_the_target),
-		cmocka_unit_test(qslim_threads_do_not_matter),
-		cmocka_unit_test(passes_sort_past_the_claimable_keys),
-		cmocka_unit_test(long_fans_keep_the_link_condition),
-		cmocka_unit_test(small_holes_close),
-		cmocka_unit_test(hub_of_slivers_stays_a_disc),
-		cmocka_unit_test(hubs_are_not_read_at_each_try),
-		cmocka_unit_test(open_hub_is_not_read_at_each_try),
-		cmocka_unit_test(first_pass_claims_cheapest_pairs),
-		cmocka_unit_test(run_jobs_runs_each_job_once),
+	        cmocka_unit_test(tetrahedron_is_irreducible),
+	        cmocka_unit_test(minus_zero_is_zero),
+	        cmocka_unit_test(vertex_target_counts_orphans),
+	        cmocka_unit_test(sphere_stays_manifold),
+	        cmocka_unit_test(fold_over_is_refused),
+	        cmocka_unit_test(fold_over_threshold_is_the_angle),
+	        cmocka_unit_test(non_manifold_edge_is_kept),
+	        cmocka_unit_test(seqn_round_trip_and_rejects),
+	        cmocka_unit_test(flat_grid_reduces_to_its_corners),
+	        cmocka_unit_test(sphere_simplifies_cleanly),
+	        cmocka_unit_test(uv_seam_does_not_open),
+	        cmocka_unit_test(repeated_positions_are_not_seams),
+	        cmocka_unit_test(given_quadrics_drive_placement),
+	        cmocka_unit_test(aggregation_joins_parts),
+	        cmocka_unit_test(virtual_pairs_zip_a_gap_shut),
+	        cmocka_unit_test(repeated_faces_are_dropped),
+	        cmocka_unit_test(nonmanifold_virtual_pair_is_opt_in),
+	        cmocka_unit_test(removed_faces_are_capped),
+	        cmocka_unit_test(vertex_queue_matches_pair_queue),
+	        cmocka_unit_test(passes_track_the_greedy_order),
+	        cmocka_unit_test(passes_stop_at_the_bound),
+	        cmocka_unit_test(passes_contract_only_edges),
+	        cmocka_unit_test(auto_order_follows_the_size),
+	        cmocka_unit_test(passes_on_threads_match_one_thread),
+	        cmocka_unit_test(passes_on_threads_stop_at_the_target),
+	        cmocka_unit_test(qslim_threads_do_not_matter),
+	        cmocka_unit_test(passes_sort_past_the_claimable_keys),
+	        cmocka_unit_test(long_fans_keep_the_link_condition),
+	        cmocka_unit_test(small_holes_close),
+	        cmocka_unit_test(hub_of_slivers_stays_a_disc),
+	        cmocka_unit_test(hubs_are_not_read_at_each_try),
+	        cmocka_unit_test(open_hub_is_not_read_at_each_try),
+	        cmocka_unit_test(first_pass_claims_cheapest_pairs),
+	        cmocka_unit_test(run_jobs_runs_each_job_once),
+	        cmocka_unit_test(affected_pairs_are_costed_again),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
