@@ -32,6 +32,7 @@
 #include "contract.h"
 #include "qslim.h"
 #include "quadric.h"
+#include "rim.h"
 
 #define NONE UINT32_MAX
 
@@ -580,6 +581,8 @@ struct uctx {
 	double *ec;          /* scratch, nf */
 	struct flist *fw;    /* per vertex, or NULL */
 	double k1, k2;
+	struct vdt_rim rim; /* the open boundary (empty without one) */
+	double sag;         /* the weight of its sag, as vdt_qslim's */
 	int nomem;
 };
 
@@ -597,11 +600,11 @@ pair_fw(const struct uctx *c, uint32_t a, uint32_t b)
 	return 0;
 }
 
-/* The merged vertex of frame f: fixed end, or the quadric's minimiser;
- * with exact, whether its error is negligible (vdt_quadric_negligible). */
+/* The merged vertex of frame f: fixed end, or the quadric's minimiser; the
+ * merged quadric into *qm unless NULL. */
 static double
 place(const struct qd *qa, const struct qd *qb, const float *pa, const float *pb,
-      const double *centre, int fixed, double v[3], int *exact)
+      const double *centre, int fixed, double v[3], struct vdt_quadric *qm)
 {
 	struct vdt_quadric q, r;
 	double p0[3], p1[3], e;
@@ -619,8 +622,29 @@ place(const struct qd *qa, const struct qd *qb, const float *pa, const float *pb
 	} else {
 		e = vdt_quadric_optimize(&q, p0, p1, v);
 	}
-	if (exact != NULL)
-		*exact = vdt_quadric_negligible(&q, v, e);
+	if (qm != NULL)
+		*qm = q;
+	return e;
+}
+
+/*
+ * The error of contracting a and b to v (centred on centre) under the
+ * merged quadric q, with the sag of the boundary's chords as vdt_qslim
+ * costs it (vertex x of the frame at pos + x * stride), and whether that
+ * is negligible (vdt_quadric_negligible).
+ */
+static double
+with_sag(const struct vdt_rim *rim, double weight, uint32_t a, uint32_t b,
+         const struct vdt_quadric *q, const double v[3], const double *centre, const float *pos,
+         size_t stride, double e, int *exact)
+{
+	if (rim->bits != NULL) {
+		double x[3];
+		for (int k = 0; k < 3; k++)
+			x[k] = v[k] + centre[k];
+		e += weight * vdt_rim_sag(rim, a, b, x, pos, stride);
+	}
+	*exact = vdt_quadric_negligible(q, v, e);
 	return e;
 }
 
@@ -636,8 +660,11 @@ unified_cost(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	(void)pa;
 	(void)pb;
 	for (size_t f = 0; f < nf; f++) {
-		c->ec[f] = place(&c->q[a * nf + f], &c->q[b * nf + f], c->cur + 3 * (a * nf + f),
-		                 c->cur + 3 * (b * nf + f), c->centre + 3 * f, fixed, v, &f_exact);
+		struct vdt_quadric qm;
+		double e = place(&c->q[a * nf + f], &c->q[b * nf + f], c->cur + 3 * (a * nf + f),
+		                 c->cur + 3 * (b * nf + f), c->centre + 3 * f, fixed, v, &qm);
+		c->ec[f] = with_sag(&c->rim, c->sag, a, b, &qm, v, c->centre + 3 * f,
+		                    c->cur + 3 * f, 3 * nf, e, &f_exact);
 		exact &= f_exact;
 		if (f == 0)
 			for (int k = 0; k < 3; k++)
@@ -678,6 +705,8 @@ unified_merged(void *vc, uint32_t keep, uint32_t gone, const double pos[3], doub
 		}
 		qd_merge(&c->q[keep * nf + f], &c->q[gone * nf + f]);
 	}
+	if (c->rim.bits != NULL)
+		vdt_rim_merged(&c->rim, keep, gone);
 	if (c->fw) {
 		struct flist *g = &c->fw[gone];
 		for (uint32_t i = 0; i < g->n; i++) {
@@ -693,6 +722,26 @@ unified_merged(void *vc, uint32_t keep, uint32_t gone, const double pos[3], doub
 		free(g->e);
 		memset(g, 0, sizeof(*g));
 	}
+}
+
+static int
+unified_affected(void *vc, uint32_t keep, uint32_t *out)
+{
+	return vdt_rim_affected(&((const struct uctx *)vc)->rim, keep, out);
+}
+
+/* The open boundary of a, for the sag, when its planes weigh anything. */
+static int
+rim_build(struct vdt_rim *rim, const struct anim *a, double boundary_weight)
+{
+	if (!(boundary_weight > 0) || a->nopen == 0)
+		return 0;
+	if (vdt_rim_init(rim, a->nv) != 0)
+		return -1;
+	for (size_t k = 0; k < a->nopen; k++)
+		vdt_rim_add(rim, a->tri + 3 * (size_t)a->open[3 * k], a->open[3 * k + 1],
+		            a->open[3 * k + 2]);
+	return 0;
 }
 
 static int
@@ -803,6 +852,9 @@ struct fctx {
 	double unit;                  /* of the costs (frame_centre) */
 	const struct pairset *prefer; /* or NULL */
 	double discount;              /* 1 / (1 + coherence) */
+	struct vdt_rim rim;           /* the open boundary, as replayed */
+	double sag;                   /* the weight of its sag */
+	const float *pos;             /* the engine's positions */
 };
 
 static double
@@ -810,8 +862,10 @@ frame_cost(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
            const float pb[3], double pos[3])
 {
 	struct fctx *c = vc;
+	struct vdt_quadric qm;
 	int exact;
-	double e = place(&c->q[a], &c->q[b], pa, pb, c->centre, fixed, pos, &exact);
+	double e = place(&c->q[a], &c->q[b], pa, pb, c->centre, fixed, pos, &qm);
+	e = with_sag(&c->rim, c->sag, a, b, &qm, pos, c->centre, c->pos, 3, e, &exact);
 	for (int k = 0; k < 3; k++)
 		pos[k] += c->centre[k];
 	if (c->prefer && c->prefer->n && pairset_has(c->prefer, a, b))
@@ -826,6 +880,14 @@ frame_merged(void *vc, uint32_t keep, uint32_t gone, const double pos[3], double
 	(void)pos;
 	(void)cost;
 	qd_merge(&c->q[keep], &c->q[gone]);
+	if (c->rim.bits != NULL)
+		vdt_rim_merged(&c->rim, keep, gone);
+}
+
+static int
+frame_affected(void *vc, uint32_t keep, uint32_t *out)
+{
+	return vdt_rim_affected(&((const struct fctx *)vc)->rim, keep, out);
 }
 
 struct scratch {
@@ -858,7 +920,7 @@ simplify_frame(const struct anim *a, size_t f, const struct vdt_contraction *rec
                struct scratch *s, struct vdt_deform_result *res, size_t *ntri_out,
                struct vdt_err *err)
 {
-	struct fctx c;
+	struct fctx c = {0};
 	double v[3];
 	size_t nv = a->nv, nt = 0;
 
@@ -867,6 +929,10 @@ simplify_frame(const struct anim *a, size_t f, const struct vdt_contraction *rec
 	c.prefer = o->method == VDT_DEFORM_OURS && o->coherence > 0 ? &s->prefer : NULL;
 	c.discount = 1 / (1 + o->coherence);
 	frame_quadrics(a, f, c.centre, o->boundary_weight, o->area_floor, s->q, 1);
+	/* (the tail's boundary: the input's, through the replay) */
+	c.sag = VDT_QSLIM_SAG_SHARE * o->boundary_weight;
+	if (finish && rim_build(&c.rim, a, o->boundary_weight) != 0)
+		return vdt_err_set(err, VDT_ENOMEM, "out of memory simplifying frame %zu", f);
 	memcpy(s->pos, a->pos + 3 * nv * f, 3 * nv * sizeof(float));
 	for (size_t v0 = 0; v0 < nv; v0++)
 		s->parent[v0] = (uint32_t)v0;
@@ -882,6 +948,8 @@ simplify_frame(const struct anim *a, size_t f, const struct vdt_contraction *rec
 				pk[k] = (float)(v[k] + c.centre[k]);
 		}
 		qd_merge(&s->q[keep], &s->q[gone]);
+		if (c.rim.bits != NULL)
+			vdt_rim_merged(&c.rim, keep, gone);
 		s->parent[gone] = keep;
 	}
 	for (size_t t = 0; t < a->nt; t++) {
@@ -906,10 +974,24 @@ simplify_frame(const struct anim *a, size_t f, const struct vdt_contraction *rec
 		struct vdt_contract_ops ops = {frame_cost, frame_merged, NULL, &c, 0, NULL,
 		                               0,          NULL,         NULL};
 		int rc;
+		/* In place, so that the sag reads the positions as they move;
+		 * on copies, which the engine takes. */
 		m.vertex_count = nv;
-		m.positions = s->pos;
+		m.positions = malloc((3 * nv + 1) * sizeof(float));
 		m.triangle_count = nt;
-		m.triangles = s->tri;
+		m.triangles = malloc((3 * nt + 1) * sizeof(uint32_t));
+		if (m.positions == NULL || m.triangles == NULL) {
+			free(m.positions);
+			free(m.triangles);
+			vdt_rim_free(&c.rim);
+			return vdt_err_set(err, VDT_ENOMEM, "out of memory simplifying frame %zu",
+			                   f);
+		}
+		memcpy(m.positions, s->pos, 3 * nv * sizeof(float));
+		memcpy(m.triangles, s->tri, 3 * nt * sizeof(uint32_t));
+		c.pos = m.positions;
+		if (c.rim.bits != NULL)
+			ops.affected = frame_affected;
 		vdt_contract_defaults(&co);
 		co.target_triangles = SIZE_MAX;
 		co.target_vertices = target;
@@ -920,7 +1002,9 @@ simplify_frame(const struct anim *a, size_t f, const struct vdt_contraction *rec
 		co.reference_positions = a->pos + 3 * nv * f;
 		co.reference_triangles = s->ref;
 		co.record = c.prefer != NULL;
-		if ((rc = vdt_contract_run(&m, &ops, &co, &r, err)) != 0)
+		rc = vdt_contract_run_in_place(&m, &ops, &co, &r, err);
+		vdt_rim_free(&c.rim);
+		if (rc != 0)
 			return rc;
 		if (c.prefer) {
 			pairset_clear(&s->prefer);
@@ -1139,6 +1223,11 @@ vdt_deform(const struct vdt_mesh *m, const struct vdt_frames *fr,
 		if (o->method == VDT_DEFORM_OURS && o->k2 > 0 &&
 		    (rc = feature_lists(&u, &a, o->sharp_angle, err)) != 0)
 			goto fail;
+		if (rim_build(&u.rim, &a, o->boundary_weight) != 0)
+			goto nomem;
+		u.sag = VDT_QSLIM_SAG_SHARE * o->boundary_weight;
+		if (u.rim.bits != NULL)
+			ops.affected = unified_affected;
 		um.vertex_count = nv;
 		um.positions = a.pos;
 		um.triangle_count = a.nt;
@@ -1161,6 +1250,7 @@ vdt_deform(const struct vdt_mesh *m, const struct vdt_frames *fr,
 		res->replayed = nrep;
 		free(u.q);
 		free(u.cur);
+		vdt_rim_free(&u.rim);
 		u.q = NULL;
 		u.cur = NULL;
 	}
@@ -1183,7 +1273,7 @@ vdt_deform(const struct vdt_mesh *m, const struct vdt_frames *fr,
 	int finish = o->method == VDT_DEFORM_INDEPENDENT || nrep < ur.record_count ||
 	             (o->method == VDT_DEFORM_OURS && !ur.reached_target);
 	for (size_t f = 0; f < nf; f++) {
-		size_t ntri;
+		size_t ntri = 0;
 		if ((rc = simplify_frame(&a, f, ur.records, nrep, finish, target, o, &s, res,
 		                         &ntri, err)) != 0)
 			goto fail;
@@ -1205,6 +1295,7 @@ done:
 	anim_free(&a);
 	free(u.q);
 	free(u.cur);
+	vdt_rim_free(&u.rim);
 	free(u.centre);
 	free(u.ec);
 	fw_free(u.fw, a.nv);

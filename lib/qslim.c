@@ -23,6 +23,7 @@
 #include "hash.h"
 #include "mem.h"
 #include "progress.h"
+#include "rim.h"
 #include "sort.h"
 #include "topo.h"
 
@@ -54,6 +55,10 @@ struct ctx {
 	                          into it (place) */
 	float *vanish;         /* per welded vertex, the cost of its part
 	                          vanishing (part_costs), or NULL */
+	struct vdt_rim rim;    /* the open boundary, for the sag (empty on
+	                          a closed mesh, or with no weight) */
+	const float *pos;      /* the engine's positions, during the run */
+	double sag;            /* the sag's weight */
 };
 
 void
@@ -245,6 +250,36 @@ reach_merge(float *reach, uint32_t v, uint32_t w)
 	}
 }
 
+/*
+ * The sag of an open boundary (rim.h): the chords a contraction along it
+ * leaves cut a curved boundary short, which the quadrics do not see, so
+ * the Hausdorff distance of open meshes lay on their boundaries (the wavy
+ * rim of mkshapes open at a tenth of its faces was 0.285% of the diagonal
+ * from the input, against 0.197% for CGAL's Garland-Heckbert). A boundary
+ * edge's pair also costs vdt_rim_sag times VDT_QSLIM_SAG_SHARE of the
+ * boundary weight. It reads the vertices before and after the pair along
+ * the boundary, so when a contraction moves a boundary vertex, the pairs
+ * of its two neighbours there are costed again (affected_fn).
+ *
+ * Over 96 results of 16 models from 0.5% to 20% of their faces (9 of
+ * them open), the Hausdorff distance fell by 3.9% in the geometric mean
+ * and RMS by 1.8%, the closed meshes the same to the byte; the results
+ * above CGAL's in either went from 32 to 25. mkshapes open: Hausdorff
+ * 0.41 to 1.01 times what it was; the shark at 1% of its faces 2.53%
+ * instead of 3.09% (CGAL 2.63%), and at 91 to 141 faces under CGAL's at
+ * 10 of 11 targets instead of none. The worst: a torus cut in half at a
+ * tenth of its faces, 1.16 times (still under CGAL's).
+ */
+static double
+sag_cost(const struct ctx *c, uint32_t a, uint32_t b, const double x[3])
+{
+	double w[3];
+
+	for (int k = 0; k < 3; k++)
+		w[k] = x[k] + c->centre[k];
+	return c->sag * vdt_rim_sag(&c->rim, a, b, w, c->pos, 3);
+}
+
 static double
 cost_fn(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
         const float pb[3], double pos[3])
@@ -264,6 +299,11 @@ cost_fn(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	double se = c->scale ? scaled(c, a, b, e) : e;
 	if (c->max_error < INFINITY && q.w > 0 && se > c->max_error * q.w)
 		return INFINITY;
+	double sag = c->rim.bits != NULL ? sag_cost(c, a, b, pos) : 0;
+	if (sag > 0) {
+		e += sag;
+		se = c->scale ? scaled(c, a, b, e) : e;
+	}
 	double cost = tied(c, &q, pos, e, se, pa, pb);
 	for (int k = 0; k < 3; k++)
 		pos[k] += c->centre[k];
@@ -292,12 +332,22 @@ merged_fn(void *vc, uint32_t keep, uint32_t gone, const double pos[3], double co
 	(void)cost; /* scaled and with its tie: the error itself instead */
 	if (c->scale)
 		c->scale[keep] = fmin(c->scale[keep], c->scale[gone]);
+	if (c->rim.bits != NULL)
+		vdt_rim_merged(&c->rim, keep, gone);
 	vdt_quadric_add(&c->q[keep], &c->q[gone]);
 	reach_merge(c->reach, keep, gone);
 	for (int k = 0; k < 3; k++)
 		p[k] = pos[k] - c->centre[k];
 	if (c->q[keep].w > 0)
 		worst_max(&c->worst, error_at(&c->q[keep], p) / c->q[keep].w);
+}
+
+/* After a contraction into keep, the pairs whose sag reads keep's
+ * position: those of its neighbours along the boundary. */
+static int
+affected_fn(void *vc, uint32_t keep, uint32_t *out)
+{
+	return vdt_rim_affected(&((const struct ctx *)vc)->rim, keep, out);
 }
 
 /* A seam vertex may only merge into another seam vertex. */
@@ -953,10 +1003,19 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o, const u
 	}
 	for (size_t i = 0; real && i < nin; i++)
 		real[canon[i]] |= o->input_border[i] != 0;
+	if (nopen > 0 && c->sag > 0 && vdt_rim_init(&c->rim, nv) != 0) {
+		free(real);
+		free(nm_at);
+		free(open);
+		goto nomem;
+	}
 	for (long k = 0; k < nopen; k++) {
 		uint32_t a = open[3 * k + 1], b = open[3 * k + 2];
-		if (!real || real[a] || real[b])
-			add_boundary(c, w, o, open[3 * k], a, b, border);
+		if (real && !real[a] && !real[b])
+			continue;
+		add_boundary(c, w, o, open[3 * k], a, b, border);
+		if (c->rim.bits != NULL)
+			vdt_rim_add(&c->rim, w->triangles + 3 * (size_t)open[3 * k], a, b);
 	}
 	*free_parts = NULL;
 	if (o->topology == VDT_TOPOLOGY_AUTO && *nonmanifold > 0) {
@@ -1678,6 +1737,8 @@ cost_attr(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 		if (g.w > 0 && ge > c->max_error * g.w)
 			return INFINITY;
 	}
+	if (c->rim.bits != NULL)
+		e += sag_cost(c, a, b, pos);
 	double cost = tied(c, &q, pos, e, c->scale ? scaled(c, a, b, e) : e, pa, pb);
 	for (int k = 0; k < 3; k++)
 		pos[k] += c->centre[k];
@@ -1698,6 +1759,8 @@ merged_attr(void *vc, uint32_t keep, uint32_t gone, const double pos[3], double 
 	(void)cost;
 	if (c->scale)
 		c->scale[keep] = fmin(c->scale[keep], c->scale[gone]);
+	if (c->rim.bits != NULL)
+		vdt_rim_merged(&c->rim, keep, gone);
 	long n = attr_pair_quadric(at, keep, gone, 1, &qr, &s);
 	assert(n >= 0); /* cost_attr refused the pair otherwise */
 	for (long i = 0; i < n; i++) {
@@ -3216,6 +3279,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	c.unit = vdt_quadric_unit(vdt_bbox_diagonal(&bulk));
 	c.max_error = o->max_error < INFINITY ? o->max_error * o->max_error : INFINITY;
 	c.blade = blade_share(target, T);
+	c.sag = VDT_QSLIM_SAG_SHARE * o->boundary_weight;
 	dead = vdt_calloc_huge(T + 1, 1);
 	if (dead == NULL || build_quadrics(&w, o, canon, n, &c, border, dead, &stats->nonmanifold,
 	                                   &free_parts, &backs, &nbacks) != 0)
@@ -3468,7 +3532,12 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	ops.vertex_stride = sizeof(*c.q);
 	double t_run = vdt_seconds();
 	stats->setup_s = t_run - t_start;
+	if (c.rim.bits != NULL) {
+		c.pos = w.positions; /* (the engine's, as they move) */
+		ops.affected = affected_fn;
+	}
 	rc = vdt_contract_run_in_place(&w, &ops, &co, &r, err);
+	c.pos = NULL;
 	stats->contract_s = vdt_seconds() - t_run;
 	free(seam);
 	if (rc != 0)
@@ -3516,6 +3585,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	c.q = NULL;
 	free(c.reach);
 	free(c.vanish);
+	vdt_rim_free(&c.rim);
 	c.vanish = NULL;
 	c.reach = NULL;
 	stats->passes = r.passes;
@@ -3581,6 +3651,7 @@ done:
 	free(c.q);
 	free(c.reach);
 	free(c.vanish);
+	vdt_rim_free(&c.rim);
 	free(c.scale);
 	attr_free(c.at);
 	free(border);
