@@ -713,7 +713,11 @@ PY
 	[ "$status" -eq 0 ]
 	[[ "$output" == *" grid="*"x1 "* ]]
 	run "$BIN/vdt-qslim" -v -t 200 "$TMP/s.vdq" -o "$TMP/s.ply"
-	[[ "$output" == *" out_triangles=200 "* ]]
+	# (the last contraction may take two faces inside the sheet, or one
+	# on its border)
+	n=$(printf '%s\n' "$output" | tr ' ' '\n' | sed -n 's/^out_triangles=//p')
+	[ "$n" -le 200 ]
+	[ "$n" -ge 199 ]
 	[[ "$output" == *" nonmanifold=0 "* ]]
 	h=$("$BIN/vdt-measure" -F kv "$TMP/sheet.obj" "$TMP/s.ply" | kv hausdorff_pct)
 	awk -v h="$h" 'BEGIN { exit !(h < 0.01) }'
