@@ -7,9 +7,11 @@ load helpers
 ROOT="$BATS_TEST_DIRNAME/../.."
 
 # make in the scratch copy, free of the make that runs the tests (whose
-# SANITIZE=1 or -j would reach it through MAKEFLAGS).
+# -j would reach it through MAKEFLAGS, and whose command line's SANITIZE=1
+# or CFLAGS through the environment too).
 mk() {
-	env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make -C "$TMP/src" --no-print-directory "$@"
+	env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL -u SANITIZE -u CFLAGS -u CXXFLAGS \
+		-u CPPFLAGS -u LDFLAGS make -C "$TMP/src" --no-print-directory "$@"
 }
 
 @test "make compiles an object again when CFLAGS change, and not otherwise" {
