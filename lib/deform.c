@@ -628,24 +628,21 @@ place(const struct qd *qa, const struct qd *qb, const float *pa, const float *pb
 }
 
 /*
- * The error of contracting a and b to v (centred on centre) under the
- * merged quadric q, with the sag of the boundary's chords as vdt_qslim
- * costs it (vertex x of the frame at pos + x * stride), and whether that
- * is negligible (vdt_quadric_negligible).
+ * The sag of the boundary's chords, as vdt_qslim costs it, of contracting
+ * a and b to v (centred on centre) in a frame whose vertex x is at
+ * pos + x * stride; 0 without a boundary.
  */
 static double
-with_sag(const struct vdt_rim *rim, double weight, uint32_t a, uint32_t b,
-         const struct vdt_quadric *q, const double v[3], const double *centre, const float *pos,
-         size_t stride, double e, int *exact)
+frame_sag(const struct vdt_rim *rim, double weight, uint32_t a, uint32_t b, const double v[3],
+          const double *centre, const float *pos, size_t stride)
 {
-	if (rim->bits != NULL) {
-		double x[3];
-		for (int k = 0; k < 3; k++)
-			x[k] = v[k] + centre[k];
-		e += weight * vdt_rim_sag(rim, a, b, x, pos, stride);
-	}
-	*exact = vdt_quadric_negligible(q, v, e);
-	return e;
+	double x[3];
+
+	if (rim->bits == NULL)
+		return 0;
+	for (int k = 0; k < 3; k++)
+		x[k] = v[k] + centre[k];
+	return weight * vdt_rim_sag(rim, a, b, x, pos, stride);
 }
 
 static double
@@ -655,7 +652,7 @@ unified_cost(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	struct uctx *c = vc;
 	size_t nf = c->nf;
 	double v[3];
-	int exact = 1, f_exact;
+	int exact = 1;
 
 	(void)pa;
 	(void)pb;
@@ -663,9 +660,9 @@ unified_cost(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 		struct vdt_quadric qm;
 		double e = place(&c->q[a * nf + f], &c->q[b * nf + f], c->cur + 3 * (a * nf + f),
 		                 c->cur + 3 * (b * nf + f), c->centre + 3 * f, fixed, v, &qm);
-		c->ec[f] = with_sag(&c->rim, c->sag, a, b, &qm, v, c->centre + 3 * f,
-		                    c->cur + 3 * f, 3 * nf, e, &f_exact);
-		exact &= f_exact;
+		e += frame_sag(&c->rim, c->sag, a, b, v, c->centre + 3 * f, c->cur + 3 * f, 3 * nf);
+		c->ec[f] = e;
+		exact &= vdt_quadric_negligible(&qm, v, e);
 		if (f == 0)
 			for (int k = 0; k < 3; k++)
 				pos[k] = v[k] + c->centre[k];
@@ -865,7 +862,8 @@ frame_cost(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	struct vdt_quadric qm;
 	int exact;
 	double e = place(&c->q[a], &c->q[b], pa, pb, c->centre, fixed, pos, &qm);
-	e = with_sag(&c->rim, c->sag, a, b, &qm, pos, c->centre, c->pos, 3, e, &exact);
+	e += frame_sag(&c->rim, c->sag, a, b, pos, c->centre, c->pos, 3);
+	exact = vdt_quadric_negligible(&qm, pos, e);
 	for (int k = 0; k < 3; k++)
 		pos[k] += c->centre[k];
 	if (c->prefer && c->prefer->n && pairset_has(c->prefer, a, b))

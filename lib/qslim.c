@@ -299,9 +299,8 @@ cost_fn(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 	double se = c->scale ? scaled(c, a, b, e) : e;
 	if (c->max_error < INFINITY && q.w > 0 && se > c->max_error * q.w)
 		return INFINITY;
-	double sag = c->rim.bits != NULL ? sag_cost(c, a, b, pos) : 0;
-	if (sag > 0) {
-		e += sag;
+	if (c->rim.bits != NULL) {
+		e += sag_cost(c, a, b, pos);
 		se = c->scale ? scaled(c, a, b, e) : e;
 	}
 	double cost = tied(c, &q, pos, e, se, pa, pb);

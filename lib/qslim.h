@@ -131,6 +131,8 @@ struct vdt_qslim_opts {
  * keep one side's texture off the other.
  */
 #define VDT_QSLIM_BOUNDARY_WEIGHT 3.0
+#define VDT_QSLIM_SEAM_WEIGHT 100.0
+#define VDT_QSLIM_ATTRIBUTE_WEIGHT 1.0
 
 /*
  * A boundary edge's pair also costs the sag of the chords its contraction
@@ -141,8 +143,6 @@ struct vdt_qslim_opts {
  * at 3; results above CGAL's in either 27, 25, 28, 32 and 32 (32 without).
  */
 #define VDT_QSLIM_SAG_SHARE 0.1
-#define VDT_QSLIM_SEAM_WEIGHT 100.0
-#define VDT_QSLIM_ATTRIBUTE_WEIGHT 1.0
 
 void vdt_qslim_defaults(struct vdt_qslim_opts *o);
 
