@@ -90,6 +90,13 @@ sweep() {
 	sweep strict 7 d.vdt "$BIN/vdt-deform" -q -r 0.5 -o d.vdt "$TMP/f%d.off"
 }
 
+@test "vdt-deform on an open mesh out of memory: its border's runs too" {
+	# the sag of the border's chords: the runs of the border, for the
+	# unified order and each frame's tail, and the tail's copies
+	for i in 0 1 2 3; do cp "$SAMPLES/open.off" "$TMP/f$i.off"; done
+	sweep strict 3 d.vdt "$BIN/vdt-deform" -q -r 0.3 -o d.vdt "$TMP/f%d.off"
+}
+
 @test "a Draco output out of memory leaves no file behind, whatever Draco does" {
 	# (Draco's own start-up and its encoder's destructors can end the
 	# process when memory runs out: nothing to catch; but the output
