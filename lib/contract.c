@@ -2588,6 +2588,36 @@ done(const struct engine *e, const struct vdt_contract_opts *o)
 	return 0;
 }
 
+/*
+ * Whether some pair of the mesh as it stands passes every test but the
+ * link condition, at a cost within max_cost: a run that stopped short
+ * of its target under the link condition would go on without it. Each
+ * edge is tried once, from its lower end, up to the first that passes.
+ */
+static int
+link_only(struct engine *e, double max_cost)
+{
+	uint32_t keep, gone;
+	double pos[3], cost;
+	int found = 0;
+
+	if (e->allow_nonmanifold)
+		return 0;
+	e->allow_nonmanifold = 1;
+	for (uint32_t v = 0; v < e->nv && !found; v++) {
+		const struct list *l = &e->vt[v];
+		for (uint32_t i = 0; i < l->len && !found; i++) {
+			const uint32_t *t = e->tri + 3 * (size_t)e->tpool.data[l->off + i];
+			for (int k = 0; k < 3 && !found; k++)
+				if (t[k] > v &&
+				    try_pair(e, v, t[k], NULL, 0, &keep, &gone, pos, &cost))
+					found = cost <= max_cost;
+		}
+	}
+	e->allow_nonmanifold = 0;
+	return found;
+}
+
 /* Append a contraction to res->records (capacity *cap). */
 static int
 record(struct vdt_contract_result *res, size_t *cap, uint32_t keep, uint32_t gone,
@@ -4296,6 +4326,7 @@ finish:
 	read_flush(&e);
 	res->entries_read = e.entries_read;
 	res->reached_target = done(&e, o);
+	res->link_only = !res->reached_target && link_only(&e, o->max_cost);
 	engine_shed(&e);
 
 	/* Results: positions, surviving triangles, where each vertex went. */

@@ -253,6 +253,9 @@ struct vdt_contract_result {
 	double max_cost;       /* largest cost contracted */
 	int reached_target;    /* 1 if the triangle/vertex target was met */
 	size_t rejected;       /* pops refused by a validity test */
+	int link_only;         /* 1 if, stopped short of the target, some pair
+	                          passed every test but the link condition
+	                          (allow_nonmanifold would have gone on) */
 	size_t entries_read;   /* face and pair list entries the validity
 	                          tests and the lists' updates read: their
 	                          work, which a vertex of many faces must not

@@ -3593,7 +3593,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	stats->reached_target = r.reached_target;
 	/* (where the link condition was dropped on some parts, those with
 	 * handles were among them) */
-	stats->handles = r.reached_target || co.allow_nonmanifold || co.free_vertices
+	stats->handles = !r.link_only || co.free_vertices
 	                         ? -1
 	                         : vdt_topo_handles(r.vertex_count, r.triangles, r.triangle_count);
 	stats->max_error = sqrt(c.worst);

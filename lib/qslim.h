@@ -167,9 +167,10 @@ struct vdt_qslim_stats {
 	size_t parts_given_up; /* parts of which no face is left, to meet the target */
 	double error_pct;   /* max_error in percent of the input's
 	                       bounding-box diagonal (0 if that is 0) */
-	long handles;       /* when stopped early under the link condition,
-	                       the handles of the result (vdt_topo_handles),
-	                       which it keeps, each with a few faces; else -1 */
+	long handles;       /* when stopped early by the link condition (a
+	                       pair passed every other test), the handles of
+	                       the result (vdt_topo_handles), which it keeps,
+	                       each with a few faces; else -1 */
 	double setup_s;     /* seconds: welding, quadrics and the rest before */
 	double contract_s;  /* the contractions (the engine's run) */
 	double fit_s;       /* the fit after them (0 without) */
