@@ -232,7 +232,8 @@ run(struct cmdline *cl)
 	/* --mesh-out's fronts have vertices of their own: what describes
 	 * the tree's goes (decoded above), any other chunk is passed on. */
 	vdt_chunks_drop_vertex_data(&extra);
-	vdt_mesh_bbox(&m, &box);
+	/* (the surface's: a stray vertex would move the eye away from it) */
+	vdt_mesh_bbox_faces(&m, &box);
 	if (views == &cl->v)
 		vdt_view_aim(&cl->v, &box, cl->has_eye, cl->has_at);
 	if (vdt_views_check(views, nviews, &box, &err) != 0) {

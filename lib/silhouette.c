@@ -268,7 +268,7 @@ vdt_sil_frame(const struct vdt_mesh *m, double centre[3], double *radius,
 {
 	struct vdt_bbox b;
 
-	vdt_mesh_bbox(m, &b);
+	vdt_mesh_bbox_faces(m, &b);
 	for (int k = 0; k < 3; k++)
 		centre[k] = 0.5 * (b.min[k] + b.max[k]);
 	*radius = 0.5 * vdt_bbox_diagonal(&b);

@@ -85,9 +85,10 @@ size_t vdt_cameras_nearest(const struct vdt_cameras *c, const double dir[3],
                            size_t n, size_t *idx);
 
 /*
- * The centre and radius of the frame every camera shares (see above).
- * Returns 0, or VDT_EINVAL when the bounding box is degenerate (a single
- * point) or not finite.
+ * The centre and radius of the frame every camera shares (see above), from
+ * the box of the surface (vdt_mesh_bbox_faces: a vertex no face uses does
+ * not shrink the model in every view). Returns 0, or VDT_EINVAL when the
+ * box is degenerate (a single point) or not finite.
  */
 int vdt_sil_frame(const struct vdt_mesh *m, double centre[3], double *radius,
                   struct vdt_err *err);

@@ -625,3 +625,20 @@ noff_faces() {
 	"$BIN/vdt-render" --size 16x16 "$TMP/t.vdt" -o "$TMP/b.png"
 	cmp "$TMP/a.png" "$TMP/b.png"
 }
+
+@test "vdt-render frames the surface: a vertex no face uses moves neither the eye nor its check" {
+	printf 'OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n' \
+		>"$TMP/tet.off"
+	printf 'OFF\n5 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n100 100 100\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n' \
+		>"$TMP/stray.off"
+	"$BIN/vdt-build" "$TMP/tet.off" -o "$TMP/tet.vdt"
+	"$BIN/vdt-build" "$TMP/stray.off" -o "$TMP/stray.vdt"
+	"$BIN/vdt-render" "$TMP/tet.vdt" -o "$TMP/ref.png"
+	run "$BIN/vdt-render" "$TMP/stray.vdt" -o /dev/null --compare "$TMP/ref.png"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"rmse=0.0000 psnr=inf"* ]]
+	# an eye outside the tetrahedron, inside the box the stray vertex makes
+	run "$BIN/vdt-render" --eye 3,3,3 "$TMP/stray.vdt" -o "$TMP/a.png"
+	[ "$status" -eq 0 ]
+	[ -s "$TMP/a.png" ]
+}

@@ -154,3 +154,14 @@ load helpers
 	[ "$output" = "vdt-silhouette: cannot label '$TMP/line.off': every face has zero area" ]
 	[ ! -e "$TMP/out.vdl" ]
 }
+
+@test "vdt-silhouette frames the surface: a vertex no face uses changes no label" {
+	# the torus with one more vertex, a thousand model sizes away
+	awk 'NR == 2 { n = $1; print $1 + 1, $2, $3; next } { print }
+	     NR == 2 + n { print "1000 1000 1000" }' "$SAMPLES/torus.off" >"$TMP/stray.off"
+	"$BIN/vdt-silhouette" --view 0,0,1 "$SAMPLES/torus.off" >"$TMP/a.txt"
+	"$BIN/vdt-silhouette" --view 0,0,1 "$TMP/stray.off" >"$TMP/b.txt"
+	[ "$(sort -u "$TMP/a.txt" | wc -l)" -gt 2 ]
+	[ "$(wc -l <"$TMP/b.txt")" -eq "$(($(wc -l <"$TMP/a.txt") + 1))" ]
+	head -n -1 "$TMP/b.txt" | cmp - "$TMP/a.txt"
+}
