@@ -23,6 +23,7 @@
 
 #include "bytes.h"
 #include "span.h"
+#include "topo.h"
 
 #define DEG (M_PI / 180)
 #define BIG 1e20 /* "no background yet" in the transforms: finite, so that
@@ -287,6 +288,7 @@ vdt_sil_work_free(struct vdt_sil_work *w)
 	free(w->xy);
 	free(w->tmp);
 	free(w->itmp);
+	free(w->repeat);
 	memset(w, 0, sizeof(*w));
 }
 
@@ -631,12 +633,18 @@ vdt_sil_camera(const struct vdt_mesh *m, const double centre[3], double radius,
 
 	project(m, centre, radius, d, res, w->xy);
 	/* Silhouette vertices (section 3.1.2): bit 1 a front face, bit 2 a back
-	 * face; an edge-on face is both. */
+	 * face; an edge-on face is both, one of no area neither (it has no
+	 * side: on the sphere, a face of two corners made its vertices
+	 * contour in every view), nor the back of a double-sided face. */
 	memset(w->silhouette, 0, nv);
 	for (size_t t = 0; t < m->triangle_count; t++) {
 		const uint32_t *v = m->triangles + 3 * t;
 		double n[3];
+		if (w->repeat && w->repeat[t])
+			continue;
 		vdt_mesh_face_cross(m, t, n);
+		if (n[0] == 0 && n[1] == 0 && n[2] == 0)
+			continue;
 		double f = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
 		uint8_t side = f > 0 ? 1 : f < 0 ? 2 : 3;
 		for (int k = 0; k < 3; k++)
@@ -693,6 +701,22 @@ cameras_copy(struct vdt_cameras *dst, const struct vdt_cameras *src)
 	return 0;
 }
 
+/* The faces on the same three vertices as an earlier one, either way
+ * round, into *repeat (one byte per face, malloc'ed). Returns 0 or -1. */
+static int
+repeats(const struct vdt_mesh *m, uint8_t **repeat)
+{
+	uint32_t *start, *fan;
+
+	if ((*repeat = calloc(m->triangle_count + 1, 1)) == NULL ||
+	    vdt_topo_fans(m->vertex_count, m->triangles, m->triangle_count, &start, &fan) != 0)
+		return -1;
+	vdt_topo_drop_repeats(m->triangles, m->triangle_count, start, fan, *repeat, 0);
+	free(start);
+	free(fan);
+	return 0;
+}
+
 int
 vdt_labl_compute(const struct vdt_mesh *m, const struct vdt_cameras *cams,
                  const struct vdt_sil_opts *o, struct vdt_labl *out,
@@ -713,7 +737,8 @@ vdt_labl_compute(const struct vdt_mesh *m, const struct vdt_cameras *cams,
 	if ((rc = vdt_sil_work_alloc(&w, o->res, nv, err)) != 0)
 		return rc;
 	out->labels = malloc(cams->count * nv + 1);
-	if (out->labels == NULL || cameras_copy(&out->cams, cams) != 0) {
+	if (out->labels == NULL || cameras_copy(&out->cams, cams) != 0 ||
+	    repeats(m, &w.repeat) != 0) {
 		vdt_sil_work_free(&w);
 		vdt_labl_free(out);
 		return vdt_err_set(err, VDT_ENOMEM, "out of memory for %zu x %zu labels",

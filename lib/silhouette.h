@@ -108,6 +108,10 @@ struct vdt_sil_work {
 	float *dist;             /* res * res */
 	uint8_t *silhouette;     /* vertex_count */
 	float *xy;               /* 2 * vertex_count */
+	uint8_t *repeat;         /* per face, or NULL: nonzero for a face on
+	                            the same three vertices as an earlier one
+	                            (the back of a double-sided face), which
+	                            does not vote for silhouette vertices */
 	double *tmp;             /* scratch of the transforms */
 	int *itmp;
 };
@@ -120,7 +124,8 @@ void vdt_sil_work_free(struct vdt_sil_work *w);
  * Run section 3.1 for the camera at unit direction dir: project, rasterise
  * every face conservatively (a cell is touched when the projected triangle
  * and the cell's square overlap at all), find silhouette vertices (a face
- * exactly edge-on counts as both front and back facing), turn the cells of
+ * exactly edge-on counts as both front and back facing; one of no area,
+ * which faces no way, and w->repeat's, as neither), turn the cells of
  * their faces into background unless external is set (3.1.2's first case:
  * the external contour only; cells keeps the CONTOUR bits either way),
  * run the transform `dt`, and write to

@@ -165,3 +165,22 @@ load helpers
 	[ "$(wc -l <"$TMP/b.txt")" -eq "$(($(wc -l <"$TMP/a.txt") + 1))" ]
 	head -n -1 "$TMP/b.txt" | cmp - "$TMP/a.txt"
 }
+
+@test "vdt-silhouette: a face of no area, or the back of a double-sided face, makes no contour" {
+	# the sphere with one more face, on two corners, at the front
+	awk 'NR == 2 { $2++ } { print } END { print "3 200 200 1161" }' \
+		"$SAMPLES/sphere.off" >"$TMP/degen.off"
+	"$BIN/vdt-silhouette" -q --view 0,0,1 "$SAMPLES/sphere.off" >"$TMP/a.txt"
+	"$BIN/vdt-silhouette" -q --view 0,0,1 "$TMP/degen.off" >"$TMP/b.txt"
+	[ "$(sed -n 200p "$TMP/a.txt")" != 0 ]
+	cmp "$TMP/a.txt" "$TMP/b.txt"
+	# the open sheet with every face given again the other way round
+	awk 'NR == 2 { n = $1; f = $2; $2 *= 2 } { print }
+	     NR > 2 + n { r[NR] = $1 " " $2 " " $4 " " $3 }
+	     END { for (i = 3 + n; i <= 2 + n + f; i++) print r[i] }' \
+		"$SAMPLES/open.off" >"$TMP/sided.off"
+	"$BIN/vdt-silhouette" -q --view 0,0,1 "$SAMPLES/open.off" >"$TMP/c.txt"
+	"$BIN/vdt-silhouette" -q --view 0,0,1 "$TMP/sided.off" >"$TMP/d.txt"
+	[ "$(sort -g "$TMP/c.txt" | tail -1)" != 0 ]
+	cmp "$TMP/c.txt" "$TMP/d.txt"
+}
