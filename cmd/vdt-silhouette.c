@@ -109,6 +109,21 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	refuse_unwritable(cl->out);
 }
 
+/* -v's line: label_s labelling, reading included, read_s and write_s. */
+static void
+statistics(const struct cmdline *cl, const struct vdt_mesh *m, const struct vdt_labl *l,
+           uint64_t label_bytes, double label_s, double read_s, double write_s)
+{
+	fprintf(stderr,
+	        "%s: vertices=%zu triangles=%zu cameras=%zu resolution=%d "
+	        "contours=%s label_bytes=%llu label_s=%.3f min_within_1px_pct=%.1f "
+	        "min_within_2px_pct=%.1f read_s=%.3f write_s=%.3f peak_mb=%.1f\n",
+	        progname, m->vertex_count, m->triangle_count, l->cams.count, cl->s.res,
+	        cl->s.external ? "external" : "all", (unsigned long long)label_bytes, label_s,
+	        100 * vdt_labl_min_share(l, 1), 100 * vdt_labl_min_share(l, 2), read_s, write_s,
+	        peak_rss_bytes() / 1048576.0);
+}
+
 static int
 run(struct cmdline *cl)
 {
@@ -172,6 +187,11 @@ run(struct cmdline *cl)
 				rc = fail("cannot write", cl->out, &err);
 		}
 		free(v);
+		/* (the size of the chunk the labels would take) */
+		if (rc == EXIT_OK && cl->verbose && vdt_labl_encode(&l, &data, &len, &err) == 0) {
+			free(data);
+			statistics(cl, &m, &l, len, t1 - t0, tr - t0, vdt_seconds() - t1);
+		}
 		goto out;
 	}
 	vdt_chunks_remove(&extra, VDT_CHUNK_LABL);
@@ -184,13 +204,7 @@ run(struct cmdline *cl)
 	}
 	notes_flush();
 	if (cl->verbose)
-		fprintf(stderr, "%s: vertices=%zu triangles=%zu cameras=%zu resolution=%d "
-		        "contours=%s label_bytes=%llu label_s=%.3f min_within_1px_pct=%.1f "
-		        "min_within_2px_pct=%.1f read_s=%.3f write_s=%.3f peak_mb=%.1f\n", progname,
-		        m.vertex_count, m.triangle_count, cams.count, cl->s.res,
-		        cl->s.external ? "external" : "all", (unsigned long long)len, t1 - t0,
-		        100 * vdt_labl_min_share(&l, 1), 100 * vdt_labl_min_share(&l, 2), tr - t0,
-		        vdt_seconds() - t1, peak_rss_bytes() / 1048576.0);
+		statistics(cl, &m, &l, len, t1 - t0, tr - t0, vdt_seconds() - t1);
 out:
 	/* The images and the labels stay staged until all are written: a
 	 * failed run replaces nothing, and leaves nothing behind. */

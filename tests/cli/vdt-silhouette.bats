@@ -184,3 +184,17 @@ load helpers
 	[ "$(sort -g "$TMP/c.txt" | tail -1)" != 0 ]
 	cmp "$TMP/c.txt" "$TMP/d.txt"
 }
+
+@test "vdt-silhouette -v gives its line with --view too" {
+	run "$BIN/vdt-silhouette" -v -a 45 -r 32 "$SAMPLES/torus.off" -o "$TMP/a.vdl"
+	[ "$status" -eq 0 ]
+	one_line
+	local line="${output#vdt-silhouette: }"
+	run "$BIN/vdt-silhouette" -v -a 45 -r 32 --view 0,0,1 "$SAMPLES/torus.off" -o "$TMP/a.txt"
+	[ "$status" -eq 0 ]
+	one_line
+	[[ "$output" == "vdt-silhouette: vertices=1152 triangles=2304 cameras="*" label_bytes="*" peak_mb="* ]]
+	# the same counts and label size as without --view
+	[ "${output%% label_s=*}" = "vdt-silhouette: ${line%% label_s=*}" ]
+	[ "$(wc -l <"$TMP/a.txt")" -eq 1152 ]
+}
