@@ -133,6 +133,7 @@ statistics(struct cmdline *cl, const struct vdt_mesh *in, const struct vdt_frame
 {
 	struct vdt_deform_summary s = {0};
 	struct vdt_err err = {0};
+	char measured[160] = "";
 
 	if (vdt_deform_measure_all(in, fr, r, cl->samples, &s, &err) != 0)
 		fprintf(stderr, "%s: cannot measure: %s\n", progname, err.msg);
@@ -141,15 +142,19 @@ statistics(struct cmdline *cl, const struct vdt_mesh *in, const struct vdt_frame
 		        "hausdorff_pct=%.6g shared=%.4f\n", progname, f, s.frames[f].vertices,
 		        s.frames[f].triangles, s.frames[f].rms_pct, s.frames[f].hausdorff_pct,
 		        s.frames[f].shared);
-	fprintf(stderr, "%s: method=%s frames=%zu in_vertices=%zu in_triangles=%zu welded=%zu "
-	        "out_vertices=%zu out_triangles=%zu unified=%zu replayed=%zu mean_rms_pct=%.6g "
-	        "worst_rms_pct=%.6g mean_shared=%.4f min_shared=%.4f quadric_mb=%.1f "
-	        "read_s=%.3f simplify_s=%.3f write_s=%.3f peak_mb=%.1f\n", progname,
-	        vdt_deform_method_name(cl->d.method), r->frame_count, in->vertex_count,
+	/* (left out when the frames could not be measured, not given as 0) */
+	if (s.frames)
+		snprintf(measured, sizeof(measured),
+		         " mean_rms_pct=%.6g worst_rms_pct=%.6g mean_shared=%.4f min_shared=%.4f",
+		         s.mean_rms_pct, s.worst_rms_pct, s.mean_shared, s.min_shared);
+	fprintf(stderr,
+	        "%s: method=%s frames=%zu in_vertices=%zu in_triangles=%zu welded=%zu "
+	        "out_vertices=%zu out_triangles=%zu unified=%zu replayed=%zu%s quadric_mb=%.1f "
+	        "read_s=%.3f simplify_s=%.3f write_s=%.3f peak_mb=%.1f\n",
+	        progname, vdt_deform_method_name(cl->d.method), r->frame_count, in->vertex_count,
 	        in->triangle_count, r->welded, r->live_vertices[0],
-	        r->tri_start[1] - r->tri_start[0], r->unified, r->replayed, s.mean_rms_pct,
-	        s.worst_rms_pct, s.mean_shared, s.min_shared, r->quadric_bytes / 1048576.0, sec[0],
-	        sec[1], sec[2], peak_rss_bytes() / 1048576.0);
+	        r->tri_start[1] - r->tri_start[0], r->unified, r->replayed, measured,
+	        r->quadric_bytes / 1048576.0, sec[0], sec[1], sec[2], peak_rss_bytes() / 1048576.0);
 	free(s.frames);
 }
 

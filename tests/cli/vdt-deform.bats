@@ -94,6 +94,18 @@ setup() {
 	[ "$(printf '%s\n' "$output" | wc -l)" -eq 7 ]
 }
 
+@test "vdt-deform -v leaves the error keys out when a frame cannot be measured" {
+	printf 'OFF\n4 2 0\n0 0 0\n0 0 0\n0 0 0\n0 0 0\n3 0 1 2\n3 0 2 3\n' >"$TMP/g0.off"
+	printf 'OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n' >"$TMP/g1.off"
+	run "$BIN/vdt-deform" -v -q -t 1 "$TMP/g0.off" "$TMP/g1.off" -o "$TMP/out%d.off"
+	[ "$status" -eq 0 ]
+	[ "$(printf '%s\n' "$output" | wc -l)" -eq 2 ]
+	[[ "${lines[0]}" == "vdt-deform: cannot measure: frame 0: "* ]]
+	[[ "${lines[1]}" == "vdt-deform: method=ours frames=2 "*" peak_mb="* ]]
+	[[ "${lines[1]}" != *_rms_pct=* ]]
+	[[ "${lines[1]}" != *_shared=* ]]
+}
+
 @test "vdt-deform on a single frame equals vdt-qslim" {
 	"$BIN/vdt-deform" --vertices 100 "$SAMPLES/sphere.off" -o "$TMP/d.off"
 	"$BIN/vdt-qslim" --no-fit -t "$(off_faces "$TMP/d.off")" "$SAMPLES/sphere.off" -o "$TMP/q.off"
