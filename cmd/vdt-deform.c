@@ -207,11 +207,13 @@ note_attributes(const struct cmdline *cl, const struct vdt_mesh *in)
 
 /*
  * No file written may be one read: a pattern for -o naming the input
- * frames would replace the animation with its simplification. Compared
- * once the frames are read, when their number is known.
+ * frames would replace the animation with its simplification. And every
+ * frame's file can be made, as the first's was before reading: not found
+ * out after the work (a directory where frame 5 goes). Checked once the
+ * frames are read, when their number is known.
  */
 static void
-refuse_frames_over_inputs(const struct cmdline *cl, size_t frames)
+check_frame_outputs(const struct cmdline *cl, size_t frames)
 {
 	char **in = cl->in, **out = NULL;
 	size_t nin = cl->nin, nout = 1;
@@ -241,6 +243,8 @@ refuse_frames_over_inputs(const struct cmdline *cl, size_t frames)
 		snprintf(a, sizeof(a), "%s", out ? out[o] : cl->out);
 		snprintf(b, sizeof(b), "%s", in[i]);
 	}
+	for (size_t f = 1; o < 0 && out && f < nout; f++)
+		refuse_unwritable(out[f]);
 	for (size_t f = 0; out && f < nout; f++)
 		free(out[f]);
 	free(out);
@@ -273,7 +277,7 @@ run(struct cmdline *cl)
 	if (fr.frame_count > 1 && !vdt_deform_writes_frames(cl->out, &cl->w))
 		usage_error("%zu frames need a pattern with one %%d of width 20 at most "
 		            "(out/%%03d.obj) or a vdt stream for -o", fr.frame_count);
-	refuse_frames_over_inputs(cl, fr.frame_count);
+	check_frame_outputs(cl, fr.frame_count);
 	drop_materials(cl->in[0], &extra, cl->quiet);
 	vdt_chunks_drop_vertex_data(&extra);
 	cl->d.progress = progress_start(cl->quiet);

@@ -659,18 +659,36 @@ PY
 	[ "$output" = "vdt-deform: cannot read '$TMP/d': is a directory" ]
 }
 
+@test "vdt-deform names a later frame it cannot write once the frames are read, before the work" {
+	# frames that fail as they are simplified: the output is said first
+	printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n' >"$TMP/z0.off"
+	cp "$TMP/z0.off" "$TMP/z1.off"
+	cp "$TMP/z0.off" "$TMP/z2.off"
+	mkdir -p "$TMP/o/001.off"
+	run "$BIN/vdt-deform" -t 1 "$TMP/z%d.off" -o "$TMP/o/%03d.off"
+	[ "$status" -eq 1 ]
+	one_line
+	[ "$output" = "vdt-deform: cannot write '$TMP/o/001.off': Is a directory" ]
+	[ "$(ls -A "$TMP/o")" = 001.off ]
+	rmdir "$TMP/o/001.off"
+	run "$BIN/vdt-deform" -t 1 "$TMP/z%d.off" -o "$TMP/o/%03d.off"
+	[ "$status" -eq 2 ]
+	[[ "$output" == *"cannot simplify"*"zero area"* ]]
+}
+
 @test "vdt-deform: a run that fails on a later frame replaces none of the earlier frames' files" {
 	"$MKANIM" -d twist -n 6 "$SAMPLES/torus.off" -o "$TMP/f%02d.off"
-	mkdir -p "$TMP/p/004.obj"
+	mkdir -p "$TMP/p"
+	ln -s /dev/full "$TMP/p/004.obj" # (fails as it is written, not before)
 	echo old >"$TMP/p/001.obj"
 	run "$BIN/vdt-deform" -r 0.3 "$TMP/f%02d.off" -o "$TMP/p/%03d.obj"
 	[ "$status" -eq 1 ]
 	one_line
-	[[ "$output" == *"004.obj"*"Is a directory"* ]]
+	[[ "$output" == *"004.obj"*"No space left on device"* ]]
 	# what the names held stays; nothing new, nor hidden, is left
 	[ "$(cat "$TMP/p/001.obj")" = old ]
 	[ "$(ls -A "$TMP/p" | tr '\n' ' ')" = "001.obj 004.obj " ]
-	rmdir "$TMP/p/004.obj"
+	rm "$TMP/p/004.obj"
 	"$BIN/vdt-deform" -q -r 0.3 "$TMP/f%02d.off" -o "$TMP/p/%03d.obj"
 	[ "$(ls "$TMP/p" | wc -l)" -eq 6 ]
 	head -n 1 "$TMP/p/001.obj" | grep -q '^# written by vdt'
