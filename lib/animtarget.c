@@ -136,6 +136,13 @@ vdt_anim_deform_triangles(const struct vdt_mesh *m, const struct vdt_frames *fr,
 		}
 		v = vdt_anim_vertices_for(nv, nf, triangles);
 		d.target_vertices = v > o->target_vertices ? v : o->target_vertices;
+		/* Frames that end in contractions of their own (a tail) stop
+		 * at the triangle count itself: at the vertex count, each kept
+		 * what its borders left (an open sheet's second frame at 971 of
+		 * 1001 triangles). With a vertex target of the caller's too,
+		 * whichever comes first. */
+		if (o->target_vertices == 0)
+			d.target_triangles = triangles;
 	}
 	rc = vdt_deform(m, fr, &d, res, err);
 	for (int again = 3; rc == 0 && triangles > 0 && again > 0; again--) {

@@ -991,8 +991,8 @@ simplify_frame(const struct anim *a, size_t f, const struct vdt_contraction *rec
 		if (c.rim.bits != NULL)
 			ops.affected = frame_affected;
 		vdt_contract_defaults(&co);
-		co.target_triangles = SIZE_MAX;
-		co.target_vertices = target;
+		co.target_triangles = o->target_triangles ? o->target_triangles : SIZE_MAX;
+		co.target_vertices = o->target_triangles ? 0 : target;
 		co.max_normal_angle = o->max_normal_angle;
 		co.keep_parts = 1;
 		co.keep_holes = 1; /* an animated model's openings are meant */
@@ -1046,7 +1046,7 @@ simplify_frame(const struct anim *a, size_t f, const struct vdt_contraction *rec
 			live++;
 		}
 	res->live_vertices[f] = live;
-	if (live > target)
+	if (o->target_triangles ? nt > o->target_triangles : live > target)
 		reached = 0;
 	if (!reached)
 		res->reached_target = 0;

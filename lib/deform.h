@@ -39,6 +39,11 @@ enum vdt_deform_method {
 struct vdt_deform_opts {
 	enum vdt_deform_method method;
 	size_t target_vertices;  /* stop at this many vertices (0: use ratio) */
+	size_t target_triangles; /* nonzero: each frame's own contractions
+	                            after the shared ones (its tail) stop at
+	                            this many triangles instead of at the
+	                            vertex target, which the shared order
+	                            still takes (vdt_anim_deform_triangles) */
 	double target_ratio;     /* or this fraction of the (welded) input */
 	double k1;               /* deformation weight (section 3.1), >= 0 */
 	double k2;               /* feature weight (section 3.2), in [0, 1] */

@@ -3,6 +3,7 @@
 #include <stddef.h>
 #include <setjmp.h>
 #include <stdint.h>
+#include <string.h>
 #include <cmocka.h>
 
 #include "../../lib/animtarget.h"
@@ -184,6 +185,48 @@ triangles_on_an_open_mesh(void **state)
 	assert_int_equal(o.triangles, 40);
 }
 
+/*
+ * Frames that end in contractions of their own (ours, independent) stop
+ * at the triangle count itself, each frame: a 16 x 16 grid (512
+ * triangles), flat in frame 0 and curled up in frame 1, whose borders
+ * then take other contractions. At the vertex count alone, one frame
+ * kept 96 triangles for 100.
+ */
+static void
+every_frame_at_the_target(void **state)
+{
+	static const enum vdt_deform_method methods[] = {VDT_DEFORM_OURS, VDT_DEFORM_INDEPENDENT};
+	struct vdt_mesh m;
+	struct vdt_frames fr;
+	struct vdt_deform_opts o;
+	struct vdt_deform_result r;
+
+	(void)state;
+	shape_grid(&m, 16);
+	assert_int_equal(vdt_frames_alloc(&fr, 2, m.vertex_count, NULL), 0);
+	for (size_t v = 0; v < m.vertex_count; v++) {
+		const float *p = m.positions + 3 * v;
+		float *q = fr.positions + 3 * (m.vertex_count + v);
+		memcpy(fr.positions + 3 * v, p, 3 * sizeof(float));
+		q[0] = p[0];
+		q[1] = p[1];
+		q[2] = 0.3f * p[0] * p[0] + 0.2f * p[0] * p[1];
+	}
+	for (int i = 0; i < 2; i++) {
+		vdt_deform_defaults(&o);
+		o.method = methods[i];
+		assert_int_equal(vdt_anim_deform_triangles(&m, &fr, &o, 100, &r, NULL), 0);
+		for (size_t f = 0; f < 2; f++) {
+			size_t t = r.tri_start[f + 1] - r.tri_start[f];
+			assert_in_range(t, 99, 100);
+		}
+		assert_true(r.reached_target);
+		vdt_deform_result_free(&r);
+	}
+	vdt_frames_free(&fr);
+	vdt_mesh_free(&m);
+}
+
 int
 main(void)
 {
@@ -193,6 +236,7 @@ main(void)
 		cmocka_unit_test(vertices_again_after_a_boundary),
 		cmocka_unit_test(triangles_on_a_closed_mesh),
 		cmocka_unit_test(triangles_on_an_open_mesh),
+		cmocka_unit_test(every_frame_at_the_target),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
