@@ -137,8 +137,9 @@ struct anim {
 	uint32_t *open;      /* open edges: face, a, b (the same every frame) */
 	size_t nopen;
 	uint8_t *locked;     /* on an edge of three or more faces */
-	double *frame;       /* 4 per frame: the centre of its quadrics and
-	                        the unit of its costs (frame_centre) */
+	double *frame;       /* 5 per frame: the centre of its quadrics, the
+	                        unit of its costs (frame_centre) and the
+	                        diagonal of its box */
 };
 
 static void
@@ -153,13 +154,12 @@ anim_free(struct anim *a)
 	free(a->frame);
 }
 
-
 /*
  * Frame f's centre and unit (frame_centre) into c[0..3], from the first nt
  * of a's faces as vdt_qslim takes them (before repeated faces are dropped):
  * the centre of the box of its faces, or of the bulk of its surface when a
  * few far faces stretch that box (vdt_mesh_bulk_box), and the unit of that
- * box's diagonal.
+ * box's diagonal, which goes in c[4].
  */
 static void
 frame_box(const struct anim *a, size_t nt, size_t f, double c[4])
@@ -173,7 +173,8 @@ frame_box(const struct anim *a, size_t nt, size_t f, double c[4])
 		vdt_mesh_bulk_box(&m, &box, &box);
 	for (int k = 0; k < 3; k++)
 		c[k] = 0.5 * (box.min[k] + box.max[k]);
-	c[3] = vdt_quadric_unit(vdt_bbox_diagonal(&box));
+	c[4] = vdt_bbox_diagonal(&box);
+	c[3] = vdt_quadric_unit(c[4]);
 }
 
 /*
@@ -225,7 +226,7 @@ anim_build(struct anim *a, const struct vdt_mesh *m, const struct vdt_frames *fr
 	a->pos = malloc(3 * nw * a->nf * sizeof(float));
 	a->tri = malloc((3 * nt + 1) * sizeof(uint32_t));
 	a->locked = calloc(nw + 1, 1);
-	a->frame = malloc(4 * a->nf * sizeof(*a->frame));
+	a->frame = malloc(5 * a->nf * sizeof(*a->frame));
 	if (!a->pos || !a->tri || !a->locked || !a->frame)
 		goto out;
 	for (size_t f = 0; f < a->nf; f++)
@@ -235,7 +236,7 @@ anim_build(struct anim *a, const struct vdt_mesh *m, const struct vdt_frames *fr
 	for (size_t i = 0; i < 3 * nt; i++)
 		a->tri[i] = res->canon[m->triangles[i]];
 	for (size_t f = 0; f < a->nf; f++)
-		frame_box(a, nt, f, a->frame + 4 * f);
+		frame_box(a, nt, f, a->frame + 5 * f);
 	if (vdt_topo_fans(nw, a->tri, nt, &fs, &fan) != 0)
 		goto out;
 	vdt_topo_drop_repeats(a->tri, nt, fs, fan, dead, 1);
@@ -273,8 +274,41 @@ out:
 static double
 frame_centre(const struct anim *a, size_t f, double c[3])
 {
-	memcpy(c, a->frame + 4 * f, 3 * sizeof(double));
-	return a->frame[4 * f + 3];
+	memcpy(c, a->frame + 5 * f, 3 * sizeof(double));
+	return a->frame[5 * f + 3];
+}
+
+/*
+ * Whether frame f is a point, or so nearly one (a model growing from
+ * nothing) that the validity tests, in floats, fail on all its faces: its
+ * diagonal under VDT_DEFORM_POINT_FRAME of the largest frame's.
+ */
+#define VDT_DEFORM_POINT_FRAME 1e-6
+
+static int
+point_frame(const struct anim *a, size_t f)
+{
+	double most = 0;
+
+	for (size_t g = 0; g < a->nf; g++)
+		most = fmax(most, a->frame[5 * g + 4]);
+	return !(a->frame[5 * f + 4] >= VDT_DEFORM_POINT_FRAME * most);
+}
+
+/* The frame the shared order takes its geometry from (its validity
+ * tests, its tie-breaks, the unit of its costs): the first, unless that
+ * is a point frame, when the largest. */
+static size_t
+reference_frame(const struct anim *a)
+{
+	size_t best = 0;
+
+	if (!point_frame(a, 0))
+		return 0;
+	for (size_t f = 1; f < a->nf; f++)
+		if (a->frame[5 * f + 4] > a->frame[5 * best + 4])
+			best = f;
+	return best;
 }
 
 static void
@@ -577,7 +611,9 @@ struct uctx {
 	struct qd *q;        /* nv * nf, vertex-major */
 	float *cur;          /* 3 * nv * nf, vertex-major */
 	double *centre;      /* 3 per frame */
-	double unit;         /* of the costs: the first frame's (frame_centre) */
+	size_t ref;          /* the frame of the engine's positions
+	                        (reference_frame) */
+	double unit;         /* of the costs: that frame's (frame_centre) */
 	double *ec;          /* scratch, nf */
 	struct flist *fw;    /* per vertex, or NULL */
 	double k1, k2;
@@ -663,9 +699,9 @@ unified_cost(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 		e += frame_sag(&c->rim, c->sag, a, b, v, c->centre + 3 * f, c->cur + 3 * f, 3 * nf);
 		c->ec[f] = e;
 		exact &= vdt_quadric_negligible(&qm, v, e);
-		if (f == 0)
+		if (f == c->ref)
 			for (int k = 0; k < 3; k++)
-				pos[k] = v[k] + c->centre[k];
+				pos[k] = v[k] + c->centre[3 * f + k];
 	}
 	double e;
 	if (c->method == VDT_DEFORM_FIRST)
@@ -674,10 +710,11 @@ unified_cost(void *vc, uint32_t a, uint32_t b, int fixed, const float pa[3],
 		e = vdt_deform_cost(c->ec, nf, 0, 0, 0);
 	else
 		e = vdt_deform_cost(c->ec, nf, c->fw ? pair_fw(c, a, b) : 0, c->k1, c->k2);
-	/* equal costs: the pair shorter in the first frame first; and no
+	/* equal costs: the pair shorter in the reference frame first; and no
 	 * error in any frame before any error */
-	return vdt_quadric_ranked(e, exact, c->cur + 3 * a * nf, c->cur + 3 * b * nf,
-	                          qd_trace(&c->q[a * nf], &c->q[b * nf])) *
+	return vdt_quadric_ranked(e, exact, c->cur + 3 * (a * nf + c->ref),
+	                          c->cur + 3 * (b * nf + c->ref),
+	                          qd_trace(&c->q[a * nf + c->ref], &c->q[b * nf + c->ref])) *
 	       c->unit;
 }
 
@@ -691,7 +728,7 @@ unified_merged(void *vc, uint32_t keep, uint32_t gone, const double pos[3], doub
 	(void)cost;
 	for (size_t f = 0; f < nf; f++) {
 		float *pk = c->cur + 3 * (keep * nf + f);
-		if (f == 0) {
+		if (f == c->ref) {
 			for (int k = 0; k < 3; k++)
 				pk[k] = (float)pos[k];
 		} else if (!c->a->locked[keep]) {
@@ -1198,6 +1235,7 @@ vdt_deform(const struct vdt_mesh *m, const struct vdt_frames *fr,
 		u.a = &a;
 		u.method = o->method;
 		u.nf = o->method == VDT_DEFORM_FIRST ? 1 : nf;
+		u.ref = u.nf > 1 ? reference_frame(&a) : 0;
 		u.k1 = o->k1;
 		u.k2 = o->k2;
 		res->quadric_bytes = u.nf * nv * (sizeof(struct qd) + 3 * sizeof(float));
@@ -1210,7 +1248,7 @@ vdt_deform(const struct vdt_mesh *m, const struct vdt_frames *fr,
 			goto nomem;
 		for (size_t f = 0; f < u.nf; f++) {
 			double unit = frame_centre(&a, f, u.centre + 3 * f);
-			if (f == 0)
+			if (f == u.ref)
 				u.unit = unit;
 			frame_quadrics(&a, f, u.centre + 3 * f, o->boundary_weight, o->area_floor,
 			               u.q + f, u.nf);
@@ -1227,7 +1265,7 @@ vdt_deform(const struct vdt_mesh *m, const struct vdt_frames *fr,
 		if (u.rim.bits != NULL)
 			ops.affected = unified_affected;
 		um.vertex_count = nv;
-		um.positions = a.pos;
+		um.positions = a.pos + 3 * nv * u.ref;
 		um.triangle_count = a.nt;
 		um.triangles = a.tri;
 		vdt_contract_defaults(&co);
@@ -1272,8 +1310,11 @@ vdt_deform(const struct vdt_mesh *m, const struct vdt_frames *fr,
 	             (o->method == VDT_DEFORM_OURS && !ur.reached_target);
 	for (size_t f = 0; f < nf; f++) {
 		size_t ntri = 0;
-		if ((rc = simplify_frame(&a, f, ur.records, nrep, finish, target, o, &s, res,
-		                         &ntri, err)) != 0)
+		/* (a point frame fails every test of a tail: it follows the
+		 * whole shared order instead) */
+		int point = o->method != VDT_DEFORM_INDEPENDENT && point_frame(&a, f);
+		if ((rc = simplify_frame(&a, f, ur.records, point ? ur.record_count : nrep,
+		                         finish && !point, target, o, &s, res, &ntri, err)) != 0)
 			goto fail;
 		res->tri_start[f + 1] = res->tri_start[f] + ntri;
 		vdt_progress_report(o->progress, "frames", (double)(f + 1) / (double)nf);

@@ -106,6 +106,31 @@ setup() {
 	[[ "${lines[1]}" != *_shared=* ]]
 }
 
+@test "vdt-deform simplifies a model growing from a point, every frame to the target" {
+	# a wavy 10 x 10 grid: frame 0 a point (or a trillionth of the
+	# size), then full size
+	for s in 0 1 1.1 1e-12; do
+		awk -v s=$s 'BEGIN { n = 10; print "OFF"; print (n + 1)^2, 2 * n * n, 0
+			for (i = 0; i <= n; i++) for (j = 0; j <= n; j++)
+				printf "%.9g %.9g %.9g\n", s * j, s * i, s * .1 * sin(j) * cos(i)
+			for (i = 0; i < n; i++) for (j = 0; j < n; j++) {
+				a = i * (n + 1) + j
+				printf "3 %d %d %d\n3 %d %d %d\n", a, a + 1, a + n + 2, a, a + n + 2, a + n + 1 } }' \
+			>"$TMP/g$s.off"
+	done
+	for first in 0 1e-12; do
+		for m in ours dsd; do
+			run "$BIN/vdt-deform" -r 0.25 --method $m "$TMP/g$first.off" "$TMP/g1.off" \
+				"$TMP/g1.1.off" -o "$TMP/o%d.off"
+			[ "$status" -eq 0 ]
+			[ -z "$output" ]
+			for f in 0 1 2; do
+				[ "$(sed -n 2p "$TMP/o$f.off" | cut -d' ' -f1)" -eq 31 ]
+			done
+		done
+	done
+}
+
 @test "vdt-deform on a single frame equals vdt-qslim" {
 	"$BIN/vdt-deform" --vertices 100 "$SAMPLES/sphere.off" -o "$TMP/d.off"
 	"$BIN/vdt-qslim" --no-fit -t "$(off_faces "$TMP/d.off")" "$SAMPLES/sphere.off" -o "$TMP/q.off"
