@@ -195,9 +195,13 @@ run(struct cmdline *cl)
 	                               : floor(cl->ratio * (double)st.triangles_in + 0.5);
 	if (!cl->quiet && aim > 0 && (double)st.triangles_out < aim &&
 	    (double)st.triangles_in > aim)
-		fprintf(stderr, "%s: note: '%s': clustering left %zu triangles, fewer than the %.0f "
-		        "asked for: parts smaller than a cell vanish (-s or -g give finer cells)\n",
-		        progname, input_name(cl->in), st.triangles_out, aim);
+		fprintf(stderr,
+		        "%s: note: '%s': clustering left %zu triangles, fewer than the %.0f "
+		        "asked for: %s\n",
+		        progname, input_name(cl->in), st.triangles_out, aim,
+		        g.capped ? "the memory limit made the cells coarser (a larger -m gives "
+		                   "finer ones)"
+		                 : "parts smaller than a cell vanish (-s or -g give finer cells)");
 	if (cl->verbose)
 		fprintf(stderr, "%s: in_triangles=%llu in_attributes=%s streamed=%d cells=%zu boundary_cells=%zu "
 		        "out_vertices=%zu out_triangles=%zu grid=%ux%ux%u cell_size=%.6g "

@@ -1257,13 +1257,16 @@ vdt_cluster_choose(const struct vdt_cluster_choice *ch, struct vdt_tsource *ts,
 		return rc;
 	if (ch->target > 0 || (ch->size == 0 && ch->dims[0] == 0)) {
 		uint32_t r = vdt_cluster_resolution(&smp, want), d[3] = {0, 0, 0};
+		int capped = 0;
 		if (ch->max_cells && ch->target > 0) {
 			uint32_t rm = vdt_cluster_resolution(&smp, 0.8 * ch->max_cells);
+			capped = rm < r;
 			r = rm < r ? rm : r;
 		}
 		d[0] = r;
 		if ((rc = vdt_cluster_grid_dims(box, d, g, err)) != 0)
 			return rc;
+		g->capped = capped;
 		thin_layers(&smp, box, g);
 		return 0;
 	}

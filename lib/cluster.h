@@ -39,6 +39,8 @@ struct vdt_cluster_grid {
 	double origin[3]; /* corner of cell (0,0,0) */
 	double cell[3];   /* cell size along each axis */
 	uint32_t dims[3];
+	int capped; /* vdt_cluster_choose: 1 if the memory limit made
+	               the grid a target asked for coarser */
 };
 
 /*

@@ -735,10 +735,22 @@ PY
 	[ "$status" -eq 0 ]
 	one_line
 	[[ "$output" == "vdt-cluster: note: '$TMP/tets.off': clustering left "*" triangles, fewer than the 1000 asked for: "* ]]
+	[[ "$output" == *": parts smaller than a cell vanish (-s or -g give finer cells)" ]]
 	run "$BIN/vdt-cluster" -q -t 1000 "$TMP/tets.off" -o "$TMP/t.ply"
 	[ "$output" = "" ]
 	# a target the model cannot reach is no such case
 	run "$BIN/vdt-cluster" -t 100000 "$SAMPLES/sphere.off" -o "$TMP/s.ply"
+	[ "$output" = "" ]
+}
+
+@test "vdt-cluster -t under a memory limit that coarsens its grid blames the limit" {
+	# 1 MB holds 2048 cells: the bunny's grid for 20000 triangles wants more
+	run "$BIN/vdt-cluster" -m 1 -t 20000 "$SAMPLES/fetched/bunny.ply" -o "$TMP/s.ply"
+	[ "$status" -eq 0 ]
+	one_line
+	[[ "$output" == "vdt-cluster: note: '$SAMPLES/fetched/bunny.ply': clustering left "*" triangles, fewer than the 20000 asked for: the memory limit made the cells coarser (a larger -m gives finer ones)" ]]
+	run "$BIN/vdt-cluster" -m 100 -t 20000 "$SAMPLES/fetched/bunny.ply" -o "$TMP/s.ply"
+	[ "$status" -eq 0 ]
 	[ "$output" = "" ]
 }
 

@@ -917,7 +917,7 @@ vertex_numbers_change_nothing(void **state)
 static void
 corner_box(void **state)
 {
-	struct vdt_cluster_grid g = {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}};
+	struct vdt_cluster_grid g = {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, 0};
 	const double tri[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0.25};
 	const double tri2[9] = {1, 1, 0.5, 0, 1, 0, 1, 0, 0};
 	struct vdt_cluster *c;
