@@ -226,9 +226,10 @@ vdt_vtree_prepare(struct vdt_mesh *m, size_t *dropped, struct vdt_err *err)
 		return vdt_err_set(err, VDT_EINVAL, "no face has an area: every vertex on a line "
 		                   "or at one point");
 	/* A node's deviation bound is a sum of distances down the tree, kept
-	 * as a float: a box near the float maximum would overflow it. */
+	 * as a float: a box near the float maximum would overflow it. (The
+	 * surface's box: a vertex no face uses joins no node.) */
 	struct vdt_bbox box;
-	vdt_mesh_bbox(m, &box);
+	vdt_mesh_bbox_faces(m, &box);
 	if (!(vdt_bbox_diagonal(&box) <= VDT_VTREE_MAX_EXTENT))
 		return vdt_err_set(err, VDT_EINVAL, "the bounding box's diagonal %g is past %g, the "
 		                   "largest the tree's 32-bit distances hold", vdt_bbox_diagonal(&box),
@@ -498,6 +499,57 @@ quadrics(const struct vdt_mesh *m, struct vdt_quadric *q)
 	}
 }
 
+/*
+ * The section 4.1 pairs of the vertices the faces use (vdt_octree_pairs),
+ * in m's numbers: a vertex of no face (a scan's stray point) is no part
+ * of the surface, and joined to it would pull a node and its front out to
+ * it (a tetrahedron's coarsest vertex went 70 model sizes out). It stays a
+ * root of its own, which no front draws.
+ */
+static int
+surface_pairs(const struct vdt_mesh *m, uint32_t **pairs, size_t *count, struct vdt_err *err)
+{
+	size_t n = m->vertex_count, used = 0;
+	uint8_t *on = calloc(n + 1, 1);
+	uint32_t *idx = NULL;
+	float *pos = NULL;
+	int rc;
+
+	if (on == NULL)
+		goto nomem;
+	for (size_t i = 0; i < 3 * m->triangle_count; i++)
+		on[m->triangles[i]] = 1;
+	for (size_t v = 0; v < n; v++)
+		used += on[v];
+	if (used == n || used == 0) {
+		free(on);
+		return vdt_octree_pairs(m->positions, n, pairs, count, err);
+	}
+	idx = malloc(used * sizeof(*idx));
+	pos = malloc(3 * used * sizeof(*pos));
+	if (idx == NULL || pos == NULL)
+		goto nomem;
+	used = 0;
+	for (size_t v = 0; v < n; v++)
+		if (on[v]) {
+			memcpy(pos + 3 * used, m->positions + 3 * v, 3 * sizeof(float));
+			idx[used++] = (uint32_t)v;
+		}
+	/* (idx grows: the pairs stay sorted, smaller first) */
+	if ((rc = vdt_octree_pairs(pos, used, pairs, count, err)) == 0)
+		for (size_t i = 0; i < 2 * *count; i++)
+			(*pairs)[i] = idx[(*pairs)[i]];
+	free(on);
+	free(idx);
+	free(pos);
+	return rc;
+nomem:
+	free(on);
+	free(idx);
+	free(pos);
+	return vdt_err_set(err, VDT_ENOMEM, "out of memory for the pairs");
+}
+
 int
 vdt_vtree_build(const struct vdt_mesh *m, const struct vdt_vtree_opts *o,
                 struct vdt_vtree *t, struct vdt_vtree_stats *stats,
@@ -557,7 +609,7 @@ vdt_vtree_build(const struct vdt_mesh *m, const struct vdt_vtree_opts *o,
 		quadrics(m, B.q);
 	}
 
-	if ((rc = vdt_octree_pairs(m->positions, n, &pairs, &npairs, err)) != 0)
+	if ((rc = surface_pairs(m, &pairs, &npairs, err)) != 0)
 		goto fail;
 	st.octree_pairs = npairs;
 	t1 = vdt_seconds();

@@ -270,3 +270,22 @@ load helpers
 	# the same picture, not a flat grey disc
 	awk -F'psnr=' '{ exit !($2 + 0 > 60) }' <<< "$output"
 }
+
+@test "vdt-build leaves a vertex no face uses out of the tree's surface" {
+	# the torus with one more vertex far away: the same fronts as without
+	awk 'NR == 2 { n = $1; print $1 + 1, $2, $3; next } { print }
+	     NR == 2 + n { print "1000 1000 1000" }' "$SAMPLES/torus.off" >"$TMP/stray.off"
+	"$BIN/vdt-build" -q "$SAMPLES/torus.off" -o "$TMP/a.vdt"
+	"$BIN/vdt-build" -q "$TMP/stray.off" -o "$TMP/b.vdt"
+	for p in 8 1e6; do
+		"$BIN/vdt-render" -p $p --eye 0,1,3 "$TMP/a.vdt" --mesh-out "$TMP/a.off"
+		"$BIN/vdt-render" -p $p --eye 0,1,3 "$TMP/b.vdt" --mesh-out "$TMP/b.off"
+		cmp "$TMP/a.off" "$TMP/b.off"
+	done
+	# nor does it count in the tree's extent
+	printf 'OFF\n5 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1e33 0 0\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n' \
+		>"$TMP/far.off"
+	run "$BIN/vdt-build" "$TMP/far.off" -o "$TMP/far.vdt"
+	[ "$status" -eq 0 ]
+	[ -z "$output" ]
+}
