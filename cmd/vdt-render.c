@@ -273,13 +273,16 @@ run(struct cmdline *cl)
 			else if (!cl->quiet)
 				note("%s\n", err.msg);
 		}
-		/* (the tree's roots are the least it can show) */
+		/* (the tree's roots are the least it can show; and with
+		 * --error-factor 0 the contour region is never coarsened) */
 		if (rc == EXIT_OK && cl->o.budget > 0 && R.drawn->triangle_count > cl->o.budget &&
 		    !over_budget && !cl->quiet) {
+			int labels = vdt_render_has_labels(&R) && cl->o.factor == 0;
 			note("note: frame %zu has %zu triangles, more than the budget of %lu (-t): "
-			     "the "
-			     "coarsest front of this tree has that many\n",
-			     i, R.drawn->triangle_count, (unsigned long)cl->o.budget);
+			     "%s\n",
+			     i, R.drawn->triangle_count, (unsigned long)cl->o.budget,
+			     labels ? "--error-factor 0 keeps the contour region at full detail"
+			            : "the coarsest front of this tree has that many");
 			over_budget = 1;
 		}
 		/* Frames stay staged until all are written: a failed run

@@ -124,8 +124,13 @@ vdt_lod_error(void *ctx, uint32_t x)
 	double v[3] = {p[0] - c->v.eye[0], p[1] - c->v.eye[1], p[2] - c->v.eye[2]};
 	double d = norm(v), toeye[3] = {-v[0], -v[1], -v[2]};
 
+	/* Within the bound the node may fill the view and more: at least
+	 * focal pixels (45 degrees off the axis), up to twice that with the
+	 * eye at its centre. Finite, so that a budget can still take it
+	 * coarse (it stayed split at any threshold, and a budget with the
+	 * eye close to the model got three times its triangles). */
 	if (d <= dev)
-		return INFINITY;
+		return c->focal * (2 - d / dev);
 	if (o->frustum) {
 		if (d * dot(v, c->fwd) < -dev)
 			return -1;
@@ -250,10 +255,10 @@ vdt_lod_radius(void *ctx, uint32_t x, double tau)
 {
 	const struct vdt_lod_ctx *L = ctx;
 	const struct vdt_lod *o = L->lod;
-	double dev = L->t->dev[x], r = dev * L->cam->focal / tau;
+	double dev = L->t->dev[x], focal = L->cam->focal, r = dev * focal / tau;
 
 	if (o->frustum || o->backface || o->lighting || o->fovea > 0 || !(tau > 0))
 		return NAN;
-	/* Within dev the error is infinite. */
-	return r > dev ? r : dev;
+	/* Within dev the error runs from focal to twice that. */
+	return tau < focal ? r : dev * fmax(0, 2 - tau / focal);
 }

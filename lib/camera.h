@@ -88,16 +88,17 @@ struct vdt_lod_ctx {
  * The error of node x in pixels: its deviation bound projected at the
  * unified distance of equation 1 (the Euclidean distance to the eye when
  * no facing criterion is on, times (2 + eps) / (1 + n.n' + eps) for
- * each that is); INFINITY when the eye is within the bound, -1
- * when the node is culled. ctx is a struct vdt_lod_ctx; the signature is
+ * each that is); within the bound, where the node may fill the view,
+ * focal times 2 - d / dev (focal to twice that); -1 when the node is
+ * culled. ctx is a struct vdt_lod_ctx; the signature is
  * vdt_front_error_fn's.
  */
 double vdt_lod_error(void *ctx, uint32_t x);
 
 /*
  * The distance from node x within which vdt_lod_error exceeds tau: with the
- * screen-space criterion alone the error is dev focal / d (infinite within
- * dev). NaN when another criterion is on (they also turn with the view).
+ * screen-space criterion alone the error is dev focal / d (focal (2 - d /
+ * dev) within dev). NaN when another criterion is on (they also turn with the view).
  * vdt_front_radius_fn's signature.
  */
 double vdt_lod_radius(void *ctx, uint32_t x, double tau);

@@ -235,6 +235,24 @@ tree() {
 	[ "$status" -eq 2 ]
 }
 
+@test "vdt-render keeps the budget with the eye close to the model, and says why not when it cannot" {
+	tree
+	# nodes whose bound holds the eye took any threshold: 68 for 20
+	for b in 20 100 1000; do
+		run "$BIN/vdt-render" -t $b --eye 1,0,1 "$TMP/t.vdt" --mesh-out "$TMP/m.off"
+		[ "$status" -eq 0 ]
+		[ -z "$output" ]
+		[ "$(off_faces "$TMP/m.off")" -le $b ]
+		[ "$(off_faces "$TMP/m.off")" -gt $((b / 2)) ]
+	done
+	run "$BIN/vdt-render" -t 1 "$TMP/t.vdt" --mesh-out "$TMP/m.off"
+	[ "$output" = "vdt-render: note: frame 0 has 10 triangles, more than the budget of 1 (-t): the coarsest front of this tree has that many" ]
+	"$BIN/vdt-silhouette" -q "$SAMPLES/torus.off" | "$BIN/vdt-build" -q -o "$TMP/l.vdt"
+	run "$BIN/vdt-render" -t 100 --error-factor 0 "$TMP/l.vdt" --mesh-out "$TMP/m.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == "vdt-render: note: frame 0 has "*" triangles, more than the budget of 100 (-t): --error-factor 0 keeps the contour region at full detail" ]]
+}
+
 labelled_sphere() {
 	"$BIN/vdt-silhouette" -a 30 -r 64 "$SAMPLES/sphere.off" -o "$TMP/s.vdl"
 	"$BIN/vdt-build" -q "$TMP/s.vdl" -o "$TMP/s.vdt"
