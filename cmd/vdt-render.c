@@ -57,6 +57,22 @@ frame_name(char name[4096], const char *pattern, size_t i)
 	return name;
 }
 
+/* A side of --size: digits for 1 to 16384, with *end past them; 0 for
+ * anything else (as a number in long, not cut to an int: 4294967297 is
+ * no 1). */
+static int
+image_side(const char *s, char **end)
+{
+	long v;
+
+	*end = (char *)s;
+	if (*s < '0' || *s > '9')
+		return 0;
+	errno = 0;
+	v = strtol(s, end, 10);
+	return errno == 0 && v >= 1 && v <= 16384 ? (int)v : 0;
+}
+
 static void
 parse_cmdline(int argc, char **argv, struct cmdline *cl)
 {
@@ -101,9 +117,9 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 		case O_UP: parse_vec3("--up", optarg, 0, cl->v.up); break;
 		case O_FOV: cl->v.fov = parse_real("--fov", optarg, 1e-3, 179); break;
 		case O_SIZE:
-			cl->v.width = (int)strtol(optarg, &end, 10);
-			if (end == optarg || *end != 'x' || cl->v.width < 1 || cl->v.width > 16384 ||
-			    (cl->v.height = (int)strtol(end + 1, &end, 10)) < 1 || cl->v.height > 16384 || *end)
+			cl->v.width = image_side(optarg, &end);
+			if (*end != 'x' || cl->v.width == 0 ||
+			    (cl->v.height = image_side(end + 1, &end)) == 0 || *end)
 				usage_error("invalid size '%s' for --size: want WxH, 1 to 16384", optarg);
 			break;
 		case O_LIGHT: parse_vec3("--light", optarg, 1, cl->o.ro.light); break;

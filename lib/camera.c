@@ -52,7 +52,13 @@ vdt_camera_setup(struct vdt_camera *c, const struct vdt_view *v, const struct vd
 		return vdt_err_set(err, VDT_EINVAL, "the eye and the point looked at coincide");
 	if (!(dist < INFINITY))
 		return vdt_err_set(err, VDT_EINVAL, "the eye is too far from the point looked at");
-	cross(c->fwd, v->up, c->right);
+	/* Only up's direction counts: scaled first, so that its length
+	 * neither overflows (0,1e160,0 drew nothing) nor underflows. */
+	double up[3], m = fmax(fabs(v->up[0]), fmax(fabs(v->up[1]), fabs(v->up[2])));
+	for (int i = 0; i < 3; i++)
+		up[i] = m > 0 && m < INFINITY ? v->up[i] / m : 0;
+	norm(up);
+	cross(c->fwd, up, c->right);
 	if (!(norm(c->right) > 1e-12))
 		return vdt_err_set(err, VDT_EINVAL, "the up vector is zero or along the view direction");
 	cross(c->right, c->fwd, c->up);

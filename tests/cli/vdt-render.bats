@@ -18,6 +18,7 @@ tree() {
 	tree
 	for bad in "--bogus" "-p 0" "-p x" "-b 0" "-b 1x" "--fovea -1" "--eye 1,2" "--eye 0x1,0,3" "--fov 0x20" "--at a,b,c" \
 	    "--up 1,2,3,4" "--fov 0" "--fov 180" "--size 0x10" "--size 10" "--size 10x10x" \
+	    "--size 4294967297x300" "--size 300x4294967396" "--size 16385x10" "--size +5x5" \
 	    "--light 1" "--light 0,0,0" "-o %d%d.png" "--mesh-out %s.off" "-o %021d.png" \
 	    "-o %05000d.png" "--mesh-out %99999999999999999999d.off"; do
 		run "$BIN/vdt-render" $bad "$TMP/t.vdt" -o "$TMP/x.png"
@@ -251,6 +252,16 @@ tree() {
 	run "$BIN/vdt-render" -t 100 --error-factor 0 "$TMP/l.vdt" --mesh-out "$TMP/m.off"
 	[ "$status" -eq 0 ]
 	[[ "$output" == "vdt-render: note: frame 0 has "*" triangles, more than the budget of 100 (-t): --error-factor 0 keeps the contour region at full detail" ]]
+}
+
+@test "vdt-render takes only the direction of --up, however long" {
+	tree
+	"$BIN/vdt-render" "$TMP/t.vdt" -o "$TMP/ref.png"
+	for up in 0,1e160,0 0,1e-300,0 0,7,0; do
+		run "$BIN/vdt-render" --up $up --compare "$TMP/ref.png" "$TMP/t.vdt" -o /dev/null
+		[ "$status" -eq 0 ]
+		[ "$output" = "frame=0 rmse=0.0000 psnr=inf" ]
+	done
 }
 
 labelled_sphere() {
