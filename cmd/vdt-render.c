@@ -142,6 +142,11 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	cl->in = input_operand(argc, argv, cl->in);
 	if (cl->out == NULL && cl->mesh_out == NULL)
 		usage_error("nothing to write: give -o IMAGE or --mesh-out PATTERN");
+	if (cl->path && strcmp(cl->path, "-") == 0 && strcmp(cl->in, "-") == 0)
+		usage_error("--path - and the tree cannot both come from standard input: give "
+		            "the tree's file name");
+	if (cl->compare && strcmp(cl->compare, "-") == 0)
+		usage_error("--compare reads a reference image file per frame, not standard input");
 	/* (as vdt_image_write and vdt_write would, but before the tree is read) */
 	if (cl->out)
 		refuse_terminal(frame_name(name, cl->out, 0), "image");

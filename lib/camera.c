@@ -197,7 +197,8 @@ int
 vdt_camera_read_path(const char *path, const struct vdt_view *base, struct vdt_view **views,
                      size_t *count, struct vdt_err *err)
 {
-	FILE *f = fopen(path, "r");
+	int std_in = strcmp(path, "-") == 0;
+	FILE *f = std_in ? stdin : fopen(path, "r");
 	char *line = NULL; /* whole lines, however long (a comment may be) */
 	size_t n = 0, cap = 0, lineno = 0, linecap = 0;
 	struct vdt_view *v = NULL;
@@ -246,7 +247,8 @@ vdt_camera_read_path(const char *path, const struct vdt_view *base, struct vdt_v
 		rc = vdt_err_set(err, VDT_EFORMAT, "no views in the path");
 out:
 	free(line);
-	fclose(f);
+	if (!std_in)
+		fclose(f);
 	if (rc != 0) {
 		free(v);
 		return rc;

@@ -55,9 +55,9 @@ int vdt_views_check(const struct vdt_view *v, size_t count, const struct vdt_bbo
 void vdt_camera_project(const struct vdt_camera *c, const float p[3], double out[3]);
 
 /*
- * Read a camera path: one view per line, nine numbers "ex ey ez ax ay az
- * ux uy uz" (eye, point looked at, up); blank lines and lines starting
- * with # are skipped. Field of view and size come from base. *views is
+ * Read a camera path ("-": standard input): one view per line, nine
+ * numbers "ex ey ez ax ay az ux uy uz" (eye, point looked at, up); blank
+ * lines and lines starting with # are skipped. Field of view and size come from base. *views is
  * malloc'ed. Returns 0, VDT_EIO (cannot open), VDT_EFORMAT (naming the
  * line), or VDT_ENOMEM; VDT_EFORMAT also for a path without views.
  */

@@ -264,6 +264,24 @@ tree() {
 	done
 }
 
+@test "vdt-render reads --path - from standard input, and refuses --compare -" {
+	tree
+	printf '0 0 5 0 0 0 0 1 0\n0 1 5 0 0 0 0 1 0\n' >"$TMP/views"
+	"$BIN/vdt-render" --path "$TMP/views" "$TMP/t.vdt" -o "$TMP/f%d.png"
+	"$BIN/vdt-render" --path - "$TMP/t.vdt" -o "$TMP/s%d.png" <"$TMP/views"
+	cmp "$TMP/f0.png" "$TMP/s0.png"
+	cmp "$TMP/f1.png" "$TMP/s1.png"
+	run "$BIN/vdt-render" --path - -o "$TMP/x%d.png" <"$TMP/t.vdt"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-render: --path - and the tree cannot both come from standard input: give the tree's file name" ]
+	run "$BIN/vdt-render" --compare - "$TMP/t.vdt" -o "$TMP/x.png" <"$TMP/f0.png"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == *"--compare reads a reference image file"* ]]
+	[ ! -e "$TMP/x.png" ]
+	[ ! -e "$TMP/x0.png" ]
+}
+
 labelled_sphere() {
 	"$BIN/vdt-silhouette" -a 30 -r 64 "$SAMPLES/sphere.off" -o "$TMP/s.vdl"
 	"$BIN/vdt-build" -q "$TMP/s.vdl" -o "$TMP/s.vdt"
