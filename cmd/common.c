@@ -246,24 +246,89 @@ drop_materials(const char *path, struct vdt_chunks *extra, int quiet)
 	note_dropped(path, VDT_DROPPED_MATERIALS, quiet);
 }
 
+/* The path of file (its first n bytes) relative to the directory of
+ * beside, malloc'ed; NULL when memory runs out. */
+static char *
+path_beside(const char *beside, const char *file, size_t n)
+{
+	const char *slash = strrchr(beside, '/');
+	size_t d = slash ? (size_t)(slash - beside) + 1 : 0;
+	char *p = malloc(d + n + 1);
+
+	if (p == NULL)
+		return NULL;
+	memcpy(p, beside, d);
+	memcpy(p + d, file, n);
+	p[d + n] = '\0';
+	return p;
+}
+
 /* Whether file, relative to the directory of beside (a path), exists:
  * file is its first n bytes. */
 static int
 found_beside(const char *beside, const char *file, size_t n)
 {
-	const char *slash = strrchr(beside, '/');
-	size_t d = slash ? (size_t)(slash - beside) + 1 : 0;
-	char *p = malloc(d + n + 1);
+	char *p = path_beside(beside, file, n);
 	int found;
 
 	if (p == NULL)
 		return 1; /* (no note rather than a wrong one) */
-	memcpy(p, beside, d);
-	memcpy(p + d, file, n);
-	p[d + n] = '\0';
 	found = access(p, F_OK) == 0;
 	free(p);
 	return found;
+}
+
+/*
+ * fn(path, lib, n, out) for each material library of mat, read from
+ * path: the whole text of an mtllib one name, as some write it, or each
+ * of its words one, as OBJ has it ("mtllib a.mtl b.mtl").
+ */
+static void
+each_library(const char *path, const struct vdt_materials *mat, const char *out,
+             void (*fn)(const char *, const char *, size_t, const char *))
+{
+	for (size_t i = 0; i < mat->lib_count; i++) {
+		const char *lib = mat->libs[i];
+		size_t n = strlen(lib);
+		if (found_beside(path, lib, n) || lib[strcspn(lib, " \t")] == '\0') {
+			fn(path, lib, n, out);
+			continue;
+		}
+		for (lib += strspn(lib, " \t"); *lib; lib += strspn(lib, " \t")) {
+			n = strcspn(lib, " \t");
+			fn(path, lib, n, out);
+			lib += n;
+		}
+	}
+}
+
+/* refuse_output_over_library for one library. */
+static void
+library_over(const char *path, const char *lib, size_t n, const char *out)
+{
+	char *p = lib[0] == '/' ? strndup(lib, n) : path_beside(path, lib, n);
+	size_t i;
+
+	if (p != NULL && access(p, F_OK) == 0 &&
+	    output_over_input((const char *const *)&p, 1, &out, 1, &i) >= 0)
+		usage_error("the output '%s' is '%s', the material library of '%s': writing it "
+		            "would lose the input's materials",
+		            out, p, path);
+	free(p);
+}
+
+void
+refuse_output_over_library(const char *path, const struct vdt_chunks *extra, size_t triangles,
+                           const char *out)
+{
+	const struct vdt_chunk *c = vdt_chunks_find(extra, VDT_CHUNK_MATL);
+	struct vdt_materials mat = {0};
+
+	if (c == NULL || strcmp(path, "-") == 0 ||
+	    vdt_matl_decode(c->data, c->length, triangles, &mat, NULL) != 0)
+		return;
+	each_library(path, &mat, out, library_over);
+	vdt_materials_free(&mat);
 }
 
 /* note_materials_output's note of one library, its first n bytes lib. */
@@ -288,21 +353,7 @@ note_materials_output(const char *path, const struct vdt_materials *mat, const c
 		     input_name(path), vdt_format_name(f), out);
 	if (f != VDT_FMT_OBJ || strcmp(path, "-") == 0 || strcmp(out, "-") == 0)
 		return;
-	for (size_t i = 0; i < mat->lib_count; i++) {
-		/* the whole text one name, as some write it, or each of its
-		 * words one, as OBJ has it ("mtllib a.mtl b.mtl") */
-		const char *lib = mat->libs[i];
-		size_t n = strlen(lib);
-		if (found_beside(path, lib, n) || lib[strcspn(lib, " \t")] == '\0') {
-			library_note(path, lib, n, out);
-			continue;
-		}
-		for (lib += strspn(lib, " \t"); *lib; lib += strspn(lib, " \t")) {
-			n = strcspn(lib, " \t");
-			library_note(path, lib, n, out);
-			lib += n;
-		}
-	}
+	each_library(path, mat, out, library_note);
 }
 
 void

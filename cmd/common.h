@@ -128,6 +128,14 @@ void drop_materials(const char *path, struct vdt_chunks *extra, int quiet);
  * mtllib names its libraries relative to itself as the input did, each
  * library that lies beside the input but not beside out.
  */
+/*
+ * A usage error when out is a material library that the mesh read from
+ * path names (the MATL chunk of extra, for a mesh of `triangles` faces):
+ * written over, the input's materials would be lost.
+ */
+void refuse_output_over_library(const char *path, const struct vdt_chunks *extra, size_t triangles,
+                                const char *out);
+
 struct vdt_materials;
 void note_materials_output(const char *path, const struct vdt_materials *mat, const char *out,
                            enum vdt_format f, int quiet);

@@ -154,6 +154,7 @@ run(struct cmdline *cl)
 
 	if (vdt_read(cl->in, &m, &extra, &err) != 0)
 		return fail("cannot read", cl->in, &err);
+	refuse_output_over_library(cl->in, &extra, m.triangle_count, cl->out);
 	if (labels_fit(&extra, &m, &err) != 0) {
 		rc = fail("cannot read", cl->in, &err);
 		goto out;

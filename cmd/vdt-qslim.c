@@ -157,6 +157,7 @@ run(struct cmdline *cl)
 
 	if ((rc = vdt_read(cl->in, &in, &extra, &err)) != 0)
 		return fail("cannot read", cl->in, &err);
+	refuse_output_over_library(cl->in, &extra, in.triangle_count, cl->out);
 	note_input(cl->in, &in, cl->quiet);
 	if ((rc = vdt_qslim_extra_decode(&x, &extra, in.vertex_count, in.triangle_count,
 	                                 cl->ignore_quadrics, &err)) != 0) {

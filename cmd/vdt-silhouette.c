@@ -157,6 +157,7 @@ run(struct cmdline *cl)
 		goto out;
 	}
 	tr = vdt_seconds();
+	refuse_output_over_library(cl->in, &extra, m.triangle_count, cl->out);
 	note_input(cl->in, &m, cl->quiet);
 	if (cl->images) {
 		im.dir = cl->images;

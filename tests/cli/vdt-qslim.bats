@@ -1614,3 +1614,21 @@ PY
 	[ "$(grep -c 'clone' "$TMP/two")" -ge 1 ]
 	cmp "$TMP/one.ply" "$TMP/two.ply"
 }
+
+@test "vdt-qslim and vdt-build refuse to write over the input's material library" {
+	printf 'newmtl red\nKd 1 0 0\n' >"$TMP/lib.mtl"
+	printf 'mtllib lib.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nusemtl red\nf 1 2 3\nf 2 4 3\n' \
+		>"$TMP/m.obj"
+	for out in "$TMP/lib.mtl" "$TMP/./lib.mtl"; do
+		run "$BIN/vdt-qslim" -F obj -r 1 "$TMP/m.obj" -o "$out"
+		[ "$status" -eq 2 ]
+		[ "$output" = "vdt-qslim: the output '$out' is '$TMP/lib.mtl', the material library of '$TMP/m.obj': writing it would lose the input's materials" ]
+	done
+	run "$BIN/vdt-build" -F vdt "$TMP/m.obj" -o "$TMP/lib.mtl"
+	[ "$status" -eq 2 ]
+	one_line
+	[ "$(cat "$TMP/lib.mtl")" = "$(printf 'newmtl red\nKd 1 0 0')" ]
+	[ "$(ls -A "$TMP" | tr '\n' ' ')" = "lib.mtl m.obj " ]
+	"$BIN/vdt-qslim" -q -r 1 "$TMP/m.obj" -o "$TMP/out.obj"
+	grep -q "^mtllib lib.mtl" "$TMP/out.obj"
+}
