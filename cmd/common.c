@@ -74,6 +74,8 @@ refuse_unwritable(const char *path)
 	int special;
 	char *target;
 
+	if (path[0] == '\0') /* (no file has it, and no rename makes one) */
+		usage_error("an output's file name is empty");
 	if (strcmp(path, "-") == 0 || (target = vdt_output_target(path, &special)) == NULL)
 		return;
 	free(target);

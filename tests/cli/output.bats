@@ -505,3 +505,17 @@ refused() {
 	$as "$BIN/vdt-qslim" -q -r 0.4 "$SAMPLES/sphere.off" -o "$TMP/shared/mine.off"
 	[ "$(head -n 1 "$TMP/shared/mine.off")" = OFF ]
 }
+
+@test "an empty output name is refused before the input is read, with -F too" {
+	# (a FIFO no one writes: reading it first would wait for ever)
+	mkfifo "$TMP/never"
+	for t in "vdt-qslim -F off -r 0.5" "vdt-cluster -F off" "vdt-build -q" "vdt-silhouette -q"; do
+		run timeout 10 "$BIN/${t%% *}" ${t#* } "$TMP/never" -o ''
+		[ "$status" -eq 2 ]
+		[ "$output" = "${t%% *}: an output's file name is empty" ]
+	done
+	run timeout 10 "$BIN/vdt-measure" "$TMP/never" "$TMP/never" -o ''
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-measure: an output's file name is empty" ]
+	[ "$(ls -A "$TMP")" = never ]
+}
