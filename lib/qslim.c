@@ -405,15 +405,31 @@ edge_plane(const struct ctx *c, const float *positions, const uint32_t v[3], uin
 	return 0;
 }
 
+/*
+ * The boundary plane of open edge (a, b) of face t, at a and b. A face of
+ * no area (three corners on a line) has no normal to stand the plane on:
+ * the first face around a, then b, that has one lends its own, or a
+ * border along a row of such faces held no plane, and its corner slid
+ * away at no cost (a rectangle's corner moved 40% of its diagonal).
+ */
 static void
 add_boundary(struct ctx *c, const struct vdt_mesh *w, const struct vdt_qslim_opts *o, uint32_t t,
-             uint32_t a, uint32_t b, uint8_t *border)
+             uint32_t a, uint32_t b, const uint32_t *start, const uint32_t *fan,
+             const uint8_t *dead, uint8_t *border)
 {
 	struct vdt_quadric q;
+	int made = edge_plane(c, w->positions, w->triangles + 3 * (size_t)t, a, b,
+	                      o->boundary_weight, &q) == 0;
 
 	border[a] = border[b] = 1;
-	if (edge_plane(c, w->positions, w->triangles + 3 * (size_t)t, a, b, o->boundary_weight,
-	               &q) == 0) {
+	for (int k = 0; k < 2 && !made; k++) {
+		uint32_t v = k == 0 ? a : b;
+		for (uint32_t i = start[v]; i < start[v + 1] && !made; i++)
+			made = !(dead && dead[fan[i]]) &&
+			       edge_plane(c, w->positions, w->triangles + 3 * (size_t)fan[i], a, b,
+			                  o->boundary_weight, &q) == 0;
+	}
+	if (made) {
 		vdt_quadric_add(&c->q[a], &q);
 		vdt_quadric_add(&c->q[b], &q);
 	}
@@ -1012,7 +1028,7 @@ build_quadrics(const struct vdt_mesh *w, const struct vdt_qslim_opts *o, const u
 		uint32_t a = open[3 * k + 1], b = open[3 * k + 2];
 		if (real && !real[a] && !real[b])
 			continue;
-		add_boundary(c, w, o, open[3 * k], a, b, border);
+		add_boundary(c, w, o, open[3 * k], a, b, start, fan, dead, border);
 		if (c->rim.bits != NULL)
 			vdt_rim_add(&c->rim, w->triangles + 3 * (size_t)open[3 * k], a, b);
 	}

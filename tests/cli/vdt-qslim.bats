@@ -1632,3 +1632,18 @@ PY
 	"$BIN/vdt-qslim" -q -r 1 "$TMP/m.obj" -o "$TMP/out.obj"
 	grep -q "^mtllib lib.mtl" "$TMP/out.obj"
 }
+
+@test "vdt-qslim holds a border along a face of no area, and vdt-deform the same" {
+	# a 2 x 1 rectangle of four faces, and one more on the three corners
+	# of its lower side, which lie on a line: that side's open edge
+	printf 'OFF\n6 5 0\n0 0 0\n1 0 0\n2 0 0\n0 1 0\n1 1 0\n2 1 0\n3 0 1 4\n3 0 4 3\n3 1 2 5\n3 1 5 4\n3 0 1 2\n' \
+		>"$TMP/d.off"
+	"$BIN/vdt-qslim" -q -t 2 "$TMP/d.off" -o "$TMP/q.off"
+	h=$("$BIN/vdt-measure" -F kv "$TMP/d.off" "$TMP/q.off" | kv hausdorff_pct)
+	awk -v h="$h" 'BEGIN { exit !(h < 1e-6) }'
+	"$BIN/vdt-qslim" -q --no-fit --order greedy --topology keep -t 2 "$TMP/d.off" -o "$TMP/g.off"
+	"$BIN/vdt-deform" -q --vertices 4 "$TMP/d.off" -o "$TMP/f.off"
+	cmp "$TMP/g.off" "$TMP/f.off"
+	h=$("$BIN/vdt-measure" -F kv "$TMP/d.off" "$TMP/f.off" | kv hausdorff_pct)
+	awk -v h="$h" 'BEGIN { exit !(h < 1e-6) }'
+}
