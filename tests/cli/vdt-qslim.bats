@@ -1647,3 +1647,20 @@ PY
 	h=$("$BIN/vdt-measure" -F kv "$TMP/d.off" "$TMP/f.off" | kv hausdorff_pct)
 	awk -v h="$h" 'BEGIN { exit !(h < 1e-6) }'
 }
+
+@test "vdt-qslim -e with a target gives up no part whole past the bound" {
+	# two tetrahedra 5 apart: at 4 faces one would have to go
+	printf 'OFF\n8 8 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n5 0 0\n5.5 0 0\n5 0.5 0\n5 0 0.5\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n3 4 6 5\n3 4 5 7\n3 5 6 7\n3 4 7 6\n' \
+		>"$TMP/two.off"
+	run "$BIN/vdt-qslim" -e 0.001 -t 4 "$TMP/two.off" -o "$TMP/e.off"
+	[ "$status" -eq 0 ]
+	[ "$output" = "vdt-qslim: stopped at 8 triangles: no further contraction within the bound and validity tests" ]
+	h=$("$BIN/vdt-measure" -F kv "$TMP/two.off" "$TMP/e.off" | kv hausdorff_pct)
+	awk -v h="$h" 'BEGIN { exit !(h < 1e-6) }'
+	# without the bound the smaller goes, as the man page says
+	"$BIN/vdt-qslim" -t 4 "$TMP/two.off" -o "$TMP/t.off"
+	[ "$(off_faces "$TMP/t.off")" -eq 4 ]
+	# and a bound that the vanishing meets lets the contractions take it
+	"$BIN/vdt-qslim" -q -e 50% -t 10 "$SAMPLES/twosphere.off" -o "$TMP/s.off"
+	[ "$(off_faces "$TMP/s.off")" -le 10 ]
+}
