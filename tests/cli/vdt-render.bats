@@ -417,14 +417,20 @@ path3() {
 	[ "$(stat -c %a "$TMP/new.png")" = 644 ]
 }
 
-@test "vdt-render writes the same TIFF and EXR bytes from run to run" {
+@test "vdt-render writes the same TIFF, EXR, SGI and RLA bytes from run to run" {
 	tree
-	for ext in tif exr; do
+	for ext in tif exr sgi rla; do
 		"$BIN/vdt-render" --size 16x16 "$TMP/t.vdt" -o "$TMP/a.$ext"
 		sleep 1.1
 		"$BIN/vdt-render" --size 16x16 "$TMP/t.vdt" -o "$TMP/b.$ext"
 		cmp "$TMP/a.$ext" "$TMP/b.$ext"
 	done
+	# the SGI image name, which was the memory it lay in, and the RLA
+	# date, of the minute of writing
+	[ "$(dd if="$TMP/a.sgi" bs=1 skip=24 count=80 2>/dev/null | tr -d '\0')" = vdt ]
+	[ "$(dd if="$TMP/a.rla" bs=1 skip=528 count=20 2>/dev/null | tr -d '\0')" = "JAN 01 00:00 1970" ]
+	run "$BIN/vdt-render" --compare "$TMP/a.rla" "$TMP/t.vdt" --size 16x16 -o /dev/null
+	[ "$output" = "frame=0 rmse=0.0000 psnr=inf" ]
 }
 
 @test "vdt-render refuses several views into one file" {

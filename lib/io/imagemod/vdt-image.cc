@@ -6,6 +6,7 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -39,7 +40,9 @@ no_writer(char *msg, size_t cap)
  * TIFF and OpenEXR writers stamp the image with the time of writing
  * (DateTime, capDate) unless the spec has one: give them a fixed one so
  * that the same input makes the same bytes. Other formats would add a
- * date they do not write now (a PNG tIME chunk), so they get none.
+ * date they do not write now (a PNG tIME chunk), so they get none. The
+ * SGI writer leaves the image name it has none for as the memory held
+ * (bytes 24 to 103 of the header): give it one, which it pads with zeros.
  */
 OIIO::ImageSpec
 spec_for(OIIO::ImageOutput &out, int w, int h, int c)
@@ -48,7 +51,31 @@ spec_for(OIIO::ImageOutput &out, int w, int h, int c)
 	std::string f = out.format_name();
 	if (f == "tiff" || f == "openexr")
 		spec.attribute("DateTime", "1970:01:01 00:00:00");
+	if (f == "sgi")
+		spec.attribute("ImageDescription", "vdt");
 	return spec;
+}
+
+/*
+ * The RLA writer dates its header (DateCreated, 20 bytes at 528) with the
+ * time of writing, whatever the spec says: the date goes back to the
+ * fixed one of the other formats. An error message or "".
+ */
+std::string
+undate_rla(const char *file)
+{
+	static const char date[20] = "JAN 01 00:00 1970";
+	std::FILE *f = std::fopen(file, "r+b");
+
+	if (f == nullptr)
+		return std::strerror(errno);
+	bool ok = std::fseek(f, 528, SEEK_SET) == 0 && std::fwrite(date, 1, 20, f) == 20;
+	int e = errno;
+	if (std::fclose(f) != 0 && ok) {
+		ok = false;
+		e = errno;
+	}
+	return ok ? "" : std::strerror(e);
 }
 
 /* Write px through out, opened on name: an error message or "". */
@@ -133,6 +160,8 @@ vdt_img_write_file(const char *name, const char *file, int w, int h, int c,
 		if (!o)
 			return no_writer(msg, cap);
 		std::string e = write_all(*o, file, spec_for(*o, w, h, c), px);
+		if (e.empty() && std::string(o->format_name()) == "rla")
+			e = undate_rla(file);
 		return e.empty() ? VDT_IMG_OK : say(VDT_IMG_FAIL, e, msg, cap);
 	} catch (const std::bad_alloc &) {
 		return say(VDT_IMG_NOMEM, "out of memory", msg, cap);
