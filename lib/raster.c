@@ -255,9 +255,13 @@ vdt_raster_rmse(const unsigned char *a, const unsigned char *b, size_t bytes)
 	return bytes ? sqrt(s / bytes) : 0;
 }
 
-void
-vdt_raster_vertex_normals(const struct vdt_mesh *m, float *out)
+/* The sums of vertex_normals, each face's cross product times s; 0 if
+ * one went past float's range. */
+static int
+normal_sums(const struct vdt_mesh *m, double s, float *out)
 {
+	int finite = 1;
+
 	memset(out, 0, 3 * m->vertex_count * sizeof(float));
 	for (size_t f = 0; f < m->triangle_count; f++) {
 		const uint32_t *v = m->triangles + 3 * f;
@@ -269,7 +273,23 @@ vdt_raster_vertex_normals(const struct vdt_mesh *m, float *out)
 		               e1[0] * e2[1] - e1[1] * e2[0]};
 		for (int j = 0; j < 3; j++)
 			for (int k = 0; k < 3; k++)
-				out[3 * v[j] + k] += (float)n[k];
+				finite &= isfinite(out[3 * v[j] + k] += (float)(n[k] * s));
+	}
+	return finite;
+}
+
+void
+vdt_raster_vertex_normals(const struct vdt_mesh *m, float *out)
+{
+	/* Areas of a model of size 1e20 overflow a float: sum them in units
+	 * of its box's side squared then (relative weights are the same). */
+	if (!normal_sums(m, 1, out)) {
+		struct vdt_bbox box;
+		vdt_mesh_bbox_faces(m, &box);
+		double side = 0;
+		for (int k = 0; k < 3; k++)
+			side = fmax(side, (double)box.max[k] - box.min[k]);
+		normal_sums(m, side > 0 ? 1 / (side * side) : 1, out);
 	}
 	for (size_t i = 0; i < m->vertex_count; i++) {
 		float *n = out + 3 * i;

@@ -282,6 +282,18 @@ tree() {
 	[ ! -e "$TMP/x0.png" ]
 }
 
+@test "vdt-render --full lights a model of size 1e20, whose areas overflow a float" {
+	printf 'OFF\n3 1 0\n0 0 0\n1e20 0 0\n0 1e20 0\n3 0 1 2\n' >"$TMP/big.off"
+	"$BIN/vdt-build" -q "$TMP/big.off" -o "$TMP/big.vdt"
+	"$BIN/vdt-render" "$TMP/big.vdt" -o "$TMP/tree.png"
+	run "$BIN/vdt-render" --full --compare "$TMP/tree.png" "$TMP/big.off" -o /dev/null
+	[ "$status" -eq 0 ]
+	[ "$output" = "frame=0 rmse=0.0000 psnr=inf" ]
+	run "$BIN/vdt-render" --full "$TMP/big.off" --mesh-out "$TMP/m.off"
+	[ "$status" -eq 0 ]
+	[ "$(sed -n 3p "$TMP/m.off")" = "0 0 0 0 0 1" ]
+}
+
 labelled_sphere() {
 	"$BIN/vdt-silhouette" -a 30 -r 64 "$SAMPLES/sphere.off" -o "$TMP/s.vdl"
 	"$BIN/vdt-build" -q "$TMP/s.vdl" -o "$TMP/s.vdt"
