@@ -293,10 +293,18 @@ run(struct cmdline *cl)
 		render_s += t2 - t0;
 		/* (a tree whose coarse levels are lines: a strip whose sides
 		 * merged first has no triangle under a small budget) */
-		if (rc == EXIT_OK && R.drawn->triangle_count == 0 && cl->o.budget > 0) {
-			vdt_err_set(&err, VDT_EINVAL, "frame %zu: no triangle within the budget of %lu "
-			            "(-t): the coarser levels of this tree have no area", i,
-			            (unsigned long)cl->o.budget);
+		if (rc == EXIT_OK && R.drawn->triangle_count == 0 && R.m->triangle_count > 0 &&
+		    !cl->o.full) {
+			char at[64];
+			if (cl->o.budget > 0)
+				snprintf(at, sizeof(at), "within the budget of %lu (-t)",
+				         (unsigned long)cl->o.budget);
+			else
+				snprintf(at, sizeof(at), "at -p %g", cl->o.tau);
+			vdt_err_set(&err, VDT_EINVAL,
+			            "frame %zu: no triangle %s: the coarser levels of "
+			            "this tree have no area%s",
+			            i, at, cl->o.budget > 0 ? "" : " (a smaller -p keeps more)");
 			if (cl->mesh_out)
 				rc = fail("cannot write", frame_name(name, cl->mesh_out, i), &err);
 			else if (!cl->quiet)

@@ -506,7 +506,7 @@ path3() {
 	[ "$(ls -A "$TMP/s")" = f1.sgi ]
 }
 
-@test "vdt-render says when no triangle fits the budget, and writes no empty --mesh-out" {
+@test "vdt-render says when no triangle fits the budget or the threshold, and writes no empty --mesh-out" {
 	# a strip 100 long and 0.1 wide: its tree merges the two sides first,
 	# so its coarse fronts are lines (a blank image said nothing)
 	awk 'BEGIN { n = 1000; print "OFF"; print 2 * (n + 1), 2 * n, 0
@@ -524,6 +524,17 @@ path3() {
 	run "$BIN/vdt-render" -t 2000 --size 64x64 --mesh-out "$TMP/s.off" "$TMP/strip.vdt"
 	[ "$status" -eq 0 ]
 	[ "$(off_faces "$TMP/s.off")" -gt 0 ]
+	# and without a budget, a threshold that leaves no triangle
+	printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' >"$TMP/tri.off"
+	"$BIN/vdt-build" -q "$TMP/tri.off" -o "$TMP/tri.vdt"
+	run "$BIN/vdt-render" -p 1000 "$TMP/tri.vdt" -o "$TMP/e.png"
+	[ "$status" -eq 0 ]
+	[ "$output" = "vdt-render: frame 0: no triangle at -p 1000: the coarser levels of this tree have no area (a smaller -p keeps more)" ]
+	run "$BIN/vdt-render" -q -p 1000 "$TMP/tri.vdt" -o "$TMP/e.png"
+	[ -z "$output" ]
+	run "$BIN/vdt-render" -p 1000 "$TMP/tri.vdt" --mesh-out "$TMP/e.off"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-render: cannot write '$TMP/e.off': frame 0: no triangle at -p 1000: the coarser levels of this tree have no area (a smaller -p keeps more)" ]
 }
 
 # A flat-shaded unit cube in OBJ: eight positions, a normal per side and
