@@ -686,6 +686,36 @@ refuse_output_over_input(const char *in, const char *out)
 		output_is_input(out, in);
 }
 
+/*
+ * Where an output to path lands, as a name two spellings of one file not
+ * made yet share: the file its links lead to (vdt_output_target), in its
+ * directory's real path. malloc'ed; NULL if it cannot be told.
+ */
+static char *
+landing(const char *path)
+{
+	int special;
+	char *t = strcmp(path, "-") == 0 ? NULL : vdt_output_target(path, &special);
+	char *slash, *dir, *out = NULL;
+
+	if (t == NULL)
+		return NULL;
+	slash = strrchr(t, '/');
+	if (slash == t) /* (a file in /) */
+		dir = realpath("/", NULL);
+	else {
+		if (slash)
+			*slash = '\0';
+		dir = realpath(slash ? t : ".", NULL);
+	}
+	const char *base = slash ? slash + 1 : t;
+	if (dir && (out = malloc(strlen(dir) + strlen(base) + 2)) != NULL)
+		sprintf(out, "%s/%s", strcmp(dir, "/") == 0 ? "" : dir, base);
+	free(dir);
+	free(t);
+	return out;
+}
+
 void
 refuse_one_file_for_two(const char *oa, const char *a, const char *ob, const char *b)
 {
@@ -696,7 +726,14 @@ refuse_one_file_for_two(const char *oa, const char *a, const char *ob, const cha
 	 * standard output twice, would hold both outputs run together) */
 	if (ea && eb && S_ISCHR(sa.st_mode) && S_ISCHR(sb.st_mode))
 		return;
-	if (strcmp(a, b) == 0 || (ea && eb && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino))
+	/* (and two names of a file not made yet: ./r.txt and r.txt, or a
+	 * link to it, which stat cannot compare) */
+	char *la = ea && eb ? NULL : landing(a), *lb = ea && eb ? NULL : landing(b);
+	int same = la && lb && strcmp(la, lb) == 0;
+	free(la);
+	free(lb);
+	if (same || strcmp(a, b) == 0 ||
+	    (ea && eb && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino))
 		usage_error("%s '%s' and %s '%s' are one file: one would overwrite the other", oa,
 		            strcmp(a, "-") == 0 ? "<stdout>" : a, ob, strcmp(b, "-") == 0 ? "<stdout>" : b);
 }

@@ -212,6 +212,21 @@ assert len(d["ab_hausdorff_at"]) == 3 and len(d["ba_hausdorff_at"]) == 3'
 	[ "$status" -eq 0 ]
 }
 
+@test "vdt-measure: the report and -c as two names of one file not made yet are refused" {
+	ln -s r.txt "$TMP/link.ply"
+	for c in "$TMP/./r.txt" "$TMP/sub/../r.txt" "$TMP/link.ply"; do
+		mkdir -p "$TMP/sub"
+		run "$BIN/vdt-measure" -n 1000 -o "$TMP/r.txt" -c "$c" "$SQ" "$UP"
+		[ "$status" -eq 2 ]
+		[ "$output" = "vdt-measure: -o '$TMP/r.txt' and -c '$c' are one file: one would overwrite the other" ]
+		[ ! -e "$TMP/r.txt" ]
+	done
+	run "$BIN/vdt-measure" -n 1000 -o "$TMP/r.txt" -c "$TMP/c.ply" "$SQ" "$UP"
+	[ "$status" -eq 0 ]
+	[ -s "$TMP/r.txt" ]
+	[ -s "$TMP/c.ply" ]
+}
+
 @test "vdt-measure -v: one key=value line of statistics" {
 	"$BIN/vdt-measure" -v -F kv -n 1000 "$SQ" "$UP" > "$TMP/out" 2> "$TMP/err"
 	[ "$(wc -l < "$TMP/err")" -eq 1 ]
