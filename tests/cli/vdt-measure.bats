@@ -179,6 +179,14 @@ assert len(d["ab_hausdorff_at"]) == 3 and len(d["ba_hausdorff_at"]) == 3'
 	head -c 400 "$TMP/err.ply" | grep -aq "property uchar red"
 }
 
+@test "vdt-measure -c: a vertex no face uses does not set the colour scale" {
+	printf 'OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n100 100 100\n3 0 1 2\n' >"$TMP/u.off"
+	printf 'OFF\n3 1 0\n0 0 0.1\n1 0 0.1\n0 1 0.1\n3 0 1 2\n' >"$TMP/b.off"
+	run "$BIN/vdt-measure" -v -n 1000 -c "$TMP/c.ply" "$TMP/u.off" "$TMP/b.off"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"colours: blue 0, cyan 0.025, green 0.05, yellow 0.075, red 0.1"* ]]
+}
+
 @test "vdt-measure -c into a missing directory fails with 1 and no file" {
 	run "$BIN/vdt-measure" -n 1000 -c "$TMP/no/err.ply" "$SQ" "$UP"
 	[ "$status" -eq 1 ]
