@@ -223,6 +223,8 @@ struct vdt_cluster_choice {
 	uint32_t dims[3];  /* as vdt_cluster_grid_dims, dims[0] 0: not given */
 	double target;     /* final triangles, 0: not given */
 	size_t max_cells;  /* 0: no limit */
+	double fill;       /* the share of max_cells a grid it picks aims
+	                      to fill (0: 0.8) */
 };
 int vdt_cluster_choose(const struct vdt_cluster_choice *ch, struct vdt_tsource *ts,
                        const struct vdt_bbox *box, struct vdt_cluster_grid *g,

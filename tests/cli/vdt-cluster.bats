@@ -101,6 +101,31 @@ same_refusal() {
 	[ "$c" -le 8192 ]
 }
 
+@test "vdt-cluster -m keeps its own limit where the estimate falls short: lattices, thin strips" {
+	# a flat 100 x 100 lattice fills more cells than the sample says
+	awk 'BEGIN { n = 100; print "OFF"; print n * n, 2 * (n - 1) * (n - 1), 0
+		for (j = 0; j < n; j++) for (i = 0; i < n; i++) print i / (n - 1), j / (n - 1), 0
+		for (j = 0; j < n - 1; j++) for (i = 0; i < n - 1; i++) { a = j * n + i
+			print 3, a, a + 1, a + n + 1; print 3, a, a + n + 1, a + n } }' >"$TMP/grid.off"
+	# a closed strip 1000 times as long as it is thin, split in two layers
+	awk 'BEGIN { n = 2000; print "OFF"; print 4 * (n + 1), 8 * n + 4, 0
+		for (i = 0; i <= n; i++) { x = 100 * i / n
+			print x, 0, 0; print x, 0.1, 0; print x, 0.1, 0.1; print x, 0, 0.1 }
+		for (i = 0; i < n; i++) for (k = 0; k < 4; k++) { a = 4 * i + k; b = 4 * i + (k + 1) % 4
+			print 3, a, b, b + 4; print 3, a, b + 4, a + 4 }
+		e = 4 * n; print 3, 0, 2, 1; print 3, 0, 3, 2; print 3, e, e + 1, e + 2; print 3, e, e + 2, e + 3 }' \
+		>"$TMP/strip.off"
+	for run in "grid 3" "grid 4" "grid 5" "strip 1" "strip 2"; do
+		set -- $run
+		run "$BIN/vdt-cluster" -v -m $2 "$TMP/$1.off" -o "$TMP/out.ply"
+		[ "$status" -eq 0 ]
+		c=$(printf '%s\n' "$output" | sed -n 's/.* cells=\([0-9]*\).*/\1/p')
+		[ "$c" -le $(($2 * 2048)) ]
+	done
+	run "$BIN/vdt-cluster" -m 4 -t 1500 "$TMP/grid.off" -o "$TMP/out.ply"
+	[ "$status" -eq 0 ]
+}
+
 @test "vdt-cluster refuses a grid too large for -m, saying so" {
 	run "$BIN/vdt-cluster" -g 2000 -m 2 "$SAMPLES/fetched/bunny.ply" -o "$TMP/out.ply"
 	[ "$status" -eq 2 ]
