@@ -94,6 +94,24 @@ same_refusal() {
 	[ "$v" -le 16000 ]
 }
 
+@test "vdt-cluster --target aims for 4 to 8 times N vertices on thin models too" {
+	# a plate, split in two layers, and a thin strip, in four
+	awk 'BEGIN { n = 2000; print "OFF"; print 4 * (n + 1), 8 * n + 4, 0
+		for (i = 0; i <= n; i++) { x = 100 * i / n
+			print x, 0, 0; print x, 0.1, 0; print x, 0.1, 0.1; print x, 0, 0.1 }
+		for (i = 0; i < n; i++) for (k = 0; k < 4; k++) { a = 4 * i + k; b = 4 * i + (k + 1) % 4
+			print 3, a, b, b + 4; print 3, a, b + 4, a + 4 }
+		e = 4 * n; print 3, 0, 2, 1; print 3, 0, 3, 2; print 3, e, e + 1, e + 2; print 3, e, e + 2, e + 3 }' \
+		>"$TMP/strip.off"
+	for m in "$SAMPLES/plate.off" "$TMP/strip.off"; do
+		run "$BIN/vdt-cluster" -v -t 50 "$m" -o "$TMP/out.ply"
+		[ "$status" -eq 0 ]
+		v=$(printf '%s\n' "$output" | sed -n 's/.*out_vertices=\([0-9]*\).*/\1/p')
+		[ "$v" -ge 200 ]
+		[ "$v" -le 400 ]
+	done
+}
+
 @test "vdt-cluster -m picks a grid within the limit" {
 	run "$BIN/vdt-cluster" -v -m 4 "$SAMPLES/fetched/bunny.ply" -o "$TMP/out.ply"
 	[ "$status" -eq 0 ]
