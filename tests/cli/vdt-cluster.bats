@@ -94,15 +94,21 @@ same_refusal() {
 	[ "$v" -le 16000 ]
 }
 
-@test "vdt-cluster --target aims for 4 to 8 times N vertices on thin models too" {
-	# a plate, split in two layers, and a thin strip, in four
+# A closed strip 100 long and 0.1 by 0.1 across, into $1: thinner than a
+# cell along two extents, which a grid splits in two layers each.
+thin_strip() {
 	awk 'BEGIN { n = 2000; print "OFF"; print 4 * (n + 1), 8 * n + 4, 0
 		for (i = 0; i <= n; i++) { x = 100 * i / n
 			print x, 0, 0; print x, 0.1, 0; print x, 0.1, 0.1; print x, 0, 0.1 }
 		for (i = 0; i < n; i++) for (k = 0; k < 4; k++) { a = 4 * i + k; b = 4 * i + (k + 1) % 4
 			print 3, a, b, b + 4; print 3, a, b + 4, a + 4 }
 		e = 4 * n; print 3, 0, 2, 1; print 3, 0, 3, 2; print 3, e, e + 1, e + 2; print 3, e, e + 2, e + 3 }' \
-		>"$TMP/strip.off"
+		>"$1"
+}
+
+@test "vdt-cluster --target aims for 4 to 8 times N vertices on thin models too" {
+	# a plate, split in two layers, and a thin strip, in four
+	thin_strip "$TMP/strip.off"
 	for m in "$SAMPLES/plate.off" "$TMP/strip.off"; do
 		run "$BIN/vdt-cluster" -v -t 50 "$m" -o "$TMP/out.ply"
 		[ "$status" -eq 0 ]
@@ -125,14 +131,7 @@ same_refusal() {
 		for (j = 0; j < n; j++) for (i = 0; i < n; i++) print i / (n - 1), j / (n - 1), 0
 		for (j = 0; j < n - 1; j++) for (i = 0; i < n - 1; i++) { a = j * n + i
 			print 3, a, a + 1, a + n + 1; print 3, a, a + n + 1, a + n } }' >"$TMP/grid.off"
-	# a closed strip 1000 times as long as it is thin, split in two layers
-	awk 'BEGIN { n = 2000; print "OFF"; print 4 * (n + 1), 8 * n + 4, 0
-		for (i = 0; i <= n; i++) { x = 100 * i / n
-			print x, 0, 0; print x, 0.1, 0; print x, 0.1, 0.1; print x, 0, 0.1 }
-		for (i = 0; i < n; i++) for (k = 0; k < 4; k++) { a = 4 * i + k; b = 4 * i + (k + 1) % 4
-			print 3, a, b, b + 4; print 3, a, b + 4, a + 4 }
-		e = 4 * n; print 3, 0, 2, 1; print 3, 0, 3, 2; print 3, e, e + 1, e + 2; print 3, e, e + 2, e + 3 }' \
-		>"$TMP/strip.off"
+	thin_strip "$TMP/strip.off"
 	for run in "grid 3" "grid 4" "grid 5" "strip 1" "strip 2"; do
 		set -- $run
 		run "$BIN/vdt-cluster" -v -m $2 "$TMP/$1.off" -o "$TMP/out.ply"
