@@ -683,6 +683,10 @@ SH
 	# nothing else is made, neither of them nor of halves of their names
 	[ "$(ls "$TMP/out")" = "$good.lod1.ply" ]
 	printf '%s\n' "$output" | grep -q "^  $good.lod1.ply  *1152 "
+	# in the table's columns, counted in characters, not bytes (the
+	# name, 25 characters in 30 bytes, is padded to 32 characters)
+	[ "$(printf '%s\n' "$output" | grep "^$good.off " |
+		LC_ALL=C awk '{ gsub(/[\200-\277]/, ""); print index($0, " 2304 ") + 4 }')" -eq 43 ]
 	# nor with such a directory path
 	mkdir "$TMP/o\`vdtpwn\`"
 	PATH="$TMP/bin:$PATH" run "$BATCH" -q --ratios 50 -o "$TMP/o\`vdtpwn\`" "$TMP/in"
