@@ -122,13 +122,6 @@ struct vdt_chunks;
 void drop_materials(const char *path, struct vdt_chunks *extra, int quiet);
 
 /*
- * Notes, unless quiet, on the materials mat (none when mat->faces is
- * NULL) of the mesh read from path as they go to out, of format f: that
- * f cannot hold them (only OBJ and the stream do); and in an OBJ, whose
- * mtllib names its libraries relative to itself as the input did, each
- * library that lies beside the input but not beside out.
- */
-/*
  * A usage error when out is a material library that the mesh read from
  * path names (the MATL chunk of extra, for a mesh of `triangles` faces):
  * written over, the input's materials would be lost.
@@ -137,6 +130,13 @@ void refuse_output_over_library(const char *path, const struct vdt_chunks *extra
                                 const char *out);
 
 struct vdt_materials;
+/*
+ * Notes, unless quiet, on the materials mat (none when mat->faces is
+ * NULL) of the mesh read from path as they go to out, of format f: that
+ * f cannot hold them (only OBJ and the stream do); and in an OBJ, whose
+ * mtllib names its libraries relative to itself as the input did, each
+ * library that lies beside the input but not beside out.
+ */
 void note_materials_output(const char *path, const struct vdt_materials *mat, const char *out,
                            enum vdt_format f, int quiet);
 

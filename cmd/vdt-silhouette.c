@@ -189,10 +189,9 @@ run(struct cmdline *cl)
 		}
 		free(v);
 		/* (the size of the chunk the labels would take) */
-		if (rc == EXIT_OK && cl->verbose && vdt_labl_encode(&l, &data, &len, &err) == 0) {
-			free(data);
-			statistics(cl, &m, &l, len, t1 - t0, tr - t0, vdt_seconds() - t1);
-		}
+		if (rc == EXIT_OK && cl->verbose)
+			statistics(cl, &m, &l, vdt_labl_chunk_bytes(&l), t1 - t0, tr - t0,
+			           vdt_seconds() - t1);
 		goto out;
 	}
 	vdt_chunks_remove(&extra, VDT_CHUNK_LABL);

@@ -763,12 +763,17 @@ vdt_labl_compute(const struct vdt_mesh *m, const struct vdt_cameras *cams,
 
 #define LABL_HEADER 40
 
+size_t
+vdt_labl_chunk_bytes(const struct vdt_labl *l)
+{
+	return LABL_HEADER + 12 * l->cams.count + l->cams.count * l->vertex_count;
+}
+
 int
 vdt_labl_encode(const struct vdt_labl *l, unsigned char **data, uint64_t *length,
                 struct vdt_err *err)
 {
-	size_t C = l->cams.count, V = l->vertex_count;
-	size_t len = LABL_HEADER + 12 * C + C * V;
+	size_t C = l->cams.count, V = l->vertex_count, len = vdt_labl_chunk_bytes(l);
 	unsigned char *p = malloc(len);
 
 	*data = NULL;

@@ -234,6 +234,9 @@ int vdt_labl_encode(const struct vdt_labl *l, unsigned char **data,
 int vdt_labl_decode(const unsigned char *data, uint64_t length,
                     struct vdt_labl *l, struct vdt_err *err);
 
+/* The bytes of the LABL payload vdt_labl_encode makes of l. */
+size_t vdt_labl_chunk_bytes(const struct vdt_labl *l);
+
 /*
  * Labels of a view, in pixels, one per vertex (section 3.2): the labels of
  * a camera at exactly dir, else the mean over the n nearest cameras
