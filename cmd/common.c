@@ -320,17 +320,20 @@ library_over(const char *path, const char *lib, size_t n, const char *out)
 }
 
 void
-refuse_output_over_library(const char *path, const struct vdt_chunks *extra, size_t triangles,
-                           const char *out)
+input_materials(const struct vdt_chunks *extra, size_t triangles, struct vdt_materials *mat)
 {
 	const struct vdt_chunk *c = vdt_chunks_find(extra, VDT_CHUNK_MATL);
-	struct vdt_materials mat = {0};
 
-	if (c == NULL || strcmp(path, "-") == 0 ||
-	    vdt_matl_decode(c->data, c->length, triangles, &mat, NULL) != 0)
-		return;
-	each_library(path, &mat, out, library_over);
-	vdt_materials_free(&mat);
+	memset(mat, 0, sizeof(*mat));
+	if (c != NULL)
+		(void)vdt_matl_decode(c->data, c->length, triangles, mat, NULL);
+}
+
+void
+refuse_output_over_library(const char *path, const struct vdt_materials *mat, const char *out)
+{
+	if (strcmp(path, "-") != 0)
+		each_library(path, mat, out, library_over);
 }
 
 /* note_materials_output's note of one library, its first n bytes lib. */

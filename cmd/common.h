@@ -121,15 +121,17 @@ void note_input(const char *path, const struct vdt_mesh *m, int quiet);
 struct vdt_chunks;
 void drop_materials(const char *path, struct vdt_chunks *extra, int quiet);
 
-/*
- * A usage error when out is a material library that the mesh read from
- * path names (the MATL chunk of extra, for a mesh of `triangles` faces):
- * written over, the input's materials would be lost.
- */
-void refuse_output_over_library(const char *path, const struct vdt_chunks *extra, size_t triangles,
-                                const char *out);
-
 struct vdt_materials;
+/* The materials of extra's MATL chunk, for a mesh of `triangles` faces,
+ * into *mat (empty when there is none: the reader checked it). */
+void input_materials(const struct vdt_chunks *extra, size_t triangles, struct vdt_materials *mat);
+
+/*
+ * A usage error when out is a material library of mat, read with the mesh
+ * from path: written over, the input's materials would be lost.
+ */
+void refuse_output_over_library(const char *path, const struct vdt_materials *mat, const char *out);
+
 /*
  * Notes, unless quiet, on the materials mat (none when mat->faces is
  * NULL) of the mesh read from path as they go to out, of format f: that

@@ -154,7 +154,10 @@ run(struct cmdline *cl)
 
 	if (vdt_read(cl->in, &m, &extra, &err) != 0)
 		return fail("cannot read", cl->in, &err);
-	refuse_output_over_library(cl->in, &extra, m.triangle_count, cl->out);
+	struct vdt_materials mat;
+	input_materials(&extra, m.triangle_count, &mat);
+	refuse_output_over_library(cl->in, &mat, cl->out);
+	vdt_materials_free(&mat);
 	if (labels_fit(&extra, &m, &err) != 0) {
 		rc = fail("cannot read", cl->in, &err);
 		goto out;

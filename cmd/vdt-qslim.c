@@ -157,13 +157,13 @@ run(struct cmdline *cl)
 
 	if ((rc = vdt_read(cl->in, &in, &extra, &err)) != 0)
 		return fail("cannot read", cl->in, &err);
-	refuse_output_over_library(cl->in, &extra, in.triangle_count, cl->out);
 	note_input(cl->in, &in, cl->quiet);
 	if ((rc = vdt_qslim_extra_decode(&x, &extra, in.vertex_count, in.triangle_count,
 	                                 cl->ignore_quadrics, &err)) != 0) {
 		rc = fail("cannot read", cl->in, &err);
 		goto out;
 	}
+	refuse_output_over_library(cl->in, &x.mat, cl->out);
 	/* Not an error: a batch may give every model the same options. */
 	if (cl->label_opt && x.labl.cams.count == 0 && !cl->quiet)
 		note("'%s' has no LABL chunk (vdt-silhouette's labels): %s has no effect\n",

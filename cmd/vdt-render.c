@@ -243,14 +243,6 @@ run(struct cmdline *cl)
 		goto out;
 	}
 	read_s = vdt_seconds() - start;
-	for (size_t i = 0; i < nviews; i++) {
-		if (cl->out)
-			refuse_output_over_library(cl->in, &extra, m.triangle_count,
-			                           frame_name(name, cl->out, i));
-		if (cl->mesh_out)
-			refuse_output_over_library(cl->in, &extra, m.triangle_count,
-			                           frame_name(name, cl->mesh_out, i));
-	}
 	note_float_precision(cl->in, &m, cl->quiet);
 	if (cl->mesh_out) /* (the images have no texture to lose) */
 		drop_materials(cl->in, &extra, cl->quiet);

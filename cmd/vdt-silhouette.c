@@ -157,7 +157,10 @@ run(struct cmdline *cl)
 		goto out;
 	}
 	tr = vdt_seconds();
-	refuse_output_over_library(cl->in, &extra, m.triangle_count, cl->out);
+	struct vdt_materials mat;
+	input_materials(&extra, m.triangle_count, &mat);
+	refuse_output_over_library(cl->in, &mat, cl->out);
+	vdt_materials_free(&mat);
 	note_input(cl->in, &m, cl->quiet);
 	if (cl->images) {
 		im.dir = cl->images;

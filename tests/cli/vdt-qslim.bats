@@ -1615,7 +1615,7 @@ PY
 	cmp "$TMP/one.ply" "$TMP/two.ply"
 }
 
-@test "vdt-qslim and vdt-build refuse to write over the input's material library" {
+@test "vdt-qslim, vdt-build and vdt-silhouette refuse to write over the input's material library" {
 	printf 'newmtl red\nKd 1 0 0\n' >"$TMP/lib.mtl"
 	printf 'mtllib lib.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nusemtl red\nf 1 2 3\nf 2 4 3\n' \
 		>"$TMP/m.obj"
@@ -1624,9 +1624,11 @@ PY
 		[ "$status" -eq 2 ]
 		[ "$output" = "vdt-qslim: the output '$out' is '$TMP/lib.mtl', the material library of '$TMP/m.obj': writing it would lose the input's materials" ]
 	done
-	run "$BIN/vdt-build" -F vdt "$TMP/m.obj" -o "$TMP/lib.mtl"
-	[ "$status" -eq 2 ]
-	one_line
+	for t in vdt-build vdt-silhouette; do
+		run "$BIN/$t" -F vdt "$TMP/m.obj" -o "$TMP/lib.mtl"
+		[ "$status" -eq 2 ]
+		[[ "$output" == "$t: the output '$TMP/lib.mtl' is '$TMP/lib.mtl', the material library of "* ]]
+	done
 	[ "$(cat "$TMP/lib.mtl")" = "$(printf 'newmtl red\nKd 1 0 0')" ]
 	[ "$(ls -A "$TMP" | tr '\n' ' ')" = "lib.mtl m.obj " ]
 	"$BIN/vdt-qslim" -q -r 1 "$TMP/m.obj" -o "$TMP/out.obj"
