@@ -311,39 +311,6 @@ reference_frame(const struct anim *a)
 	return best;
 }
 
-/* The boundary plane of open edge (a, b) standing on face v, added at a
- * and b; -1 (nothing added) if v has no area. */
-static int
-add_boundary(struct qd *q, size_t stride, const float *pos, const double *c, const uint32_t *v,
-             uint32_t a, uint32_t b, double weight)
-{
-	double p[3][3], n[3], e1[3], e2[3], pa[3], pb[3];
-	struct vdt_quadric bq;
-
-	for (int i = 0; i < 3; i++)
-		for (int k = 0; k < 3; k++)
-			p[i][k] = pos[3 * (size_t)v[i] + k] - c[k];
-	for (int k = 0; k < 3; k++) {
-		e1[k] = p[1][k] - p[0][k];
-		e2[k] = p[2][k] - p[0][k];
-		pa[k] = pos[3 * (size_t)a + k] - c[k];
-		pb[k] = pos[3 * (size_t)b + k] - c[k];
-	}
-	n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-	n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-	n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-	double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-	if (!(l > 0))
-		return -1;
-	for (int k = 0; k < 3; k++)
-		n[k] /= l;
-	if (vdt_quadric_boundary(&bq, pa, pb, n, weight) == 0) {
-		qd_add(&q[a * stride], &bq);
-		qd_add(&q[b * stride], &bq);
-	}
-	return 0;
-}
-
 /*
  * The quadrics of frame f into q[v * stride] (zeroed first): fundamental
  * quadrics of the faces in face order, then boundary planes vertex by
@@ -381,17 +348,13 @@ frame_quadrics(const struct anim *a, size_t f, const double c[3], double bw, dou
 			qd_add(&q[v * stride], &vq);
 		}
 	}
-	/* (the edge of a face of no area stands on the first face around
-	 * either end that has one, as vdt_qslim's add_boundary) */
 	for (size_t k = 0; k < a->nopen; k++) {
 		uint32_t x = a->open[3 * k + 1], y = a->open[3 * k + 2];
-		int made = add_boundary(q, stride, pos, c, a->tri + 3 * (size_t)a->open[3 * k], x,
-		                        y, bw) == 0;
-		for (int e = 0; e < 2 && !made; e++) {
-			uint32_t v = e == 0 ? x : y;
-			for (uint32_t i = a->fstart[v]; i < a->fstart[v + 1] && !made; i++)
-				made = add_boundary(q, stride, pos, c,
-				                    a->tri + 3 * (size_t)a->fan[i], x, y, bw) == 0;
+		struct vdt_quadric bq;
+		if (vdt_quadric_open_edge(&bq, pos, c, a->tri, a->open[3 * k], x, y, a->fstart,
+		                          a->fan, NULL, bw) == 0) {
+			qd_add(&q[x * stride], &bq);
+			qd_add(&q[y * stride], &bq);
 		}
 	}
 }

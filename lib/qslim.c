@@ -370,66 +370,31 @@ same_floats(const float *a, const float *b, int n)
 	return 1;
 }
 
-/*
- * The plane perpendicular to face v (its three vertices) through its edge
- * from vertex a to vertex b, weighted as the boundary planes are
- * (vdt_quadric_boundary), into *q, its w 0: a constraint, not surface
- * area. Returns 0, or -1 for a face of no area.
- */
+/* vdt_quadric_edge_plane with c's centre, its w 0: a constraint, not
+ * surface area. Returns 0, or -1 for a face of no area. */
 static int
 edge_plane(const struct ctx *c, const float *positions, const uint32_t v[3], uint32_t a, uint32_t b,
            double weight, struct vdt_quadric *q)
 {
-	double p[3][3], e1[3], e2[3], n[3], pa[3], pb[3], l;
-
-	for (int i = 0; i < 3; i++)
-		for (int j = 0; j < 3; j++)
-			p[i][j] = positions[3 * (size_t)v[i] + j] - c->centre[j];
-	for (int j = 0; j < 3; j++) {
-		e1[j] = p[1][j] - p[0][j];
-		e2[j] = p[2][j] - p[0][j];
-		pa[j] = positions[3 * (size_t)a + j] - c->centre[j];
-		pb[j] = positions[3 * (size_t)b + j] - c->centre[j];
-	}
-	n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-	n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-	n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-	l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-	if (!(l > 0))
-		return -1;
-	for (int j = 0; j < 3; j++)
-		n[j] /= l;
-	if (vdt_quadric_boundary(q, pa, pb, n, weight) != 0)
+	if (vdt_quadric_edge_plane(q, positions, c->centre, v, a, b, weight) != 0)
 		return -1;
 	q->w = 0;
 	return 0;
 }
 
-/*
- * The boundary plane of open edge (a, b) of face t, at a and b. A face of
- * no area (three corners on a line) has no normal to stand the plane on:
- * the first face around a, then b, that has one lends its own, or a
- * border along a row of such faces held no plane, and its corner slid
- * away at no cost (a rectangle's corner moved 40% of its diagonal).
- */
+/* The boundary plane of open edge (a, b) of face t, at a and b
+ * (vdt_quadric_open_edge), its w 0 as edge_plane's. */
 static void
 add_boundary(struct ctx *c, const struct vdt_mesh *w, const struct vdt_qslim_opts *o, uint32_t t,
              uint32_t a, uint32_t b, const uint32_t *start, const uint32_t *fan,
              const uint8_t *dead, uint8_t *border)
 {
 	struct vdt_quadric q;
-	int made = edge_plane(c, w->positions, w->triangles + 3 * (size_t)t, a, b,
-	                      o->boundary_weight, &q) == 0;
 
 	border[a] = border[b] = 1;
-	for (int k = 0; k < 2 && !made; k++) {
-		uint32_t v = k == 0 ? a : b;
-		for (uint32_t i = start[v]; i < start[v + 1] && !made; i++)
-			made = !(dead && dead[fan[i]]) &&
-			       edge_plane(c, w->positions, w->triangles + 3 * (size_t)fan[i], a, b,
-			                  o->boundary_weight, &q) == 0;
-	}
-	if (made) {
+	if (vdt_quadric_open_edge(&q, w->positions, c->centre, w->triangles, t, a, b, start, fan,
+	                          dead, o->boundary_weight) == 0) {
+		q.w = 0;
 		vdt_quadric_add(&c->q[a], &q);
 		vdt_quadric_add(&c->q[b], &q);
 	}

@@ -93,6 +93,51 @@ vdt_quadric_boundary(struct vdt_quadric *q, const double p0[3],
 	return 0;
 }
 
+int
+vdt_quadric_edge_plane(struct vdt_quadric *q, const float *pos, const double centre[3],
+                       const uint32_t v[3], uint32_t a, uint32_t b, double weight)
+{
+	double p[3][3], e1[3], e2[3], n[3], pa[3], pb[3], l;
+
+	for (int i = 0; i < 3; i++)
+		for (int k = 0; k < 3; k++)
+			p[i][k] = pos[3 * (size_t)v[i] + k] - centre[k];
+	for (int k = 0; k < 3; k++) {
+		e1[k] = p[1][k] - p[0][k];
+		e2[k] = p[2][k] - p[0][k];
+		pa[k] = pos[3 * (size_t)a + k] - centre[k];
+		pb[k] = pos[3 * (size_t)b + k] - centre[k];
+	}
+	cross(e1, e2, n);
+	l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+	if (!(l > 0)) {
+		vdt_quadric_zero(q);
+		return -1;
+	}
+	for (int k = 0; k < 3; k++)
+		n[k] /= l;
+	return vdt_quadric_boundary(q, pa, pb, n, weight);
+}
+
+int
+vdt_quadric_open_edge(struct vdt_quadric *q, const float *pos, const double centre[3],
+                      const uint32_t *tri, uint32_t t, uint32_t a, uint32_t b,
+                      const uint32_t *start, const uint32_t *fan, const uint8_t *dead,
+                      double weight)
+{
+	if (vdt_quadric_edge_plane(q, pos, centre, tri + 3 * (size_t)t, a, b, weight) == 0)
+		return 0;
+	for (int k = 0; k < 2; k++) {
+		uint32_t v = k == 0 ? a : b;
+		for (uint32_t i = start[v]; i < start[v + 1]; i++)
+			if (!(dead && dead[fan[i]]) &&
+			    vdt_quadric_edge_plane(q, pos, centre, tri + 3 * (size_t)fan[i], a, b,
+			                           weight) == 0)
+				return 0;
+	}
+	return -1;
+}
+
 void
 vdt_quadric_scale(struct vdt_quadric *q, double s)
 {

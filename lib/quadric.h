@@ -15,6 +15,8 @@
 #define VDT_QUADRIC_H
 
 #include <math.h>
+#include <stddef.h>
+#include <stdint.h>
 
 struct vdt_quadric {
 	/* A = [a00 a01 a02; a01 a11 a12; a02 a12 a22], b = (b0 b1 b2) */
@@ -56,6 +58,28 @@ int vdt_quadric_triangle_floor(struct vdt_quadric *q, const double p0[3],
  */
 int vdt_quadric_boundary(struct vdt_quadric *q, const double p0[3],
                          const double p1[3], const double n[3], double weight);
+
+/*
+ * vdt_quadric_boundary of the edge (a, b) of face v (its three vertices),
+ * standing on v, with positions pos (3 floats a vertex) taken about
+ * centre. Returns -1 (Q = 0) for a face of no area.
+ */
+int vdt_quadric_edge_plane(struct vdt_quadric *q, const float *pos, const double centre[3],
+                           const uint32_t v[3], uint32_t a, uint32_t b, double weight);
+
+/*
+ * vdt_quadric_edge_plane of the open edge (a, b) of face t of tri (3
+ * vertices a face). A face of no area (three corners on a line) has no normal to
+ * stand the plane on: the first face around a, then b, in the fans start
+ * and fan (faces marked in dead, if not NULL, skipped) that has one lends
+ * its own, or a border along a row of such faces held no plane, and its
+ * corner slid away at no cost (a rectangle's corner moved 40% of its
+ * diagonal). Returns -1 (Q = 0) when no face gives a plane.
+ */
+int vdt_quadric_open_edge(struct vdt_quadric *q, const float *pos, const double centre[3],
+                          const uint32_t *tri, uint32_t t, uint32_t a, uint32_t b,
+                          const uint32_t *start, const uint32_t *fan, const uint8_t *dead,
+                          double weight);
 
 /*
  * The unit a simplifier gives the contraction engine its quadric costs
