@@ -140,6 +140,7 @@ struct anim {
 	double *frame;       /* 5 per frame: the centre of its quadrics, the
 	                        unit of its costs (frame_centre) and the
 	                        diagonal of its box */
+	double widest;       /* the largest of those diagonals */
 };
 
 static void
@@ -162,7 +163,7 @@ anim_free(struct anim *a)
  * box's diagonal, which goes in c[4].
  */
 static void
-frame_box(const struct anim *a, size_t nt, size_t f, double c[4])
+frame_box(const struct anim *a, size_t nt, size_t f, double c[5])
 {
 	const struct vdt_mesh m = {.vertex_count = a->nv, .positions = a->pos + 3 * a->nv * f,
 	                           .triangle_count = nt, .triangles = a->tri};
@@ -235,8 +236,11 @@ anim_build(struct anim *a, const struct vdt_mesh *m, const struct vdt_frames *fr
 			       3 * sizeof(float));
 	for (size_t i = 0; i < 3 * nt; i++)
 		a->tri[i] = res->canon[m->triangles[i]];
-	for (size_t f = 0; f < a->nf; f++)
+	a->widest = 0;
+	for (size_t f = 0; f < a->nf; f++) {
 		frame_box(a, nt, f, a->frame + 5 * f);
+		a->widest = fmax(a->widest, a->frame[5 * f + 4]);
+	}
 	if (vdt_topo_fans(nw, a->tri, nt, &fs, &fan) != 0)
 		goto out;
 	vdt_topo_drop_repeats(a->tri, nt, fs, fan, dead, 1);
@@ -288,11 +292,7 @@ frame_centre(const struct anim *a, size_t f, double c[3])
 static int
 point_frame(const struct anim *a, size_t f)
 {
-	double most = 0;
-
-	for (size_t g = 0; g < a->nf; g++)
-		most = fmax(most, a->frame[5 * g + 4]);
-	return !(a->frame[5 * f + 4] >= VDT_DEFORM_POINT_FRAME * most);
+	return !(a->frame[5 * f + 4] >= VDT_DEFORM_POINT_FRAME * a->widest);
 }
 
 /* The frame the shared order takes its geometry from (its validity
