@@ -82,6 +82,10 @@ sweep() {
 @test "vdt-cluster, vdt-build and vdt-silhouette out of memory anywhere" {
 	sweep strict 1 out.vdt "$BIN/vdt-cluster" -r 0.3 -o out.vdt "$SAMPLES/sphere.off"
 	sweep strict 1 t.vdt "$BIN/vdt-build" -q -o t.vdt "$SAMPLES/torus.off"
+	# (a vertex no face uses: the octree pairs the others alone)
+	printf 'OFF\n5 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n9 9 9\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n' \
+		>"$TMP/stray.off"
+	sweep strict 1 t.vdt "$BIN/vdt-build" -q -o t.vdt "$TMP/stray.off"
 	sweep strict 1 s.vdt "$BIN/vdt-silhouette" -a 60 -r 32 -o s.vdt "$SAMPLES/torus.off"
 }
 
