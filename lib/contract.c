@@ -4326,7 +4326,7 @@ finish:
 	read_flush(&e);
 	res->entries_read = e.entries_read;
 	res->reached_target = done(&e, o);
-	res->link_only = !res->reached_target && link_only(&e, o->max_cost);
+	res->link_only = o->ask_link && !res->reached_target && link_only(&e, o->max_cost);
 	engine_shed(&e);
 
 	/* Results: positions, surviving triangles, where each vertex went. */

@@ -219,6 +219,13 @@ struct vdt_contract_opts {
 	 * key. Slower, and the same result, which the tests check.
 	 */
 	int exhaustive;
+	/*
+	 * Nonzero: when the run stops short of its target, find whether
+	 * some pair passes every test but the link condition (res->link_only,
+	 * what allow_nonmanifold would go on with): up to one more try of
+	 * each live edge, 0.1 s on the dragon stopped at once by a bound.
+	 */
+	int ask_link;
 };
 
 #define VDT_CONTRACT_MAX_THREADS 16
@@ -253,9 +260,9 @@ struct vdt_contract_result {
 	double max_cost;       /* largest cost contracted */
 	int reached_target;    /* 1 if the triangle/vertex target was met */
 	size_t rejected;       /* pops refused by a validity test */
-	int link_only;         /* 1 if, stopped short of the target, some pair
-	                          passed every test but the link condition
-	                          (allow_nonmanifold would have gone on) */
+	int link_only;         /* with ask_link: 1 if, stopped short of the
+	                          target, some pair passed every test but the
+	                          link condition */
 	size_t entries_read;   /* face and pair list entries the validity
 	                          tests and the lists' updates read: their
 	                          work, which a vertex of many faces must not

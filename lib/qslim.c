@@ -3484,6 +3484,8 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	co.virtual_pairs = vpairs;
 	co.virtual_pair_count = nvp;
 	co.record = records != NULL;
+	/* (the stop note's handles: only a target's stop has one) */
+	co.ask_link = o->target_triangles > 0 || o->target_ratio > 0;
 	/* The link condition keeps manifold input manifold; on input that is
 	 * not (a clustered intermediate, a scan with fins) it would also keep
 	 * every hole and inverted face the damage left, so it is dropped
