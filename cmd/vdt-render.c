@@ -190,7 +190,8 @@ check_outputs(const struct cmdline *cl, size_t nviews)
 		for (size_t i = 0; i < nviews; i++)
 			refuse_one_file_for_two("-o", frame_name(a, cl->out, i), "--mesh-out",
 			                        frame_name(b, cl->mesh_out, i));
-	if (cl->out && vdt_image_writable(frame_name(a, cl->out, 0), &err) != 0)
+	if (cl->out &&
+	    vdt_image_writable(frame_name(a, cl->out, 0), cl->v.width, cl->v.height, 3, &err) != 0)
 		return fail("cannot write", a, &err);
 	if (cl->mesh_out && vdt_output_format(frame_name(a, cl->mesh_out, 0), VDT_FMT_AUTO) == VDT_FMT_AUTO) {
 		vdt_err_set(&err, VDT_EINVAL, "unknown output format (give a known extension)");

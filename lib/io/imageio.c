@@ -79,7 +79,8 @@ from_module(int code, const char *msg, struct vdt_err *err)
 {
 	switch (code) {
 	case VDT_IMG_OK: return 0;
-	case VDT_IMG_NO_WRITER: return vdt_err_set(err, VDT_EINVAL, "%s", msg);
+	case VDT_IMG_NO_WRITER:
+	case VDT_IMG_REFUSED: return vdt_err_set(err, VDT_EINVAL, "%s", msg);
 	case VDT_IMG_BAD: return vdt_err_set(err, VDT_EFORMAT, "%s", msg);
 	case VDT_IMG_NOMEM: return vdt_err_set(err, VDT_ENOMEM, "out of memory");
 	default: return vdt_err_set(err, VDT_EIO, "%s", msg[0] ? msg : "cannot use the image");
@@ -105,7 +106,8 @@ writer_name(const char *path)
 		return "-.png";
 	/* (and /dev/stdout to a regular file: written in place, as "-") */
 	free(target = vdt_output_target(path, &special));
-	if (target != NULL && special && fn.writer(path, msg, sizeof(msg)) == VDT_IMG_NO_WRITER)
+	if (target != NULL && special &&
+	    fn.writer(path, 0, 0, 0, msg, sizeof(msg)) == VDT_IMG_NO_WRITER)
 		return "-.png";
 	return path;
 }
@@ -170,14 +172,15 @@ write_own_file(const char *path, int w, int h, int c, const unsigned char *px,
 }
 
 int
-vdt_image_writable(const char *path, struct vdt_err *err)
+vdt_image_writable(const char *path, int width, int height, int channels, struct vdt_err *err)
 {
 	char msg[512] = "";
 	int rc;
 
 	if ((rc = refuse_terminal(path, err)) != 0 || (rc = vdt_module_ready(&mod, err)) != 0)
 		return rc;
-	return from_module(fn.writer(writer_name(path), msg, sizeof(msg)), msg, err);
+	return from_module(fn.writer(writer_name(path), width, height, channels, msg, sizeof(msg)),
+	                   msg, err);
 }
 
 int

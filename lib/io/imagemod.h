@@ -21,14 +21,15 @@ enum {
 	VDT_IMG_FAIL = 3,      /* the message says why */
 	VDT_IMG_BAD = 4,       /* not an image we can use (reading) */
 	VDT_IMG_NOMEM = 5,
+	VDT_IMG_REFUSED = 6, /* the writer takes no image of this size */
 };
 
 /* Raised when a function's arguments change: a module of another build
  * is refused, not called (module.h). */
-#define VDT_IMG_ABI 1
+#define VDT_IMG_ABI 2
 
 /* The module's functions, and their names in it. */
-typedef int vdt_img_writer_fn(const char *name, char *msg, size_t cap);
+typedef int vdt_img_writer_fn(const char *name, int w, int h, int c, char *msg, size_t cap);
 typedef int vdt_img_encode_fn(const char *name, int w, int h, int c, const unsigned char *px,
                               unsigned char **out, size_t *len, char *msg, size_t cap);
 typedef int vdt_img_write_file_fn(const char *name, const char *file, int w, int h, int c,
@@ -38,7 +39,8 @@ typedef int vdt_img_read_fn(const char *path, int *w, int *h, int *c, unsigned c
 
 /* int (void): VDT_IMG_ABI. */
 #define VDT_IMG_ABI_FN "vdt_img_abi"
-/* Whether a writer exists for name (its extension picks it). */
+/* Whether a writer exists for name (its extension picks it) and, for
+ * w > 0, takes a w x h image of c channels (VDT_IMG_REFUSED if not). */
 #define VDT_IMG_WRITER "vdt_img_writer"
 /* The image encoded in memory (*out malloc'ed), by name's writer; or
  * VDT_IMG_OWN_FILE when it writes only files of its own. */

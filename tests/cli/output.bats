@@ -348,7 +348,7 @@ refused() {
 	printf '%s\n' 'int vdt_img_abi(void) { return 0; }' 'int vdt_asm_abi(void) { return 0; }' > "$TMP/old2.c"
 	cc -shared -fPIC -o "$TMP/x/vdt-image.so" "$TMP/old2.c"
 	cp "$TMP/x/vdt-image.so" "$TMP/x/vdt-assimp.so"
-	refused "$TMP/old.png" "vdt-render: cannot write '$TMP/old.png': the image module vdt-image.so $old" \
+	refused "$TMP/old.png" "vdt-render: cannot write '$TMP/old.png': the image module vdt-image.so ${old%1 wanted)}2 wanted)" \
 		"$TMP/x/vdt-render" --size 32x24 "$TMP/s.vdt" -o "$TMP/old.png"
 	refused "$TMP/old0.off" "vdt-deform: cannot read '$TMP/old.x': the Assimp module vdt-assimp.so $old" \
 		"$TMP/x/vdt-deform" -q -r 0.5 "$TMP/old.x" -o "$TMP/old%d.off"

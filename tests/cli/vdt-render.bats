@@ -87,6 +87,25 @@ tree() {
 	[ ! -e "$TMP/far.png" ]
 }
 
+@test "vdt-render: a size or channels the image format cannot hold is refused before rendering, status 2" {
+	tree
+	run "$BIN/vdt-render" "$TMP/t.vdt" -o "$TMP/x.ico"
+	[ "$status" -eq 2 ]
+	one_line
+	[ "$output" = "vdt-render: cannot write '$TMP/x.ico': ico images are at most 256 pixels a side, not 512x512" ]
+	[ ! -e "$TMP/x.ico" ]
+	run "$BIN/vdt-render" "$TMP/t.vdt" --size 16384x8 -o "$TMP/x.webp"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-render: cannot write '$TMP/x.webp': webp images are at most 16383 pixels a side, not 16384x8" ]
+	run "$BIN/vdt-render" "$TMP/t.vdt" -o "$TMP/x.zfile"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-render: cannot write '$TMP/x.zfile': zfile images have 1 channel, not 3" ]
+	[ ! -e "$TMP/x.zfile" ]
+	run "$BIN/vdt-render" "$TMP/t.vdt" --size 256x200 -o "$TMP/x.ico"
+	[ "$status" -eq 0 ]
+	[ -s "$TMP/x.ico" ]
+}
+
 @test "vdt-render: an unwritable output is status 1, as in every tool; a missing reference 2" {
 	tree
 	run "$BIN/vdt-render" "$TMP/t.vdt" -o "$TMP/no/such/dir/x.png"

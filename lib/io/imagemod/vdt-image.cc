@@ -101,11 +101,41 @@ vdt_img_abi(void)
 	return VDT_IMG_ABI;
 }
 
+/*
+ * Writers that refuse an image for its size or channels only once they
+ * have it, after the whole render: their rules, to refuse it before.
+ * (WebP's refuses more than 16383 pixels a side as it encodes.)
+ */
+const struct {
+	const char *format;
+	int side;     /* at most this many pixels a side, or 0 */
+	int channels; /* only this many channels, or 0 */
+} rules[] = {{"ico", 256, 0}, {"webp", 16383, 0}, {"zfile", 0, 1}};
+
 extern "C" int
-vdt_img_writer(const char *name, char *msg, size_t cap)
+vdt_img_writer(const char *name, int w, int h, int c, char *msg, size_t cap)
 {
 	try {
-		return OIIO::ImageOutput::create(name) ? VDT_IMG_OK : no_writer(msg, cap);
+		auto o = OIIO::ImageOutput::create(name);
+		if (!o)
+			return no_writer(msg, cap);
+		std::string f = o->format_name();
+		for (const auto &r : rules) {
+			if (w <= 0 || f != r.format)
+				continue;
+			if (r.side > 0 && (w > r.side || h > r.side))
+				return say(VDT_IMG_REFUSED,
+				           f + " images are at most " + std::to_string(r.side) +
+				                   " pixels a side, not " + std::to_string(w) +
+				                   "x" + std::to_string(h),
+				           msg, cap);
+			if (r.channels > 0 && c != r.channels)
+				return say(VDT_IMG_REFUSED,
+				           f + " images have " + std::to_string(r.channels) +
+				                   " channel, not " + std::to_string(c),
+				           msg, cap);
+		}
+		return VDT_IMG_OK;
 	} catch (const std::bad_alloc &) {
 		return say(VDT_IMG_NOMEM, "out of memory", msg, cap);
 	} catch (...) {
