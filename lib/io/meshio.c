@@ -21,6 +21,7 @@
 #include <unistd.h>
 
 #include "../bytes.h"
+#include "../hash.h"
 
 static const struct {
 	const char *name;
@@ -1489,23 +1490,74 @@ face_normal(const struct vdt_mesh *m, size_t t, double n[3])
 		n[k] = l > 0 ? n[k] / l : 0;
 }
 
-/* Face t of an OBJ, its corners numbered as write_obj numbers them. */
+/* Face t of an OBJ: its corners' v, vt and vn numbers (from 0; NULL: the
+ * vertex's own). */
 static void
-obj_face(FILE *f, const struct vdt_mesh *m, size_t t)
+obj_face(FILE *f, const struct vdt_mesh *m, size_t t, const uint32_t *vn[3])
 {
 	fputc('f', f);
 	for (int k = 0; k < 3; k++) {
-		unsigned long v = (unsigned long)m->triangles[3 * t + k] + 1;
+		uint32_t i = m->triangles[3 * t + k];
+		unsigned long x[3];
+		for (int j = 0; j < 3; j++)
+			x[j] = (unsigned long)(vn[j] ? vn[j][i] : i) + 1;
 		if (m->uvs && m->normals)
-			fprintf(f, " %lu/%lu/%lu", v, v, v);
+			fprintf(f, " %lu/%lu/%lu", x[0], x[1], x[2]);
 		else if (m->uvs)
-			fprintf(f, " %lu/%lu", v, v);
+			fprintf(f, " %lu/%lu", x[0], x[1]);
 		else if (m->normals)
-			fprintf(f, " %lu//%lu", v, v);
+			fprintf(f, " %lu//%lu", x[0], x[2]);
 		else
-			fprintf(f, " %lu", v);
+			fprintf(f, " %lu", x[0]);
 	}
 	fputc('\n', f);
+}
+
+/*
+ * Each of n items' number among the distinct ones, in order of first
+ * appearance (malloc'ed; NULL out of memory): item i is a[na * i ..] then
+ * b[nb * i ..] (b NULL: none), compared by their bits.
+ */
+static uint32_t *
+distinct(size_t n, const float *a, int na, const float *b, int nb)
+{
+	uint32_t mask = vdt_hash_mask(2 * n), *slot, *num = malloc((n ? n : 1) * sizeof(*num));
+	uint32_t next = 0;
+	size_t la = (size_t)na * sizeof(float), lb = (size_t)nb * sizeof(float);
+
+	slot = malloc(((size_t)mask + 1) * sizeof(*slot));
+	if (num == NULL || slot == NULL) {
+		free(num);
+		free(slot);
+		return NULL;
+	}
+	memset(slot, 0xff, ((size_t)mask + 1) * sizeof(*slot));
+	for (size_t i = 0; i < n; i++) {
+		uint64_t h = 0;
+		uint32_t w;
+		for (int k = 0; k < na + nb; k++) {
+			memcpy(&w, k < na ? a + (size_t)na * i + k : b + (size_t)nb * i + (k - na),
+			       sizeof(w));
+			h = vdt_hash_mix(h ^ w);
+		}
+		uint32_t s = (uint32_t)h & mask;
+		for (;; s = (s + 1) & mask) {
+			uint32_t j = slot[s];
+			if (j == UINT32_MAX) {
+				slot[s] = (uint32_t)i;
+				num[i] = next++;
+				break;
+			}
+			if (memcmp(a + (size_t)na * i, a + (size_t)na * j, la) == 0 &&
+			    (b == NULL ||
+			     memcmp(b + (size_t)nb * i, b + (size_t)nb * j, lb) == 0)) {
+				num[i] = num[j];
+				break;
+			}
+		}
+	}
+	free(slot);
+	return num;
 }
 
 /* "keyword text": a text that ends in a backslash gets a blank after
@@ -1521,8 +1573,12 @@ obj_statement(FILE *f, const char *keyword, const char *text)
 /*
  * An OBJ of m, with materials mat (NULL: none): their libraries first,
  * then the faces without one (OBJ has no way back to none), then each
- * material's faces after its usemtl, in the order of the names. Returns
- * 0 or VDT_ENOMEM.
+ * material's faces after its usemtl, in the order of the names. With
+ * texture coordinates or normals, the v, vt and vn lines are each of the
+ * distinct values (the v's of position and colour), numbered apart in the
+ * faces: the wedges of a seam, which the mesh holds as vertices apart,
+ * share their v, and the seam stays closed for a reader that joins faces
+ * by it. Returns 0 or VDT_ENOMEM.
  */
 static int
 write_obj(FILE *f, const struct vdt_mesh *m, const struct vdt_materials *mat, struct vdt_err *err)
@@ -1548,12 +1604,31 @@ write_obj(FILE *f, const struct vdt_mesh *m, const struct vdt_materials *mat, st
 		for (size_t t = 0; t < m->triangle_count; t++)
 			order[start[(uint32_t)(mat->faces[t] + 1u)]++] = (uint32_t)t;
 	}
+	const uint32_t *num[3] = {NULL, NULL, NULL};
+	uint32_t *vnum = NULL, *tnum = NULL, *nnum = NULL, next = 0;
+	if (m->uvs || m->normals) {
+		size_t n = m->vertex_count;
+		num[0] = vnum = distinct(n, m->positions, 3, m->colors, m->colors ? 4 : 0);
+		num[1] = tnum = m->uvs ? distinct(n, m->uvs, 2, NULL, 0) : NULL;
+		num[2] = nnum = m->normals ? distinct(n, m->normals, 3, NULL, 0) : NULL;
+		if (vnum == NULL || (m->uvs && tnum == NULL) || (m->normals && nnum == NULL)) {
+			free(vnum);
+			free(tnum);
+			free(nnum);
+			free(start);
+			free(order);
+			return vdt_err_set(err, VDT_ENOMEM, "out of memory for the OBJ's numbers");
+		}
+	}
 	/* (alpha as a seventh value, as the reader takes it) */
 	int alpha = vdt_colors_alpha(m);
 	fputs("# written by vdt\n", f);
 	for (size_t i = 0; mat != NULL && i < mat->lib_count; i++)
 		obj_statement(f, "mtllib", mat->libs[i]);
 	for (size_t i = 0; i < m->vertex_count; i++, p += 3) {
+		if (vnum != NULL && vnum[i] != next)
+			continue; /* a position written before */
+		next++;
 		if (m->colors) {
 			const float *c = m->colors + 4 * i;
 			fprintf(f, "v " P9 " " P9 " " P9 " " P9 " " P9 " " P9, p[0], p[1], p[2],
@@ -1566,20 +1641,29 @@ write_obj(FILE *f, const struct vdt_mesh *m, const struct vdt_materials *mat, st
 			fprintf(f, "v " P9 " " P9 " " P9 "\n", p[0], p[1], p[2]);
 		}
 	}
-	if (m->uvs)
-		for (size_t i = 0; i < m->vertex_count; i++)
+	next = 0;
+	for (size_t i = 0; m->uvs && i < m->vertex_count; i++)
+		if (tnum[i] == next) {
+			next++;
 			fprintf(f, "vt " P9 " " P9 "\n", m->uvs[2 * i], m->uvs[2 * i + 1]);
-	if (m->normals)
-		for (size_t i = 0; i < m->vertex_count; i++)
+		}
+	next = 0;
+	for (size_t i = 0; m->normals && i < m->vertex_count; i++)
+		if (nnum[i] == next) {
+			next++;
 			fprintf(f, "vn " P9 " " P9 " " P9 "\n", m->normals[3 * i],
 			        m->normals[3 * i + 1], m->normals[3 * i + 2]);
+		}
 	for (size_t k = 0; k < m->triangle_count; k++) {
 		size_t t = order ? order[k] : k;
 		if (order != NULL && mat->faces[t] != VDT_NO_MATERIAL &&
 		    (k == 0 || mat->faces[order[k - 1]] != mat->faces[t]))
 			obj_statement(f, "usemtl", mat->names[mat->faces[t]]);
-		obj_face(f, m, t);
+		obj_face(f, m, t, num);
 	}
+	free(vnum);
+	free(tnum);
+	free(nnum);
 	free(start);
 	free(order);
 	return 0;
@@ -1674,7 +1758,10 @@ vdt_text_write(FILE *f, const struct vdt_mesh *m, enum vdt_format format,
                struct vdt_err *err)
 {
 	switch (format) {
-	case VDT_FMT_OBJ: write_obj(f, m, NULL, err); break;
+	case VDT_FMT_OBJ:
+		if (write_obj(f, m, NULL, err) != 0)
+			return err->code;
+		break;
 	case VDT_FMT_OFF: write_off(f, m); break;
 	case VDT_FMT_PLY_ASCII: write_ply_ascii(f, m); break;
 	case VDT_FMT_STL_ASCII: write_stl_ascii(f, m); break;

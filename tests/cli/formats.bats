@@ -27,6 +27,37 @@ ply_vertices() {
 	[ "$(awk '$1 == "v" { print NF }' "$TMP/c.obj" | sort -u)" = 7 ]
 }
 
+# open_edges OBJ: the edges of one face only, faces joined by their v numbers
+open_edges() {
+	awk '/^f / { for (i = 2; i <= 4; i++) { split($i, c, "/"); v[i] = c[1] }
+		for (i = 2; i <= 4; i++) { a = v[i]; b = v[i == 4 ? 2 : i + 1]
+			e[a < b ? a " " b : b " " a]++ } }
+		END { for (k in e) n += e[k] == 1; print n + 0 }' "$1"
+}
+
+@test "OBJ output: the wedges of a seam share their v line, so the seam stays closed for every reader" {
+	# a cube of 8 positions with a normal per side: 24 wedges, 8 v lines
+	printf '%s\n' 'v 0 0 0' 'v 1 0 0' 'v 1 1 0' 'v 0 1 0' 'v 0 0 1' 'v 1 0 1' 'v 1 1 1' 'v 0 1 1' \
+		'vn 0 0 -1' 'vn 0 0 1' 'vn 0 -1 0' 'vn 0 1 0' 'vn -1 0 0' 'vn 1 0 0' \
+		'f 1//1 4//1 3//1 2//1' 'f 5//2 6//2 7//2 8//2' 'f 1//3 2//3 6//3 5//3' \
+		'f 4//4 8//4 7//4 3//4' 'f 1//5 5//5 8//5 4//5' 'f 2//6 3//6 7//6 6//6' > "$TMP/cube.obj"
+	"$BIN/vdt-qslim" -q -t 1000 "$TMP/cube.obj" -o "$TMP/out.obj"
+	[ "$(grep -c '^v ' "$TMP/out.obj")" -eq 8 ]
+	[ "$(grep -c '^vn ' "$TMP/out.obj")" -eq 6 ]
+	[ "$(open_edges "$TMP/out.obj")" -eq 0 ]
+	# read back: the same mesh, to the byte
+	"$BIN/vdt-qslim" -q -t 1000 "$TMP/out.obj" -o "$TMP/again.obj"
+	cmp "$TMP/out.obj" "$TMP/again.obj"
+	# a textured sphere, closed, its seam kept closed, whole and simplified
+	[ "$(open_edges "$SAMPLES/sphere-uv.obj")" -eq 0 ]
+	for r in 1 0.1; do
+		"$BIN/vdt-qslim" -q -r $r "$SAMPLES/sphere-uv.obj" -o "$TMP/s.obj"
+		[ "$(open_edges "$TMP/s.obj")" -eq 0 ]
+		[ "$(grep -c '^vt ' "$TMP/s.obj")" -gt "$(grep -c '^v ' "$TMP/s.obj")" ]
+		[ $r != 1 ] || [ "$(grep -c '^v ' "$TMP/s.obj")" -eq "$(grep -c '^v ' "$SAMPLES/sphere-uv.obj")" ]
+	done
+}
+
 @test "colours without alpha are written back without it, in every format that has colours" {
 	# an RGB PLY, as scanners and MeshLab write it
 	printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0 255 0 0\n1 0 0 0 255 0\n1 1 0 0 0 255\n0 1 0 10 20 30\n3 0 1 2\n3 0 2 3\n' > "$TMP/rgb.ply"
@@ -264,6 +295,11 @@ PY
 	# a face with no texcoords (an untextured part) takes 0 0
 	{ printf "$head"; printf '%s\n' '3 0 1 2 6 0 0 1 0 1 1' '3 0 2 3 0'; } > "$TMP/none.ply"
 	"$BIN/vdt-qslim" -q -r 1 "$TMP/none.ply" -o "$TMP/out.obj"
-	[ "$(grep -c '^vt 0 0$' "$TMP/out.obj")" -eq 3 ]
+	[ "$(grep -c '^vt ' "$TMP/out.obj")" -eq 3 ]
+	[ "$(grep -c '^vt 0 0$' "$TMP/out.obj")" -eq 1 ]
+	# (the second face's corners all on it)
+	t=$(grep '^vt ' "$TMP/out.obj" | grep -n '^vt 0 0$' | cut -d: -f1)
+	grep '^f ' "$TMP/out.obj" | sed -n 2p |
+		awk -v t="$t" '{ for (i = 2; i <= 4; i++) { split($i, c, "/"); if (c[2] != t) exit 1 } }'
 	[ ! -e "$TMP/out.ply" ]
 }
