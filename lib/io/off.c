@@ -8,6 +8,7 @@
  *   NVertices NFaces NEdges      NEdges is ignored and may be missing
  *   x y z [w] [nx ny nz] [r g b [a]] [s t]       one vertex per line
  *   Nv v[0] ... v[Nv-1] [colorspec]              one face per line
+ *                                    (colorspec: 1, 3 or 4 finite numbers)
  *
  * '#' starts a comment that runs to the end of the line. 4OFF vertices are
  * homogeneous and divided by w. Vertex colours are 3 or 4 values, either
@@ -241,7 +242,20 @@ read_header(struct reader *r, struct layout *l, long long *nv, long long *nf,
 		rc = read_count(r, "face count", nf, err);
 	if (rc != 0)
 		return rc;
-	end_line(r); /* the edge count is never used */
+	/* the edge count, never used, and may be missing; then nothing */
+	skip_blank(r);
+	if (!at_eol(r)) {
+		long long ne;
+		const char *tok = r->p;
+		if (parse_int(&r->p, r->end, &ne) != 0 || ne < 0) {
+			r->p = tok;
+			return bad_header(r, "edge count", err);
+		}
+		skip_blank(r);
+		if (!at_eol(r))
+			return bad_header(r, "value after the three counts", err);
+	}
+	end_line(r);
 	return 0;
 }
 
@@ -282,6 +296,12 @@ read_vertices(struct reader *r, const struct layout *l, struct vdt_mesh *m, stru
 			return vdt_err_set(err, VDT_EFORMAT,
 			                   "vertex %zu has too few values on line %zu (%zu of %zu)", i,
 			                   r->line, n, need);
+		/* (but for a colour's alpha, the header says how many) */
+		if (n > need + (size_t)l->color)
+			return vdt_err_set(
+			        err, VDT_EFORMAT,
+			        "vertex %zu has too many values on line %zu (%zu for %zu)", i,
+			        r->line, n, need + (size_t)l->color);
 		line = r->line;
 		end_line(r);
 
@@ -320,12 +340,41 @@ read_vertices(struct reader *r, const struct layout *l, struct vdt_mesh *m, stru
 	return 0;
 }
 
+/* What may follow face f's indices, which is not kept: a colour of 1
+ * (a colour map's index), 3 or 4 values, all finite numbers. */
+static int
+face_color(struct reader *r, size_t f, struct vdt_err *err)
+{
+	size_t n = 0, line = r->line;
+	char q[24];
+
+	for (skip_blank(r); !at_eol(r); skip_blank(r), n++) {
+		const char *at = r->p;
+		float x;
+		if (parse_float(&r->p, r->end, &x) != 0)
+			return vdt_err_set(err, VDT_EFORMAT,
+			                   "face %zu has a bad colour value '%s' on line %zu", f,
+			                   quote(at, r->end, q), line);
+		if (!isfinite(x) || vdt_text_beyond_float(at, r->p, x))
+			return vdt_err_set(err, VDT_EFORMAT,
+			                   "face %zu has a colour value '%s' that is not a finite "
+			                   "float on line %zu",
+			                   f, quote(at, r->end, q), line);
+	}
+	if (n == 2 || n > 4)
+		return vdt_err_set(err, VDT_EFORMAT,
+		                   "face %zu has %zu colour values on line %zu (1, 3 or 4 if any)",
+		                   f, n, line);
+	return 0;
+}
+
 static int
 read_faces(struct reader *r, size_t nf, struct vdt_mesh *m, struct vdt_polygon *poly,
            struct vdt_err *err)
 {
 	size_t nv = m->vertex_count, nt = 0, cap = nf > 0 ? nf : 1;
 	const char *tok;
+	int rc;
 	char q[24], shown[VDT_TEXT_INT_SHOWN];
 
 	for (size_t f = 0; f < nf; f++) {
@@ -387,7 +436,9 @@ read_faces(struct reader *r, size_t nf, struct vdt_mesh *m, struct vdt_polygon *
 			}
 			prev = v;
 		}
-		end_line(r); /* a face colour, if any */
+		if ((rc = face_color(r, f, err)) != 0)
+			return rc;
+		end_line(r);
 		if (k > 3 && vdt_polygon_refan(poly, vdt_polygon_floats, m->positions,
 		                               m->triangles + 3 * (nt - (size_t)(k - 2)), (size_t)k,
 		                               NULL, 0) != 0)

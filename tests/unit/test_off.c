@@ -132,6 +132,10 @@ test_comments(void **state)
 	read_ok("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 0.5 0.5 0.5 1\n", &m);
 	assert_memory_equal(m.triangles, t, sizeof(t));
 	vdt_mesh_free(&m);
+	/* a colour map's index */
+	read_ok("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 4\n", &m);
+	assert_memory_equal(m.triangles, t, sizeof(t));
+	vdt_mesh_free(&m);
 }
 
 /* NOFF: x y z nx ny nz. */
@@ -306,6 +310,26 @@ test_reject(void **state)
 	expect_error("nOFF 4\n3 1 0\n", VDT_EFORMAT, "nOFF of dimension 4 is not supported");
 	expect_error("OF\n3 1 0\n", VDT_EFORMAT, "not an OFF file");
 	expect_error("", VDT_EFORMAT, "not an OFF file");
+	/* the grammar past what is kept: edge count, a vertex's count of
+	 * values, a face's colour */
+	expect_error("OFF\n3 1 x\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", VDT_EFORMAT,
+	             "bad edge count 'x' on line 2 of the OFF header");
+	expect_error("OFF\n3 1 0 5\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", VDT_EFORMAT,
+	             "bad value after the three counts '5' on line 2 of the OFF header");
+	expect_error("OFF\n3 1 0\n0 0 0 7\n1 0 0\n0 1 0\n3 0 1 2\n", VDT_EFORMAT,
+	             "vertex 0 has too many values on line 3 (4 for 3)");
+	expect_error("COFF\n3 1 0\n0 0 0 1 0 0 1 1\n1 0 0 1 0 0\n0 1 0 1 0 0\n3 0 1 2\n",
+	             VDT_EFORMAT, "vertex 0 has too many values on line 3 (8 for 7)");
+	expect_error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 junk\n", VDT_EFORMAT,
+	             "face 0 has a bad colour value 'junk' on line 6");
+	expect_error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 0.5 nan 1\n", VDT_EFORMAT,
+	             "face 0 has a colour value 'nan' that is not a finite float on line 6");
+	expect_error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 1 1e39 1\n", VDT_EFORMAT,
+	             "face 0 has a colour value '1e39' that is not a finite float on line 6");
+	expect_error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 0.5 1\n", VDT_EFORMAT,
+	             "face 0 has 2 colour values on line 6 (1, 3 or 4 if any)");
+	expect_error("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 1 1 1 1 1\n", VDT_EFORMAT,
+	             "face 0 has 5 colour values on line 6 (1, 3 or 4 if any)");
 }
 
 /*
