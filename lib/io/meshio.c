@@ -389,8 +389,12 @@ guess(const unsigned char *buf, size_t n, enum vdt_format hint, int *guessed)
 
 	if (hint == VDT_FMT_STL || stl_normal_first(buf, n))
 		*guessed = 0;
-	/* Only text formats can hide from detection (long comments). */
-	if (f == VDT_FMT_AUTO && (hint == VDT_FMT_OBJ || hint == VDT_FMT_OFF) && !wide(buf, n))
+	/* Only text formats can hide from detection (long comments); and a
+	 * binary STL's header, 80 bytes of anything, text too, before its
+	 * count: under a .stl name, bytes of no other format are one cut
+	 * short, or of the count that follows. */
+	if (f == VDT_FMT_AUTO &&
+	    (hint == VDT_FMT_OBJ || hint == VDT_FMT_OFF || hint == VDT_FMT_STL) && !wide(buf, n))
 		return hint;
 	return f;
 }

@@ -216,3 +216,19 @@ PY
 	"$BIN/vdt-qslim" -q -r 1 "$TMP/zeros.stl" -o "$TMP/z.off"
 	[ "$(off_faces "$TMP/z.off")" -eq 3 ]
 }
+
+@test "a .stl of fewer bytes than a binary STL's header is one cut short there, text or not" {
+	head -c 60 /dev/zero | tr '\0' A > "$TMP/a.stl"
+	head -c 83 /dev/zero > "$TMP/z.stl"
+	for f in a:60 z:83; do
+		run "$BIN/vdt-qslim" "$TMP/${f%:*}.stl" -o "$TMP/out.off"
+		[ "$status" -eq 2 ]
+		[ "$output" = "vdt-qslim: cannot read '$TMP/${f%:*}.stl': binary STL is truncated in its header (${f#*:} bytes)" ]
+		[ ! -e "$TMP/out.off" ]
+	done
+	# by any other name, the same bytes are of no format
+	cp "$TMP/a.stl" "$TMP/a.dat"
+	run "$BIN/vdt-qslim" "$TMP/a.dat" -o "$TMP/out.off"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-qslim: cannot read '$TMP/a.dat': unknown format" ]
+}
