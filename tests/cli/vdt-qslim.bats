@@ -1561,6 +1561,27 @@ open(out, 'w').write('\n'.join(L) + '\n')
 PY
 }
 
+@test "colours of a scanner's noise cost little distance: the bunny within 1.1 times the RMS error without them" {
+	python3 - "$SAMPLES/fetched/bunny.obj" "$TMP/c.obj" <<'PY'
+import random, sys
+random.seed(1)
+out = []
+for l in open(sys.argv[1]):
+    if l.startswith('v '):
+        l = l.rstrip('\n') + ''.join(' %.4f' % (0.6 + random.gauss(0, 0.01)) for _ in range(3)) + '\n'
+    out.append(l)
+open(sys.argv[2], 'w').write(''.join(out))
+PY
+	"$BIN/vdt-qslim" -q -r 0.1 "$SAMPLES/fetched/bunny.obj" -o "$TMP/plain.obj"
+	"$BIN/vdt-qslim" -q -r 0.1 "$TMP/c.obj" -o "$TMP/with.obj"
+	[ "$(grep -c '^v .* .* .* .* .* ' "$TMP/with.obj")" -gt 0 ]
+	p=$("$BIN/vdt-measure" -q -F kv "$SAMPLES/fetched/bunny.obj" "$TMP/plain.obj" | kv rms_pct)
+	w=$("$BIN/vdt-measure" -q -F kv "$SAMPLES/fetched/bunny.obj" "$TMP/with.obj")
+	[ "$(printf '%s\n' "$w" | kv flipped)" -eq 0 ]
+	w=$(printf '%s\n' "$w" | kv rms_pct)
+	awk -v p="$p" -v w="$w" 'BEGIN { exit !(w <= 1.1 * p) }' || { echo "$w against $p"; false; }
+}
+
 @test "smooth normals cost little distance: the bunny within 1.25 times the RMS error without them" {
 	with_normals "$SAMPLES/fetched/bunny.obj" "$TMP/n.obj" smooth
 	for r in 0.5 0.1 0.02; do
