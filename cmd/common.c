@@ -315,7 +315,7 @@ library_over(const char *path, const char *lib, size_t n, const char *out)
 	    output_over_input((const char *const *)&p, 1, &out, 1, &i) >= 0)
 		usage_error("the output '%s' is '%s', the material library of '%s': writing it "
 		            "would lose the input's materials",
-		            out, p, path);
+		            out, p, input_name(path));
 	free(p);
 }
 
@@ -329,11 +329,12 @@ input_materials(const struct vdt_chunks *extra, size_t triangles, struct vdt_mat
 		(void)vdt_matl_decode(c->data, c->length, triangles, mat, NULL);
 }
 
+/* (on standard input, a relative library is where a reader of it looks:
+ * in the current directory) */
 void
 refuse_output_over_library(const char *path, const struct vdt_materials *mat, const char *out)
 {
-	if (strcmp(path, "-") != 0)
-		each_library(path, mat, out, library_over);
+	each_library(path, mat, out, library_over);
 }
 
 /* note_materials_output's note of one library, its first n bytes lib. */

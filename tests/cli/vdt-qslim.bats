@@ -1668,6 +1668,13 @@ PY
 		[ "$status" -eq 2 ]
 		[[ "$output" == "$t: the output '$TMP/lib.mtl' is '$TMP/lib.mtl', the material library of "* ]]
 	done
+	# on standard input, file or pipe (the MATL chunk of a stream too), a
+	# relative library is in the current directory, as its readers look
+	run sh -c "cd '$TMP' && '$BIN/vdt-qslim' -r 1 -F obj -o lib.mtl < m.obj"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-qslim: the output 'lib.mtl' is 'lib.mtl', the material library of '<stdin>': writing it would lose the input's materials" ]
+	run sh -c "cd '$TMP' && cat m.obj | '$BIN/vdt-silhouette' -q -a 45 | '$BIN/vdt-qslim' -r 1 -F obj -o lib.mtl"
+	[ "$status" -eq 2 ]
 	[ "$(cat "$TMP/lib.mtl")" = "$(printf 'newmtl red\nKd 1 0 0')" ]
 	[ "$(ls -A "$TMP" | tr '\n' ' ')" = "lib.mtl m.obj " ]
 	"$BIN/vdt-qslim" -q -r 1 "$TMP/m.obj" -o "$TMP/out.obj"
