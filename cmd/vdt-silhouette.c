@@ -104,6 +104,8 @@ parse_cmdline(int argc, char **argv, struct cmdline *cl)
 	if (!cl->has_view) /* (the labels of a view are text, for a terminal too) */
 		output_format(cl->out, VDT_FMT_VDT); /* (a terminal, before the work) */
 	refuse_output_over_input(cl->in, cl->out);
+	if (cl->cameras && strcmp(cl->cameras, "-") == 0 && strcmp(cl->in, "-") == 0)
+		usage_error("-c - and the mesh cannot both be standard input: name one of them");
 	if (cl->cameras)
 		refuse_output_over_input(cl->cameras, cl->out);
 	refuse_unwritable(cl->out);

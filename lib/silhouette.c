@@ -157,7 +157,7 @@ vdt_cameras_parse(struct vdt_cameras *c, const char *text, size_t len,
 int
 vdt_cameras_read(struct vdt_cameras *c, const char *path, struct vdt_err *err)
 {
-	FILE *f = fopen(path, "r");
+	FILE *f = strcmp(path, "-") == 0 ? stdin : fopen(path, "r");
 	char *text = NULL;
 	size_t len = 0, cap = 0;
 	int rc = 0;
@@ -182,7 +182,8 @@ vdt_cameras_read(struct vdt_cameras *c, const char *path, struct vdt_err *err)
 			break;
 		}
 	}
-	fclose(f);
+	if (f != stdin)
+		fclose(f);
 	if (rc == 0)
 		rc = vdt_cameras_parse(c, text, len, err);
 	free(text);

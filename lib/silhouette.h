@@ -200,8 +200,9 @@ int vdt_labl_compute(const struct vdt_mesh *m, const struct vdt_cameras *cams,
 void vdt_labl_free(struct vdt_labl *l);
 
 /*
- * Read a camera list file (vdt_cameras_parse). Returns 0, VDT_EIO (cannot
- * open or read), VDT_EFORMAT or VDT_ENOMEM; on failure *c is empty.
+ * Read a camera list file, or standard input for "-" (vdt_cameras_parse).
+ * Returns 0, VDT_EIO (cannot open or read), VDT_EFORMAT or VDT_ENOMEM; on
+ * failure *c is empty.
  */
 int vdt_cameras_read(struct vdt_cameras *c, const char *path, struct vdt_err *err);
 

@@ -146,6 +146,22 @@ load helpers
 	[ ! -e "$TMP/q.off" ]
 }
 
+@test "vdt-silhouette -c - reads the camera list from standard input, never a file named -" {
+	printf '0 0 1\n1 0 0\n' > "$TMP/cams.txt"
+	"$BIN/vdt-silhouette" -r 32 -c "$TMP/cams.txt" "$SAMPLES/sphere.off" -o "$TMP/f.vdl"
+	printf '0 1 0\n' > "$TMP/-"
+	(cd "$TMP" && "$BIN/vdt-silhouette" -r 32 -c - "$SAMPLES/sphere.off" -o "$TMP/s.vdl" < cams.txt)
+	cmp "$TMP/f.vdl" "$TMP/s.vdl"
+	# not both on it
+	run sh -c "'$BIN/vdt-silhouette' -c - - -o '$TMP/b.vdl' < '$SAMPLES/sphere.off'"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-silhouette: -c - and the mesh cannot both be standard input: name one of them" ]
+	run sh -c "'$BIN/vdt-silhouette' -c - '$SAMPLES/sphere.off' -o '$TMP/b.vdl' < /dev/null"
+	[ "$status" -eq 2 ]
+	[ "$output" = "vdt-silhouette: cannot read '<stdin>': no camera in the list" ]
+	[ ! -e "$TMP/b.vdl" ]
+}
+
 @test "vdt-silhouette refuses a mesh with no face of any area" {
 	# on a line: no view sees a surface (it took it, with exit 0)
 	printf 'OFF\n4 2 0\n0 0 0\n1 0 0\n2 0 0\n3 0 0\n3 0 1 2\n3 1 2 3\n' > "$TMP/line.off"
