@@ -977,3 +977,36 @@ teardown() {
 	[ "$output" = "vdt-batch: cannot create a temporary file in '$TMP/missing': No such file or directory" ]
 	[ ! -e "$TMP/out" ]
 }
+
+@test "vdt-batch -h and -V to a full or closed standard output: status 1 and one line" {
+	[ -w /dev/full ] || skip "no /dev/full"
+	for o in -h -V; do
+		run bash -c '"$1" "$2" >/dev/full' _ "$BATCH" "$o"
+		[ "$status" -eq 1 ]
+		[ "$output" = "vdt-batch: cannot write '<stdout>': No space left on device" ]
+		run bash -c '"$1" "$2" >&-' _ "$BATCH" "$o"
+		[ "$status" -eq 1 ]
+		[ "$output" = "vdt-batch: cannot write '<stdout>': Bad file descriptor" ]
+	done
+}
+
+@test "vdt-batch: a directory where an output goes fails its model with the tool's message; the rest are made" {
+	mkdir -p "$TMP/in" "$TMP/out/t.lod1.ply"
+	cp "$SAMPLES/torus.off" "$TMP/in/t.off"
+	cp "$SAMPLES/torus.off" "$TMP/in/u.off"
+	run "$BATCH" -q --ratios 50 --samples 1000 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 1 ]
+	[ "${#lines[@]}" -eq 2 ]
+	[ "${lines[0]}" = "vdt-batch: t.off failed: vdt-qslim: cannot write '$TMP/out/t.lod1.ply': Is a directory" ]
+	[ "${lines[1]}" = "vdt-batch: failed: t.off" ]
+	[ -s "$TMP/out/u.lod1.ply" ]
+	[ -d "$TMP/out/t.lod1.ply" ]
+}
+
+@test "vdt-batch: a model named only by its extension (.off) is its own stem" {
+	mkdir -p "$TMP/in"
+	cp "$SAMPLES/torus.off" "$TMP/in/.off"
+	run "$BATCH" -q --ratios 50 --samples 1000 -o "$TMP/out" "$TMP/in"
+	[ "$status" -eq 0 ]
+	[ -s "$TMP/out/.off.lod1.ply" ]
+}
