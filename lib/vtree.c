@@ -1214,6 +1214,47 @@ measure(struct front *F, struct vdt_vtree_cut *c)
 	return 0;
 }
 
+/*
+ * Whether every node's normal cone holds the normal of every triangle of m
+ * with a corner under it, as vdt(5) defines it (and node_cones and the
+ * leaves' cones make it, rounded up): a tree read after a mesh that is not
+ * its own, or whose faces were turned over, fails here, where every other
+ * check passes and a renderer would cull the wrong faces. 0 or
+ * VDT_EFORMAT naming the node and the triangle.
+ */
+#define CONE_SLACK 1e-5 /* radians: a stored cone's float rounding */
+static int
+cones_hold(const struct vdt_vtree *t, const struct vdt_mesh *m, struct vdt_err *err)
+{
+	for (size_t f = 0; f < m->triangle_count; f++) {
+		const uint32_t *c = m->triangles + 3 * f;
+		double fn[3];
+		if (!unit_face_normal(m, f, fn))
+			continue;
+		/* (each corner, then up the three paths at once, as node_cones) */
+		uint32_t x[3] = {c[0], c[1], c[2]};
+		for (;;) {
+			uint32_t y = x[0] < x[1] ? x[0] : x[1];
+			y = x[2] < y ? x[2] : y;
+			if (y == NONE)
+				break;
+			double a = angle3(t->normal + 3 * (size_t)y, fn);
+			if (a > t->cone[y] + CONE_SLACK)
+				return vdt_err_set(
+				        err, VDT_EFORMAT,
+				        "node %lu's normal cone (%.3g degrees) misses triangle "
+				        "%zu, "
+				        "%.3g degrees off its axis: not this mesh's tree",
+				        (unsigned long)y, t->cone[y] * (180 / M_PI), f,
+				        a * (180 / M_PI));
+			for (int j = 0; j < 3; j++)
+				if (x[j] == y)
+					x[j] = t->parent[y];
+		}
+	}
+	return 0;
+}
+
 int
 vdt_vtree_check(const struct vdt_vtree *t, const struct vdt_mesh *m,
                 const size_t *cut_at, size_t ncuts, struct vdt_vtree_cut *cuts,
@@ -1225,6 +1266,8 @@ vdt_vtree_check(const struct vdt_vtree *t, const struct vdt_mesh *m,
 
 	if (neighbours)
 		*neighbours = 0;
+	if ((rc = cones_hold(t, m, err)) != 0)
+		return rc;
 	F.t = t;
 	F.m = m;
 	F.active = calloc(N + 1, 1);

@@ -113,6 +113,22 @@ load helpers
 	[[ "$output" == "vdt-build: invalid tree in '$TMP/stale.vdt': chunk VTRE at byte "* ]]
 }
 
+@test "vdt-build --check rejects a tree whose normal cones are not its mesh's (its faces turned over)" {
+	"$BIN/vdt-build" "$SAMPLES/torus.off" -o "$TMP/t.vdt"
+	awk 'NR == 2 { nv = $1 } NR > 2 + nv && NF == 4 { t = $3; $3 = $4; $4 = t } { print }' \
+		"$SAMPLES/torus.off" > "$TMP/r.off"
+	"$BIN/vdt-build" "$TMP/r.off" -o "$TMP/r.vdt"
+	"$BIN/vdt-build" --check "$TMP/r.vdt"
+	# the turned mesh with the torus's tree: same vertices, same
+	# collapses, every cone about the other side
+	splice_chunk VTRE "$TMP/r.vdt" "$TMP/t.vdt" "$TMP/x.vdt"
+	[ "$(chunk_types "$TMP/x.vdt")" = "MESH VTRE END " ]
+	run "$BIN/vdt-build" --check "$TMP/x.vdt"
+	[ "$status" -eq 2 ]
+	one_line
+	[[ "$output" == "vdt-build: invalid tree in '$TMP/x.vdt': node "*"'s normal cone ("*" degrees) misses triangle "*"not this mesh's tree" ]]
+}
+
 @test "vdt-build --check rejects corrupted, truncated and tree-less files" {
 	"$BIN/vdt-build" "$SAMPLES/sphere.off" -o "$TMP/s.vdt"
 	size=$(stat -c %s "$TMP/s.vdt")
