@@ -631,7 +631,12 @@ noff_faces() {
 	run "$BIN/vdt-render" --full "$TMP/cube.obj" --mesh-out "$TMP/f.obj"
 	[ "$status" -eq 0 ]
 	[ -z "$output" ]
-	[ "$(grep -c '^vt ' "$TMP/f.obj")" -eq 24 ]
+	# (its 24 vertices, each distinct position, texture coordinate and
+	# normal written once, as read)
+	[ "$(grep -c '^v ' "$TMP/f.obj")" -eq 8 ]
+	[ "$(grep -c '^vt ' "$TMP/f.obj")" -eq 4 ]
+	[ "$(grep -c '^vn ' "$TMP/f.obj")" -eq 6 ]
+	[ "$(grep -c '^f [0-9]*/[0-9]*/[0-9]* ' "$TMP/f.obj")" -eq 12 ]
 }
 
 @test "vdt-render writes PNG, and a mesh stream, to a device or FIFO whose name gives no format" {
