@@ -1240,13 +1240,12 @@ cones_hold(const struct vdt_vtree *t, const struct vdt_mesh *m, struct vdt_err *
 				break;
 			double a = angle3(t->normal + 3 * (size_t)y, fn);
 			if (a > t->cone[y] + CONE_SLACK)
-				return vdt_err_set(
-				        err, VDT_EFORMAT,
-				        "node %lu's normal cone (%.3g degrees) misses triangle "
-				        "%zu, "
-				        "%.3g degrees off its axis: not this mesh's tree",
-				        (unsigned long)y, t->cone[y] * (180 / M_PI), f,
-				        a * (180 / M_PI));
+				return vdt_err_set(err, VDT_EFORMAT,
+				                   "node %lu's normal cone (%.3g degrees) misses "
+				                   "triangle %zu, %.3g degrees off its axis: not "
+				                   "this mesh's tree",
+				                   (unsigned long)y, t->cone[y] * (180 / M_PI), f,
+				                   a * (180 / M_PI));
 			for (int j = 0; j < 3; j++)
 				if (x[j] == y)
 					x[j] = t->parent[y];

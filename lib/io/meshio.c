@@ -1494,17 +1494,17 @@ face_normal(const struct vdt_mesh *m, size_t t, double n[3])
 		n[k] = l > 0 ? n[k] / l : 0;
 }
 
-/* Face t of an OBJ: its corners' v, vt and vn numbers (from 0; NULL: the
- * vertex's own). */
+/* Face t of an OBJ: num[0], [1] and [2] number each vertex's v, vt and vn
+ * lines from 0 (NULL: by the vertex's own number). */
 static void
-obj_face(FILE *f, const struct vdt_mesh *m, size_t t, const uint32_t *vn[3])
+obj_face(FILE *f, const struct vdt_mesh *m, size_t t, const uint32_t *const num[3])
 {
 	fputc('f', f);
 	for (int k = 0; k < 3; k++) {
 		uint32_t i = m->triangles[3 * t + k];
 		unsigned long x[3];
 		for (int j = 0; j < 3; j++)
-			x[j] = (unsigned long)(vn[j] ? vn[j][i] : i) + 1;
+			x[j] = (unsigned long)(num[j] ? num[j][i] : i) + 1;
 		if (m->uvs && m->normals)
 			fprintf(f, " %lu/%lu/%lu", x[0], x[1], x[2]);
 		else if (m->uvs)

@@ -459,9 +459,9 @@ int vdt_image_write_staged(const char *path, int width, int height, int channels
                            struct vdt_err *err);
 /*
  * Whether vdt_image_write has a writer for path's extension that takes an
- * image of width x height and channels (ICO's is at most 256 x 256; the
- * size unchecked for writers of their own file): 0, or VDT_EINVAL naming
- * the problem. Writes nothing.
+ * image of width x height and channels (ICO's at most 256 pixels a side,
+ * WebP's 16383, Zfile's one channel): 0, or VDT_EINVAL naming the
+ * problem. Writes nothing.
  */
 int vdt_image_writable(const char *path, int width, int height, int channels, struct vdt_err *err);
 /* Reads an image, converting to 8-bit; *pixels is malloc'ed. */
