@@ -1594,6 +1594,68 @@ PY
 	done
 }
 
+@test "a model flat-shaded in part: its facets simplify as positions and keep their own normals" {
+	# a UV sphere of smooth normals, the faces below z = T with their own
+	for T in -0.9 0; do
+		python3 - "$T" "$TMP/m.obj" "$TMP/p.obj" <<'PY'
+import math, sys
+T = float(sys.argv[1]); nu, nv = 48, 24
+V = [(0, 0, 1)] + [(math.sin(math.pi * j / nv) * math.cos(2 * math.pi * i / nu),
+      math.sin(math.pi * j / nv) * math.sin(2 * math.pi * i / nu), math.cos(math.pi * j / nv))
+     for j in range(1, nv) for i in range(nu)] + [(0, 0, -1)]
+S = len(V) - 1; idx = lambda j, i: 1 + (j - 1) * nu + i % nu
+F = [(0, idx(1, i), idx(1, i + 1)) for i in range(nu)]
+for j in range(1, nv - 1):
+    for i in range(nu):
+        F += [(idx(j, i), idx(j + 1, i), idx(j + 1, i + 1)), (idx(j, i), idx(j + 1, i + 1), idx(j, i + 1))]
+F += [(S, idx(nv - 1, i + 1), idx(nv - 1, i)) for i in range(nu)]
+L = ['v %.9g %.9g %.9g' % p for p in V]
+open(sys.argv[3], 'w').write('\n'.join(L + ['f %d %d %d' % tuple(x + 1 for x in f) for f in F]) + '\n')
+L += ['vn %.9g %.9g %.9g' % p for p in V]
+k = len(V)
+for f in F:
+    a, b, c = [V[i] for i in f]
+    if all(V[i][2] < T for i in f):
+        u = [b[q] - a[q] for q in range(3)]; w = [c[q] - a[q] for q in range(3)]
+        n = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]]
+        l = math.sqrt(sum(x * x for x in n)); k += 1
+        L.append('vn %.9g %.9g %.9g' % tuple(x / l for x in n))
+        L.append('f ' + ' '.join('%d//%d' % (i + 1, k) for i in f))
+    else:
+        L.append('f ' + ' '.join('%d//%d' % (i + 1, i + 1) for i in f))
+open(sys.argv[2], 'w').write('\n'.join(L) + '\n')
+PY
+		"$BIN/vdt-qslim" -q -t 220 "$TMP/m.obj" -o "$TMP/out.obj"
+		"$BIN/vdt-qslim" -q -t 220 "$TMP/p.obj" -o "$TMP/plain.obj"
+		h=$("$BIN/vdt-measure" -q -F kv "$TMP/p.obj" "$TMP/out.obj" | kv hausdorff_pct)
+		p=$("$BIN/vdt-measure" -q -F kv "$TMP/p.obj" "$TMP/plain.obj" | kv hausdorff_pct)
+		awk -v h="$h" -v p="$p" 'BEGIN { exit !(h <= 2 * p) }' || { echo "T $T: $h against $p"; false; }
+		# faces all below T have their own normal at each corner, faces
+		# above it the sphere's smooth one (its position, within 11 degrees)
+		python3 - "$T" "$TMP/out.obj" <<'PY'
+import math, sys
+T = float(sys.argv[1]); V, N, F = [], [], []
+for l in open(sys.argv[2]):
+    s = l.split()
+    if s and s[0] == 'v': V.append([float(x) for x in s[1:4]])
+    if s and s[0] == 'vn': N.append([float(x) for x in s[1:4]])
+    if s and s[0] == 'f': F.append([[int(x) - 1 for x in c.split('//')] for c in s[1:]])
+dot = lambda a, b: sum(x * y for x, y in zip(a, b))
+unit = lambda a: [x / math.sqrt(dot(a, a)) for x in a]
+flat = smooth = 0
+for f in F:
+    p = [V[c[0]] for c in f]; ns = [N[c[1]] for c in f]
+    u = [p[1][k] - p[0][k] for k in range(3)]; w = [p[2][k] - p[0][k] for k in range(3)]
+    n = unit([u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]])
+    if max(q[2] for q in p) < T - 0.02:
+        assert all(dot(x, n) > 0.9999 for x in ns), f; flat += 1
+    elif min(q[2] for q in p) > T + 0.1:
+        assert all(dot(x, unit(q)) > 0.98 for x, q in zip(ns, p)), f; smooth += 1
+assert flat > 0 and smooth > 0, (flat, smooth)
+PY
+	done
+}
+
 @test "a flat-shaded model simplifies as its positions do, each output face with its own normal" {
 	with_normals "$SAMPLES/torus.off" "$TMP/flat.obj" flat
 	for r in 0.5 0.2; do
