@@ -3773,7 +3773,7 @@ flat_output(struct vdt_mesh *m, const uint32_t *facet, struct vdt_err *err)
 	for (size_t t = 0; t < m->triangle_count; t++) {
 		double n[3];
 		float fn[3] = {0, 0, 1};
-		int own = facet != NULL && !(facet[t] & 1);
+		int own = facet != NULL && m->normals != NULL && !(facet[t] & 1);
 		vdt_mesh_face_cross(m, t, n);
 		double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
 		for (int a = 0; !own && l > 0 && a < 3; a++)
@@ -3783,7 +3783,7 @@ flat_output(struct vdt_mesh *m, const uint32_t *facet, struct vdt_err *err)
 			/* (a marked face's corner whose normal is its face's
 			 * already keeps it, and its vertex whole) */
 			const float *vn = m->normals ? m->normals + 3 * (size_t)c.v : NULL;
-			if (own || (facet != NULL && l > 0 &&
+			if (own || (facet != NULL && vn != NULL && l > 0 &&
 			            (vn[0] * n[0] + vn[1] * n[1] + vn[2] * n[2]) / l > 0.99995))
 				for (int a = 0; a < 3; a++)
 					c.n[a] = vn[a] + 0.0f;
@@ -3962,7 +3962,7 @@ qslim_units(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_q
 	 * are) to get their own normals after. */
 	uint32_t *facet = NULL, *facet_out = NULL;
 	float *own = NULL; /* (the input's normals made one, when not taken) */
-	if (!flat && records == NULL && in->normals != NULL &&
+	if (!flat && records == NULL && in->normals != NULL && in->vertex_count > 0 &&
 	    (target == 0 || target < in->triangle_count)) {
 		size_t nv = in->vertex_count, nw = 0, nfacet = 0;
 		uint32_t *canon = vdt_malloc_huge((nv + 1) * sizeof(*canon));
