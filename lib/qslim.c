@@ -3715,23 +3715,51 @@ done:
  * make every edge a seam, which pins every vertex (the torus at 50%: 26
  * times the RMS distance without them, whatever the attribute weight).
  */
+/* Whether normal v is the face's whose cross product is n, of length l
+ * > 0 (within about half a degree). */
+static int
+face_own(const float *v, const double n[3], double l)
+{
+	return (v[0] * n[0] + v[1] * n[1] + v[2] * n[2]) / l > 0.99995;
+}
+
+/* Face t of m (with normals): 1 if every corner has its own normal
+ * (face_own), 0 if not, -1 if it has no area. */
+static int
+face_flat(const struct vdt_mesh *m, size_t t)
+{
+	double n[3];
+	vdt_mesh_face_cross(m, t, n);
+	double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+	if (!(l > 0))
+		return -1;
+	for (int k = 0; k < 3; k++)
+		if (!face_own(m->normals + 3 * (size_t)m->triangles[3 * t + k], n, l))
+			return 0;
+	return 1;
+}
+
+/* Whether some face of m (with normals) has its own normal at every
+ * corner. */
+static int
+any_face_flat(const struct vdt_mesh *m)
+{
+	for (size_t t = 0; t < m->triangle_count; t++)
+		if (face_flat(m, t) > 0)
+			return 1;
+	return 0;
+}
+
 static int
 flat_shaded(const struct vdt_mesh *m)
 {
 	size_t faces = 0;
 
 	for (size_t t = 0; m->normals != NULL && t < m->triangle_count; t++) {
-		double n[3];
-		vdt_mesh_face_cross(m, t, n);
-		double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-		if (!(l > 0))
-			continue;
-		for (int k = 0; k < 3; k++) {
-			const float *v = m->normals + 3 * (size_t)m->triangles[3 * t + k];
-			if (!((v[0] * n[0] + v[1] * n[1] + v[2] * n[2]) / l > 0.99995))
-				return 0;
-		}
-		faces++;
+		int f = face_flat(m, t);
+		if (f == 0)
+			return 0;
+		faces += f > 0;
 	}
 	return faces > 0;
 }
@@ -3783,8 +3811,7 @@ flat_output(struct vdt_mesh *m, const uint32_t *facet, struct vdt_err *err)
 			/* (a marked face's corner whose normal is its face's
 			 * already keeps it, and its vertex whole) */
 			const float *vn = m->normals ? m->normals + 3 * (size_t)c.v : NULL;
-			if (own || (facet != NULL && vn != NULL && l > 0 &&
-			            (vn[0] * n[0] + vn[1] * n[1] + vn[2] * n[2]) / l > 0.99995))
+			if (own || (facet != NULL && vn != NULL && l > 0 && face_own(vn, n, l)))
 				for (int a = 0; a < 3; a++)
 					c.n[a] = vn[a] + 0.0f;
 			uint32_t b[3];
@@ -3863,14 +3890,8 @@ faceted_faces(const struct vdt_mesh *m, const uint32_t *canon, size_t nw, uint32
 	}
 	for (size_t t = 0; t < m->triangle_count; t++) {
 		const uint32_t *c = m->triangles + 3 * t;
-		double n[3];
-		vdt_mesh_face_cross(m, t, n);
-		double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-		int flat = l > 0 && split[canon[c[0]]] && split[canon[c[1]]] && split[canon[c[2]]];
-		for (int k = 0; flat && k < 3; k++) {
-			const float *v = m->normals + 3 * (size_t)c[k];
-			flat = (v[0] * n[0] + v[1] * n[1] + v[2] * n[2]) / l > 0.99995;
-		}
+		int flat = split[canon[c[0]]] && split[canon[c[1]]] && split[canon[c[2]]] &&
+		           face_flat(m, t) > 0;
 		(*facet)[t] = (uint32_t)flat;
 		count += (size_t)flat;
 	}
@@ -3962,8 +3983,9 @@ qslim_units(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_q
 	 * are) to get their own normals after. */
 	uint32_t *facet = NULL, *facet_out = NULL;
 	float *own = NULL; /* (the input's normals made one, when not taken) */
+	/* (a smooth model's faces have none of their own normals: no weld) */
 	if (!flat && records == NULL && in->normals != NULL && in->vertex_count > 0 &&
-	    (target == 0 || target < in->triangle_count)) {
+	    (target == 0 || target < in->triangle_count) && any_face_flat(in)) {
 		size_t nv = in->vertex_count, nw = 0, nfacet = 0;
 		uint32_t *canon = vdt_malloc_huge((nv + 1) * sizeof(*canon));
 		uint32_t *first = vdt_malloc_huge((nv + 1) * sizeof(*first));
