@@ -1597,34 +1597,7 @@ PY
 @test "a model flat-shaded in part: its facets simplify as positions and keep their own normals" {
 	# a UV sphere of smooth normals, the faces below z = T with their own
 	for T in -0.9 0; do
-		python3 - "$T" "$TMP/m.obj" "$TMP/p.obj" <<'PY'
-import math, sys
-T = float(sys.argv[1]); nu, nv = 48, 24
-V = [(0, 0, 1)] + [(math.sin(math.pi * j / nv) * math.cos(2 * math.pi * i / nu),
-      math.sin(math.pi * j / nv) * math.sin(2 * math.pi * i / nu), math.cos(math.pi * j / nv))
-     for j in range(1, nv) for i in range(nu)] + [(0, 0, -1)]
-S = len(V) - 1; idx = lambda j, i: 1 + (j - 1) * nu + i % nu
-F = [(0, idx(1, i), idx(1, i + 1)) for i in range(nu)]
-for j in range(1, nv - 1):
-    for i in range(nu):
-        F += [(idx(j, i), idx(j + 1, i), idx(j + 1, i + 1)), (idx(j, i), idx(j + 1, i + 1), idx(j, i + 1))]
-F += [(S, idx(nv - 1, i + 1), idx(nv - 1, i)) for i in range(nu)]
-L = ['v %.9g %.9g %.9g' % p for p in V]
-open(sys.argv[3], 'w').write('\n'.join(L + ['f %d %d %d' % tuple(x + 1 for x in f) for f in F]) + '\n')
-L += ['vn %.9g %.9g %.9g' % p for p in V]
-k = len(V)
-for f in F:
-    a, b, c = [V[i] for i in f]
-    if all(V[i][2] < T for i in f):
-        u = [b[q] - a[q] for q in range(3)]; w = [c[q] - a[q] for q in range(3)]
-        n = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]]
-        l = math.sqrt(sum(x * x for x in n)); k += 1
-        L.append('vn %.9g %.9g %.9g' % tuple(x / l for x in n))
-        L.append('f ' + ' '.join('%d//%d' % (i + 1, k) for i in f))
-    else:
-        L.append('f ' + ' '.join('%d//%d' % (i + 1, i + 1) for i in f))
-open(sys.argv[2], 'w').write('\n'.join(L) + '\n')
-PY
+		faceted_sphere 48 24 "$T" "$TMP/m.obj" "$TMP/p.obj"
 		"$BIN/vdt-qslim" -q -t 220 "$TMP/m.obj" -o "$TMP/out.obj"
 		"$BIN/vdt-qslim" -q -t 220 "$TMP/p.obj" -o "$TMP/plain.obj"
 		h=$("$BIN/vdt-measure" -q -F kv "$TMP/p.obj" "$TMP/out.obj" | kv hausdorff_pct)
