@@ -23,8 +23,13 @@
  *  - no degenerate face; optionally no sliver below min_quality;
  *  - optionally, no more faces removed at once than max_removed_faces;
  *  - the caller's own test, if any.
- * A pair that fails is set aside and re-examined when its neighbourhood
- * changes.
+ * A pair that fails the fold-over, degeneracy or sliver test (or the
+ * caller's) where the cost puts the merged vertex is tried at each of
+ * its ends instead (vdt_contract_ops.cost with `fixed`), unless an end is
+ * locked or has 256 faces or more; if one passes, the pair is queued at
+ * 1.5 times what that end costs, and contracted there in its turn (at
+ * that end's cost, which the record gives). A pair that
+ * fails is set aside and re-examined when its neighbourhood changes.
  */
 #ifndef VDT_CONTRACT_H
 #define VDT_CONTRACT_H
