@@ -4,6 +4,17 @@ BIN="$BATS_TEST_DIRNAME/../../bin"
 SAMPLES="$BATS_TEST_DIRNAME/../../samples"
 DATA="$BATS_TEST_DIRNAME/../data"
 
+# helper NAME: the developer helper scripts/NAME.c as built, in the release
+# variant or, where only `make check SANITIZE=1` has run, the sanitized one.
+helper() {
+	local d="$BATS_TEST_DIRNAME/../../build"
+	if [ -x "$d/rel/scripts/$1" ]; then
+		echo "$d/rel/scripts/$1"
+	else
+		echo "$d/san/scripts/$1"
+	fi
+}
+
 setup() {
 	TMP=$(mktemp -d)
 }

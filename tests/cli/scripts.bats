@@ -4,8 +4,7 @@
 
 load helpers
 
-CONVERT="$BATS_TEST_DIRNAME/../../build/rel/scripts/vdt-convert"
-[ -x "$CONVERT" ] || CONVERT="$BATS_TEST_DIRNAME/../../build/san/scripts/vdt-convert"
+CONVERT=$(helper vdt-convert)
 
 @test "vdt-convert -v names the attributes read; -p drops them" {
 	run "$CONVERT" -pv "$SAMPLES/sphere-uv.obj" "$TMP/plain.ply"

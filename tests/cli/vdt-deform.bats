@@ -3,8 +3,7 @@
 
 load helpers
 
-MKANIM="$BATS_TEST_DIRNAME/../../build/rel/scripts/mkanim"
-[ -x "$MKANIM" ] || MKANIM="$BATS_TEST_DIRNAME/../../build/san/scripts/mkanim"
+MKANIM=$(helper mkanim)
 MD2=/usr/share/assimp/models/MD2/sydney.md2
 DANCE=/usr/share/assimp/models/X/BCN_Epileptic.X
 WALK=/usr/share/assimp/models/FBX/animation_with_skeleton.fbx

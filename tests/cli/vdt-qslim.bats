@@ -112,7 +112,7 @@ load helpers
 @test "vdt-qslim --min-quality binds the fit after the contractions too" {
 	# the fit took a face of the bumpy sphere of 100000 faces, to a tenth,
 	# to 0.4995
-	"$BATS_TEST_DIRNAME/../../build/rel/scripts/mkshapes" big -n 100000 -o "$TMP/b.ply"
+	"$(helper mkshapes)" big -n 100000 -o "$TMP/b.ply"
 	"$BIN/vdt-qslim" -q -r 0.1 --min-quality 0.5 "$TMP/b.ply" -o "$TMP/q.off"
 	min=$(awk 'NR == 2 { nv = $1; next }
 		NR > 2 && NR <= 2 + nv { x[NR - 3] = $1; y[NR - 3] = $2; z[NR - 3] = $3; next }
