@@ -223,13 +223,10 @@ refused_where_placed_goes_at_an_end(void **state)
 	struct vdt_contract_ops ops = {ends_cost, NULL, NULL, NULL, 0, NULL, 0, NULL, NULL};
 
 	(void)state;
-	/* the vertex queue, the pair queue, and passes */
-	for (int how = 0; how < 3; how++) {
+	for (int mode = 0; mode < 3; mode++) {
 		struct vdt_contract_opts o;
 		struct vdt_contract_result r;
-		vdt_contract_defaults(&o);
-		o.pair_queue = how == 1;
-		o.passes = how == 2;
+		queue_opts(&o, mode);
 		o.max_cost = 1;
 		o.record = 1;
 		o.target_triangles = 5;
