@@ -796,14 +796,16 @@ tetrahedron_made(const struct engine *e, uint32_t keep, uint32_t x[3])
 	return tetrahedron(e, keep, x[0], &x[1], &x[2]);
 }
 
-/* The caller's cost of pair (a, b), a < b, or INFINITY; *tetra, if not
+/* The caller's cost of pair (a, b), a < b, or INFINITY, with the merged
+ * vertex where the cost puts it (at -1: at a locked end if one is) or at
+ * end `at` (0 a, 1 b: never a vanishing tetrahedron's); *tetra, if not
  * NULL, 1 when the pair would make a tetrahedron vanish (the vanishing
  * cost given instead), else 0. */
 static double
-eval_pair(struct engine *e, uint32_t a, uint32_t b, double pos[3], int *tetra)
+eval_pair(struct engine *e, uint32_t a, uint32_t b, int at, double pos[3], int *tetra)
 {
 	int la = e->vflag[a] & V_LOCKED, lb = e->vflag[b] & V_LOCKED;
-	int fixed = la ? 0 : lb ? 1 : -1, vanishes = 0;
+	int fixed = at >= 0 ? at : la ? 0 : lb ? 1 : -1, vanishes = 0;
 
 	if (tetra != NULL)
 		*tetra = 0;
@@ -812,7 +814,7 @@ eval_pair(struct engine *e, uint32_t a, uint32_t b, double pos[3], int *tetra)
 	double c = e->ops->cost(e->ops->ctx, a, b, fixed, e->pos + 3 * (size_t)a,
 	                        e->pos + 3 * (size_t)b, pos);
 	uint32_t c3, d3;
-	if (e->vanish && c < INFINITY && (vanishes = tetrahedron(e, a, b, &c3, &d3)))
+	if (at < 0 && e->vanish && c < INFINITY && (vanishes = tetrahedron(e, a, b, &c3, &d3)))
 		c = e->ops->vanish(e->ops->ctx, a); /* (pos as the pair has it) */
 	if (tetra != NULL)
 		*tetra = vanishes;
@@ -823,7 +825,7 @@ eval_pair(struct engine *e, uint32_t a, uint32_t b, double pos[3], int *tetra)
 static int
 pair_cost(struct engine *e, uint32_t p, double pos[3])
 {
-	double c = eval_pair(e, e->pv[2 * p], e->pv[2 * p + 1], pos, NULL);
+	double c = eval_pair(e, e->pv[2 * p], e->pv[2 * p + 1], -1, pos, NULL);
 
 	if (!(c < INFINITY)) {
 		heap_remove(e, p);
@@ -1648,18 +1650,19 @@ orient(const struct engine *e, uint32_t a, uint32_t b, uint32_t *keep, uint32_t 
 
 /*
  * Whether pair (u, v) may be contracted now with the merged vertex where
- * `fixed` puts it (as vdt_contract_ops.cost: -1 where the cost puts it, 0
- * at a, 1 at b, a < b): every validity test of the header, 1 if it passes
- * them, 0 if not, and then *moved 1 if it failed where the vertex would
- * move (a fan test or the caller's), which another place may pass. Fills
- * keep, gone, the new position and the cost. lu: u's link listing, or
- * NULL to make it here. With a hub at one end, the few faces of the other
- * are tested first: they refuse most such pairs. With `unsure`, a pair
- * with a hub that passes the tests but the hub's fan test and the
- * caller's, which are not made, gives 2.
+ * the cost puts it (at -1) or at end `at` (0 at a, 1 at b, a < b): every
+ * validity test of the header, 1 if it passes them, 0 if not. Fills keep,
+ * gone, the new position and the cost. *moved: 1 when the pair passed
+ * every test that does not depend on where the vertex goes, so that
+ * another place may pass; at an end those are not made again (the caller
+ * has seen them pass). lu: u's link listing, or NULL to make it here.
+ * With a hub at one end, the few faces of the other are tested first:
+ * they refuse most such pairs. With `unsure`, a pair with a hub that
+ * passes the tests but the hub's fan test and the caller's, which are
+ * not made, gives 2.
  */
 static int
-try_at(struct engine *e, uint32_t u, uint32_t v, struct link *lu, int unsure, int fixed,
+try_at(struct engine *e, uint32_t u, uint32_t v, struct link *lu, int unsure, int at,
        uint32_t *keep, uint32_t *gone, double pos[3], double *cost, int *moved)
 {
 	uint32_t a = u < v ? u : v, b = u < v ? v : u;
@@ -1671,13 +1674,8 @@ try_at(struct engine *e, uint32_t u, uint32_t v, struct link *lu, int unsure, in
 	if (e->vanish && (e->vt[a].len == 0 || e->vt[b].len == 0))
 		return 0;
 	orient(e, a, b, keep, gone);
-	int tetra = 0;
-	if (fixed < 0)
-		*cost = eval_pair(e, a, b, pos, &tetra);
-	else
-		*cost = e->ops->cost(e->ops->ctx, a, b, fixed, e->pos + 3 * (size_t)a,
-		                     e->pos + 3 * (size_t)b, pos) +
-		        0.0;
+	int tetra;
+	*cost = eval_pair(e, a, b, at, pos, &tetra);
 	if (tetra)
 		/* (its cost eval_pair's; never the last faces. A round on
 		 * threads reads live_tris as it began, but takes fewer faces
@@ -1686,26 +1684,25 @@ try_at(struct engine *e, uint32_t u, uint32_t v, struct link *lu, int unsure, in
 		 * output depend on it, a tetrahedron left or not) */
 		return *cost < INFINITY && e->live_tris > 4 &&
 		       (ops->valid == NULL || ops->valid(ops->ctx, *keep, *gone, pos));
-	if (!(*cost >= 0 && *cost < INFINITY))
-		return 0;
 	float fpos[3] = {(float)pos[0], (float)pos[1], (float)pos[2]};
 	uint32_t few = e->vt[a].len < e->vt[b].len ? a : b, many = few == a ? b : a;
 	int hub = e->vt[many].len >= HUB;
 	/* (the tests only read: their order changes no answer) */
-	if (hub && !fan_ok(e, few, many, fpos))
-		return *moved = 1, 0;
-	if (!((e->allow_nonmanifold || (e->free_v && e->free_v[*keep] && e->free_v[*gone]) ||
+	if (!(*cost < INFINITY) || (hub && !fan_ok(e, few, many, fpos)))
+		return 0;
+	if (at < 0 &&
+	    !((e->allow_nonmanifold || (e->free_v && e->free_v[*keep] && e->free_v[*gone]) ||
 	       link_ok(e, *keep, *gone, lu)) &&
 	      !(e->keep_parts && last_of_part(e, *keep, *gone)) &&
 	      !(e->keep_a_face && last_faces(e, *keep, *gone)) &&
 	      !(e->max_removed && shared_faces(e, *keep, *gone) > e->max_removed) &&
 	      !duplicates(e, *keep, *gone)))
 		return 0;
+	*moved = 1;
 	if (!hub && !fan_ok(e, few, many, fpos))
-		return *moved = 1, 0;
+		return 0;
 	if (hub && unsure)
 		return 2;
-	*moved = 1;
 	return fan_ok(e, many, few, fpos) &&
 	       (ops->valid == NULL || ops->valid(ops->ctx, *keep, *gone, pos));
 }
@@ -2002,8 +1999,8 @@ fan_costs(struct engine *e, uint32_t v, int upper, int how, struct vcost *out)
 	/* Costed once all are listed, so that their data is on its way. */
 	for (uint32_t s = 0; s < n; s++) {
 		uint32_t x = out[s].x;
-		out[s].cost = (float)(x < v ? eval_pair(e, x, v, pos, NULL)
-		                            : eval_pair(e, v, x, pos, NULL));
+		out[s].cost = (float)(x < v ? eval_pair(e, x, v, -1, pos, NULL)
+		                            : eval_pair(e, v, x, -1, pos, NULL));
 	}
 	if (how == FAN_EVAL) {
 		free(big);
@@ -4348,7 +4345,7 @@ run(const struct vdt_mesh *m, float *own_pos, uint32_t *own_tri,
 	if (e.vq && vertex_queue_init(&e) != 0)
 		goto nomem;
 	for (size_t p = 0; p < e.np; p++) {
-		double c = eval_pair(&e, e.pv[2 * p], e.pv[2 * p + 1], pos, NULL);
+		double c = eval_pair(&e, e.pv[2 * p], e.pv[2 * p + 1], -1, pos, NULL);
 		if (c < INFINITY) {
 			e.hpos[p] = (uint32_t)e.hlen;
 			e.heap[e.hlen++] = (struct hent){(uint32_t)p, (float)c};
