@@ -3855,10 +3855,10 @@ flat_output(struct vdt_mesh *m, const uint32_t *facet, struct vdt_err *err)
 /*
  * A model flat-shaded in part (a hard-surface model's faceted panels on a
  * smooth body): the faces whose every corner has the face's own normal
- * (as flat_shaded judges it) and one corner at least at a position that
- * normals split (so a plane of a smooth model, whose normals are its
- * faces' too, is not one), into facet (per face, 1 or 0), and the number
- * of them; canon welds m's positions (vdt_mesh_weld, nw of them). Such
+ * (as flat_shaded judges it) and lies at a position that normals split
+ * (so a plane of a smooth model, whose normals are its faces' too, is
+ * not one), into facet (per face, 1 or 0), and the number of them;
+ * canon welds m's positions (vdt_mesh_weld, nw of them). Such
  * normals make every edge between the faces a seam, which pinned their
  * vertices as a whole flat-shaded model's would: a sphere with a faceted
  * cap of a tenth of its faces, at a tenth, kept 90 of its 112 vertices
@@ -4018,7 +4018,9 @@ qslim_units(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_q
 	              records, record_count, stats, err);
 	free(own);
 	free(facet);
-	if (rc == 0 && facet_out != NULL && (rc = flat_output(out, facet_out, err)) != 0) {
+	/* (facet_out only where the model is not flat-shaded whole) */
+	if (rc == 0 && (flat || facet_out != NULL) &&
+	    (rc = flat_output(out, facet_out, err)) != 0) {
 		vdt_mesh_free(out);
 		if (mat_out != NULL) {
 			free(*mat_out);
@@ -4026,13 +4028,6 @@ qslim_units(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_q
 		}
 	}
 	free(facet_out);
-	if (rc == 0 && flat && (rc = flat_output(out, NULL, err)) != 0) {
-		vdt_mesh_free(out);
-		if (mat_out != NULL) {
-			free(*mat_out);
-			*mat_out = NULL;
-		}
-	}
 	if (rc == 0) {
 		stats->error_pct = diag > 0 ? 100 * stats->max_error / diag : 0;
 		stats->flat_normals = flat;
