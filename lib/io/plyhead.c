@@ -97,12 +97,29 @@ header_box(struct vdt_plyhead *h, const char *text, size_t len)
 	h->has_box = 1;
 }
 
+static int
+unknown_keyword(struct vdt_err *err, size_t lineno, const char *w, size_t wl)
+{
+	return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: unknown keyword '%.*s'", lineno,
+	                   (int)(wl > 32 ? 32 : wl), w);
+}
+
+static int
+has_element(const struct vdt_plyhead *h, const char *name)
+{
+	for (size_t i = 0; i < h->element_count; i++)
+		if (strcmp(h->elements[i].name, name) == 0)
+			return 1;
+	return 0;
+}
+
 int
 vdt_plyhead_parse(const unsigned char *buf, size_t len, struct vdt_plyhead *h,
              struct vdt_err *err)
 {
 	const char *p = (const char *)buf;
-	size_t pos = 0, lineno = 0;
+	size_t pos = 0, lineno = 0, odd_line = 0, odd_len = 0;
+	const char *odd = NULL;
 	int have_format = 0;
 
 	memset(h, 0, sizeof(*h));
@@ -138,11 +155,30 @@ vdt_plyhead_parse(const unsigned char *buf, size_t len, struct vdt_plyhead *h,
 		n = split_words(line, ll, w, wl, 6);
 		if (n == 0)
 			continue;
+		int known = word_is(w[0], wl[0], "end_header") || word_is(w[0], wl[0], "format") ||
+		            word_is(w[0], wl[0], "element") || word_is(w[0], wl[0], "property");
+		/* A line of no keyword before the first element is taken for a
+		 * comment: old exporters wrote one there (Blender 2.4's "Created
+		 * by Blender3D ..."), and it cannot change what the elements
+		 * hold. Unless an element is then missing: the line may have
+		 * been meant as that element's (end_header below). */
+		if (!known && h->element_count == 0) {
+			if (odd == NULL) {
+				odd = w[0];
+				odd_len = wl[0];
+				odd_line = lineno;
+			}
+			continue;
+		}
+		if (!known)
+			return unknown_keyword(err, lineno, w[0], wl[0]);
 		if (n > 6)
 			return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu has too many words", lineno);
 		if (word_is(w[0], wl[0], "end_header")) {
 			if (!have_format)
 				return vdt_err_set(err, VDT_EFORMAT, "PLY header has no format line");
+			if (odd != NULL && (!has_element(h, "vertex") || !has_element(h, "face")))
+				return unknown_keyword(err, odd_line, odd, odd_len);
 			h->data_offset = pos;
 			return 0;
 		}
@@ -192,6 +228,8 @@ vdt_plyhead_parse(const unsigned char *buf, size_t len, struct vdt_plyhead *h,
 			struct vdt_ply_prop *pr;
 			size_t namei;
 
+			if (h->element_count == 0 && odd != NULL)
+				return unknown_keyword(err, odd_line, odd, odd_len);
 			if (h->element_count == 0)
 				return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: property before any element", lineno);
 			e = &h->elements[h->element_count - 1];
@@ -219,9 +257,6 @@ vdt_plyhead_parse(const unsigned char *buf, size_t len, struct vdt_plyhead *h,
 			memcpy(pr->name, w[namei], wl[namei]);
 			pr->name[wl[namei]] = '\0';
 			e->prop_count++;
-		} else {
-			return vdt_err_set(err, VDT_EFORMAT, "PLY header line %zu: unknown keyword '%.*s'",
-			                   lineno, (int)(wl[0] > 32 ? 32 : wl[0]), w[0]);
 		}
 	}
 }

@@ -345,6 +345,52 @@ test_reject(void **state)
 	             VDT_EFORMAT, "no vertex element");
 }
 
+/*
+ * A header line of no keyword before the first element, as Blender 2.4's
+ * exporter wrote ("Created by Blender3D 247 - www.blender.org, source
+ * file: ..."), is taken for a comment: the file reads as without it. Not
+ * when an element it may have been meant for is then missing, nor after
+ * the first element; and an unknown keyword is named as such however many
+ * words its line has.
+ */
+static void
+test_old_header(void **state)
+{
+	(void)state;
+	struct vdt_mesh m, plain;
+	const char *body = "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+	char text[512];
+
+	snprintf(text, sizeof(text), "%s%s",
+	         "ply\nformat ascii 1.0\nCreated by Blender3D 247 - www.blender.org, source file: "
+	         "'wuson.blend'\nelement vertex 3\n" XYZ "element face 1\n" FACES "end_header\n",
+	         body);
+	read_ok(text, &m);
+	snprintf(text, sizeof(text), "%s%s", HEAD(3, 1), body);
+	read_ok(text, &plain);
+	assert_int_equal(m.vertex_count, 3);
+	assert_int_equal(m.triangle_count, 1);
+	assert_memory_equal(m.positions, plain.positions, 9 * sizeof(float));
+	assert_memory_equal(m.triangles, plain.triangles, 3 * sizeof(uint32_t));
+	vdt_mesh_free(&m);
+	vdt_mesh_free(&plain);
+	/* the line meant as the vertex element's: named */
+	expect_error("ply\nformat ascii 1.0\nvertex 3\n" XYZ "element face 1\n" FACES
+	             "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+	             VDT_EFORMAT, "line 3: unknown keyword 'vertex'");
+	expect_error("ply\nformat ascii 1.0\nCreated by hand\nelement vertex 3\n" XYZ
+	             "elment face 1\n" FACES "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+	             VDT_EFORMAT, "line 8: unknown keyword 'elment'");
+	expect_error(
+	        "ply\nformat ascii 1.0\nelement vertex 3\n" XYZ
+	        "Created by Blender3D 247 - www.blender.org, source file:\nelement face 1\n" FACES
+	        "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+	        VDT_EFORMAT, "line 7: unknown keyword 'Created'");
+	expect_error("ply\nformat ascii 1.0\nelement vertex 3\n" XYZ
+	             "property float u v w s t r q\nelement face 1\n" FACES "end_header\n",
+	             VDT_EFORMAT, "line 7 has too many words");
+}
+
 static uint32_t
 bits(float f)
 {
@@ -457,10 +503,10 @@ int
 main(void)
 {
 	const struct CMUnitTest tests[] = {
-		cmocka_unit_test(test_triangle),  cmocka_unit_test(test_polygons),
-		cmocka_unit_test(test_attributes), cmocka_unit_test(test_skip),
-		cmocka_unit_test(test_reject),    cmocka_unit_test(test_roundtrip),
-		cmocka_unit_test(test_detected),
+	        cmocka_unit_test(test_triangle),   cmocka_unit_test(test_polygons),
+	        cmocka_unit_test(test_attributes), cmocka_unit_test(test_skip),
+	        cmocka_unit_test(test_reject),     cmocka_unit_test(test_roundtrip),
+	        cmocka_unit_test(test_detected),   cmocka_unit_test(test_old_header),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
