@@ -1215,16 +1215,13 @@ measure(struct front *F, struct vdt_vtree_cut *c)
 }
 
 /*
- * Whether every node's normal cone holds the normal of every triangle of m
- * with a corner under it, as vdt(5) defines it (and node_cones and the
- * leaves' cones make it, rounded up): a tree read after a mesh that is not
- * its own, or whose faces were turned over, fails here, where every other
- * check passes and a renderer would cull the wrong faces. 0 or
- * VDT_EFORMAT naming the node and the triangle.
+ * The cones as node_cones and the leaves' cones make them, rounded up: a
+ * tree read after a mesh that is not its own, or whose faces were turned
+ * over, fails here, where every other check passes.
  */
 #define CONE_SLACK 1e-5 /* radians: a stored cone's float rounding */
-static int
-cones_hold(const struct vdt_vtree *t, const struct vdt_mesh *m, struct vdt_err *err)
+int
+vdt_vtree_cones_hold(const struct vdt_vtree *t, const struct vdt_mesh *m, struct vdt_err *err)
 {
 	for (size_t f = 0; f < m->triangle_count; f++) {
 		const uint32_t *c = m->triangles + 3 * f;
@@ -1265,7 +1262,7 @@ vdt_vtree_check(const struct vdt_vtree *t, const struct vdt_mesh *m,
 
 	if (neighbours)
 		*neighbours = 0;
-	if ((rc = cones_hold(t, m, err)) != 0)
+	if ((rc = vdt_vtree_cones_hold(t, m, err)) != 0)
 		return rc;
 	F.t = t;
 	F.m = m;

@@ -179,7 +179,18 @@ struct vdt_vtree_cut {
 };
 
 /*
- * Run the tree as vdt-render will: from the full mesh, collapse every node
+ * Whether every node's normal cone holds the normal of every triangle of m
+ * with a corner under it, as vdt(5) defines it: what a tree that decodes
+ * against a mesh not its own (or its own with faces turned over) fails,
+ * and a renderer's back-face test would then cull the wrong faces. Not
+ * part of vdt_vtree_decode (it reads every triangle's path up the tree).
+ * Returns 0, or VDT_EFORMAT naming the node and the triangle.
+ */
+int vdt_vtree_cones_hold(const struct vdt_vtree *t, const struct vdt_mesh *m, struct vdt_err *err);
+
+/*
+ * First vdt_vtree_cones_hold; then run the tree as vdt-render will: from
+ * the full mesh, collapse every node
  * in id order (each collapse must find its children active and remove
  * exactly its own triangles, the corners of the others moving to the new
  * vertex), then split them all back in reverse order, and require the mesh

@@ -2,7 +2,9 @@
  * fuzz_vtree.c - libFuzzer target for the VTRE decoder of vdt(5): the input
  * is decoded as a bare VTRE payload for a fixed two-triangle square, and,
  * when it is a whole stream, its VTRE chunk against its own MESH chunk.
- * A tree that decodes must pass the collapse-all / split-all check (decode
+ * A tree that decodes and whose normal cones hold the mesh's triangles
+ * (which decode leaves to vdt_vtree_cones_hold: a tree of another mesh is
+ * well formed) must pass the collapse-all / split-all check (decode
  * validates every invariant that check relies on) and survive an encode
  * and decode round trip. Seeds: tests/fuzz/corpus/vtree/.
  */
@@ -24,6 +26,10 @@ tree(const unsigned char *data, uint64_t length, const struct vdt_mesh *m)
 
 	if (vdt_vtree_decode(data, length, m, &t, NULL) != 0)
 		return;
+	if (vdt_vtree_cones_hold(&t, m, NULL) != 0) {
+		vdt_vtree_free(&t);
+		return;
+	}
 	if (vdt_vtree_check(&t, m, NULL, 0, NULL, NULL, NULL) != 0)
 		abort();
 	if (vdt_vtree_encode(&t, &d, &len, NULL) != 0)
