@@ -58,6 +58,23 @@ expect_error(const char *text, int code, const char *want)
 
 #define assert_floats(a, b) assert_memory_equal((a), (b), sizeof(b))
 
+/* text reads as plain does, to `triangles` triangles. */
+static void
+read_same(const char *text, const char *plain, size_t triangles)
+{
+	struct vdt_mesh m, p;
+
+	read_ok(text, &m);
+	read_ok(plain, &p);
+	assert_int_equal(m.vertex_count, p.vertex_count);
+	assert_int_equal(m.triangle_count, triangles);
+	assert_int_equal(p.triangle_count, triangles);
+	assert_memory_equal(m.positions, p.positions, 3 * m.vertex_count * sizeof(float));
+	assert_memory_equal(m.triangles, p.triangles, 3 * triangles * sizeof(uint32_t));
+	vdt_mesh_free(&m);
+	vdt_mesh_free(&p);
+}
+
 /*
  * One triangle:
  *
@@ -299,17 +316,10 @@ test_reject(void **state)
 	/* faces before the vertices, which the format allows, read as after
 	 * them (the quad, concave at 4, cut by its positions, not as the fan
 	 * from 1); their faults named */
-	struct vdt_mesh m, after;
-	read_ok("ply\nformat ascii 1.0\nelement face 2\n" FACES "element edge 1\n"
-	        "property int a\nelement vertex 5\n" XYZ "end_header\n3 0 1 2\n4 1 4 3 0\n7\n"
-	        "0 0 0\n1 0 0\n0 1 0\n0 2 0\n0.2 0.2 0\n",
-	        &m);
-	read_ok(HEAD(5, 2) "0 0 0\n1 0 0\n0 1 0\n0 2 0\n0.2 0.2 0\n3 0 1 2\n4 1 4 3 0\n", &after);
-	assert_int_equal(m.triangle_count, 3);
-	assert_memory_equal(m.triangles, after.triangles, 9 * sizeof(uint32_t));
-	assert_memory_equal(m.positions, after.positions, 15 * sizeof(float));
-	vdt_mesh_free(&m);
-	vdt_mesh_free(&after);
+	read_same("ply\nformat ascii 1.0\nelement face 2\n" FACES "element edge 1\n"
+	          "property int a\nelement vertex 5\n" XYZ "end_header\n3 0 1 2\n4 1 4 3 0\n7\n"
+	          "0 0 0\n1 0 0\n0 1 0\n0 2 0\n0.2 0.2 0\n",
+	          HEAD(5, 2) "0 0 0\n1 0 0\n0 1 0\n0 2 0\n0.2 0.2 0\n3 0 1 2\n4 1 4 3 0\n", 3);
 	expect_error("ply\nformat ascii 1.0\nelement face 1\n" FACES "element vertex 3\n" XYZ
 	             "end_header\n3 0 1 3\n0 0 0\n1 0 0\n0 1 0\n",
 	             VDT_EINVAL, "face 0 uses vertex 3 of 3");
@@ -357,23 +367,10 @@ static void
 test_old_header(void **state)
 {
 	(void)state;
-	struct vdt_mesh m, plain;
-	const char *body = "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
-	char text[512];
-
-	snprintf(text, sizeof(text), "%s%s",
-	         "ply\nformat ascii 1.0\nCreated by Blender3D 247 - www.blender.org, source file: "
-	         "'wuson.blend'\nelement vertex 3\n" XYZ "element face 1\n" FACES "end_header\n",
-	         body);
-	read_ok(text, &m);
-	snprintf(text, sizeof(text), "%s%s", HEAD(3, 1), body);
-	read_ok(text, &plain);
-	assert_int_equal(m.vertex_count, 3);
-	assert_int_equal(m.triangle_count, 1);
-	assert_memory_equal(m.positions, plain.positions, 9 * sizeof(float));
-	assert_memory_equal(m.triangles, plain.triangles, 3 * sizeof(uint32_t));
-	vdt_mesh_free(&m);
-	vdt_mesh_free(&plain);
+	read_same("ply\nformat ascii 1.0\nCreated by Blender3D 247 - www.blender.org, source file: "
+	          "'wuson.blend'\nelement vertex 3\n" XYZ "element face 1\n" FACES "end_header\n"
+	          "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+	          HEAD(3, 1) "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", 1);
 	/* the line meant as the vertex element's: named */
 	expect_error("ply\nformat ascii 1.0\nvertex 3\n" XYZ "element face 1\n" FACES
 	             "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
