@@ -44,6 +44,24 @@ queue_opts(struct vdt_contract_opts *o, int mode)
 	o->threads = 1;
 }
 
+/* A recorded run of costs up to 1 on queue `mode` to `target` triangles
+ * (0: none), the vertices `locked` (or NULL) locked, which must make n
+ * contractions; into *r (to free). */
+static void
+run_recorded(const struct vdt_mesh *m, const struct vdt_contract_ops *ops, int mode, size_t target,
+             const uint8_t *locked, size_t n, struct vdt_contract_result *r)
+{
+	struct vdt_contract_opts o;
+
+	queue_opts(&o, mode);
+	o.max_cost = 1;
+	o.record = 1;
+	o.target_triangles = target;
+	o.locked = locked;
+	assert_int_equal(vdt_contract_run(m, ops, &o, r, NULL), 0);
+	assert_int_equal(r->contractions, n);
+}
+
 /*
  * A closed tetrahedron cannot lose a vertex: every edge contraction would
  * leave two coincident faces. The engine must refuse them all.
@@ -225,20 +243,12 @@ refused_where_placed_goes_at_an_end(void **state)
 
 	(void)state;
 	for (int mode = 0; mode < 3; mode++) {
-		struct vdt_contract_opts o;
 		struct vdt_contract_result r;
-		queue_opts(&o, mode);
-		o.max_cost = 1;
-		o.record = 1;
-		o.target_triangles = 5;
-		assert_int_equal(vdt_contract_run(&m, &ops, &o, &r, NULL), 0);
-		assert_int_equal(r.contractions, 1);
+		run_recorded(&m, &ops, mode, 5, NULL, 1, &r);
 		assert_int_equal(r.records[0].keep + r.records[0].gone, 11);
 		vdt_contract_result_free(&r);
 
-		o.target_triangles = 3;
-		assert_int_equal(vdt_contract_run(&m, &ops, &o, &r, NULL), 0);
-		assert_int_equal(r.contractions, 2);
+		run_recorded(&m, &ops, mode, 3, NULL, 2, &r);
 		assert_int_equal(r.records[0].keep + r.records[0].gone, 11);
 		assert_int_equal(r.records[1].keep + r.records[1].gone, 1);
 		assert_true(r.records[1].pos[0] == 0.2f && r.records[1].pos[1] == 0);
@@ -250,9 +260,7 @@ refused_where_placed_goes_at_an_end(void **state)
 		/* 0 locked: the pair is placed at 0 and refused there; its
 		 * other end would move 0, so it is not tried */
 		static const uint8_t locked[9] = {1};
-		o.locked = locked;
-		assert_int_equal(vdt_contract_run(&m, &ops, &o, &r, NULL), 0);
-		assert_int_equal(r.contractions, 1);
+		run_recorded(&m, &ops, mode, 3, locked, 1, &r);
 		assert_int_equal(r.records[0].keep + r.records[0].gone, 11);
 		vdt_contract_result_free(&r);
 	}
@@ -913,13 +921,8 @@ minus_zero_is_zero(void **state)
 	(void)state;
 	shape_grid(&m, 4);
 	for (int mode = 0; mode < 3; mode++) {
-		struct vdt_contract_opts o;
 		struct vdt_contract_result r;
-		queue_opts(&o, mode);
-		o.record = 1;
-		o.max_cost = 1;
-		assert_int_equal(vdt_contract_run(&m, &ops, &o, &r, NULL), 0);
-		assert_int_equal(r.contractions, 1);
+		run_recorded(&m, &ops, mode, 0, NULL, 1, &r);
 		assert_int_equal(r.records[0].keep + r.records[0].gone, 1);
 		vdt_contract_result_free(&r);
 	}
