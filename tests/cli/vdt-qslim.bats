@@ -1787,3 +1787,19 @@ PY
 		awk -v h="$h" 'BEGIN { exit !(h < 1) }'
 	done
 }
+
+@test "vdt-qslim and vdt-cluster read a PLY whose header has a line of no keyword (Blender 2.4)" {
+	# assimp's Wuson.ply, from Blender 2.47: "Created by Blender3D 247 -
+	# www.blender.org, source file: ..." as its third header line,
+	# refused once as "line 3 has too many words"
+	W=/usr/share/assimp/models/PLY/Wuson.ply
+	[ -r "$W" ] || skip "assimp-testmodels is not installed"
+	run "$BIN/vdt-qslim" -v -r 0.3 "$W" -o "$TMP/w.obj"
+	[ "$status" -eq 0 ]
+	[[ "$output" == *"in_triangles=3732 "* ]]
+	[ "$(grep -c '^f ' "$TMP/w.obj")" -eq 1119 ]
+	[ "$(grep -c '^vt ' "$TMP/w.obj")" -gt 0 ]
+	run "$BIN/vdt-cluster" -q --target 500 "$W" -o "$TMP/w.vdq"
+	[ "$status" -eq 0 ]
+	[ -s "$TMP/w.vdq" ]
+}
