@@ -101,6 +101,24 @@ struct vdt_contract_ops {
 	 * them: that one's key stays until it comes to the top). NULL: none.
 	 */
 	int (*affected)(void *ctx, uint32_t keep, uint32_t *out);
+	/*
+	 * Optional, for passes: the engine numbers the vertices that are left
+	 * anew, densely and in their order, once they are a quarter of those
+	 * it holds (their faces too, and their lists set out again in that
+	 * order), so that the later passes read memory a quarter the size;
+	 * the callbacks are then called with the new numbers. First called
+	 * with from NULL: to[v] is NONE (0xffffffff) for each vertex about to
+	 * be dropped (gone, and named by no live vertex's data in the
+	 * engine), which it sets to 0 if the callbacks' data still name it.
+	 * Then with from: vertex i of n was vertex from[i], and old vertex v
+	 * is now to[v] (NONE if dropped); it renumbers the data the callbacks
+	 * read, and sets *vertex_data (for the prefetch hint) to where that
+	 * data now is. The positions are then at pos. Returns 0, or -1 out of
+	 * memory. The result is the same as without, in the input's numbers;
+	 * with record, the engine keeps its numbers. NULL: never renumbered.
+	 */
+	int (*renumber)(void *ctx, const uint32_t *from, size_t n, uint32_t *to, const float *pos,
+	                const void **vertex_data);
 };
 
 #define VDT_CONTRACT_MAX_AFFECTED 2
@@ -231,6 +249,9 @@ struct vdt_contract_opts {
 	 * each live edge, 0.1 s on the dragon stopped at once by a bound.
 	 */
 	int ask_link;
+	/* Nonzero: never renumber the vertices (vdt_contract_ops.renumber):
+	 * slower, and the same result, which the tests check. */
+	int keep_numbers;
 };
 
 #define VDT_CONTRACT_MAX_THREADS 16
@@ -278,6 +299,8 @@ struct vdt_contract_result {
 	size_t set_aside;      /* of those, left to one thread (their
 	                          neighbourhood crossed from one thread's part
 	                          of the mesh into another's) */
+	int renumbered;        /* passes: times the vertices were numbered
+	                          anew (vdt_contract_ops.renumber) */
 };
 
 /*

@@ -982,8 +982,8 @@ simplify_frame(const struct anim *a, size_t f, const struct vdt_contraction *rec
 	if (finish) {
 		struct vdt_mesh m = {0};
 		struct vdt_contract_opts co;
-		struct vdt_contract_ops ops = {frame_cost, frame_merged, NULL, &c, 0, NULL,
-		                               0,          NULL,         NULL};
+		struct vdt_contract_ops ops = {frame_cost, frame_merged, NULL, &c,  0, NULL,
+		                               0,          NULL,         NULL, NULL};
 		int rc;
 		/* In place, so that the sag reads the positions as they move;
 		 * on copies, which the engine takes. */
@@ -1206,8 +1206,8 @@ vdt_deform(const struct vdt_mesh *m, const struct vdt_frames *fr,
 	if (o->method != VDT_DEFORM_INDEPENDENT) {
 		struct vdt_mesh um = {0};
 		struct vdt_contract_opts co;
-		struct vdt_contract_ops ops = {
-		        unified_cost, unified_merged, NULL, &u, 0, NULL, 0, NULL, NULL};
+		struct vdt_contract_ops ops = {unified_cost, unified_merged, NULL, &u, 0, NULL, 0,
+		                               NULL,         NULL,           NULL};
 		u.a = &a;
 		u.method = o->method;
 		u.nf = o->method == VDT_DEFORM_FIRST ? 1 : nf;

@@ -107,4 +107,25 @@ vdt_zalloc_huge(size_t n, size_t size)
 	return p;
 }
 
+/* a, or where realloc moved it, with its first `bytes` alone kept: shrunk
+ * in place, the rest given back, or left as it was. */
+static inline void *
+vdt_shrink(void *a, size_t bytes)
+{
+	void *b = realloc(a, bytes);
+
+	return b != NULL ? b : a;
+}
+
+/* a[from[i]] into a[i] for i < n (from ascending, so in place), an element
+ * of zeros after them, and the rest of the array given back (vdt_shrink).
+ * For the renumbering of vdt_contract_ops.renumber. */
+#define VDT_GATHER(a, from, n)                                                                     \
+	do {                                                                                       \
+		for (size_t i_ = 0; i_ < (n); i_++)                                                \
+			(a)[i_] = (a)[(from)[i_]];                                                 \
+		memset(&(a)[n], 0, sizeof(*(a)));                                                  \
+		(a) = vdt_shrink((a), ((n) + 1) * sizeof(*(a)));                                   \
+	} while (0)
+
 #endif

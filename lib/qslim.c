@@ -38,9 +38,10 @@ struct attr;
 
 struct ctx {
 	struct vdt_quadric *q; /* per welded vertex */
+	size_t nq;             /* how many (renumber_fn) */
 	double centre[3];
 	double max_error;      /* squared-distance bound, or INFINITY */
-	const uint8_t *seam;
+	uint8_t *seam;
 	int pin_seams;         /* attributes vary: seams stay put (cost_fn) */
 	int free_first;        /* pairs of negligible error first (tied) */
 	double worst;          /* largest contraction error so far (squared) */
@@ -347,6 +348,42 @@ static int
 affected_fn(void *vc, uint32_t keep, uint32_t *out)
 {
 	return vdt_rim_affected(&((const struct ctx *)vc)->rim, keep, out);
+}
+
+/*
+ * vdt_contract_ops.renumber: the vertices' quadrics, boxes, seams, costs
+ * of vanishing and boundary in the engine's new numbers (the boundary's
+ * links to vertices gone kept, as they are read: vdt_rim_mark). Not with
+ * attributes or error scales, which the output reads in the old ones.
+ */
+static int
+renumber_fn(void *vc, const uint32_t *from, size_t n, uint32_t *to, const float *pos,
+            const void **vertex_data)
+{
+	struct ctx *c = vc;
+
+	if (from == NULL) {
+		if (c->rim.bits != NULL)
+			vdt_rim_mark(&c->rim, to);
+		return 0;
+	}
+	if (c->rim.bits != NULL && vdt_rim_renumber(&c->rim, from, n, to) != 0)
+		return -1;
+	struct box {
+		float r[6];
+	} *reach = (struct box *)c->reach;
+	_Static_assert(sizeof(struct box) == 6 * sizeof(float), "a box is packed");
+	VDT_GATHER(c->q, from, n);
+	c->nq = n;
+	VDT_GATHER(reach, from, n);
+	c->reach = (float *)reach;
+	VDT_GATHER(c->seam, from, n);
+	if (c->vanish != NULL)
+		VDT_GATHER(c->vanish, from, n);
+	if (c->pos != NULL)
+		c->pos = pos;
+	*vertex_data = c->q;
+	return 0;
 }
 
 /* A seam vertex may only merge into another seam vertex. */
@@ -3163,7 +3200,8 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	struct vdt_mesh w = {0};
 	struct ctx c = {0};
 	struct vdt_contract_opts co;
-	struct vdt_contract_ops ops = {cost_fn, merged_fn, valid_fn, &c, 0, NULL, 0, NULL, NULL};
+	struct vdt_contract_ops ops = {cost_fn, merged_fn, valid_fn, &c,   0,
+	                               NULL,    0,         NULL,     NULL, NULL};
 	struct vdt_contract_result r = {0};
 	uint32_t *canon = NULL, *first = NULL, *wstart = NULL, *wlist = NULL;
 	uint32_t *vpairs = NULL;
@@ -3282,6 +3320,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	}
 
 	c.q = vdt_malloc_huge(nw * sizeof(*c.q) + 1); /* zeroed in build_quadrics */
+	c.nq = nw;
 	border = calloc(nw, 1);
 	locked = calloc(nw, 1);
 	if (!c.q || !border || !locked)
@@ -3543,6 +3582,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	co.passes = o->order == VDT_QSLIM_ORDER_PASSES ||
 	            (o->order == VDT_QSLIM_ORDER_AUTO && nw >= VDT_QSLIM_PASSES_MIN);
 	co.threads = o->threads;
+	co.keep_numbers = o->keep_numbers;
 	/* Either cost only reads the vertices' data (the attribute cost that
 	 * of their faces' corners too, which lie in the pass's part of the
 	 * mesh) and merging writes only keep's and gone's: passes may cost and
@@ -3556,10 +3596,13 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 		c.pos = w.positions; /* (the engine's, as they move) */
 		ops.affected = affected_fn;
 	}
+	if (c.at == NULL && c.scale == NULL)
+		ops.renumber = renumber_fn;
 	rc = vdt_contract_run_in_place(&w, &ops, &co, &r, err);
 	c.pos = NULL;
 	stats->contract_s = vdt_seconds() - t_run;
-	free(seam);
+	free(c.seam);
+	c.seam = NULL;
 	if (rc != 0)
 		goto fail;
 	/* (a record must replay to the output: it has no word for a part
@@ -3598,8 +3641,9 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 		for (size_t v = 0; v < nw; v++)
 			locked[v] |= (border[v] & 1) | (c.scale != NULL && c.scale[v] < 1);
 		/* (the quadrics are done with: the fit's scratch) */
-		if (vdt_fit_normal(r.positions, r.vertex_count, r.triangles, r.triangle_count, r.final,
-		                   locked, o->min_quality, o->threads, c.q, nw * sizeof(*c.q), &fs) != 0)
+		if (vdt_fit_normal(r.positions, r.vertex_count, r.triangles, r.triangle_count,
+		                   r.final, locked, o->min_quality, o->threads, c.q,
+		                   c.nq * sizeof(*c.q), &fs) != 0)
 			goto nomem;
 		stats->fitted = fs.moved;
 		stats->fit_s = vdt_seconds() - t_fit;
@@ -3612,6 +3656,7 @@ simplify(const struct vdt_mesh *in, struct vdt_mesh *take, const struct vdt_bbox
 	c.vanish = NULL;
 	c.reach = NULL;
 	stats->passes = r.passes;
+	stats->renumbered = r.renumbered;
 	stats->contractions = r.contractions;
 	stats->rejected = r.rejected;
 	stats->reached_target = r.reached_target;

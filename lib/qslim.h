@@ -94,6 +94,9 @@ struct vdt_qslim_opts {
 	int record;               /* keep the contraction record
 	                             (vdt_qslim_extra_run; vdt_qslim takes
 	                             its records argument instead) */
+	int keep_numbers;         /* never renumber the engine's vertices
+	                             (vdt_contract_opts.keep_numbers): the
+	                             same result, slower on big meshes */
 	const struct vdt_progress *progress;
 };
 
@@ -163,6 +166,8 @@ struct vdt_qslim_stats {
 	                       not on the parts with a non-manifold edge or a
 	                       handle alone */
 	int passes;         /* 1 if contracted in passes, 0 greedy */
+	int renumbered;     /* times the survivors were numbered anew
+	                       (vdt_contract_result.renumbered) */
 	size_t fitted;      /* vertices the fit moved */
 	size_t parts_given_up; /* parts of which no face is left, to meet the target */
 	double error_pct;   /* max_error in percent of the input's

@@ -165,3 +165,53 @@ vdt_rim_sag(const struct vdt_rim *r, uint32_t a, uint32_t b, const double x[3], 
 	}
 	return s;
 }
+
+/* Link x (a vertex plus one, 0 or VDT_RIM_TANGLED) of a vertex kept. */
+static int
+names(uint32_t x)
+{
+	return x != 0 && x != VDT_RIM_TANGLED;
+}
+
+void
+vdt_rim_mark(const struct vdt_rim *r, uint32_t *to)
+{
+	int more = 1;
+
+	/* (the links to vertices gone are few: a walk or two) */
+	while (more) {
+		more = 0;
+		for (size_t v = 0; v < r->vertex_count; v++) {
+			if (to[v] == UINT32_MAX || !on_rim(r, (uint32_t)v))
+				continue;
+			for (int k = 0; k < 2; k++) {
+				uint32_t x = r->link[2 * v + (size_t)k];
+				if (names(x) && to[x - 1] == UINT32_MAX) {
+					to[x - 1] = 0;
+					more = 1;
+				}
+			}
+		}
+	}
+}
+
+int
+vdt_rim_renumber(struct vdt_rim *r, const uint32_t *from, size_t n, const uint32_t *to)
+{
+	struct vdt_rim s;
+
+	if (vdt_rim_init(&s, n) != 0)
+		return -1;
+	for (size_t i = 0; i < n; i++) {
+		if (!on_rim(r, from[i]))
+			continue;
+		mark(&s, (uint32_t)i);
+		for (int k = 0; k < 2; k++) {
+			uint32_t x = r->link[2 * (size_t)from[i] + (size_t)k];
+			s.link[2 * i + (size_t)k] = names(x) ? to[x - 1] + 1 : x;
+		}
+	}
+	vdt_rim_free(r);
+	*r = s;
+	return 0;
+}

@@ -71,6 +71,17 @@ int vdt_rim_affected(const struct vdt_rim *r, uint32_t keep, uint32_t out[2]);
  * boundary planes of vdt_quadric_boundary, weight aside); else 0. Vertex
  * v is at pos + v * stride (3 floats), x in the same frame.
  */
+/*
+ * For vdt_contract_ops.renumber: to[v] is NONE (UINT32_MAX) for each
+ * vertex about to be dropped; set to 0 those the boundary of the others
+ * still names (a link left to a vertex gone where two runs met), and so
+ * on from them. */
+void vdt_rim_mark(const struct vdt_rim *r, uint32_t *to);
+
+/* The boundary in new numbers: vertex i of n was from[i], old v is now
+ * to[v]. Returns 0, or -1 when memory runs out (r unchanged). */
+int vdt_rim_renumber(struct vdt_rim *r, const uint32_t *from, size_t n, const uint32_t *to);
+
 double vdt_rim_sag(const struct vdt_rim *r, uint32_t a, uint32_t b, const double x[3],
                    const float *pos, size_t stride);
 

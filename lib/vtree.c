@@ -624,7 +624,8 @@ vdt_vtree_build(const struct vdt_mesh *m, const struct vdt_vtree_opts *o,
 	co.allow_nonmanifold = 1;
 	co.max_removed_faces = VDT_VTREE_MAX_VANISH; /* what a node can record */
 	co.progress = o->progress;
-	struct vdt_contract_ops ops = {eq1_cost, eq1_merged, NULL, &B, 0, NULL, 0, NULL, NULL};
+	struct vdt_contract_ops ops = {eq1_cost, eq1_merged, NULL, &B,   0,
+	                               NULL,     0,          NULL, NULL, NULL};
 	if ((rc = vdt_contract_run(m, &ops, &co, &res, err)) != 0)
 		goto fail;
 	free(pairs);

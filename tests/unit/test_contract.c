@@ -31,7 +31,7 @@ length_cost(void *ctx, uint32_t a, uint32_t b, int fixed, const float pa[3],
 }
 
 static const struct vdt_contract_ops length_ops = {length_cost, NULL, NULL, NULL, 1,
-                                                   NULL,        0,    NULL, NULL};
+                                                   NULL,        0,    NULL, NULL, NULL};
 
 /* The defaults on one of the three queues: 0 the vertex queue, 1 passes
  * (on one thread), 2 the queue of all pairs. */
@@ -185,7 +185,8 @@ fold_over_is_refused(void **state)
 	static const float p[] = {-0.05f, 0, 0, 0.2f, 0, 0, 1, 0, 0, 0.1f, 1, 0, 0.1f, -1, 0};
 	static const uint32_t t[] = {0, 1, 3, 1, 2, 3, 1, 0, 4, 2, 1, 4};
 	struct vdt_mesh m = {5, (float *)p, NULL, NULL, NULL, 4, (uint32_t *)t, 0};
-	struct vdt_contract_ops ops = {to_zero_cost, NULL, NULL, NULL, 0, NULL, 0, NULL, NULL};
+	struct vdt_contract_ops ops = {to_zero_cost, NULL, NULL, NULL, 0,
+	                               NULL,         0,    NULL, NULL, NULL};
 	struct vdt_contract_opts o;
 	struct vdt_contract_result r;
 
@@ -239,7 +240,7 @@ refused_where_placed_goes_at_an_end(void **state)
 	                          0,    5, 0, 0,    6, 0, 0, 6, 1, 0,    5, 1, 0};
 	static const uint32_t t[] = {0, 1, 3, 1, 2, 3, 1, 0, 4, 2, 1, 4, 5, 6, 7, 5, 7, 8};
 	struct vdt_mesh m = {9, (float *)p, NULL, NULL, NULL, 6, (uint32_t *)t, 0};
-	struct vdt_contract_ops ops = {ends_cost, NULL, NULL, NULL, 0, NULL, 0, NULL, NULL};
+	struct vdt_contract_ops ops = {ends_cost, NULL, NULL, NULL, 0, NULL, 0, NULL, NULL, NULL};
 
 	(void)state;
 	for (int mode = 0; mode < 3; mode++) {
@@ -289,7 +290,7 @@ fold_over_threshold_is_the_angle(void **state)
 {
 	static const uint32_t t[] = {0, 2, 3, 0, 1, 2};
 	static const double turns[] = {10, 40, 75, 100, 150};
-	struct vdt_contract_ops ops = {onto_one, NULL, NULL, NULL, 0, NULL, 0, NULL, NULL};
+	struct vdt_contract_ops ops = {onto_one, NULL, NULL, NULL, 0, NULL, 0, NULL, NULL, NULL};
 
 	(void)state;
 	for (size_t i = 0; i < sizeof(turns) / sizeof(turns[0]); i++) {
@@ -785,7 +786,7 @@ nonmanifold_virtual_pair_is_opt_in(void **state)
 	static const uint32_t t[] = {0, 1, 2, 0, 3, 4};
 	static const uint32_t pairs[] = {1, 3};
 	static const struct vdt_contract_ops ops = {pair13_cost, NULL, NULL, NULL, 0,
-	                                            NULL,        0,    NULL, NULL};
+	                                            NULL,        0,    NULL, NULL, NULL};
 	struct vdt_mesh m = {5, (float *)p, NULL, NULL, NULL, 2, (uint32_t *)t, 0};
 	struct vdt_contract_opts o;
 	struct vdt_contract_result r;
@@ -916,7 +917,8 @@ static void
 minus_zero_is_zero(void **state)
 {
 	struct vdt_mesh m;
-	struct vdt_contract_ops ops = {minus_zero_cost, NULL, NULL, NULL, 1, NULL, 0, NULL, NULL};
+	struct vdt_contract_ops ops = {
+	        minus_zero_cost, NULL, NULL, NULL, 1, NULL, 0, NULL, NULL, NULL};
 
 	(void)state;
 	shape_grid(&m, 4);
@@ -989,8 +991,8 @@ run_queue(const struct vdt_mesh *m, const uint8_t *locked, int mode,
           struct vdt_contract_result *r)
 {
 	struct qctx c = {face_quadrics(m)};
-	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0, NULL,
-	                               NULL};
+	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0,
+	                               NULL,         NULL,           NULL};
 	struct vdt_contract_opts o;
 
 	vdt_contract_defaults(&o);
@@ -1186,8 +1188,8 @@ passes_contract_only_edges(void **state)
 			memmove(m.triangles + 3 * nt++, m.triangles + 3 * t, 3 * sizeof(uint32_t));
 	m.triangle_count = nt;
 	struct qctx c = {face_quadrics(&m)};
-	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0, NULL,
-	                               NULL};
+	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0,
+	                               NULL,         NULL,           NULL};
 	vdt_contract_defaults(&o);
 	o.passes = 1;
 	o.record = 1;
@@ -1265,8 +1267,8 @@ passes_on_threads_match_one_thread(void **state)
 		memcpy(t + 9 * k, f, sizeof(f));
 	}
 	struct qctx c = {face_quadrics(&m)};
-	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0, NULL,
-	                               NULL};
+	struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0,
+	                               NULL,         NULL,           NULL};
 	struct vdt_contract_opts o;
 	/* Runs 0 to 2 on 1 to 3 threads; run 3 on one, costing afresh what
 	 * the others read from the noted costs. */
@@ -1330,8 +1332,8 @@ passes_on_threads_stop_at_the_target(void **state)
 	size_t nt = m.triangle_count, target = nt / 4;
 	for (int k = 0; k < 2; k++) {
 		struct qctx c = {face_quadrics(&m)};
-		struct vdt_contract_ops ops = {
-		        quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0, NULL, NULL};
+		struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0,
+		                               NULL,         NULL,           NULL};
 		struct vdt_contract_opts o;
 		vdt_contract_defaults(&o);
 		o.passes = 1;
@@ -1350,6 +1352,137 @@ passes_on_threads_stop_at_the_target(void **state)
 	assert_true(r[1].shared > r[1].contractions * 9 / 10);
 	for (int k = 0; k < 2; k++)
 		vdt_contract_result_free(&r[k]);
+	vdt_mesh_free(&m);
+}
+
+/* vdt_contract_ops.renumber for qctx: its quadrics in the engine's new
+ * numbers, the maps checked (from ascending, to its inverse). */
+static int renumber_calls;
+
+static int
+quadric_renumber(void *ctx, const uint32_t *from, size_t n, uint32_t *to, const float *pos,
+                 const void **vertex_data)
+{
+	struct qctx *c = ctx;
+
+	(void)pos;
+	if (from == NULL)
+		return 0;
+	renumber_calls++;
+	for (size_t i = 0; i < n; i++) {
+		assert_true(i == 0 || from[i] > from[i - 1]);
+		assert_int_equal(to[from[i]], i);
+		c->q[i] = c->q[from[i]];
+	}
+	*vertex_data = c->q;
+	return 0;
+}
+
+/*
+ * Passes that number the survivors anew (vdt_contract_ops.renumber), twice
+ * on a grid of 271441 vertices taken to 1% of its faces, give the result
+ * of passes that keep the input's numbers, to the bit: the same faces, in
+ * the input's numbers and order, the same sources and final vertices, every
+ * position (the vertices gone included) where it was. The options' arrays
+ * the engine renumbers with them (rank, twice, free_vertices) are set. With
+ * a record, in the engine's numbers, it renumbers nothing.
+ */
+static void
+renumbered_passes_match(void **state)
+{
+	struct vdt_mesh m;
+	struct vdt_contract_result r[3];
+	uint32_t seed = 99;
+
+	(void)state;
+	shape_grid(&m, 520);
+	bump(&m, 11, 0.02f);
+	uint8_t *rank = malloc(m.vertex_count), *freev = malloc(m.vertex_count);
+	uint8_t *twice = calloc(m.triangle_count, 1);
+	assert_true(rank != NULL && freev != NULL && twice != NULL);
+	for (size_t v = 0; v < m.vertex_count; v++) {
+		rank[v] = next_unit(&seed) < 0.1f;
+		freev[v] = next_unit(&seed) < 0.3f;
+	}
+	for (size_t t = 0; t < m.triangle_count; t += 7)
+		twice[t] = 1;
+	for (int k = 0; k < 3; k++) {
+		struct qctx c = {face_quadrics(&m)};
+		struct vdt_contract_ops ops = {
+		        quadric_cost, quadric_merged,  NULL, &c, 1, NULL, 0, NULL,
+		        NULL,         quadric_renumber};
+		struct vdt_contract_opts o;
+		vdt_contract_defaults(&o);
+		o.passes = 1;
+		o.threads = 2;
+		o.keep_numbers = k == 1;
+		o.record = k == 2;
+		o.rank = rank;
+		o.twice = twice;
+		o.free_vertices = freev;
+		o.target_triangles = m.triangle_count / 100;
+		renumber_calls = 0;
+		assert_int_equal(vdt_contract_run(&m, &ops, &o, &r[k], NULL), 0);
+		assert_int_equal(r[k].renumbered, renumber_calls);
+		free(c.q);
+	}
+	assert_int_equal(r[0].renumbered, 2);
+	assert_int_equal(r[1].renumbered, 0);
+	assert_int_equal(r[2].renumbered, 0);
+	assert_true(r[0].reached_target);
+	assert_int_equal(r[0].vertex_count, m.vertex_count);
+	assert_int_equal(r[1].vertex_count, m.vertex_count);
+	assert_int_equal(r[0].contractions, r[1].contractions);
+	assert_int_equal(r[0].rejected, r[1].rejected);
+	assert_int_equal(r[0].live_vertices, r[1].live_vertices);
+	assert_true(r[0].max_cost == r[1].max_cost);
+	assert_int_equal(r[0].triangle_count, r[1].triangle_count);
+	assert_memory_equal(r[0].triangles, r[1].triangles,
+	                    3 * r[0].triangle_count * sizeof(uint32_t));
+	assert_memory_equal(r[0].sources, r[1].sources, r[0].triangle_count * sizeof(uint32_t));
+	assert_memory_equal(r[0].final, r[1].final, m.vertex_count * sizeof(uint32_t));
+	assert_memory_equal(r[0].positions, r[1].positions, 3 * m.vertex_count * sizeof(float));
+	for (int k = 0; k < 3; k++)
+		vdt_contract_result_free(&r[k]);
+	free(rank);
+	free(freev);
+	free(twice);
+	vdt_mesh_free(&m);
+}
+
+/*
+ * vdt_qslim the same with the engine's survivors renumbered as without, on
+ * an open grid (its boundary's links renumbered with them, vdt_rim_mark)
+ * taken to 1% of its faces.
+ */
+static void
+qslim_renumbering_changes_nothing(void **state)
+{
+	struct vdt_mesh m, out[2];
+	struct vdt_qslim_opts o;
+	struct vdt_qslim_stats st[2];
+
+	(void)state;
+	shape_grid(&m, 300); /* 90601 vertices */
+	bump(&m, 4243, 0.02f);
+	vdt_qslim_defaults(&o);
+	o.target_ratio = 0.01;
+	for (int k = 0; k < 2; k++) {
+		o.keep_numbers = k;
+		assert_int_equal(vdt_qslim(&m, &o, &out[k], NULL, NULL, &st[k], NULL), 0);
+		assert_true(st[k].passes);
+	}
+	assert_int_equal(st[0].renumbered, 1);
+	assert_int_equal(st[1].renumbered, 0);
+	assert_int_equal(out[0].vertex_count, out[1].vertex_count);
+	assert_int_equal(out[0].triangle_count, out[1].triangle_count);
+	assert_memory_equal(out[0].positions, out[1].positions,
+	                    3 * out[0].vertex_count * sizeof(float));
+	assert_memory_equal(out[0].triangles, out[1].triangles,
+	                    3 * out[0].triangle_count * sizeof(uint32_t));
+	assert_true(st[0].max_error == st[1].max_error);
+	for (int k = 0; k < 2; k++)
+		vdt_mesh_free(&out[k]);
 	vdt_mesh_free(&m);
 }
 
@@ -1467,7 +1600,7 @@ static void
 passes_sort_past_the_claimable_keys(void **state)
 {
 	struct vdt_mesh g, m;
-	struct vdt_contract_ops ops = {hub_cost, NULL, NULL, NULL, 0, NULL, 0, NULL, NULL};
+	struct vdt_contract_ops ops = {hub_cost, NULL, NULL, NULL, 0, NULL, 0, NULL, NULL, NULL};
 	struct vdt_contract_result r[2];
 
 	(void)state;
@@ -1546,7 +1679,7 @@ long_fans_keep_the_link_condition(void **state)
 {
 	static const int sizes[] = {40, 400, 1500};
 	static const struct vdt_contract_ops ops = {apex_cost, NULL, NULL, NULL, 1,
-	                                            NULL,      0,    NULL, NULL};
+	                                            NULL,      0,    NULL, NULL, NULL};
 	(void)state;
 	for (int z = 0; z < 3; z++) {
 		int n = sizes[z];
@@ -1688,7 +1821,7 @@ hub_of_slivers_stays_a_disc(void **state)
 {
 	enum { N = 301 };
 	static const struct vdt_contract_ops ops = {apex_cost, NULL, NULL, NULL, 1,
-	                                            NULL,      0,    NULL, NULL};
+	                                            NULL,      0,    NULL, NULL, NULL};
 	float p[3 * (N + 1)] = {0};
 	uint32_t t[3 * (N - 1)];
 	struct vdt_mesh m = {N + 1, p, NULL, NULL, NULL, N - 1, t, 0};
@@ -1764,8 +1897,8 @@ hubs_are_not_read_at_each_try(void **state)
 	}
 	for (int mode = 0; mode < 3; mode++) {
 		struct qctx c = {face_quadrics(&m)};
-		struct vdt_contract_ops ops = {
-		        quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0, NULL, NULL};
+		struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0,
+		                               NULL,         NULL,           NULL};
 		struct vdt_contract_opts o;
 		struct vdt_contract_result r;
 		hub_opts(&o, mode, 2 * N / 10);
@@ -1815,8 +1948,8 @@ open_hub_is_not_read_at_each_try(void **state)
 	}
 	for (int mode = 0; mode < 3; mode++) {
 		struct qctx c = {face_quadrics(&m)};
-		struct vdt_contract_ops ops = {
-		        quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0, NULL, NULL};
+		struct vdt_contract_ops ops = {quadric_cost, quadric_merged, NULL, &c, 1, NULL, 0,
+		                               NULL,         NULL,           NULL};
 		struct vdt_contract_opts o;
 		struct vdt_contract_result r;
 		for (uint32_t i = 0; i < N; i++) { /* the rim's planes, as vdt-qslim's */
@@ -2127,6 +2260,8 @@ main(void)
 	        cmocka_unit_test(auto_order_follows_the_size),
 	        cmocka_unit_test(passes_on_threads_match_one_thread),
 	        cmocka_unit_test(passes_on_threads_stop_at_the_target),
+	        cmocka_unit_test(renumbered_passes_match),
+	        cmocka_unit_test(qslim_renumbering_changes_nothing),
 	        cmocka_unit_test(qslim_threads_do_not_matter),
 	        cmocka_unit_test(passes_sort_past_the_claimable_keys),
 	        cmocka_unit_test(long_fans_keep_the_link_condition),

@@ -136,6 +136,57 @@ joined_runs_are_tangled(void **state)
 	vdt_rim_free(&r);
 }
 
+/*
+ * Renumbered for the engine (vdt_rim_mark, vdt_rim_renumber): after the
+ * pinch of 0 and 4, the vertices next to 4 along the boundary still name
+ * it, so it is kept though gone; 6, gone into 7 along the boundary, is
+ * named by none and dropped. Every link of a vertex kept is then the
+ * same vertex under its new number, and the runs answer as before.
+ */
+static void
+renumbered_runs_stay(void **state)
+{
+	struct vdt_rim r, old;
+	float pos[3 * (N + 1)];
+	uint32_t to[N + 1], from[N + 1], n = 0, p, q, p2, q2;
+
+	(void)state;
+	disc(&r, pos);
+	vdt_rim_merged(&r, 0, 4);
+	vdt_rim_merged(&r, 7, 6);
+	for (uint32_t v = 0; v <= N; v++)
+		to[v] = v == 4 || v == 6 ? UINT32_MAX : 0;
+	vdt_rim_mark(&r, to);
+	assert_int_equal(to[4], 0);
+	assert_int_equal(to[6], UINT32_MAX);
+	for (uint32_t v = 0; v <= N; v++)
+		if (to[v] != UINT32_MAX) {
+			from[n] = v;
+			to[v] = n++;
+		}
+	assert_int_equal(n, N);
+	assert_int_equal(vdt_rim_init(&old, N + 1), 0);
+	memcpy(old.bits, r.bits, (N + 1) / 8 + 1);
+	memcpy(old.link, r.link, 2 * (N + 1) * sizeof(*r.link));
+	assert_int_equal(vdt_rim_renumber(&r, from, n, to), 0);
+	assert_int_equal(r.vertex_count, n);
+	for (uint32_t i = 0; i < n; i++) {
+		for (int k = 0; k < 2; k++) {
+			uint32_t x = old.link[2 * from[i] + (uint32_t)k];
+			uint32_t want = x == 0 || x == VDT_RIM_TANGLED ? x : to[x - 1] + 1;
+			assert_int_equal(r.link[2 * i + (uint32_t)k], want);
+		}
+		int had = vdt_rim_links(&old, from[i], &p, &q);
+		assert_int_equal(vdt_rim_links(&r, i, &p2, &q2), had);
+		if (had) {
+			assert_int_equal(p2, to[p]);
+			assert_int_equal(q2, to[q]);
+		}
+	}
+	vdt_rim_free(&old);
+	vdt_rim_free(&r);
+}
+
 static void
 sag_measures_the_chords(void **state)
 {
@@ -198,6 +249,7 @@ main(void)
 	        cmocka_unit_test(contractions_keep_the_runs),
 	        cmocka_unit_test(joined_runs_are_tangled),
 	        cmocka_unit_test(sag_measures_the_chords),
+	        cmocka_unit_test(renumbered_runs_stay),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }
