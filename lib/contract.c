@@ -3917,7 +3917,7 @@ renumber(struct engine *e)
 	size_t len = 0, room = 3 * e->live_tris + n + 64;
 	uint32_t *tmp = (uint32_t *)e->keys;
 	if (room > 2 * (nv + 1) || room > e->tpool.cap) {
-		if (pool_reserve(&pool, room) != 0)
+		if (pool_reserve(&pool, 2 * room) != 0)
 			goto out;
 		tmp = pool.data;
 	}
@@ -3932,9 +3932,12 @@ renumber(struct engine *e)
 		len += l->cap;
 	}
 	if (pool.data == NULL) {
+		/* (room for the next rounds' merged lists too, which pass_round
+		 * does not grow the pool for: a pool just the lists' size left
+		 * the pass after the renumbering to one thread) */
+		pool.cap = 2 * room < e->tpool.cap ? 2 * room : e->tpool.cap;
 		memcpy(e->tpool.data, tmp, len * sizeof(*tmp));
-		pool.data = vdt_shrink(e->tpool.data, room * sizeof(*pool.data));
-		pool.cap = room;
+		pool.data = vdt_shrink(e->tpool.data, pool.cap * sizeof(*pool.data));
 	} else {
 		free(e->tpool.data);
 	}
