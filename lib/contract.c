@@ -3754,7 +3754,8 @@ renumber_wanted(const struct engine *e, const struct vdt_contract_opts *o)
 	       e->fpos == NULL && e->nv >= RENUMBER_MIN && e->nlive * RENUMBER_SHARE <= e->nv;
 }
 
-/* The number among the live faces of live face t (rank_faces). */
+/* Live face t's number among the live faces, from a bit per face (set if
+ * live) and the count of those set before each word of them. */
 static inline uint32_t
 face_rank(const uint64_t *bits, const uint32_t *before, size_t t)
 {
@@ -3768,7 +3769,7 @@ face_rank(const uint64_t *bits, const uint32_t *before, size_t t)
  * engine is then only fit to be freed). Whatever it takes, it takes after
  * giving back more: the peak memory of the run stays where it was. The
  * maps go in the keys' scratch (8 bytes a vertex, unused between passes,
- * and every page of it written by the first), the faces' new numbers are
+ * every page of it written by the first pass), the faces' new numbers are
  * counted from a bit per face; the arrays are gathered in place, then
  * shrunk, and only then are the new lists and positions made.
  */
