@@ -201,4 +201,16 @@ shape_closed_manifold(const struct vdt_mesh *m)
 	return ok;
 }
 
+#ifdef assert_memory_equal /* (with cmocka.h) */
+/* Two meshes alike to the last bit of every position, and in their faces. */
+static inline void
+assert_same_mesh(const struct vdt_mesh *a, const struct vdt_mesh *b)
+{
+	assert_int_equal(a->vertex_count, b->vertex_count);
+	assert_int_equal(a->triangle_count, b->triangle_count);
+	assert_memory_equal(a->positions, b->positions, 3 * a->vertex_count * sizeof(float));
+	assert_memory_equal(a->triangles, b->triangles, 3 * a->triangle_count * sizeof(uint32_t));
+}
+#endif
+
 #endif

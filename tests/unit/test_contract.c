@@ -1474,20 +1474,13 @@ qslim_renumbering_changes_nothing(void **state)
 	}
 	assert_int_equal(st[0].renumbered, 1);
 	assert_int_equal(st[1].renumbered, 0);
-	assert_int_equal(out[0].vertex_count, out[1].vertex_count);
-	assert_int_equal(out[0].triangle_count, out[1].triangle_count);
-	assert_memory_equal(out[0].positions, out[1].positions,
-	                    3 * out[0].vertex_count * sizeof(float));
-	assert_memory_equal(out[0].triangles, out[1].triangles,
-	                    3 * out[0].triangle_count * sizeof(uint32_t));
+	assert_same_mesh(&out[0], &out[1]);
 	assert_true(st[0].max_error == st[1].max_error);
 	for (int k = 0; k < 2; k++)
 		vdt_mesh_free(&out[k]);
 	vdt_mesh_free(&m);
 }
 
-/* --order auto: passes from VDT_QSLIM_PASSES_MIN welded vertices up,
- * greedy below; the explicit orders whatever the size. */
 /*
  * vdt_qslim gives the same mesh on one thread as on three, on a bumpy grid
  * big enough for its threaded set-up (face quadrics, floors, placement
@@ -1513,17 +1506,14 @@ qslim_threads_do_not_matter(void **state)
 		assert_int_equal(vdt_qslim(&m, &o, &out[k], NULL, NULL, &st, NULL), 0);
 		assert_true(st.passes);
 	}
-	assert_int_equal(out[0].vertex_count, out[1].vertex_count);
-	assert_int_equal(out[0].triangle_count, out[1].triangle_count);
-	assert_memory_equal(out[0].positions, out[1].positions,
-	                    3 * out[0].vertex_count * sizeof(float));
-	assert_memory_equal(out[0].triangles, out[1].triangles,
-	                    3 * out[0].triangle_count * sizeof(uint32_t));
+	assert_same_mesh(&out[0], &out[1]);
 	for (int k = 0; k < 2; k++)
 		vdt_mesh_free(&out[k]);
 	vdt_mesh_free(&m);
 }
 
+/* --order auto: passes from VDT_QSLIM_PASSES_MIN welded vertices up,
+ * greedy below; the explicit orders whatever the size. */
 static void
 auto_order_follows_the_size(void **state)
 {

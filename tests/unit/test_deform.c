@@ -157,15 +157,6 @@ one_frame(const struct vdt_mesh *m, struct vdt_frames *fr)
 	memcpy(fr->positions, m->positions, 3 * m->vertex_count * sizeof(float));
 }
 
-static void
-assert_same_mesh(const struct vdt_mesh *a, const struct vdt_mesh *b)
-{
-	assert_int_equal(a->vertex_count, b->vertex_count);
-	assert_int_equal(a->triangle_count, b->triangle_count);
-	assert_memory_equal(a->positions, b->positions, 3 * a->vertex_count * sizeof(float));
-	assert_memory_equal(a->triangles, b->triangles, 3 * a->triangle_count * sizeof(uint32_t));
-}
-
 /*
  * One frame: independent is vdt_qslim's order; so is ours on a closed
  * smooth sphere (no feature weight, no deformation) when every contraction

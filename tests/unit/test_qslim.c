@@ -30,16 +30,6 @@ topology_names(void **state)
 	assert_int_equal(vdt_topology_parse(""), -1);
 }
 
-/* The same meshes are equal down to the last bit of every position. */
-static void
-assert_same_mesh(const struct vdt_mesh *a, const struct vdt_mesh *b)
-{
-	assert_int_equal(a->vertex_count, b->vertex_count);
-	assert_int_equal(a->triangle_count, b->triangle_count);
-	assert_memory_equal(a->positions, b->positions, 3 * sizeof(float) * a->vertex_count);
-	assert_memory_equal(a->triangles, b->triangles, 3 * sizeof(uint32_t) * a->triangle_count);
-}
-
 /*
  * On the icosphere, bounds of 1 and 2 percent are those of diag / 100 and
  * 2 diag / 100 model units (diag: the input's bounding-box diagonal), and
