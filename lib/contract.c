@@ -182,7 +182,7 @@ struct engine {
 	float *pos0;        /* the input's positions, by its numbers: the
 	                       result's, the vertices gone before the last
 	                       renumbering where they were */
-	size_t nv0, nt0;    /* the input's vertices and faces */
+	size_t nv0;         /* the input's vertices */
 	uint8_t *own_rank;  /* the options' rank, free_vertices and */
 	uint8_t *own_free;  /* twice, renumbered (those are then */
 	uint8_t *own_twice; /* these) */
@@ -4153,7 +4153,7 @@ engine_init(struct engine *e, const struct vdt_mesh *m, float *own_pos,
 	uint64_t *keys = NULL;
 
 	e->nv = e->nv0 = nv;
-	e->nt = e->nt0 = nt;
+	e->nt = nt;
 	e->vdata = e->ops->vertex_data;
 	e->pos = own_pos ? own_pos : malloc(3 * nv * sizeof(float));
 	e->tri = own_tri ? own_tri : malloc(3 * nt * sizeof(uint32_t));

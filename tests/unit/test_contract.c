@@ -1478,6 +1478,44 @@ qslim_renumbering_changes_nothing(void **state)
 	assert_true(st[0].max_error == st[1].max_error);
 	for (int k = 0; k < 2; k++)
 		vdt_mesh_free(&out[k]);
+	/* Not with error scales, nor with the attributes' cost: their data,
+	 * which the output reads, keep the input's numbers. */
+	double *scale = malloc(m.vertex_count * sizeof(*scale));
+	assert_non_null(scale);
+	for (size_t v = 0; v < m.vertex_count; v++)
+		scale[v] = v % 2 ? 1 : 0.5;
+	o.keep_numbers = 0;
+	o.error_scale = scale;
+	assert_int_equal(vdt_qslim(&m, &o, &out[0], NULL, NULL, &st[0], NULL), 0);
+	assert_true(st[0].passes);
+	assert_int_equal(st[0].renumbered, 0);
+	vdt_mesh_free(&out[0]);
+	free(scale);
+	o.error_scale = NULL;
+	assert_non_null(m.uvs = malloc(2 * m.vertex_count * sizeof(*m.uvs)));
+	for (size_t v = 0; v < m.vertex_count; v++) {
+		m.uvs[2 * v] = m.positions[3 * v] + 0.3f * m.positions[3 * v + 2];
+		m.uvs[2 * v + 1] = m.positions[3 * v + 1];
+	}
+	/* (texture coordinates without their cost: the output takes them
+	 * from the input's vertices, by the input's numbers, renumbered or
+	 * not) */
+	for (int k = 0; k < 2; k++) {
+		o.keep_numbers = k;
+		assert_int_equal(vdt_qslim(&m, &o, &out[k], NULL, NULL, &st[k], NULL), 0);
+		assert_int_equal(st[k].renumbered, !k);
+	}
+	assert_same_mesh(&out[0], &out[1]);
+	assert_non_null(out[0].uvs);
+	assert_memory_equal(out[0].uvs, out[1].uvs, 2 * out[0].vertex_count * sizeof(float));
+	for (int k = 0; k < 2; k++)
+		vdt_mesh_free(&out[k]);
+	o.keep_numbers = 0;
+	o.attribute_weight = 1;
+	assert_int_equal(vdt_qslim(&m, &o, &out[0], NULL, NULL, &st[0], NULL), 0);
+	assert_true(st[0].passes);
+	assert_int_equal(st[0].renumbered, 0);
+	vdt_mesh_free(&out[0]);
 	vdt_mesh_free(&m);
 }
 
